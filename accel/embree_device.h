@@ -1,0 +1,31 @@
+#pragma once
+// Ownership of the Embree device that every acceleration structure lives in.
+
+#include <embree3/rtcore.h>
+
+#include <string>
+
+namespace nx {
+
+/// An Embree 3 device (RAII). Embree errors reported through its callback are kept so that
+/// callers can turn them into nx::Error with takeError().
+class EmbreeDevice {
+public:
+  /// Creates a device with the given Embree configuration string ("" for defaults).
+  explicit EmbreeDevice(const std::string& config = "");
+  ~EmbreeDevice();
+  EmbreeDevice(const EmbreeDevice&) = delete;
+  EmbreeDevice& operator=(const EmbreeDevice&) = delete;
+
+  /// The raw device handle.
+  RTCDevice handle() const { return device_; }
+  /// Throws nx::Error if Embree reported an error since the last call, naming `context`.
+  void throwIfError(const std::string& context);
+
+private:
+  static void onError(void* self, RTCError code, const char* message);
+  RTCDevice device_ = nullptr;
+  std::string lastError_;
+};
+
+} // namespace nx

@@ -1,0 +1,54 @@
+#pragma once
+// Deterministic sample values that depend only on (pixel, sample index, dimension, seed).
+//
+// Why: the image must not depend on the thread count and a render split over a farm by
+// pixels or by sample ranges must merge into the image of one run. Both follow when a
+// sample value is a pure function of those four numbers, so there is no generator state.
+//
+// Two kinds are offered:
+// - Independent: a counter-based generator (a hash of the four numbers). Plain Monte
+//   Carlo, O(N^-1/2) error, no structure at all: the reference for unbiasedness checks.
+// - SobolOwen (default): the first two Sobol dimensions, Owen-scrambled and padded per
+//   dimension pair with a hashed index shuffle (B. Burley, "Practical Hash-based Owen
+//   Scrambling", JCGT 9(4), 2020). Each pixel's first 2^m samples form a (0,m,2)-net in
+//   every dimension pair, which lowers the error of smooth integrands well below
+//   independent sampling while staying a pure function of the four numbers.
+
+#include <cstdint>
+
+namespace nx {
+
+/// Which sequence a render draws its sample values from.
+enum class SamplerKind : uint8_t { SobolOwen, Independent };
+
+/// A point of the unit square.
+struct Sample2 {
+  float u = 0, v = 0;
+};
+
+/// Value in [0,1) of dimension `dim` of sample `index` of pixel `pixel`.
+float sampleValue(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t dim, uint32_t seed);
+
+/// Dimensions 2*pair and 2*pair+1 together (they form a (0,2)-sequence for SobolOwen).
+Sample2 samplePair(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed);
+
+/// The sample values of one (pixel, sample index), handed out in order. Each draw uses a
+/// fresh dimension pair, so a 1D draw and a 2D draw never share structure.
+class PixelSampleStream {
+public:
+  /// Starts at dimension pair 0 of the given pixel and sample index.
+  PixelSampleStream(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t seed)
+      : kind_(kind), pixel_(pixel), index_(index), seed_(seed) {}
+
+  /// Next value in [0,1).
+  float next1D() { return samplePair(kind_, pixel_, index_, pair_++, seed_).u; }
+  /// Next point in [0,1)^2.
+  Sample2 next2D() { return samplePair(kind_, pixel_, index_, pair_++, seed_); }
+
+private:
+  SamplerKind kind_;
+  uint32_t pixel_, index_, seed_;
+  uint32_t pair_ = 0;
+};
+
+} // namespace nx

@@ -1,0 +1,105 @@
+#include "core/text_table.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace nx {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r\n");
+  return s.substr(first, last - first + 1);
+}
+
+// Cells split on commas, semicolons or tabs when the line has any (empty cells kept, so
+// that "1,,2" is reported), otherwise on runs of spaces.
+std::vector<std::string> splitCells(const std::string& rawLine) {
+  const std::string line = trim(rawLine);
+  std::vector<std::string> cells;
+  if (line.empty()) return cells;
+  if (line.find_first_of(",;\t") != std::string::npos) {
+    std::string cell;
+    for (char c : line) {
+      if (c == ',' || c == ';' || c == '\t') {
+        cells.push_back(trim(cell));
+        cell.clear();
+      } else {
+        cell += c;
+      }
+    }
+    cells.push_back(trim(cell));
+    return cells;
+  }
+  std::istringstream words(line);
+  for (std::string w; words >> w;) cells.push_back(w);
+  return cells;
+}
+
+bool looksNumeric(const std::string& cell) {
+  char* end = nullptr;
+  std::strtod(cell.c_str(), &end);
+  return end != cell.c_str() && *end == '\0';
+}
+
+} // namespace
+
+double parseNumber(const std::string& text, const std::string& where, const std::string& what) {
+  const char* begin = text.c_str();
+  while (*begin == ' ' || *begin == '\t' || *begin == '\n' || *begin == '\r') ++begin;
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(begin, &end);
+  const char* rest = end;
+  while (*rest == ' ' || *rest == '\t' || *rest == '\n' || *rest == '\r') ++rest;
+  if (end == begin || *rest != '\0')
+    throw Error(where + ": expected " + what + ", found '" + text + "'");
+  if (!std::isfinite(value) || errno == ERANGE)
+    throw Error(where + ": expected a finite " + what + ", found '" + text + "'");
+  return value;
+}
+
+NumberTable parseNumberTable(const std::string& text, const std::string& source, bool allowHeader) {
+  NumberTable table;
+  table.source = source;
+  std::istringstream in(text);
+  std::string line;
+  int lineNumber = 0;
+  bool first = true;
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    const auto cells = splitCells(line);
+    if (cells.empty() || (!cells[0].empty() && cells[0][0] == '#')) continue;
+    if (first && allowHeader && !looksNumeric(cells[0])) {
+      table.header = cells;
+      first = false;
+      continue;
+    }
+    first = false;
+    TableRow row;
+    row.line = lineNumber;
+    const std::string where = source + ":" + std::to_string(lineNumber);
+    for (const auto& cell : cells) row.values.push_back(parseNumber(cell, where, "a number"));
+    table.rows.push_back(std::move(row));
+  }
+  if (table.rows.empty())
+    throw Error(source + ":" + std::to_string(lineNumber) +
+                ": expected rows of numbers, found none");
+  return table;
+}
+
+NumberTable readNumberTable(const std::string& path, bool allowHeader) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw Error(path + ": cannot open the file for reading");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return parseNumberTable(text.str(), path, allowHeader);
+}
+
+} // namespace nx

@@ -1,0 +1,20 @@
+#pragma once
+// Smooth reflectance spectra for RGB colours (Jakob & Hanika, "A Low-Dimensional Function
+// Space for Efficient Spectral Upsampling", EGSR 2019).
+
+#include "spectra/colour.h"
+#include "spectra/spectrum.h"
+
+namespace nx {
+
+/// A smooth reflectance spectrum in [0, 1] whose colour under D65 is the given linear sRGB
+/// colour (each channel in [0, 1]). The three sigmoid-polynomial coefficients are fitted by
+/// damped Gauss-Newton on the CIELAB difference, walking from mid grey to the target so that
+/// saturated colours start near a solution (the paper's continuation idea, done per colour
+/// instead of through a precomputed table). Black and white give constant spectra.
+Spectrum upsampleSrgbReflectance(const Rgb& linearSrgb);
+
+/// Colour of a reflectance spectrum under D65, as linear sRGB.
+Rgb reflectanceToLinearSrgb(const Spectrum& reflectance);
+
+} // namespace nx

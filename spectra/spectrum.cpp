@@ -1,0 +1,85 @@
+#include "spectra/spectrum.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/math_util.h"
+#include "core/text_table.h"
+
+namespace nx {
+
+double GaussianSpectrum::operator()(double nm) const {
+  const double d = (nm - meanNm) / sigmaNm;
+  return peak * std::exp(-0.5 * d * d);
+}
+
+double SkewCauchySpectrum::operator()(double nm) const {
+  const double d = nm - locationNm;
+  const double g = widthNm;
+  return g / (kPi * (g * g + d * d)) * (std::atan(skew * d / g) * kInvPi + 0.5);
+}
+
+double BlackbodySpectrum::operator()(double nm) const {
+  // CODATA 2018 exact SI constants.
+  constexpr double h = 6.62607015e-34, c = 299792458.0, kB = 1.380649e-23;
+  const double l = nm * 1e-9;
+  const double perMetre =
+      2.0 * h * c * c / (l * l * l * l * l) / std::expm1(h * c / (l * kB * kelvin));
+  return perMetre * 1e-9; // per nanometre
+}
+
+double TabulatedSpectrum::operator()(double x) const {
+  if (nm.empty() || x < nm.front() || x > nm.back()) return 0.0;
+  const auto it = std::upper_bound(nm.begin(), nm.end(), x);
+  if (it == nm.end()) return value.back();
+  const size_t i = static_cast<size_t>(it - nm.begin()) - 1;
+  const double t = (x - nm[i]) / (nm[i + 1] - nm[i]);
+  return lerp(value[i], value[i + 1], t);
+}
+
+double SigmoidPolynomialSpectrum::operator()(double nm) const {
+  const double x = (nm - 360.0) / 470.0;
+  const double p = (c0 * x + c1) * x + c2;
+  if (std::isinf(p)) return p > 0 ? 1.0 : 0.0;
+  return 0.5 + p / (2.0 * std::sqrt(1.0 + p * p));
+}
+
+TabulatedSpectrum makeTabulated(std::vector<double> nm, std::vector<double> value,
+                                const std::string& where) {
+  if (nm.size() != value.size())
+    throw Error(where + ": expected as many values as wavelengths, found " +
+                std::to_string(nm.size()) + " wavelengths and " + std::to_string(value.size()) +
+                " values");
+  if (nm.size() < 2)
+    throw Error(where + ": expected at least two (wavelength, value) pairs, found " +
+                std::to_string(nm.size()));
+  for (size_t i = 0; i < nm.size(); ++i) {
+    if (!std::isfinite(nm[i]) || !std::isfinite(value[i]) || nm[i] <= 0)
+      throw Error(where + ": expected finite values and positive wavelengths, found (" +
+                  std::to_string(nm[i]) + ", " + std::to_string(value[i]) + ")");
+    if (i > 0 && nm[i] <= nm[i - 1])
+      throw Error(where + ": expected strictly increasing wavelengths, found " +
+                  std::to_string(nm[i]) + " after " + std::to_string(nm[i - 1]));
+  }
+  return TabulatedSpectrum{std::move(nm), std::move(value)};
+}
+
+TabulatedSpectrum readSpectrumCsv(const std::string& path) {
+  const NumberTable table = readNumberTable(path, /*allowHeader=*/true);
+  std::vector<double> nm, value;
+  for (const auto& row : table.rows) {
+    const std::string where = path + ":" + std::to_string(row.line);
+    if (row.values.size() != 2)
+      throw Error(where + ": expected 2 columns (wavelength, value), found " +
+                  std::to_string(row.values.size()));
+    if (!nm.empty() && row.values[0] <= nm.back())
+      throw Error(where + ": expected wavelengths in increasing order, found " +
+                  std::to_string(row.values[0]) + " after " + std::to_string(nm.back()));
+    nm.push_back(row.values[0]);
+    value.push_back(row.values[1]);
+  }
+  return makeTabulated(std::move(nm), std::move(value), path);
+}
+
+} // namespace nx

@@ -1,0 +1,102 @@
+#pragma once
+// Spectral distributions as a closed set of kinds, dispatched statically (no virtual calls).
+
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace nx {
+
+/// The same value at every wavelength.
+struct ConstantSpectrum {
+  double value = 0;
+  double operator()(double) const { return value; }
+};
+
+/// A Gaussian with the given peak value (not area-normalised).
+struct GaussianSpectrum {
+  double meanNm = 550, sigmaNm = 34, peak = 1;
+  double operator()(double nm) const;
+};
+
+/// The skew-Cauchy density of Zheng, Sato & Sato (ECCV 2014):
+/// f = g / (pi (g^2 + d^2)) * (atan(w d / g) / pi + 1/2), d = lambda - location.
+struct SkewCauchySpectrum {
+  double locationNm = 550, widthNm = 20, skew = 0;
+  double operator()(double nm) const;
+};
+
+/// Planck's law: spectral radiance of a black body in W m^-2 sr^-1 nm^-1.
+struct BlackbodySpectrum {
+  double kelvin = 6504;
+  double operator()(double nm) const;
+};
+
+/// Piecewise-linear interpolation of (wavelength, value) pairs; zero outside their range.
+struct TabulatedSpectrum {
+  std::vector<double> nm;    ///< strictly increasing wavelengths
+  std::vector<double> value; ///< one value per wavelength
+  double operator()(double nm) const;
+};
+
+/// The smooth sigmoid-polynomial spectrum of Jakob & Hanika (EGSR 2019):
+/// s(lambda) = 1/2 + p / (2 sqrt(1 + p^2)), p = c0 x^2 + c1 x + c2, x = (lambda-360)/470.
+struct SigmoidPolynomialSpectrum {
+  double c0 = 0, c1 = 0, c2 = 0;
+  double operator()(double nm) const;
+};
+
+/// Any spectrum nxrender knows, times a scale factor.
+class Spectrum {
+public:
+  using Kind = std::variant<ConstantSpectrum, GaussianSpectrum, SkewCauchySpectrum,
+                            BlackbodySpectrum, TabulatedSpectrum, SigmoidPolynomialSpectrum>;
+
+  /// Zero everywhere.
+  Spectrum() : kind_(ConstantSpectrum{0}) {}
+  /// A spectrum of the given kind, scaled by `scale`.
+  template <typename K>
+  Spectrum(K kind, double scale = 1) : kind_(std::move(kind)), scale_(scale) {}
+
+  /// Value at wavelength nm.
+  double operator()(double nm) const {
+    return scale_ * std::visit([nm](const auto& k) { return k(nm); }, kind_);
+  }
+  /// Values at several wavelengths with one dispatch.
+  template <typename Lambdas, typename Out>
+  void evaluate(const Lambdas& nm, Out& out) const {
+    std::visit(
+        [&](const auto& k) {
+          for (size_t i = 0; i < nm.size(); ++i) out[i] = static_cast<float>(scale_ * k(nm[i]));
+        },
+        kind_);
+  }
+
+  /// The same spectrum multiplied by s.
+  Spectrum scaled(double s) const {
+    Spectrum r = *this;
+    r.scale_ *= s;
+    return r;
+  }
+  /// The scale factor applied to the kind's values.
+  double scale() const { return scale_; }
+  /// The underlying kind.
+  const Kind& kind() const { return kind_; }
+  /// True when the value does not depend on wavelength.
+  bool isConstant() const { return std::holds_alternative<ConstantSpectrum>(kind_); }
+
+private:
+  Kind kind_;
+  double scale_ = 1;
+};
+
+/// A tabulated spectrum from (wavelength, value) pairs; `where` names the source for errors
+/// (wavelengths must be finite and strictly increasing, at least two pairs).
+TabulatedSpectrum makeTabulated(std::vector<double> nm, std::vector<double> value,
+                                const std::string& where);
+
+/// A tabulated spectrum read from a two-column CSV file (wavelength in nm, value); an
+/// optional header line is allowed. Errors name the file and line.
+TabulatedSpectrum readSpectrumCsv(const std::string& path);
+
+} // namespace nx
