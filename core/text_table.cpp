@@ -60,8 +60,8 @@ double parseNumber(const std::string& text, const std::string& where, const std:
   while (*rest == ' ' || *rest == '\t' || *rest == '\n' || *rest == '\r') ++rest;
   if (end == begin || *rest != '\0')
     throw Error(where + ": expected " + what + ", found '" + text + "'");
-  if (!std::isfinite(value) || errno == ERANGE)
-    throw Error(where + ": expected a finite " + what + ", found '" + text + "'");
+  if (!std::isfinite(value) || (errno == ERANGE && std::abs(value) > 1.0))
+    throw Error(where + ": expected " + what + ", found '" + text + "' (not a finite value)");
   return value;
 }
 

@@ -11,8 +11,8 @@ inline constexpr int kCieMinNm = 360;
 inline constexpr int kCieMaxNm = 830;
 /// Number of 1 nm samples in [kCieMinNm, kCieMaxNm].
 inline constexpr int kCieSamples = kCieMaxNm - kCieMinNm + 1;
-/// Integral of y-bar over 360-830 nm (1 nm sum of the CIE table).
-inline constexpr double kCieYIntegral = 106.856895;
+/// Integral of y-bar over 360-830 nm: the 1 nm sum of the table (CIE quotes 106.857).
+inline constexpr double kCieYIntegral = 106.856917;
 
 /// Tristimulus values X, Y, Z.
 struct Xyz {

@@ -20,7 +20,8 @@ struct GaussianSpectrum {
 };
 
 /// The skew-Cauchy density of Zheng, Sato & Sato (ECCV 2014):
-/// f = g / (pi (g^2 + d^2)) * (atan(w d / g) / pi + 1/2), d = lambda - location.
+/// f = g / (pi (g^2 + d^2)) * (atan(w d / g) / pi + 1/2), d = lambda - location. As written
+/// (fluorescence spec) it integrates to 1/2 for every skew w; users normalise it.
 struct SkewCauchySpectrum {
   double locationNm = 550, widthNm = 20, skew = 0;
   double operator()(double nm) const;

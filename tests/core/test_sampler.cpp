@@ -1,0 +1,118 @@
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "core/sampler.h"
+#include "support/statistics.h"
+
+namespace nx {
+namespace {
+
+const SamplerKind kKinds[] = {SamplerKind::SobolOwen, SamplerKind::Independent};
+
+TEST(Sampler, PureFunctionOfItsFourArguments) {
+  for (SamplerKind k : kKinds) {
+    EXPECT_EQ(sampleValue(k, 7, 11, 3, 42), sampleValue(k, 7, 11, 3, 42));
+    // Changing any one argument changes the value.
+    const float v = sampleValue(k, 7, 11, 3, 42);
+    EXPECT_NE(v, sampleValue(k, 8, 11, 3, 42));
+    EXPECT_NE(v, sampleValue(k, 7, 12, 3, 42));
+    EXPECT_NE(v, sampleValue(k, 7, 11, 4, 42));
+    EXPECT_NE(v, sampleValue(k, 7, 11, 3, 43));
+  }
+}
+
+TEST(Sampler, StreamMatchesDirectValues) {
+  for (SamplerKind k : kKinds) {
+    PixelSampleStream s(k, 5, 9, 1);
+    const float a = s.next1D();
+    const Sample2 b = s.next2D();
+    EXPECT_EQ(a, sampleValue(k, 5, 9, 0, 1));
+    EXPECT_EQ(b.u, sampleValue(k, 5, 9, 2, 1));
+    EXPECT_EQ(b.v, sampleValue(k, 5, 9, 3, 1));
+  }
+}
+
+// Chi-square test of 1D uniformity of one dimension over many pixels and sample indices.
+TEST(Sampler, OneDimensionIsUniform) {
+  for (SamplerKind k : kKinds) {
+    for (uint32_t dim : {0u, 1u, 7u, 30u}) {
+      const int bins = 256, n = 256 * 400;
+      std::vector<double> obs(bins, 0), exp(bins, n / double(bins));
+      for (int i = 0; i < n; ++i) {
+        const float v =
+            sampleValue(k, static_cast<uint32_t>(i / 64), static_cast<uint32_t>(i % 64), dim, 3);
+        ASSERT_GE(v, 0.0f);
+        ASSERT_LT(v, 1.0f);
+        obs[static_cast<int>(v * bins)] += 1;
+      }
+      const auto [stat, dof] = test::chiSquare(obs, exp);
+      EXPECT_LT(test::chiSquareZ(stat, dof), 4.0) << "kind " << int(k) << " dim " << dim;
+    }
+  }
+}
+
+// Pairs of dimensions, within one pair and across pairs, are jointly uniform (independent).
+TEST(Sampler, PairsOfDimensionsAreJointlyUniform) {
+  for (SamplerKind k : kKinds) {
+    for (auto [d0, d1] :
+         {std::pair{0u, 1u}, std::pair{0u, 2u}, std::pair{1u, 3u}, std::pair{4u, 9u}}) {
+      const int side = 32, n = side * side * 100;
+      std::vector<double> obs(side * side, 0), exp(side * side, n / double(side * side));
+      for (int i = 0; i < n; ++i) {
+        // Many pixels, few samples each: the pixel-to-pixel decorrelation is what is tested.
+        const uint32_t px = static_cast<uint32_t>(i / 16), idx = static_cast<uint32_t>(i % 16);
+        const float a = sampleValue(k, px, idx, d0, 9), b = sampleValue(k, px, idx, d1, 9);
+        obs[static_cast<int>(a * side) * side + static_cast<int>(b * side)] += 1;
+      }
+      const auto [stat, dof] = test::chiSquare(obs, exp);
+      EXPECT_LT(test::chiSquareZ(stat, dof), 4.0)
+          << "kind " << int(k) << " dims " << d0 << "," << d1;
+    }
+  }
+}
+
+// The first 2^m samples of a pixel form a (0,m,2)-net in each dimension pair: every
+// elementary interval of area 2^-m holds exactly one point. Independent sampling fails this.
+TEST(Sampler, SobolOwenFirstPowerOfTwoSamplesFormNets) {
+  for (uint32_t pixel : {0u, 17u, 123456u}) {
+    for (uint32_t pair : {0u, 1u, 5u}) {
+      for (int m = 1; m <= 8; ++m) {
+        const uint32_t n = 1u << m;
+        for (int xBits = 0; xBits <= m; ++xBits) {
+          const int yBits = m - xBits;
+          std::set<uint32_t> cells;
+          for (uint32_t i = 0; i < n; ++i) {
+            const Sample2 s = samplePair(SamplerKind::SobolOwen, pixel, i, pair, 77);
+            const uint32_t cx = static_cast<uint32_t>(s.u * float(1u << xBits));
+            const uint32_t cy = static_cast<uint32_t>(s.v * float(1u << yBits));
+            cells.insert(cx * (1u << yBits) + cy);
+          }
+          EXPECT_EQ(cells.size(), n) << "pixel " << pixel << " pair " << pair << " m " << m;
+        }
+      }
+    }
+  }
+  int independentNets = 0;
+  for (uint32_t pixel = 0; pixel < 20; ++pixel) {
+    std::set<uint32_t> cells;
+    for (uint32_t i = 0; i < 16; ++i)
+      cells.insert(
+          static_cast<uint32_t>(sampleValue(SamplerKind::Independent, pixel, i, 0, 1) * 16));
+    independentNets += cells.size() == 16;
+  }
+  EXPECT_LT(independentNets, 3);
+}
+
+// Sample index ranges of a pixel are disjoint parts of one sequence (farm splits).
+TEST(Sampler, SampleRangesAreTheSameSequence) {
+  std::vector<float> whole, parts;
+  for (uint32_t i = 0; i < 64; ++i)
+    whole.push_back(sampleValue(SamplerKind::SobolOwen, 3, i, 2, 5));
+  for (uint32_t i = 32; i < 64; ++i)
+    parts.push_back(sampleValue(SamplerKind::SobolOwen, 3, i, 2, 5));
+  EXPECT_TRUE(std::equal(parts.begin(), parts.end(), whole.begin() + 32));
+}
+
+} // namespace
+} // namespace nx

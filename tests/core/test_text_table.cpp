@@ -1,0 +1,58 @@
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/text_table.h"
+
+namespace nx {
+namespace {
+
+std::string errorOf(const std::string& text) {
+  try {
+    parseNumberTable(text, "t.csv", true);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(TextTable, ParsesHeaderCommentsAndSeparators) {
+  const auto t =
+      parseNumberTable("# note\nnm,value\n400, 0.5\n\n410;0.25\n420\t1e-1\n430 7\n", "t.csv", true);
+  ASSERT_EQ(t.header.size(), 2u);
+  EXPECT_EQ(t.header[1], "value");
+  ASSERT_EQ(t.rows.size(), 4u);
+  EXPECT_EQ(t.rows[0].line, 3);
+  EXPECT_DOUBLE_EQ(t.rows[0].values[1], 0.5);
+  EXPECT_DOUBLE_EQ(t.rows[2].values[1], 0.1);
+  EXPECT_EQ(t.rows[3].line, 7);
+  EXPECT_DOUBLE_EQ(t.rows[3].values[1], 7.0);
+}
+
+TEST(TextTable, ErrorsNameFileLineExpectedAndFound) {
+  EXPECT_EQ(errorOf("400,0.5\n410,abc\n"), "t.csv:2: expected a number, found 'abc'");
+  EXPECT_EQ(errorOf("400,,0.5\n"), "t.csv:1: expected a number, found ''");
+  EXPECT_EQ(errorOf("400,nan\n"), "t.csv:1: expected a number, found 'nan' (not a finite value)");
+  EXPECT_EQ(errorOf("400,1e999\n"),
+            "t.csv:1: expected a number, found '1e999' (not a finite value)");
+  EXPECT_EQ(errorOf("# only a comment\n"), "t.csv:1: expected rows of numbers, found none");
+  EXPECT_EQ(errorOf(""), "t.csv:0: expected rows of numbers, found none");
+}
+
+TEST(TextTable, UnreadableFile) {
+  try {
+    readNumberTable("/nonexistent/dir/x.csv", true);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/dir/x.csv: cannot open the file for reading");
+  }
+}
+
+TEST(TextTable, ParseNumber) {
+  EXPECT_DOUBLE_EQ(parseNumber(" 2.5 ", "w", "a radius"), 2.5);
+  EXPECT_THROW(parseNumber("2.5x", "w", "a radius"), Error);
+  EXPECT_THROW(parseNumber("", "w", "a radius"), Error);
+  EXPECT_THROW(parseNumber("inf", "w", "a radius"), Error);
+}
+
+} // namespace
+} // namespace nx

@@ -1,0 +1,100 @@
+#include <gtest/gtest.h>
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/preview_image.h"
+
+namespace nx {
+namespace {
+
+std::vector<uint8_t> gradient(int w, int h) {
+  std::vector<uint8_t> px;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) px.push_back(static_cast<uint8_t>(x * 40 + y * 7 + c * 3));
+  return px;
+}
+
+TEST(PreviewImage, PngRoundTrip) {
+  const auto px = gradient(7, 5);
+  const std::string path = ::testing::TempDir() + "p.png";
+  writePreview(path, 7, 5, px);
+  int w, h, n;
+  uint8_t* data = stbi_load(path.c_str(), &w, &h, &n, 3);
+  ASSERT_NE(data, nullptr);
+  EXPECT_EQ(w, 7);
+  EXPECT_EQ(h, 5);
+  EXPECT_TRUE(std::equal(px.begin(), px.end(), data));
+  stbi_image_free(data);
+}
+
+// A 3-pixel-wide BMP has 9 bytes of pixels per row, padded to 12; rows are stored bottom-up
+// in BGR order after a 54-byte header.
+TEST(PreviewImage, BmpRowsArePadded) {
+  const int w = 3, h = 2;
+  const auto px = gradient(w, h);
+  const std::string path = ::testing::TempDir() + "p.bmp";
+  writePreview(path, w, h, px);
+  std::ifstream f(path, std::ios::binary);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(f)), {});
+  ASSERT_EQ(bytes.size(), 54u + 12u * h);
+  EXPECT_EQ(bytes[0], 'B');
+  EXPECT_EQ(bytes[1], 'M');
+  auto le32 = [&](size_t o) {
+    return bytes[o] | bytes[o + 1] << 8 | bytes[o + 2] << 16 | bytes[o + 3] << 24;
+  };
+  EXPECT_EQ(le32(2), static_cast<int>(bytes.size()));
+  EXPECT_EQ(le32(18), w);
+  EXPECT_EQ(le32(22), h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t fileRow = static_cast<size_t>(h - 1 - y);
+      const size_t o = 54 + fileRow * 12 + static_cast<size_t>(x) * 3;
+      const size_t p = (static_cast<size_t>(y) * w + x) * 3;
+      EXPECT_EQ(bytes[o + 0], px[p + 2]);
+      EXPECT_EQ(bytes[o + 1], px[p + 1]);
+      EXPECT_EQ(bytes[o + 2], px[p + 0]);
+    }
+  int rw, rh, n;
+  uint8_t* data = stbi_load(path.c_str(), &rw, &rh, &n, 3);
+  ASSERT_NE(data, nullptr);
+  EXPECT_TRUE(std::equal(px.begin(), px.end(), data));
+  stbi_image_free(data);
+}
+
+TEST(PreviewImage, Errors) {
+  EXPECT_THROW(writePreview(::testing::TempDir() + "p.jpg", 1, 1, {0, 0, 0}), Error);
+  EXPECT_THROW(writePreview(::testing::TempDir() + "p.png", 2, 1, {0, 0, 0}), Error);
+  EXPECT_THROW(writePreview("/nonexistent-dir/p.png", 1, 1, {0, 0, 0}), Error);
+  EXPECT_TRUE(isPreviewPath("a/b.BMP"));
+  EXPECT_FALSE(isPreviewPath("a.b/c"));
+}
+
+TEST(AtomicFile, CheckWritable) {
+  EXPECT_NO_THROW(checkWritable(::testing::TempDir() + "out.exr"));
+  EXPECT_THROW(checkWritable("/nonexistent-dir/out.exr"), Error);
+  EXPECT_THROW(checkWritable(::testing::TempDir()), Error);
+}
+
+TEST(AtomicFile, FailedWriteLeavesNoFile) {
+  const std::string path = ::testing::TempDir() + "atomic.txt";
+  std::filesystem::remove(path);
+  EXPECT_THROW(writeAtomically(path,
+                               [](const std::string& temp) {
+                                 std::ofstream(temp) << "half";
+                                 throw std::runtime_error("disk full");
+                               }),
+               Error);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_FALSE(std::filesystem::exists(path + ".tmp-" + std::to_string(::getpid())));
+}
+
+} // namespace
+} // namespace nx

@@ -1,0 +1,104 @@
+#include <gtest/gtest.h>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfStringAttribute.h>
+
+#include <filesystem>
+#include <regex>
+
+#include "core/error.h"
+#include "io/spectral_exr.h"
+
+namespace nx {
+namespace {
+
+SpectralImage testImage() {
+  SpectralImage img;
+  img.width = 5;
+  img.height = 3;
+  img.bands = SpectralBands::parse("450:650:50");
+  const int nb = img.bands.count();
+  for (int p = 0; p < 15; ++p) {
+    for (int b = 0; b < nb; ++b) img.radiance.push_back(0.25f * float(p) + float(b) + 0.125f);
+    for (int c = 0; c < 3; ++c) img.rgb.push_back(0.5f * float(p) + float(c));
+  }
+  img.attributes["nxrender.scene"] = "scenes/test.scn";
+  img.attributes["nxrender.spp"] = "16";
+  return img;
+}
+
+TEST(SpectralExr, ChannelNamesFollowTheLayout) {
+  EXPECT_EQ(spectralChannelName(550), "S0.550,000000nm");
+  EXPECT_EQ(spectralChannelName(402.5), "S0.402,500000nm");
+  // The reference reader's regular expression (Fichet et al. 2021).
+  const std::regex ref(
+      R"(^((S([0-3]))|T)\.(\d*,?\d*([Ee][+-]?\d+)?)(Y|Z|E|P|T|G|M|k|h|da|d|c|m|u|n|p)?(m|Hz)$)");
+  EXPECT_TRUE(std::regex_match(spectralChannelName(700), ref));
+  EXPECT_FALSE(std::regex_match(std::string("R"), ref));
+}
+
+TEST(SpectralExr, RoundTripThroughOpenExr) {
+  const SpectralImage img = testImage();
+  const std::string path = ::testing::TempDir() + "roundtrip.exr";
+  writeSpectralExr(path, img);
+
+  Imf::InputFile in(path.c_str());
+  const Imf::Header& h = in.header();
+  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("spectralLayoutVersion").value(), "1.0");
+  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("emissiveUnits").value(), "W.m^-2.sr^-1");
+  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("nxrender.scene").value(), "scenes/test.scn");
+  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("nxrender.spp").value(), "16");
+  const auto dw = h.dataWindow();
+  ASSERT_EQ(dw.max.x - dw.min.x + 1, 5);
+  ASSERT_EQ(dw.max.y - dw.min.y + 1, 3);
+
+  std::vector<std::string> names;
+  for (auto it = h.channels().begin(); it != h.channels().end(); ++it) names.push_back(it.name());
+  const std::vector<std::string> expected{"B",
+                                          "G",
+                                          "R",
+                                          "S0.450,000000nm",
+                                          "S0.500,000000nm",
+                                          "S0.550,000000nm",
+                                          "S0.600,000000nm",
+                                          "S0.650,000000nm"};
+  EXPECT_EQ(names, expected);
+
+  const int nb = img.bands.count();
+  std::vector<float> bands(15 * nb), rgb(15 * 3);
+  Imf::FrameBuffer fb;
+  for (int b = 0; b < nb; ++b)
+    fb.insert(spectralChannelName(img.bands.centre(b)),
+              Imf::Slice(Imf::FLOAT, (char*)(bands.data() + b), sizeof(float) * nb,
+                         sizeof(float) * nb * 5));
+  const char* rgbNames[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c)
+    fb.insert(rgbNames[c], Imf::Slice(Imf::FLOAT, (char*)(rgb.data() + c), 12, 60));
+  in.setFrameBuffer(fb);
+  in.readPixels(dw.min.y, dw.max.y);
+  EXPECT_EQ(bands, img.radiance);
+  EXPECT_EQ(rgb, img.rgb);
+  // No temporary file is left behind.
+  for (const auto& e : std::filesystem::directory_iterator(::testing::TempDir()))
+    EXPECT_EQ(e.path().filename().string().find("roundtrip.exr.tmp"), std::string::npos);
+}
+
+TEST(SpectralExr, UnwritablePathIsAClearErrorAndWritesNothing) {
+  SpectralImage img = testImage();
+  try {
+    writeSpectralExr("/nonexistent-dir/out.exr", img);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("/nonexistent-dir/out.exr: cannot write the file", 0), 0u)
+        << e.what();
+  }
+  img.radiance.pop_back();
+  EXPECT_THROW(writeSpectralExr(::testing::TempDir() + "bad.exr", img), Error);
+  EXPECT_FALSE(std::filesystem::exists(::testing::TempDir() + "bad.exr"));
+}
+
+} // namespace
+} // namespace nx

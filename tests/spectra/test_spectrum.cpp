@@ -1,0 +1,121 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "core/error.h"
+#include "core/math_util.h"
+#include "spectra/named_spectra.h"
+#include "spectra/spectrum.h"
+
+namespace nx {
+namespace {
+
+TEST(Spectrum, GaussianIsPeakNormalised) {
+  const GaussianSpectrum g{545, 34, 1};
+  EXPECT_DOUBLE_EQ(g(545), 1.0);
+  EXPECT_NEAR(g(545 + 34), std::exp(-0.5), 1e-12);
+  EXPECT_NEAR(g(545 - 68), std::exp(-2.0), 1e-12);
+}
+
+TEST(Spectrum, SkewCauchyIsADensityAndSkews) {
+  for (double w : {0.0, 3.0, -10.0}) {
+    const SkewCauchySpectrum f{500, 20, w};
+    // Integral over the real line is 1/2 for every skew (the formula lacks the factor 2 of a
+    // skew-symmetric density); integrate in the angle variable d = g tan(theta).
+    double integral = 0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+      const double theta = -kPi / 2 + kPi * (i + 0.5) / n;
+      const double d = 20 * std::tan(theta);
+      integral += f(500 + d) * 20 / sqr(std::cos(theta)) * kPi / n;
+    }
+    EXPECT_NEAR(integral, 0.5, 1e-6) << w;
+  }
+  const SkewCauchySpectrum sym{500, 20, 0};
+  EXPECT_NEAR(sym(480), sym(520), 1e-15);
+  EXPECT_NEAR(sym(500), 0.5 / (kPi * 20), 1e-15); // g / (pi g^2) * 1/2
+  const SkewCauchySpectrum pos{500, 20, 10};
+  EXPECT_GT(pos(530), pos(470)); // positive skew: the tail runs to long wavelengths
+  // Closed form at d = g: g / (pi 2 g^2) (atan(w) / pi + 1/2).
+  EXPECT_NEAR(pos(520), 1.0 / (kPi * 40) * (std::atan(10.0) / kPi + 0.5), 1e-15);
+}
+
+TEST(Spectrum, TabulatedInterpolatesAndIsZeroOutside) {
+  const Spectrum t(makeTabulated({400, 500, 600}, {1, 3, 2}, "test"));
+  EXPECT_DOUBLE_EQ(t(400), 1);
+  EXPECT_DOUBLE_EQ(t(450), 2);
+  EXPECT_DOUBLE_EQ(t(575), 2.25);
+  EXPECT_DOUBLE_EQ(t(600), 2);
+  EXPECT_DOUBLE_EQ(t(399.9), 0);
+  EXPECT_DOUBLE_EQ(t(600.1), 0);
+  EXPECT_DOUBLE_EQ(t.scaled(2)(450), 4);
+}
+
+TEST(Spectrum, TabulatedRejectsBadPairs) {
+  EXPECT_THROW(makeTabulated({400}, {1}, "x"), Error);
+  EXPECT_THROW(makeTabulated({400, 400}, {1, 2}, "x"), Error);
+  EXPECT_THROW(makeTabulated({500, 400}, {1, 2}, "x"), Error);
+  EXPECT_THROW(makeTabulated({400, 500}, {1}, "x"), Error);
+  EXPECT_THROW(makeTabulated({400, NAN}, {1, 2}, "x"), Error);
+}
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string csvError(const std::string& text) {
+  const std::string path = writeTemp("spectrum.csv", text);
+  try {
+    readSpectrumCsv(path);
+  } catch (const Error& e) {
+    return std::string(e.what()).substr(path.size());
+  }
+  return "no error";
+}
+
+TEST(Spectrum, CsvFile) {
+  const std::string path =
+      writeTemp("ok.csv", "wavelength,reflectance\n400,0.1\n500,0.5\n700,0.9\n");
+  const Spectrum s(readSpectrumCsv(path));
+  EXPECT_DOUBLE_EQ(s(450), 0.3);
+  EXPECT_DOUBLE_EQ(s(600), 0.7);
+  EXPECT_EQ(csvError("400,0.1\n500,0.5,3\n"),
+            ":2: expected 2 columns (wavelength, value), found 3");
+  EXPECT_EQ(csvError("400,0.1\n390,0.5\n"),
+            ":2: expected wavelengths in increasing order, found 390.000000 after 400.000000");
+  EXPECT_EQ(csvError("400,0.1\n500,x\n"), ":2: expected a number, found 'x'");
+  EXPECT_EQ(csvError("400,0.1\n"), ": expected at least two (wavelength, value) pairs, found 1");
+}
+
+TEST(Spectrum, DispatchOverLanesMatchesPointwise) {
+  const Spectrum s(SkewCauchySpectrum{450, 15, -4}, 3.0);
+  std::array<float, 3> nm{420.f, 450.f, 470.f};
+  std::array<float, 3> out{};
+  s.evaluate(nm, out);
+  for (int i = 0; i < 3; ++i) EXPECT_FLOAT_EQ(out[i], static_cast<float>(s(nm[i])));
+}
+
+TEST(NamedSpectra, NiixtracerReflectances) {
+  const std::pair<const char*, double> peaks[] = {{"red", 680},   {"orange", 620}, {"yellow", 600},
+                                                  {"green", 545}, {"blue", 460},   {"purple", 420},
+                                                  {"uv", 360}};
+  for (auto [name, peak] : peaks) {
+    const Spectrum s = *namedReflectance(name);
+    EXPECT_DOUBLE_EQ(s(peak), 1.0) << name;
+    EXPECT_NEAR(s(peak + 34), std::exp(-0.5), 1e-12) << name;
+  }
+  EXPECT_DOUBLE_EQ((*namedReflectance("const"))(500), 1.0);
+  EXPECT_DOUBLE_EQ((*namedReflectance("null"))(500), 0.0);
+  EXPECT_DOUBLE_EQ((*namedReflectance("gray"))(500), 0.5);
+  EXPECT_FALSE(namedReflectance("grey").has_value());
+  EXPECT_EQ(*namedAbsorptionPeak("uv"), 370.0);
+  EXPECT_EQ(*namedAbsorptionPeak("blue"), 460.0);
+  EXPECT_FALSE(namedAbsorptionPeak("gray").has_value());
+}
+
+} // namespace
+} // namespace nx

@@ -1,0 +1,87 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/sampler.h"
+#include "spectra/cie.h"
+#include "spectra/wavelength_sampler.h"
+#include "support/statistics.h"
+
+namespace nx {
+namespace {
+
+TEST(WavelengthSampler, PdfIntegratesToOneOverAnyRange) {
+  for (auto [lo, hi] : {std::pair{360.0, 830.0}, std::pair{395.0, 705.0}, std::pair{300.0, 400.0},
+                        std::pair{650.0, 1000.0}}) {
+    const WavelengthSampler s(lo, hi);
+    double integral = 0;
+    const int n = 100000;
+    for (int i = 0; i < n; ++i) integral += s.pdf(lo + (hi - lo) * (i + 0.5) / n) * (hi - lo) / n;
+    EXPECT_NEAR(integral, 1.0, 1e-6) << lo << "-" << hi;
+    EXPECT_EQ(s.pdf(lo - 1), 0.0);
+    EXPECT_EQ(s.pdf(hi + 1), 0.0);
+  }
+}
+
+TEST(WavelengthSampler, InverseCdfMatchesPdf) {
+  const WavelengthSampler s(380, 780);
+  const int bins = 80, n = 400000;
+  std::vector<double> obs(bins, 0), exp(bins, 0);
+  for (int i = 0; i < n; ++i) {
+    const double l = s.wavelength(sampleValue(SamplerKind::Independent, i, 0, 0, 1));
+    ASSERT_GE(l, 380.0);
+    ASSERT_LE(l, 780.0);
+    obs[std::min(bins - 1, static_cast<int>((l - 380) / 5))] += 1;
+  }
+  for (int b = 0; b < bins; ++b) {
+    double p = 0;
+    for (int k = 0; k < 100; ++k) p += s.pdf(380 + 5 * b + 5 * (k + 0.5) / 100) * 0.05;
+    exp[b] = p * n;
+  }
+  const auto [stat, dof] = test::chiSquare(obs, exp);
+  EXPECT_LT(test::chiSquareZ(stat, dof), 4.0);
+}
+
+TEST(WavelengthSampler, HeroLanesAreRotatedInPrimarySampleSpace) {
+  const WavelengthSampler s(360, 830);
+  const SampledWavelengths w = s.sample(0.1f);
+  for (int i = 0; i < kLanes; ++i) {
+    double u = 0.1 + static_cast<double>(i) / kLanes;
+    if (u >= 1) u -= 1;
+    EXPECT_NEAR(w.lambda[i], s.wavelength(u), 1e-3);
+    EXPECT_NEAR(w.pdf[i], s.pdf(w.lambda[i]), 1e-6);
+  }
+}
+
+// The lane-weighted estimator of the integral of y-bar converges to 106.857 (z-test).
+TEST(WavelengthSampler, ImportanceSampledIntegralOfYBar) {
+  for (auto [lo, hi] : {std::pair{360.0, 830.0}, std::pair{400.0, 700.0}}) {
+    const WavelengthSampler s(lo, hi);
+    double exact = 0;
+    for (int nm = static_cast<int>(lo); nm <= static_cast<int>(hi); ++nm) exact += cieCmf(nm).y;
+    exact -= 0.5 * (cieCmf(lo).y + cieCmf(hi).y); // trapezoid ends
+    test::RunningStats stats;
+    for (uint32_t i = 0; i < 200000; ++i) {
+      const SampledWavelengths w = s.sample(sampleValue(SamplerKind::Independent, i, 0, 0, 7));
+      double est = 0;
+      for (int k = 0; k < kLanes; ++k)
+        est += cieCmf(w.lambda[k]).y * WavelengthSampler::laneWeight(w, k);
+      stats.add(est);
+    }
+    EXPECT_LT(std::abs(stats.mean - exact), 4 * stats.standardError()) << lo << "-" << hi;
+    EXPECT_LT(stats.standardError() / exact, 1e-3);
+    if (lo == 360.0) {
+      EXPECT_NEAR(exact, 106.857, 0.02);
+    }
+  }
+}
+
+TEST(WavelengthSampler, RejectsBadRanges) {
+  EXPECT_THROW(WavelengthSampler(500, 400), Error);
+  EXPECT_THROW(WavelengthSampler(0, 400), Error);
+  EXPECT_THROW(WavelengthSampler(400, INFINITY), Error);
+}
+
+} // namespace
+} // namespace nx
