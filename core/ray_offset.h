@@ -1,0 +1,44 @@
+#pragma once
+// Ray origins that do not re-hit the surface they leave, without a fixed epsilon.
+
+#include <cmath>
+#include <limits>
+
+#include "core/vec3.h"
+
+namespace nx {
+
+/// gamma(n) = n u / (1 - n u), u = 2^-24: the bound on the relative error of n float
+/// operations (Higham; pbrt-v4 section 6.8).
+constexpr float floatGamma(int n) {
+  constexpr float u = std::numeric_limits<float>::epsilon() * 0.5f;
+  return (static_cast<float>(n) * u) / (1 - static_cast<float>(n) * u);
+}
+
+/// Moves surface point p, known to within +/- pError per component of the true surface,
+/// off the surface along the geometric normal n, to the side the new direction w leaves
+/// towards. The distance is the error box projected on the normal, dot(|n|, pError), and
+/// the result is rounded away from the surface, so the origin is provably on the correct
+/// side: no self-intersection and no leaking, for tiny and huge objects alike, with no fixed
+/// epsilon (the error-bound method of pbrt, Pharr, Jakob & Humphreys, 4th ed., 6.8.6).
+inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& pError, const Vec3& n, const Vec3& w) {
+  const float d = std::fabs(n.x) * pError.x + std::fabs(n.y) * pError.y + std::fabs(n.z) * pError.z;
+  Vec3 offset = n * d;
+  if (dot(w, n) < 0) offset = -offset;
+  Vec3 po = p + offset;
+  auto away = [](float v, float o) {
+    if (o > 0) return std::nextafter(v, std::numeric_limits<float>::infinity());
+    if (o < 0) return std::nextafter(v, -std::numeric_limits<float>::infinity());
+    return v;
+  };
+  return {away(po.x, offset.x), away(po.y, offset.y), away(po.z, offset.z)};
+}
+
+/// Error bound of a point obtained by rounding an exact (double precision) surface point to
+/// float: half an ULP per component, with margin.
+inline Vec3 roundingError(const Vec3& p) {
+  constexpr float g = floatGamma(2);
+  return {g * std::fabs(p.x), g * std::fabs(p.y), g * std::fabs(p.z)};
+}
+
+} // namespace nx
