@@ -45,7 +45,7 @@ void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
     const auto t = intersectSphere(s, o, d, tnear, tfar);
     if (!t) continue;
     const float tf = static_cast<float>(*t);
-    if (!(tf > tnear && tf < tfar)) continue;  // lost to float rounding at the interval ends
+    if (!(tf > tnear && tf < tfar)) continue; // lost to float rounding at the interval ends
     const Vec3d ng = (o + d * *t) - s.center;
     tfar = tf;
     RTCHitN_Ng_x(hit, n, i) = static_cast<float>(ng.x);
@@ -129,7 +129,9 @@ GeometryScene::GeometryScene(EmbreeDevice& device, std::vector<SphereShape> sphe
   device.throwIfError("building the scene's BVH");
 }
 
-GeometryScene::~GeometryScene() { rtcReleaseScene(scene_); }
+GeometryScene::~GeometryScene() {
+  rtcReleaseScene(scene_);
+}
 
 bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
   RTCIntersectContext context;
@@ -176,7 +178,7 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
   } else if (kind == ShapeKind::Plane) {
     const PlaneShape& pl = planes_[index];
     const Vec3d q = o + d * static_cast<double>(tBest);
-    hit.p = Vec3(q - pl.normal * (dot(pl.normal, q) - pl.distance));  // exactly onto the plane
+    hit.p = Vec3(q - pl.normal * (dot(pl.normal, q) - pl.distance)); // exactly onto the plane
     hit.ng = ng;
   } else {
     // Barycentric interpolation in double from Embree's (u, v): the error is that of u and v

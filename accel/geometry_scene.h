@@ -25,13 +25,13 @@ enum class ShapeKind : uint8_t { Sphere, Plane, Triangle };
 
 /// The nearest surface a ray meets.
 struct SurfaceHit {
-  float t = 0;         ///< ray parameter
-  Vec3 p;              ///< hit point
-  Vec3 pError;         ///< bound on |p - true surface point| per component
-  Vec3 ng;             ///< unit geometric normal (outward for spheres; the plane's normal;
-                       ///< (b - a) x (c - a) for triangles), not flipped towards the ray
+  float t = 0; ///< ray parameter
+  Vec3 p;      ///< hit point
+  Vec3 pError; ///< bound on |p - true surface point| per component
+  Vec3 ng;     ///< unit geometric normal (outward for spheres; the plane's normal;
+               ///< (b - a) x (c - a) for triangles), not flipped towards the ray
   ShapeKind kind = ShapeKind::Sphere;
-  uint32_t index = 0;  ///< index of the shape within its kind
+  uint32_t index = 0; ///< index of the shape within its kind
 };
 
 /// The geometry of a scene, ready for ray queries from any number of threads.

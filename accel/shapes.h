@@ -35,15 +35,15 @@ inline std::optional<double> intersectSphere(const SphereShape& s, const Vec3d& 
                                              double tMin, double tMax) {
   const Vec3d f = o - s.center;
   const double a = dot(d, d);
-  const double b = -dot(f, d);  // half of the usual b, negated
-  const Vec3d l = f + d * (b / a);  // closest approach of the line to the centre
-  const double disc = a * (s.radius * s.radius - dot(l, l));  // = b^2 - a c
+  const double b = -dot(f, d);     // half of the usual b, negated
+  const Vec3d l = f + d * (b / a); // closest approach of the line to the centre
+  const double disc = a * (s.radius * s.radius - dot(l, l)); // = b^2 - a c
   if (!(disc >= 0)) return std::nullopt;
   const double c = dot(f, f) - s.radius * s.radius;
   const double q = b + std::copysign(std::sqrt(disc), b);
   double t0, t1;
   if (q == 0) {
-    t0 = t1 = 0;  // o on the surface, tangent: the only root is 0
+    t0 = t1 = 0; // o on the surface, tangent: the only root is 0
   } else {
     t0 = c / q;
     t1 = q / a;

@@ -20,7 +20,8 @@ PinholeCamera::PinholeCamera(const Vec3d& position, const Vec3d& lookAt, const V
   if (std::abs(dot(preferred, forward_)) > 0.999999) {
     // Looking along the up direction: take the world axis least aligned with the view.
     const double ax = std::abs(forward_.x), ay = std::abs(forward_.y), az = std::abs(forward_.z);
-    preferred = (az <= ax && az <= ay) ? Vec3d(0, 0, 1) : (ax <= ay ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0));
+    preferred =
+        (az <= ax && az <= ay) ? Vec3d(0, 0, 1) : (ax <= ay ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0));
   }
   // Left-handed image frame: right = up x forward, so that +y up and +z forward give +x right.
   right_ = normalize(cross(preferred, forward_));

@@ -14,6 +14,11 @@ namespace nx {
 /// instead of through a precomputed table). Black and white give constant spectra.
 Spectrum upsampleSrgbReflectance(const Rgb& linearSrgb);
 
+/// An emission spectrum whose colour is the given linear sRGB colour (any non-negative
+/// channels): max(c) * upsampled(c / max(c)) * D65 normalised to luminance 1, so that RGB
+/// (1, 1, 1) is D65 with Y = 1 and the preview of the light shows exactly c.
+Spectrum upsampleSrgbIlluminant(const Rgb& linearSrgb);
+
 /// Colour of a reflectance spectrum under D65, as linear sRGB.
 Rgb reflectanceToLinearSrgb(const Spectrum& reflectance);
 

@@ -11,7 +11,9 @@
 namespace nx {
 namespace {
 
-float rnd(uint32_t a, uint32_t b) { return bitsToUnitFloat(hash4(a, b, 0x51ab, 0)); }
+float rnd(uint32_t a, uint32_t b) {
+  return bitsToUnitFloat(hash4(a, b, 0x51ab, 0));
+}
 
 Vec3 randomDirection(uint32_t a) {
   const float z = 1 - 2 * rnd(a, 1), phi = 2 * static_cast<float>(kPi) * rnd(a, 2);
@@ -62,7 +64,8 @@ TEST(GeometryScene, AgreesWithBruteForceOnRandomScenes) {
     for (int i = 0; i < 10; ++i) {
       const uint32_t k = sceneId * 1000 + 700 + static_cast<uint32_t>(i);
       const Vec3d c(20 * rnd(k, 8) - 10, 20 * rnd(k, 9) - 10, 20 * rnd(k, 10) - 10);
-      tris.push_back({c, c + Vec3d(randomDirection(k + 1)) * 3.0, c + Vec3d(randomDirection(k + 2)) * 3.0});
+      tris.push_back(
+          {c, c + Vec3d(randomDirection(k + 1)) * 3.0, c + Vec3d(randomDirection(k + 2)) * 3.0});
     }
     GeometryScene g(device, spheres, planes, tris);
     for (uint32_t r = 0; r < 500; ++r) {
@@ -79,14 +82,14 @@ TEST(GeometryScene, AgreesWithBruteForceOnRandomScenes) {
       if (!found) continue;
       ++hits;
       EXPECT_NEAR(hit.t, ref.t, 1e-4 * std::max(1.0, ref.t));
-      if (std::abs(hit.t - ref.t) > 1e-3) continue;  // a near tie between two shapes
+      if (std::abs(hit.t - ref.t) > 1e-3) continue; // a near tie between two shapes
       EXPECT_EQ(hit.kind, ref.kind);
       EXPECT_EQ(hit.index, ref.index);
       EXPECT_NEAR(length(hit.ng), 1.0f, 1e-5f);
     }
   }
   EXPECT_EQ(cases, 10000);
-  EXPECT_GT(hits, 5000);  // most rays hit something (the planes close the scene partly)
+  EXPECT_GT(hits, 5000); // most rays hit something (the planes close the scene partly)
 }
 
 TEST(GeometryScene, RayStartingInsideSphereHitsFarSide) {
@@ -99,7 +102,7 @@ TEST(GeometryScene, RayStartingInsideSphereHitsFarSide) {
     SurfaceHit h;
     ASSERT_TRUE(g.intersect(r, h));
     EXPECT_NEAR(h.t, 2.0f, 1e-5f);
-    EXPECT_GT(dot(h.ng, r.d), 0.99f);  // outward normal, same side as the ray
+    EXPECT_GT(dot(h.ng, r.d), 0.99f); // outward normal, same side as the ray
   }
 }
 
@@ -149,7 +152,8 @@ TEST(GeometryScene, OffsetOriginsAvoidSelfIntersectionAtEveryScale) {
       // The far side lies at the chord length 2 r cos(theta), not at the entry point (for
       // grazing directions the offset origin lengthens the exit distance slightly).
       const double chord = 2 * radius * std::abs(dot(d, hit.ng));
-      if (!g.intersect(in, h) || h.t < 0.5 * chord || h.t > chord + 2e-3 * radius) ++refractedMisses;
+      if (!g.intersect(in, h) || h.t < 0.5 * chord || h.t > chord + 2e-3 * radius)
+        ++refractedMisses;
     }
     EXPECT_EQ(primaryHits, 4000) << "radius " << radius;
     EXPECT_EQ(reflectedHits, 0) << "radius " << radius;
@@ -188,7 +192,7 @@ TEST(GeometryScene, HugeSphereFloorMatchesPlaneFloor) {
       SurfaceHit a, b;
       const bool ha = sphereFloor.intersect(r, a), hb = planeFloor.intersect(r, b);
       ASSERT_EQ(ha, hb);
-      if (!ha || b.t > 50) continue;  // far away the sphere's curvature shows
+      if (!ha || b.t > 50) continue; // far away the sphere's curvature shows
       ++compared;
       EXPECT_NEAR(a.t, b.t, 2e-3f * b.t);
       EXPECT_NEAR(a.ng.y, 1.0f, 1e-6f);
@@ -232,12 +236,13 @@ TEST(GeometryScene, EmptyScene) {
 
 TEST(Camera, NiixtracerConventionAndAnyDirection) {
   const PinholeCamera c(Vec3d(0, 0, 0), Vec3d(0, 0, 1), Vec3d(0, 1, 0), 90, 200, 100);
-  const Ray centre = c.generateRay(100, 50), rightEdge = c.generateRay(200, 50), top = c.generateRay(100, 0);
+  const Ray centre = c.generateRay(100, 50), rightEdge = c.generateRay(200, 50),
+            top = c.generateRay(100, 0);
   EXPECT_NEAR(centre.d.z, 1.0f, 1e-6f);
-  EXPECT_GT(rightEdge.d.x, 0.0f);                    // +x on the right
-  EXPECT_NEAR(rightEdge.d.x, rightEdge.d.z, 1e-6f);  // 90 degrees horizontal field of view
-  EXPECT_GT(top.d.y, 0.0f);                          // +y up
-  EXPECT_NEAR(top.d.y / top.d.z, 0.5f, 1e-6f);       // vertical extent from the aspect ratio
+  EXPECT_GT(rightEdge.d.x, 0.0f);                   // +x on the right
+  EXPECT_NEAR(rightEdge.d.x, rightEdge.d.z, 1e-6f); // 90 degrees horizontal field of view
+  EXPECT_GT(top.d.y, 0.0f);                         // +y up
+  EXPECT_NEAR(top.d.y / top.d.z, 0.5f, 1e-6f);      // vertical extent from the aspect ratio
   // Looking along -z: not upside down (+y still up), +x now on the left.
   const PinholeCamera back(Vec3d(0, 0, 0), Vec3d(0, 0, -1), Vec3d(0, 1, 0), 90, 200, 100);
   EXPECT_GT(back.generateRay(100, 0).d.y, 0.0f);

@@ -1,0 +1,99 @@
+#pragma once
+// The immutable scene the integrators render: geometry in Embree, spectra resolved,
+// materials by index, no strings.
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "accel/geometry_scene.h"
+#include "core/camera.h"
+#include "integrators/ior_model.h"
+#include "io/scene_desc.h"
+#include "spectra/bands.h"
+#include "spectra/spectrum.h"
+
+namespace nx {
+
+/// How a surface scatters light.
+enum class MaterialKind : uint8_t {
+  Mixture,    ///< (1 - r) rho * ideal mirror + r rho / pi (matte r = 1, mirror r = 0)
+  Dielectric, ///< smooth dielectric: exact Fresnel, refraction, total internal reflection
+};
+
+/// Parameters of the re-radiation matrix of a fluorescent surface (fluorescence spec).
+struct FluorescenceParams {
+  double absorptionPeakNm = 0, stokesNm = 0;
+  double widthNm = 20, skew = 10, quantumYield = 1, peakAbsorptance = 1;
+  bool measured = false;            ///< true: the matrix below was read from a CSV file
+  std::vector<double> excitationNm; ///< measured matrix: rows
+  std::vector<double> emissionNm;   ///< measured matrix: columns
+  std::vector<double> cells;        ///< measured matrix: row-major
+};
+
+/// A material: a kind with its parameters and spectra.
+struct Material {
+  MaterialKind kind = MaterialKind::Mixture;
+  float roughness = 1;  ///< Mixture: probability weight r of the diffuse lobe
+  IorModel ior;         ///< Dielectric
+  Spectrum reflectance; ///< rho(lambda): albedo, or transmission tint for dielectrics
+  std::optional<FluorescenceParams> fluorescence;
+};
+
+/// A point light: radiant intensity I(lambda) in W sr^-1 nm^-1 at a position.
+struct PointLight {
+  Vec3 position;
+  Spectrum intensity;
+};
+
+/// Per-shape appearance: material index and optional emitted radiance.
+struct ShapeAppearance {
+  uint32_t material = 0;
+  int32_t emission = -1; ///< index into RenderScene::emission, or -1
+};
+
+/// Settings resolved from the scene file.
+struct RenderSettings {
+  int width = 0, height = 0;
+  RenderMode mode = RenderMode::SpectralMcpt;
+  int depth = 5;
+  int samples = 16;
+  uint32_t seed = 0;
+  SpectralBands bands;
+  std::string outputPath; ///< the scene's <path> (preview), possibly empty
+};
+
+/// Everything an integrator needs, immutable after building.
+struct RenderScene {
+  RenderSettings settings;
+  PinholeCamera camera{{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 60, 1, 1};
+  std::unique_ptr<EmbreeDevice> device;
+  std::unique_ptr<GeometryScene> geometry;
+  std::vector<Material> materials;
+  std::vector<Spectrum> emission; ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
+  std::vector<ShapeAppearance> spheres, planes, triangles; ///< parallel to the geometry's shapes
+  std::vector<PointLight> pointLights;
+  std::optional<Spectrum> background; ///< uniform environment radiance
+  Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
+  bool hasFluorescence = false, hasDispersion = false;
+
+  /// Appearance of the shape a hit is on.
+  const ShapeAppearance& appearance(const SurfaceHit& hit) const {
+    switch (hit.kind) {
+    case ShapeKind::Sphere:
+      return spheres[hit.index];
+    case ShapeKind::Plane:
+      return planes[hit.index];
+    default:
+      return triangles[hit.index];
+    }
+  }
+};
+
+/// Resolves a SceneDesc into a RenderScene: names to spectra (built-in or the scene's
+/// <spectrum> definitions), CSV spectra and matrices read, RGB colours upsampled (rt and
+/// mcpt), value ranges checked (reflectances within [0, 1], IOR >= 1 over 360-830 nm), the
+/// Embree scene built. Errors carry the file:line of the offending item.
+RenderScene buildRenderScene(const SceneDesc& desc);
+
+} // namespace nx

@@ -1,0 +1,344 @@
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+#include "core/text_table.h"
+#include "integrators/render_scene.h"
+#include "spectra/colour.h"
+#include "spectra/illuminants.h"
+#include "spectra/named_spectra.h"
+#include "spectra/rgb_upsampling.h"
+
+namespace nx {
+namespace {
+
+// Which built-in names a spectrum reference may use.
+enum class SpectrumRole { Reflectance, Emission };
+
+class Builder {
+public:
+  explicit Builder(const SceneDesc& desc) : desc_(desc) {
+    for (const auto& s : desc.spectra) named_[s.name] = &s;
+  }
+
+  RenderScene build() {
+    RenderScene scene;
+    const SettingsDesc& s = desc_.settings;
+    scene.settings = {s.width, s.height, s.mode, s.depth, s.samples, s.seed, s.bands, s.outputPath};
+    const CameraDesc& c = desc_.camera;
+    scene.camera = PinholeCamera(c.position, c.lookAt, c.up, c.fovDegrees, s.width, s.height);
+    const bool spectral = s.mode == RenderMode::SpectralMcpt;
+
+    scene.previewWhite =
+        s.illuminant ? resolve(*s.illuminant, SpectrumRole::Emission) : *namedEmission("D65");
+    if (s.background) scene.background = resolve(*s.background, SpectrumRole::Emission);
+
+    std::vector<SphereShape> spheres;
+    std::vector<PlaneShape> planes;
+    std::vector<TriangleShape> triangles;
+    for (const ObjectDesc& o : desc_.objects) {
+      ShapeAppearance app;
+      app.material = static_cast<uint32_t>(scene.materials.size());
+      scene.materials.push_back(material(o, spectral));
+      if (scene.materials.back().fluorescence) scene.hasFluorescence = true;
+      if (scene.materials.back().kind == MaterialKind::Dielectric &&
+          scene.materials.back().ior.dispersive())
+        scene.hasDispersion = true;
+      if (auto e = emission(o, spectral)) {
+        app.emission = static_cast<int32_t>(scene.emission.size());
+        scene.emission.push_back(*e);
+      }
+      switch (o.shape) {
+      case ShapeType::Sphere:
+        spheres.push_back({o.center, o.radius});
+        scene.spheres.push_back(app);
+        break;
+      case ShapeType::Plane:
+        planes.push_back({o.normal, o.distance});
+        scene.planes.push_back(app);
+        break;
+      case ShapeType::Triangle:
+        triangles.push_back({o.vertices[0], o.vertices[1], o.vertices[2]});
+        scene.triangles.push_back(app);
+        break;
+      }
+    }
+    for (const PointLightDesc& l : desc_.lights) {
+      PointLight pl;
+      pl.position = Vec3(l.position);
+      if (spectral && l.emission) {
+        pl.intensity = resolve(*l.emission, SpectrumRole::Emission);
+      } else {
+        try {
+          pl.intensity = upsampleSrgbIlluminant({l.color[0], l.color[1], l.color[2]});
+        } catch (const Error& e) {
+          throw Error(l.loc.str() + ": " + e.what());
+        }
+      }
+      scene.pointLights.push_back(std::move(pl));
+    }
+    scene.device = std::make_unique<EmbreeDevice>();
+    scene.geometry = std::make_unique<GeometryScene>(*scene.device, std::move(spheres),
+                                                     std::move(planes), std::move(triangles));
+    return scene;
+  }
+
+private:
+  Spectrum resolve(const SpectrumDesc& s, SpectrumRole role, int depth = 0) const {
+    try {
+      switch (s.kind) {
+      case SpectrumDesc::Kind::Number:
+        return Spectrum(ConstantSpectrum{s.number});
+      case SpectrumDesc::Kind::Pairs:
+        return Spectrum(makeTabulated(s.nm, s.value, "nm:value pairs"));
+      case SpectrumDesc::Kind::CsvFile:
+        return Spectrum(readSpectrumCsv(s.path));
+      case SpectrumDesc::Kind::Name:
+        break;
+      }
+    } catch (const Error& e) {
+      throw Error(s.loc.str() + ": " + e.what());
+    }
+    if (auto it = named_.find(s.name); it != named_.end()) {
+      if (depth > 16)
+        throw Error(s.loc.str() +
+                    ": expected spectrum definitions without a cycle, found one through '" +
+                    s.name + "'");
+      return resolve(it->second->spectrum, role, depth + 1);
+    }
+    if (role == SpectrumRole::Reflectance) {
+      if (auto r = namedReflectance(s.name)) return *r;
+      throw Error(s.loc.str() +
+                  ": expected a reflectance name (red, orange, yellow, green, blue, purple, uv, "
+                  "gray, const, null, or a <spectrum> of the scene), found '" +
+                  s.name + "'");
+    }
+    std::optional<Spectrum> e;
+    try {
+      e = namedEmission(s.name);
+    } catch (const Error& err) {
+      throw Error(s.loc.str() + ": " + err.what());
+    }
+    if (e) return *e;
+    throw Error(
+        s.loc.str() +
+        ": expected an illuminant name (A, D50, D55, D65, D75, D<nn>, daylight:<K>, F1-F12, "
+        "E, blackbody:<K>, bba, bbd50, bbd55, bbd65, bbd75, bl, or a <spectrum> of the "
+        "scene), found '" +
+        s.name + "'");
+  }
+
+  static void checkUnitRange(const Spectrum& s, const SourceLocation& loc, const char* what) {
+    double worst = 0, worstNm = 0;
+    for (int nm = 360; nm <= 830; ++nm) {
+      const double v = s(nm);
+      if (!std::isfinite(v) || v < 0 || v > 1) {
+        worst = v;
+        worstNm = nm;
+        break;
+      }
+    }
+    if (worstNm != 0)
+      throw Error(loc.str() + ": expected a " + what +
+                  " within [0, 1] at every wavelength, found " + std::to_string(worst) + " at " +
+                  std::to_string(static_cast<int>(worstNm)) + " nm");
+  }
+
+  Material material(const ObjectDesc& o, bool spectral) const {
+    Material m;
+    const std::string& name = o.material;
+    const bool dielectric =
+        name == "glass" || name == "diamond" || name == "translucent" || name == "transparent";
+    if (dielectric) {
+      m.kind = MaterialKind::Dielectric;
+      m.ior = IorModel::constant(name == "glass" ? 1.5 : name == "diamond" ? 2.418 : 1.02);
+      if (o.roughness)
+        throw Error(o.roughnessLoc.str() + ": expected no <roughness> on a smooth dielectric (" +
+                    name + "), found one");
+      if (o.ior) m.ior = iorModel(*o.ior);
+    } else {
+      m.kind = MaterialKind::Mixture;
+      m.roughness = name == "metal"     ? 0.3f
+                    : name == "plastic" ? 0.7f
+                    : name == "mirror"  ? 0.0f
+                                        : 1.0f;
+      if (o.roughness) m.roughness = static_cast<float>(*o.roughness);
+      if (o.ior)
+        throw Error(
+            o.ior->loc.str() +
+            ": expected <ior> only on glass, diamond, translucent or transparent, found it on " +
+            name);
+    }
+
+    const bool emitter = o.emission.has_value();
+    if (spectral) {
+      if (o.reflectance) {
+        m.reflectance = resolve(*o.reflectance, SpectrumRole::Reflectance);
+        checkUnitRange(m.reflectance, o.reflectance->loc,
+                       dielectric ? "transmission tint" : "reflectance");
+      } else if (dielectric) {
+        m.reflectance = Spectrum(ConstantSpectrum{1.0}); // clear
+      } else if (emitter) {
+        m.reflectance = Spectrum(ConstantSpectrum{0.0}); // a black emitter
+      } else {
+        throw Error(o.loc.str() + ": expected <reflectance> on a non-emitting " + name +
+                    " object in spectral_mcpt mode, found none");
+      }
+    } else {
+      if (o.color) {
+        try {
+          m.reflectance = upsampleSrgbReflectance({(*o.color)[0], (*o.color)[1], (*o.color)[2]});
+        } catch (const Error& e) {
+          throw Error(o.loc.str() + ": " + e.what());
+        }
+      } else if (dielectric) {
+        m.reflectance = Spectrum(ConstantSpectrum{1.0});
+      } else if (emitter) {
+        m.reflectance = Spectrum(ConstantSpectrum{0.0});
+      } else {
+        throw Error(o.loc.str() + ": expected <color> on a non-emitting " + name + " object in " +
+                    (desc_.settings.mode == RenderMode::Rt ? "rt" : "mcpt") + " mode, found none");
+      }
+    }
+    if (o.fluorescence) {
+      if (dielectric)
+        throw Error(o.fluorescence->loc.str() +
+                    ": expected fluorescence only on matte, metal, plastic or mirror "
+                    "surfaces (fluorescent dielectrics need media), found it on " +
+                    name);
+      m.fluorescence = fluorescence(*o.fluorescence);
+    }
+    return m;
+  }
+
+  IorModel iorModel(const IorDesc& d) const {
+    IorModel m;
+    switch (d.kind) {
+    case IorDesc::Kind::Number:
+      m = IorModel::constant(d.value);
+      break;
+    case IorDesc::Kind::Named:
+      namedGlass(d.name.c_str(), m);
+      break;
+    case IorDesc::Kind::Cauchy:
+      m.kind = IorModel::Kind::Cauchy;
+      m.c = {d.coefficients[0],
+             d.coefficients[1],
+             d.coefficients.size() > 2 ? d.coefficients[2] : 0.0,
+             0,
+             0,
+             0};
+      break;
+    case IorDesc::Kind::Sellmeier:
+      m.kind = IorModel::Kind::Sellmeier;
+      for (size_t i = 0; i < 6; ++i) m.c[i] = d.coefficients[i];
+      break;
+    }
+    for (int nm = 360; nm <= 830; ++nm) {
+      const double n = m.at(nm);
+      if (!(std::isfinite(n) && n >= 1.0 && n <= 10.0))
+        throw Error(d.loc.str() +
+                    ": expected an index of refraction within [1, 10] over 360-830 nm, found " +
+                    std::to_string(n) + " at " + std::to_string(nm) + " nm");
+    }
+    return m;
+  }
+
+  FluorescenceParams fluorescence(const FluorescenceDesc& f) const {
+    FluorescenceParams p;
+    if (f.matrixCsv) {
+      p.measured = true;
+      readMatrix(*f.matrixCsv, f.loc, p);
+      return p;
+    }
+    if (f.absorptionName) {
+      const auto peak = namedAbsorptionPeak(*f.absorptionName);
+      if (!peak)
+        throw Error(
+            f.loc.str() +
+            ": expected an absorption colour (red, orange, yellow, green, blue, purple, uv) "
+            "or a wavelength in nm, found '" +
+            *f.absorptionName + "'");
+      p.absorptionPeakNm = *peak;
+    } else {
+      p.absorptionPeakNm = *f.absorptionNm;
+    }
+    p.stokesNm = *f.stokesNm;
+    if (f.widthNm) p.widthNm = *f.widthNm;
+    if (f.skew) p.skew = *f.skew;
+    if (f.quantumYield) p.quantumYield = *f.quantumYield;
+    if (f.peakAbsorptance) p.peakAbsorptance = *f.peakAbsorptance;
+    return p;
+  }
+
+  // A Donaldson matrix: first row the emission wavelengths (its first cell a label or
+  // ignored), then one row per excitation wavelength: the wavelength, then the cells.
+  static void readMatrix(const std::string& path, const SourceLocation& loc,
+                         FluorescenceParams& p) {
+    NumberTable t;
+    try {
+      t = readNumberTable(path, true);
+    } catch (const Error& e) {
+      throw Error(loc.str() + ": " + e.what());
+    }
+    std::vector<double> header;
+    size_t firstRow = 0;
+    if (!t.header.empty()) {
+      for (size_t i = 1; i < t.header.size(); ++i)
+        header.push_back(parseNumber(t.header[i], path + ":1", "an emission wavelength"));
+    } else {
+      header.assign(t.rows[0].values.begin() + 1, t.rows[0].values.end());
+      firstRow = 1;
+    }
+    if (header.size() < 2)
+      throw Error(path + ": expected at least two emission wavelengths in the first row");
+    for (size_t i = 1; i < header.size(); ++i)
+      if (!(header[i] > header[i - 1]))
+        throw Error(path + ":1: expected increasing emission wavelengths");
+    p.emissionNm = header;
+    for (size_t r = firstRow; r < t.rows.size(); ++r) {
+      const auto& row = t.rows[r];
+      const std::string where = path + ":" + std::to_string(row.line);
+      if (row.values.size() != header.size() + 1)
+        throw Error(where + ": expected " + std::to_string(header.size() + 1) +
+                    " cells (excitation wavelength and " + std::to_string(header.size()) +
+                    " values), found " + std::to_string(row.values.size()));
+      if (!p.excitationNm.empty() && !(row.values[0] > p.excitationNm.back()))
+        throw Error(where + ": expected increasing excitation wavelengths, found " +
+                    std::to_string(row.values[0]));
+      for (size_t k = 1; k < row.values.size(); ++k)
+        if (row.values[k] < 0)
+          throw Error(where + ": expected non-negative matrix values, found " +
+                      std::to_string(row.values[k]));
+      p.excitationNm.push_back(row.values[0]);
+      p.cells.insert(p.cells.end(), row.values.begin() + 1, row.values.end());
+    }
+    if (p.excitationNm.size() < 2) throw Error(path + ": expected at least two excitation rows");
+  }
+
+  std::optional<Spectrum> emission(const ObjectDesc& o, bool spectral) const {
+    if (!o.emission) return std::nullopt;
+    if (spectral) return resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale);
+    // rt and mcpt: <emission> is a number; the light's colour is <color> (white if absent).
+    if (o.emission->kind != SpectrumDesc::Kind::Number)
+      throw Error(o.emission->loc.str() + ": expected a number as <emission> in " +
+                  (desc_.settings.mode == RenderMode::Rt ? "rt" : "mcpt") +
+                  " mode (its colour is <color>), found a spectrum");
+    const double k = o.emission->number * o.emissionScale;
+    const Rgb c =
+        o.color ? Rgb{(*o.color)[0] * k, (*o.color)[1] * k, (*o.color)[2] * k} : Rgb{k, k, k};
+    return upsampleSrgbIlluminant(c);
+  }
+
+  const SceneDesc& desc_;
+  std::map<std::string, const NamedSpectrumDesc*> named_;
+};
+
+} // namespace
+
+RenderScene buildRenderScene(const SceneDesc& desc) {
+  return Builder(desc).build();
+}
+
+} // namespace nx

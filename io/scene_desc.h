@@ -1,0 +1,139 @@
+#pragma once
+// A scene as written in a scene file: plain data, every item with its file and line.
+// Nothing here is resolved (names stay names); see integrators/scene_builder.h for that.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/vec3.h"
+#include "spectra/bands.h"
+
+namespace nx {
+
+/// Where an item was written: file name and 1-based line.
+struct SourceLocation {
+  std::string file;
+  int line = 0;
+  /// "file:line", the prefix of every error about this item.
+  std::string str() const { return file + ":" + std::to_string(line); }
+};
+
+/// The three rendering modes of Niixtracer scene files.
+enum class RenderMode { Rt, Mcpt, SpectralMcpt };
+
+/// A spectrum as a scene refers to it.
+struct SpectrumDesc {
+  enum class Kind { Name, Number, Pairs, CsvFile };
+  Kind kind = Kind::Number;
+  std::string name;          ///< Kind::Name: a built-in or scene-defined spectrum name
+  double number = 0;         ///< Kind::Number: a flat spectrum
+  std::vector<double> nm;    ///< Kind::Pairs: wavelengths
+  std::vector<double> value; ///< Kind::Pairs: values
+  std::string path;          ///< Kind::CsvFile: resolved relative to the scene file
+  SourceLocation loc;
+};
+
+/// <spectrum name="...">: a spectrum defined once and used by name.
+struct NamedSpectrumDesc {
+  std::string name;
+  SpectrumDesc spectrum;
+  SourceLocation loc;
+};
+
+/// Index of refraction: a number, a built-in glass, or a dispersion formula.
+struct IorDesc {
+  enum class Kind { Number, Named, Cauchy, Sellmeier };
+  Kind kind = Kind::Number;
+  double value = 1.5;               ///< Kind::Number
+  std::string name;                 ///< Kind::Named (bk7, diamond, fused_silica)
+  std::vector<double> coefficients; ///< Cauchy: A, B[, C] (um); Sellmeier: B1 B2 B3 C1 C2 C3 (um^2)
+  SourceLocation loc;
+};
+
+/// <fluorescence>: the parameters of the re-radiation matrix, or a measured matrix.
+struct FluorescenceDesc {
+  std::optional<std::string> absorptionName; ///< a colour name (peak wavelength)
+  std::optional<double> absorptionNm;        ///< or the peak wavelength itself
+  std::optional<double> stokesNm;
+  std::optional<double> widthNm, skew, quantumYield, peakAbsorptance;
+  std::optional<std::string> matrixCsv; ///< measured Donaldson matrix
+  SourceLocation loc;
+};
+
+/// The shapes a scene can hold.
+enum class ShapeType { Sphere, Plane, Triangle };
+
+/// A sphere, plane or triangle with its appearance.
+struct ObjectDesc {
+  ShapeType shape = ShapeType::Sphere;
+  SourceLocation loc;
+  Vec3d center;                  ///< sphere
+  double radius = 0;             ///< sphere
+  Vec3d normal;                  ///< plane (unit length after loading)
+  double distance = 0;           ///< plane: dot(normal, p) = distance
+  std::array<Vec3d, 3> vertices; ///< triangle vA, vB, vC
+  std::string material;
+  SourceLocation materialLoc;
+  std::optional<std::array<double, 4>> color; ///< RGBA (rt, mcpt)
+  std::optional<SpectrumDesc> reflectance;    ///< spectral_mcpt
+  std::optional<SpectrumDesc> emission;       ///< absent, 0 or empty: not a light
+  double emissionScale = 1;                   ///< <emission scale="...">
+  std::optional<double> roughness;
+  SourceLocation roughnessLoc;
+  std::optional<IorDesc> ior;
+  std::optional<FluorescenceDesc> fluorescence;
+};
+
+/// A point light.
+struct PointLightDesc {
+  Vec3d position;
+  std::array<double, 4> color{};        ///< RGBA, A ignored
+  std::optional<SpectrumDesc> emission; ///< spectral emission (nxrender extension)
+  SourceLocation loc;
+};
+
+/// The pinhole camera.
+struct CameraDesc {
+  Vec3d position, lookAt;
+  Vec3d up{0, 1, 0};
+  double fovDegrees = 81.8; ///< horizontal; the thesis-era default
+  SourceLocation loc;
+};
+
+/// <settings>.
+struct SettingsDesc {
+  int width = 0, height = 0;
+  std::string outputPath; ///< as written; empty if absent
+  RenderMode mode = RenderMode::SpectralMcpt;
+  int depth = 5;
+  int samples = 16;
+  std::optional<SpectrumDesc> illuminant; ///< <illum>
+  SpectralBands bands;
+  std::optional<SpectrumDesc> background; ///< uniform environment radiance
+  uint32_t seed = 0;
+  SourceLocation loc, widthLoc, modeLoc;
+};
+
+/// Everything a scene file says.
+struct SceneDesc {
+  std::string file; ///< the scene file as given
+  SettingsDesc settings;
+  CameraDesc camera;
+  std::vector<PointLightDesc> lights;
+  std::vector<ObjectDesc> objects;
+  std::vector<NamedSpectrumDesc> spectra;
+  std::vector<std::string> warnings; ///< "file:line: ..." notes that are not errors
+};
+
+/// Reads a scene file. Throws nx::Error "file:line: expected ..., found ..." on any problem:
+/// XML syntax, unknown or repeated tags and attributes, missing required tags, malformed,
+/// non-finite or out-of-range numbers, unknown material or mode names, resolutions whose
+/// buffers would not fit in memory.
+SceneDesc loadScene(const std::string& path);
+
+/// Parses scene text; `file` names it in messages and anchors relative paths.
+SceneDesc parseScene(const std::string& text, const std::string& file);
+
+} // namespace nx

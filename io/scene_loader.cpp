@@ -1,0 +1,623 @@
+// Scene files (Niixtracer's .scn format and nxrender's extensions) -> SceneDesc.
+
+#include <pugixml.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/text_table.h"
+#include "io/scene_desc.h"
+
+namespace nx {
+namespace {
+
+constexpr double kMaxCoordinate = 1e12; // far below Embree's 1.8e18 limit, far above any scene
+constexpr int kMaxResolution = 65536;
+
+std::string shownText(const std::string& s) {
+  std::string shown = s.size() > 60 ? s.substr(0, 57) + "..." : s;
+  for (char& c : shown)
+    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+  return "'" + shown + "'";
+}
+
+std::string trim(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t\r\n");
+  if (a == std::string::npos) return {};
+  return s.substr(a, s.find_last_not_of(" \t\r\n") - a + 1);
+}
+
+class SceneParser {
+public:
+  SceneParser(const std::string& text, std::string file) : file_(std::move(file)) {
+    for (size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\n') newlines_.push_back(i);
+    if (trim(text).empty())
+      failAt(1, "expected an XML document with a <scene> element, found an empty file");
+    const pugi::xml_parse_result r =
+        doc_.load_buffer(text.data(), text.size(),
+                         pugi::parse_default | pugi::parse_ws_pcdata_single, pugi::encoding_utf8);
+    if (!r)
+      failAt(lineOfOffset(static_cast<size_t>(std::max<ptrdiff_t>(r.offset, 0))),
+             std::string("expected well-formed XML, found a syntax error (") + r.description() +
+                 ")");
+  }
+
+  SceneDesc parse() {
+    SceneDesc scene;
+    scene.file = file_;
+    pugi::xml_node root;
+    for (pugi::xml_node n : doc_.children()) {
+      if (n.type() != pugi::node_element) continue;
+      if (root)
+        fail(n, "expected a single root element <scene>",
+             "a second root <" + std::string(n.name()) + ">");
+      root = n;
+    }
+    if (!root) failAt(1, "expected a <scene> element, found no element");
+    if (std::string(root.name()) != "scene")
+      fail(root, "the root element <scene>", "<" + std::string(root.name()) + ">");
+    checkAttributes(root, {});
+
+    bool haveSettings = false, haveCamera = false;
+    for (pugi::xml_node n : elements(root)) {
+      const std::string tag = n.name();
+      if (tag == "settings") {
+        if (haveSettings) fail(n, "one <settings>", "a second <settings>");
+        haveSettings = true;
+        scene.settings = parseSettings(n);
+      } else if (tag == "camera") {
+        if (haveCamera) {
+          scene.warnings.push_back(loc(n).str() +
+                                   ": warning: a second <camera> is ignored (the first one wins)");
+          continue;
+        }
+        haveCamera = true;
+        scene.camera = parseCamera(n);
+      } else if (tag == "light") {
+        scene.lights.push_back(parseLight(n));
+      } else if (tag == "sphere" || tag == "plane" || tag == "triangle") {
+        scene.objects.push_back(parseObject(n));
+      } else if (tag == "spectrum") {
+        scene.spectra.push_back(parseNamedSpectrum(n));
+      } else {
+        fail(n, "one of <settings>, <camera>, <light>, <sphere>, <plane>, <triangle>, <spectrum>",
+             "<" + tag + ">");
+      }
+    }
+    if (!haveSettings) fail(root, "a <settings> element", "none");
+    if (!haveCamera) fail(root, "a <camera> element", "none");
+    checkMemory(scene.settings);
+    std::set<std::string> names;
+    for (const auto& s : scene.spectra)
+      if (!names.insert(s.name).second)
+        throw Error(s.loc.str() + ": expected a new spectrum name, found '" + s.name +
+                    "' defined twice");
+    return scene;
+  }
+
+private:
+  // ---- locations and errors ----
+  int lineOfOffset(size_t offset) const {
+    return static_cast<int>(std::lower_bound(newlines_.begin(), newlines_.end(), offset) -
+                            newlines_.begin()) +
+           1;
+  }
+  SourceLocation loc(const pugi::xml_node& n) const {
+    const ptrdiff_t off = n.offset_debug();
+    return {file_, off < 0 ? 0 : lineOfOffset(static_cast<size_t>(off))};
+  }
+  [[noreturn]] void failAt(int line, const std::string& message) const {
+    throw Error(file_ + ":" + std::to_string(line) + ": " + message);
+  }
+  [[noreturn]] void fail(const pugi::xml_node& n, const std::string& expected,
+                         const std::string& found) const {
+    throw Error(loc(n).str() + ": expected " + expected + ", found " + found);
+  }
+
+  // ---- structure ----
+  std::vector<pugi::xml_node> elements(const pugi::xml_node& parent) const {
+    std::vector<pugi::xml_node> out;
+    for (pugi::xml_node c : parent.children()) {
+      if (c.type() == pugi::node_element) {
+        out.push_back(c);
+      } else if ((c.type() == pugi::node_pcdata || c.type() == pugi::node_cdata) &&
+                 !trim(c.value()).empty()) {
+        const std::string v = c.value();
+        const size_t lead = v.find_first_not_of(" \t\r\n");
+        failAt(lineOfOffset(static_cast<size_t>(std::max<ptrdiff_t>(c.offset_debug(), 0)) + lead),
+               "expected only elements inside <" + std::string(parent.name()) + ">, found text " +
+                   shownText(trim(v)));
+      }
+    }
+    return out;
+  }
+
+  // Children of an element, each allowed tag at most once.
+  std::map<std::string, pugi::xml_node>
+  uniqueChildren(const pugi::xml_node& parent, const std::vector<std::string>& allowed) const {
+    std::map<std::string, pugi::xml_node> out;
+    for (pugi::xml_node c : elements(parent)) {
+      const std::string tag = c.name();
+      if (std::find(allowed.begin(), allowed.end(), tag) == allowed.end()) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "<" : ", <") + a + ">";
+        fail(c, "one of " + list + " inside <" + std::string(parent.name()) + ">", "<" + tag + ">");
+      }
+      if (!out.emplace(tag, c).second) fail(c, "one <" + tag + ">", "a second <" + tag + ">");
+    }
+    return out;
+  }
+
+  void checkAttributes(const pugi::xml_node& n, const std::vector<std::string>& allowed) const {
+    for (pugi::xml_attribute a : n.attributes())
+      if (std::find(allowed.begin(), allowed.end(), a.name()) == allowed.end())
+        fail(
+            n,
+            allowed.empty() ? "no attributes on <" + std::string(n.name()) + ">"
+                            : "only the attribute(s) " +
+                                  [&] {
+                                    std::string l;
+                                    for (const auto& s : allowed) l += (l.empty() ? "" : ", ") + s;
+                                    return l;
+                                  }() +
+                                  " on <" + std::string(n.name()) + ">",
+            "attribute '" + std::string(a.name()) + "'");
+  }
+
+  // Text of a leaf element (no child elements, no attributes unless allowed).
+  std::string text(const pugi::xml_node& n, const std::vector<std::string>& attributes = {}) const {
+    checkAttributes(n, attributes);
+    std::string t;
+    for (pugi::xml_node c : n.children()) {
+      if (c.type() == pugi::node_element)
+        fail(c, "text inside <" + std::string(n.name()) + ">",
+             "element <" + std::string(c.name()) + ">");
+      if (c.type() == pugi::node_pcdata || c.type() == pugi::node_cdata) t += c.value();
+    }
+    return trim(t);
+  }
+
+  std::vector<std::string> tokens(const std::string& t) const {
+    std::vector<std::string> out;
+    std::string cur;
+    for (char c : t) {
+      if (c == ',' || c == ' ' || c == '\t' || c == '\n' || c == '\r') {
+        if (!cur.empty()) out.push_back(cur);
+        cur.clear();
+      } else {
+        cur += c;
+      }
+    }
+    if (!cur.empty()) out.push_back(cur);
+    return out;
+  }
+
+  double numberOf(const pugi::xml_node& n, const std::string& token,
+                  const std::string& what) const {
+    const std::string where = loc(n).str();
+    return parseNumber(token, where, what + " in <" + std::string(n.name()) + ">");
+  }
+
+  double number(const pugi::xml_node& n, const std::string& what, double lo, double hi,
+                bool openLow = false) const {
+    const std::string t = text(n);
+    const auto tk = tokens(t);
+    if (tk.size() != 1)
+      fail(n, "one number (" + what + ") in <" + std::string(n.name()) + ">",
+           tk.empty() ? "nothing" : shownText(t));
+    const double v = numberOf(n, tk[0], what);
+    if (v < lo || v > hi || (openLow && v == lo)) {
+      std::ostringstream range;
+      range << what << " in " << (openLow ? "(" : "[") << lo << ", " << hi << "]";
+      fail(n, range.str(), shownText(t));
+    }
+    return v;
+  }
+
+  int integer(const pugi::xml_node& n, const std::string& what, long lo, long hi) const {
+    const std::string t = text(n);
+    const auto tk = tokens(t);
+    if (tk.size() != 1)
+      fail(n, "one whole number (" + what + ") in <" + std::string(n.name()) + ">",
+           tk.empty() ? "nothing" : shownText(t));
+    const std::string& s = tk[0];
+    bool digits = !s.empty();
+    for (size_t i = 0; i < s.size(); ++i)
+      digits = digits && (std::isdigit(static_cast<unsigned char>(s[i])) ||
+                          (i == 0 && (s[i] == '-' || s[i] == '+')));
+    if (!digits)
+      fail(n, "a whole number (" + what + ") in <" + std::string(n.name()) + ">", shownText(t));
+    errno = 0;
+    const long long v = std::strtoll(s.c_str(), nullptr, 10);
+    if (errno == ERANGE || v < lo || v > hi)
+      fail(n, what + " in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", shownText(t));
+    return static_cast<int>(v);
+  }
+
+  std::vector<double> numbers(const pugi::xml_node& n, size_t minCount, size_t maxCount,
+                              const std::string& what) const {
+    const std::string t = text(n);
+    const auto tk = tokens(t);
+    if (tk.size() < minCount || tk.size() > maxCount) {
+      const std::string count = minCount == maxCount
+                                    ? std::to_string(minCount)
+                                    : std::to_string(minCount) + " to " + std::to_string(maxCount);
+      fail(n, count + " numbers (" + what + ") in <" + std::string(n.name()) + ">",
+           std::to_string(tk.size()) + (tk.empty() ? "" : " (" + shownText(t) + ")"));
+    }
+    std::vector<double> v;
+    for (const auto& s : tk) v.push_back(numberOf(n, s, what));
+    return v;
+  }
+
+  Vec3d vec3(const pugi::xml_node& n, const std::string& what) const {
+    const auto v = numbers(n, 3, 3, what);
+    for (double x : v)
+      if (std::abs(x) > kMaxCoordinate)
+        fail(n, what + " with coordinates within +/-1e12", shownText(text(n)));
+    return {v[0], v[1], v[2]};
+  }
+
+  pugi::xml_node required(const std::map<std::string, pugi::xml_node>& children,
+                          const pugi::xml_node& parent, const std::string& tag) const {
+    const auto it = children.find(tag);
+    if (it == children.end())
+      fail(parent, "<" + tag + "> inside <" + std::string(parent.name()) + ">", "none");
+    return it->second;
+  }
+
+  // ---- spectra ----
+  // A spectrum written as text: a number, "nm:value" pairs, or a name; or csv="file".
+  std::optional<SpectrumDesc> spectrum(const pugi::xml_node& n, bool emptyMeansNone,
+                                       const std::vector<std::string>& extraAttributes = {}) const {
+    std::vector<std::string> attrs = extraAttributes;
+    attrs.push_back("csv");
+    const std::string t = text(n, attrs);
+    SpectrumDesc s;
+    s.loc = loc(n);
+    if (pugi::xml_attribute csv = n.attribute("csv")) {
+      if (!t.empty())
+        fail(n, "either csv=\"file\" or text in <" + std::string(n.name()) + ">", "both");
+      if (trim(csv.value()).empty()) fail(n, "a file name in csv=\"...\"", "an empty one");
+      s.kind = SpectrumDesc::Kind::CsvFile;
+      s.path = relativeToScene(csv.value());
+      return s;
+    }
+    if (t.empty()) {
+      if (emptyMeansNone) return std::nullopt;
+      fail(n,
+           "a spectrum (a name, a number, nm:value pairs or csv=\"file\") in <" +
+               std::string(n.name()) + ">",
+           "nothing");
+    }
+    const char first = t[0];
+    const bool numeric = std::isdigit(static_cast<unsigned char>(first)) || first == '.' ||
+                         first == '-' || first == '+';
+    if (numeric && t.find(':') != std::string::npos) {
+      s.kind = SpectrumDesc::Kind::Pairs;
+      for (const auto& tok : tokens(t)) {
+        const auto colon = tok.find(':');
+        if (colon == std::string::npos || tok.find(':', colon + 1) != std::string::npos)
+          fail(n, "nm:value pairs such as 400:0.2, 500:0.7", shownText(tok));
+        s.nm.push_back(numberOf(n, tok.substr(0, colon), "a wavelength in nm"));
+        s.value.push_back(numberOf(n, tok.substr(colon + 1), "a spectrum value"));
+      }
+      if (s.nm.size() < 2) fail(n, "at least two nm:value pairs", shownText(t));
+      for (size_t i = 1; i < s.nm.size(); ++i)
+        if (!(s.nm[i] > s.nm[i - 1]))
+          fail(n, "increasing wavelengths in nm:value pairs", shownText(t));
+      return s;
+    }
+    if (numeric) {
+      s.kind = SpectrumDesc::Kind::Number;
+      const auto tk = tokens(t);
+      if (tk.size() != 1)
+        fail(n, "one number, a name or nm:value pairs in <" + std::string(n.name()) + ">",
+             shownText(t));
+      s.number = numberOf(n, tk[0], "a spectrum value");
+      if (s.number < 0)
+        fail(n, "a non-negative value in <" + std::string(n.name()) + ">", shownText(t));
+      if (s.number == 0 && emptyMeansNone) return std::nullopt;
+      return s;
+    }
+    if (tokens(t).size() != 1)
+      fail(n, "one spectrum name in <" + std::string(n.name()) + ">", shownText(t));
+    s.kind = SpectrumDesc::Kind::Name;
+    s.name = t;
+    return s;
+  }
+
+  std::string relativeToScene(const std::string& p) const {
+    const std::filesystem::path path(trim(p));
+    if (path.is_absolute()) return path.string();
+    return (std::filesystem::path(file_).parent_path() / path).lexically_normal().string();
+  }
+
+  NamedSpectrumDesc parseNamedSpectrum(const pugi::xml_node& n) const {
+    NamedSpectrumDesc d;
+    d.loc = loc(n);
+    const std::string name = trim(n.attribute("name").value());
+    if (name.empty()) fail(n, "a name=\"...\" attribute on <spectrum>", "none");
+    if (name.find_first_of(" \t,:") != std::string::npos ||
+        std::isdigit(static_cast<unsigned char>(name[0])))
+      fail(n, "a spectrum name without spaces, commas or colons, not starting with a digit",
+           shownText(name));
+    d.name = name;
+    d.spectrum = *spectrum(n, false, {"name"});
+    return d;
+  }
+
+  // ---- elements ----
+  SettingsDesc parseSettings(const pugi::xml_node& n) const {
+    checkAttributes(n, {});
+    const auto c = uniqueChildren(n, {"xres", "yres", "path", "mode", "depth", "sampl", "samp1",
+                                      "illum", "bands", "background", "seed"});
+    SettingsDesc s;
+    s.loc = loc(n);
+    const pugi::xml_node xres = required(c, n, "xres");
+    s.widthLoc = loc(xres);
+    s.width = integer(xres, "a width in pixels", 1, kMaxResolution);
+    s.height = integer(required(c, n, "yres"), "a height in pixels", 1, kMaxResolution);
+    const pugi::xml_node mode = required(c, n, "mode");
+    s.modeLoc = loc(mode);
+    const std::string m = text(mode);
+    if (m == "rt")
+      s.mode = RenderMode::Rt;
+    else if (m == "mcpt")
+      s.mode = RenderMode::Mcpt;
+    else if (m == "spectral_mcpt")
+      s.mode = RenderMode::SpectralMcpt;
+    else
+      fail(mode, "a mode rt, mcpt or spectral_mcpt", shownText(m));
+    if (c.count("path")) {
+      s.outputPath = text(c.at("path"));
+      if (s.outputPath.empty()) fail(c.at("path"), "an output file name in <path>", "nothing");
+    }
+    if (c.count("depth")) s.depth = integer(c.at("depth"), "a bounce count", 0, 100000);
+    if (c.count("sampl") && c.count("samp1"))
+      fail(c.at("samp1"), "one of <sampl> and <samp1>", "both");
+    for (const char* tag : {"sampl", "samp1"})
+      if (c.count(tag)) s.samples = integer(c.at(tag), "a sample count per pixel", 1, 1 << 30);
+    if (c.count("illum")) s.illuminant = spectrum(c.at("illum"), false);
+    if (c.count("background")) s.background = spectrum(c.at("background"), true);
+    if (c.count("bands")) {
+      try {
+        s.bands = SpectralBands::parse(text(c.at("bands")));
+      } catch (const Error& e) {
+        throw Error(loc(c.at("bands")).str() + ": " + e.what());
+      }
+    }
+    if (c.count("seed"))
+      s.seed = static_cast<uint32_t>(integer(c.at("seed"), "a seed", 0, 2147483647));
+    return s;
+  }
+
+  CameraDesc parseCamera(const pugi::xml_node& n) const {
+    checkAttributes(n, {});
+    const auto c = uniqueChildren(n, {"position", "look_at", "up", "fov"});
+    CameraDesc cam;
+    cam.loc = loc(n);
+    cam.position = vec3(required(c, n, "position"), "a camera position x, y, z");
+    cam.lookAt = vec3(required(c, n, "look_at"), "a point to look at x, y, z");
+    if (length(cam.lookAt - cam.position) == 0)
+      fail(c.at("look_at"), "a look_at point different from the camera position",
+           shownText(text(c.at("look_at"))));
+    if (c.count("up")) {
+      cam.up = vec3(c.at("up"), "an up direction x, y, z");
+      if (length(cam.up) == 0)
+        fail(c.at("up"), "a non-zero up direction", shownText(text(c.at("up"))));
+    }
+    if (c.count("fov"))
+      cam.fovDegrees = number(c.at("fov"), "a horizontal field of view in degrees", 0, 179, true);
+    return cam;
+  }
+
+  PointLightDesc parseLight(const pugi::xml_node& n) const {
+    checkAttributes(n, {});
+    const auto c = uniqueChildren(n, {"position", "color", "emission"});
+    PointLightDesc l;
+    l.loc = loc(n);
+    l.position = vec3(required(c, n, "position"), "a light position x, y, z");
+    l.color = colour(required(c, n, "color"), false);
+    if (c.count("emission")) l.emission = spectrum(c.at("emission"), true);
+    return l;
+  }
+
+  std::array<double, 4> colour(const pugi::xml_node& n, bool reflectance) const {
+    const auto v = numbers(n, 3, 4, "R, G, B[, A]");
+    std::array<double, 4> rgba{v[0], v[1], v[2], v.size() == 4 ? v[3] : 1.0};
+    for (int i = 0; i < 3; ++i) {
+      if (rgba[i] < 0) fail(n, "non-negative colour channels", shownText(text(n)));
+      if (reflectance && rgba[i] > 1)
+        fail(n, "reflectance colour channels in [0, 1]", shownText(text(n)));
+    }
+    return rgba;
+  }
+
+  ObjectDesc parseObject(const pugi::xml_node& n) const {
+    checkAttributes(n, {});
+    const std::string tag = n.name();
+    std::vector<std::string> allowed{"material",     "color",     "reflectance", "emission",
+                                     "fluorescence", "roughness", "ior"};
+    if (tag == "sphere") allowed.insert(allowed.end(), {"center", "radius"});
+    if (tag == "plane") allowed.insert(allowed.end(), {"normal", "distance"});
+    if (tag == "triangle") allowed.insert(allowed.end(), {"vA", "vB", "vC"});
+    const auto c = uniqueChildren(n, allowed);
+    ObjectDesc o;
+    o.loc = loc(n);
+    if (tag == "sphere") {
+      o.shape = ShapeType::Sphere;
+      o.center = vec3(required(c, n, "center"), "a sphere centre x, y, z");
+      o.radius = number(required(c, n, "radius"), "a radius", 0, kMaxCoordinate, true);
+    } else if (tag == "plane") {
+      o.shape = ShapeType::Plane;
+      const pugi::xml_node nn = required(c, n, "normal");
+      o.normal = vec3(nn, "a plane normal x, y, z");
+      const double len = length(o.normal);
+      if (!(len > 0)) fail(nn, "a non-zero plane normal", shownText(text(nn)));
+      o.normal = o.normal / len;
+      o.distance =
+          number(required(c, n, "distance"), "a plane distance", -kMaxCoordinate, kMaxCoordinate);
+    } else {
+      o.shape = ShapeType::Triangle;
+      o.vertices = {vec3(required(c, n, "vA"), "a vertex x, y, z"),
+                    vec3(required(c, n, "vB"), "a vertex x, y, z"),
+                    vec3(required(c, n, "vC"), "a vertex x, y, z")};
+      if (!(length(cross(o.vertices[1] - o.vertices[0], o.vertices[2] - o.vertices[0])) > 0))
+        fail(n, "a triangle with non-zero area", "collinear vertices");
+    }
+    const pugi::xml_node mat = required(c, n, "material");
+    o.material = text(mat);
+    o.materialLoc = loc(mat);
+    static const std::set<std::string> kMaterials{"matte",   "metal",  "plastic",     "mirror",
+                                                  "diamond", "glass",  "translucent", "transparent",
+                                                  "default", "diffuse"};
+    if (!kMaterials.count(o.material))
+      fail(mat,
+           "a material matte, metal, plastic, mirror, glass, diamond, translucent, transparent, "
+           "default or diffuse",
+           shownText(o.material));
+    if (c.count("color")) o.color = colour(c.at("color"), true);
+    if (c.count("reflectance")) o.reflectance = spectrum(c.at("reflectance"), false);
+    if (c.count("emission")) {
+      const pugi::xml_node e = c.at("emission");
+      o.emission = spectrum(e, true, {"scale"});
+      if (pugi::xml_attribute sc = e.attribute("scale")) {
+        o.emissionScale =
+            parseNumber(sc.value(), loc(e).str(), "an emission scale in scale=\"...\"");
+        if (!(o.emissionScale > 0)) fail(e, "a positive emission scale", shownText(sc.value()));
+      }
+    }
+    if (c.count("roughness")) {
+      o.roughness = number(c.at("roughness"), "a roughness", 0, 1);
+      o.roughnessLoc = loc(c.at("roughness"));
+    }
+    if (c.count("ior")) o.ior = ior(c.at("ior"));
+    if (c.count("fluorescence")) o.fluorescence = fluorescence(c.at("fluorescence"));
+    return o;
+  }
+
+  IorDesc ior(const pugi::xml_node& n) const {
+    IorDesc d;
+    d.loc = loc(n);
+    const std::string t = text(n);
+    if (t.empty())
+      fail(n,
+           "an IOR (a number, bk7, diamond, fused_silica, cauchy: A, B[, C] or sellmeier: B1, B2, "
+           "B3, C1, C2, C3)",
+           "nothing");
+    const auto colon = t.find(':');
+    if (colon != std::string::npos) {
+      const std::string kind = trim(t.substr(0, colon));
+      const auto tk = tokens(t.substr(colon + 1));
+      if (kind == "cauchy") {
+        d.kind = IorDesc::Kind::Cauchy;
+        if (tk.size() < 2 || tk.size() > 3)
+          fail(n, "cauchy: A, B[, C] (2 or 3 numbers)", std::to_string(tk.size()) + " numbers");
+      } else if (kind == "sellmeier") {
+        d.kind = IorDesc::Kind::Sellmeier;
+        if (tk.size() != 6)
+          fail(n, "sellmeier: B1, B2, B3, C1, C2, C3 (6 numbers)",
+               std::to_string(tk.size()) + " numbers");
+      } else {
+        fail(n, "a dispersion formula cauchy: or sellmeier:", shownText(kind + ":"));
+      }
+      for (const auto& s : tk) d.coefficients.push_back(numberOf(n, s, "a dispersion coefficient"));
+      return d;
+    }
+    const char first = t[0];
+    if (std::isdigit(static_cast<unsigned char>(first)) || first == '.' || first == '-' ||
+        first == '+') {
+      d.kind = IorDesc::Kind::Number;
+      d.value = number(n, "an index of refraction", 1, 10);
+      return d;
+    }
+    if (t != "bk7" && t != "diamond" && t != "fused_silica")
+      fail(n, "a named glass bk7, diamond or fused_silica", shownText(t));
+    d.kind = IorDesc::Kind::Named;
+    d.name = t;
+    return d;
+  }
+
+  FluorescenceDesc fluorescence(const pugi::xml_node& n) const {
+    checkAttributes(n, {});
+    const auto c =
+        uniqueChildren(n, {"absorption", "stokes", "width", "skew", "yield", "peak", "matrix"});
+    FluorescenceDesc f;
+    f.loc = loc(n);
+    if (c.count("matrix")) {
+      for (const char* tag : {"absorption", "stokes", "width", "skew", "yield", "peak"})
+        if (c.count(tag))
+          fail(c.at(tag), "only <matrix> when a measured matrix is given",
+               "<" + std::string(tag) + ">");
+      const std::string p = text(c.at("matrix"));
+      if (p.empty()) fail(c.at("matrix"), "a CSV file name in <matrix>", "nothing");
+      f.matrixCsv = relativeToScene(p);
+      return f;
+    }
+    const pugi::xml_node abs = required(c, n, "absorption");
+    const std::string a = text(abs);
+    if (!a.empty() &&
+        (std::isdigit(static_cast<unsigned char>(a[0])) || a[0] == '.' || a[0] == '-'))
+      f.absorptionNm = number(abs, "an absorption peak in nm", 200, 1000);
+    else if (!a.empty())
+      f.absorptionName = a;
+    else
+      fail(abs, "an absorption colour name or peak wavelength", "nothing");
+    f.stokesNm = number(required(c, n, "stokes"), "a Stokes shift in nm", 0, 1000);
+    if (c.count("width")) f.widthNm = number(c.at("width"), "a width in nm", 0, 500, true);
+    if (c.count("skew")) f.skew = number(c.at("skew"), "a skew magnitude", 0, 1000);
+    if (c.count("yield")) f.quantumYield = number(c.at("yield"), "a quantum yield", 0, 1);
+    if (c.count("peak")) f.peakAbsorptance = number(c.at("peak"), "a peak absorptance", 0, 1);
+    return f;
+  }
+
+  void checkMemory(const SettingsDesc& s) const {
+    // Film accumulators (double per band, plus XYZ and weights) and the output image (float).
+    const double pixels = static_cast<double>(s.width) * s.height;
+    const double bytes = pixels * ((s.bands.count() + 6) * 8.0 + (s.bands.count() + 3) * 4.0);
+    const double available =
+        static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+    if (bytes > 0.8 * available) {
+      std::ostringstream found;
+      found << s.width << "x" << s.height << " with " << s.bands.count() << " bands (needs "
+            << bytes / (1 << 30) << " GiB of " << available / (1 << 30) << " GiB)";
+      throw Error(s.widthLoc.str() + ": expected a resolution whose buffers fit in memory, found " +
+                  found.str());
+    }
+  }
+
+  std::string file_;
+  std::vector<size_t> newlines_;
+  pugi::xml_document doc_;
+};
+
+} // namespace
+
+SceneDesc parseScene(const std::string& text, const std::string& file) {
+  return SceneParser(text, file).parse();
+}
+
+SceneDesc loadScene(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error(path + ": expected a scene file, found a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (text.str().size() > (64u << 20))
+    throw Error(path + ": expected a scene file of at most 64 MiB");
+  return parseScene(text.str(), path);
+}
+
+} // namespace nx

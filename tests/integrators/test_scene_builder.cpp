@@ -1,0 +1,184 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/error.h"
+#include "integrators/render_scene.h"
+#include "spectra/colour.h"
+#include "spectra/illuminants.h"
+#include "spectra/rgb_upsampling.h"
+
+namespace nx {
+namespace {
+
+std::string scene(const std::string& body, const std::string& mode = "spectral_mcpt") {
+  return "<scene>\n<settings><xres>8</xres><yres>6</yres><mode>" + mode +
+         "</mode></settings>\n"
+         "<camera><position>0, 0, -5</position><look_at>0, 0, 0</look_at></camera>\n" +
+         body + "</scene>\n";
+}
+
+RenderScene build(const std::string& text) {
+  return buildRenderScene(parseScene(text, "t.scn"));
+}
+
+std::string errorOf(const std::string& text) {
+  try {
+    build(text);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(SceneBuilder, EveryExampleSceneBuilds) {
+  for (const char* name :
+       {"thesis", "materials", "dispersion", "rgb_mcpt", "rt_whitted", "extensions"}) {
+    const std::string path = std::string(NX_SOURCE_DIR "/scenes/") + name + ".scn";
+    EXPECT_NO_THROW(buildRenderScene(loadScene(path))) << path;
+  }
+}
+
+TEST(SceneBuilder, ThesisScene) {
+  const RenderScene s = buildRenderScene(loadScene(NX_SOURCE_DIR "/scenes/thesis.scn"));
+  EXPECT_EQ(s.geometry->spheres().size(), 4u);
+  EXPECT_EQ(s.geometry->planes().size(), 2u);
+  ASSERT_EQ(s.materials.size(), 6u);
+  EXPECT_EQ(s.materials[2].kind, MaterialKind::Dielectric);
+  EXPECT_DOUBLE_EQ(s.materials[2].ior.at(550), 2.418);
+  EXPECT_FALSE(s.materials[2].ior.dispersive());
+  EXPECT_FLOAT_EQ(s.materials[3].roughness, 0.3f);        // metal
+  EXPECT_DOUBLE_EQ(s.materials[0].reflectance(500), 0.5); // gray
+  ASSERT_TRUE(s.materials[3].fluorescence.has_value());
+  EXPECT_EQ(s.materials[3].fluorescence->absorptionPeakNm, 460);
+  EXPECT_EQ(s.materials[3].fluorescence->stokesNm, 220);
+  EXPECT_EQ(s.materials[3].fluorescence->widthNm, 20);
+  EXPECT_EQ(s.materials[3].fluorescence->quantumYield, 1);
+  EXPECT_TRUE(s.hasFluorescence);
+  EXPECT_FALSE(s.hasDispersion);
+  ASSERT_EQ(s.emission.size(), 1u);
+  EXPECT_EQ(s.spheres[3].emission, 0);
+  EXPECT_NEAR(relativeLuminance(s.emission[0]), 1.0, 1e-9); // bbd65 is as bright as 1
+  EXPECT_DOUBLE_EQ(s.materials[5].reflectance(550), 0.0); // an emitter without reflectance is black
+  EXPECT_EQ(s.planes[0].emission, -1);
+}
+
+TEST(SceneBuilder, ExtensionsResolve) {
+  const RenderScene s = buildRenderScene(loadScene(NX_SOURCE_DIR "/scenes/extensions.scn"));
+  EXPECT_NEAR(s.materials[1].reflectance(460), 0.1 + (0.6 - 0.1) * 10 / 70, 1e-12); // named pairs
+  EXPECT_FLOAT_EQ(s.materials[1].roughness, 0.5f);
+  EXPECT_EQ(s.materials[2].ior.kind, IorModel::Kind::Cauchy);
+  EXPECT_NEAR(s.materials[2].ior.at(500), 1.5046 + 0.0042 / 0.25, 1e-12);
+  EXPECT_NEAR(s.materials[3].reflectance(500), 0.60, 1e-12); // CSV file
+  EXPECT_NEAR(s.emission[0](450), 6 * 0.60, 1e-12); // scene spectra are used as written, x scale
+  ASSERT_TRUE(s.background.has_value());
+  EXPECT_DOUBLE_EQ((*s.background)(600), 0.05);
+  EXPECT_EQ(s.settings.bands.count(), 14);
+}
+
+TEST(SceneBuilder, DispersiveGlasses) {
+  const RenderScene s = buildRenderScene(loadScene(NX_SOURCE_DIR "/scenes/dispersion.scn"));
+  EXPECT_TRUE(s.hasDispersion);
+  EXPECT_NEAR(s.materials[1].ior.at(589.3), 2.417, 2e-3);  // diamond n_D
+  EXPECT_NEAR(s.materials[2].ior.at(587.6), 1.5168, 1e-4); // N-BK7 n_d
+  EXPECT_GT(s.materials[2].ior.at(400), s.materials[2].ior.at(700));
+  IorModel silica;
+  ASSERT_TRUE(namedGlass("fused_silica", silica));
+  EXPECT_NEAR(silica.at(587.6), 1.4585, 1e-4);
+}
+
+TEST(SceneBuilder, RgbModesUpsampleColours) {
+  const RenderScene s = buildRenderScene(loadScene(NX_SOURCE_DIR "/scenes/rgb_mcpt.scn"));
+  const Rgb red = reflectanceToLinearSrgb(s.materials[2].reflectance);
+  EXPECT_NEAR(red.r, 0.9, 2e-3);
+  EXPECT_NEAR(red.g, 0.1, 2e-3);
+  EXPECT_NEAR(red.b, 0.1, 2e-3);
+  // The light: colour (1, 0.9, 0.7) x 8, shown as that colour.
+  const Rgb light = xyzToLinearSrgb(spectrumToXyz(s.emission[0]));
+  EXPECT_NEAR(light.r, 8.0, 0.03);
+  EXPECT_NEAR(light.g, 7.2, 0.03);
+  EXPECT_NEAR(light.b, 5.6, 0.03);
+  const RenderScene rt = buildRenderScene(loadScene(NX_SOURCE_DIR "/scenes/rt_whitted.scn"));
+  ASSERT_EQ(rt.pointLights.size(), 2u);
+  EXPECT_NEAR(xyzToLinearSrgb(spectrumToXyz(rt.pointLights[0].intensity)).g, 40.0, 0.1);
+}
+
+TEST(SceneBuilder, ErrorsNameTheLine) {
+  const std::string sphere = "<sphere><center>0,0,0</center><radius>1</radius>";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {scene(sphere + "<material>matte</material><reflectance>teal</reflectance></sphere>\n"),
+       "t.scn:4: expected a reflectance name (red, orange, yellow, green, blue, purple, uv, gray, "
+       "const, null, or a "
+       "<spectrum> of the scene), found 'teal'"},
+      {scene(sphere + "<material>matte</material><emission>D66x</emission></sphere>\n"),
+       "t.scn:4: expected an illuminant name (A, D50"},
+      {scene(sphere + "<material>matte</material><reflectance csv=\"missing.csv\"/></sphere>\n"),
+       "t.scn:4: missing.csv: cannot open the file for reading"},
+      {scene(sphere + "<material>matte</material><reflectance>1.5</reflectance></sphere>\n"),
+       "t.scn:4: expected a reflectance within [0, 1] at every wavelength, found 1.500000 at 360 "
+       "nm"},
+      {scene(sphere + "<material>glass</material><roughness>0.2</roughness></sphere>\n"),
+       "t.scn:4: expected no <roughness> on a smooth dielectric (glass), found one"},
+      {scene(sphere +
+             "<material>matte</material><reflectance>gray</reflectance><ior>1.3</ior></sphere>\n"),
+       "t.scn:4: expected <ior> only on glass, diamond, translucent or transparent, found it on "
+       "matte"},
+      {scene(
+           sphere +
+           "<material>glass</material><fluorescence><absorption>uv</absorption><stokes>100</stokes>"
+           "</fluorescence></sphere>\n"),
+       "t.scn:4: expected fluorescence only on matte, metal, plastic or mirror surfaces"},
+      {scene(sphere + "<material>matte</material></sphere>\n"),
+       "t.scn:4: expected <reflectance> on a non-emitting matte object in spectral_mcpt mode, "
+       "found none"},
+      {scene(sphere + "<material>matte</material></sphere>\n", "mcpt"),
+       "t.scn:4: expected <color> on a non-emitting matte object in mcpt mode, found none"},
+      {scene(sphere + "<material>matte</material><emission>D65</emission></sphere>\n", "mcpt"),
+       "t.scn:4: expected a number as <emission> in mcpt mode (its colour is <color>), found a "
+       "spectrum"},
+      {scene(sphere + "<material>glass</material><ior>cauchy: 0.5, 0.001</ior></sphere>\n"),
+       "t.scn:4: expected an index of refraction within [1, 10] over 360-830 nm, found 0.507716 at "
+       "360 nm"},
+      {scene(sphere +
+             "<material>matte</material><reflectance>gray</reflectance><fluorescence>"
+             "<absorption>teal</absorption><stokes>100</stokes></fluorescence></sphere>\n"),
+       "t.scn:4: expected an absorption colour (red, orange, yellow, green, blue, purple, uv) or a "
+       "wavelength in nm, found 'teal'"},
+      {scene("<spectrum name=\"a\">b</spectrum>\n<spectrum name=\"b\">a</spectrum>\n" + sphere +
+             "<material>matte</material><reflectance>a</reflectance></sphere>\n"),
+       "expected spectrum definitions without a cycle, found one through"},
+      {scene(sphere +
+             "<material>matte</material><reflectance>400:0.5, 500:2</reflectance></sphere>\n"),
+       "t.scn:4: expected a reflectance within [0, 1] at every wavelength, found"},
+  };
+  for (const auto& [text, message] : cases) {
+    const std::string got = errorOf(text);
+    EXPECT_NE(got.find(message), std::string::npos)
+        << "got:      " << got << "\nexpected: " << message;
+  }
+}
+
+TEST(SceneBuilder, MeasuredMatrixCsv) {
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "m.csv") << "ex/em,400,500,600\n350,0.1,0.2,0.1\n450,0.5,0.3,0.2\n";
+  std::ofstream(dir + "bad.csv") << "ex/em,400,500,600\n350,0.1,0.2\n";
+  const std::string sphere =
+      "<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
+      "<reflectance>gray</reflectance><fluorescence><matrix>";
+  const RenderScene s = build(scene(sphere + dir + "m.csv</matrix></fluorescence></sphere>\n"));
+  const auto& f = *s.materials[0].fluorescence;
+  EXPECT_TRUE(f.measured);
+  EXPECT_EQ(f.emissionNm, (std::vector<double>{400, 500, 600}));
+  EXPECT_EQ(f.excitationNm, (std::vector<double>{350, 450}));
+  EXPECT_EQ(f.cells.size(), 6u);
+  EXPECT_DOUBLE_EQ(f.cells[3], 0.5);
+  const std::string got =
+      errorOf(scene(sphere + dir + "bad.csv</matrix></fluorescence></sphere>\n"));
+  EXPECT_NE(
+      got.find(dir + "bad.csv:2: expected 4 cells (excitation wavelength and 3 values), found 3"),
+      std::string::npos)
+      << got;
+}
+
+} // namespace
+} // namespace nx
