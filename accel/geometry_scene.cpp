@@ -134,24 +134,13 @@ GeometryScene::~GeometryScene() {
 }
 
 bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rh;
-  rh.ray = toEmbree(ray);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &context, &rh);
-
-  bool found = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-  float tBest = rh.ray.tfar;
-  Vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-  const float baryU = rh.hit.u, baryV = rh.hit.v;
-  ShapeKind kind = rh.hit.geomID == triangleGeomId_ ? ShapeKind::Triangle : ShapeKind::Sphere;
-  uint32_t index = rh.hit.primID;
-
-  // Planes after the BVH, bounded by its hit.
+  // Planes first: their nearest hit bounds the BVH query, which then culls more.
   const Vec3d o(ray.o), d(ray.d);
+  float tBest = ray.tMax;
+  bool found = false;
+  ShapeKind kind = ShapeKind::Plane;
+  uint32_t index = 0;
+  Vec3 ng;
   for (size_t i = 0; i < planes_.size(); ++i) {
     const auto t = intersectPlane(planes_[i], o, d, ray.tMin, tBest);
     if (!t) continue;
@@ -160,8 +149,27 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     found = true;
     tBest = tf;
     ng = Vec3(planes_[i].normal);
-    kind = ShapeKind::Plane;
     index = static_cast<uint32_t>(i);
+  }
+
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray = toEmbree(ray);
+  rh.ray.tfar = tBest;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rh);
+  float baryU = 0, baryV = 0;
+  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+    found = true;
+    tBest = rh.ray.tfar;
+    ng = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    kind = rh.hit.geomID == triangleGeomId_ ? ShapeKind::Triangle : ShapeKind::Sphere;
+    index = rh.hit.primID;
+    baryU = rh.hit.u;
+    baryV = rh.hit.v;
   }
   if (!found) return false;
 

@@ -1,7 +1,7 @@
 // nxrender: the command-line renderer.
 //
-// Until the scene loader and path tracer land, it checks the scene file and writes the
-// spectral test chart (see spectral_chart.h) so that the whole output path can be used.
+// Until the path tracer lands, it loads and builds the scene (reporting its errors) and writes
+// the spectral test chart (see spectral_chart.h) so that the whole output path can be used.
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
@@ -9,11 +9,11 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 #include "apps/spectral_chart.h"
 #include "core/error.h"
+#include "integrators/render_scene.h"
 #include "io/atomic_file.h"
 #include "io/preview_image.h"
 #include "io/spectral_exr.h"
@@ -33,13 +33,13 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", std::string("nxrender ") + NX_VERSION);
   int threads = 0;
   std::string output = "chart.exr";
-  std::string bandsText = "400:700:10";
+  std::string bandsText;
   std::string scene;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   app.add_option("-o,--output", output,
                  "Spectral EXR to write; the preview goes beside it as .png");
-  app.add_option("--bands", bandsText, "Output bands START:END:STEP in nm (default 400:700:10)");
+  app.add_option("--bands", bandsText, "Output bands START:END:STEP in nm (default: the scene's, else 400:700:10)");
   app.add_option("scene", scene, "Scene file (.scn)")->required();
   try {
     app.parse(argc, argv);
@@ -47,9 +47,10 @@ int run(int argc, char** argv) {
     return app.exit(e);
   }
 
-  const nx::SpectralBands bands = nx::SpectralBands::parse(bandsText);
-  std::ifstream sceneFile(scene);
-  if (!sceneFile) throw nx::Error(scene + ": cannot open the scene file");
+  const nx::SceneDesc desc = nx::loadScene(scene);
+  for (const auto& w : desc.warnings) std::fprintf(stderr, "%s\n", w.c_str());
+  const nx::RenderScene renderScene = nx::buildRenderScene(desc);
+  const nx::SpectralBands bands = bandsText.empty() ? renderScene.settings.bands : nx::SpectralBands::parse(bandsText);
   if (output.size() < 4 || output.substr(output.size() - 4) != ".exr")
     throw nx::Error(output + ": expected an output file name ending in .exr");
   const std::string preview = replaceExtension(output, ".png");

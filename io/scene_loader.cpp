@@ -45,6 +45,8 @@ public:
     const pugi::xml_parse_result r =
         doc_.load_buffer(text.data(), text.size(),
                          pugi::parse_default | pugi::parse_ws_pcdata_single, pugi::encoding_utf8);
+    if (r.status == pugi::status_no_document_element)
+      failAt(1, "expected an XML document with a <scene> element, found no XML element");
     if (!r)
       failAt(lineOfOffset(static_cast<size_t>(std::max<ptrdiff_t>(r.offset, 0))),
              std::string("expected well-formed XML, found a syntax error (") + r.description() +

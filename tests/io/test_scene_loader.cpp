@@ -127,6 +127,8 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
       {"truncated", "<scene>\n<settings><xres>8</xres>\n",
        "t.scn:2: expected well-formed XML, found a syntax error"},
       {"binary", std::string("\x01\x02\xff\xfe<\x00>", 7), "t.scn:1: expected well-formed XML"},
+      {"plain text", "just some words\nand more\n",
+       "t.scn:1: expected an XML document with a <scene> element, found no XML element"},
       {"wrong root", "<scen></scen>", "t.scn:1: expected the root element <scene>, found <scen>"},
       {"unknown top tag", scene("<shpere></shpere>\n"),
        "t.scn:4: expected one of <settings>, <camera>, <light>, <sphere>, <plane>, <triangle>, "
