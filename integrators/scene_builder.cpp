@@ -171,35 +171,27 @@ private:
             name);
     }
 
+    // Each mode prefers its own tag (<reflectance> in spectral_mcpt, <color> in rt and mcpt)
+    // and falls back on the other, so every scene renders in every mode.
     const bool emitter = o.emission.has_value();
-    if (spectral) {
-      if (o.reflectance) {
-        m.reflectance = resolve(*o.reflectance, SpectrumRole::Reflectance);
-        checkUnitRange(m.reflectance, o.reflectance->loc,
-                       dielectric ? "transmission tint" : "reflectance");
-      } else if (dielectric) {
-        m.reflectance = Spectrum(ConstantSpectrum{1.0}); // clear
-      } else if (emitter) {
-        m.reflectance = Spectrum(ConstantSpectrum{0.0}); // a black emitter
-      } else {
-        throw Error(o.loc.str() + ": expected <reflectance> on a non-emitting " + name +
-                    " object in spectral_mcpt mode, found none");
+    const bool useSpectrum = o.reflectance && (spectral || !o.color);
+    if (useSpectrum) {
+      m.reflectance = resolve(*o.reflectance, SpectrumRole::Reflectance);
+      checkUnitRange(m.reflectance, o.reflectance->loc,
+                     dielectric ? "transmission tint" : "reflectance");
+    } else if (o.color) {
+      try {
+        m.reflectance = upsampleSrgbReflectance({(*o.color)[0], (*o.color)[1], (*o.color)[2]});
+      } catch (const Error& e) {
+        throw Error(o.loc.str() + ": " + e.what());
       }
+    } else if (dielectric) {
+      m.reflectance = Spectrum(ConstantSpectrum{1.0}); // clear
+    } else if (emitter) {
+      m.reflectance = Spectrum(ConstantSpectrum{0.0}); // a black emitter
     } else {
-      if (o.color) {
-        try {
-          m.reflectance = upsampleSrgbReflectance({(*o.color)[0], (*o.color)[1], (*o.color)[2]});
-        } catch (const Error& e) {
-          throw Error(o.loc.str() + ": " + e.what());
-        }
-      } else if (dielectric) {
-        m.reflectance = Spectrum(ConstantSpectrum{1.0});
-      } else if (emitter) {
-        m.reflectance = Spectrum(ConstantSpectrum{0.0});
-      } else {
-        throw Error(o.loc.str() + ": expected <color> on a non-emitting " + name + " object in " +
-                    (desc_.settings.mode == RenderMode::Rt ? "rt" : "mcpt") + " mode, found none");
-      }
+      throw Error(o.loc.str() + ": expected <reflectance> or <color> on a non-emitting " + name +
+                  " object, found neither");
     }
     if (o.fluorescence) {
       if (dielectric)
@@ -320,11 +312,10 @@ private:
   std::optional<Spectrum> emission(const ObjectDesc& o, bool spectral) const {
     if (!o.emission) return std::nullopt;
     if (spectral) return resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale);
-    // rt and mcpt: <emission> is a number; the light's colour is <color> (white if absent).
+    // rt and mcpt: a numeric <emission> is scaled by <color> (white if absent); a spectrum is
+    // used as in spectral mode.
     if (o.emission->kind != SpectrumDesc::Kind::Number)
-      throw Error(o.emission->loc.str() + ": expected a number as <emission> in " +
-                  (desc_.settings.mode == RenderMode::Rt ? "rt" : "mcpt") +
-                  " mode (its colour is <color>), found a spectrum");
+      return resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale);
     const double k = o.emission->number * o.emissionScale;
     const Rgb c =
         o.color ? Rgb{(*o.color)[0] * k, (*o.color)[1] * k, (*o.color)[2] * k} : Rgb{k, k, k};

@@ -19,9 +19,21 @@ struct SampledSpectrum {
   std::array<float, kLanes> v{};
 
   /// Lane i.
-  float& operator[](int i) { return v[static_cast<std::size_t>(i)]; }
+  float& operator[](std::size_t i) { return v[i]; }
   /// Lane i.
-  float operator[](int i) const { return v[static_cast<std::size_t>(i)]; }
+  float operator[](std::size_t i) const { return v[i]; }
+  /// Largest lane value.
+  float maxValue() const {
+    float m = v[0];
+    for (float x : v) m = x > m ? x : m;
+    return m;
+  }
+  /// True if every lane is zero.
+  bool isBlack() const {
+    for (float x : v)
+      if (x != 0) return false;
+    return true;
+  }
   /// Number of lanes (for generic code evaluating spectra lane by lane).
   static constexpr std::size_t size() { return kLanes; }
 
@@ -64,6 +76,22 @@ struct SampledWavelengths {
   static constexpr std::size_t size() { return kLanes; }
   /// Wavelength of lane i (so a spectrum can be evaluated over all lanes at once).
   float operator[](std::size_t i) const { return lambda[i]; }
+
+  /// Keeps only the hero wavelength, e.g. after a dispersive refraction made the path's
+  /// direction depend on it: the secondaries get pdf 0 and the hero's pdf is divided by
+  /// kLanes, so that its estimator weight 1 / (kLanes pdf) becomes 1 / pdf (pbrt-v4's
+  /// TerminateSecondary).
+  void terminateSecondary() {
+    if (secondaryTerminated()) return;
+    for (std::size_t i = 1; i < lambda.size(); ++i) pdf[i] = 0;
+    pdf[0] /= static_cast<float>(lambda.size());
+  }
+  /// True once terminateSecondary() was called (or with a single lane).
+  bool secondaryTerminated() const {
+    for (std::size_t i = 1; i < lambda.size(); ++i)
+      if (pdf[i] != 0) return false;
+    return true;
+  }
 };
 
 } // namespace nx

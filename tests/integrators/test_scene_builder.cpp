@@ -103,6 +103,28 @@ TEST(SceneBuilder, RgbModesUpsampleColours) {
   EXPECT_NEAR(xyzToLinearSrgb(spectrumToXyz(rt.pointLights[0].intensity)).g, 40.0, 0.1);
 }
 
+// Each mode prefers its own reflectance tag and falls back on the other.
+TEST(SceneBuilder, ModesFallBackOnTheOtherReflectanceTag) {
+  const std::string both =
+      "<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
+      "<color>0.9, 0.1, 0.1, 1</color><reflectance>0.25</reflectance></sphere>\n";
+  EXPECT_DOUBLE_EQ(build(scene(both)).materials[0].reflectance(500), 0.25);
+  EXPECT_GT(build(scene(both, "mcpt")).materials[0].reflectance(650), 0.5);
+  const std::string onlySpectrum =
+      "<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
+      "<reflectance>0.25</reflectance><emission>D65</emission></sphere>\n";
+  const RenderScene rt = build(scene(onlySpectrum, "rt"));
+  EXPECT_DOUBLE_EQ(rt.materials[0].reflectance(500), 0.25);
+  EXPECT_NEAR(relativeLuminance(rt.emission[0]), 1.0, 1e-9);
+  for (const char* mode : {"rt", "mcpt", "spectral_mcpt"}) {
+    SceneDesc d = loadScene(NX_SOURCE_DIR "/scenes/thesis.scn");
+    d.settings.mode = std::string(mode) == "rt"     ? RenderMode::Rt
+                      : std::string(mode) == "mcpt" ? RenderMode::Mcpt
+                                                    : RenderMode::SpectralMcpt;
+    EXPECT_NO_THROW(buildRenderScene(d)) << mode;
+  }
+}
+
 TEST(SceneBuilder, ErrorsNameTheLine) {
   const std::string sphere = "<sphere><center>0,0,0</center><radius>1</radius>";
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -129,13 +151,9 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
            "</fluorescence></sphere>\n"),
        "t.scn:4: expected fluorescence only on matte, metal, plastic or mirror surfaces"},
       {scene(sphere + "<material>matte</material></sphere>\n"),
-       "t.scn:4: expected <reflectance> on a non-emitting matte object in spectral_mcpt mode, "
-       "found none"},
+       "t.scn:4: expected <reflectance> or <color> on a non-emitting matte object, found neither"},
       {scene(sphere + "<material>matte</material></sphere>\n", "mcpt"),
-       "t.scn:4: expected <color> on a non-emitting matte object in mcpt mode, found none"},
-      {scene(sphere + "<material>matte</material><emission>D65</emission></sphere>\n", "mcpt"),
-       "t.scn:4: expected a number as <emission> in mcpt mode (its colour is <color>), found a "
-       "spectrum"},
+       "t.scn:4: expected <reflectance> or <color> on a non-emitting matte object, found neither"},
       {scene(sphere + "<material>glass</material><ior>cauchy: 0.5, 0.001</ior></sphere>\n"),
        "t.scn:4: expected an index of refraction within [1, 10] over 360-830 nm, found 0.507716 at "
        "360 nm"},

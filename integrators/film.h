@@ -1,0 +1,70 @@
+#pragma once
+// The film: per-pixel sums of band radiance and XYZ, filled tile by tile without locks.
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "spectra/bands.h"
+#include "spectra/cie.h"
+#include "spectra/sampled_wavelengths.h"
+#include "spectra/wavelength_sampler.h"
+
+namespace nx {
+
+/// Estimates of band-averaged radiance and of XYZ for each pixel, as sums over samples.
+class Film {
+public:
+  /// A film of width x height pixels for the given output bands.
+  Film(int width, int height, const SpectralBands& bands);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const SpectralBands& bands() const { return bands_; }
+  /// The wavelength range the bands need: what the renderer traces, no wider.
+  double minNm() const { return bands_.lower(0); }
+  double maxNm() const { return bands_.upper(bands_.count() - 1); }
+
+  /// Accumulator for one pixel's samples (lives on the stack of the tile task).
+  struct Pixel {
+    std::vector<double> bands; ///< sums of band estimates
+    double xyz[3] = {0, 0, 0}; ///< sums of XYZ estimates
+    uint32_t samples = 0;
+  };
+
+  /// A zeroed pixel accumulator for this film.
+  Pixel newPixel() const;
+  /// Zeroes an accumulator for the next pixel (no allocation).
+  static void resetPixel(Pixel& p) {
+    std::fill(p.bands.begin(), p.bands.end(), 0.0);
+    p.xyz[0] = p.xyz[1] = p.xyz[2] = 0;
+    p.samples = 0;
+  }
+
+  /// Adds one sample: radiance L carried by the lanes of `lambda` (sensor wavelengths), each
+  /// lane weighted 1 / (kLanes pdf). Band b receives L / bandwidth for lanes inside it;
+  /// XYZ receives L * cmf / integral(y-bar). Samples with a non-finite value are dropped
+  /// and counted (returns false).
+  bool addSample(Pixel& pixel, const SampledWavelengths& lambda, const SampledSpectrum& L) const;
+
+  /// Stores a finished pixel (each pixel is written by exactly one tile task).
+  void store(int x, int y, const Pixel& pixel);
+
+  /// Mean band radiance of pixel (x, y), band b.
+  double bandMean(int x, int y, int b) const;
+  /// Mean XYZ of pixel (x, y).
+  Xyz xyzMean(int x, int y) const;
+  /// Samples taken in pixel (x, y).
+  uint32_t samples(int x, int y) const { return counts_[index(x, y)]; }
+
+private:
+  size_t index(int x, int y) const { return static_cast<size_t>(y) * width_ + x; }
+  int width_, height_;
+  SpectralBands bands_;
+  int nBands_;
+  std::vector<double> bandSums_; ///< [pixel][band]
+  std::vector<double> xyzSums_;  ///< [pixel][3]
+  std::vector<uint32_t> counts_;
+};
+
+} // namespace nx

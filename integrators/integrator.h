@@ -1,0 +1,50 @@
+#pragma once
+// The per-sample light transport estimators: spectral path tracing and Whitted ray tracing.
+
+#include <cstdint>
+
+#include "core/ray.h"
+#include "core/sampler.h"
+#include "integrators/light_sampler.h"
+#include "integrators/render_scene.h"
+
+namespace nx {
+
+/// How direct light reaches diffuse surfaces in the path tracer.
+enum class LightSampling : uint8_t {
+  Mis,      ///< next-event estimation and BSDF sampling, combined by the power heuristic
+  BsdfOnly, ///< lights are found only by BSDF-sampled rays
+  NeeOnly,  ///< direct light only by next-event estimation (emitters hit after a diffuse bounce
+            ///< count zero)
+};
+
+/// Longest path the path tracer follows, far beyond any <depth>: Russian roulette ends paths
+/// long before; this only bounds pathological scenes (e.g. a closed mirror box).
+inline constexpr int kMaxPathBounces = 1024;
+
+/// Everything a per-sample estimator needs besides the sample itself.
+struct IntegratorContext {
+  const RenderScene* scene;
+  const LightSampler* lights;
+  LightSampling lightSampling = LightSampling::Mis;
+};
+
+/// Per-task counters (summed after rendering).
+struct TraceCounters {
+  uint64_t rays = 0;
+};
+
+/// Radiance arriving along `ray` at the lanes of `lambda` (spectral path tracing with
+/// hero wavelengths, NEE + MIS, Russian roulette after scene depth bounces). May terminate
+/// secondary lanes (dispersion), which changes lambda's pdfs.
+SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, SampledWavelengths& lambda,
+                          PixelSampleStream& rng, TraceCounters& counters);
+
+/// Radiance along `ray` by Whitted ray tracing through the same materials: emission seen
+/// directly or through specular chains, direct light on diffuse lobes from every light,
+/// Fresnel-split reflection and refraction up to the scene's depth.
+SampledSpectrum traceWhitted(const IntegratorContext& ctx, const Ray& ray,
+                             const SampledWavelengths& lambda, PixelSampleStream& rng,
+                             TraceCounters& counters);
+
+} // namespace nx

@@ -1,0 +1,100 @@
+#include "integrators/materials/bsdf.h"
+
+#include <cmath>
+
+#include "integrators/materials/fresnel.h"
+#include "integrators/sampling.h"
+
+namespace nx {
+
+SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
+                         const SampledSpectrum& rho, const Vec3& ng, const Vec3& wo,
+                         TransportMode mode)
+    : material_(&m), lambda_(&lambda), rho_(rho), wo_(wo), mode_(mode) {
+  // Opaque surfaces scatter on the side they are seen from; dielectrics keep the outward
+  // normal to know whether the path enters or leaves.
+  n_ = (m.kind == MaterialKind::Mixture && dot(wo, ng) < 0) ? -ng : ng;
+}
+
+SampledSpectrum SurfaceBsdf::evalDiffuse(const Vec3& wi) const {
+  if (!hasDiffuse()) return {};
+  const float c = dot(wi, n_);
+  if (c <= 0 || dot(wo_, n_) <= 0) return {};
+  return rho_ * (material_->roughness * static_cast<float>(kInvPi) * c);
+}
+
+float SurfaceBsdf::pdfDiffuse(const Vec3& wi) const {
+  if (!hasDiffuse() || dot(wo_, n_) <= 0) return 0;
+  return material_->roughness * cosineHemispherePdf(dot(wi, n_));
+}
+
+bool SurfaceBsdf::sample(float uLobe, Sample2 u, BsdfSample& out) const {
+  return material_->kind == MaterialKind::Mixture ? sampleMixture(uLobe, u, out)
+                                                  : sampleDielectric(uLobe, out);
+}
+
+// (1 - r) rho * mirror + r rho / pi, lobe chosen with probabilities 1 - r and r: either way
+// the weight is rho (Niixtracer's "roughness" mixture, made energy-conserving).
+bool SurfaceBsdf::sampleMixture(float uLobe, Sample2 u, BsdfSample& out) const {
+  if (dot(wo_, n_) <= 0) return false;
+  const float r = material_->roughness;
+  if (uLobe < r) {
+    const Frame frame = Frame::fromNormal(n_);
+    const Vec3 local = sampleCosineHemisphere(u);
+    if (local.z <= 0) return false;
+    out.wi = frame.toWorld(local);
+    out.pdf = r * cosineHemispherePdf(local.z);
+    out.specular = false;
+  } else {
+    out.wi = reflect(wo_, n_);
+    out.pdf = 0;
+    out.specular = true;
+  }
+  out.weight = rho_;
+  out.terminateSecondary = false;
+  out.transmitted = false;
+  return true;
+}
+
+// Smooth dielectric: reflect with probability F(hero), else refract (Snell); total internal
+// reflection when there is no refracted direction. Secondary wavelengths keep a reflection
+// weight of F_i / F_hero; a refraction through a dispersive interface terminates them.
+bool SurfaceBsdf::sampleDielectric(float uLobe, BsdfSample& out) const {
+  const float cosO = dot(wo_, n_);
+  const bool entering = cosO > 0;
+  const Vec3 n = entering ? n_ : -n_;
+  const float c = std::abs(cosO);
+  const bool dispersive = material_->ior.dispersive();
+  SampledSpectrum eta, fresnel;
+  for (int i = 0; i < kLanes; ++i) {
+    const float ior = static_cast<float>(material_->ior.at((*lambda_).lambda[i]));
+    eta[i] = entering ? ior : 1.0f / ior; // n_transmitted / n_incident
+    fresnel[i] = fresnelDielectric(c, eta[i]);
+    if (!dispersive) {
+      for (int k = 1; k < kLanes; ++k) eta[k] = eta[0], fresnel[k] = fresnel[0];
+      break;
+    }
+  }
+  out.pdf = 0;
+  out.specular = true;
+  const float fHero = fresnel[0];
+  if (uLobe < fHero) {
+    out.wi = reflect(wo_, n);
+    for (int i = 0; i < kLanes; ++i) out.weight[i] = rho_[i] * fresnel[i] / fHero;
+    out.terminateSecondary = false;
+    out.transmitted = false;
+    return true;
+  }
+  Vec3 wt;
+  if (!refract(wo_, n, eta[0], wt)) return false; // unreachable: F = 1 under TIR
+  out.wi = normalize(wt);
+  out.transmitted = true;
+  out.terminateSecondary = dispersive;
+  for (int i = 0; i < kLanes; ++i) {
+    const float scale = mode_ == TransportMode::Radiance ? 1.0f / (eta[i] * eta[i]) : 1.0f;
+    out.weight[i] = dispersive && i > 0 ? 0.0f : rho_[i] * (1 - fresnel[i]) / (1 - fHero) * scale;
+  }
+  return true;
+}
+
+} // namespace nx

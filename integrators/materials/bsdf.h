@@ -1,0 +1,62 @@
+#pragma once
+// Scattering at a surface point for all wavelengths of a path at once, dispatched statically
+// over the fixed set of material kinds (no virtual call, nothing per wavelength but arithmetic).
+
+#include "core/frame.h"
+#include "core/sampler.h"
+#include "integrators/render_scene.h"
+#include "spectra/sampled_wavelengths.h"
+
+namespace nx {
+
+/// A sampled scattering direction and its Monte Carlo weight per wavelength.
+struct BsdfSample {
+  Vec3 wi;                         ///< new direction (world space, unit)
+  SampledSpectrum weight;          ///< f * |cos(wi)| / pdf, per lane
+  float pdf = 0;                   ///< density of wi if drawn from the continuous part, else 0
+  bool specular = false;           ///< drawn from a delta lobe (mirror, refraction)
+  bool terminateSecondary = false; ///< the direction depends on the hero wavelength (dispersion)
+  bool transmitted = false;        ///< wi leaves on the other side of the surface
+};
+
+/// Whether weights carry the 1/eta^2 radiance scaling at refraction (camera paths) or not
+/// (energy, used to check conservation).
+enum class TransportMode : uint8_t { Radiance, Energy };
+
+/// The BSDF of one surface point, seen from direction wo.
+class SurfaceBsdf {
+public:
+  /// `rho` is the material's reflectance at the path's wavelengths; ng the geometric normal
+  /// (outward for spheres); wo points away from the surface (towards the previous vertex).
+  SurfaceBsdf(const Material& m, const SampledWavelengths& lambda, const SampledSpectrum& rho,
+              const Vec3& ng, const Vec3& wo, TransportMode mode = TransportMode::Radiance);
+
+  /// True if some of the scattering is non-specular (light sampling can help).
+  bool hasDiffuse() const {
+    return material_->kind == MaterialKind::Mixture && material_->roughness > 0;
+  }
+
+  /// f(wo, wi) |cos(wi)| of the non-specular part, per lane (zero below the surface).
+  SampledSpectrum evalDiffuse(const Vec3& wi) const;
+  /// Density with which sample() returns wi through its non-specular part.
+  float pdfDiffuse(const Vec3& wi) const;
+
+  /// Draws a direction: uLobe picks the lobe, u the direction within it. Returns false when
+  /// nothing is scattered (a black surface).
+  bool sample(float uLobe, Sample2 u, BsdfSample& out) const;
+
+  /// The normal on the side of wo (Mixture) or the geometric normal (Dielectric).
+  const Vec3& normal() const { return n_; }
+
+private:
+  bool sampleMixture(float uLobe, Sample2 u, BsdfSample& out) const;
+  bool sampleDielectric(float uLobe, BsdfSample& out) const;
+
+  const Material* material_;
+  const SampledWavelengths* lambda_;
+  SampledSpectrum rho_;
+  Vec3 n_, wo_;
+  TransportMode mode_;
+};
+
+} // namespace nx

@@ -1,0 +1,41 @@
+#pragma once
+// Fresnel reflectance of a smooth dielectric interface and the refraction direction.
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/vec3.h"
+
+namespace nx {
+
+/// Unpolarised Fresnel reflectance for light arriving with cosine cosI (> 0) at an interface
+/// with relative index eta = n_transmitted / n_incident; 1 under total internal reflection.
+/// The exact formula (average of the s and p reflectances), not Schlick's approximation.
+inline float fresnelDielectric(float cosI, float eta) {
+  cosI = std::clamp(cosI, 0.0f, 1.0f);
+  const float sin2T = (1 - cosI * cosI) / (eta * eta);
+  if (sin2T >= 1) return 1.0f;
+  const float cosT = std::sqrt(1 - sin2T);
+  const float rs = (cosI - eta * cosT) / (cosI + eta * cosT);
+  const float rp = (eta * cosI - cosT) / (eta * cosI + cosT);
+  return 0.5f * (rs * rs + rp * rp);
+}
+
+/// Refracts wi (pointing away from the surface, on the side of n, dot(wi, n) > 0) through an
+/// interface with relative index eta = n_transmitted / n_incident. Returns false under total
+/// internal reflection. Snell: sin(theta_t) = sin(theta_i) / eta.
+inline bool refract(const Vec3& wi, const Vec3& n, float eta, Vec3& wt) {
+  const float cosI = dot(n, wi);
+  const float sin2T = std::max(0.0f, 1 - cosI * cosI) / (eta * eta);
+  if (sin2T >= 1) return false;
+  const float cosT = std::sqrt(1 - sin2T);
+  wt = -wi / eta + n * (cosI / eta - cosT);
+  return true;
+}
+
+/// Mirror reflection of wo about n.
+inline Vec3 reflect(const Vec3& wo, const Vec3& n) {
+  return n * (2 * dot(wo, n)) - wo;
+}
+
+} // namespace nx

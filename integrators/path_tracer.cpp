@@ -1,0 +1,108 @@
+#include <cmath>
+
+#include "core/ray_offset.h"
+#include "integrators/integrator.h"
+#include "integrators/materials/bsdf.h"
+#include "integrators/sampling.h"
+
+namespace nx {
+namespace {
+
+SampledSpectrum evaluate(const Spectrum& s, const SampledWavelengths& lambda) {
+  SampledSpectrum out;
+  s.evaluate(lambda, out);
+  return out;
+}
+
+// Shadow rays stop this fraction short of the light: the light's own surface is at the
+// sampled distance exactly (same float ray, double-precision root), the margin only absorbs
+// the rounding of that distance.
+constexpr float kShadowShorten = 1.0f - 1e-5f;
+
+} // namespace
+
+SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, SampledWavelengths& lambda,
+                          PixelSampleStream& rng, TraceCounters& counters) {
+  const RenderScene& scene = *ctx.scene;
+  const int rouletteStart = scene.settings.depth;
+  SampledSpectrum L, beta = SampledSpectrum::filled(1.0f);
+  bool specular = true; // the previous bounce was specular (or the camera)
+  float prevPdf = 0;
+  Vec3 prevP = ray.o;
+
+  for (int bounce = 0;; ++bounce) {
+    SurfaceHit hit;
+    ++counters.rays;
+    if (!scene.geometry->intersect(ray, hit)) {
+      if (scene.background) L += beta * evaluate(*scene.background, lambda);
+      break;
+    }
+    const ShapeAppearance& app = scene.appearance(hit);
+    if (app.emission >= 0) {
+      float w = 1;
+      if (!specular && hit.kind == ShapeKind::Sphere &&
+          ctx.lightSampling != LightSampling::BsdfOnly) {
+        // This light could also have been reached by next-event estimation.
+        w = ctx.lightSampling == LightSampling::NeeOnly
+                ? 0.0f
+                : powerHeuristic(prevPdf, ctx.lights->pdfSphere(prevP, hit.index, ray.d));
+      }
+      if (w > 0)
+        L += beta * evaluate(scene.emission[static_cast<size_t>(app.emission)], lambda) * w;
+    }
+    if (bounce >= kMaxPathBounces) break;
+
+    const Material& material = scene.materials[app.material];
+    const Vec3 wo = -ray.d;
+    const SurfaceBsdf bsdf(material, lambda, evaluate(material.reflectance, lambda), hit.ng, wo);
+
+    if (bsdf.hasDiffuse() && ctx.lightSampling != LightSampling::BsdfOnly &&
+        ctx.lights->count() > 0) {
+      const float uChoice = rng.next1D();
+      const Sample2 uLight = rng.next2D();
+      LightSample ls;
+      if (ctx.lights->sample(hit.p, uChoice, uLight, lambda, ls)) {
+        const SampledSpectrum f = bsdf.evalDiffuse(ls.wi);
+        if (!f.isBlack()) {
+          Ray shadow;
+          shadow.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ls.wi);
+          shadow.d = ls.wi;
+          shadow.tMax = ls.distance * kShadowShorten;
+          ++counters.rays;
+          if (!scene.geometry->occluded(shadow)) {
+            const float w = (ls.delta || ctx.lightSampling == LightSampling::NeeOnly)
+                                ? 1.0f
+                                : powerHeuristic(ls.pdf, bsdf.pdfDiffuse(ls.wi));
+            L += beta * f * ls.radiance * (w / ls.pdf);
+          }
+        }
+      }
+    }
+
+    BsdfSample bs;
+    const float uLobe = rng.next1D();
+    const Sample2 uDir = rng.next2D();
+    if (!bsdf.sample(uLobe, uDir, bs)) break;
+    beta *= bs.weight;
+    if (bs.terminateSecondary) lambda.terminateSecondary();
+    specular = bs.specular;
+    prevPdf = bs.pdf;
+    prevP = hit.p;
+
+    // Russian roulette after <depth> bounces, re-weighted by 1/q: unbiased.
+    if (bounce + 1 >= rouletteStart) {
+      const float q = std::min(1.0f, beta.maxValue());
+      const float u = rng.next1D();
+      if (!(q > 0) || u >= q) break;
+      beta *= 1.0f / q;
+    }
+    if (beta.isBlack()) break;
+    ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, bs.wi);
+    ray.d = bs.wi;
+    ray.tMin = 0;
+    ray.tMax = INFINITY;
+  }
+  return L;
+}
+
+} // namespace nx

@@ -1,0 +1,110 @@
+#include <cmath>
+
+#include "core/ray_offset.h"
+#include "integrators/integrator.h"
+#include "integrators/materials/bsdf.h"
+#include "integrators/materials/fresnel.h"
+
+namespace nx {
+namespace {
+
+SampledSpectrum evaluate(const Spectrum& s, const SampledWavelengths& lambda) {
+  SampledSpectrum out;
+  s.evaluate(lambda, out);
+  return out;
+}
+
+constexpr float kShadowShorten = 1.0f - 1e-5f;
+
+// Keeps the hero lane only, scaled by kLanes: with the film's lane weight 1 / (kLanes pdf)
+// this is the hero-only estimator, as after terminating the secondaries.
+SampledSpectrum heroOnly(SampledSpectrum s) {
+  for (int i = 1; i < kLanes; ++i) s[i] = 0;
+  s[0] *= static_cast<float>(kLanes);
+  return s;
+}
+
+void whitted(const IntegratorContext& ctx, const Ray& ray, const SampledWavelengths& lambda,
+             SampledSpectrum beta, int bounce, bool heroOnlyPath, PixelSampleStream& rng,
+             TraceCounters& counters, SampledSpectrum& L) {
+  const RenderScene& scene = *ctx.scene;
+  SurfaceHit hit;
+  ++counters.rays;
+  if (!scene.geometry->intersect(ray, hit)) {
+    if (scene.background) L += beta * evaluate(*scene.background, lambda);
+    return;
+  }
+  const ShapeAppearance& app = scene.appearance(hit);
+  if (app.emission >= 0)
+    L += beta * evaluate(scene.emission[static_cast<size_t>(app.emission)], lambda);
+
+  const Material& material = scene.materials[app.material];
+  const Vec3 wo = -ray.d;
+  const SampledSpectrum rho = evaluate(material.reflectance, lambda);
+  const SurfaceBsdf bsdf(material, lambda, rho, hit.ng, wo);
+
+  // Direct light on the diffuse lobe, from every light (one sample each).
+  if (bsdf.hasDiffuse()) {
+    for (int k = 0; k < ctx.lights->count(); ++k) {
+      const float uChoice =
+          (static_cast<float>(k) + 0.5f) / static_cast<float>(ctx.lights->count());
+      LightSample ls;
+      if (!ctx.lights->sample(hit.p, uChoice, rng.next2D(), lambda, ls)) continue;
+      const SampledSpectrum f = bsdf.evalDiffuse(ls.wi);
+      if (f.isBlack()) continue;
+      Ray shadow;
+      shadow.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ls.wi);
+      shadow.d = ls.wi;
+      shadow.tMax = ls.distance * kShadowShorten;
+      ++counters.rays;
+      if (scene.geometry->occluded(shadow)) continue;
+      // ls.pdf includes the choice probability 1/count; every light is visited, so undo it.
+      L += beta * f * ls.radiance * (1.0f / (ls.pdf * static_cast<float>(ctx.lights->count())));
+    }
+  }
+  if (bounce >= scene.settings.depth) return;
+
+  auto spawn = [&](const Vec3& wi, const SampledSpectrum& weight, bool hero) {
+    if (weight.isBlack()) return;
+    Ray next;
+    next.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, wi);
+    next.d = wi;
+    whitted(ctx, next, lambda, hero && !heroOnlyPath ? heroOnly(beta * weight) : beta * weight,
+            bounce + 1, heroOnlyPath || hero, rng, counters, L);
+  };
+
+  if (material.kind == MaterialKind::Mixture) {
+    if (material.roughness < 1 && dot(wo, bsdf.normal()) > 0)
+      spawn(reflect(wo, bsdf.normal()), rho * (1 - material.roughness), false);
+    return;
+  }
+  // Fresnel split: both the reflected and the refracted ray are traced.
+  const float cosO = dot(wo, hit.ng);
+  const bool entering = cosO > 0;
+  const Vec3 n = entering ? hit.ng : -hit.ng;
+  const bool dispersive = material.ior.dispersive();
+  SampledSpectrum fr, tr;
+  float etaHero = 1;
+  for (int i = 0; i < kLanes; ++i) {
+    const float ior = static_cast<float>(material.ior.at(lambda.lambda[i]));
+    const float eta = entering ? ior : 1.0f / ior;
+    if (i == 0) etaHero = eta;
+    fr[i] = fresnelDielectric(std::abs(cosO), eta);
+    tr[i] = (1 - fr[i]) / (eta * eta);
+  }
+  spawn(reflect(wo, n), rho * fr, false);
+  Vec3 wt;
+  if (refract(wo, n, etaHero, wt)) spawn(normalize(wt), rho * tr, dispersive);
+}
+
+} // namespace
+
+SampledSpectrum traceWhitted(const IntegratorContext& ctx, const Ray& ray,
+                             const SampledWavelengths& lambda, PixelSampleStream& rng,
+                             TraceCounters& counters) {
+  SampledSpectrum L;
+  whitted(ctx, ray, lambda, SampledSpectrum::filled(1.0f), 0, false, rng, counters, L);
+  return L;
+}
+
+} // namespace nx
