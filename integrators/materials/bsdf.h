@@ -26,6 +26,7 @@ enum class TransportMode : uint8_t { Radiance, Energy };
 /// The BSDF of one surface point, seen from direction wo.
 class SurfaceBsdf {
 public:
+  /// Keeps references to `m` and `lambda` (they must outlive it).
   /// `rho` is the material's reflectance at the path's wavelengths; ng the geometric normal
   /// (outward for spheres); wo points away from the surface (towards the previous vertex).
   SurfaceBsdf(const Material& m, const SampledWavelengths& lambda, const SampledSpectrum& rho,

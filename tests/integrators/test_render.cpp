@@ -1,0 +1,243 @@
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+#include "integrators/renderer.h"
+#include "spectra/bands.h"
+#include "support/statistics.h"
+
+namespace nx {
+namespace {
+
+std::string sceneText(const std::string& settings, const std::string& camera,
+                      const std::string& body) {
+  return "<scene><settings>" + settings + "</settings><camera>" + camera + "</camera>" + body +
+         "</scene>";
+}
+
+RenderOutput renderText(const std::string& text, const RenderOptions& options = {}) {
+  const RenderScene scene = buildRenderScene(parseScene(text, "t.scn"));
+  return render(scene, options);
+}
+
+// Mean and standard error over pixels of band b (pixels are independent estimates).
+test::RunningStats bandStats(const Film& film, int b,
+                             const std::function<bool(int, int)>& use = {}) {
+  test::RunningStats s;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x)
+      if (!use || use(x, y)) s.add(film.bandMean(x, y, b));
+  return s;
+}
+
+// Every band's pixel mean equals expected(band) within 5 standard errors, and the test has
+// power: the standard error is below `precision` of the expected value.
+void expectBands(const Film& film, const std::function<double(int)>& expected, double precision,
+                 const std::function<bool(int, int)>& use = {}, const std::string& what = "") {
+  for (int b = 0; b < film.bands().count(); ++b) {
+    const test::RunningStats s = bandStats(film, b, use);
+    const double e = expected(b);
+    EXPECT_LT(std::abs(s.mean - e), 5 * s.standardError() + 1e-6 * e)
+        << what << " band " << film.bands().centre(b) << ": mean " << s.mean << " expected " << e
+        << " se " << s.standardError();
+    EXPECT_LT(s.standardError(), precision * e) << what << " band " << film.bands().centre(b);
+  }
+}
+
+const std::string kFurnaceCamera = "<position>0,0,0</position><look_at>0,0,1</look_at>";
+
+// White furnace: inside a closed sphere of reflectance rho emitting Le, L = Le / (1 - rho).
+TEST(Render, WhiteFurnace) {
+  for (const char* material : {"matte", "metal", "mirror"}) {
+    const RenderOutput out = renderText(sceneText(
+        "<xres>12</xres><yres>12</yres><mode>spectral_mcpt</mode><depth>3</depth><sampl>256</"
+        "sampl>",
+        kFurnaceCamera,
+        std::string("<sphere><center>0,0,0</center><radius>1</radius><material>") + material +
+            "</material><reflectance>0.5</reflectance><emission>0.5</emission></sphere>"));
+    expectBands(
+        out.film, [](int) { return 1.0; }, 0.02, {}, material);
+    EXPECT_EQ(out.stats.nonFinite, 0u);
+  }
+}
+
+TEST(Render, WhiteFurnaceWithSpectrallyVaryingReflectance) {
+  const RenderOutput out = renderText(sceneText(
+      "<xres>16</xres><yres>16</yres><mode>spectral_mcpt</mode><depth>3</depth><sampl>128</sampl>",
+      kFurnaceCamera,
+      "<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
+      "<reflectance>400:0.1, 550:0.8, 700:0.3</reflectance><emission>0.5</emission></sphere>"));
+  const Spectrum rho(makeTabulated({400, 550, 700}, {0.1, 0.8, 0.3}, "test"));
+  std::vector<double> nm, v;
+  for (double l = 390; l <= 710; l += 0.05) nm.push_back(l), v.push_back(0.5 / (1 - rho(l)));
+  const Spectrum expected(TabulatedSpectrum{nm, v});
+  expectBands(
+      out.film, [&](int b) { return bandAverage(expected, out.film.bands(), b); }, 0.03);
+}
+
+// A convex diffuse object under a uniform background (no self-interreflection): L = rho Lbg.
+TEST(Render, UniformBackgroundAroundConvexObject) {
+  for (const char* material : {"matte", "plastic"}) {
+    const RenderOutput out = renderText(sceneText(
+        "<xres>16</xres><yres>16</yres><mode>spectral_mcpt</mode><depth>5</depth><sampl>256</sampl>"
+        "<background>0.8</background>",
+        "<position>0,0,-4</position><look_at>0,0,0</look_at><fov>12</fov>",
+        std::string("<sphere><center>0,0,0</center><radius>1</radius><material>") + material +
+            "</material><reflectance>400:0.2, 700:0.9</reflectance></sphere>"));
+    const Spectrum rho(makeTabulated({400, 700}, {0.2, 0.9}, "test"));
+    // Pixels well inside the sphere's disk.
+    auto inside = [](int x, int y) { return std::hypot(x - 7.5, y - 7.5) < 5; };
+    expectBands(
+        out.film, [&](int b) { return 0.8 * bandAverage(rho, out.film.bands(), b); }, 0.03, inside,
+        material);
+  }
+}
+
+// A closed dielectric sphere inside the white furnace leaves it at 1 (refraction, total
+// internal reflection and the radiance scaling at the interfaces conserve energy).
+TEST(Render, DielectricSphereInsideWhiteFurnace) {
+  for (const char* ior : {"1.5", "2.418", "bk7"}) {
+    const RenderOutput out = renderText(sceneText(
+        "<xres>12</xres><yres>12</yres><mode>spectral_mcpt</mode><depth>4</depth><sampl>384</"
+        "sampl>",
+        "<position>0,0,-3</position><look_at>0,0,0</look_at><fov>30</fov>",
+        std::string(
+            "<sphere><center>0,0,0</center><radius>5</radius><material>matte</material>"
+            "<reflectance>0.5</reflectance><emission>0.5</emission></sphere>"
+            "<sphere><center>0,0,0</center><radius>1</radius><material>glass</material><ior>") +
+            ior + "</ior></sphere>"));
+    expectBands(
+        out.film, [](int) { return 1.0; }, 0.03, {}, ior);
+  }
+}
+
+// Per-pixel variance of a strategy, from two independent renders: E[(A - B)^2] / 2.
+double pixelVariance(const std::string& text, LightSampling strategy, double& mean) {
+  RenderOptions o;
+  o.lightSampling = strategy;
+  o.seed = 1;
+  const RenderOutput a = renderText(text, o);
+  o.seed = 2;
+  const RenderOutput b = renderText(text, o);
+  double var = 0, sum = 0;
+  int n = 0;
+  for (int y = 0; y < a.film.height(); ++y)
+    for (int x = 0; x < a.film.width(); ++x) {
+      const double va = a.film.xyzMean(x, y).y, vb = b.film.xyzMean(x, y).y;
+      var += (va - vb) * (va - vb) / 2;
+      sum += va + vb;
+      n += 2;
+    }
+  mean = sum / n;
+  return var / (n / 2);
+}
+
+// NEE + MIS, BSDF sampling alone and NEE alone estimate the same image; MIS has the lowest
+// variance on a scene with a large and a small light.
+TEST(Render, LightSamplingStrategiesAgreeAndMisIsBest) {
+  const std::string text = sceneText(
+      "<xres>16</xres><yres>12</yres><mode>spectral_mcpt</mode><depth>3</depth><sampl>16</sampl>",
+      "<position>0,3,-6</position><look_at>0,0,0</look_at><fov>50</fov>",
+      "<plane><normal>0,1,0</normal><distance>0</distance><material>matte</"
+      "material><reflectance>0.6</reflectance></plane>"
+      "<sphere><center>0,1.2,0</center><radius>0.08</radius><material>matte</"
+      "material><emission>300</emission></sphere>"
+      "<sphere><center>-30,30,40</center><radius>30</radius><material>matte</"
+      "material><emission>0.5</emission></sphere>");
+  std::map<LightSampling, double> var, mean;
+  for (LightSampling s : {LightSampling::Mis, LightSampling::BsdfOnly, LightSampling::NeeOnly})
+    var[s] = pixelVariance(text, s, mean[s]);
+  // Image means agree: the standard error of an image mean is sqrt(var / pixels).
+  const double pixels = 16 * 12;
+  for (LightSampling s : {LightSampling::BsdfOnly, LightSampling::NeeOnly}) {
+    const double se = std::sqrt((var[s] + var[LightSampling::Mis]) / (2 * pixels));
+    EXPECT_LT(std::abs(mean[s] - mean[LightSampling::Mis]), 5 * se) << int(s);
+  }
+  EXPECT_LT(var[LightSampling::Mis], var[LightSampling::BsdfOnly]);
+  EXPECT_LT(var[LightSampling::Mis], var[LightSampling::NeeOnly]);
+}
+
+// The thesis scene renders in all three modes without NaN/Inf, and the image does not depend
+// on the number of threads (bit for bit).
+TEST(Render, ThesisSceneAllModesThreadIndependent) {
+  for (RenderMode mode : {RenderMode::SpectralMcpt, RenderMode::Mcpt, RenderMode::Rt}) {
+    SceneDesc desc = loadScene(NX_SOURCE_DIR "/scenes/thesis.scn");
+    desc.settings.mode = mode;
+    desc.settings.width = 48;
+    desc.settings.height = 27;
+    const RenderScene scene = buildRenderScene(desc);
+    RenderOptions o;
+    o.samples = 4;
+    RenderOutput one = [&] {
+      tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+      return render(scene, o);
+    }();
+    RenderOutput two = [&] {
+      tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+      return render(scene, o);
+    }();
+    EXPECT_EQ(one.stats.nonFinite, 0u);
+    double sum = 0;
+    for (int y = 0; y < 27; ++y)
+      for (int x = 0; x < 48; ++x)
+        for (int b = 0; b < one.film.bands().count(); ++b) {
+          const double v = one.film.bandMean(x, y, b);
+          ASSERT_TRUE(std::isfinite(v));
+          ASSERT_EQ(v, two.film.bandMean(x, y, b)) << "mode " << int(mode);
+          sum += v;
+        }
+    EXPECT_GT(sum, 0.0) << "mode " << int(mode);
+    EXPECT_EQ(one.stats.rays, two.stats.rays);
+  }
+}
+
+// rt is the direct + specular subset of the path-traced image: on a scene without any
+// indirect diffuse light (a flat floor under a sphere light) both agree.
+TEST(Render, WhittedEqualsPathTracingWithoutIndirectLight) {
+  const std::string body = "<plane><normal>0,1,0</normal><distance>0</distance><material>matte</"
+                           "material><reflectance>0.7</reflectance></plane>"
+                           "<sphere><center>0,2,0</center><radius>0.5</radius><material>matte</"
+                           "material><reflectance>null</reflectance>"
+                           "<emission>5</emission></sphere>";
+  const std::string cam = "<position>0,1,-4</position><look_at>0,0,0</look_at><fov>60</fov>";
+  const RenderOutput pt = renderText(sceneText(
+      "<xres>16</xres><yres>12</yres><mode>spectral_mcpt</mode><depth>5</depth><sampl>64</sampl>",
+      cam, body));
+  const RenderOutput rt = renderText(sceneText(
+      "<xres>16</xres><yres>12</yres><mode>rt</mode><depth>5</depth><sampl>64</sampl>", cam, body));
+  double diff = 0, var = 0;
+  int n = 0;
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const double d = pt.film.xyzMean(x, y).y - rt.film.xyzMean(x, y).y;
+      diff += d;
+      var += d * d;
+      ++n;
+    }
+  const double mean = diff / n, se = std::sqrt((var / n - mean * mean) / n);
+  EXPECT_LT(std::abs(mean), 5 * se + 1e-9);
+}
+
+TEST(Render, EveryExampleSceneRendersAtLowSpp) {
+  for (const char* name :
+       {"thesis", "materials", "dispersion", "rgb_mcpt", "rt_whitted", "extensions"}) {
+    SceneDesc desc = loadScene(std::string(NX_SOURCE_DIR "/scenes/") + name + ".scn");
+    desc.settings.width = 32;
+    desc.settings.height = 24;
+    const RenderScene scene = buildRenderScene(desc);
+    RenderOptions o;
+    o.samples = 2;
+    const RenderOutput out = render(scene, o);
+    EXPECT_EQ(out.stats.nonFinite, 0u) << name;
+    double sum = 0;
+    for (int y = 0; y < 24; ++y)
+      for (int x = 0; x < 32; ++x) sum += out.film.xyzMean(x, y).y;
+    EXPECT_GT(sum, 0) << name;
+    EXPECT_TRUE(std::isfinite(sum)) << name;
+  }
+}
+
+} // namespace
+} // namespace nx

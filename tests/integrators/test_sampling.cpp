@@ -1,0 +1,95 @@
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "core/frame.h"
+#include "integrators/sampling.h"
+#include "support/statistics.h"
+
+namespace nx {
+namespace {
+
+Sample2 uniform2(uint32_t i) {
+  return samplePair(SamplerKind::Independent, i, 0, 0, 99);
+}
+
+// Chi-square of sampled directions against a density over the sphere, in (cos theta, phi)
+// cells of equal area; the expected count per cell integrates the pdf numerically.
+void expectDirectionsFollowPdf(const std::function<Vec3(Sample2)>& sample,
+                               const std::function<double(const Vec3&)>& pdf, int n = 200000) {
+  const int nz = 40, nphi = 40;
+  std::vector<double> obs(nz * nphi, 0), exp(nz * nphi, 0);
+  for (int i = 0; i < n; ++i) {
+    const Vec3 w = sample(uniform2(static_cast<uint32_t>(i)));
+    ASSERT_NEAR(length(w), 1.0f, 1e-5f);
+    const int iz = std::min(nz - 1, static_cast<int>((w.z + 1) / 2 * nz));
+    double phi = std::atan2(w.y, w.x);
+    if (phi < 0) phi += 2 * kPi;
+    const int ip = std::min(nphi - 1, static_cast<int>(phi / (2 * kPi) * nphi));
+    obs[iz * nphi + ip] += 1;
+  }
+  const int sub = 8;
+  for (int iz = 0; iz < nz; ++iz)
+    for (int ip = 0; ip < nphi; ++ip) {
+      double p = 0;
+      for (int a = 0; a < sub; ++a)
+        for (int b = 0; b < sub; ++b) {
+          const double z = -1 + 2.0 * (iz + (a + 0.5) / sub) / nz;
+          const double phi = 2 * kPi * (ip + (b + 0.5) / sub) / nphi;
+          const double r = std::sqrt(std::max(0.0, 1 - z * z));
+          p += pdf(Vec3(static_cast<float>(r * std::cos(phi)),
+                        static_cast<float>(r * std::sin(phi)), static_cast<float>(z)));
+        }
+      exp[iz * nphi + ip] = p / (sub * sub) * (4 * kPi / (nz * nphi)) * n;
+    }
+  const auto [stat, dof] = test::chiSquare(obs, exp);
+  EXPECT_LT(test::chiSquareZ(stat, dof), 4.0) << "chi2 " << stat << " dof " << dof;
+}
+
+TEST(Sampling, CosineHemisphere) {
+  expectDirectionsFollowPdf(sampleCosineHemisphere,
+                            [](const Vec3& w) { return cosineHemispherePdf(w.z); });
+}
+
+TEST(Sampling, UniformSphere) {
+  expectDirectionsFollowPdf(sampleUniformSphere, [](const Vec3&) { return 1 / (4 * kPi); });
+}
+
+TEST(Sampling, UniformConeWideAndNarrow) {
+  // (The cone edges fall on cell boundaries, so the numerical cell integrals are exact.)
+  for (double cosMax : {0.3, 0.9}) {
+    expectDirectionsFollowPdf(
+        [&](Sample2 u) { return sampleUniformCone(u, cosMax); },
+        [&](const Vec3& w) { return w.z >= cosMax ? uniformConePdf(cosMax) : 0.0; });
+  }
+  // A narrow cone: uniform over its own (cos theta, phi) cells.
+  const double narrow = 0.995;
+  const int nz = 20, nphi = 20, n = 100000;
+  std::vector<double> obs(nz * nphi, 0), exp(nz * nphi, n / double(nz * nphi));
+  for (int i = 0; i < n; ++i) {
+    const Vec3 w = sampleUniformCone(uniform2(static_cast<uint32_t>(i)), narrow);
+    const int iz = std::min(nz - 1, static_cast<int>((1 - w.z) / (1 - narrow) * nz));
+    const double phi = std::atan2(w.y, w.x) + kPi;
+    obs[iz * nphi + std::min(nphi - 1, static_cast<int>(phi / (2 * kPi) * nphi))] += 1;
+  }
+  const auto [stat, dof] = test::chiSquare(obs, exp);
+  EXPECT_LT(test::chiSquareZ(stat, dof), 4.0);
+  // A cone of 1e-5 rad (a 1-unit light 1e5 away): every direction inside, none degenerate.
+  const double sin2 = 1e-10, cosMax = std::sqrt(1 - sin2);
+  for (uint32_t i = 0; i < 1000; ++i) {
+    const Vec3 w = sampleUniformCone(uniform2(i), cosMax);
+    EXPECT_GE(w.z, static_cast<float>(cosMax) - 1e-7f);
+    EXPECT_NEAR(length(w), 1.0f, 1e-6f);
+  }
+}
+
+TEST(Sampling, PowerHeuristic) {
+  EXPECT_FLOAT_EQ(powerHeuristic(1, 1), 0.5f);
+  EXPECT_FLOAT_EQ(powerHeuristic(3, 1), 0.9f);
+  EXPECT_FLOAT_EQ(powerHeuristic(0, 2), 0.0f);
+  EXPECT_FLOAT_EQ(powerHeuristic(0, 0), 0.0f);
+  EXPECT_FLOAT_EQ(powerHeuristic(INFINITY, 1), 1.0f);
+}
+
+} // namespace
+} // namespace nx
