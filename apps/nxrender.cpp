@@ -66,7 +66,7 @@ int run(int argc, char** argv) {
   int threads = 0, spp = 0;
   long long seed = -1;
   std::string output, bandsText, lightSampling = "mis", sampler = "sobol", scenePath;
-  bool ignoreFluorescence = false;
+  bool noFluorescence = false;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   app.add_option("--spp", spp, "Samples per pixel (default: the scene's <sampl>)")
@@ -83,9 +83,8 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"mis", "bsdf", "nee"}));
   app.add_option("--sampler", sampler, "sobol (Owen-scrambled, default) or independent")
       ->check(CLI::IsMember({"sobol", "independent"}));
-  app.add_flag("--ignore-fluorescence", ignoreFluorescence,
-               "Render fluorescent materials as their ordinary reflectance (fluorescence is not "
-               "implemented yet)");
+  app.add_flag("--no-fluorescence", noFluorescence,
+               "Render fluorescent materials as their ordinary reflectance (for comparisons)");
   app.add_option("scene", scenePath, "Scene file (.scn)")->required();
   try {
     app.parse(argc, argv);
@@ -93,15 +92,10 @@ int run(int argc, char** argv) {
     return app.exit(e);
   }
 
-  const nx::SceneDesc desc = nx::loadScene(scenePath);
+  nx::SceneDesc desc = nx::loadScene(scenePath);
   for (const auto& w : desc.warnings) std::fprintf(stderr, "%s\n", w.c_str());
-  if (!ignoreFluorescence)
-    for (const auto& o : desc.objects)
-      if (o.fluorescence)
-        throw nx::Error(
-            o.fluorescence->loc.str() +
-            ": fluorescent materials are not rendered yet; use --ignore-fluorescence to render "
-            "their ordinary reflectance");
+  if (noFluorescence)
+    for (auto& o : desc.objects) o.fluorescence.reset();
   const nx::RenderScene scene = nx::buildRenderScene(desc);
 
   nx::RenderOptions options;
@@ -149,6 +143,7 @@ int run(int argc, char** argv) {
   image.attributes["nxrender.sampler"] = sampler;
   image.attributes["nxrender.lightSampling"] = lightSampling;
   image.attributes["nxrender.renderSeconds"] = std::to_string(result.stats.seconds);
+  image.attributes["nxrender.fluorescence"] = scene.hasFluorescence ? "on" : "off";
   nx::writeSpectralExr(exrPath, image);
   nx::writePreview(previewPath, image.width, image.height,
                    nx::previewPixels(result.film, scene.previewWhite));

@@ -27,6 +27,7 @@ struct IntegratorContext {
   const RenderScene* scene;
   const LightSampler* lights;
   LightSampling lightSampling = LightSampling::Mis;
+  bool fluorescence = false; ///< run the fluorescent variant (scenes with fluorescent materials)
 };
 
 /// Per-task counters (summed after rendering).

@@ -1,6 +1,7 @@
 #include <cmath>
 
 #include "core/ray_offset.h"
+#include "integrators/fluorescent_vertex.h"
 #include "integrators/integrator.h"
 #include "integrators/materials/bsdf.h"
 #include "integrators/sampling.h"
@@ -19,12 +20,16 @@ SampledSpectrum evaluate(const Spectrum& s, const SampledWavelengths& lambda) {
 // the rounding of that distance.
 constexpr float kShadowShorten = 1.0f - 1e-5f;
 
-} // namespace
-
-SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, SampledWavelengths& lambda,
-                          PixelSampleStream& rng, TraceCounters& counters) {
+// kFluorescence: compiled in only for scenes with fluorescent materials, so that other
+// scenes run exactly the code they would without the feature.
+template <bool kFluorescence>
+SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray, SampledWavelengths& lambda,
+                              PixelSampleStream& rng, TraceCounters& counters) {
   const RenderScene& scene = *ctx.scene;
   const int rouletteStart = scene.settings.depth;
+  // lambda: the sensor wavelengths (where the film accumulates); current: what lights and
+  // materials are evaluated at (they differ after a fluorescent shift).
+  SampledWavelengths current = lambda;
   SampledSpectrum L, beta = SampledSpectrum::filled(1.0f);
   bool specular = true; // the previous bounce was specular (or the camera)
   float prevPdf = 0;
@@ -34,7 +39,7 @@ SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, SampledWaveleng
     SurfaceHit hit;
     ++counters.rays;
     if (!scene.geometry->intersect(ray, hit)) {
-      if (scene.background) L += beta * evaluate(*scene.background, lambda);
+      if (scene.background) L += beta * evaluate(*scene.background, current);
       break;
     }
     const ShapeAppearance& app = scene.appearance(hit);
@@ -48,21 +53,35 @@ SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, SampledWaveleng
                 : powerHeuristic(prevPdf, ctx.lights->pdfSphere(prevP, hit.index, ray.d));
       }
       if (w > 0)
-        L += beta * evaluate(scene.emission[static_cast<size_t>(app.emission)], lambda) * w;
+        L += beta * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) * w;
     }
     if (bounce >= kMaxPathBounces) break;
 
     const Material& material = scene.materials[app.material];
     const Vec3 wo = -ray.d;
-    const SurfaceBsdf bsdf(material, lambda, evaluate(material.reflectance, lambda), hit.ng, wo);
+    const SampledSpectrum rho = evaluate(material.reflectance, current);
+    const SurfaceBsdf bsdf(material, current, rho, hit.ng, wo);
+
+    // A fluorescent diffuse lobe: every lane's excitation wavelength is chosen once, for both
+    // next-event estimation and the continuation through the diffuse lobe.
+    [[maybe_unused]] FluorescentShift shift;
+    [[maybe_unused]] bool fluorescent = false;
+    if constexpr (kFluorescence) {
+      if (material.reradiation && bsdf.hasDiffuse()) {
+        shift = sampleFluorescentShift(*material.reradiation, current, rho, rng);
+        fluorescent = true;
+      }
+    }
 
     if (bsdf.hasDiffuse() && ctx.lightSampling != LightSampling::BsdfOnly &&
         ctx.lights->count() > 0) {
       const float uChoice = rng.next1D();
       const Sample2 uLight = rng.next2D();
       LightSample ls;
-      if (ctx.lights->sample(hit.p, uChoice, uLight, lambda, ls)) {
-        const SampledSpectrum f = bsdf.evalDiffuse(ls.wi);
+      const SampledWavelengths& lit = fluorescent ? shift.excited : current;
+      if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls)) {
+        const SampledSpectrum f =
+            fluorescent ? shift.albedo * bsdf.diffuseFactor(ls.wi) : bsdf.evalDiffuse(ls.wi);
         if (!f.isBlack()) {
           Ray shadow;
           shadow.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ls.wi);
@@ -83,8 +102,17 @@ SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, SampledWaveleng
     const float uLobe = rng.next1D();
     const Sample2 uDir = rng.next2D();
     if (!bsdf.sample(uLobe, uDir, bs)) break;
+    if constexpr (kFluorescence) {
+      if (fluorescent && !bs.specular) { // the diffuse lobe re-radiates; the mirror lobe does not
+        bs.weight = shift.albedo;
+        current = shift.excited;
+      }
+    }
     beta *= bs.weight;
-    if (bs.terminateSecondary) lambda.terminateSecondary();
+    if (bs.terminateSecondary) {
+      lambda.terminateSecondary();
+      current.terminateSecondary();
+    }
     specular = bs.specular;
     prevPdf = bs.pdf;
     prevP = hit.p;
@@ -103,6 +131,14 @@ SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, SampledWaveleng
     ray.tMax = INFINITY;
   }
   return L;
+}
+
+} // namespace
+
+SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, SampledWavelengths& lambda,
+                          PixelSampleStream& rng, TraceCounters& counters) {
+  return ctx.fluorescence ? tracePathImpl<true>(ctx, ray, lambda, rng, counters)
+                          : tracePathImpl<false>(ctx, ray, lambda, rng, counters);
 }
 
 } // namespace nx

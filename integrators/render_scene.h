@@ -11,6 +11,7 @@
 #include "integrators/ior_model.h"
 #include "io/scene_desc.h"
 #include "spectra/bands.h"
+#include "spectra/reradiation_matrix.h"
 #include "spectra/spectrum.h"
 
 namespace nx {
@@ -21,23 +22,15 @@ enum class MaterialKind : uint8_t {
   Dielectric, ///< smooth dielectric: exact Fresnel, refraction, total internal reflection
 };
 
-/// Parameters of the re-radiation matrix of a fluorescent surface (fluorescence spec).
-struct FluorescenceParams {
-  double absorptionPeakNm = 0, stokesNm = 0;
-  double widthNm = 20, skew = 10, quantumYield = 1, peakAbsorptance = 1;
-  bool measured = false;            ///< true: the matrix below was read from a CSV file
-  std::vector<double> excitationNm; ///< measured matrix: rows
-  std::vector<double> emissionNm;   ///< measured matrix: columns
-  std::vector<double> cells;        ///< measured matrix: row-major
-};
-
 /// A material: a kind with its parameters and spectra.
 struct Material {
   MaterialKind kind = MaterialKind::Mixture;
   float roughness = 1;  ///< Mixture: probability weight r of the diffuse lobe
   IorModel ior;         ///< Dielectric
   Spectrum reflectance; ///< rho(lambda): albedo, or transmission tint for dielectrics
-  std::optional<FluorescenceParams> fluorescence;
+  std::optional<FluorescenceModel> fluorescenceModel; ///< the parameters, if not measured
+  std::shared_ptr<const ReradiationMatrix>
+      reradiation; ///< fluorescence of the diffuse lobe, or null
 };
 
 /// A point light: radiant intensity I(lambda) in W sr^-1 nm^-1 at a position.

@@ -24,7 +24,8 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const uint32_t seed = out.seed;
 
   const LightSampler lights(scene);
-  const IntegratorContext ctx{&scene, &lights, options.lightSampling};
+  const IntegratorContext ctx{&scene, &lights, options.lightSampling,
+                              scene.hasFluorescence || options.forceFluorescencePath};
   const WavelengthSampler wavelengths(out.film.minNm(), out.film.maxNm());
   const bool whitted = settings.mode == RenderMode::Rt;
 

@@ -20,6 +20,9 @@ struct RenderOptions {
   LightSampling lightSampling = LightSampling::Mis;
   SamplerKind sampler = SamplerKind::SobolOwen;
   int tileSize = 16;
+  /// Runs the fluorescence-capable path tracer even without fluorescent materials (to
+  /// measure what the feature costs when present but unused).
+  bool forceFluorescencePath = false;
   /// Called after each finished tile with (finished, total); may be called from any thread,
   /// never concurrently.
   std::function<void(int, int)> progress;

@@ -41,7 +41,7 @@ public:
       ShapeAppearance app;
       app.material = static_cast<uint32_t>(scene.materials.size());
       scene.materials.push_back(material(o, spectral));
-      if (scene.materials.back().fluorescence) scene.hasFluorescence = true;
+      if (scene.materials.back().reradiation) scene.hasFluorescence = true;
       if (scene.materials.back().kind == MaterialKind::Dielectric &&
           scene.materials.back().ior.dispersive())
         scene.hasDispersion = true;
@@ -199,7 +199,18 @@ private:
                     ": expected fluorescence only on matte, metal, plastic or mirror "
                     "surfaces (fluorescent dielectrics need media), found it on " +
                     name);
-      m.fluorescence = fluorescence(*o.fluorescence);
+      if (o.fluorescence->matrixCsv) {
+        try {
+          m.reradiation = std::make_shared<const ReradiationMatrix>(
+              ReradiationMatrix::fromMeasured(readMeasuredMatrixCsv(*o.fluorescence->matrixCsv)));
+        } catch (const Error& e) {
+          throw Error(o.fluorescence->loc.str() + ": " + e.what());
+        }
+      } else {
+        m.fluorescenceModel = fluorescence(*o.fluorescence);
+        m.reradiation = std::make_shared<const ReradiationMatrix>(
+            ReradiationMatrix::fromModel(*m.fluorescenceModel));
+      }
     }
     return m;
   }
@@ -237,13 +248,8 @@ private:
     return m;
   }
 
-  FluorescenceParams fluorescence(const FluorescenceDesc& f) const {
-    FluorescenceParams p;
-    if (f.matrixCsv) {
-      p.measured = true;
-      readMatrix(*f.matrixCsv, f.loc, p);
-      return p;
-    }
+  FluorescenceModel fluorescence(const FluorescenceDesc& f) const {
+    FluorescenceModel p;
     if (f.absorptionName) {
       const auto peak = namedAbsorptionPeak(*f.absorptionName);
       if (!peak)
@@ -262,51 +268,6 @@ private:
     if (f.quantumYield) p.quantumYield = *f.quantumYield;
     if (f.peakAbsorptance) p.peakAbsorptance = *f.peakAbsorptance;
     return p;
-  }
-
-  // A Donaldson matrix: first row the emission wavelengths (its first cell a label or
-  // ignored), then one row per excitation wavelength: the wavelength, then the cells.
-  static void readMatrix(const std::string& path, const SourceLocation& loc,
-                         FluorescenceParams& p) {
-    NumberTable t;
-    try {
-      t = readNumberTable(path, true);
-    } catch (const Error& e) {
-      throw Error(loc.str() + ": " + e.what());
-    }
-    std::vector<double> header;
-    size_t firstRow = 0;
-    if (!t.header.empty()) {
-      for (size_t i = 1; i < t.header.size(); ++i)
-        header.push_back(parseNumber(t.header[i], path + ":1", "an emission wavelength"));
-    } else {
-      header.assign(t.rows[0].values.begin() + 1, t.rows[0].values.end());
-      firstRow = 1;
-    }
-    if (header.size() < 2)
-      throw Error(path + ": expected at least two emission wavelengths in the first row");
-    for (size_t i = 1; i < header.size(); ++i)
-      if (!(header[i] > header[i - 1]))
-        throw Error(path + ":1: expected increasing emission wavelengths");
-    p.emissionNm = header;
-    for (size_t r = firstRow; r < t.rows.size(); ++r) {
-      const auto& row = t.rows[r];
-      const std::string where = path + ":" + std::to_string(row.line);
-      if (row.values.size() != header.size() + 1)
-        throw Error(where + ": expected " + std::to_string(header.size() + 1) +
-                    " cells (excitation wavelength and " + std::to_string(header.size()) +
-                    " values), found " + std::to_string(row.values.size()));
-      if (!p.excitationNm.empty() && !(row.values[0] > p.excitationNm.back()))
-        throw Error(where + ": expected increasing excitation wavelengths, found " +
-                    std::to_string(row.values[0]));
-      for (size_t k = 1; k < row.values.size(); ++k)
-        if (row.values[k] < 0)
-          throw Error(where + ": expected non-negative matrix values, found " +
-                      std::to_string(row.values[k]));
-      p.excitationNm.push_back(row.values[0]);
-      p.cells.insert(p.cells.end(), row.values.begin() + 1, row.values.end());
-    }
-    if (p.excitationNm.size() < 2) throw Error(path + ": expected at least two excitation rows");
   }
 
   std::optional<Spectrum> emission(const ObjectDesc& o, bool spectral) const {

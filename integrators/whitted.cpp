@@ -1,6 +1,7 @@
 #include <cmath>
 
 #include "core/ray_offset.h"
+#include "integrators/fluorescent_vertex.h"
 #include "integrators/integrator.h"
 #include "integrators/materials/bsdf.h"
 #include "integrators/materials/fresnel.h"
@@ -43,14 +44,19 @@ void whitted(const IntegratorContext& ctx, const Ray& ray, const SampledWaveleng
   const SampledSpectrum rho = evaluate(material.reflectance, lambda);
   const SurfaceBsdf bsdf(material, lambda, rho, hit.ng, wo);
 
-  // Direct light on the diffuse lobe, from every light (one sample each).
+  // Direct light on the diffuse lobe, from every light (one sample each). A fluorescent lobe
+  // sees the lights at its lanes' excitation wavelengths.
   if (bsdf.hasDiffuse()) {
+    const bool fluorescent = material.reradiation != nullptr;
+    const FluorescentShift shift =
+        fluorescent ? sampleFluorescentShift(*material.reradiation, lambda, rho, rng)
+                    : FluorescentShift{lambda, rho};
     for (int k = 0; k < ctx.lights->count(); ++k) {
       const float uChoice =
           (static_cast<float>(k) + 0.5f) / static_cast<float>(ctx.lights->count());
       LightSample ls;
-      if (!ctx.lights->sample(hit.p, uChoice, rng.next2D(), lambda, ls)) continue;
-      const SampledSpectrum f = bsdf.evalDiffuse(ls.wi);
+      if (!ctx.lights->sample(hit.p, uChoice, rng.next2D(), shift.excited, ls)) continue;
+      const SampledSpectrum f = shift.albedo * bsdf.diffuseFactor(ls.wi);
       if (f.isBlack()) continue;
       Ray shadow;
       shadow.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ls.wi);

@@ -16,11 +16,11 @@ SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
   n_ = (m.kind == MaterialKind::Mixture && dot(wo, ng) < 0) ? -ng : ng;
 }
 
-SampledSpectrum SurfaceBsdf::evalDiffuse(const Vec3& wi) const {
-  if (!hasDiffuse()) return {};
+float SurfaceBsdf::diffuseFactor(const Vec3& wi) const {
+  if (!hasDiffuse()) return 0;
   const float c = dot(wi, n_);
-  if (c <= 0 || dot(wo_, n_) <= 0) return {};
-  return rho_ * (material_->roughness * static_cast<float>(kInvPi) * c);
+  if (c <= 0 || dot(wo_, n_) <= 0) return 0;
+  return material_->roughness * static_cast<float>(kInvPi) * c;
 }
 
 float SurfaceBsdf::pdfDiffuse(const Vec3& wi) const {

@@ -38,7 +38,9 @@ public:
   }
 
   /// f(wo, wi) |cos(wi)| of the non-specular part, per lane (zero below the surface).
-  SampledSpectrum evalDiffuse(const Vec3& wi) const;
+  SampledSpectrum evalDiffuse(const Vec3& wi) const { return rho_ * diffuseFactor(wi); }
+  /// r |cos(wi)| / pi: the diffuse lobe without its albedo (fluorescent lobes supply their own).
+  float diffuseFactor(const Vec3& wi) const;
   /// Density with which sample() returns wi through its non-specular part.
   float pdfDiffuse(const Vec3& wi) const;
 

@@ -49,11 +49,21 @@ TEST(SceneBuilder, ThesisScene) {
   EXPECT_FALSE(s.materials[2].ior.dispersive());
   EXPECT_FLOAT_EQ(s.materials[3].roughness, 0.3f);        // metal
   EXPECT_DOUBLE_EQ(s.materials[0].reflectance(500), 0.5); // gray
-  ASSERT_TRUE(s.materials[3].fluorescence.has_value());
-  EXPECT_EQ(s.materials[3].fluorescence->absorptionPeakNm, 460);
-  EXPECT_EQ(s.materials[3].fluorescence->stokesNm, 220);
-  EXPECT_EQ(s.materials[3].fluorescence->widthNm, 20);
-  EXPECT_EQ(s.materials[3].fluorescence->quantumYield, 1);
+  ASSERT_TRUE(s.materials[3].fluorescenceModel.has_value());
+  EXPECT_EQ(s.materials[3].fluorescenceModel->absorptionPeakNm, 460);
+  EXPECT_EQ(s.materials[3].fluorescenceModel->stokesNm, 220);
+  EXPECT_EQ(s.materials[3].fluorescenceModel->widthNm, 20);
+  EXPECT_EQ(s.materials[3].fluorescenceModel->skew, 10);
+  EXPECT_EQ(s.materials[3].fluorescenceModel->quantumYield, 1);
+  EXPECT_EQ(s.materials[3].fluorescenceModel->peakAbsorptance, 1);
+  ASSERT_TRUE(s.materials[3].reradiation);
+  // The absorption curve peaks at a_max = 1, left of its location (negative skew).
+  int peak = 0;
+  for (int i = 0; i < ReradiationMatrix::kBins; ++i)
+    if (s.materials[3].reradiation->absorptance(i) > s.materials[3].reradiation->absorptance(peak))
+      peak = i;
+  EXPECT_DOUBLE_EQ(s.materials[3].reradiation->absorptance(peak), 1.0);
+  EXPECT_LT(ReradiationMatrix::centre(peak), 460);
   EXPECT_TRUE(s.hasFluorescence);
   EXPECT_FALSE(s.hasDispersion);
   ASSERT_EQ(s.emission.size(), 1u);
@@ -178,18 +188,17 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
 
 TEST(SceneBuilder, MeasuredMatrixCsv) {
   const std::string dir = ::testing::TempDir();
-  std::ofstream(dir + "m.csv") << "ex/em,400,500,600\n350,0.1,0.2,0.1\n450,0.5,0.3,0.2\n";
+  std::ofstream(dir + "m.csv") << "ex/em,400,500,600\n350,0.1,0.2,0.1\n450,0.05,0.3,0.2\n";
   std::ofstream(dir + "bad.csv") << "ex/em,400,500,600\n350,0.1,0.2\n";
   const std::string sphere =
       "<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
       "<reflectance>gray</reflectance><fluorescence><matrix>";
   const RenderScene s = build(scene(sphere + dir + "m.csv</matrix></fluorescence></sphere>\n"));
-  const auto& f = *s.materials[0].fluorescence;
-  EXPECT_TRUE(f.measured);
-  EXPECT_EQ(f.emissionNm, (std::vector<double>{400, 500, 600}));
-  EXPECT_EQ(f.excitationNm, (std::vector<double>{350, 450}));
-  EXPECT_EQ(f.cells.size(), 6u);
-  EXPECT_DOUBLE_EQ(f.cells[3], 0.5);
+  const ReradiationMatrix& f = *s.materials[0].reradiation;
+  EXPECT_TRUE(f.measured());
+  // ~450 nm excitation into ~500 nm emission: 0.3 per 100 nm-wide CSV bin = 0.003 per nm, x 5 nm.
+  EXPECT_NEAR(f(ReradiationMatrix::binOf(445), ReradiationMatrix::binOf(500)), 0.015, 0.001);
+  EXPECT_EQ(f(ReradiationMatrix::binOf(500), ReradiationMatrix::binOf(450)), 0.0); // no anti-Stokes
   const std::string got =
       errorOf(scene(sphere + dir + "bad.csv</matrix></fluorescence></sphere>\n"));
   EXPECT_NE(

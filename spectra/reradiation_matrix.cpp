@@ -1,0 +1,196 @@
+#include "spectra/reradiation_matrix.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/text_table.h"
+
+namespace nx {
+
+ReradiationMatrix ReradiationMatrix::fromModel(const FluorescenceModel& p) {
+  ReradiationMatrix r;
+  const SkewCauchySpectrum absorption{p.absorptionPeakNm, p.widthNm, -p.skew};
+  const SkewCauchySpectrum emission{p.absorptionPeakNm + p.stokesNm, p.widthNm, p.skew};
+  double aMax = 0, eSum = 0;
+  std::array<double, kBins> e{};
+  for (int i = 0; i < kBins; ++i) {
+    r.absorptance_[i] = absorption(centre(i));
+    aMax = std::max(aMax, r.absorptance_[i]);
+    e[i] = emission(centre(i));
+    eSum += e[i];
+  }
+  for (int i = 0; i < kBins; ++i) {
+    r.absorptance_[i] = aMax > 0 ? p.peakAbsorptance * r.absorptance_[i] / aMax : 0.0;
+    e[i] = eSum > 0 ? e[i] / eSum : 0.0; // e_o: the integral of e over bin o
+  }
+  for (int i = 0; i < kBins; ++i)
+    for (int o = i + 1; o < kBins; ++o)
+      r.m_[static_cast<size_t>(i) * kBins + o] =
+          r.absorptance_[i] * p.quantumYield * e[o] * centre(i) / centre(o);
+  r.finish();
+  return r;
+}
+
+namespace {
+
+// Linear interpolation weights of x in an increasing grid; false outside it.
+bool bracket(const std::vector<double>& g, double x, size_t& k, double& t) {
+  if (g.empty() || x < g.front() || x > g.back()) return false;
+  k = static_cast<size_t>(std::upper_bound(g.begin(), g.end(), x) - g.begin());
+  k = k == 0 ? 0 : k - 1;
+  if (k + 1 >= g.size()) {
+    k = g.size() >= 2 ? g.size() - 2 : 0;
+    t = g.size() >= 2 ? 1.0 : 0.0;
+    return true;
+  }
+  t = (x - g[k]) / (g[k + 1] - g[k]);
+  return true;
+}
+
+} // namespace
+
+ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm) {
+  ReradiationMatrix r;
+  r.measured_ = true;
+  const size_t nEx = mm.excitationNm.size(), nEm = mm.emissionNm.size();
+  auto cell = [&](size_t row, size_t col) { return mm.cells[row * nEm + col]; };
+  // Emission bin widths of the CSV grid (to turn fractions per CSV bin into densities per nm).
+  std::vector<double> width(nEm);
+  for (size_t c = 0; c < nEm; ++c) {
+    const double lo = mm.emissionNm[c > 0 ? c - 1 : c], hi = mm.emissionNm[c + 1 < nEm ? c + 1 : c];
+    width[c] = (hi - lo) / static_cast<double>((c > 0 ? 1 : 0) + (c + 1 < nEm ? 1 : 0));
+  }
+  // Off-diagonal density: cells with emission longer than excitation; the rest count as 0.
+  auto density = [&](size_t row, size_t col) {
+    return mm.emissionNm[col] > mm.excitationNm[row] ? cell(row, col) / width[col] : 0.0;
+  };
+  for (int i = 0; i < kBins; ++i) {
+    size_t ri;
+    double ti;
+    if (!bracket(mm.excitationNm, centre(i), ri, ti)) continue;
+    for (int o = i + 1; o < kBins; ++o) {
+      size_t co;
+      double to;
+      if (!bracket(mm.emissionNm, centre(o), co, to)) continue;
+      const double v = (1 - ti) * ((1 - to) * density(ri, co) + to * density(ri, co + 1)) +
+                       ti * ((1 - to) * density(ri + 1, co) + to * density(ri + 1, co + 1));
+      r.m_[static_cast<size_t>(i) * kBins + o] = v * kBinNm;
+    }
+  }
+  // Diagonal: the reflectance where excitation and emission wavelengths coincide.
+  std::vector<double> diagNm, diagValue;
+  for (size_t row = 0; row < nEx; ++row)
+    for (size_t col = 0; col < nEm; ++col)
+      if (std::abs(mm.excitationNm[row] - mm.emissionNm[col]) < 1e-9) {
+        diagNm.push_back(mm.emissionNm[col]);
+        diagValue.push_back(cell(row, col));
+      }
+  for (int o = 0; o < kBins; ++o) {
+    size_t k;
+    double t;
+    r.diagonal_[o] = bracket(diagNm, centre(o), k, t) && diagNm.size() >= 2
+                         ? (1 - t) * diagValue[k] + t * diagValue[k + 1]
+                         : 0.0;
+  }
+  r.finish();
+  for (int i = 0; i < kBins; ++i) {
+    double out = 0;
+    for (int o = 0; o < kBins; ++o) out += r(i, o);
+    if (out > 1.0 + 1e-9)
+      throw Error(mm.source +
+                  ": expected a matrix that re-radiates at most the absorbed energy, found " +
+                  std::to_string(out) + " re-radiated from excitation at " +
+                  std::to_string(centre(i)) + " nm");
+  }
+  return r;
+}
+
+void ReradiationMatrix::finish() {
+  columnCdf_.assign(static_cast<size_t>(kBins) * kBins, 0.0);
+  for (int o = 0; o < kBins; ++o) {
+    double sum = 0;
+    for (int i = 0; i < kBins; ++i) {
+      sum += (*this)(i, o);
+      columnCdf_[static_cast<size_t>(o) * kBins + i] = sum;
+    }
+    columnSum_[o] = sum;
+  }
+}
+
+double ReradiationMatrix::sampleExcitation(double nm, double rhoValue, double u, double v,
+                                           float& weight) const {
+  const int o = binOf(nm);
+  if (o < 0) {
+    weight *= static_cast<float>(measured_ ? 0.0 : rhoValue);
+    return nm;
+  }
+  const double d = elastic(o, rhoValue), c = columnSum_[o], total = d + c;
+  weight *= static_cast<float>(total);
+  if (!(total > 0) || u * total < d) return nm;
+  // Bin i with probability M[i][o] / c: search the column's running sums.
+  const double target = u * total - d;
+  const double* cdf = &columnCdf_[static_cast<size_t>(o) * kBins];
+  int i = static_cast<int>(std::upper_bound(cdf, cdf + o, target) - cdf);
+  i = std::min(i, o - 1);
+  while (i > 0 && (*this)(i, o) == 0) --i; // never land on an empty bin through rounding
+  return kMinNm + (i + v) * kBinNm;
+}
+
+std::string ReradiationMatrix::toCsv() const {
+  std::ostringstream out;
+  out.precision(17);
+  out << "excitation/emission";
+  for (int o = 0; o < kBins; ++o) out << "," << centre(o);
+  out << "\n";
+  for (int i = 0; i < kBins; ++i) {
+    out << centre(i);
+    for (int o = 0; o < kBins; ++o) out << "," << (o == i ? elastic(i, 1.0) : (*this)(i, o));
+    out << "\n";
+  }
+  return out.str();
+}
+
+MeasuredMatrix readMeasuredMatrixCsv(const std::string& path) {
+  const NumberTable t = readNumberTable(path, true);
+  MeasuredMatrix m;
+  m.source = path;
+  size_t firstRow = 0;
+  if (!t.header.empty()) {
+    for (size_t i = 1; i < t.header.size(); ++i)
+      m.emissionNm.push_back(parseNumber(t.header[i], path + ":1", "an emission wavelength"));
+  } else {
+    m.emissionNm.assign(t.rows[0].values.begin() + 1, t.rows[0].values.end());
+    firstRow = 1;
+  }
+  if (m.emissionNm.size() < 2)
+    throw Error(path + ":1: expected at least two emission wavelengths in the first row");
+  for (size_t i = 1; i < m.emissionNm.size(); ++i)
+    if (!(m.emissionNm[i] > m.emissionNm[i - 1]))
+      throw Error(path + ":1: expected increasing emission wavelengths, found " +
+                  std::to_string(m.emissionNm[i]) + " after " +
+                  std::to_string(m.emissionNm[i - 1]));
+  for (size_t r = firstRow; r < t.rows.size(); ++r) {
+    const auto& row = t.rows[r];
+    const std::string where = path + ":" + std::to_string(row.line);
+    if (row.values.size() != m.emissionNm.size() + 1)
+      throw Error(where + ": expected " + std::to_string(m.emissionNm.size() + 1) +
+                  " cells (excitation wavelength and " + std::to_string(m.emissionNm.size()) +
+                  " values), found " + std::to_string(row.values.size()));
+    if (!m.excitationNm.empty() && !(row.values[0] > m.excitationNm.back()))
+      throw Error(where + ": expected increasing excitation wavelengths, found " +
+                  std::to_string(row.values[0]) + " after " +
+                  std::to_string(m.excitationNm.back()));
+    for (size_t k = 1; k < row.values.size(); ++k)
+      if (row.values[k] < 0 || row.values[k] > 1)
+        throw Error(where + ": expected matrix values in [0, 1], found " +
+                    std::to_string(row.values[k]));
+    m.excitationNm.push_back(row.values[0]);
+    m.cells.insert(m.cells.end(), row.values.begin() + 1, row.values.end());
+  }
+  if (m.excitationNm.size() < 2) throw Error(path + ": expected at least two excitation rows");
+  return m;
+}
+
+} // namespace nx

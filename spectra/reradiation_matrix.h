@@ -1,0 +1,95 @@
+#pragma once
+// The Glassner re-radiation (Donaldson) matrix of a fluorescent surface on a 5 nm grid,
+// and its sampling from the camera side (see the fluorescence model document).
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "spectra/spectrum.h"
+
+namespace nx {
+
+/// Parameters of the skew-Cauchy model of a fluorescent surface.
+struct FluorescenceModel {
+  double absorptionPeakNm = 460; ///< location l_a of the absorption curve
+  double stokesNm = 100;         ///< emission location = l_a + Stokes shift
+  double widthNm = 20;           ///< g
+  double skew = 10;              ///< w: absorption uses -w, emission +w
+  double quantumYield = 1;       ///< Q
+  double peakAbsorptance = 1;    ///< a_max
+};
+
+/// A measured Donaldson matrix as read from a CSV file: cells[row * emission.size() + col]
+/// for excitation row and emission column; the diagonal (equal wavelengths) is reflectance.
+struct MeasuredMatrix {
+  std::vector<double> excitationNm, emissionNm, cells;
+  std::string source; ///< file name for messages
+};
+
+/// M[i][o] (energy re-radiated from excitation bin i into emission bin o, o > i), the
+/// absorptance a per bin, and per-column sampling tables.
+class ReradiationMatrix {
+public:
+  /// Number of 5 nm bins covering [360, 830) nm.
+  static constexpr int kBins = 94;
+  static constexpr double kMinNm = 360, kBinNm = 5;
+
+  /// Bin containing nm, or -1 outside [360, 830).
+  static int binOf(double nm) {
+    const double x = (nm - kMinNm) / kBinNm;
+    return x >= 0 && x < kBins ? static_cast<int>(x) : -1;
+  }
+  /// Centre of bin i (nm).
+  static double centre(int i) { return kMinNm + (i + 0.5) * kBinNm; }
+
+  /// The matrix of the skew-Cauchy model (Zheng et al. 2014 curves):
+  /// a(l) = a_max f(l; l_a, g, -w) / max f, e(l) = f(l; l_a + S, g, +w) normalised over the
+  /// grid, M[i][o] = a_i Q e_o l_i / l_o for o > i, 0 otherwise.
+  static ReradiationMatrix fromModel(const FluorescenceModel& m);
+
+  /// A measured matrix resampled onto the grid: off-diagonal cells (emission longer than
+  /// excitation) as a bilinearly interpolated density per nm of emission times 5 nm; the
+  /// diagonal gives the elastic reflectance D. Cells with emission shorter than excitation
+  /// are ignored (anti-Stokes light is not modelled).
+  static ReradiationMatrix fromMeasured(const MeasuredMatrix& m);
+
+  /// Absorptance of bin i (parametric model; 0 for measured matrices, whose D is explicit).
+  double absorptance(int i) const { return absorptance_[i]; }
+  /// M[i][o].
+  double operator()(int i, int o) const { return m_[static_cast<size_t>(i) * kBins + o]; }
+  /// c(o) = sum over i of M[i][o]: the re-radiated part of the lobe's albedo at bin o.
+  double columnSum(int o) const { return columnSum_[o]; }
+  /// True for a measured matrix: the elastic part is `measuredDiagonal`, not (1 - a) rho.
+  bool measured() const { return measured_; }
+
+  /// Elastic part D at bin o for a surface of reflectance rhoValue at the lane's wavelength:
+  /// (1 - a_o) rho (model) or the measured diagonal.
+  double elastic(int o, double rhoValue) const {
+    return measured_ ? diagonal_[o] : (1 - absorptance_[o]) * rhoValue;
+  }
+
+  /// Camera-to-light sampling for a lane at wavelength nm (bin o): returns the new (excitation)
+  /// wavelength and multiplies `weight` by D(o) + c(o). Elastic with probability
+  /// D / (D + c), otherwise bin i with probability M[i][o] / c(o) and a wavelength uniform
+  /// in it (u picks the event, v the position in the bin). Outside the grid the surface is
+  /// an ordinary reflector of rho.
+  double sampleExcitation(double nm, double rhoValue, double u, double v, float& weight) const;
+
+  /// Writes the matrix as a CSV file (first row: emission bin centres; then per excitation
+  /// bin its centre and the cells; the diagonal holds the elastic part for rho = 1).
+  std::string toCsv() const;
+
+private:
+  void finish();
+  bool measured_ = false;
+  std::array<double, kBins> absorptance_{}, diagonal_{}, columnSum_{};
+  std::vector<double> m_ = std::vector<double>(static_cast<size_t>(kBins) * kBins, 0.0);
+  std::vector<double> columnCdf_; ///< [o][i]: running sums of M[.][o] over i
+};
+
+/// Reads a Donaldson matrix CSV (first row: a label cell, then emission wavelengths; then
+/// one row per excitation wavelength: the wavelength and the cells). Errors name file:line.
+MeasuredMatrix readMeasuredMatrixCsv(const std::string& path);
+
+} // namespace nx

@@ -1,0 +1,187 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "integrators/renderer.h"
+#include "spectra/reradiation_matrix.h"
+#include "support/statistics.h"
+
+namespace nx {
+namespace {
+
+using RM = ReradiationMatrix;
+
+RenderOutput renderText(const std::string& text) {
+  return render(buildRenderScene(parseScene(text, "t.scn")), {});
+}
+
+// Solves A x = b by Gaussian elimination with partial pivoting (independent of the renderer).
+std::vector<double> solve(std::vector<std::vector<double>> a, std::vector<double> b) {
+  const size_t n = b.size();
+  for (size_t c = 0; c < n; ++c) {
+    size_t p = c;
+    for (size_t r = c + 1; r < n; ++r)
+      if (std::abs(a[r][c]) > std::abs(a[p][c])) p = r;
+    std::swap(a[c], a[p]);
+    std::swap(b[c], b[p]);
+    for (size_t r = c + 1; r < n; ++r) {
+      const double f = a[r][c] / a[c][c];
+      for (size_t k = c; k < n; ++k) a[r][k] -= f * a[c][k];
+      b[r] -= f * b[c];
+    }
+  }
+  std::vector<double> x(n);
+  for (size_t r = n; r-- > 0;) {
+    double s = b[r];
+    for (size_t k = r + 1; k < n; ++k) s -= a[r][k] * x[k];
+    x[r] = s / a[r][r];
+  }
+  return x;
+}
+
+// Bands of 10 nm starting at 400 cover two 5 nm grid bins each: their average.
+double bandOfBins(const std::vector<double>& perBin, const SpectralBands& bands, int b) {
+  const int first = RM::binOf(bands.lower(b) + 0.1);
+  return 0.5 * (perBin[static_cast<size_t>(first)] + perBin[static_cast<size_t>(first) + 1]);
+}
+
+void expectBandsEqual(const Film& film, const std::function<double(int)>& expected,
+                      double precision, const std::string& what) {
+  for (int b = 0; b < film.bands().count(); ++b) {
+    test::RunningStats s;
+    for (int y = 0; y < film.height(); ++y)
+      for (int x = 0; x < film.width(); ++x) s.add(film.bandMean(x, y, b));
+    const double e = expected(b);
+    EXPECT_LT(std::abs(s.mean - e), 5 * s.standardError() + 1e-9)
+        << what << " band " << film.bands().centre(b) << " mean " << s.mean << " expected " << e;
+    EXPECT_LT(s.standardError(), precision * std::max(e, 0.1))
+        << what << " band " << film.bands().centre(b);
+  }
+}
+
+struct FurnaceCase {
+  std::string fluorescence;
+  FluorescenceModel model;
+};
+
+// Fluorescent furnace: inside a closed sphere of the fluorescent material emitting a flat Le,
+// every 5 nm bin holds L = (I - diag(D) - M^T)^-1 Le, D = (1 - a) rho.
+TEST(Fluorescence, FurnaceMatchesTheMatrixSolution) {
+  const double rho = 0.5, le = 0.5;
+  const std::vector<FurnaceCase> cases = {
+      {"<absorption>blue</absorption><stokes>220</stokes>", {460, 220, 20, 10, 1, 1}},
+      {"<absorption>uv</absorption><stokes>120</stokes><yield>0.5</yield>",
+       {370, 120, 20, 10, 0.5, 1}},
+      {"<absorption>450</absorption><stokes>50</stokes><yield>0.8</yield><width>30</width><skew>5</"
+       "skew><peak>0.7</peak>",
+       {450, 50, 30, 5, 0.8, 0.7}},
+  };
+  for (const auto& c : cases) {
+    const RenderOutput out =
+        renderText("<scene><settings><xres>12</xres><yres>12</yres><mode>spectral_mcpt</"
+                   "mode><depth>3</depth><sampl>256</sampl>"
+                   "</settings><camera><position>0,0,0</position><look_at>0,0,1</look_at></camera>"
+                   "<sphere><center>0,0,0</center><radius>1</radius><material>matte</"
+                   "material><reflectance>0.5</reflectance>"
+                   "<emission>0.5</emission><fluorescence>" +
+                   c.fluorescence + "</fluorescence></sphere></scene>");
+    const RM m = RM::fromModel(c.model);
+    std::vector<std::vector<double>> a(RM::kBins, std::vector<double>(RM::kBins, 0));
+    for (int o = 0; o < RM::kBins; ++o) {
+      a[o][o] = 1 - m.elastic(o, rho);
+      for (int i = 0; i < RM::kBins; ++i) a[o][i] -= m(i, o); // (M^T)[o][i]
+    }
+    const std::vector<double> L = solve(a, std::vector<double>(RM::kBins, le));
+    expectBandsEqual(
+        out.film, [&](int b) { return bandOfBins(L, out.film.bands(), b); }, 0.02, c.fluorescence);
+    EXPECT_EQ(out.stats.nonFinite, 0u);
+  }
+}
+
+// Quantum yield 0 is the plain material with rho replaced by (1 - a) rho: both furnaces
+// match L = Le / (1 - (1 - a) rho) per bin.
+TEST(Fluorescence, ZeroYieldEqualsReducedReflectance) {
+  const RM m = RM::fromModel({460, 100, 20, 10, 0, 1});
+  std::vector<double> L(RM::kBins);
+  std::string steps; // (1 - a) rho as a step function on the grid
+  for (int o = 0; o < RM::kBins; ++o) {
+    L[o] = 0.5 / (1 - m.elastic(o, 0.6));
+    const double lo = RM::kMinNm + o * RM::kBinNm;
+    steps += (o ? ", " : "") + std::to_string(lo) + ":" + std::to_string(m.elastic(o, 0.6)) + ", " +
+             std::to_string(lo + RM::kBinNm - 1e-4) + ":" + std::to_string(m.elastic(o, 0.6));
+  }
+  const std::string head =
+      "<scene><settings><xres>12</xres><yres>12</yres><mode>spectral_mcpt</mode><depth>3</depth>"
+      "<sampl>256</sampl></settings><camera><position>0,0,0</position><look_at>0,0,1</look_at>"
+      "</camera><sphere><center>0,0,0</center><radius>1</radius><material>matte</material>";
+  const RenderOutput fluorescent =
+      renderText(head + "<reflectance>0.6</reflectance><emission>0.5</emission><fluorescence>"
+                        "<absorption>blue</absorption><stokes>100</stokes><yield>0</yield>"
+                        "</fluorescence></sphere></scene>");
+  const RenderOutput plain = renderText(head + "<reflectance>" + steps +
+                                        "</reflectance><emission>0.5</emission></sphere></scene>");
+  expectBandsEqual(
+      fluorescent.film, [&](int b) { return bandOfBins(L, fluorescent.film.bands(), b); }, 0.02,
+      "Q = 0");
+  expectBandsEqual(
+      plain.film, [&](int b) { return bandOfBins(L, plain.film.bands(), b); }, 0.02, "(1 - a) rho");
+}
+
+// Stokes ordering: a fluorescent surface lit only in the 380-385 nm bin shows radiance only at
+// longer wavelengths; with rho = 0 nothing at all appears at or below the excitation band.
+TEST(Fluorescence, StokesShiftOnlyTowardsLongerWavelengths) {
+  const RenderOutput out =
+      renderText("<scene><settings><xres>8</xres><yres>8</yres><mode>spectral_mcpt</mode><depth>3</"
+                 "depth><sampl>64</sampl>"
+                 "<bands>310:800:10</bands><background>380:1, 385:1</background></settings>"
+                 "<camera><position>0,0,-4</position><look_at>0,0,0</look_at><fov>10</fov></camera>"
+                 "<sphere><center>0,0,0</center><radius>1</radius><material>matte</"
+                 "material><reflectance>null</reflectance>"
+                 "<fluorescence><absorption>uv</absorption><stokes>100</stokes></fluorescence></"
+                 "sphere></scene>");
+  const Film& f = out.film;
+  double visible = 0;
+  for (int b = 0; b < f.bands().count(); ++b)
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) {
+        const double v = f.bandMean(x, y, b);
+        if (f.bands().upper(b) <= 385) {
+          EXPECT_EQ(v, 0.0) << "band " << f.bands().centre(b);
+        }
+        if (f.bands().centre(b) >= 440 && f.bands().centre(b) <= 520) visible += v;
+      }
+  EXPECT_GT(visible, 0.0);
+}
+
+// Energy: with rho = 0 and Q = 1, a convex fluorescent object under a background that emits
+// only below the absorption edge returns, per bin, exactly sum_i M[i][o] Lbg(i) (one
+// bounce), and never more energy than it receives.
+TEST(Fluorescence, EnergyIsConservedAndSingleBounceMatchesTheMatrix) {
+  const RenderOutput out =
+      renderText("<scene><settings><xres>10</xres><yres>10</yres><mode>spectral_mcpt</"
+                 "mode><depth>3</depth><sampl>256</sampl>"
+                 "<bands>400:820:10</bands><background>360:1, 400:1</background></settings>"
+                 "<camera><position>0,0,-4</position><look_at>0,0,0</look_at><fov>12</fov></camera>"
+                 "<sphere><center>0,0,0</center><radius>1</radius><material>matte</"
+                 "material><reflectance>null</reflectance>"
+                 "<fluorescence><absorption>uv</absorption><stokes>120</stokes></fluorescence></"
+                 "sphere></scene>");
+  const RM m = RM::fromModel({370, 120, 20, 10, 1, 1});
+  std::vector<double> perBin(RM::kBins, 0.0);
+  double incoming = 0, outgoing = 0;
+  for (int i = 0; i < RM::binOf(400); ++i) incoming += RM::kBinNm; // Lbg = 1 over 360-400 nm
+  for (int o = 0; o < RM::kBins; ++o) {
+    for (int i = 0; i < RM::binOf(400); ++i) perBin[o] += m(i, o);
+    outgoing += perBin[o] * RM::kBinNm;
+  }
+  EXPECT_LT(outgoing, incoming);
+  expectBandsEqual(
+      out.film, [&](int b) { return bandOfBins(perBin, out.film.bands(), b); }, 0.05,
+      "single bounce");
+  double rendered = 0;
+  for (int b = 0; b < out.film.bands().count(); ++b) rendered += out.film.bandMean(5, 5, b) * 10;
+  EXPECT_LT(rendered, incoming);
+}
+
+} // namespace
+} // namespace nx

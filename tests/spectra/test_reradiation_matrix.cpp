@@ -1,0 +1,152 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "core/error.h"
+#include "spectra/reradiation_matrix.h"
+
+namespace nx {
+namespace {
+
+using RM = ReradiationMatrix;
+
+FluorescenceModel model(double peak, double stokes, double yield = 1, double width = 20,
+                        double skew = 10, double aMax = 1) {
+  return {peak, stokes, width, skew, yield, aMax};
+}
+
+TEST(ReradiationMatrix, Grid) {
+  EXPECT_EQ(RM::kBins, 94);
+  EXPECT_EQ(RM::binOf(360), 0);
+  EXPECT_EQ(RM::binOf(364.99), 0);
+  EXPECT_EQ(RM::binOf(365), 1);
+  EXPECT_EQ(RM::binOf(829.99), 93);
+  EXPECT_EQ(RM::binOf(830), -1);
+  EXPECT_EQ(RM::binOf(359.9), -1);
+  EXPECT_DOUBLE_EQ(RM::centre(0), 362.5);
+}
+
+// M[i][o] = a_i Q e_o l_i / l_o above the diagonal, 0 on and below it; a peaks at a_max;
+// the emission distribution e sums to 1.
+TEST(ReradiationMatrix, ModelEntries) {
+  const FluorescenceModel p = model(460, 120, 0.8, 25, 6, 0.7);
+  const RM m = RM::fromModel(p);
+  double aMax = 0;
+  for (int i = 0; i < RM::kBins; ++i) aMax = std::max(aMax, m.absorptance(i));
+  EXPECT_NEAR(aMax, 0.7, 1e-12);
+  const SkewCauchySpectrum abs{460, 25, -6}, em{580, 25, 6};
+  double maxAbs = 0, sumEm = 0;
+  for (int i = 0; i < RM::kBins; ++i)
+    maxAbs = std::max(maxAbs, abs(RM::centre(i))), sumEm += em(RM::centre(i));
+  for (int i = 0; i < RM::kBins; i += 7) {
+    EXPECT_NEAR(m.absorptance(i), 0.7 * abs(RM::centre(i)) / maxAbs, 1e-12);
+    for (int o = 0; o < RM::kBins; o += 3) {
+      const double expected =
+          o > i ? m.absorptance(i) * 0.8 * em(RM::centre(o)) / sumEm * RM::centre(i) / RM::centre(o)
+                : 0.0;
+      EXPECT_NEAR(m(i, o), expected, 1e-15) << i << " " << o;
+    }
+  }
+  // The l_i / l_o energy factor between two entries of a row.
+  const int i = RM::binOf(400), o1 = RM::binOf(560), o2 = RM::binOf(620);
+  EXPECT_NEAR(m(i, o1) / m(i, o2),
+              em(RM::centre(o1)) / em(RM::centre(o2)) * RM::centre(o2) / RM::centre(o1), 1e-12);
+}
+
+// Conservation: every row re-radiates at most what it absorbs (times Q), and a row whose
+// emission lies entirely above it re-radiates a_i Q <l_i / l_o>.
+TEST(ReradiationMatrix, RowAndColumnSums) {
+  const RM m = RM::fromModel(model(420, 150, 0.9));
+  for (int i = 0; i < RM::kBins; ++i) {
+    double row = 0, photons = 0;
+    for (int o = 0; o < RM::kBins; ++o) {
+      row += m(i, o);
+      photons += m(i, o) * RM::centre(o) / RM::centre(i);
+    }
+    EXPECT_LE(row, m.absorptance(i) * 0.9 + 1e-15);
+    EXPECT_LE(photons, m.absorptance(i) * 0.9 + 1e-12); // photon yield <= Q
+  }
+  // Excitation at 362.5 nm: almost all of the emission (around 570 nm) lies above it.
+  double photons = 0;
+  for (int o = 0; o < RM::kBins; ++o) photons += m(0, o) * RM::centre(o) / RM::centre(0);
+  EXPECT_NEAR(photons, m.absorptance(0) * 0.9, 0.02 * m.absorptance(0));
+  for (int o = 0; o < RM::kBins; ++o) {
+    double c = 0;
+    for (int i = 0; i < RM::kBins; ++i) c += m(i, o);
+    EXPECT_NEAR(m.columnSum(o), c, 1e-15);
+  }
+}
+
+// Sampling the excitation of a lane: elastic with probability D / (D + c), bin i with
+// probability M[i][o] / c, weight D + c (chi-square over the outcomes).
+TEST(ReradiationMatrix, ExcitationSamplingMatchesTheMatrix) {
+  const RM m = RM::fromModel(model(430, 90, 1));
+  const double rho = 0.6, nm = 532.0;
+  const int o = RM::binOf(nm);
+  const double d = m.elastic(o, rho), c = m.columnSum(o);
+  std::vector<double> obs(RM::kBins + 1, 0), exp(RM::kBins + 1, 0);
+  const int n = 200000;
+  for (int k = 0; k < n; ++k) {
+    float w = 1;
+    const double u = (k + 0.5) / n, v = std::fmod(k * 0.618033988749895, 1.0);
+    const double l = m.sampleExcitation(nm, rho, u, v, w);
+    EXPECT_NEAR(w, d + c, 1e-6);
+    if (l == nm) {
+      obs[RM::kBins] += 1;
+    } else {
+      ASSERT_LT(RM::binOf(l), o);
+      obs[RM::binOf(l)] += 1;
+    }
+  }
+  for (int i = 0; i < RM::kBins; ++i) exp[i] = n * m(i, o) / (d + c);
+  exp[RM::kBins] = n * d / (d + c);
+  // Stratified u: the counts match the probabilities to within one sample per outcome.
+  for (int i = 0; i <= RM::kBins; ++i) EXPECT_NEAR(obs[i], exp[i], 1.5) << i;
+  float w = 1;
+  EXPECT_EQ(m.sampleExcitation(900, rho, 0.5, 0.5, w), 900); // outside the grid: plain reflector
+  EXPECT_FLOAT_EQ(w, 0.6f);
+}
+
+TEST(ReradiationMatrix, CsvRoundTrip) {
+  const RM m = RM::fromModel(model(460, 220, 0.75));
+  const std::string path = ::testing::TempDir() + "matrix.csv";
+  std::ofstream(path) << m.toCsv();
+  const RM back = RM::fromMeasured(readMeasuredMatrixCsv(path));
+  EXPECT_TRUE(back.measured());
+  for (int i = 0; i < RM::kBins; ++i) {
+    EXPECT_NEAR(back.elastic(i, 0.3), 1 - m.absorptance(i), 1e-12); // measured D ignores rho
+    for (int o = 0; o < RM::kBins; ++o) EXPECT_NEAR(back(i, o), m(i, o), 1e-12) << i << " " << o;
+  }
+}
+
+std::string csvError(const std::string& text) {
+  const std::string path = ::testing::TempDir() + "bad_matrix.csv";
+  std::ofstream(path) << text;
+  try {
+    RM::fromMeasured(readMeasuredMatrixCsv(path));
+  } catch (const Error& e) {
+    return std::string(e.what()).substr(path.size());
+  }
+  return "no error";
+}
+
+TEST(ReradiationMatrix, MalformedCsvIsRefusedWithFileAndLine) {
+  EXPECT_EQ(csvError("ex,400,500\n350,0.1\n"),
+            ":2: expected 3 cells (excitation wavelength and 2 values), found 2");
+  EXPECT_EQ(csvError("ex,500,400\n350,0.1,0.1\n"),
+            ":1: expected increasing emission wavelengths, found 400.000000 after 500.000000");
+  EXPECT_EQ(csvError("ex,400,500\n450,0.1,0.1\n350,0.1,0.1\n"),
+            ":3: expected increasing excitation wavelengths, found 350.000000 after 450.000000");
+  EXPECT_EQ(csvError("ex,400,500\n350,0.1,1.5\n450,0,0\n"),
+            ":2: expected matrix values in [0, 1], found 1.500000");
+  EXPECT_EQ(csvError("ex,400,500\n350,0.1,x\n"), ":2: expected a number, found 'x'");
+  EXPECT_EQ(csvError("ex,4o0,500\n350,0.1,0.2\n"),
+            ":1: expected an emission wavelength, found '4o0'");
+  EXPECT_EQ(csvError("ex,400,500\n350,0.1,0.2\n"), ": expected at least two excitation rows");
+  EXPECT_EQ(csvError("ex,400,410,420\n400,0,1,1\n410,0,0,1\n").substr(0, 60),
+            ": expected a matrix that re-radiates at most the absorbed en");
+}
+
+} // namespace
+} // namespace nx
