@@ -1,22 +1,39 @@
-// nxrender: renders a scene file to a spectral OpenEXR and a tone-mapped preview.
+// nxrender: renders a scene file to a spectral OpenEXR and a tone-mapped preview; renders
+// parts of an image (crops, sample ranges) for render farms, and survives interruption.
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "core/error.h"
+#include "core/text_table.h"
 #include "integrators/renderer.h"
 #include "io/atomic_file.h"
 #include "io/preview_image.h"
 #include "io/spectral_exr.h"
+#include "spectra/colour.h"
 
 namespace {
+
+std::atomic<bool> gStop{false};
+std::atomic<int> gSignal{0};
+
+extern "C" void onSignal(int sig) {
+  gSignal.store(sig);
+  gStop.store(true);
+  std::signal(sig, SIG_DFL); // a second signal ends the process at once
+}
 
 std::string replaceExtension(const std::string& path, const std::string& ext) {
   return std::filesystem::path(path).replace_extension(ext).string();
@@ -26,13 +43,55 @@ const char* modeName(nx::RenderMode m) {
   return m == nx::RenderMode::Rt ? "rt" : m == nx::RenderMode::Mcpt ? "mcpt" : "spectral_mcpt";
 }
 
+// FNV-1a, 64 bits: identifies the scene file and the options that change the image.
+uint64_t fnv1a(const std::string& data, uint64_t h = 0xcbf29ce484222325ULL) {
+  for (unsigned char c : data) h = (h ^ c) * 0x100000001b3ULL;
+  return h;
+}
+
+std::string hex(uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+std::vector<long long> integers(const std::string& text, char sep, size_t count,
+                                const std::string& what) {
+  std::vector<long long> v;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, sep)) {
+    char* end = nullptr;
+    const long long x = std::strtoll(item.c_str(), &end, 10);
+    if (item.empty() || *end != '\0')
+      throw nx::Error(what + ": expected whole numbers, found '" + text + "'");
+    v.push_back(x);
+  }
+  if (v.size() != count)
+    throw nx::Error(what + ": expected " + std::to_string(count) + " numbers, found '" + text +
+                    "'");
+  return v;
+}
+
+long long envInteger(const char* name) {
+  const char* v = std::getenv(name);
+  if (!v || !*v)
+    throw nx::Error(std::string("--tile-of-array: the environment variable ") + name +
+                    " is not set");
+  char* end = nullptr;
+  const long long x = std::strtoll(v, &end, 10);
+  if (*end != '\0' || x < 0)
+    throw nx::Error(std::string("--tile-of-array: ") + name + "='" + v + "' is not a whole number");
+  return x;
+}
+
 // Progress on stderr: a live bar on a terminal, a plain line every few seconds otherwise.
 class Progress {
 public:
   Progress() : tty_(isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
-  void update(int done, int total) {
+  void update(int64_t done, int64_t total) {
     const double elapsed = seconds();
-    const double fraction = static_cast<double>(done) / total;
+    const double fraction = static_cast<double>(done) / static_cast<double>(total);
     const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
     if (tty_) {
       if (elapsed - last_ < 0.1 && done != total) return;
@@ -47,6 +106,9 @@ public:
                    elapsed, eta);
     }
     last_ = elapsed;
+  }
+  void finish() const {
+    if (tty_) std::fprintf(stderr, "\n");
   }
 
 private:
@@ -65,8 +127,10 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", std::string("nxrender ") + NX_VERSION);
   int threads = 0, spp = 0;
   long long seed = -1;
-  std::string output, bandsText, lightSampling = "mis", sampler = "sobol", scenePath;
-  bool noFluorescence = false;
+  double checkpointSeconds = 0;
+  std::string output, bandsText, lightSampling = "mis", sampler = "sobol", scenePath, cropText,
+                                 rangeText, resumePath;
+  bool noFluorescence = false, tileOfArray = false;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   app.add_option("--spp", spp, "Samples per pixel (default: the scene's <sampl>)")
@@ -85,6 +149,17 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"sobol", "independent"}));
   app.add_flag("--no-fluorescence", noFluorescence,
                "Render fluorescent materials as their ordinary reflectance (for comparisons)");
+  app.add_option("--crop", cropText,
+                 "Render only pixels X0,Y0,X1,Y1 (half-open) of the full image");
+  app.add_option("--spp-range", rangeText, "Render samples A..B-1 of each pixel's sequence (A:B)");
+  app.add_flag("--tile-of-array", tileOfArray,
+               "Render the horizontal strip SLURM_ARRAY_TASK_ID of SLURM_ARRAY_TASK_COUNT, to "
+               "OUT.part<ID>.exr");
+  app.add_option("--checkpoint", checkpointSeconds,
+                 "Also write the EXR every SECONDS while rendering")
+      ->check(CLI::Range(1.0, 1e9));
+  app.add_option("--resume", resumePath,
+                 "Continue the render stored in this EXR (written by an interrupted run)");
   app.add_option("scene", scenePath, "Scene file (.scn)")->required();
   try {
     app.parse(argc, argv);
@@ -97,6 +172,7 @@ int run(int argc, char** argv) {
   if (noFluorescence)
     for (auto& o : desc.objects) o.fluorescence.reset();
   const nx::RenderScene scene = nx::buildRenderScene(desc);
+  const int width = scene.settings.width, height = scene.settings.height;
 
   nx::RenderOptions options;
   options.samples = spp;
@@ -107,12 +183,46 @@ int run(int argc, char** argv) {
                                                    : nx::LightSampling::Mis;
   options.sampler =
       sampler == "independent" ? nx::SamplerKind::Independent : nx::SamplerKind::SobolOwen;
+  if (!rangeText.empty()) {
+    if (spp > 0) throw nx::Error("--spp-range and --spp: give one of them");
+    const auto r = integers(rangeText, ':', 2, "--spp-range");
+    if (r[0] < 0 || r[1] <= r[0] || r[1] > (1LL << 30))
+      throw nx::Error("--spp-range: expected 0 <= A < B <= 2^30, found " + rangeText);
+    options.firstSample = static_cast<int>(r[0]);
+    options.samples = static_cast<int>(r[1] - r[0]);
+  }
+  if (!cropText.empty() && tileOfArray)
+    throw nx::Error("--crop and --tile-of-array: give one of them");
+  if (!cropText.empty()) {
+    const auto c = integers(cropText, ',', 4, "--crop");
+    if (c[0] < 0 || c[1] < 0 || c[2] > width || c[3] > height || c[2] <= c[0] || c[3] <= c[1])
+      throw nx::Error("--crop: expected 0 <= X0 < X1 <= " + std::to_string(width) +
+                      " and 0 <= Y0 < Y1 <= " + std::to_string(height) + ", found " + cropText);
+    options.crop = nx::PixelRect{static_cast<int>(c[0]), static_cast<int>(c[1]),
+                                 static_cast<int>(c[2]), static_cast<int>(c[3])};
+  }
+  std::string arrayTask;
+  if (tileOfArray) {
+    if (output.empty())
+      throw nx::Error("--tile-of-array needs -o OUT.exr (the parts are OUT.part<ID>.exr)");
+    const long long minId =
+        std::getenv("SLURM_ARRAY_TASK_MIN") ? envInteger("SLURM_ARRAY_TASK_MIN") : 0;
+    const long long id = envInteger("SLURM_ARRAY_TASK_ID") - minId,
+                    count = envInteger("SLURM_ARRAY_TASK_COUNT");
+    if (count < 1 || count > height || id < 0 || id >= count)
+      throw nx::Error("--tile-of-array: task " + std::to_string(id) + " of " +
+                      std::to_string(count) + " does not fit an image of " +
+                      std::to_string(height) + " rows");
+    options.crop = nx::PixelRect{0, static_cast<int>(height * id / count), width,
+                                 static_cast<int>(height * (id + 1) / count)};
+    arrayTask = std::to_string(id);
+  }
 
   std::string exrPath, previewPath;
   if (!output.empty()) {
     if (std::filesystem::path(output).extension() != ".exr")
       throw nx::Error(output + ": expected an output file name ending in .exr");
-    exrPath = output;
+    exrPath = tileOfArray ? replaceExtension(output, ".part" + arrayTask + ".exr") : output;
     previewPath = replaceExtension(output, ".png");
   } else {
     previewPath = scene.settings.outputPath.empty()
@@ -123,38 +233,110 @@ int run(int argc, char** argv) {
                       ": expected a <path> ending in .png or .bmp, found '" + previewPath + "'");
     exrPath = replaceExtension(previewPath, ".exr");
   }
+  // A part of an image (crop or sample range) gets no preview: the merged image does.
+  const bool wholeImage = !options.crop && rangeText.empty();
   nx::checkWritable(exrPath);
-  nx::checkWritable(previewPath);
+  if (wholeImage) nx::checkWritable(previewPath);
+
+  std::ifstream sceneFile(scenePath, std::ios::binary);
+  std::ostringstream sceneBytes;
+  sceneBytes << sceneFile.rdbuf();
+  const std::string renderKey =
+      hex(fnv1a(sampler + "|" + lightSampling + "|" + (noFluorescence ? "nofl" : "fl") + "|" +
+                std::to_string(nx::kLanes) + "|" + sceneBytes.str()));
+  const nx::Xyz white = nx::spectrumToXyz(scene.previewWhite);
+  const int firstSample = options.firstSample;
+  const int sppTotal = options.samples > 0 ? options.samples : scene.settings.samples;
+  const uint32_t seedUsed = options.seed ? *options.seed : scene.settings.seed;
+  const nx::SpectralBands bands = options.bands ? *options.bands : scene.settings.bands;
+
+  std::optional<nx::Film> resumeFilm;
+  if (!resumePath.empty()) {
+    const nx::SpectralImage prev = nx::readSpectralExr(resumePath);
+    auto attr = [&](const char* k) {
+      const auto it = prev.attributes.find(k);
+      return it == prev.attributes.end() ? std::string() : it->second;
+    };
+    const nx::PixelRect want = options.crop ? *options.crop : nx::PixelRect{0, 0, width, height};
+    if (attr("nxrender.renderKey") != renderKey)
+      throw nx::Error(resumePath + ": was rendered from another scene file or with other options");
+    if (attr("nxrender.seed") != std::to_string(seedUsed) ||
+        attr("nxrender.bands") != bands.toString() ||
+        attr("nxrender.sampleRange") !=
+            std::to_string(firstSample) + ":" + std::to_string(firstSample + sppTotal))
+      throw nx::Error(resumePath + ": has another seed, bands or sample range (" +
+                      attr("nxrender.seed") + ", " + attr("nxrender.bands") + ", " +
+                      attr("nxrender.sampleRange") + ") than this render");
+    if (prev.displayWidth() != width || prev.displayHeight() != height || prev.originX != want.x0 ||
+        prev.originY != want.y0 || prev.width != want.width() || prev.height != want.height())
+      throw nx::Error(resumePath + ": covers another image size or crop than this render");
+    resumeFilm = nx::filmFromImage(prev);
+    options.resumeFrom = &*resumeFilm;
+  }
+
+  auto imageOf = [&](const nx::Film& film, double seconds) {
+    nx::SpectralImage image = nx::toSpectralImage(film);
+    image.attributes["nxrender.version"] = NX_VERSION;
+    image.attributes["nxrender.scene"] = scenePath;
+    image.attributes["nxrender.renderKey"] = renderKey;
+    image.attributes["nxrender.mode"] = modeName(scene.settings.mode);
+    image.attributes["nxrender.sampleRange"] =
+        std::to_string(firstSample) + ":" + std::to_string(firstSample + sppTotal);
+    image.attributes["nxrender.seed"] = std::to_string(seedUsed);
+    image.attributes["nxrender.bands"] = film.bands().toString();
+    image.attributes["nxrender.sampler"] = sampler;
+    image.attributes["nxrender.lightSampling"] = lightSampling;
+    image.attributes["nxrender.fluorescence"] = scene.hasFluorescence ? "on" : "off";
+    image.attributes["nxrender.previewWhite"] = std::to_string(white.x / white.y) + "," +
+                                                std::to_string(1.0) + "," +
+                                                std::to_string(white.z / white.y);
+    image.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
+    return image;
+  };
 
   const int nThreads = threads > 0 ? threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<size_t>(nThreads));
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  options.stop = &gStop;
   Progress progress;
-  options.progress = [&](int done, int total) { progress.update(done, total); };
+  options.progress = [&](int64_t done, int64_t total) { progress.update(done, total); };
+  auto lastCheckpoint = std::chrono::steady_clock::now();
+  const auto start = lastCheckpoint;
+  if (checkpointSeconds > 0)
+    options.afterPass = [&](const nx::Film& film) {
+      const auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - lastCheckpoint).count() < checkpointSeconds) return;
+      nx::writeSpectralExr(exrPath,
+                           imageOf(film, std::chrono::duration<double>(now - start).count()));
+      lastCheckpoint = now;
+    };
   const nx::RenderOutput result = nx::render(scene, options);
+  progress.finish();
 
-  nx::SpectralImage image = nx::toSpectralImage(result.film);
-  image.attributes["nxrender.version"] = NX_VERSION;
-  image.attributes["nxrender.scene"] = scenePath;
-  image.attributes["nxrender.mode"] = modeName(scene.settings.mode);
-  image.attributes["nxrender.samplesPerPixel"] = std::to_string(result.samplesPerPixel);
-  image.attributes["nxrender.seed"] = std::to_string(result.seed);
-  image.attributes["nxrender.bands"] = result.film.bands().toString();
-  image.attributes["nxrender.sampler"] = sampler;
-  image.attributes["nxrender.lightSampling"] = lightSampling;
-  image.attributes["nxrender.renderSeconds"] = std::to_string(result.stats.seconds);
-  image.attributes["nxrender.fluorescence"] = scene.hasFluorescence ? "on" : "off";
+  const nx::SpectralImage image = imageOf(result.film, result.stats.seconds);
   nx::writeSpectralExr(exrPath, image);
-  nx::writePreview(previewPath, image.width, image.height,
-                   nx::previewPixels(result.film, scene.previewWhite));
+  if (result.stats.stopped) {
+    std::fprintf(stderr,
+                 "nxrender: stopped by signal %d; wrote the %llu samples finished so far to %s "
+                 "(continue with --resume %s)\n",
+                 gSignal.load(), static_cast<unsigned long long>(result.stats.samples),
+                 exrPath.c_str(), exrPath.c_str());
+    return 3;
+  }
+  if (wholeImage)
+    nx::writePreview(previewPath, image.width, image.height,
+                     nx::previewPixels(result.film, scene.previewWhite));
 
   const double s = result.stats.seconds;
   std::fprintf(stderr,
                "nxrender: %dx%d, %d spp, %s, %d threads: %.2f s, %.3g samples/s, %.3g rays/s; "
-               "wrote %s and %s\n",
-               image.width, image.height, result.samplesPerPixel, modeName(scene.settings.mode),
-               nThreads, s, static_cast<double>(result.stats.samples) / s,
-               static_cast<double>(result.stats.rays) / s, exrPath.c_str(), previewPath.c_str());
+               "wrote %s%s%s\n",
+               image.width, image.height, sppTotal, modeName(scene.settings.mode), nThreads, s,
+               static_cast<double>(result.stats.samples) / s,
+               static_cast<double>(result.stats.rays) / s, exrPath.c_str(),
+               wholeImage ? " and " : "", wholeImage ? previewPath.c_str() : "");
   if (result.stats.nonFinite > 0)
     std::fprintf(stderr,
                  "nxrender: warning: %llu samples with a NaN or infinite value were dropped\n",

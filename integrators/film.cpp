@@ -4,9 +4,9 @@
 
 namespace nx {
 
-Film::Film(int width, int height, const SpectralBands& bands)
-    : width_(width), height_(height), bands_(bands), nBands_(bands.count()) {
-  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+Film::Film(int width, int height, const PixelRect& rect, const SpectralBands& bands)
+    : width_(width), height_(height), rect_(rect), bands_(bands), nBands_(bands.count()) {
+  const size_t pixels = static_cast<size_t>(rect.width()) * static_cast<size_t>(rect.height());
   bandSums_.assign(pixels * static_cast<size_t>(nBands_), 0.0);
   xyzSums_.assign(pixels * 3, 0.0);
   counts_.assign(pixels, 0);
@@ -38,12 +38,21 @@ bool Film::addSample(Pixel& pixel, const SampledWavelengths& lambda,
   return true;
 }
 
-void Film::store(int x, int y, const Pixel& pixel) {
+void Film::add(int x, int y, const Pixel& pixel) {
   const size_t i = index(x, y);
   for (int b = 0; b < nBands_; ++b)
-    bandSums_[i * nBands_ + b] = pixel.bands[static_cast<size_t>(b)];
-  for (int c = 0; c < 3; ++c) xyzSums_[i * 3 + c] = pixel.xyz[c];
-  counts_[i] = pixel.samples;
+    bandSums_[i * nBands_ + b] += pixel.bands[static_cast<size_t>(b)];
+  for (int c = 0; c < 3; ++c) xyzSums_[i * 3 + c] += pixel.xyz[c];
+  counts_[i] += pixel.samples;
+}
+
+void Film::setFromMeans(int x, int y, const float* bandMeans, const double xyzMean[3],
+                        uint32_t samples) {
+  const size_t i = index(x, y);
+  for (int b = 0; b < nBands_; ++b)
+    bandSums_[i * nBands_ + b] = static_cast<double>(bandMeans[b]) * samples;
+  for (int c = 0; c < 3; ++c) xyzSums_[i * 3 + c] = xyzMean[c] * samples;
+  counts_[i] = samples;
 }
 
 double Film::bandMean(int x, int y, int b) const {

@@ -1,5 +1,6 @@
 #pragma once
-// The film: per-pixel sums of band radiance and XYZ, filled tile by tile without locks.
+// The film: per-pixel sums of band radiance and XYZ over a rectangle of the image (the whole
+// image or a crop), filled tile by tile without locks.
 
 #include <algorithm>
 #include <cstdint>
@@ -12,14 +13,27 @@
 
 namespace nx {
 
-/// Estimates of band-averaged radiance and of XYZ for each pixel, as sums over samples.
+/// A pixel rectangle [x0, x1) x [y0, y1) of the full image.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+};
+
+/// Estimates of band-averaged radiance and of XYZ for each pixel of a rectangle, as sums over
+/// samples. Coordinates are those of the full image.
 class Film {
 public:
-  /// A film of width x height pixels for the given output bands.
-  Film(int width, int height, const SpectralBands& bands);
+  /// A film for `rect` of a width x height image, with the given output bands.
+  Film(int width, int height, const PixelRect& rect, const SpectralBands& bands);
+  /// A film covering the whole image.
+  Film(int width, int height, const SpectralBands& bands)
+      : Film(width, height, {0, 0, width, height}, bands) {}
 
-  int width() const { return width_; }
-  int height() const { return height_; }
+  int width() const { return width_; }   ///< full image width
+  int height() const { return height_; } ///< full image height
+  const PixelRect& rect() const { return rect_; }
   const SpectralBands& bands() const { return bands_; }
   /// The wavelength range the bands need: what the renderer traces, no wider.
   double minNm() const { return bands_.lower(0); }
@@ -47,8 +61,11 @@ public:
   /// and counted (returns false).
   bool addSample(Pixel& pixel, const SampledWavelengths& lambda, const SampledSpectrum& L) const;
 
-  /// Stores a finished pixel (each pixel is written by exactly one tile task).
-  void store(int x, int y, const Pixel& pixel);
+  /// Adds a pixel's accumulated samples (each pixel is written by one tile task at a time).
+  void add(int x, int y, const Pixel& pixel);
+  /// Sets a pixel from stored means and their sample count (resuming from a file).
+  void setFromMeans(int x, int y, const float* bandMeans, const double xyzMean[3],
+                    uint32_t samples);
 
   /// Mean band radiance of pixel (x, y), band b.
   double bandMean(int x, int y, int b) const;
@@ -58,8 +75,11 @@ public:
   uint32_t samples(int x, int y) const { return counts_[index(x, y)]; }
 
 private:
-  size_t index(int x, int y) const { return static_cast<size_t>(y) * width_ + x; }
+  size_t index(int x, int y) const {
+    return static_cast<size_t>(y - rect_.y0) * rect_.width() + (x - rect_.x0);
+  }
   int width_, height_;
+  PixelRect rect_;
   SpectralBands bands_;
   int nBands_;
   std::vector<double> bandSums_; ///< [pixel][band]

@@ -2,10 +2,10 @@
 
 #include <tbb/parallel_for.h>
 
-#include <atomic>
 #include <chrono>
 #include <mutex>
 
+#include "core/error.h"
 #include "core/matrix3.h"
 #include "spectra/colour.h"
 #include "spectra/tonemap.h"
@@ -17,11 +17,24 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const RenderSettings& settings = scene.settings;
   const SpectralBands bands = options.bands ? *options.bands : settings.bands;
-  RenderOutput out{Film(settings.width, settings.height, bands), {}, 0, 0};
+  const PixelRect rect =
+      options.crop ? *options.crop : PixelRect{0, 0, settings.width, settings.height};
+  if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > settings.width || rect.y1 > settings.height ||
+      rect.width() <= 0 || rect.height() <= 0)
+    throw Error("crop " + std::to_string(rect.x0) + "," + std::to_string(rect.y0) + "," +
+                std::to_string(rect.x1) + "," + std::to_string(rect.y1) +
+                " is not a non-empty rectangle inside the " + std::to_string(settings.width) + "x" +
+                std::to_string(settings.height) + " image");
+  RenderOutput out{options.resumeFrom ? *options.resumeFrom
+                                      : Film(settings.width, settings.height, rect, bands),
+                   {},
+                   options.firstSample,
+                   0,
+                   0};
   out.samplesPerPixel = options.samples > 0 ? options.samples : settings.samples;
   out.seed = options.seed ? *options.seed : settings.seed;
-  const int spp = out.samplesPerPixel;
   const uint32_t seed = out.seed;
+  const int begin = options.firstSample, end = options.firstSample + out.samplesPerPixel;
 
   const LightSampler lights(scene);
   const IntegratorContext ctx{&scene, &lights, options.lightSampling,
@@ -30,50 +43,61 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const bool whitted = settings.mode == RenderMode::Rt;
 
   const int ts = std::max(1, options.tileSize);
-  const int tilesX = (settings.width + ts - 1) / ts, tilesY = (settings.height + ts - 1) / ts;
+  const int tilesX = (rect.width() + ts - 1) / ts, tilesY = (rect.height() + ts - 1) / ts;
   const int tiles = tilesX * tilesY;
-  std::atomic<uint64_t> rays{0}, nonFinite{0};
-  std::atomic<int> finished{0};
+  const int passSize = std::max(1, options.passSamples);
+  const int passes = (out.samplesPerPixel + passSize - 1) / passSize;
+  std::atomic<uint64_t> rays{0}, nonFinite{0}, samples{0};
+  std::atomic<int64_t> finished{0};
   std::mutex progressMutex;
 
-  tbb::parallel_for(0, tiles, [&](int tile) {
-    const int x0 = (tile % tilesX) * ts, y0 = (tile / tilesX) * ts;
-    const int x1 = std::min(x0 + ts, settings.width), y1 = std::min(y0 + ts, settings.height);
-    TraceCounters counters;
-    uint64_t dropped = 0;
-    Film::Pixel pixel = out.film.newPixel();
-    for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; ++x) {
-        out.film.resetPixel(pixel);
-        const uint32_t pixelIndex =
-            static_cast<uint32_t>(y) * static_cast<uint32_t>(settings.width) +
-            static_cast<uint32_t>(x);
-        for (int s = 0; s < spp; ++s) {
-          PixelSampleStream rng(options.sampler, pixelIndex, static_cast<uint32_t>(s), seed);
-          SampledWavelengths lambda = wavelengths.sample(rng.next1D());
-          const Sample2 jitter = rng.next2D();
-          const Ray ray = scene.camera.generateRay(static_cast<double>(x) + jitter.u,
-                                                   static_cast<double>(y) + jitter.v);
-          const SampledSpectrum L = whitted ? traceWhitted(ctx, ray, lambda, rng, counters)
-                                            : tracePath(ctx, ray, lambda, rng, counters);
-          if (!out.film.addSample(pixel, lambda, L)) ++dropped;
+  for (int pass = 0; pass < passes && !out.stats.stopped; ++pass) {
+    const int passEnd = std::min(end, begin + (pass + 1) * passSize);
+    tbb::parallel_for(0, tiles, [&](int tile) {
+      if (options.stop && options.stop->load(std::memory_order_relaxed)) return;
+      const int x0 = rect.x0 + (tile % tilesX) * ts, y0 = rect.y0 + (tile / tilesX) * ts;
+      const int x1 = std::min(x0 + ts, rect.x1), y1 = std::min(y0 + ts, rect.y1);
+      TraceCounters counters;
+      uint64_t dropped = 0, taken = 0;
+      Film::Pixel pixel = out.film.newPixel();
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          Film::resetPixel(pixel);
+          const uint32_t pixelIndex =
+              static_cast<uint32_t>(y) * static_cast<uint32_t>(settings.width) +
+              static_cast<uint32_t>(x);
+          // Each pixel continues after the samples it already has (a resumed film may hold
+          // more in some pixels than in others).
+          for (int s = begin + static_cast<int>(out.film.samples(x, y)); s < passEnd; ++s) {
+            PixelSampleStream rng(options.sampler, pixelIndex, static_cast<uint32_t>(s), seed);
+            SampledWavelengths lambda = wavelengths.sample(rng.next1D());
+            const Sample2 jitter = rng.next2D();
+            const Ray ray = scene.camera.generateRay(static_cast<double>(x) + jitter.u,
+                                                     static_cast<double>(y) + jitter.v);
+            const SampledSpectrum L = whitted ? traceWhitted(ctx, ray, lambda, rng, counters)
+                                              : tracePath(ctx, ray, lambda, rng, counters);
+            if (!out.film.addSample(pixel, lambda, L)) ++dropped;
+          }
+          taken += pixel.samples;
+          out.film.add(x, y, pixel);
         }
-        out.film.store(x, y, pixel);
       }
-    }
-    rays += counters.rays;
-    nonFinite += dropped;
-    const int done = ++finished;
-    if (options.progress) {
-      std::lock_guard<std::mutex> lock(progressMutex);
-      options.progress(done, tiles);
-    }
-  });
+      rays += counters.rays;
+      nonFinite += dropped;
+      samples += taken;
+      const int64_t done = ++finished;
+      if (options.progress) {
+        std::lock_guard<std::mutex> lock(progressMutex);
+        options.progress(done, static_cast<int64_t>(tiles) * passes);
+      }
+    });
+    if (options.stop && options.stop->load()) out.stats.stopped = true;
+    if (options.afterPass) options.afterPass(out.film);
+  }
 
   out.stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out.stats.samples =
-      static_cast<uint64_t>(settings.width) * settings.height * static_cast<uint64_t>(spp);
+  out.stats.samples = samples;
   out.stats.rays = rays;
   out.stats.nonFinite = nonFinite;
   return out;
@@ -81,52 +105,81 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
 
 SpectralImage toSpectralImage(const Film& film) {
   SpectralImage img;
-  img.width = film.width();
-  img.height = film.height();
+  const PixelRect& r = film.rect();
+  img.width = r.width();
+  img.height = r.height();
+  img.originX = r.x0;
+  img.originY = r.y0;
+  img.fullWidth = film.width();
+  img.fullHeight = film.height();
   img.bands = film.bands();
   const int nb = film.bands().count();
-  img.radiance.reserve(static_cast<size_t>(img.width) * img.height * nb);
-  img.rgb.reserve(static_cast<size_t>(img.width) * img.height * 3);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) {
+  const size_t pixels = static_cast<size_t>(img.width) * img.height;
+  img.radiance.reserve(pixels * nb);
+  img.rgb.reserve(pixels * 3);
+  img.xyz.reserve(pixels * 3);
+  img.sampleCount.reserve(pixels);
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) {
       for (int b = 0; b < nb; ++b)
         img.radiance.push_back(static_cast<float>(film.bandMean(x, y, b)));
-      const Rgb c = xyzToLinearSrgb(film.xyzMean(x, y));
+      const Xyz xyz = film.xyzMean(x, y);
+      const Rgb c = xyzToLinearSrgb(xyz);
       img.rgb.push_back(static_cast<float>(std::max(c.r, 0.0)));
       img.rgb.push_back(static_cast<float>(std::max(c.g, 0.0)));
       img.rgb.push_back(static_cast<float>(std::max(c.b, 0.0)));
+      img.xyz.push_back(static_cast<float>(xyz.x));
+      img.xyz.push_back(static_cast<float>(xyz.y));
+      img.xyz.push_back(static_cast<float>(xyz.z));
+      img.sampleCount.push_back(film.samples(x, y));
     }
   return img;
 }
 
-std::vector<uint8_t> previewPixels(const Film& film, const Spectrum& white) {
-  // Bradford cone response matrix (Lam 1985), von Kries scaling from `white` to D65.
+Film filmFromImage(const SpectralImage& img) {
+  if (img.sampleCount.empty() || img.xyz.empty())
+    throw Error("the image holds no per-pixel sample counts or XYZ channels to continue from");
+  Film film(img.displayWidth(), img.displayHeight(),
+            {img.originX, img.originY, img.originX + img.width, img.originY + img.height},
+            img.bands);
+  const int nb = img.bands.count();
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const size_t i = static_cast<size_t>(y) * img.width + x;
+      const double xyz[3] = {img.xyz[i * 3], img.xyz[i * 3 + 1], img.xyz[i * 3 + 2]};
+      film.setFromMeans(img.originX + x, img.originY + y, &img.radiance[i * nb], xyz,
+                        img.sampleCount[i]);
+    }
+  return film;
+}
+
+std::vector<uint8_t> previewPixels(const std::vector<Xyz>& xyz, const Xyz& w) {
+  // Bradford cone response matrix (Lam 1985), von Kries scaling from `w` to D65.
   const Matrix3 bradford{
       {{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}}};
-  const Xyz w = spectrumToXyz(white);
   const Xyz d65 = d65WhiteXyz();
   const Vector3d src = multiply(bradford, {w.x / w.y, 1.0, w.z / w.y});
   const Vector3d dst = multiply(bradford, {d65.x, d65.y, d65.z});
-  Matrix3 scale{};
-  for (int i = 0; i < 3; ++i) scale[i][i] = dst[i] / src[i];
-  Matrix3 adapt{}, tmp{};
   const Matrix3 inv = inverse(bradford);
+  Matrix3 adapt{};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) tmp[i][j] += scale[i][k] * bradford[k][j];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) adapt[i][j] += inv[i][k] * tmp[k][j];
-
+      for (int k = 0; k < 3; ++k) adapt[i][j] += inv[i][k] * (dst[k] / src[k]) * bradford[k][j];
   std::vector<Rgb> rgb;
-  rgb.reserve(static_cast<size_t>(film.width()) * film.height());
-  for (int y = 0; y < film.height(); ++y)
-    for (int x = 0; x < film.width(); ++x) {
-      const Xyz c = film.xyzMean(x, y);
-      const Vector3d a = multiply(adapt, {c.x, c.y, c.z});
-      rgb.push_back(xyzToLinearSrgb({a[0], a[1], a[2]}));
-    }
+  rgb.reserve(xyz.size());
+  for (const Xyz& c : xyz) {
+    const Vector3d a = multiply(adapt, {c.x, c.y, c.z});
+    rgb.push_back(xyzToLinearSrgb({a[0], a[1], a[2]}));
+  }
   return tonemapReinhard(rgb, {});
+}
+
+std::vector<uint8_t> previewPixels(const Film& film, const Spectrum& white) {
+  std::vector<Xyz> xyz;
+  const PixelRect& r = film.rect();
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) xyz.push_back(film.xyzMean(x, y));
+  return previewPixels(xyz, spectrumToXyz(white));
 }
 
 } // namespace nx

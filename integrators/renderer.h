@@ -1,7 +1,9 @@
 #pragma once
-// Rendering a scene: TBB tasks over image tiles, each sample a pure function of
-// (pixel, sample index, seed), so the image does not depend on the thread count.
+// Rendering a scene: progressive passes of samples, each pass TBB tasks over image tiles;
+// each sample a pure function of (pixel, sample index, seed), so the image does not depend
+// on the thread count, and renders split by crops or sample ranges merge exactly.
 
+#include <atomic>
 #include <functional>
 #include <optional>
 
@@ -14,45 +16,62 @@ namespace nx {
 
 /// What to render beyond the scene itself.
 struct RenderOptions {
-  int samples = 0;                    ///< samples per pixel; 0 = the scene's <sampl>
+  int samples = 0;     ///< samples per pixel; 0 = the scene's <sampl>
+  int firstSample = 0; ///< render samples [firstSample, firstSample + samples) of each pixel
+  std::optional<PixelRect> crop;      ///< default: the whole image
   std::optional<uint32_t> seed;       ///< default: the scene's <seed>
   std::optional<SpectralBands> bands; ///< default: the scene's <bands>
   LightSampling lightSampling = LightSampling::Mis;
   SamplerKind sampler = SamplerKind::SobolOwen;
   int tileSize = 16;
+  int passSamples = 8; ///< samples per pixel in one pass (progress, checkpoints, stops)
   /// Runs the fluorescence-capable path tracer even without fluorescent materials (to
   /// measure what the feature costs when present but unused).
   bool forceFluorescencePath = false;
+  /// When set, no new tile is started once it becomes true (SIGINT, SIGTERM, time limit);
+  /// the film then holds every finished tile's samples with their true counts.
+  const std::atomic<bool>* stop = nullptr;
+  /// A film to continue (resume): each pixel continues after the samples it already has.
+  const Film* resumeFrom = nullptr;
   /// Called after each finished tile with (finished, total); may be called from any thread,
   /// never concurrently.
-  std::function<void(int, int)> progress;
+  std::function<void(int64_t, int64_t)> progress;
+  /// Called on the calling thread after each pass with the film so far (checkpoints).
+  std::function<void(const Film&)> afterPass;
 };
 
 /// Counters of a finished render.
 struct RenderStats {
   double seconds = 0;
-  uint64_t samples = 0;   ///< pixel samples
+  uint64_t samples = 0;   ///< pixel samples taken by this run
   uint64_t rays = 0;      ///< camera, scattered and shadow rays
   uint64_t nonFinite = 0; ///< samples dropped for a NaN or infinite value
+  bool stopped = false;   ///< ended early by the stop flag
 };
 
-/// A finished render.
+/// A finished (or stopped) render.
 struct RenderOutput {
   Film film;
   RenderStats stats;
-  int samplesPerPixel = 0;
+  int firstSample = 0, samplesPerPixel = 0; ///< the requested sample range
   uint32_t seed = 0;
 };
 
 /// Renders the scene with its mode (spectral_mcpt and mcpt: path tracing; rt: Whitted).
 RenderOutput render(const RenderScene& scene, const RenderOptions& options);
 
-/// The spectral image of a film: band means, and linear sRGB (D65) from XYZ with negatives
-/// clamped to 0.
+/// The spectral image of a film (its rectangle inside the full image): band means, XYZ,
+/// linear sRGB from XYZ with negatives clamped to 0, and per-pixel sample counts.
 SpectralImage toSpectralImage(const Film& film);
 
-/// An 8-bit preview: XYZ white-balanced from `white` to D65 (Bradford), converted to sRGB,
-/// tone-mapped (Reinhard 2002). Returns interleaved RGB bytes, top row first.
+/// Loads a film from a spectral image (to resume a render).
+Film filmFromImage(const SpectralImage& image);
+
+/// An 8-bit preview of linear XYZ pixels: white-balanced from the chromaticity of `white`
+/// to D65 (Bradford), converted to sRGB, tone-mapped (Reinhard 2002). Interleaved RGB bytes.
+std::vector<uint8_t> previewPixels(const std::vector<Xyz>& xyz, const Xyz& white);
+
+/// The preview of a film's rectangle.
 std::vector<uint8_t> previewPixels(const Film& film, const Spectrum& white);
 
 } // namespace nx

@@ -3,8 +3,11 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
@@ -24,11 +27,18 @@ void writeSpectralExr(const std::string& path, const SpectralImage& image) {
   const int nBands = image.bands.count();
   const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
   if (image.width <= 0 || image.height <= 0 || image.radiance.size() != pixels * nBands ||
-      image.rgb.size() != pixels * 3)
+      image.rgb.size() != pixels * 3 ||
+      (!image.sampleCount.empty() && image.sampleCount.size() != pixels) ||
+      (!image.xyz.empty() && image.xyz.size() != pixels * 3) || image.originX < 0 ||
+      image.originY < 0 || image.originX + image.width > image.displayWidth() ||
+      image.originY + image.height > image.displayHeight())
     throw Error(path + ": internal error: image buffers do not match its size");
 
   writeAtomically(path, [&](const std::string& temp) {
-    Imf::Header header(image.width, image.height);
+    const Imath::Box2i display({0, 0}, {image.displayWidth() - 1, image.displayHeight() - 1});
+    const Imath::Box2i data({image.originX, image.originY},
+                            {image.originX + image.width - 1, image.originY + image.height - 1});
+    Imf::Header header(display, data);
     header.compression() = Imf::ZIP_COMPRESSION;
     header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
     header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
@@ -40,19 +50,95 @@ void writeSpectralExr(const std::string& path, const SpectralImage& image) {
     for (int b = 0; b < nBands; ++b) {
       const std::string name = spectralChannelName(image.bands.centre(b));
       header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-      fb.insert(name, Imf::Slice(Imf::FLOAT, (char*)(image.radiance.data() + b), pixelStride,
-                                 pixelStride * image.width));
+      fb.insert(name, Imf::Slice::Make(Imf::FLOAT, image.radiance.data() + b, data, pixelStride,
+                                       pixelStride * image.width));
     }
     const char* rgbNames[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c) {
       header.channels().insert(rgbNames[c], Imf::Channel(Imf::FLOAT));
-      fb.insert(rgbNames[c], Imf::Slice(Imf::FLOAT, (char*)(image.rgb.data() + c),
-                                        sizeof(float) * 3, sizeof(float) * 3 * image.width));
+      fb.insert(rgbNames[c], Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + c, data,
+                                              sizeof(float) * 3, sizeof(float) * 3 * image.width));
+    }
+    const char* xyzNames[3] = {"X", "Y", "Z"};
+    for (int c = 0; c < 3 && !image.xyz.empty(); ++c) {
+      header.channels().insert(xyzNames[c], Imf::Channel(Imf::FLOAT));
+      fb.insert(xyzNames[c], Imf::Slice::Make(Imf::FLOAT, image.xyz.data() + c, data,
+                                              sizeof(float) * 3, sizeof(float) * 3 * image.width));
+    }
+    if (!image.sampleCount.empty()) {
+      header.channels().insert(kSampleCountChannel, Imf::Channel(Imf::UINT));
+      fb.insert(kSampleCountChannel,
+                Imf::Slice::Make(Imf::UINT, image.sampleCount.data(), data, sizeof(uint32_t),
+                                 sizeof(uint32_t) * image.width));
     }
     Imf::OutputFile file(temp.c_str(), header);
     file.setFrameBuffer(fb);
     file.writePixels(image.height);
   });
+}
+
+SpectralImage readSpectralExr(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& h = file.header();
+    SpectralImage img;
+    const Imath::Box2i dw = h.dataWindow(), disp = h.displayWindow();
+    if (disp.min.x != 0 || disp.min.y != 0)
+      throw Error(path + ": expected a display window starting at 0,0");
+    img.fullWidth = disp.max.x + 1;
+    img.fullHeight = disp.max.y + 1;
+    img.originX = dw.min.x;
+    img.originY = dw.min.y;
+    img.width = dw.max.x - dw.min.x + 1;
+    img.height = dw.max.y - dw.min.y + 1;
+    for (auto it = h.begin(); it != h.end(); ++it)
+      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        img.attributes[it.name()] = s->value();
+    img.attributes.erase("spectralLayoutVersion");
+    img.attributes.erase("emissiveUnits");
+    const auto bandsAttr = img.attributes.find("nxrender.bands");
+    if (bandsAttr == img.attributes.end())
+      throw Error(path + ": expected an nxrender.bands attribute, found none");
+    img.bands = SpectralBands::parse(bandsAttr->second);
+    const int nb = img.bands.count();
+    for (int b = 0; b < nb; ++b)
+      if (!h.channels().findChannel(spectralChannelName(img.bands.centre(b))))
+        throw Error(path + ": expected a channel " + spectralChannelName(img.bands.centre(b)) +
+                    ", found none");
+    const size_t pixels = static_cast<size_t>(img.width) * img.height;
+    img.radiance.assign(pixels * nb, 0.0f);
+    img.rgb.assign(pixels * 3, 0.0f);
+    Imf::FrameBuffer fb;
+    for (int b = 0; b < nb; ++b)
+      fb.insert(spectralChannelName(img.bands.centre(b)),
+                Imf::Slice::Make(Imf::FLOAT, img.radiance.data() + b, dw, sizeof(float) * nb,
+                                 sizeof(float) * nb * img.width));
+    const char* rgbNames[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c)
+      fb.insert(rgbNames[c], Imf::Slice::Make(Imf::FLOAT, img.rgb.data() + c, dw, sizeof(float) * 3,
+                                              sizeof(float) * 3 * img.width));
+    const char* xyzNames[3] = {"X", "Y", "Z"};
+    if (h.channels().findChannel("X") && h.channels().findChannel("Y") &&
+        h.channels().findChannel("Z")) {
+      img.xyz.assign(pixels * 3, 0.0f);
+      for (int c = 0; c < 3; ++c)
+        fb.insert(xyzNames[c], Imf::Slice::Make(Imf::FLOAT, img.xyz.data() + c, dw,
+                                                sizeof(float) * 3, sizeof(float) * 3 * img.width));
+    }
+    if (h.channels().findChannel(kSampleCountChannel)) {
+      img.sampleCount.assign(pixels, 0);
+      fb.insert(kSampleCountChannel,
+                Imf::Slice::Make(Imf::UINT, img.sampleCount.data(), dw, sizeof(uint32_t),
+                                 sizeof(uint32_t) * img.width));
+    }
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    return img;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(path + ": cannot read the EXR file: " + e.what());
+  }
 }
 
 } // namespace nx

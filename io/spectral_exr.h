@@ -2,6 +2,7 @@
 // Spectral OpenEXR files in the layout of Fichet, Pacanowski & Wilkie, "An OpenEXR Layout
 // for Spectral Images", JCGT 10(3), 2021.
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -10,22 +11,41 @@
 
 namespace nx {
 
-/// A spectral image ready to be written: band radiances plus a linear sRGB preview.
+/// A spectral image, or a rectangular part (crop) of one: band radiances, a linear sRGB
+/// preview and per-pixel sample counts.
 struct SpectralImage {
-  int width = 0, height = 0;
+  int width = 0, height = 0;         ///< size of the stored region (EXR data window)
+  int originX = 0, originY = 0;      ///< its top-left pixel in the full image
+  int fullWidth = 0, fullHeight = 0; ///< the full image (EXR display window); 0 = the region
   SpectralBands bands;
-  std::vector<float> radiance; ///< [pixel][band], W m^-2 sr^-1 nm^-1 averaged over the band
-  std::vector<float> rgb;      ///< [pixel][3], linear sRGB (D65), negatives already clamped
+  std::vector<float> radiance;       ///< [pixel][band], W m^-2 sr^-1 nm^-1 averaged over the band
+  std::vector<float> rgb;            ///< [pixel][3], linear sRGB (D65), negatives already clamped
+  std::vector<float> xyz;            ///< [pixel][3], CIE XYZ (unclamped); empty: not stored
+  std::vector<uint32_t> sampleCount; ///< [pixel] samples behind each value; empty: not stored
   std::map<std::string, std::string> attributes; ///< provenance, written as string attributes
+
+  /// Full image size (the region's when fullWidth/fullHeight are 0).
+  int displayWidth() const { return fullWidth > 0 ? fullWidth : width; }
+  int displayHeight() const { return fullHeight > 0 ? fullHeight : height; }
 };
+
+/// Name of the per-pixel sample-count channel (not a spectral channel name).
+inline constexpr const char* kSampleCountChannel = "SampleCount";
 
 /// Channel name of a band centred at nm for Stokes component 0, e.g. "S0.550,000000nm"
 /// (a comma as decimal separator, since a dot separates EXR layers).
 std::string spectralChannelName(double nm);
 
-/// Writes the image as a float32 OpenEXR with channels S0.<band>nm and R, G, B, the
-/// attributes spectralLayoutVersion = "1.0" and emissiveUnits = "W.m^-2.sr^-1", and every
-/// provenance attribute. The file appears atomically (temporary name, then rename).
+/// Writes the image as an OpenEXR with float channels S0.<band>nm, R, G, B and (when present)
+/// X, Y, Z, a uint channel SampleCount (when counts are present; these names are not spectral
+/// ones), the data
+/// window of the region inside the display window of the full image, the attributes
+/// spectralLayoutVersion = "1.0" and emissiveUnits = "W.m^-2.sr^-1", and every provenance
+/// attribute. The file appears atomically (temporary name, then rename).
 void writeSpectralExr(const std::string& path, const SpectralImage& image);
+
+/// Reads a spectral EXR written by writeSpectralExr (bands from the nxrender.bands attribute,
+/// else from uniform S0 channel names). Errors name the file and what is wrong.
+SpectralImage readSpectralExr(const std::string& path);
 
 } // namespace nx

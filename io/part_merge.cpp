@@ -1,0 +1,167 @@
+#include "io/part_merge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/error.h"
+#include "spectra/colour.h"
+
+namespace nx {
+namespace {
+
+std::string attribute(const ImagePart& p, const std::string& key) {
+  const auto it = p.image.attributes.find(key);
+  if (it == p.image.attributes.end())
+    throw Error(p.name + ": expected an nxrender part with the attribute " + key + ", found none");
+  return it->second;
+}
+
+std::pair<long long, long long> sampleRange(const ImagePart& p) {
+  const std::string r = attribute(p, "nxrender.sampleRange");
+  const auto colon = r.find(':');
+  char* end = nullptr;
+  const long long a = std::strtoll(r.c_str(), &end, 10);
+  const long long b =
+      colon == std::string::npos ? -1 : std::strtoll(r.c_str() + colon + 1, nullptr, 10);
+  if (colon == std::string::npos || end != r.c_str() + colon || b <= a || a < 0)
+    throw Error(p.name + ": expected a sample range A:B in nxrender.sampleRange, found '" + r +
+                "'");
+  return {a, b};
+}
+
+std::string rectText(int x0, int y0, int x1, int y1) {
+  return std::to_string(x0) + "," + std::to_string(y0) + "," + std::to_string(x1) + "," +
+         std::to_string(y1);
+}
+
+} // namespace
+
+SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
+  if (parts.empty()) throw Error("nothing to merge");
+  const ImagePart& first = parts.front();
+  const int width = first.image.displayWidth(), height = first.image.displayHeight();
+  const int nb = first.image.bands.count();
+  std::vector<std::pair<long long, long long>> ranges;
+  for (const ImagePart& p : parts) {
+    for (const char* key : {"nxrender.renderKey", "nxrender.seed", "nxrender.bands"})
+      if (attribute(p, key) != attribute(first, key))
+        throw Error(p.name + ": does not belong with " + first.name + ": its " + key + " is '" +
+                    attribute(p, key) + "', not '" + attribute(first, key) + "'" +
+                    (std::string(key) == "nxrender.renderKey"
+                         ? " (another scene file or other render options)"
+                         : ""));
+    if (p.image.displayWidth() != width || p.image.displayHeight() != height)
+      throw Error(p.name + ": does not belong with " + first.name + ": its image is " +
+                  std::to_string(p.image.displayWidth()) + "x" +
+                  std::to_string(p.image.displayHeight()) + ", not " + std::to_string(width) + "x" +
+                  std::to_string(height));
+    if (p.image.sampleCount.empty() || p.image.xyz.empty())
+      throw Error(p.name + ": expected SampleCount and X, Y, Z channels, found none");
+    ranges.push_back(sampleRange(p));
+    const long long want = ranges.back().second - ranges.back().first;
+    for (uint32_t c : p.image.sampleCount)
+      if (c != want)
+        throw Error(p.name + ": holds " + std::to_string(c) +
+                    " samples in some pixels instead of the " + std::to_string(want) +
+                    " of its range " + attribute(p, "nxrender.sampleRange") +
+                    " (an interrupted render? finish it with nxrender --resume)");
+  }
+  // Overlaps: two parts covering the same pixels with intersecting sample ranges.
+  for (size_t i = 0; i < parts.size(); ++i)
+    for (size_t j = i + 1; j < parts.size(); ++j) {
+      const SpectralImage &a = parts[i].image, &b = parts[j].image;
+      const int x0 = std::max(a.originX, b.originX), y0 = std::max(a.originY, b.originY);
+      const int x1 = std::min(a.originX + a.width, b.originX + b.width),
+                y1 = std::min(a.originY + a.height, b.originY + b.height);
+      if (x0 >= x1 || y0 >= y1) continue;
+      if (ranges[i].first < ranges[j].second && ranges[j].first < ranges[i].second)
+        throw Error(parts[j].name + ": overlaps " + parts[i].name + ": pixels " +
+                    rectText(x0, y0, x1, y1) + " with samples " +
+                    attribute(parts[j], "nxrender.sampleRange") + " and " +
+                    attribute(parts[i], "nxrender.sampleRange"));
+    }
+
+  SpectralImage out;
+  out.width = width;
+  out.height = height;
+  out.bands = first.image.bands;
+  out.attributes = first.image.attributes;
+  const size_t pixels = static_cast<size_t>(width) * height;
+  std::vector<double> bandSum(pixels * nb, 0.0), xyzSum(pixels * 3, 0.0);
+  std::vector<uint64_t> count(pixels, 0);
+  std::vector<int> covering(pixels, 0), owner(pixels, -1);
+  for (size_t k = 0; k < parts.size(); ++k) {
+    const SpectralImage& p = parts[k].image;
+    for (int y = 0; y < p.height; ++y)
+      for (int x = 0; x < p.width; ++x) {
+        const size_t src = static_cast<size_t>(y) * p.width + x;
+        const size_t dst = static_cast<size_t>(p.originY + y) * width + (p.originX + x);
+        const double n = p.sampleCount[src];
+        for (int b = 0; b < nb; ++b)
+          bandSum[dst * nb + b] += static_cast<double>(p.radiance[src * nb + b]) * n;
+        for (int c = 0; c < 3; ++c)
+          xyzSum[dst * 3 + c] += static_cast<double>(p.xyz[src * 3 + c]) * n;
+        count[dst] += p.sampleCount[src];
+        ++covering[dst];
+        owner[dst] = static_cast<int>(k);
+      }
+  }
+  // Missing regions: pixels with fewer samples than the best-covered pixel.
+  const uint64_t full = *std::max_element(count.begin(), count.end());
+  int mx0 = width, my0 = height, mx1 = -1, my1 = -1;
+  size_t missing = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (count[static_cast<size_t>(y) * width + x] < full) {
+        ++missing;
+        mx0 = std::min(mx0, x), my0 = std::min(my0, y), mx1 = std::max(mx1, x + 1),
+        my1 = std::max(my1, y + 1);
+      }
+  if (missing > 0)
+    throw Error("missing region: " + std::to_string(missing) + " pixels within " +
+                rectText(mx0, my0, mx1, my1) + " have fewer than the " + std::to_string(full) +
+                " samples of the others (a part is missing)");
+
+  out.radiance.resize(pixels * nb);
+  out.xyz.resize(pixels * 3);
+  out.rgb.resize(pixels * 3);
+  out.sampleCount.resize(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    out.sampleCount[i] = static_cast<uint32_t>(count[i]);
+    if (covering[i] == 1) { // a single part: its values, bit for bit
+      const SpectralImage& p = parts[static_cast<size_t>(owner[i])].image;
+      const size_t x = i % width, y = i / width;
+      const size_t src = (y - p.originY) * p.width + (x - p.originX);
+      std::copy_n(&p.radiance[src * nb], nb, &out.radiance[i * nb]);
+      std::copy_n(&p.xyz[src * 3], 3, &out.xyz[i * 3]);
+      std::copy_n(&p.rgb[src * 3], 3, &out.rgb[i * 3]);
+      continue;
+    }
+    const double n = static_cast<double>(count[i]);
+    for (int b = 0; b < nb; ++b)
+      out.radiance[i * nb + b] = static_cast<float>(bandSum[i * nb + b] / n);
+    const Xyz xyz{xyzSum[i * 3] / n, xyzSum[i * 3 + 1] / n, xyzSum[i * 3 + 2] / n};
+    const Rgb rgb = xyzToLinearSrgb(xyz);
+    out.xyz[i * 3] = static_cast<float>(xyz.x), out.xyz[i * 3 + 1] = static_cast<float>(xyz.y);
+    out.xyz[i * 3 + 2] = static_cast<float>(xyz.z);
+    out.rgb[i * 3] = static_cast<float>(std::max(rgb.r, 0.0));
+    out.rgb[i * 3 + 1] = static_cast<float>(std::max(rgb.g, 0.0));
+    out.rgb[i * 3 + 2] = static_cast<float>(std::max(rgb.b, 0.0));
+  }
+  // The merged sample range: the union, if the ranges are contiguous.
+  std::vector<std::pair<long long, long long>> sorted = ranges;
+  std::sort(sorted.begin(), sorted.end());
+  long long lo = sorted.front().first, hi = sorted.front().second;
+  bool contiguous = true;
+  for (const auto& r : sorted) {
+    if (r.first > hi) contiguous = false;
+    hi = std::max(hi, r.second);
+  }
+  out.attributes["nxrender.sampleRange"] =
+      contiguous ? std::to_string(lo) + ":" + std::to_string(hi) : "merged";
+  out.attributes["nxrender.mergedParts"] = std::to_string(parts.size());
+  return out;
+}
+
+} // namespace nx

@@ -1,0 +1,167 @@
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "integrators/renderer.h"
+#include "io/part_merge.h"
+
+namespace nx {
+namespace {
+
+const char* kScene =
+    "<scene><settings><xres>40</xres><yres>30</yres><mode>spectral_mcpt</mode><depth>4</"
+    "depth><sampl>6</sampl>"
+    "</settings><camera><position>0,2,-6</position><look_at>0,1,0</look_at></camera>"
+    "<plane><normal>0,1,0</normal><distance>0</distance><material>matte</"
+    "material><reflectance>0.5</reflectance></plane>"
+    "<sphere><center>0,1,0</center><radius>1</radius><material>glass</material></sphere>"
+    "<sphere><center>1.5,3,-1</center><radius>0.5</radius><material>matte</material><emission>5</"
+    "emission></sphere>"
+    "</scene>";
+
+const RenderScene& scene() {
+  static const RenderScene s = buildRenderScene(parseScene(kScene, "farm.scn"));
+  return s;
+}
+
+ImagePart part(const std::string& name, std::optional<PixelRect> crop, int first, int count) {
+  RenderOptions o;
+  o.crop = crop;
+  o.firstSample = first;
+  o.samples = count;
+  SpectralImage img = toSpectralImage(render(scene(), o).film);
+  img.attributes["nxrender.renderKey"] = "key";
+  img.attributes["nxrender.seed"] = "0";
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  img.attributes["nxrender.sampleRange"] =
+      std::to_string(first) + ":" + std::to_string(first + count);
+  return {name, img};
+}
+
+// Crops merge into exactly the full render, bit for bit.
+TEST(Farm, CropsMergeBitIdentical) {
+  const SpectralImage full = part("full", std::nullopt, 0, 6).image;
+  const SpectralImage merged =
+      mergeParts({part("a", PixelRect{0, 0, 40, 7}, 0, 6), part("b", PixelRect{0, 7, 17, 30}, 0, 6),
+                  part("c", PixelRect{17, 7, 40, 30}, 0, 6)});
+  EXPECT_EQ(merged.radiance, full.radiance);
+  EXPECT_EQ(merged.xyz, full.xyz);
+  EXPECT_EQ(merged.rgb, full.rgb);
+  EXPECT_EQ(merged.sampleCount, full.sampleCount);
+  EXPECT_EQ(merged.attributes.at("nxrender.sampleRange"), "0:6");
+}
+
+// Sample ranges merge into the full render up to the float rounding of the parts' means.
+TEST(Farm, SampleRangesMergeUpToRounding) {
+  const SpectralImage full = part("full", std::nullopt, 0, 6).image;
+  const SpectralImage merged =
+      mergeParts({part("r1", std::nullopt, 0, 2), part("r2", std::nullopt, 2, 6 - 2)});
+  ASSERT_EQ(merged.radiance.size(), full.radiance.size());
+  for (size_t i = 0; i < full.radiance.size(); ++i)
+    EXPECT_NEAR(merged.radiance[i], full.radiance[i],
+                4e-7 * std::max(1.0f, std::abs(full.radiance[i])));
+  EXPECT_EQ(merged.sampleCount, full.sampleCount);
+  // Any mix: a crop of one range with the whole image of another.
+  const SpectralImage mixed = mergeParts({part("top", PixelRect{0, 0, 40, 15}, 0, 2),
+                                          part("bottom", PixelRect{0, 15, 40, 30}, 0, 2),
+                                          part("rest", std::nullopt, 2, 4)});
+  for (size_t i = 0; i < full.radiance.size(); ++i)
+    EXPECT_NEAR(mixed.radiance[i], full.radiance[i],
+                4e-7 * std::max(1.0f, std::abs(full.radiance[i])));
+}
+
+std::string mergeError(std::vector<ImagePart> parts) {
+  try {
+    mergeParts(parts);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Farm, RefusesPartsThatDoNotBelongTogether) {
+  const ImagePart a = part("a.exr", PixelRect{0, 0, 40, 15}, 0, 2),
+                  b = part("b.exr", PixelRect{0, 15, 40, 30}, 0, 2);
+  ImagePart other = b;
+  other.image.attributes["nxrender.renderKey"] = "another";
+  EXPECT_EQ(mergeError({a, other})
+                .rfind("b.exr: does not belong with a.exr: its nxrender.renderKey is 'another'", 0),
+            0u);
+  ImagePart seed = b;
+  seed.image.attributes["nxrender.seed"] = "7";
+  EXPECT_EQ(mergeError({a, seed}),
+            "b.exr: does not belong with a.exr: its nxrender.seed is '7', not '0'");
+  ImagePart bands = b;
+  bands.image.attributes["nxrender.bands"] = "400:700:20";
+  EXPECT_EQ(
+      mergeError({a, bands}),
+      "b.exr: does not belong with a.exr: its nxrender.bands is '400:700:20', not '400:700:10'");
+  ImagePart size = b;
+  size.image.fullWidth = 80;
+  EXPECT_EQ(mergeError({a, size}),
+            "b.exr: does not belong with a.exr: its image is 80x30, not 40x30");
+  const ImagePart overlapping = part("c.exr", PixelRect{0, 10, 40, 20}, 0, 2);
+  EXPECT_EQ(mergeError({a, b, overlapping}),
+            "c.exr: overlaps a.exr: pixels 0,10,40,15 with samples 0:2 and 0:2");
+  const ImagePart repeated = part("d.exr", std::nullopt, 1, 2);
+  EXPECT_EQ(mergeError({a, b, repeated}),
+            "d.exr: overlaps a.exr: pixels 0,0,40,15 with samples 1:3 and 0:2");
+  EXPECT_EQ(mergeError({a}),
+            "missing region: 600 pixels within 0,15,40,30 have fewer than the 2 samples of the "
+            "others (a part is missing)");
+  EXPECT_EQ(mergeError({a, b, part("e.exr", PixelRect{0, 0, 20, 30}, 2, 2)}),
+            "missing region: 600 pixels within 20,0,40,30 have fewer than the 4 samples of the "
+            "others (a part is missing)");
+  ImagePart interrupted = b;
+  interrupted.image.sampleCount[5] = 1;
+  EXPECT_EQ(
+      mergeError({a, interrupted})
+          .rfind("b.exr: holds 1 samples in some pixels instead of the 2 of its range 0:2", 0),
+      0u);
+  EXPECT_EQ(mergeError({}), "nothing to merge");
+}
+
+// A render stopped part-way holds whole tiles with their true sample counts; resuming it
+// ends with the uninterrupted image (up to float rounding of the stored means).
+TEST(Farm, StopAndResumeEqualsUninterrupted) {
+  RenderOptions o;
+  o.samples = 12;
+  o.passSamples = 4;
+  const RenderOutput whole = render(scene(), o);
+
+  std::atomic<bool> stop{false};
+  o.stop = &stop;
+  o.progress = [&](int64_t done, int64_t) {
+    if (done == 9) stop = true; // part-way through the second pass
+  };
+  const RenderOutput partial = render(scene(), o);
+  EXPECT_TRUE(partial.stats.stopped);
+  uint64_t taken = 0;
+  bool someBehind = false;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      const uint32_t n = partial.film.samples(x, y);
+      EXPECT_TRUE(n == 4 || n == 8) << n;
+      someBehind = someBehind || n == 4;
+      taken += n;
+    }
+  EXPECT_TRUE(someBehind);
+  EXPECT_EQ(taken, partial.stats.samples);
+
+  const Film stored = filmFromImage(toSpectralImage(partial.film));
+  RenderOptions r;
+  r.samples = 12;
+  r.passSamples = 4;
+  r.resumeFrom = &stored;
+  const RenderOutput resumed = render(scene(), r);
+  EXPECT_EQ(resumed.stats.samples + taken, 40u * 30u * 12u);
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      EXPECT_EQ(resumed.film.samples(x, y), 12u);
+      for (int b = 0; b < resumed.film.bands().count(); ++b)
+        EXPECT_NEAR(resumed.film.bandMean(x, y, b), whole.film.bandMean(x, y, b),
+                    2e-7 * std::max(1.0, std::abs(whole.film.bandMean(x, y, b))));
+    }
+}
+
+} // namespace
+} // namespace nx
