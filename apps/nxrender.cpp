@@ -127,7 +127,7 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", std::string("nxrender ") + NX_VERSION);
   int threads = 0, spp = 0;
   long long seed = -1;
-  double checkpointSeconds = 0;
+  double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
   std::string output, bandsText, lightSampling = "mis", sampler = "sobol", scenePath, cropText,
                                  rangeText, resumePath;
   bool noFluorescence = false, tileOfArray = false;
@@ -158,6 +158,12 @@ int run(int argc, char** argv) {
   app.add_option("--checkpoint", checkpointSeconds,
                  "Also write the EXR every SECONDS while rendering")
       ->check(CLI::Range(1.0, 1e9));
+  app.add_option("--target-error", targetError,
+                 "Stop once the estimated relative RMS error of the image is at most E (checked "
+                 "after each pass)")
+      ->check(CLI::Range(1e-9, 1e9));
+  app.add_option("--time-limit", timeLimit, "Stop before a pass that would end after SECONDS")
+      ->check(CLI::Range(1e-3, 1e12));
   app.add_option("--resume", resumePath,
                  "Continue the render stored in this EXR (written by an interrupted run)");
   app.add_option("scene", scenePath, "Scene file (.scn)")->required();
@@ -246,7 +252,9 @@ int run(int argc, char** argv) {
                 std::to_string(nx::kLanes) + "|" + sceneBytes.str()));
   const nx::Xyz white = nx::spectrumToXyz(scene.previewWhite);
   const int firstSample = options.firstSample;
-  const int sppTotal = options.samples > 0 ? options.samples : scene.settings.samples;
+  int sppTotal = options.samples > 0 ? options.samples : scene.settings.samples;
+  options.targetRelativeError = targetError;
+  options.timeLimitSeconds = timeLimit;
   const uint32_t seedUsed = options.seed ? *options.seed : scene.settings.seed;
   const nx::SpectralBands bands = options.bands ? *options.bands : scene.settings.bands;
 
@@ -270,7 +278,7 @@ int run(int argc, char** argv) {
     if (prev.displayWidth() != width || prev.displayHeight() != height || prev.originX != want.x0 ||
         prev.originY != want.y0 || prev.width != want.width() || prev.height != want.height())
       throw nx::Error(resumePath + ": covers another image size or crop than this render");
-    resumeFilm = nx::filmFromImage(prev);
+    resumeFilm = nx::filmFromImage(prev, firstSample);
     options.resumeFrom = &*resumeFilm;
   }
 
@@ -291,6 +299,7 @@ int run(int argc, char** argv) {
                                                 std::to_string(1.0) + "," +
                                                 std::to_string(white.z / white.y);
     image.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
+    image.attributes["nxrender.estimatedRelativeError"] = std::to_string(film.relativeRmsError());
     return image;
   };
 
@@ -314,6 +323,13 @@ int run(int argc, char** argv) {
     };
   const nx::RenderOutput result = nx::render(scene, options);
   progress.finish();
+  if (result.stats.reachedTarget || result.stats.reachedTimeLimit) {
+    std::fprintf(
+        stderr, "nxrender: %s after %d samples per pixel (estimated relative RMS error %.4g)\n",
+        result.stats.reachedTarget ? "reached the target error" : "stopped at the time limit",
+        result.stats.samplesReached, result.stats.relativeError);
+    sppTotal = result.stats.samplesReached; // the image holds exactly this sample range
+  }
 
   const nx::SpectralImage image = imageOf(result.film, result.stats.seconds);
   nx::writeSpectralExr(exrPath, image);

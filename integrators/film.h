@@ -41,8 +41,11 @@ public:
 
   /// Accumulator for one pixel's samples (lives on the stack of the tile task).
   struct Pixel {
-    std::vector<double> bands; ///< sums of band estimates
-    double xyz[3] = {0, 0, 0}; ///< sums of XYZ estimates
+    std::vector<double> bands;    ///< sums of band estimates
+    std::vector<double> bandsOdd; ///< sums of band estimates of the odd-numbered samples
+    double xyz[3] = {0, 0, 0};    ///< sums of XYZ estimates
+    double yOdd = 0;              ///< sum of luminance estimates of the odd-numbered samples
+    uint32_t samplesOdd = 0;
     uint32_t samples = 0;
   };
 
@@ -51,7 +54,10 @@ public:
   /// Zeroes an accumulator for the next pixel (no allocation).
   static void resetPixel(Pixel& p) {
     std::fill(p.bands.begin(), p.bands.end(), 0.0);
+    std::fill(p.bandsOdd.begin(), p.bandsOdd.end(), 0.0);
     p.xyz[0] = p.xyz[1] = p.xyz[2] = 0;
+    p.yOdd = 0;
+    p.samplesOdd = 0;
     p.samples = 0;
   }
 
@@ -59,13 +65,18 @@ public:
   /// lane weighted 1 / (kLanes pdf). Band b receives L / bandwidth for lanes inside it;
   /// XYZ receives L * cmf / integral(y-bar). Samples with a non-finite value are dropped
   /// and counted (returns false).
-  bool addSample(Pixel& pixel, const SampledWavelengths& lambda, const SampledSpectrum& L) const;
+  /// `odd`: the sample belongs to the second of the two independently scrambled replicates
+  /// (odd sample numbers); the difference of the two half means estimates the error.
+  bool addSample(Pixel& pixel, const SampledWavelengths& lambda, const SampledSpectrum& L,
+                 bool odd) const;
 
   /// Adds a pixel's accumulated samples (each pixel is written by one tile task at a time).
   void add(int x, int y, const Pixel& pixel);
-  /// Sets a pixel from stored means and their sample count (resuming from a file).
-  void setFromMeans(int x, int y, const float* bandMeans, const double xyzMean[3],
-                    uint32_t samples);
+  /// Sets a pixel from stored means, variances of the means (null: unknown) and their sample
+  /// count (resuming from a file).
+  void setFromMeans(int x, int y, const float* bandMeans, const float* bandVariances,
+                    const double xyzMean[3], double yVariance, uint32_t samples,
+                    uint32_t oddSamples);
 
   /// Mean band radiance of pixel (x, y), band b.
   double bandMean(int x, int y, int b) const;
@@ -73,6 +84,14 @@ public:
   Xyz xyzMean(int x, int y) const;
   /// Samples taken in pixel (x, y).
   uint32_t samples(int x, int y) const { return counts_[index(x, y)]; }
+  /// Estimated variance of the pixel's mean band radiance: (A - B)^2 / 4 for the means A and B
+  /// of the two independent replicates (even and odd sample numbers); 0 before one of each.
+  double bandVariance(int x, int y, int b) const;
+  /// Estimated variance of the pixel's mean luminance Y.
+  double yVariance(int x, int y) const;
+  /// Estimated relative RMS error of the image: sqrt(mean of the pixels' Y variances) over
+  /// the mean Y (infinite before two samples per pixel or on a black image).
+  double relativeRmsError() const;
 
 private:
   size_t index(int x, int y) const {
@@ -82,8 +101,11 @@ private:
   PixelRect rect_;
   SpectralBands bands_;
   int nBands_;
-  std::vector<double> bandSums_; ///< [pixel][band]
-  std::vector<double> xyzSums_;  ///< [pixel][3]
+  std::vector<double> bandSums_;    ///< [pixel][band]
+  std::vector<double> bandOddSums_; ///< [pixel][band]
+  std::vector<double> xyzSums_;     ///< [pixel][3]
+  std::vector<double> yOddSums_;    ///< [pixel]
+  std::vector<uint32_t> oddCounts_; ///< [pixel]
   std::vector<uint32_t> counts_;
 };
 

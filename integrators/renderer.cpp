@@ -12,6 +12,14 @@
 #include "spectra/wavelength_sampler.h"
 
 namespace nx {
+namespace {
+constexpr uint32_t kOddReplicateSalt = 0x68e31da4U;
+
+// Samples of [first, first + n) with odd numbers.
+uint32_t oddSamplesIn(int64_t first, int64_t n) {
+  return static_cast<uint32_t>((first + n) / 2 - first / 2);
+}
+} // namespace
 
 RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -51,8 +59,20 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   std::atomic<int64_t> finished{0};
   std::mutex progressMutex;
 
+  double lastPassSeconds = 0;
+  const std::function<double()> now = options.clock ? options.clock : [] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  };
+  const double clockStart = now();
   for (int pass = 0; pass < passes && !out.stats.stopped; ++pass) {
     const int passEnd = std::min(end, begin + (pass + 1) * passSize);
+    const double elapsed = now() - clockStart;
+    if (options.timeLimitSeconds > 0 && pass > 0 &&
+        elapsed + lastPassSeconds > options.timeLimitSeconds) {
+      out.stats.reachedTimeLimit = true;
+      break;
+    }
     tbb::parallel_for(0, tiles, [&](int tile) {
       if (options.stop && options.stop->load(std::memory_order_relaxed)) return;
       const int x0 = rect.x0 + (tile % tilesX) * ts, y0 = rect.y0 + (tile / tilesX) * ts;
@@ -69,14 +89,19 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           // Each pixel continues after the samples it already has (a resumed film may hold
           // more in some pixels than in others).
           for (int s = begin + static_cast<int>(out.film.samples(x, y)); s < passEnd; ++s) {
-            PixelSampleStream rng(options.sampler, pixelIndex, static_cast<uint32_t>(s), seed);
+            // Two independently scrambled replicates, interleaved: even sample numbers use the
+            // seed, odd ones a derived seed; each is one sequence of its own (index s / 2), and
+            // the difference of their means estimates the error (randomized QMC).
+            const bool odd = (s & 1) != 0;
+            PixelSampleStream rng(options.sampler, pixelIndex, static_cast<uint32_t>(s) >> 1,
+                                  odd ? seed ^ kOddReplicateSalt : seed);
             SampledWavelengths lambda = wavelengths.sample(rng.next1D());
             const Sample2 jitter = rng.next2D();
             const Ray ray = scene.camera.generateRay(static_cast<double>(x) + jitter.u,
                                                      static_cast<double>(y) + jitter.v);
             const SampledSpectrum L = whitted ? traceWhitted(ctx, ray, lambda, rng, counters)
                                               : tracePath(ctx, ray, lambda, rng, counters);
-            if (!out.film.addSample(pixel, lambda, L)) ++dropped;
+            if (!out.film.addSample(pixel, lambda, L, odd)) ++dropped;
           }
           taken += pixel.samples;
           out.film.add(x, y, pixel);
@@ -92,8 +117,16 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
       }
     });
     if (options.stop && options.stop->load()) out.stats.stopped = true;
+    if (!out.stats.stopped) out.stats.samplesReached = passEnd - begin;
+    lastPassSeconds = now() - clockStart - elapsed;
     if (options.afterPass) options.afterPass(out.film);
+    if (!out.stats.stopped && options.targetRelativeError > 0 && passEnd < end &&
+        out.film.relativeRmsError() <= options.targetRelativeError) {
+      out.stats.reachedTarget = true;
+      break;
+    }
   }
+  out.stats.relativeError = out.film.relativeRmsError();
 
   out.stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -119,10 +152,15 @@ SpectralImage toSpectralImage(const Film& film) {
   img.rgb.reserve(pixels * 3);
   img.xyz.reserve(pixels * 3);
   img.sampleCount.reserve(pixels);
+  img.bandVariance.reserve(pixels * nb);
+  img.yVariance.reserve(pixels);
   for (int y = r.y0; y < r.y1; ++y)
     for (int x = r.x0; x < r.x1; ++x) {
-      for (int b = 0; b < nb; ++b)
+      for (int b = 0; b < nb; ++b) {
         img.radiance.push_back(static_cast<float>(film.bandMean(x, y, b)));
+        img.bandVariance.push_back(static_cast<float>(film.bandVariance(x, y, b)));
+      }
+      img.yVariance.push_back(static_cast<float>(film.yVariance(x, y)));
       const Xyz xyz = film.xyzMean(x, y);
       const Rgb c = xyzToLinearSrgb(xyz);
       img.rgb.push_back(static_cast<float>(std::max(c.r, 0.0)));
@@ -136,7 +174,7 @@ SpectralImage toSpectralImage(const Film& film) {
   return img;
 }
 
-Film filmFromImage(const SpectralImage& img) {
+Film filmFromImage(const SpectralImage& img, int firstSample) {
   if (img.sampleCount.empty() || img.xyz.empty())
     throw Error("the image holds no per-pixel sample counts or XYZ channels to continue from");
   Film film(img.displayWidth(), img.displayHeight(),
@@ -147,8 +185,10 @@ Film filmFromImage(const SpectralImage& img) {
     for (int x = 0; x < img.width; ++x) {
       const size_t i = static_cast<size_t>(y) * img.width + x;
       const double xyz[3] = {img.xyz[i * 3], img.xyz[i * 3 + 1], img.xyz[i * 3 + 2]};
-      film.setFromMeans(img.originX + x, img.originY + y, &img.radiance[i * nb], xyz,
-                        img.sampleCount[i]);
+      film.setFromMeans(img.originX + x, img.originY + y, &img.radiance[i * nb],
+                        img.bandVariance.empty() ? nullptr : &img.bandVariance[i * nb], xyz,
+                        img.yVariance.empty() ? 0.0 : img.yVariance[i], img.sampleCount[i],
+                        oddSamplesIn(firstSample, img.sampleCount[i]));
     }
   return film;
 }

@@ -25,6 +25,15 @@ struct RenderOptions {
   SamplerKind sampler = SamplerKind::SobolOwen;
   int tileSize = 16;
   int passSamples = 8; ///< samples per pixel in one pass (progress, checkpoints, stops)
+  /// Stop after the first pass whose estimated relative RMS error (Film::relativeRmsError)
+  /// is at most this; 0: off.
+  double targetRelativeError = 0;
+  /// Do not start a pass that would end after this many seconds (judged by the last pass's
+  /// duration; the first pass always runs); 0: off.
+  double timeLimitSeconds = 0;
+  /// Seconds on some monotonic clock, for the time limit (default: the steady clock; tests
+  /// substitute a simulated one).
+  std::function<double()> clock;
   /// Runs the fluorescence-capable path tracer even without fluorescent materials (to
   /// measure what the feature costs when present but unused).
   bool forceFluorescencePath = false;
@@ -43,10 +52,14 @@ struct RenderOptions {
 /// Counters of a finished render.
 struct RenderStats {
   double seconds = 0;
-  uint64_t samples = 0;   ///< pixel samples taken by this run
-  uint64_t rays = 0;      ///< camera, scattered and shadow rays
-  uint64_t nonFinite = 0; ///< samples dropped for a NaN or infinite value
-  bool stopped = false;   ///< ended early by the stop flag
+  uint64_t samples = 0;          ///< pixel samples taken by this run
+  uint64_t rays = 0;             ///< camera, scattered and shadow rays
+  uint64_t nonFinite = 0;        ///< samples dropped for a NaN or infinite value
+  bool stopped = false;          ///< ended early by the stop flag
+  bool reachedTarget = false;    ///< ended because the error target was met
+  bool reachedTimeLimit = false; ///< ended because the next pass would pass the time limit
+  int samplesReached = 0;        ///< samples per pixel after the last completed pass
+  double relativeError = 0;      ///< estimated relative RMS error at the end
 };
 
 /// A finished (or stopped) render.
@@ -64,8 +77,9 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options);
 /// linear sRGB from XYZ with negatives clamped to 0, and per-pixel sample counts.
 SpectralImage toSpectralImage(const Film& film);
 
-/// Loads a film from a spectral image (to resume a render).
-Film filmFromImage(const SpectralImage& image);
+/// Loads a film from a spectral image whose pixels hold samples firstSample onwards (to
+/// resume a render).
+Film filmFromImage(const SpectralImage& image, int firstSample = 0);
 
 /// An 8-bit preview of linear XYZ pixels: white-balanced from the chromaticity of `white`
 /// to D65 (Bradford), converted to sRGB, tone-mapped (Reinhard 2002). Interleaved RGB bytes.

@@ -89,6 +89,11 @@ SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
   out.attributes = first.image.attributes;
   const size_t pixels = static_cast<size_t>(width) * height;
   std::vector<double> bandSum(pixels * nb, 0.0), xyzSum(pixels * 3, 0.0);
+  // Variances of the merged means: sum over parts of (n_k / N)^2 var_k (independent parts).
+  const bool variances = std::all_of(parts.begin(), parts.end(), [](const ImagePart& p) {
+    return !p.image.bandVariance.empty() && !p.image.yVariance.empty();
+  });
+  std::vector<double> bandVar(variances ? pixels * nb : 0, 0.0), yVar(variances ? pixels : 0, 0.0);
   std::vector<uint64_t> count(pixels, 0);
   std::vector<int> covering(pixels, 0), owner(pixels, -1);
   for (size_t k = 0; k < parts.size(); ++k) {
@@ -102,6 +107,11 @@ SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
           bandSum[dst * nb + b] += static_cast<double>(p.radiance[src * nb + b]) * n;
         for (int c = 0; c < 3; ++c)
           xyzSum[dst * 3 + c] += static_cast<double>(p.xyz[src * 3 + c]) * n;
+        if (variances) { // weighted by n^2 here, divided by N^2 below
+          for (int b = 0; b < nb; ++b)
+            bandVar[dst * nb + b] += p.bandVariance[src * nb + b] * n * n;
+          yVar[dst] += p.yVariance[src] * n * n;
+        }
         count[dst] += p.sampleCount[src];
         ++covering[dst];
         owner[dst] = static_cast<int>(k);
@@ -127,6 +137,10 @@ SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
   out.xyz.resize(pixels * 3);
   out.rgb.resize(pixels * 3);
   out.sampleCount.resize(pixels);
+  if (variances) {
+    out.bandVariance.resize(pixels * nb);
+    out.yVariance.resize(pixels);
+  }
   for (size_t i = 0; i < pixels; ++i) {
     out.sampleCount[i] = static_cast<uint32_t>(count[i]);
     if (covering[i] == 1) { // a single part: its values, bit for bit
@@ -136,11 +150,20 @@ SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
       std::copy_n(&p.radiance[src * nb], nb, &out.radiance[i * nb]);
       std::copy_n(&p.xyz[src * 3], 3, &out.xyz[i * 3]);
       std::copy_n(&p.rgb[src * 3], 3, &out.rgb[i * 3]);
+      if (variances) {
+        std::copy_n(&p.bandVariance[src * nb], nb, &out.bandVariance[i * nb]);
+        out.yVariance[i] = p.yVariance[src];
+      }
       continue;
     }
     const double n = static_cast<double>(count[i]);
     for (int b = 0; b < nb; ++b)
       out.radiance[i * nb + b] = static_cast<float>(bandSum[i * nb + b] / n);
+    if (variances) {
+      for (int b = 0; b < nb; ++b)
+        out.bandVariance[i * nb + b] = static_cast<float>(bandVar[i * nb + b] / (n * n));
+      out.yVariance[i] = static_cast<float>(yVar[i] / (n * n));
+    }
     const Xyz xyz{xyzSum[i * 3] / n, xyzSum[i * 3 + 1] / n, xyzSum[i * 3 + 2] / n};
     const Rgb rgb = xyzToLinearSrgb(xyz);
     out.xyz[i * 3] = static_cast<float>(xyz.x), out.xyz[i * 3 + 1] = static_cast<float>(xyz.y);

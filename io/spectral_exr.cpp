@@ -29,7 +29,9 @@ void writeSpectralExr(const std::string& path, const SpectralImage& image) {
   if (image.width <= 0 || image.height <= 0 || image.radiance.size() != pixels * nBands ||
       image.rgb.size() != pixels * 3 ||
       (!image.sampleCount.empty() && image.sampleCount.size() != pixels) ||
-      (!image.xyz.empty() && image.xyz.size() != pixels * 3) || image.originX < 0 ||
+      (!image.xyz.empty() && image.xyz.size() != pixels * 3) ||
+      (!image.bandVariance.empty() && image.bandVariance.size() != pixels * nBands) ||
+      (!image.yVariance.empty() && image.yVariance.size() != pixels) || image.originX < 0 ||
       image.originY < 0 || image.originX + image.width > image.displayWidth() ||
       image.originY + image.height > image.displayHeight())
     throw Error(path + ": internal error: image buffers do not match its size");
@@ -64,6 +66,18 @@ void writeSpectralExr(const std::string& path, const SpectralImage& image) {
       header.channels().insert(xyzNames[c], Imf::Channel(Imf::FLOAT));
       fb.insert(xyzNames[c], Imf::Slice::Make(Imf::FLOAT, image.xyz.data() + c, data,
                                               sizeof(float) * 3, sizeof(float) * 3 * image.width));
+    }
+    for (int b = 0; b < nBands && !image.bandVariance.empty(); ++b) {
+      const std::string name = kVariancePrefix + spectralChannelName(image.bands.centre(b));
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      fb.insert(name, Imf::Slice::Make(Imf::FLOAT, image.bandVariance.data() + b, data, pixelStride,
+                                       pixelStride * image.width));
+    }
+    if (!image.yVariance.empty()) {
+      const std::string name = std::string(kVariancePrefix) + "Y";
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      fb.insert(name, Imf::Slice::Make(Imf::FLOAT, image.yVariance.data(), data, sizeof(float),
+                                       sizeof(float) * image.width));
     }
     if (!image.sampleCount.empty()) {
       header.channels().insert(kSampleCountChannel, Imf::Channel(Imf::UINT));
@@ -124,6 +138,19 @@ SpectralImage readSpectralExr(const std::string& path) {
       for (int c = 0; c < 3; ++c)
         fb.insert(xyzNames[c], Imf::Slice::Make(Imf::FLOAT, img.xyz.data() + c, dw,
                                                 sizeof(float) * 3, sizeof(float) * 3 * img.width));
+    }
+    if (h.channels().findChannel(kVariancePrefix + spectralChannelName(img.bands.centre(0)))) {
+      img.bandVariance.assign(pixels * nb, 0.0f);
+      for (int b = 0; b < nb; ++b)
+        fb.insert(kVariancePrefix + spectralChannelName(img.bands.centre(b)),
+                  Imf::Slice::Make(Imf::FLOAT, img.bandVariance.data() + b, dw, sizeof(float) * nb,
+                                   sizeof(float) * nb * img.width));
+    }
+    if (h.channels().findChannel(std::string(kVariancePrefix) + "Y")) {
+      img.yVariance.assign(pixels, 0.0f);
+      fb.insert(std::string(kVariancePrefix) + "Y",
+                Imf::Slice::Make(Imf::FLOAT, img.yVariance.data(), dw, sizeof(float),
+                                 sizeof(float) * img.width));
     }
     if (h.channels().findChannel(kSampleCountChannel)) {
       img.sampleCount.assign(pixels, 0);

@@ -18,9 +18,11 @@ struct SpectralImage {
   int originX = 0, originY = 0;      ///< its top-left pixel in the full image
   int fullWidth = 0, fullHeight = 0; ///< the full image (EXR display window); 0 = the region
   SpectralBands bands;
-  std::vector<float> radiance;       ///< [pixel][band], W m^-2 sr^-1 nm^-1 averaged over the band
-  std::vector<float> rgb;            ///< [pixel][3], linear sRGB (D65), negatives already clamped
-  std::vector<float> xyz;            ///< [pixel][3], CIE XYZ (unclamped); empty: not stored
+  std::vector<float> radiance;     ///< [pixel][band], W m^-2 sr^-1 nm^-1 averaged over the band
+  std::vector<float> rgb;          ///< [pixel][3], linear sRGB (D65), negatives already clamped
+  std::vector<float> xyz;          ///< [pixel][3], CIE XYZ (unclamped); empty: not stored
+  std::vector<float> bandVariance; ///< [pixel][band] variance of each band mean; empty: not stored
+  std::vector<float> yVariance;    ///< [pixel] variance of the mean luminance Y; empty: not stored
   std::vector<uint32_t> sampleCount; ///< [pixel] samples behind each value; empty: not stored
   std::map<std::string, std::string> attributes; ///< provenance, written as string attributes
 
@@ -31,14 +33,16 @@ struct SpectralImage {
 
 /// Name of the per-pixel sample-count channel (not a spectral channel name).
 inline constexpr const char* kSampleCountChannel = "SampleCount";
+/// Prefix of the variance channels ("Variance.Y", "Variance.S0.550,000000nm").
+inline constexpr const char* kVariancePrefix = "Variance.";
 
 /// Channel name of a band centred at nm for Stokes component 0, e.g. "S0.550,000000nm"
 /// (a comma as decimal separator, since a dot separates EXR layers).
 std::string spectralChannelName(double nm);
 
 /// Writes the image as an OpenEXR with float channels S0.<band>nm, R, G, B and (when present)
-/// X, Y, Z, a uint channel SampleCount (when counts are present; these names are not spectral
-/// ones), the data
+/// X, Y, Z, Variance.Y and Variance.S0.<band>nm (error estimates of the means), a uint channel
+/// SampleCount (none of these names is a spectral one), the data
 /// window of the region inside the display window of the full image, the attributes
 /// spectralLayoutVersion = "1.0" and emissiveUnits = "W.m^-2.sr^-1", and every provenance
 /// attribute. The file appears atomically (temporary name, then rename).

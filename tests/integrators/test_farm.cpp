@@ -60,6 +60,12 @@ TEST(Farm, SampleRangesMergeUpToRounding) {
     EXPECT_NEAR(merged.radiance[i], full.radiance[i],
                 4e-7 * std::max(1.0f, std::abs(full.radiance[i])));
   EXPECT_EQ(merged.sampleCount, full.sampleCount);
+  // The merged error estimate (sum of (n_k / N)^2 var_k) agrees with the full render's.
+  double fullVar = 0, mergedVar = 0;
+  for (size_t i = 0; i < full.yVariance.size(); ++i)
+    fullVar += full.yVariance[i], mergedVar += merged.yVariance[i];
+  EXPECT_GT(mergedVar, 0.6 * fullVar);
+  EXPECT_LT(mergedVar, 1.6 * fullVar);
   // Any mix: a crop of one range with the whole image of another.
   const SpectralImage mixed = mergeParts({part("top", PixelRect{0, 0, 40, 15}, 0, 2),
                                           part("bottom", PixelRect{0, 15, 40, 30}, 0, 2),
