@@ -30,14 +30,29 @@ uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
   return reverseBits(laineKarrasPermutation(reverseBits(x), seed));
 }
 
-// Sobol dimension 1 (primitive polynomial x + 1): v_0 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1).
-uint32_t sobolDimension1(uint32_t index) {
-  uint32_t result = 0;
-  uint32_t v = 1U << 31;
-  for (; index != 0; index >>= 1, v ^= v >> 1) {
-    if (index & 1U) result ^= v;
+// Sobol dimension 1 (primitive polynomial x + 1): v_0 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1);
+// the value of an index is the XOR of v_k over its set bits k. Tabulated per index byte, so a
+// value costs four lookups instead of a loop over 32 bits.
+struct SobolDimension1Table {
+  uint32_t byByte[4][256];
+  SobolDimension1Table() {
+    uint32_t v[32];
+    v[0] = 1U << 31;
+    for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+    for (int byte = 0; byte < 4; ++byte)
+      for (uint32_t value = 0; value < 256; ++value) {
+        uint32_t x = 0;
+        for (int bit = 0; bit < 8; ++bit)
+          if (value & (1U << bit)) x ^= v[8 * byte + bit];
+        byByte[byte][value] = x;
+      }
   }
-  return result;
+};
+const SobolDimension1Table kSobol1;
+
+uint32_t sobolDimension1(uint32_t index) {
+  return kSobol1.byByte[0][index & 0xffU] ^ kSobol1.byByte[1][(index >> 8) & 0xffU] ^
+         kSobol1.byByte[2][(index >> 16) & 0xffU] ^ kSobol1.byByte[3][index >> 24];
 }
 
 constexpr uint32_t kShuffleSalt = 0x5f356495U;

@@ -32,8 +32,8 @@ float sampleValue(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t dim
 /// Dimensions 2*pair and 2*pair+1 together (they form a (0,2)-sequence for SobolOwen).
 Sample2 samplePair(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed);
 
-/// The sample values of one (pixel, sample index), handed out in order. Each draw uses a
-/// fresh dimension pair, so a 1D draw and a 2D draw never share structure.
+/// The sample values of one (pixel, sample index), handed out in order. A 2D draw takes a
+/// fresh dimension pair; two successive 1D draws share one pair (its two coordinates).
 class PixelSampleStream {
 public:
   /// Starts at dimension pair 0 of the given pixel and sample index.
@@ -41,7 +41,16 @@ public:
       : kind_(kind), pixel_(pixel), index_(index), seed_(seed) {}
 
   /// Next value in [0,1).
-  float next1D() { return samplePair(kind_, pixel_, index_, pair_++, seed_).u; }
+  float next1D() {
+    if (pending_) {
+      pending_ = false;
+      return pendingValue_;
+    }
+    const Sample2 s = samplePair(kind_, pixel_, index_, pair_++, seed_);
+    pending_ = true;
+    pendingValue_ = s.v;
+    return s.u;
+  }
   /// Next point in [0,1)^2.
   Sample2 next2D() { return samplePair(kind_, pixel_, index_, pair_++, seed_); }
 
@@ -49,6 +58,8 @@ private:
   SamplerKind kind_;
   uint32_t pixel_, index_, seed_;
   uint32_t pair_ = 0;
+  bool pending_ = false; ///< the second coordinate of the last 1D pair is unused
+  float pendingValue_ = 0;
 };
 
 } // namespace nx

@@ -32,7 +32,8 @@ public:
 
     scene.previewWhite =
         s.illuminant ? resolve(*s.illuminant, SpectrumRole::Emission) : *namedEmission("D65");
-    if (s.background) scene.background = resolve(*s.background, SpectrumRole::Emission);
+    if (s.background)
+      scene.background = forRendering(resolve(*s.background, SpectrumRole::Emission));
 
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
@@ -41,13 +42,14 @@ public:
       ShapeAppearance app;
       app.material = static_cast<uint32_t>(scene.materials.size());
       scene.materials.push_back(material(o, spectral));
+      scene.materials.back().reflectance = forRendering(scene.materials.back().reflectance);
       if (scene.materials.back().reradiation) scene.hasFluorescence = true;
       if (scene.materials.back().kind == MaterialKind::Dielectric &&
           scene.materials.back().ior.dispersive())
         scene.hasDispersion = true;
       if (auto e = emission(o, spectral)) {
         app.emission = static_cast<int32_t>(scene.emission.size());
-        scene.emission.push_back(*e);
+        scene.emission.push_back(forRendering(*e));
       }
       switch (o.shape) {
       case ShapeType::Sphere:
@@ -76,6 +78,7 @@ public:
           throw Error(l.loc.str() + ": " + e.what());
         }
       }
+      pl.intensity = forRendering(pl.intensity);
       scene.pointLights.push_back(std::move(pl));
     }
     scene.device = std::make_unique<EmbreeDevice>();

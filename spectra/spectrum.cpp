@@ -45,6 +45,18 @@ double SigmoidPolynomialSpectrum::operator()(double nm) const {
   return 0.5 + p / (2.0 * std::sqrt(1.0 + p * p));
 }
 
+Spectrum forRendering(const Spectrum& s) {
+  if (std::holds_alternative<ConstantSpectrum>(s.kind()) ||
+      std::holds_alternative<TabulatedSpectrum>(s.kind()) ||
+      std::holds_alternative<DenseSpectrum>(s.kind()))
+    return s;
+  DenseSpectrum d;
+  const int n = static_cast<int>((1000.0 - d.startNm) / d.stepNm) + 1;
+  d.value.reserve(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) d.value.push_back(static_cast<float>(s(d.startNm + i * d.stepNm)));
+  return Spectrum(std::move(d));
+}
+
 TabulatedSpectrum makeTabulated(std::vector<double> nm, std::vector<double> value,
                                 const std::string& where) {
   if (nm.size() != value.size())

@@ -27,9 +27,13 @@ TEST(Sampler, StreamMatchesDirectValues) {
     PixelSampleStream s(k, 5, 9, 1);
     const float a = s.next1D();
     const Sample2 b = s.next2D();
+    const float c = s.next1D();
     EXPECT_EQ(a, sampleValue(k, 5, 9, 0, 1));
     EXPECT_EQ(b.u, sampleValue(k, 5, 9, 2, 1));
     EXPECT_EQ(b.v, sampleValue(k, 5, 9, 3, 1));
+    EXPECT_EQ(c, sampleValue(k, 5, 9, 1, 1)); // the second coordinate of the first pair
+    const float d = s.next1D();
+    EXPECT_EQ(d, sampleValue(k, 5, 9, 4, 1));
   }
 }
 
