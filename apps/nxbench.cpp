@@ -1,0 +1,212 @@
+// nxbench: speed against error for one scene.
+//
+//   nxbench scene.scn [--reference REF.exr | --reference-spp N] [--max-spp N] [--threads N]
+//                     [--sampler sobol|independent] [--csv OUT.csv] [--plot OUT.png]
+//
+// Renders (or reads) a high-spp reference, then renders at 1, 2, 4, ... spp and prints, per
+// run: seconds, samples/s, rays/s, RMSE and relative RMSE of the preview luminance and of the
+// spectral bands (mean and worst band) against the reference, and the fitted convergence
+// slope of the relative RMSE (an unbiased renderer gives -0.5 or steeper). It also measures
+// raw Embree ray throughput on the scene's geometry and the path tracer's ratio to it.
+// The CSV holds every band's RMSE; the plot shows relative RMSE against time, log-log.
+
+#include <CLI/CLI.hpp>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "apps/log_plot.h"
+#include "core/error.h"
+#include "core/hash.h"
+#include "core/math_util.h"
+#include "integrators/renderer.h"
+#include "io/preview_image.h"
+
+namespace {
+
+using namespace nx;
+
+struct Errors {
+  double rmseY = 0, relY = 0, meanBandRel = 0, maxBandRel = 0;
+  std::vector<double> bandRmse;
+};
+
+Errors compare(const Film& f, const SpectralImage& ref) {
+  Errors e;
+  const int nb = ref.bands.count();
+  const double n = static_cast<double>(ref.width) * ref.height;
+  double se = 0, meanY = 0;
+  std::vector<double> bandSe(static_cast<size_t>(nb), 0.0), bandMean(static_cast<size_t>(nb), 0.0);
+  for (int y = 0; y < ref.height; ++y)
+    for (int x = 0; x < ref.width; ++x) {
+      const size_t i = static_cast<size_t>(y) * ref.width + x;
+      const double d = f.xyzMean(x, y).y - ref.xyz[i * 3 + 1];
+      se += d * d;
+      meanY += ref.xyz[i * 3 + 1];
+      for (int b = 0; b < nb; ++b) {
+        const double db = f.bandMean(x, y, b) - ref.radiance[i * nb + b];
+        bandSe[b] += db * db;
+        bandMean[b] += ref.radiance[i * nb + b];
+      }
+    }
+  e.rmseY = std::sqrt(se / n);
+  e.relY = e.rmseY / (meanY / n);
+  for (int b = 0; b < nb; ++b) {
+    e.bandRmse.push_back(std::sqrt(bandSe[b] / n));
+    const double rel = bandMean[b] > 0 ? e.bandRmse.back() / (bandMean[b] / n) : 0.0;
+    e.meanBandRel += rel / nb;
+    e.maxBandRel = std::max(e.maxBandRel, rel);
+  }
+  return e;
+}
+
+// Closest-hit rays per second through the scene's geometry: origins uniform in the bounding
+// box of its spheres, triangles and camera, directions uniform.
+double rawRaysPerSecond(const RenderScene& scene) {
+  Vec3d lo = Vec3d(scene.camera.forward()) * 0.0, hi = lo;
+  bool any = false;
+  auto grow = [&](const Vec3d& p) {
+    if (!any) lo = hi = p, any = true;
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  };
+  for (const auto& s : scene.geometry->spheres()) {
+    grow(s.center - Vec3d(s.radius, s.radius, s.radius));
+    grow(s.center + Vec3d(s.radius, s.radius, s.radius));
+  }
+  for (const auto& t : scene.geometry->triangles()) grow(t.a), grow(t.b), grow(t.c);
+  const Ray camRay =
+      scene.camera.generateRay(0.5 * scene.settings.width, 0.5 * scene.settings.height);
+  grow(Vec3d(camRay.o));
+  const uint64_t rays = 4000000;
+  std::atomic<uint64_t> hits{0};
+  const auto start = std::chrono::steady_clock::now();
+  tbb::parallel_for(tbb::blocked_range<uint64_t>(0, rays, 8192),
+                    [&](const tbb::blocked_range<uint64_t>& r) {
+                      uint64_t local = 0;
+                      SurfaceHit h;
+                      for (uint64_t i = r.begin(); i != r.end(); ++i) {
+                        const uint32_t k = static_cast<uint32_t>(i);
+                        auto u = [&](uint32_t d) {
+                          return static_cast<double>(bitsToUnitFloat(hash4(k, d, 0xbe9c, 0)));
+                        };
+                        Ray ray;
+                        ray.o = Vec3(Vec3d(lo.x + (hi.x - lo.x) * u(0), lo.y + (hi.y - lo.y) * u(1),
+                                           lo.z + (hi.z - lo.z) * u(2)));
+                        const double z = 1 - 2 * u(3), phi = 2 * kPi * u(4),
+                                     s = std::sqrt(std::max(0.0, 1 - z * z));
+                        ray.d = Vec3(Vec3d(s * std::cos(phi), s * std::sin(phi), z));
+                        local += scene.geometry->intersect(ray, h);
+                      }
+                      hits += local;
+                    });
+  return static_cast<double>(rays) /
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"nxbench: speed against error for one scene"};
+  std::string scenePath, referencePath, csvPath = "nxbench.csv", plotPath = "nxbench.png",
+                                        sampler = "sobol";
+  int referenceSpp = 1024, maxSpp = 64, threads = 2;
+  app.add_option("scene", scenePath, "Scene file")->required();
+  app.add_option("--reference", referencePath, "Reference EXR (else rendered)");
+  app.add_option("--reference-spp", referenceSpp,
+                 "Samples per pixel of the rendered reference (default 1024)")
+      ->check(CLI::Range(1, 1 << 24));
+  app.add_option("--max-spp", maxSpp, "Largest spp of the doubling series (default 64)")
+      ->check(CLI::Range(1, 1 << 20));
+  app.add_option("--threads", threads, "Threads (default 2)")->check(CLI::Range(1, 4096));
+  app.add_option("--sampler", sampler, "sobol or independent")
+      ->check(CLI::IsMember({"sobol", "independent"}));
+  app.add_option("--csv", csvPath, "CSV output (default nxbench.csv)");
+  app.add_option("--plot", plotPath, "Error-against-time plot, PNG (default nxbench.png)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                              static_cast<size_t>(threads));
+    const RenderScene scene = buildRenderScene(loadScene(scenePath));
+    const SamplerKind kind =
+        sampler == "independent" ? SamplerKind::Independent : SamplerKind::SobolOwen;
+    SpectralImage ref;
+    if (!referencePath.empty()) {
+      ref = readSpectralExr(referencePath);
+      if (ref.width != scene.settings.width || ref.height != scene.settings.height ||
+          ref.xyz.empty() || ref.bands.toString() != scene.settings.bands.toString())
+        throw nx::Error(referencePath +
+                        ": does not match the scene's size and bands (or has no XYZ channels)");
+    } else {
+      RenderOptions o;
+      o.samples = referenceSpp;
+      o.seed = 0x5eed; // independent of the measured renders (seed 0)
+      std::fprintf(stderr, "nxbench: rendering the %d-spp reference...\n", referenceSpp);
+      ref = toSpectralImage(render(scene, o).film);
+    }
+    std::printf("%6s %9s %12s %12s %11s %11s %13s %13s\n", "spp", "seconds", "samples/s", "rays/s",
+                "RMSE(Y)", "relRMSE(Y)", "mean band rel", "max band rel");
+    std::ofstream csv(csvPath);
+    csv << "spp,seconds,samples_per_s,rays_per_s,rmse_Y,rel_rmse_Y";
+    for (int b = 0; b < scene.settings.bands.count(); ++b)
+      csv << ",rmse_" << scene.settings.bands.centre(b) << "nm";
+    csv << "\n";
+    PlotSeries measured{"nxrender (" + sampler + ")", {}, {}, 200, 40, 40, false};
+    std::vector<double> logSpp, logErr;
+    double lastRaysPerSecond = 0;
+    for (int spp = 1; spp <= maxSpp; spp *= 2) {
+      RenderOptions o;
+      o.samples = spp;
+      o.sampler = kind;
+      const RenderOutput out = render(scene, o);
+      const Errors e = compare(out.film, ref);
+      const double sps = static_cast<double>(out.stats.samples) / out.stats.seconds;
+      lastRaysPerSecond = static_cast<double>(out.stats.rays) / out.stats.seconds;
+      std::printf("%6d %9.3f %12.4g %12.4g %11.5g %11.5g %13.5g %13.5g\n", spp, out.stats.seconds,
+                  sps, lastRaysPerSecond, e.rmseY, e.relY, e.meanBandRel, e.maxBandRel);
+      csv << spp << "," << out.stats.seconds << "," << sps << "," << lastRaysPerSecond << ","
+          << e.rmseY << "," << e.relY;
+      for (double r : e.bandRmse) csv << "," << r;
+      csv << "\n";
+      measured.x.push_back(out.stats.seconds);
+      measured.y.push_back(e.relY);
+      logSpp.push_back(std::log(spp));
+      logErr.push_back(std::log(e.relY));
+    }
+    // Least-squares slope of log(error) against log(spp).
+    double mx = 0, my = 0;
+    for (size_t i = 0; i < logSpp.size(); ++i) mx += logSpp[i], my += logErr[i];
+    mx /= static_cast<double>(logSpp.size()), my /= static_cast<double>(logSpp.size());
+    double sxy = 0, sxx = 0;
+    for (size_t i = 0; i < logSpp.size(); ++i)
+      sxy += (logSpp[i] - mx) * (logErr[i] - my), sxx += (logSpp[i] - mx) * (logSpp[i] - mx);
+    const double slope = sxx > 0 ? sxy / sxx : 0;
+    std::printf("convergence slope of relRMSE(Y) against spp: %.3f (-0.5 for plain Monte Carlo)\n",
+                slope);
+    const double raw = rawRaysPerSecond(scene);
+    std::printf("raw Embree closest-hit rays/s on this geometry: %.4g; path tracer at %d spp: %.4g "
+                "rays/s = %.2f of raw\n",
+                raw, maxSpp, lastRaysPerSecond, lastRaysPerSecond / raw);
+    PlotSeries slopeLine{"slope -1/2 in spp", {}, {}, 90, 90, 200, true};
+    if (!measured.x.empty()) {
+      slopeLine.x = {measured.x.front(), measured.x.back()};
+      slopeLine.y = {measured.y.front(),
+                     measured.y.front() * std::sqrt(measured.x.front() / measured.x.back())};
+    }
+    writePreview(plotPath, 720, 480,
+                 renderLogLogPlot({measured, slopeLine}, "render time (s)",
+                                  "relative RMSE of luminance",
+                                  std::filesystem::path(scenePath).filename().string(), 720, 480));
+    std::fprintf(stderr, "nxbench: wrote %s and %s\n", csvPath.c_str(), plotPath.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "nxbench: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
