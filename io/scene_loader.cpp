@@ -584,9 +584,11 @@ private:
   }
 
   void checkMemory(const SettingsDesc& s) const {
-    // Film accumulators (double per band, plus XYZ and weights) and the output image (float).
+    // Film accumulators (two doubles per band, plus XYZ, a luminance half-sum and counts) and
+    // the output image (float band means and variances, RGB, XYZ, a variance, a count).
     const double pixels = static_cast<double>(s.width) * s.height;
-    const double bytes = pixels * ((s.bands.count() + 6) * 8.0 + (s.bands.count() + 3) * 4.0);
+    const double bytes =
+        pixels * ((2.0 * s.bands.count() + 6) * 8.0 + (2.0 * s.bands.count() + 9) * 4.0);
     const double available =
         static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
     if (bytes > 0.8 * available) {

@@ -5,7 +5,7 @@
 #include <cstddef>
 
 #ifndef NX_LANES
-#define NX_LANES 4
+#define NX_LANES 8
 #endif
 
 namespace nx {
