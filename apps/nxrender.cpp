@@ -243,6 +243,15 @@ int run(int argc, char** argv) {
   const bool wholeImage = !options.crop && rangeText.empty();
   nx::checkWritable(exrPath);
   if (wholeImage) nx::checkWritable(previewPath);
+  {
+    // Upper bound of the EXR (uncompressed float channels: bands and their variances, RGB,
+    // XYZ, a variance and a count) plus the preview.
+    const nx::PixelRect r = options.crop ? *options.crop : nx::PixelRect{0, 0, width, height};
+    const double pixels = static_cast<double>(r.width()) * r.height();
+    const int nb = (options.bands ? *options.bands : scene.settings.bands).count();
+    nx::checkFreeSpace(exrPath,
+                       pixels * (2.0 * nb + 8) * 4 + (wholeImage ? pixels * 3 : 0) + (1 << 20));
+  }
 
   std::ifstream sceneFile(scenePath, std::ios::binary);
   std::ostringstream sceneBytes;

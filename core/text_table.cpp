@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -95,6 +96,13 @@ NumberTable parseNumberTable(const std::string& text, const std::string& source,
 }
 
 NumberTable readNumberTable(const std::string& path, bool allowHeader) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw Error(path + (std::filesystem::exists(path, ec)
+                            ? ": expected a regular file, found something else"
+                            : ": cannot open the file for reading"));
+  if (std::filesystem::file_size(path, ec) > (64u << 20))
+    throw Error(path + ": expected a table of at most 64 MiB");
   std::ifstream file(path, std::ios::binary);
   if (!file) throw Error(path + ": cannot open the file for reading");
   std::ostringstream text;

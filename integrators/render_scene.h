@@ -89,4 +89,8 @@ struct RenderScene {
 /// Embree scene built. Errors carry the file:line of the offending item.
 RenderScene buildRenderScene(const SceneDesc& desc);
 
+/// The same checks and resolution without building the Embree scene (`geometry` stays null):
+/// for tools that only validate scenes, such as the fuzzer.
+RenderScene resolveRenderScene(const SceneDesc& desc);
+
 } // namespace nx

@@ -22,7 +22,7 @@ public:
     for (const auto& s : desc.spectra) named_[s.name] = &s;
   }
 
-  RenderScene build() {
+  RenderScene build(bool withGeometry) {
     RenderScene scene;
     const SettingsDesc& s = desc_.settings;
     scene.settings = {s.width, s.height, s.mode, s.depth, s.samples, s.seed, s.bands, s.outputPath};
@@ -81,6 +81,7 @@ public:
       pl.intensity = forRendering(pl.intensity);
       scene.pointLights.push_back(std::move(pl));
     }
+    if (!withGeometry) return scene;
     scene.device = std::make_unique<EmbreeDevice>();
     scene.geometry = std::make_unique<GeometryScene>(*scene.device, std::move(spheres),
                                                      std::move(planes), std::move(triangles));
@@ -293,7 +294,11 @@ private:
 } // namespace
 
 RenderScene buildRenderScene(const SceneDesc& desc) {
-  return Builder(desc).build();
+  return Builder(desc).build(true);
+}
+
+RenderScene resolveRenderScene(const SceneDesc& desc) {
+  return Builder(desc).build(false);
 }
 
 } // namespace nx

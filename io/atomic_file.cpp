@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include "core/error.h"
@@ -45,6 +46,18 @@ void checkWritable(const std::string& path) {
     throw Error(path + ": cannot create files in '" + dir.string() + "': " + std::strerror(errno));
   std::fclose(f);
   std::remove(probe.c_str());
+}
+
+void checkFreeSpace(const std::string& path, double bytes) {
+  const std::filesystem::path target(path);
+  const std::string dir = target.has_parent_path() ? target.parent_path().string() : ".";
+  struct statvfs fs {};
+  if (statvfs(dir.c_str(), &fs) != 0) return; // unknown: the write itself will report
+  const double available = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+  if (available < bytes)
+    throw Error(path + ": needs about " + std::to_string(static_cast<long long>(bytes / 1e6)) +
+                " MB but only " + std::to_string(static_cast<long long>(available / 1e6)) +
+                " MB are free in '" + dir + "'");
 }
 
 } // namespace nx

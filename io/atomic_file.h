@@ -15,4 +15,7 @@ void writeAtomically(const std::string& path, const std::function<void(const std
 /// creating and removing a probe file), so renders fail before any work.
 void checkWritable(const std::string& path);
 
+/// Throws nx::Error if the file system holding `path` has less than `bytes` available.
+void checkFreeSpace(const std::string& path, double bytes);
+
 } // namespace nx

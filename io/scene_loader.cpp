@@ -60,8 +60,7 @@ public:
     for (pugi::xml_node n : doc_.children()) {
       if (n.type() != pugi::node_element) continue;
       if (root)
-        fail(n, "expected a single root element <scene>",
-             "a second root <" + std::string(n.name()) + ">");
+        fail(n, "a single root element <scene>", "a second root <" + std::string(n.name()) + ">");
       root = n;
     }
     if (!root) failAt(1, "expected a <scene> element, found no element");

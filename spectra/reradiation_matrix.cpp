@@ -152,8 +152,20 @@ std::string ReradiationMatrix::toCsv() const {
   return out.str();
 }
 
+namespace {
+MeasuredMatrix measuredFromTable(const NumberTable& t, const std::string& path);
+} // namespace
+
 MeasuredMatrix readMeasuredMatrixCsv(const std::string& path) {
-  const NumberTable t = readNumberTable(path, true);
+  return measuredFromTable(readNumberTable(path, true), path);
+}
+
+MeasuredMatrix parseMeasuredMatrixCsv(const std::string& text, const std::string& source) {
+  return measuredFromTable(parseNumberTable(text, source, true), source);
+}
+
+namespace {
+MeasuredMatrix measuredFromTable(const NumberTable& t, const std::string& path) {
   MeasuredMatrix m;
   m.source = path;
   size_t firstRow = 0;
@@ -192,5 +204,6 @@ MeasuredMatrix readMeasuredMatrixCsv(const std::string& path) {
   if (m.excitationNm.size() < 2) throw Error(path + ": expected at least two excitation rows");
   return m;
 }
+} // namespace
 
 } // namespace nx

@@ -92,4 +92,7 @@ private:
 /// one row per excitation wavelength: the wavelength and the cells). Errors name file:line.
 MeasuredMatrix readMeasuredMatrixCsv(const std::string& path);
 
+/// The same from CSV text; `source` names it in messages.
+MeasuredMatrix parseMeasuredMatrixCsv(const std::string& text, const std::string& source);
+
 } // namespace nx

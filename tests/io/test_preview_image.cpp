@@ -83,6 +83,18 @@ TEST(AtomicFile, CheckWritable) {
   EXPECT_THROW(checkWritable(::testing::TempDir()), Error);
 }
 
+TEST(AtomicFile, CheckFreeSpace) {
+  EXPECT_NO_THROW(checkFreeSpace(::testing::TempDir() + "out.exr", 1.0));
+  try {
+    checkFreeSpace(::testing::TempDir() + "out.exr", 1e18);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("out.exr: needs about 1000000000000 MB but only"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(AtomicFile, FailedWriteLeavesNoFile) {
   const std::string path = ::testing::TempDir() + "atomic.txt";
   std::filesystem::remove(path);
