@@ -22,6 +22,18 @@ enum class LightSampling : uint8_t {
 /// long before; this only bounds pathological scenes (e.g. a closed mirror box).
 inline constexpr int kMaxPathBounces = 1024;
 
+/// Values of a spectrum at the lanes' wavelengths (one dispatch for all lanes).
+inline SampledSpectrum evaluate(const Spectrum& s, const SampledWavelengths& lambda) {
+  SampledSpectrum out;
+  s.evaluate(lambda, out);
+  return out;
+}
+
+/// Shadow rays stop this fraction short of the light: the light's own surface is at the sampled
+/// distance exactly (same float ray, double-precision root); the margin only absorbs the
+/// rounding of that distance.
+inline constexpr float kShadowShorten = 1.0f - 1e-5f;
+
 /// Everything a per-sample estimator needs besides the sample itself.
 struct IntegratorContext {
   const RenderScene* scene;

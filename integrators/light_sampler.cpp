@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/frame.h"
+#include "integrators/integrator.h"
 #include "integrators/sampling.h"
 
 namespace nx {
@@ -12,12 +13,6 @@ namespace {
 double coneCosMax(double sin2Max) {
   // For tiny cones 1 - sqrt(1 - s) loses all digits in float; in double it holds to s ~ 1e-16.
   return std::sqrt(std::max(0.0, 1.0 - sin2Max));
-}
-
-SampledSpectrum evaluate(const Spectrum& s, const SampledWavelengths& lambda) {
-  SampledSpectrum out;
-  s.evaluate(lambda, out);
-  return out;
 }
 
 } // namespace

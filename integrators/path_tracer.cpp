@@ -9,17 +9,6 @@
 namespace nx {
 namespace {
 
-SampledSpectrum evaluate(const Spectrum& s, const SampledWavelengths& lambda) {
-  SampledSpectrum out;
-  s.evaluate(lambda, out);
-  return out;
-}
-
-// Shadow rays stop this fraction short of the light: the light's own surface is at the
-// sampled distance exactly (same float ray, double-precision root), the margin only absorbs
-// the rounding of that distance.
-constexpr float kShadowShorten = 1.0f - 1e-5f;
-
 // kFluorescence: compiled in only for scenes with fluorescent materials, so that other
 // scenes run exactly the code they would without the feature.
 template <bool kFluorescence>

@@ -9,14 +9,6 @@
 namespace nx {
 namespace {
 
-SampledSpectrum evaluate(const Spectrum& s, const SampledWavelengths& lambda) {
-  SampledSpectrum out;
-  s.evaluate(lambda, out);
-  return out;
-}
-
-constexpr float kShadowShorten = 1.0f - 1e-5f;
-
 // Keeps the hero lane only, scaled by kLanes: with the film's lane weight 1 / (kLanes pdf)
 // this is the hero-only estimator, as after terminating the secondaries.
 SampledSpectrum heroOnly(SampledSpectrum s) {
