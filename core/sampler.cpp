@@ -61,7 +61,7 @@ constexpr uint32_t kScrambleSalt = 0x2c1b3c6dU;
 } // namespace
 
 Sample2 samplePair(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed) {
-  if (kind == SamplerKind::Independent) {
+  if (kind == SamplerKind::Independent || pair >= kSobolPairs) {
     return {bitsToUnitFloat(hash4(pixel, index, 2 * pair, seed)),
             bitsToUnitFloat(hash4(pixel, index, 2 * pair + 1, seed))};
   }

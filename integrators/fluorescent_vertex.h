@@ -1,6 +1,8 @@
 #pragma once
 // Wavelength shifting at a diffuse fluorescent vertex, per lane (camera to light).
 
+#include <cmath>
+
 #include "core/sampler.h"
 #include "integrators/render_scene.h"
 #include "spectra/sampled_wavelengths.h"

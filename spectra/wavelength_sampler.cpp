@@ -1,5 +1,6 @@
 #include "spectra/wavelength_sampler.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -31,13 +32,17 @@ double WavelengthSampler::pdf(double nm) const {
 }
 
 SampledWavelengths WavelengthSampler::sample(float u) const {
+  // With t = tanh(k (l - c)) = tanhMin + u' tanhRange for the lane's primary sample u':
+  // l = c + atanh(t) / k and pdf = k (1 - t^2) / tanhRange (since 1 / cosh^2 = 1 - tanh^2),
+  // so each lane costs one logarithm.
   SampledWavelengths w;
   for (int i = 0; i < kLanes; ++i) {
     double ui = u + static_cast<double>(i) / kLanes;
     if (ui >= 1.0) ui -= 1.0;
-    const double l = wavelength(ui);
-    w.lambda[i] = static_cast<float>(l);
-    w.pdf[i] = static_cast<float>(pdf(l));
+    const double t = std::clamp(tanhMin_ + ui * tanhRange_, -1.0 + 1e-15, 1.0 - 1e-15);
+    const double l = kCentre + 0.5 * std::log((1.0 + t) / (1.0 - t)) / kSharpness;
+    w.lambda[i] = static_cast<float>(std::fmin(std::fmax(l, min_), max_));
+    w.pdf[i] = static_cast<float>(kSharpness * (1.0 - t * t) / tanhRange_);
   }
   return w;
 }
