@@ -1,5 +1,6 @@
 #include "accel/geometry_scene.h"
 
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -203,6 +204,7 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
   }
   if (kind != ShapeKind::Triangle) hit.pError = roundingError(hit.p);
   if (!isFinite(hit.p) || !isFinite(hit.ng)) {
+    assert(!"a non-finite hit left the intersector"); // debug builds stop here
     nonFinite_.fetch_add(1, std::memory_order_relaxed);
     return false;
   }
