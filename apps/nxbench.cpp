@@ -26,6 +26,7 @@
 #include "core/hash.h"
 #include "core/math_util.h"
 #include "integrators/renderer.h"
+#include "integrators/sampling.h"
 #include "io/preview_image.h"
 
 namespace {
@@ -87,25 +88,23 @@ double rawRaysPerSecond(const RenderScene& scene) {
   const uint64_t rays = 4000000;
   std::atomic<uint64_t> hits{0};
   const auto start = std::chrono::steady_clock::now();
-  tbb::parallel_for(tbb::blocked_range<uint64_t>(0, rays, 8192),
-                    [&](const tbb::blocked_range<uint64_t>& r) {
-                      uint64_t local = 0;
-                      SurfaceHit h;
-                      for (uint64_t i = r.begin(); i != r.end(); ++i) {
-                        const uint32_t k = static_cast<uint32_t>(i);
-                        auto u = [&](uint32_t d) {
-                          return static_cast<double>(bitsToUnitFloat(hash4(k, d, 0xbe9c, 0)));
-                        };
-                        Ray ray;
-                        ray.o = Vec3(Vec3d(lo.x + (hi.x - lo.x) * u(0), lo.y + (hi.y - lo.y) * u(1),
-                                           lo.z + (hi.z - lo.z) * u(2)));
-                        const double z = 1 - 2 * u(3), phi = 2 * kPi * u(4),
-                                     s = std::sqrt(std::max(0.0, 1 - z * z));
-                        ray.d = Vec3(Vec3d(s * std::cos(phi), s * std::sin(phi), z));
-                        local += scene.geometry->intersect(ray, h);
-                      }
-                      hits += local;
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<uint64_t>(0, rays, 8192), [&](const tbb::blocked_range<uint64_t>& r) {
+        uint64_t local = 0;
+        SurfaceHit h;
+        for (uint64_t i = r.begin(); i != r.end(); ++i) {
+          const uint32_t k = static_cast<uint32_t>(i);
+          auto u = [&](uint32_t d) {
+            return static_cast<double>(bitsToUnitFloat(hash4(k, d, 0xbe9c, 0)));
+          };
+          Ray ray;
+          ray.o = Vec3(Vec3d(lo.x + (hi.x - lo.x) * u(0), lo.y + (hi.y - lo.y) * u(1),
+                             lo.z + (hi.z - lo.z) * u(2)));
+          ray.d = sampleUniformSphere({static_cast<float>(u(3)), static_cast<float>(u(4))});
+          local += scene.geometry->intersect(ray, h);
+        }
+        hits += local;
+      });
   return static_cast<double>(rays) /
          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

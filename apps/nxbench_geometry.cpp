@@ -18,6 +18,7 @@
 #include "accel/geometry_scene.h"
 #include "core/hash.h"
 #include "core/math_util.h"
+#include "integrators/sampling.h"
 
 namespace {
 
@@ -28,9 +29,7 @@ float rnd(uint32_t a, uint32_t b) {
 }
 
 Vec3 direction(uint32_t k) {
-  const float z = 1 - 2 * rnd(k, 1), phi = 6.2831853f * rnd(k, 2);
-  const float r = std::sqrt(std::max(0.0f, 1 - z * z));
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  return sampleUniformSphere({rnd(k, 1), rnd(k, 2)});
 }
 
 struct Result {

@@ -99,7 +99,10 @@ public:
       std::fprintf(stderr, "\r[%s%s] %3.0f%%  %.1f s elapsed, ETA %.1f s ",
                    std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(),
                    100 * fraction, elapsed, eta);
-      if (done == total) std::fprintf(stderr, "\n");
+      if (done == total) {
+        std::fprintf(stderr, "\n");
+        ended_ = true;
+      }
     } else {
       if (elapsed - last_ < 5.0) return;
       std::fprintf(stderr, "nxrender: %.0f%% done, %.1f s elapsed, ETA %.1f s\n", 100 * fraction,
@@ -107,8 +110,9 @@ public:
     }
     last_ = elapsed;
   }
+  /// Ends the bar's line if the render stopped before it was full.
   void finish() const {
-    if (tty_) std::fprintf(stderr, "\n");
+    if (tty_ && !ended_) std::fprintf(stderr, "\n");
   }
 
 private:
@@ -118,6 +122,7 @@ private:
   bool tty_;
   std::chrono::steady_clock::time_point start_;
   double last_ = 0;
+  bool ended_ = false;
 };
 
 int run(int argc, char** argv) {

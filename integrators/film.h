@@ -18,7 +18,6 @@ struct PixelRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   int width() const { return x1 - x0; }
   int height() const { return y1 - y0; }
-  bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
 };
 
 /// Estimates of band-averaged radiance and of XYZ for each pixel of a rectangle, as sums over
