@@ -10,8 +10,7 @@ uint32_t reverseBits(uint32_t x) {
   x = ((x >> 1) & 0x55555555U) | ((x & 0x55555555U) << 1);
   x = ((x >> 2) & 0x33333333U) | ((x & 0x33333333U) << 2);
   x = ((x >> 4) & 0x0F0F0F0FU) | ((x & 0x0F0F0F0FU) << 4);
-  x = ((x >> 8) & 0x00FF00FFU) | ((x & 0x00FF00FFU) << 8);
-  return (x >> 16) | (x << 16);
+  return __builtin_bswap32(x); // reverses the byte order: the last two swap steps at once
 }
 
 // Burley 2020, section 3: a hash that, like an Owen scramble read from the least significant
@@ -25,9 +24,10 @@ uint32_t laineKarrasPermutation(uint32_t x, uint32_t seed) {
   return x;
 }
 
-// Owen scrambling of a 0.32 fixed-point value: flips are nested from the most significant bit.
-uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
-  return reverseBits(laineKarrasPermutation(reverseBits(x), seed));
+// Owen scrambling of a 0.32 fixed-point value given bit-reversed: flips are nested from the
+// most significant bit of the value, i.e. from the least significant bit of `reversed`.
+uint32_t scrambleReversed(uint32_t reversed, uint32_t seed) {
+  return reverseBits(laineKarrasPermutation(reversed, seed));
 }
 
 // Sobol dimension 1 (primitive polynomial x + 1): v_0 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1);
@@ -57,25 +57,67 @@ uint32_t sobolDimension1(uint32_t index) {
 
 constexpr uint32_t kShuffleSalt = 0x5f356495U;
 constexpr uint32_t kScrambleSalt = 0x2c1b3c6dU;
+constexpr uint32_t kCounterSalt = 0x7a3f9e1bU;
+
+// Counter-based value of dimension `dim` of the sample whose key is `key`: the dimension is
+// mixed on its own first (independent of the key), then with the key.
+uint32_t counterBits(uint32_t key, uint32_t dim) {
+  return mix32(key ^ mix32(dim * 0x9e3779b9U + kCounterSalt));
+}
+
+// Burley 2020, section 4: shuffle the index with a nested uniform scramble, take the first
+// two Sobol dimensions at the shuffled index (dimension 0 is the bit reversal), scramble each.
+Sample2 sobolPair(uint32_t index, uint32_t shuffleSeed, uint32_t seedX, uint32_t seedY) {
+  const uint32_t shuffled = scrambleReversed(reverseBits(index), shuffleSeed);
+  return {bitsToUnitFloat(scrambleReversed(shuffled, seedX)), // reverse(reverse(shuffled))
+          bitsToUnitFloat(scrambleReversed(reverseBits(sobolDimension1(shuffled)), seedY))};
+}
+
+uint32_t shuffleSeed(uint32_t pixel, uint32_t pair, uint32_t seed) {
+  return hash4(pixel, pair, seed, kShuffleSalt);
+}
+uint32_t scrambleSeed(uint32_t pixel, uint32_t dim, uint32_t seed) {
+  return hash4(pixel, dim, seed, kScrambleSalt);
+}
+uint32_t counterKey(uint32_t pixel, uint32_t index, uint32_t seed) {
+  return hash4(pixel, index, seed, kCounterSalt);
+}
 
 } // namespace
 
 Sample2 samplePair(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed) {
   if (kind == SamplerKind::Independent || pair >= kSobolPairs) {
-    return {bitsToUnitFloat(hash4(pixel, index, 2 * pair, seed)),
-            bitsToUnitFloat(hash4(pixel, index, 2 * pair + 1, seed))};
+    const uint32_t key = counterKey(pixel, index, seed);
+    return {bitsToUnitFloat(counterBits(key, 2 * pair)),
+            bitsToUnitFloat(counterBits(key, 2 * pair + 1))};
   }
-  const uint32_t shuffled = nestedUniformScramble(index, hash4(pixel, pair, seed, kShuffleSalt));
-  const uint32_t x = reverseBits(shuffled);
-  const uint32_t y = sobolDimension1(shuffled);
-  return {
-      bitsToUnitFloat(nestedUniformScramble(x, hash4(pixel, 2 * pair, seed, kScrambleSalt))),
-      bitsToUnitFloat(nestedUniformScramble(y, hash4(pixel, 2 * pair + 1, seed, kScrambleSalt)))};
+  return sobolPair(index, shuffleSeed(pixel, pair, seed), scrambleSeed(pixel, 2 * pair, seed),
+                   scrambleSeed(pixel, 2 * pair + 1, seed));
 }
 
 float sampleValue(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t dim, uint32_t seed) {
   const Sample2 s = samplePair(kind, pixel, index, dim / 2, seed);
   return (dim & 1U) ? s.v : s.u;
+}
+
+PixelSequence::PixelSequence(SamplerKind kind, uint32_t pixel, uint32_t seed)
+    : sobol_(kind == SamplerKind::SobolOwen), pixel_(pixel), seed_(seed) {
+  for (uint32_t p = 0; p < kSobolPairs; ++p) {
+    shuffle_[p] = sobol_ ? shuffleSeed(pixel, p, seed) : 0;
+    scramble_[p][0] = sobol_ ? scrambleSeed(pixel, 2 * p, seed) : 0;
+    scramble_[p][1] = sobol_ ? scrambleSeed(pixel, 2 * p + 1, seed) : 0;
+  }
+}
+
+uint32_t PixelSequence::sampleKey(uint32_t index) const {
+  return counterKey(pixel_, index, seed_);
+}
+
+Sample2 PixelSequence::pair(uint32_t index, uint32_t key, uint32_t pair) const {
+  if (!sobol_ || pair >= kSobolPairs)
+    return {bitsToUnitFloat(counterBits(key, 2 * pair)),
+            bitsToUnitFloat(counterBits(key, 2 * pair + 1))};
+  return sobolPair(index, shuffle_[pair], scramble_[pair][0], scramble_[pair][1]);
 }
 
 } // namespace nx

@@ -13,7 +13,11 @@
 //   Scrambling", JCGT 9(4), 2020), for the first kSobolPairs dimension pairs (wavelengths,
 //   pixel position, the first bounces); each pixel's first 2^m samples form a (0,m,2)-net in
 //   each of them. Later dimensions, where stratification hardly lowers the error of a path
-//   integrand, take the counter-based values, which cost a quarter as much.
+//   integrand, take the counter-based values, which cost a fraction as much.
+//
+// The scrambling seeds depend on (pixel, pair, seed) only, so PixelSequence computes them
+// once per pixel; the counter-based values hash (pixel, index, seed) once per sample and mix
+// in the dimension per value. samplePair() computes the same values from scratch.
 
 #include <cstdint>
 
@@ -37,13 +41,33 @@ float sampleValue(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t dim
 /// Dimensions 2*pair and 2*pair+1 together (they form a (0,2)-sequence for SobolOwen).
 Sample2 samplePair(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed);
 
+/// The sequence of one (pixel, seed): its scrambling seeds, computed once and shared by all
+/// of the pixel's samples.
+class PixelSequence {
+public:
+  /// The sequence of `pixel` for `seed`.
+  PixelSequence(SamplerKind kind, uint32_t pixel, uint32_t seed);
+
+  /// The hash of (pixel, index, seed) that the counter-based dimensions of a sample derive from.
+  uint32_t sampleKey(uint32_t index) const;
+  /// Dimensions 2*pair and 2*pair+1 of sample `index`, whose sampleKey is `key`: equal to
+  /// samplePair(kind, pixel, index, pair, seed).
+  Sample2 pair(uint32_t index, uint32_t key, uint32_t pair) const;
+
+private:
+  bool sobol_;
+  uint32_t pixel_, seed_;
+  uint32_t shuffle_[kSobolPairs];     ///< index shuffle seed per Sobol pair
+  uint32_t scramble_[kSobolPairs][2]; ///< Owen scrambling seed per Sobol dimension
+};
+
 /// The sample values of one (pixel, sample index), handed out in order. A 2D draw takes a
 /// fresh dimension pair; two successive 1D draws share one pair (its two coordinates).
 class PixelSampleStream {
 public:
-  /// Starts at dimension pair 0 of the given pixel and sample index.
-  PixelSampleStream(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t seed)
-      : kind_(kind), pixel_(pixel), index_(index), seed_(seed) {}
+  /// Starts at dimension pair 0 of sample `index` of the sequence (which must outlive it).
+  PixelSampleStream(const PixelSequence& sequence, uint32_t index)
+      : sequence_(&sequence), index_(index), key_(sequence.sampleKey(index)) {}
 
   /// Next value in [0,1).
   float next1D() {
@@ -51,17 +75,17 @@ public:
       pending_ = false;
       return pendingValue_;
     }
-    const Sample2 s = samplePair(kind_, pixel_, index_, pair_++, seed_);
+    const Sample2 s = next2D();
     pending_ = true;
     pendingValue_ = s.v;
     return s.u;
   }
   /// Next point in [0,1)^2.
-  Sample2 next2D() { return samplePair(kind_, pixel_, index_, pair_++, seed_); }
+  Sample2 next2D() { return sequence_->pair(index_, key_, pair_++); }
 
 private:
-  SamplerKind kind_;
-  uint32_t pixel_, index_, seed_;
+  const PixelSequence* sequence_;
+  uint32_t index_, key_;
   uint32_t pair_ = 0;
   bool pending_ = false; ///< the second coordinate of the last 1D pair is unused
   float pendingValue_ = 0;

@@ -18,15 +18,28 @@ struct FluorescentShift {
   SampledSpectrum albedo;     ///< D(o) + c(o) per lane
 };
 
-/// Draws the re-radiation choice of every lane (two sample values per lane).
+/// x + shift modulo 1, for x in [0, 1) and shift in [0, 1).
+inline float rotateUnit(float x, float shift) {
+  const float r = x + shift;
+  return r >= 1.0f ? r - 1.0f : r;
+}
+
+/// Draws the re-radiation choice of every lane from one 2D sample: lane i uses it rotated by
+/// (i / kLanes, frac(i phi)) (a Cranley-Patterson rotation), so each lane's sample is
+/// uniform on its own (the estimate of every lane is unbiased) while the lanes' choices are
+/// stratified among themselves, like the hero wavelengths.
 inline FluorescentShift sampleFluorescentShift(const ReradiationMatrix& matrix,
                                                const SampledWavelengths& current,
                                                const SampledSpectrum& rho, PixelSampleStream& rng) {
   FluorescentShift s{current, SampledSpectrum::filled(1.0f)};
+  const Sample2 u = rng.next2D();
+  constexpr float kGoldenFraction = 0.6180339887f;
   for (int i = 0; i < kLanes; ++i) {
-    const Sample2 u = rng.next2D();
-    s.excited.lambda[i] = static_cast<float>(
-        matrix.sampleExcitation(current.lambda[i], rho[i], u.u, u.v, s.albedo[i]));
+    const float shiftV = static_cast<float>(i) * kGoldenFraction;
+    const float ui = rotateUnit(u.u, static_cast<float>(i) / static_cast<float>(kLanes));
+    const float vi = rotateUnit(u.v, shiftV - std::floor(shiftV));
+    s.excited.lambda[i] =
+        static_cast<float>(matrix.sampleExcitation(current.lambda[i], rho[i], ui, vi, s.albedo[i]));
   }
   return s;
 }

@@ -7,16 +7,6 @@
 #include "integrators/sampling.h"
 
 namespace nx {
-namespace {
-
-// sin^2 and cos of the half-angle of the cone a sphere subtends from a point outside it.
-double coneCosMax(double sin2Max) {
-  // For tiny cones 1 - sqrt(1 - s) loses all digits in float; in double it holds to s ~ 1e-16.
-  return std::sqrt(std::max(0.0, 1.0 - sin2Max));
-}
-
-} // namespace
-
 LightSampler::LightSampler(const RenderScene& scene) : scene_(&scene) {
   sphereLight_.assign(scene.spheres.size(), -1);
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
@@ -48,25 +38,28 @@ bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const Sampled
     return true;
   }
   const SphereShape& s = scene_->geometry->spheres()[light.index];
-  const Vec3d pd(p);
-  const Vec3d axis = s.center - pd;
+  const Vec3d axis = s.center - Vec3d(p);
   const double d2 = dot(axis, axis);
   const double r2 = s.radius * s.radius;
   Vec3 wi;
-  double pdf;
+  double pdf, dist;
   if (d2 <= r2) {
     wi = sampleUniformSphere(u); // inside: every direction meets the sphere
     pdf = 1.0 / (4 * kPi);
+    const auto t = intersectSphere(s, Vec3d(p), Vec3d(wi), 0.0, INFINITY);
+    dist = t ? *t : 0.0;
   } else {
-    const double cosMax = coneCosMax(r2 / d2);
-    const Vec3 local = sampleUniformCone(u, cosMax);
-    wi = normalize(Frame::fromNormal(Vec3(axis / std::sqrt(d2))).toWorld(local));
-    pdf = uniformConePdf(cosMax);
+    const double d = std::sqrt(d2);
+    const double oneMinusCosMax = oneMinusCosFromSin2(r2 / d2);
+    wi = normalize(Frame::fromNormal(Vec3(axis / d)).toWorld(sampleUniformCone(u, oneMinusCosMax)));
+    pdf = uniformConePdf(oneMinusCosMax);
+    // Distance to the near side along the sampled theta (law of cosines), in double: the
+    // same 1 - cos(theta) as sampleUniformCone. Directions at the silhouette get the tangent
+    // distance (the square root is zero up to rounding).
+    const double oneMinusCos = u.u * oneMinusCosMax;
+    const double sin2 = oneMinusCos * (2.0 - oneMinusCos);
+    dist = d * (1.0 - oneMinusCos) - std::sqrt(std::max(0.0, r2 - d2 * sin2));
   }
-  // Distance to the sphere along wi; a grazing direction that misses by rounding takes the
-  // tangent distance.
-  const auto t = intersectSphere(s, pd, Vec3d(wi), 0.0, INFINITY);
-  const double dist = t ? *t : std::max(0.0, dot(axis, Vec3d(wi)));
   if (!(dist > 0) || !std::isfinite(pdf)) return false;
   out.wi = wi;
   out.distance = static_cast<float>(dist);
@@ -84,9 +77,9 @@ float LightSampler::pdfSphere(const Vec3& p, uint32_t sphereIndex, const Vec3& w
   const double d2 = dot(axis, axis), r2 = s.radius * s.radius;
   const float choice = 1.0f / static_cast<float>(count());
   if (d2 <= r2) return static_cast<float>(1.0 / (4 * kPi)) * choice;
-  const double cosMax = coneCosMax(r2 / d2);
-  if (dot(axis, Vec3d(wi)) / std::sqrt(d2) < cosMax) return 0; // outside the cone
-  return static_cast<float>(uniformConePdf(cosMax)) * choice;
+  const double oneMinusCosMax = oneMinusCosFromSin2(r2 / d2);
+  if (dot(axis, Vec3d(wi)) / std::sqrt(d2) < 1.0 - oneMinusCosMax) return 0; // outside the cone
+  return static_cast<float>(uniformConePdf(oneMinusCosMax)) * choice;
 }
 
 } // namespace nx

@@ -86,15 +86,17 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           const uint32_t pixelIndex =
               static_cast<uint32_t>(y) * static_cast<uint32_t>(settings.width) +
               static_cast<uint32_t>(x);
+          // Two independently scrambled replicates, interleaved: even sample numbers use the
+          // seed, odd ones a derived seed; each is one sequence of its own (index s / 2), and
+          // the difference of their means estimates the error (randomized QMC).
+          const PixelSequence replicates[2] = {
+              PixelSequence(options.sampler, pixelIndex, seed),
+              PixelSequence(options.sampler, pixelIndex, seed ^ kOddReplicateSalt)};
           // Each pixel continues after the samples it already has (a resumed film may hold
           // more in some pixels than in others).
           for (int s = begin + static_cast<int>(out.film.samples(x, y)); s < passEnd; ++s) {
-            // Two independently scrambled replicates, interleaved: even sample numbers use the
-            // seed, odd ones a derived seed; each is one sequence of its own (index s / 2), and
-            // the difference of their means estimates the error (randomized QMC).
             const bool odd = (s & 1) != 0;
-            PixelSampleStream rng(options.sampler, pixelIndex, static_cast<uint32_t>(s) >> 1,
-                                  odd ? seed ^ kOddReplicateSalt : seed);
+            PixelSampleStream rng(replicates[odd], static_cast<uint32_t>(s) >> 1);
             SampledWavelengths lambda = wavelengths.sample(rng.next1D());
             const Sample2 jitter = rng.next2D();
             const Ray ray = scene.camera.generateRay(static_cast<double>(x) + jitter.u,

@@ -34,20 +34,27 @@ inline float cosineHemispherePdf(float cosTheta) {
   return cosTheta > 0 ? cosTheta * static_cast<float>(kInvPi) : 0.0f;
 }
 
-/// Uniform direction in the cone of half-angle acos(cosMax) around +z. Density
-/// 1 / (2 pi (1 - cosMax)). cos(theta) is interpolated in double precision so that very
-/// narrow cones (a small light far away) stay accurate.
-inline Vec3 sampleUniformCone(Sample2 u, double cosMax) {
-  const double cosTheta = 1.0 - u.u * (1.0 - cosMax);
-  const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
-  const double phi = 2 * kPi * u.v;
-  return {static_cast<float>(sinTheta * std::cos(phi)),
-          static_cast<float>(sinTheta * std::sin(phi)), static_cast<float>(cosTheta)};
+/// 1 - cos(theta) from sin^2(theta) for theta <= pi/2, without the cancellation of
+/// 1 - sqrt(1 - s): exact to rounding down to cones of 1e-20 sr (a tiny light far away).
+inline double oneMinusCosFromSin2(double sin2) {
+  return sin2 / (1.0 + std::sqrt(std::max(0.0, 1.0 - sin2)));
+}
+
+/// Uniform direction in the cone of half-angle theta_max around +z, given
+/// oneMinusCosMax = 1 - cos(theta_max). Density 1 / (2 pi oneMinusCosMax). The sampled
+/// 1 - cos(theta) is u.u * oneMinusCosMax, computed in double precision so that very narrow
+/// cones stay accurate; the azimuth in single precision.
+inline Vec3 sampleUniformCone(Sample2 u, double oneMinusCosMax) {
+  const double oneMinusCos = u.u * oneMinusCosMax;
+  const float sinTheta = static_cast<float>(std::sqrt(oneMinusCos * (2.0 - oneMinusCos)));
+  const float phi = 2 * static_cast<float>(kPi) * u.v;
+  return {sinTheta * std::cos(phi), sinTheta * std::sin(phi),
+          static_cast<float>(1.0 - oneMinusCos)};
 }
 
 /// Density of sampleUniformCone.
-inline double uniformConePdf(double cosMax) {
-  return 1.0 / (2 * kPi * (1.0 - cosMax));
+inline double uniformConePdf(double oneMinusCosMax) {
+  return 1.0 / (2 * kPi * oneMinusCosMax);
 }
 
 /// Uniform direction on the unit sphere. Density 1 / (4 pi).

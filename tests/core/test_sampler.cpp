@@ -24,7 +24,8 @@ TEST(Sampler, PureFunctionOfItsFourArguments) {
 
 TEST(Sampler, StreamMatchesDirectValues) {
   for (SamplerKind k : kKinds) {
-    PixelSampleStream s(k, 5, 9, 1);
+    const PixelSequence sequence(k, 5, 1);
+    PixelSampleStream s(sequence, 9);
     const float a = s.next1D();
     const Sample2 b = s.next2D();
     const float c = s.next1D();
@@ -34,6 +35,12 @@ TEST(Sampler, StreamMatchesDirectValues) {
     EXPECT_EQ(c, sampleValue(k, 5, 9, 1, 1)); // the second coordinate of the first pair
     const float d = s.next1D();
     EXPECT_EQ(d, sampleValue(k, 5, 9, 4, 1));
+    // Every pair, Sobol and counter-based, equals the value computed from scratch.
+    for (uint32_t pair = 3; pair < 3 * kSobolPairs; ++pair) {
+      const Sample2 e = s.next2D(), f = samplePair(k, 5, 9, pair, 1);
+      EXPECT_EQ(e.u, f.u);
+      EXPECT_EQ(e.v, f.v);
+    }
   }
 }
 
@@ -60,7 +67,8 @@ TEST(Sampler, OneDimensionIsUniform) {
 TEST(Sampler, PairsOfDimensionsAreJointlyUniform) {
   for (SamplerKind k : kKinds) {
     for (auto [d0, d1] :
-         {std::pair{0u, 1u}, std::pair{0u, 2u}, std::pair{1u, 3u}, std::pair{4u, 9u}}) {
+         {std::pair{0u, 1u}, std::pair{0u, 2u}, std::pair{1u, 3u}, std::pair{4u, 9u},
+          std::pair{12u, 13u}, std::pair{12u, 14u}, std::pair{11u, 12u}, std::pair{15u, 40u}}) {
       const int side = 32, n = side * side * 100;
       std::vector<double> obs(side * side, 0), exp(side * side, n / double(side * side));
       for (int i = 0; i < n; ++i) {

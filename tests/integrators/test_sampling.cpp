@@ -59,27 +59,33 @@ TEST(Sampling, UniformConeWideAndNarrow) {
   // (The cone edges fall on cell boundaries, so the numerical cell integrals are exact.)
   for (double cosMax : {0.3, 0.9}) {
     expectDirectionsFollowPdf(
-        [&](Sample2 u) { return sampleUniformCone(u, cosMax); },
-        [&](const Vec3& w) { return w.z >= cosMax ? uniformConePdf(cosMax) : 0.0; });
+        [&](Sample2 u) { return sampleUniformCone(u, 1 - cosMax); },
+        [&](const Vec3& w) { return w.z >= cosMax ? uniformConePdf(1 - cosMax) : 0.0; });
   }
   // A narrow cone: uniform over its own (cos theta, phi) cells.
   const double narrow = 0.995;
   const int nz = 20, nphi = 20, n = 100000;
   std::vector<double> obs(nz * nphi, 0), exp(nz * nphi, n / double(nz * nphi));
   for (int i = 0; i < n; ++i) {
-    const Vec3 w = sampleUniformCone(uniform2(static_cast<uint32_t>(i)), narrow);
+    const Vec3 w = sampleUniformCone(uniform2(static_cast<uint32_t>(i)), 1 - narrow);
     const int iz = std::min(nz - 1, static_cast<int>((1 - w.z) / (1 - narrow) * nz));
     const double phi = std::atan2(w.y, w.x) + kPi;
     obs[iz * nphi + std::min(nphi - 1, static_cast<int>(phi / (2 * kPi) * nphi))] += 1;
   }
   const auto [stat, dof] = test::chiSquare(obs, exp);
   EXPECT_LT(test::chiSquareZ(stat, dof), 4.0);
-  // A cone of 1e-5 rad (a 1-unit light 1e5 away): every direction inside, none degenerate.
-  const double sin2 = 1e-10, cosMax = std::sqrt(1 - sin2);
-  for (uint32_t i = 0; i < 1000; ++i) {
-    const Vec3 w = sampleUniformCone(uniform2(i), cosMax);
-    EXPECT_GE(w.z, static_cast<float>(cosMax) - 1e-7f);
-    EXPECT_NEAR(length(w), 1.0f, 1e-6f);
+  // Cones of 1e-5 and 1e-10 rad (a 1-unit light 1e5 away, a 1e-5 light 1e5 away): every
+  // direction inside, none degenerate, and the density finite.
+  for (double sin2 : {1e-10, 1e-20}) {
+    const double oneMinusCosMax = oneMinusCosFromSin2(sin2);
+    EXPECT_NEAR(oneMinusCosMax, sin2 / 2 + sin2 * sin2 / 8, 1e-12 * sin2); // Taylor series
+    EXPECT_TRUE(std::isfinite(uniformConePdf(oneMinusCosMax)));
+    for (uint32_t i = 0; i < 1000; ++i) {
+      const Vec3 w = sampleUniformCone(uniform2(i), oneMinusCosMax);
+      const float sinTheta = std::sqrt(w.x * w.x + w.y * w.y);
+      EXPECT_LE(sinTheta, std::sqrt(sin2) * (1 + 1e-6));
+      EXPECT_NEAR(length(w), 1.0f, 1e-6f);
+    }
   }
 }
 
