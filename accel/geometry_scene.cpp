@@ -60,7 +60,16 @@ void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
   }
 }
 
+// Embree's intersection context extended with the sphere an occlusion query skips (the
+// context pointer reaches the callbacks unchanged).
+struct OcclusionContext {
+  RTCIntersectContext embree;
+  uint32_t ignoredSphere;
+};
+
 void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
+  if (reinterpret_cast<const OcclusionContext*>(args->context)->ignoredSphere == args->primID)
+    return;
   const auto& s = static_cast<const SphereShape*>(args->geometryUserPtr)[args->primID];
   const unsigned n = args->N;
   for (unsigned i = 0; i < n; ++i) {
@@ -211,14 +220,15 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
   return true;
 }
 
-bool GeometryScene::occluded(const Ray& ray) const {
+bool GeometryScene::occluded(const Ray& ray, uint32_t ignoredSphere) const {
   const Vec3d o(ray.o), d(ray.d);
   for (const auto& p : planes_)
     if (intersectPlane(p, o, d, ray.tMin, ray.tMax)) return true;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  OcclusionContext context;
+  rtcInitIntersectContext(&context.embree);
+  context.ignoredSphere = ignoredSphere;
   RTCRay r = toEmbree(ray);
-  rtcOccluded1(scene_, &context, &r);
+  rtcOccluded1(scene_, &context.embree, &r);
   return r.tfar == -std::numeric_limits<float>::infinity();
 }
 

@@ -46,8 +46,12 @@ public:
 
   /// Nearest hit of `ray` in (ray.tMin, ray.tMax), or false.
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
-  /// True if anything blocks `ray` in (ray.tMin, ray.tMax).
-  bool occluded(const Ray& ray) const;
+  /// Sphere index meaning "no sphere" for occluded().
+  static constexpr uint32_t kNoSphere = 0xffffffffu;
+  /// True if anything blocks `ray` in (ray.tMin, ray.tMax). Sphere `ignoredSphere` is not
+  /// tested: a shadow ray towards a sphere light ends before that sphere's surface, where the
+  /// sphere cannot block it, so its test would only cost time.
+  bool occluded(const Ray& ray, uint32_t ignoredSphere = kNoSphere) const;
 
   /// Number of hits discarded because their point or normal was not finite (should be 0).
   uint64_t nonFiniteHits() const { return nonFinite_.load(std::memory_order_relaxed); }

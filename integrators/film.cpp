@@ -6,7 +6,8 @@
 namespace nx {
 
 Film::Film(int width, int height, const PixelRect& rect, const SpectralBands& bands)
-    : width_(width), height_(height), rect_(rect), bands_(bands), nBands_(bands.count()) {
+    : width_(width), height_(height), rect_(rect), bands_(bands), nBands_(bands.count()),
+      cie_(&cieTables()) {
   const size_t pixels = static_cast<size_t>(rect.width()) * static_cast<size_t>(rect.height());
   bandSums_.assign(pixels * static_cast<size_t>(nBands_), 0.0);
   bandOddSums_.assign(pixels * static_cast<size_t>(nBands_), 0.0);
@@ -46,7 +47,7 @@ bool Film::addSample(Pixel& pixel, const SampledWavelengths& lambda, const Sampl
       if (k == touched) band[touched] = b, bandValue[touched++] = 0;
       bandValue[k] += v * bandScale;
     }
-    const Xyz cmf = cieCmf(lambda.lambda[i]);
+    const Xyz cmf = cieCmf(*cie_, lambda.lambda[i]);
     xyz[0] += v * cmf.x / kCieYIntegral;
     xyz[1] += v * cmf.y / kCieYIntegral;
     xyz[2] += v * cmf.z / kCieYIntegral;

@@ -100,6 +100,7 @@ private:
   PixelRect rect_;
   SpectralBands bands_;
   int nBands_;
+  const CieTables* cie_;
   std::vector<double> bandSums_;    ///< [pixel][band]
   std::vector<double> bandOddSums_; ///< [pixel][band]
   std::vector<double> xyzSums_;     ///< [pixel][3]

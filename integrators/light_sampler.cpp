@@ -35,6 +35,7 @@ bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const Sampled
     out.radiance = evaluate(pl.intensity, lambda) * (1.0f / d2);
     out.pdf = choice;
     out.delta = true;
+    out.sphere = GeometryScene::kNoSphere;
     return true;
   }
   const SphereShape& s = scene_->geometry->spheres()[light.index];
@@ -67,6 +68,7 @@ bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const Sampled
       scene_->emission[static_cast<size_t>(scene_->spheres[light.index].emission)], lambda);
   out.pdf = static_cast<float>(pdf) * choice;
   out.delta = false;
+  out.sphere = light.index;
   return true;
 }
 

@@ -16,7 +16,8 @@ struct LightSample {
   SampledSpectrum radiance; ///< emitted radiance (area lights) or I / d^2 (point lights)
   float pdf = 0; ///< solid-angle density including the light choice; for point lights the choice
                  ///< probability
-  bool delta = false; ///< a point light: cannot be hit by BSDF sampling
+  bool delta = false;                         ///< a point light: cannot be hit by BSDF sampling
+  uint32_t sphere = GeometryScene::kNoSphere; ///< the emitting sphere aimed at, if any
 };
 
 /// The lights next-event estimation can aim at: emitting spheres (sampled through the cone

@@ -77,7 +77,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray, SampledWave
           shadow.d = ls.wi;
           shadow.tMax = ls.distance * kShadowShorten;
           ++counters.rays;
-          if (!scene.geometry->occluded(shadow)) {
+          if (!scene.geometry->occluded(shadow, ls.sphere)) {
             const float w = (ls.delta || ctx.lightSampling == LightSampling::NeeOnly)
                                 ? 1.0f
                                 : powerHeuristic(ls.pdf, bsdf.pdfDiffuse(ls.wi));

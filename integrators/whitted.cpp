@@ -55,7 +55,7 @@ void whitted(const IntegratorContext& ctx, const Ray& ray, const SampledWaveleng
       shadow.d = ls.wi;
       shadow.tMax = ls.distance * kShadowShorten;
       ++counters.rays;
-      if (scene.geometry->occluded(shadow)) continue;
+      if (scene.geometry->occluded(shadow, ls.sphere)) continue;
       // ls.pdf includes the choice probability 1/count; every light is visited, so undo it.
       L += beta * f * ls.radiance * (1.0f / (ls.pdf * static_cast<float>(ctx.lights->count())));
     }

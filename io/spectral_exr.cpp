@@ -6,6 +6,8 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <ImfThreading.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <cstdio>
@@ -85,7 +87,12 @@ void writeSpectralExr(const std::string& path, const SpectralImage& image) {
                 Imf::Slice::Make(Imf::UINT, image.sampleCount.data(), data, sizeof(uint32_t),
                                  sizeof(uint32_t) * image.width));
     }
-    Imf::OutputFile file(temp.c_str(), header);
+    // Compress line blocks on as many threads as the render may use (the zlib compression
+    // of ~70 float channels otherwise takes longer than a short render).
+    const int threads = static_cast<int>(
+        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    if (Imf::globalThreadCount() != threads) Imf::setGlobalThreadCount(threads);
+    Imf::OutputFile file(temp.c_str(), header, threads);
     file.setFrameBuffer(fb);
     file.writePixels(image.height);
   });

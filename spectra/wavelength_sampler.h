@@ -12,7 +12,7 @@ namespace nx {
 /// Spectral Sampling", EGSR 2014), so every lane has the same marginal density p.
 class WavelengthSampler {
 public:
-  /// A sampler over [minNm, maxNm] (minNm < maxNm, both positive).
+  /// A sampler over [minNm, maxNm] (200 nm <= minNm < maxNm <= 1100 nm; bands lie in 300-1000).
   WavelengthSampler(double minNm, double maxNm);
 
   /// The kLanes wavelengths for primary sample u in [0, 1), with their pdfs.

@@ -224,6 +224,23 @@ TEST(GeometryScene, PlaneReachesTheHorizon) {
   EXPECT_GT(far.t, 1.0f);
 }
 
+// An occlusion query can skip one sphere (the light a shadow ray aims at); every other shape
+// still blocks.
+TEST(GeometryScene, OcclusionIgnoresOnlyTheGivenSphere) {
+  EmbreeDevice device;
+  GeometryScene g(device, {{Vec3d(0, 0, 10), 1}, {Vec3d(0, 0, 5), 1}}, {}, {});
+  Ray r;
+  r.d = Vec3(0, 0, 1);
+  r.tMax = 20;
+  EXPECT_TRUE(g.occluded(r));
+  EXPECT_TRUE(g.occluded(r, 0)); // sphere 1 is still in the way
+  EXPECT_TRUE(g.occluded(r, 1));
+  r.o = Vec3(0, 0, 7); // beyond sphere 1
+  EXPECT_TRUE(g.occluded(r));
+  EXPECT_FALSE(g.occluded(r, 0));
+  EXPECT_TRUE(g.occluded(r, 1));
+}
+
 TEST(GeometryScene, EmptyScene) {
   EmbreeDevice device;
   GeometryScene g(device, {}, {}, {});

@@ -54,6 +54,20 @@ TEST(WavelengthSampler, HeroLanesAreRotatedInPrimarySampleSpace) {
   }
 }
 
+// The single-precision lanes agree with the double-precision inverse CDF and density over
+// the whole band range, edges included.
+TEST(WavelengthSampler, LanesMatchInverseCdfOverTheBandRange) {
+  for (auto [lo, hi] : {std::pair{300.0, 1000.0}, std::pair{360.0, 830.0}}) {
+    const WavelengthSampler s(lo, hi);
+    for (int k = 0; k <= 4000; ++k) {
+      const float u = std::min(static_cast<float>(k) / 4000.0f, 0x1.fffffep-1f);
+      const SampledWavelengths w = s.sample(u);
+      ASSERT_NEAR(w.lambda[0], s.wavelength(u), 0.01) << lo << "-" << hi << " u " << u;
+      ASSERT_NEAR(w.pdf[0], s.pdf(w.lambda[0]), 1e-4 * s.pdf(w.lambda[0])) << "u " << u;
+    }
+  }
+}
+
 // The lane-weighted estimator of the integral of y-bar converges to 106.857 (z-test).
 TEST(WavelengthSampler, ImportanceSampledIntegralOfYBar) {
   for (auto [lo, hi] : {std::pair{360.0, 830.0}, std::pair{400.0, 700.0}}) {
