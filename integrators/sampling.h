@@ -34,10 +34,13 @@ inline float cosineHemispherePdf(float cosTheta) {
   return cosTheta > 0 ? cosTheta * static_cast<float>(kInvPi) : 0.0f;
 }
 
-/// 1 - cos(theta) from sin^2(theta) for theta <= pi/2, without the cancellation of
-/// 1 - sqrt(1 - s): exact to rounding down to cones of 1e-20 sr (a tiny light far away).
+/// 1 - cos(theta) from s = sin^2(theta) for theta <= pi/2, accurate to 1e-11 (relative) down
+/// to cones of 1e-20 sr (a tiny light far away): 1 - sqrt(1 - s) loses digits to cancellation
+/// for small s, where the series s/2 + s^2/8 + s^3/16 is used instead (relative remainder
+/// 5 s^3 / 64 < 1e-13 for s < 1e-4). No division: this sits on the light sampler's critical path.
 inline double oneMinusCosFromSin2(double sin2) {
-  return sin2 / (1.0 + std::sqrt(std::max(0.0, 1.0 - sin2)));
+  if (sin2 < 1e-4) return sin2 * (0.5 + sin2 * (0.125 + sin2 * 0.0625));
+  return 1.0 - std::sqrt(std::max(0.0, 1.0 - sin2));
 }
 
 /// Uniform direction in the cone of half-angle theta_max around +z, given

@@ -89,6 +89,19 @@ TEST(Sampling, UniformConeWideAndNarrow) {
   }
 }
 
+// 1 - cos(theta max) against a long-double reference free of cancellation, from
+// hemispheres down to the tiniest cones, across the switch between the two formulas.
+TEST(Sampling, OneMinusCosFromSin2IsAccurateAtEveryScale) {
+  for (double e = -20; e <= 0; e += 0.01) {
+    const double sin2 = std::pow(10.0, e);
+    const long double ref = sin2 / (1.0L + std::sqrt(1.0L - static_cast<long double>(sin2)));
+    EXPECT_NEAR(oneMinusCosFromSin2(sin2), static_cast<double>(ref),
+                1e-11 * static_cast<double>(ref))
+        << sin2;
+  }
+  EXPECT_EQ(oneMinusCosFromSin2(1.0), 1.0);
+}
+
 TEST(Sampling, PowerHeuristic) {
   EXPECT_FLOAT_EQ(powerHeuristic(1, 1), 0.5f);
   EXPECT_FLOAT_EQ(powerHeuristic(3, 1), 0.9f);
