@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -51,13 +52,15 @@ struct SigmoidPolynomialSpectrum {
 /// Samples of a smooth spectrum on a uniform grid, linearly interpolated; zero outside it.
 /// Used at render time for the analytic kinds (an exp or atan per evaluation becomes a lookup).
 struct DenseSpectrum {
-  double startNm = 300, stepNm = 0.25;
+  static constexpr double startNm = 300, stepNm = 0.25; ///< the grid (1 / stepNm is exact)
   std::vector<float> value;
-  double operator()(double nm) const {
-    const double x = (nm - startNm) / stepNm;
-    if (!(x >= 0) || x > static_cast<double>(value.size() - 1)) return 0.0;
+  double operator()(double nm) const { return at(static_cast<float>(nm)); }
+  /// Value at nm in single precision: the render loop's lookup (a multiply, no division).
+  float at(float nm) const {
+    const float x = (nm - static_cast<float>(startNm)) * static_cast<float>(1.0 / stepNm);
+    if (!(x >= 0) || x > static_cast<float>(value.size() - 1)) return 0.0f;
     const size_t i = std::min(static_cast<size_t>(x), value.size() - 2);
-    const double t = x - static_cast<double>(i);
+    const float t = x - static_cast<float>(i);
     return value[i] + (value[i + 1] - value[i]) * t;
   }
 };
@@ -84,7 +87,16 @@ public:
   void evaluate(const Lambdas& nm, Out& out) const {
     std::visit(
         [&](const auto& k) {
-          for (size_t i = 0; i < nm.size(); ++i) out[i] = static_cast<float>(scale_ * k(nm[i]));
+          using K = std::decay_t<decltype(k)>;
+          if constexpr (std::is_same_v<K, DenseSpectrum>) {
+            const float scale = static_cast<float>(scale_);
+            for (size_t i = 0; i < nm.size(); ++i) out[i] = scale * k.at(static_cast<float>(nm[i]));
+          } else if constexpr (std::is_same_v<K, ConstantSpectrum>) {
+            const float v = static_cast<float>(scale_ * k.value);
+            for (size_t i = 0; i < nm.size(); ++i) out[i] = v;
+          } else {
+            for (size_t i = 0; i < nm.size(); ++i) out[i] = static_cast<float>(scale_ * k(nm[i]));
+          }
         },
         kind_);
   }
