@@ -7,7 +7,15 @@ namespace nx {
 
 Film::Film(int width, int height, const PixelRect& rect, const SpectralBands& bands)
     : width_(width), height_(height), rect_(rect), bands_(bands), nBands_(bands.count()),
-      cie_(&cieTables()) {
+      bandStart_(static_cast<float>(bands.lower(0))),
+      bandScale_(static_cast<float>(1.0 / bands.stepNm)) {
+  const CieTables& cie = cieTables();
+  cmf_.assign(3 * (kCieSamples + 1), 0.0f);
+  for (int i = 0; i < kCieSamples; ++i) {
+    cmf_[3 * i] = static_cast<float>(cie.xBar[i] / kCieYIntegral);
+    cmf_[3 * i + 1] = static_cast<float>(cie.yBar[i] / kCieYIntegral);
+    cmf_[3 * i + 2] = static_cast<float>(cie.zBar[i] / kCieYIntegral);
+  }
   const size_t pixels = static_cast<size_t>(rect.width()) * static_cast<size_t>(rect.height());
   bandSums_.assign(pixels * static_cast<size_t>(nBands_), 0.0);
   bandOddSums_.assign(pixels * static_cast<size_t>(nBands_), 0.0);
@@ -19,58 +27,52 @@ Film::Film(int width, int height, const PixelRect& rect, const SpectralBands& ba
 
 Film::Pixel Film::newPixel() const {
   Pixel p;
-  p.bands.assign(static_cast<size_t>(nBands_), 0.0);
-  p.bandsOdd.assign(static_cast<size_t>(nBands_), 0.0);
+  for (auto& b : p.bands) b.assign(static_cast<size_t>(nBands_), 0.0);
   return p;
 }
 
 bool Film::addSample(Pixel& pixel, const SampledWavelengths& lambda, const SampledSpectrum& L,
                      bool odd) const {
-  ++pixel.samples;
-  pixel.samplesOdd += odd;
-  for (int i = 0; i < kLanes; ++i)
-    if (!std::isfinite(L[i])) return false;
-  const double bandScale = 1.0 / bands_.stepNm;
-  // This sample's estimate of each band it touches (at most kLanes bands) and of XYZ.
-  int band[kLanes];
-  double bandValue[kLanes];
-  int touched = 0;
-  double xyz[3] = {0, 0, 0};
+  const int r = odd ? 1 : 0;
+  ++pixel.samples[r];
+  double sum = 0; // a sum of floats in double cannot overflow: non-finite only through a lane
+  for (int i = 0; i < kLanes; ++i) sum += static_cast<double>(L[i]);
+  if (!std::isfinite(sum)) return false;
+  double* bandSums = pixel.bands[r].data();
+  double* xyz = pixel.xyz[r];
+  // Each lane adds its estimate to the band it falls in (L / bandwidth) and to XYZ
+  // (L * cmf / integral(y-bar)), weighted 1 / (kLanes pdf).
   for (int i = 0; i < kLanes; ++i) {
-    const double w = WavelengthSampler::laneWeight(lambda, i);
-    if (w == 0 || L[i] == 0) continue;
-    const double v = static_cast<double>(L[i]) * w;
-    const int b = bands_.bandOf(lambda.lambda[i]);
-    if (b >= 0) {
-      int k = 0;
-      while (k < touched && band[k] != b) ++k;
-      if (k == touched) band[touched] = b, bandValue[touched++] = 0;
-      bandValue[k] += v * bandScale;
-    }
-    const Xyz cmf = cieCmf(*cie_, lambda.lambda[i]);
-    xyz[0] += v * cmf.x / kCieYIntegral;
-    xyz[1] += v * cmf.y / kCieYIntegral;
-    xyz[2] += v * cmf.z / kCieYIntegral;
+    if (L[i] == 0 || !(lambda.pdf[i] > 0)) continue;
+    const float v = L[i] / (static_cast<float>(kLanes) * lambda.pdf[i]);
+    const float nm = lambda.lambda[i];
+    const float bx = (nm - bandStart_) * bandScale_;
+    if (bx >= 0 && bx < static_cast<float>(nBands_))
+      bandSums[static_cast<int>(bx)] += static_cast<double>(v * bandScale_);
+    const float cx = nm - static_cast<float>(kCieMinNm);
+    if (!(cx >= 0 && cx <= static_cast<float>(kCieSamples - 1))) continue;
+    const int k = static_cast<int>(cx);
+    const float f = cx - static_cast<float>(k);
+    const float* c = &cmf_[3 * static_cast<size_t>(k)]; // c[3..5]: the next nm (zero past 830)
+    xyz[0] += static_cast<double>(v * (c[0] + (c[3] - c[0]) * f));
+    xyz[1] += static_cast<double>(v * (c[1] + (c[4] - c[1]) * f));
+    xyz[2] += static_cast<double>(v * (c[2] + (c[5] - c[2]) * f));
   }
-  for (int k = 0; k < touched; ++k) {
-    pixel.bands[static_cast<size_t>(band[k])] += bandValue[k];
-    if (odd) pixel.bandsOdd[static_cast<size_t>(band[k])] += bandValue[k];
-  }
-  for (int c = 0; c < 3; ++c) pixel.xyz[c] += xyz[c];
-  if (odd) pixel.yOdd += xyz[1];
   return true;
 }
 
 void Film::add(int x, int y, const Pixel& pixel) {
   const size_t i = index(x, y);
   for (int b = 0; b < nBands_; ++b) {
-    bandSums_[i * nBands_ + b] += pixel.bands[static_cast<size_t>(b)];
-    bandOddSums_[i * nBands_ + b] += pixel.bandsOdd[static_cast<size_t>(b)];
+    const double even = pixel.bands[0][static_cast<size_t>(b)],
+                 odd = pixel.bands[1][static_cast<size_t>(b)];
+    bandSums_[i * nBands_ + b] += even + odd;
+    bandOddSums_[i * nBands_ + b] += odd;
   }
-  for (int c = 0; c < 3; ++c) xyzSums_[i * 3 + c] += pixel.xyz[c];
-  yOddSums_[i] += pixel.yOdd;
-  oddCounts_[i] += pixel.samplesOdd;
-  counts_[i] += pixel.samples;
+  for (int c = 0; c < 3; ++c) xyzSums_[i * 3 + c] += pixel.xyz[0][c] + pixel.xyz[1][c];
+  yOddSums_[i] += pixel.xyz[1][1];
+  oddCounts_[i] += pixel.samples[1];
+  counts_[i] += pixel.samples[0] + pixel.samples[1];
 }
 
 namespace {

@@ -38,27 +38,26 @@ public:
   double minNm() const { return bands_.lower(0); }
   double maxNm() const { return bands_.upper(bands_.count() - 1); }
 
-  /// Accumulator for one pixel's samples (lives on the stack of the tile task).
+  /// Accumulator for one pixel's samples (lives on the stack of the tile task), kept per
+  /// replicate: [0] the even-numbered samples, [1] the odd-numbered ones.
   struct Pixel {
-    std::vector<double> bands;    ///< sums of band estimates
-    std::vector<double> bandsOdd; ///< sums of band estimates of the odd-numbered samples
-    double xyz[3] = {0, 0, 0};    ///< sums of XYZ estimates
-    double yOdd = 0;              ///< sum of luminance estimates of the odd-numbered samples
-    uint32_t samplesOdd = 0;
-    uint32_t samples = 0;
+    std::vector<double> bands[2]; ///< sums of band estimates
+    double xyz[2][3] = {};        ///< sums of XYZ estimates
+    uint32_t samples[2] = {0, 0};
   };
 
   /// A zeroed pixel accumulator for this film.
   Pixel newPixel() const;
   /// Zeroes an accumulator for the next pixel (no allocation).
   static void resetPixel(Pixel& p) {
-    std::fill(p.bands.begin(), p.bands.end(), 0.0);
-    std::fill(p.bandsOdd.begin(), p.bandsOdd.end(), 0.0);
-    p.xyz[0] = p.xyz[1] = p.xyz[2] = 0;
-    p.yOdd = 0;
-    p.samplesOdd = 0;
-    p.samples = 0;
+    for (int r = 0; r < 2; ++r) {
+      std::fill(p.bands[r].begin(), p.bands[r].end(), 0.0);
+      p.xyz[r][0] = p.xyz[r][1] = p.xyz[r][2] = 0;
+      p.samples[r] = 0;
+    }
   }
+  /// Samples an accumulator holds.
+  static uint32_t samplesIn(const Pixel& p) { return p.samples[0] + p.samples[1]; }
 
   /// Adds one sample: radiance L carried by the lanes of `lambda` (sensor wavelengths), each
   /// lane weighted 1 / (kLanes pdf). Band b receives L / bandwidth for lanes inside it;
@@ -100,7 +99,10 @@ private:
   PixelRect rect_;
   SpectralBands bands_;
   int nBands_;
-  const CieTables* cie_;
+  float bandStart_, bandScale_; ///< band of nm: (nm - bandStart_) * bandScale_, floored
+  /// x-bar, y-bar, z-bar / integral(y-bar) at 1 nm from kCieMinNm, interleaved (one lookup
+  /// touches one place), with a zero entry past the end.
+  std::vector<float> cmf_;
   std::vector<double> bandSums_;    ///< [pixel][band]
   std::vector<double> bandOddSums_; ///< [pixel][band]
   std::vector<double> xyzSums_;     ///< [pixel][3]

@@ -105,7 +105,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                                               : tracePath(ctx, ray, lambda, rng, counters);
             if (!out.film.addSample(pixel, lambda, L, odd)) ++dropped;
           }
-          taken += pixel.samples;
+          taken += Film::samplesIn(pixel);
           out.film.add(x, y, pixel);
         }
       }
