@@ -158,7 +158,8 @@ int main(int argc, char** argv) {
                .excited.lambda[0]);
     });
     if (fluorescent > 0)
-      row("per fluorescent vertex: re-radiation choice", nsShift * 3 * n / fluorescent);
+      row("per fluorescent vertex: re-radiation choice",
+          nsShift * 3 * static_cast<double>(n) / static_cast<double>(fluorescent));
 
     RenderOptions o;
     o.samples = 8;

@@ -65,8 +65,9 @@ TEST(WavelengthSampler, LanesMatchInverseCdfOverTheBandRange) {
       const SampledWavelengths w = s.sample(u);
       ASSERT_NEAR(w.lambda[0], s.wavelength(u), 1e-3) << lo << "-" << hi << " u " << u;
       const double x = u * WavelengthSampler::kSegments;
-      if (std::abs(x - std::round(x)) > 1e-3) // away from segment ends (rounding picks a side)
+      if (std::abs(x - std::round(x)) > 1e-3) { // away from segment ends (rounding picks a side)
         ASSERT_EQ(w.pdf[0], static_cast<float>(s.pdf(w.lambda[0]))) << "u " << u;
+      }
       const int j = std::min(static_cast<int>(x), WavelengthSampler::kSegments - 1);
       const double a = s.wavelength(static_cast<double>(j) / WavelengthSampler::kSegments),
                    b = s.wavelength(static_cast<double>(j + 1) / WavelengthSampler::kSegments);
