@@ -38,8 +38,7 @@ inline FluorescentShift sampleFluorescentShift(const ReradiationMatrix& matrix,
     const float shiftV = static_cast<float>(i) * kGoldenFraction;
     const float ui = rotateUnit(u.u, static_cast<float>(i) / static_cast<float>(kLanes));
     const float vi = rotateUnit(u.v, shiftV - std::floor(shiftV));
-    s.excited.lambda[i] =
-        static_cast<float>(matrix.sampleExcitation(current.lambda[i], rho[i], ui, vi, s.albedo[i]));
+    s.excited.lambda[i] = matrix.sampleExcitation(current.lambda[i], rho[i], ui, vi, s.albedo[i]);
   }
   return s;
 }

@@ -108,34 +108,29 @@ ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm) {
 }
 
 void ReradiationMatrix::finish() {
-  columnCdf_.assign(static_cast<size_t>(kBins) * kBins, 0.0);
+  cdf_.assign(static_cast<size_t>(kBins) * kBins, 0.0f);
   for (int o = 0; o < kBins; ++o) {
     double sum = 0;
     for (int i = 0; i < kBins; ++i) {
       sum += (*this)(i, o);
-      columnCdf_[static_cast<size_t>(o) * kBins + i] = sum;
+      cdf_[static_cast<size_t>(o) * kBins + i] = static_cast<float>(sum);
     }
     columnSum_[o] = sum;
   }
-}
-
-double ReradiationMatrix::sampleExcitation(double nm, double rhoValue, double u, double v,
-                                           float& weight) const {
-  const int o = binOf(nm);
-  if (o < 0) {
-    weight *= static_cast<float>(measured_ ? 0.0 : rhoValue);
-    return nm;
+  guide_.assign(static_cast<size_t>(kBins) * kGuide, 0);
+  for (int o = 0; o < kBins; ++o) {
+    ColumnSampling& col = columns_[o];
+    col.elasticScale = measured_ ? 0.0f : static_cast<float>(1 - absorptance_[o]);
+    col.elasticConstant = measured_ ? static_cast<float>(diagonal_[o]) : 0.0f;
+    col.sum = static_cast<float>(columnSum_[o]);
+    col.guideScale = col.sum > 0 ? static_cast<float>(kGuide) / col.sum : 0.0f;
+    const float* cdf = &cdf_[static_cast<size_t>(o) * kBins];
+    for (int j = 0; j < kGuide && col.sum > 0; ++j) {
+      const float start = col.sum * static_cast<float>(j) / static_cast<float>(kGuide);
+      const int i = static_cast<int>(std::upper_bound(cdf, cdf + kBins, start) - cdf);
+      guide_[static_cast<size_t>(o) * kGuide + j] = static_cast<uint8_t>(std::min(i, kBins - 1));
+    }
   }
-  const double d = elastic(o, rhoValue), c = columnSum_[o], total = d + c;
-  weight *= static_cast<float>(total);
-  if (!(total > 0) || u * total < d) return nm;
-  // Bin i with probability M[i][o] / c: search the column's running sums.
-  const double target = u * total - d;
-  const double* cdf = &columnCdf_[static_cast<size_t>(o) * kBins];
-  int i = static_cast<int>(std::upper_bound(cdf, cdf + o, target) - cdf);
-  i = std::min(i, o - 1);
-  while (i > 0 && (*this)(i, o) == 0) --i; // never land on an empty bin through rounding
-  return kMinNm + (i + v) * kBinNm;
 }
 
 std::string ReradiationMatrix::toCsv() const {

@@ -2,7 +2,9 @@
 // The Glassner re-radiation (Donaldson) matrix of a fluorescent surface on a 5 nm grid,
 // and its sampling from the camera side (see the fluorescence model document).
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -74,7 +76,23 @@ public:
   /// D / (D + c), otherwise bin i with probability M[i][o] / c(o) and a wavelength uniform
   /// in it (u picks the event, v the position in the bin). Outside the grid the surface is
   /// an ordinary reflector of rho.
-  double sampleExcitation(double nm, double rhoValue, double u, double v, float& weight) const;
+  /// Single precision and inline: it runs for every lane at every fluorescent vertex.
+  float sampleExcitation(float nm, float rhoValue, float u, float v, float& weight) const {
+    const float x = (nm - static_cast<float>(kMinNm)) * static_cast<float>(1.0 / kBinNm);
+    if (!(x >= 0 && x < static_cast<float>(kBins))) {
+      weight *= measured_ ? 0.0f : rhoValue;
+      return nm;
+    }
+    const int o = static_cast<int>(x);
+    const ColumnSampling& col = columns_[o];
+    const float d = col.elasticScale * rhoValue + col.elasticConstant;
+    const float total = d + col.sum;
+    weight *= total;
+    const float target = u * total - d;
+    if (!(target >= 0) || !(col.sum > 0)) return nm; // elastic
+    return static_cast<float>(kMinNm) +
+           (static_cast<float>(excitationBin(o, target)) + v) * static_cast<float>(kBinNm);
+  }
 
   /// Writes the matrix as a CSV file (first row: emission bin centres; then per excitation
   /// bin its centre and the cells; the diagonal holds the elastic part for rho = 1).
@@ -82,10 +100,33 @@ public:
 
 private:
   void finish();
+  /// The first bin i < o whose running sum in column o exceeds target (clamped to o - 1 and
+  /// never an empty bin): the inverse CDF, so stratified samples stay stratified. The search
+  /// starts at the guide table's entry and takes a step or two.
+  int excitationBin(int o, float target) const {
+    const float* cdf = &cdf_[static_cast<size_t>(o) * kBins];
+    const int j = std::min(static_cast<int>(target * columns_[o].guideScale), kGuide - 1);
+    int i = std::min(static_cast<int>(guide_[static_cast<size_t>(o) * kGuide + j]), o - 1);
+    while (i < o - 1 && cdf[i] <= target) ++i;
+    while (i > 0 && cdf[i - 1] > target) --i;
+    while (i > 0 && cdf[i] == cdf[i - 1]) --i; // only after the clamp: skip empty bins
+    return i;
+  }
+
+  /// What sampling needs of column o, in one place: D = elasticScale rho + elasticConstant
+  /// ((1 - a) rho for the model, the diagonal for measured matrices), c(o), kGuide / c(o).
+  struct ColumnSampling {
+    float elasticScale = 0, elasticConstant = 0, sum = 0, guideScale = 0;
+  };
+  /// Guide table (Chen & Asau 1974) entries per column.
+  static constexpr int kGuide = 64;
+  std::array<ColumnSampling, kBins> columns_{};
+  std::vector<float> cdf_;     ///< [o][i]: running sums of M[.][o] over i
+  std::vector<uint8_t> guide_; ///< [o][j]: first bin whose running sum exceeds j/kGuide of c(o)
+
   bool measured_ = false;
   std::array<double, kBins> absorptance_{}, diagonal_{}, columnSum_{};
   std::vector<double> m_ = std::vector<double>(static_cast<size_t>(kBins) * kBins, 0.0);
-  std::vector<double> columnCdf_; ///< [o][i]: running sums of M[.][o] over i
 };
 
 /// Reads a Donaldson matrix CSV (first row: a label cell, then emission wavelengths; then

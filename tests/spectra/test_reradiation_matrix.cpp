@@ -78,11 +78,11 @@ TEST(ReradiationMatrix, RowAndColumnSums) {
   }
 }
 
-// Sampling the excitation of a lane: elastic with probability D / (D + c), bin i with
-// probability M[i][o] / c, weight D + c (chi-square over the outcomes).
-TEST(ReradiationMatrix, ExcitationSamplingMatchesTheMatrix) {
-  const RM m = RM::fromModel(model(430, 90, 1));
-  const double rho = 0.6, nm = 532.0;
+// Stratified u over the outcomes of a lane at nm: elastic with probability D / (D + c), bin i
+// with probability M[i][o] / (D + c); the inverse CDF keeps the counts within one sample of
+// their expectation, and never picks an empty bin.
+void expectExcitationSamplingMatches(const RM& m, double nm) {
+  const double rho = 0.6;
   const int o = RM::binOf(nm);
   const double d = m.elastic(o, rho), c = m.columnSum(o);
   std::vector<double> obs(RM::kBins + 1, 0), exp(RM::kBins + 1, 0);
@@ -90,7 +90,8 @@ TEST(ReradiationMatrix, ExcitationSamplingMatchesTheMatrix) {
   for (int k = 0; k < n; ++k) {
     float w = 1;
     const double u = (k + 0.5) / n, v = std::fmod(k * 0.618033988749895, 1.0);
-    const double l = m.sampleExcitation(nm, rho, u, v, w);
+    const double l = m.sampleExcitation(static_cast<float>(nm), static_cast<float>(rho),
+                                        static_cast<float>(u), static_cast<float>(v), w);
     EXPECT_NEAR(w, d + c, 1e-6);
     if (l == nm) {
       obs[RM::kBins] += 1;
@@ -102,9 +103,18 @@ TEST(ReradiationMatrix, ExcitationSamplingMatchesTheMatrix) {
   for (int i = 0; i < RM::kBins; ++i) exp[i] = n * m(i, o) / (d + c);
   exp[RM::kBins] = n * d / (d + c);
   // Stratified u: the counts match the probabilities to within one sample per outcome.
-  for (int i = 0; i <= RM::kBins; ++i) EXPECT_NEAR(obs[i], exp[i], 1.5) << i;
+  for (int i = 0; i <= RM::kBins; ++i) EXPECT_NEAR(obs[i], exp[i], 1.5) << nm << " nm, bin " << i;
+}
+
+TEST(ReradiationMatrix, ExcitationSamplingMatchesTheMatrix) {
+  const RM m = RM::fromModel(model(430, 90, 1));
+  const RM measured = RM::fromMeasured(parseMeasuredMatrixCsv(m.toCsv(), "m.csv"));
+  for (double nm : {372.5, 532.0, 601.0, 829.0}) {
+    expectExcitationSamplingMatches(m, nm);
+    expectExcitationSamplingMatches(measured, nm);
+  }
   float w = 1;
-  EXPECT_EQ(m.sampleExcitation(900, rho, 0.5, 0.5, w), 900); // outside the grid: plain reflector
+  EXPECT_EQ(m.sampleExcitation(900, 0.6f, 0.5f, 0.5f, w), 900); // outside the grid: reflector
   EXPECT_FLOAT_EQ(w, 0.6f);
 }
 
