@@ -111,7 +111,8 @@ int main(int argc, char** argv) {
             for (int k = 0; k < 6; ++k) keep(s.next2D().u);
           }) / 6);
       row("per draw: sampler pair, counter-based (later pairs)", nsPerCall(n, [&](size_t i) {
-            const Sample2 s = seq.pair(static_cast<uint32_t>(i), static_cast<uint32_t>(i) * 3u, 9);
+            const Sample2 s =
+                seq.pair({static_cast<uint32_t>(i), static_cast<uint32_t>(i) * 3u}, 9);
             keep(s.u);
           }));
     }

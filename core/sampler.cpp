@@ -32,7 +32,8 @@ uint32_t scrambleReversed(uint32_t reversed, uint32_t seed) {
 
 // Sobol dimension 1 (primitive polynomial x + 1): v_0 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1);
 // the value of an index is the XOR of v_k over its set bits k. Tabulated per index byte, so a
-// value costs four lookups instead of a loop over 32 bits.
+// value costs four lookups instead of a loop over 32 bits; the table holds the values
+// bit-reversed (reversal commutes with XOR), which is the form the scrambling takes.
 struct SobolDimension1Table {
   uint32_t byByte[4][256];
   SobolDimension1Table() {
@@ -44,15 +45,17 @@ struct SobolDimension1Table {
         uint32_t x = 0;
         for (int bit = 0; bit < 8; ++bit)
           if (value & (1U << bit)) x ^= v[8 * byte + bit];
-        byByte[byte][value] = x;
+        byByte[byte][value] = reverseBits(x);
       }
   }
 };
-const SobolDimension1Table kSobol1;
+const SobolDimension1Table kSobol1Reversed;
 
-uint32_t sobolDimension1(uint32_t index) {
-  return kSobol1.byByte[0][index & 0xffU] ^ kSobol1.byByte[1][(index >> 8) & 0xffU] ^
-         kSobol1.byByte[2][(index >> 16) & 0xffU] ^ kSobol1.byByte[3][index >> 24];
+// Sobol dimension 1 of an index, bit-reversed.
+uint32_t sobolDimension1Reversed(uint32_t index) {
+  return kSobol1Reversed.byByte[0][index & 0xffU] ^
+         kSobol1Reversed.byByte[1][(index >> 8) & 0xffU] ^
+         kSobol1Reversed.byByte[2][(index >> 16) & 0xffU] ^ kSobol1Reversed.byByte[3][index >> 24];
 }
 
 constexpr uint32_t kShuffleSalt = 0x5f356495U;
@@ -67,10 +70,11 @@ uint32_t counterBits(uint32_t key, uint32_t dim) {
 
 // Burley 2020, section 4: shuffle the index with a nested uniform scramble, take the first
 // two Sobol dimensions at the shuffled index (dimension 0 is the bit reversal), scramble each.
-Sample2 sobolPair(uint32_t index, uint32_t shuffleSeed, uint32_t seedX, uint32_t seedY) {
-  const uint32_t shuffled = scrambleReversed(reverseBits(index), shuffleSeed);
+// Takes the index bit-reversed (shared by all pairs of a sample).
+Sample2 sobolPair(uint32_t reversedIndex, uint32_t shuffleSeed, uint32_t seedX, uint32_t seedY) {
+  const uint32_t shuffled = scrambleReversed(reversedIndex, shuffleSeed);
   return {bitsToUnitFloat(scrambleReversed(shuffled, seedX)), // reverse(reverse(shuffled))
-          bitsToUnitFloat(scrambleReversed(reverseBits(sobolDimension1(shuffled)), seedY))};
+          bitsToUnitFloat(scrambleReversed(sobolDimension1Reversed(shuffled), seedY))};
 }
 
 uint32_t shuffleSeed(uint32_t pixel, uint32_t pair, uint32_t seed) {
@@ -91,8 +95,8 @@ Sample2 samplePair(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pa
     return {bitsToUnitFloat(counterBits(key, 2 * pair)),
             bitsToUnitFloat(counterBits(key, 2 * pair + 1))};
   }
-  return sobolPair(index, shuffleSeed(pixel, pair, seed), scrambleSeed(pixel, 2 * pair, seed),
-                   scrambleSeed(pixel, 2 * pair + 1, seed));
+  return sobolPair(reverseBits(index), shuffleSeed(pixel, pair, seed),
+                   scrambleSeed(pixel, 2 * pair, seed), scrambleSeed(pixel, 2 * pair + 1, seed));
 }
 
 float sampleValue(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t dim, uint32_t seed) {
@@ -109,15 +113,15 @@ PixelSequence::PixelSequence(SamplerKind kind, uint32_t pixel, uint32_t seed)
   }
 }
 
-uint32_t PixelSequence::sampleKey(uint32_t index) const {
-  return counterKey(pixel_, index, seed_);
+PixelSequence::SampleId PixelSequence::sample(uint32_t index) const {
+  return {reverseBits(index), counterKey(pixel_, index, seed_)};
 }
 
-Sample2 PixelSequence::pair(uint32_t index, uint32_t key, uint32_t pair) const {
+Sample2 PixelSequence::pair(const SampleId& id, uint32_t pair) const {
   if (!sobol_ || pair >= kSobolPairs)
-    return {bitsToUnitFloat(counterBits(key, 2 * pair)),
-            bitsToUnitFloat(counterBits(key, 2 * pair + 1))};
-  return sobolPair(index, shuffle_[pair], scramble_[pair][0], scramble_[pair][1]);
+    return {bitsToUnitFloat(counterBits(id.key, 2 * pair)),
+            bitsToUnitFloat(counterBits(id.key, 2 * pair + 1))};
+  return sobolPair(id.reversedIndex, shuffle_[pair], scramble_[pair][0], scramble_[pair][1]);
 }
 
 } // namespace nx

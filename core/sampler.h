@@ -48,11 +48,16 @@ public:
   /// The sequence of `pixel` for `seed`.
   PixelSequence(SamplerKind kind, uint32_t pixel, uint32_t seed);
 
-  /// The hash of (pixel, index, seed) that the counter-based dimensions of a sample derive from.
-  uint32_t sampleKey(uint32_t index) const;
-  /// Dimensions 2*pair and 2*pair+1 of sample `index`, whose sampleKey is `key`: equal to
-  /// samplePair(kind, pixel, index, pair, seed).
-  Sample2 pair(uint32_t index, uint32_t key, uint32_t pair) const;
+  /// What all draws of one sample share, computed once per sample.
+  struct SampleId {
+    uint32_t reversedIndex; ///< the sample index, bit-reversed (where Sobol points start)
+    uint32_t key;           ///< hash of (pixel, index, seed) for the counter-based dimensions
+  };
+  /// The shared values of sample `index`.
+  SampleId sample(uint32_t index) const;
+  /// Dimensions 2*pair and 2*pair+1 of the sample: equal to samplePair(kind, pixel, index,
+  /// pair, seed).
+  Sample2 pair(const SampleId& id, uint32_t pair) const;
 
 private:
   bool sobol_;
@@ -67,7 +72,7 @@ class PixelSampleStream {
 public:
   /// Starts at dimension pair 0 of sample `index` of the sequence (which must outlive it).
   PixelSampleStream(const PixelSequence& sequence, uint32_t index)
-      : sequence_(&sequence), index_(index), key_(sequence.sampleKey(index)) {}
+      : sequence_(&sequence), id_(sequence.sample(index)) {}
 
   /// Next value in [0,1).
   float next1D() {
@@ -81,11 +86,11 @@ public:
     return s.u;
   }
   /// Next point in [0,1)^2.
-  Sample2 next2D() { return sequence_->pair(index_, key_, pair_++); }
+  Sample2 next2D() { return sequence_->pair(id_, pair_++); }
 
 private:
   const PixelSequence* sequence_;
-  uint32_t index_, key_;
+  PixelSequence::SampleId id_;
   uint32_t pair_ = 0;
   bool pending_ = false; ///< the second coordinate of the last 1D pair is unused
   float pendingValue_ = 0;
