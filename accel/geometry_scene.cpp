@@ -151,16 +151,16 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
   ShapeKind kind = ShapeKind::Plane;
   uint32_t index = 0;
   Vec3 ng;
+  // Without branches on the outcome (a plane is hit by about half of all rays, which no
+  // predictor can guess) and with the divisions independent of each other.
   for (size_t i = 0; i < planes_.size(); ++i) {
-    const auto t = intersectPlane(planes_[i], o, d, ray.tMin, tBest);
-    if (!t) continue;
-    const float tf = static_cast<float>(*t);
-    if (!(tf > ray.tMin && tf < tBest)) continue;
-    found = true;
-    tBest = tf;
-    ng = Vec3(planes_[i].normal);
-    index = static_cast<uint32_t>(i);
+    const float tf = static_cast<float>(planeDistance(planes_[i], o, d));
+    const bool nearer = tf > ray.tMin && tf < tBest; // false for NaN (ray in the plane)
+    found |= nearer;
+    tBest = nearer ? tf : tBest;
+    index = nearer ? static_cast<uint32_t>(i) : index;
   }
+  if (found) ng = Vec3(planes_[index].normal);
 
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -222,8 +222,12 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
 
 bool GeometryScene::occluded(const Ray& ray, uint32_t ignoredSphere) const {
   const Vec3d o(ray.o), d(ray.d);
-  for (const auto& p : planes_)
-    if (intersectPlane(p, o, d, ray.tMin, ray.tMax)) return true;
+  bool blocked = false;
+  for (const auto& p : planes_) {
+    const double t = planeDistance(p, o, d);
+    blocked |= t > ray.tMin && t < ray.tMax;
+  }
+  if (blocked) return true;
   OcclusionContext context;
   rtcInitIntersectContext(&context.embree);
   context.ignoredSphere = ignoredSphere;

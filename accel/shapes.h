@@ -54,6 +54,12 @@ inline std::optional<double> intersectSphere(const SphereShape& s, const Vec3d& 
   return std::nullopt;
 }
 
+/// Ray parameter where o + t d meets the plane's infinite extension: may be negative,
+/// infinite or NaN (a ray parallel to the plane), for branch-free callers.
+inline double planeDistance(const PlaneShape& p, const Vec3d& o, const Vec3d& d) {
+  return (p.distance - dot(p.normal, o)) / dot(p.normal, d);
+}
+
 /// Ray parameter t in (tMin, tMax) where o + t d meets the plane, if any.
 inline std::optional<double> intersectPlane(const PlaneShape& p, const Vec3d& o, const Vec3d& d,
                                             double tMin, double tMax) {
