@@ -3,6 +3,7 @@
 #include "core/frame.h"
 #include "core/math_util.h"
 #include "integrators/light_sampler.h"
+#include "integrators/sampling.h"
 #include "support/statistics.h"
 
 namespace nx {
@@ -103,6 +104,27 @@ TEST(LightSampler, InsideASphereLightEveryDirectionCounts) {
                               flatWavelengths(), ls));
     EXPECT_NEAR(ls.pdf, 1 / (4 * kPi), 1e-6);
     EXPECT_NEAR(length(Vec3(1, 2, 3) + ls.wi * ls.distance), 10.0f, 1e-4f);
+  }
+}
+
+// A light of radius 6 seen from 1e12 away (a path that ran along a plane to its horizon): the
+// cone of 1e-22 sr is sampled exactly, the estimate of the irradiance, pi L sin^2(theta max),
+// holds per sample, and the MIS weight against a diffuse BSDF stays finite.
+TEST(LightSampler, TinyConeFarAwayIsExactAndFinite) {
+  const RenderScene s =
+      sceneWithLight("<sphere><center>0,0,0</center><radius>6</radius><material>matte</material>"
+                     "<emission>1</emission></sphere>");
+  const LightSampler lights(s);
+  const Vec3 p(1e12f, 0, 0), n(-1, 0, 0);
+  const double d = 1e12, expected = kPi * 36.0 / (d * d);
+  for (int i = 0; i < 100; ++i) {
+    LightSample ls;
+    ASSERT_TRUE(lights.sample(p, 0.5f, samplePair(SamplerKind::Independent, i, 0, 0, 1),
+                              flatWavelengths(), ls));
+    ASSERT_TRUE(std::isfinite(ls.pdf));
+    EXPECT_NEAR(ls.radiance[0] * dot(ls.wi, n) / ls.pdf, expected, 1e-5 * expected);
+    EXPECT_NEAR(ls.distance, static_cast<float>(d - 6), 1e-6f * static_cast<float>(d));
+    EXPECT_EQ(powerHeuristic(ls.pdf, cosineHemispherePdf(dot(ls.wi, n))), 1.0f);
   }
 }
 

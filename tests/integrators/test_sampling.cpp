@@ -108,6 +108,11 @@ TEST(Sampling, PowerHeuristic) {
   EXPECT_FLOAT_EQ(powerHeuristic(0, 2), 0.0f);
   EXPECT_FLOAT_EQ(powerHeuristic(0, 0), 0.0f);
   EXPECT_FLOAT_EQ(powerHeuristic(INFINITY, 1), 1.0f);
+  // Densities whose squares overflow a float (a tiny light very far away) stay finite.
+  EXPECT_FLOAT_EQ(powerHeuristic(1e22f, 1), 1.0f);
+  EXPECT_FLOAT_EQ(powerHeuristic(1, 1e22f), 0.0f);
+  EXPECT_FLOAT_EQ(powerHeuristic(3e30f, 1e30f), 0.9f);
+  EXPECT_FLOAT_EQ(powerHeuristic(1, INFINITY), 0.0f);
 }
 
 } // namespace
