@@ -63,9 +63,7 @@ inline double planeDistance(const PlaneShape& p, const Vec3d& o, const Vec3d& d)
 /// Ray parameter t in (tMin, tMax) where o + t d meets the plane, if any.
 inline std::optional<double> intersectPlane(const PlaneShape& p, const Vec3d& o, const Vec3d& d,
                                             double tMin, double tMax) {
-  const double denom = dot(p.normal, d);
-  if (denom == 0) return std::nullopt;
-  const double t = (p.distance - dot(p.normal, o)) / denom;
+  const double t = planeDistance(p, o, d); // inf or NaN when parallel: both comparisons fail
   if (t > tMin && t < tMax) return t;
   return std::nullopt;
 }

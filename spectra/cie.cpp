@@ -28,7 +28,13 @@ const CieTables& cieTables() {
 }
 
 Xyz cieCmf(double nm) {
-  return cieCmf(cieTables(), nm);
+  if (!(nm >= kCieMinNm && nm <= kCieMaxNm)) return {};
+  const auto& t = cieTables();
+  const double x = nm - kCieMinNm;
+  const int i = std::min(static_cast<int>(x), kCieSamples - 2);
+  const double f = x - i;
+  auto at = [&](const std::array<double, kCieSamples>& a) { return a[i] + (a[i + 1] - a[i]) * f; };
+  return {at(t.xBar), at(t.yBar), at(t.zBar)};
 }
 
 } // namespace nx

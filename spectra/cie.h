@@ -30,16 +30,6 @@ const CieTables& cieTables();
 /// Colour matching functions at wavelength nm (linear between 1 nm samples, 0 outside).
 Xyz cieCmf(double nm);
 
-/// The same from tables already at hand (inlined in per-sample loops).
-inline Xyz cieCmf(const CieTables& t, double nm) {
-  if (!(nm >= kCieMinNm && nm <= kCieMaxNm)) return {};
-  const double x = nm - kCieMinNm;
-  const int i = x < kCieSamples - 2 ? static_cast<int>(x) : kCieSamples - 2;
-  const double f = x - i;
-  return {t.xBar[i] + (t.xBar[i + 1] - t.xBar[i]) * f, t.yBar[i] + (t.yBar[i + 1] - t.yBar[i]) * f,
-          t.zBar[i] + (t.zBar[i + 1] - t.zBar[i]) * f};
-}
-
 /// Chromaticity x = X / (X + Y + Z).
 inline double chromaticityX(const Xyz& c) {
   return c.x / (c.x + c.y + c.z);

@@ -2,17 +2,13 @@
 
 #include "core/error.h"
 #include "core/text_table.h"
+#include "support/errors.h"
 
 namespace nx {
 namespace {
 
 std::string errorOf(const std::string& text) {
-  try {
-    parseNumberTable(text, "t.csv", true);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return test::errorMessage([&] { parseNumberTable(text, "t.csv", true); });
 }
 
 TEST(TextTable, ParsesHeaderCommentsAndSeparators) {

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "integrators/renderer.h"
 #include "io/part_merge.h"
+#include "support/errors.h"
 
 namespace nx {
 namespace {
@@ -76,12 +77,7 @@ TEST(Farm, SampleRangesMergeUpToRounding) {
 }
 
 std::string mergeError(std::vector<ImagePart> parts) {
-  try {
-    mergeParts(parts);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return test::errorMessage([&] { mergeParts(parts); });
 }
 
 TEST(Farm, RefusesPartsThatDoNotBelongTogether) {

@@ -7,6 +7,7 @@
 #include "spectra/colour.h"
 #include "spectra/illuminants.h"
 #include "spectra/rgb_upsampling.h"
+#include "support/errors.h"
 
 namespace nx {
 namespace {
@@ -23,12 +24,7 @@ RenderScene build(const std::string& text) {
 }
 
 std::string errorOf(const std::string& text) {
-  try {
-    build(text);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return test::errorMessage([&] { build(text); });
 }
 
 TEST(SceneBuilder, EveryExampleSceneBuilds) {

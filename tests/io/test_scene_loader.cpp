@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "io/scene_desc.h"
+#include "support/errors.h"
 
 namespace nx {
 namespace {
@@ -26,12 +27,7 @@ std::string replaced(std::string s, const std::string& from, const std::string& 
 }
 
 std::string errorOf(const std::string& text) {
-  try {
-    parseScene(text, "t.scn");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return test::errorMessage([&] { parseScene(text, "t.scn"); });
 }
 
 TEST(SceneLoader, ReadsTheThesisScene) {

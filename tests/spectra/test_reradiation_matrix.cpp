@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "spectra/reradiation_matrix.h"
+#include "support/errors.h"
 
 namespace nx {
 namespace {
@@ -133,12 +134,9 @@ TEST(ReradiationMatrix, CsvRoundTrip) {
 std::string csvError(const std::string& text) {
   const std::string path = ::testing::TempDir() + "bad_matrix.csv";
   std::ofstream(path) << text;
-  try {
-    RM::fromMeasured(readMeasuredMatrixCsv(path));
-  } catch (const Error& e) {
-    return std::string(e.what()).substr(path.size());
-  }
-  return "no error";
+  const std::string message =
+      test::errorMessage([&] { RM::fromMeasured(readMeasuredMatrixCsv(path)); });
+  return message == "no error" ? message : message.substr(path.size());
 }
 
 TEST(ReradiationMatrix, MalformedCsvIsRefusedWithFileAndLine) {

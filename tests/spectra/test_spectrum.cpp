@@ -8,6 +8,7 @@
 #include "core/math_util.h"
 #include "spectra/named_spectra.h"
 #include "spectra/spectrum.h"
+#include "support/errors.h"
 
 namespace nx {
 namespace {
@@ -69,12 +70,8 @@ std::string writeTemp(const std::string& name, const std::string& text) {
 
 std::string csvError(const std::string& text) {
   const std::string path = writeTemp("spectrum.csv", text);
-  try {
-    readSpectrumCsv(path);
-  } catch (const Error& e) {
-    return std::string(e.what()).substr(path.size());
-  }
-  return "no error";
+  const std::string message = test::errorMessage([&] { readSpectrumCsv(path); });
+  return message == "no error" ? message : message.substr(path.size());
 }
 
 TEST(Spectrum, CsvFile) {
