@@ -48,9 +48,10 @@ struct TraceCounters {
 };
 
 /// Radiance arriving along `ray` at the lanes of `lambda` (spectral path tracing with
-/// hero wavelengths, NEE + MIS, Russian roulette after scene depth bounces). May terminate
-/// secondary lanes (dispersion), which changes lambda's pdfs.
-SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, SampledWavelengths& lambda,
+/// hero wavelengths, NEE + MIS, Russian roulette after scene depth bounces), to be weighted
+/// by the film with lambda's pdfs. After a dispersive refraction the remaining path carries
+/// the hero lane alone, scaled by kLanes (see heroOnly()).
+SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
                           PixelSampleStream& rng, TraceCounters& counters);
 
 /// Radiance along `ray` by Whitted ray tracing through the same materials: emission seen

@@ -12,15 +12,21 @@ namespace {
 // kFluorescence: compiled in only for scenes with fluorescent materials, so that other
 // scenes run exactly the code they would without the feature.
 template <bool kFluorescence>
-SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray, SampledWavelengths& lambda,
-                              PixelSampleStream& rng, TraceCounters& counters) {
+SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
+                              const SampledWavelengths& lambda, PixelSampleStream& rng,
+                              TraceCounters& counters) {
   const RenderScene& scene = *ctx.scene;
   const int rouletteStart = scene.settings.depth;
   // lambda: the sensor wavelengths (where the film accumulates); current: what lights and
   // materials are evaluated at (they differ after a fluorescent shift).
   SampledWavelengths current = lambda;
   SampledSpectrum L, beta = SampledSpectrum::filled(1.0f);
-  bool specular = true; // the previous bounce was specular (or the camera)
+  // Russian roulette looks at beta * rrScale: the throughput without the radiance scaling
+  // 1 / eta^2 of refractions (a lossless path through glass keeps probability 1, as in pbrt-v4
+  // and Mitsuba 3) and without the factor kLanes of a hero-only path.
+  float rrScale = 1;
+  bool heroAlone = kLanes == 1; // the secondary lanes were terminated (dispersion)
+  bool specular = true;         // the previous bounce was specular (or the camera)
   float prevPdf = 0;
   Vec3 prevP = ray.o;
 
@@ -98,9 +104,12 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray, SampledWave
       }
     }
     beta *= bs.weight;
-    if (bs.terminateSecondary) {
-      lambda.terminateSecondary();
-      current.terminateSecondary();
+    rrScale *= bs.eta * bs.eta;
+    if (bs.terminateSecondary && !heroAlone) {
+      // From here on the hero's estimator stands alone; what L holds keeps its lane weights.
+      beta = heroOnly(beta);
+      rrScale *= 1.0f / static_cast<float>(kLanes);
+      heroAlone = true;
     }
     specular = bs.specular;
     prevPdf = bs.pdf;
@@ -108,7 +117,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray, SampledWave
 
     // Russian roulette after <depth> bounces, re-weighted by 1/q: unbiased.
     if (bounce + 1 >= rouletteStart) {
-      const float q = std::min(1.0f, beta.maxValue());
+      const float q = std::min(1.0f, beta.maxValue() * rrScale);
       const float u = rng.next1D();
       if (!(q > 0) || u >= q) break;
       beta *= 1.0f / q;
@@ -124,7 +133,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray, SampledWave
 
 } // namespace
 
-SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, SampledWavelengths& lambda,
+SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
                           PixelSampleStream& rng, TraceCounters& counters) {
   return ctx.fluorescence ? tracePathImpl<true>(ctx, ray, lambda, rng, counters)
                           : tracePathImpl<false>(ctx, ray, lambda, rng, counters);

@@ -97,7 +97,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           for (int s = begin + static_cast<int>(out.film.samples(x, y)); s < passEnd; ++s) {
             const bool odd = (s & 1) != 0;
             PixelSampleStream rng(replicates[odd], static_cast<uint32_t>(s) >> 1);
-            SampledWavelengths lambda = wavelengths.sample(rng.next1D());
+            const SampledWavelengths lambda = wavelengths.sample(rng.next1D());
             const Sample2 jitter = rng.next2D();
             const Ray ray = scene.camera.generateRay(static_cast<double>(x) + jitter.u,
                                                      static_cast<double>(y) + jitter.v);

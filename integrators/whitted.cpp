@@ -9,14 +9,6 @@
 namespace nx {
 namespace {
 
-// Keeps the hero lane only, scaled by kLanes: with the film's lane weight 1 / (kLanes pdf)
-// this is the hero-only estimator, as after terminating the secondaries.
-SampledSpectrum heroOnly(SampledSpectrum s) {
-  for (int i = 1; i < kLanes; ++i) s[i] = 0;
-  s[0] *= static_cast<float>(kLanes);
-  return s;
-}
-
 void whitted(const IntegratorContext& ctx, const Ray& ray, const SampledWavelengths& lambda,
              SampledSpectrum beta, int bounce, bool heroOnlyPath, PixelSampleStream& rng,
              TraceCounters& counters, SampledSpectrum& L) {

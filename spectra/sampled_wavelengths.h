@@ -67,31 +67,25 @@ inline SampledSpectrum operator*(SampledSpectrum a, float s) {
   return a *= s;
 }
 
+/// The estimator of the hero lane alone: every secondary lane zeroed, the hero scaled by
+/// kLanes, so that with the film's fixed lane weight 1 / (kLanes pdf) it weighs 1 / pdf.
+/// Applied to a path's throughput when its direction starts to depend on the hero wavelength
+/// (a dispersive refraction): contributions gathered before keep every lane and their weights.
+inline SampledSpectrum heroOnly(SampledSpectrum s) {
+  for (int i = 1; i < kLanes; ++i) s[i] = 0;
+  s[0] *= static_cast<float>(kLanes);
+  return s;
+}
+
 /// The wavelengths of one path and the pdf each was drawn with (marginal, per lane).
 struct SampledWavelengths {
   std::array<float, kLanes> lambda{}; ///< nm
-  std::array<float, kLanes> pdf{};    ///< 1/nm; 0 marks a terminated secondary lane
+  std::array<float, kLanes> pdf{};    ///< 1/nm
 
   /// Number of lanes.
   static constexpr std::size_t size() { return kLanes; }
   /// Wavelength of lane i (so a spectrum can be evaluated over all lanes at once).
   float operator[](std::size_t i) const { return lambda[i]; }
-
-  /// Keeps only the hero wavelength, e.g. after a dispersive refraction made the path's
-  /// direction depend on it: the secondaries get pdf 0 and the hero's pdf is divided by
-  /// kLanes, so that its estimator weight 1 / (kLanes pdf) becomes 1 / pdf (pbrt-v4's
-  /// TerminateSecondary).
-  void terminateSecondary() {
-    if (secondaryTerminated()) return;
-    for (std::size_t i = 1; i < lambda.size(); ++i) pdf[i] = 0;
-    pdf[0] /= static_cast<float>(lambda.size());
-  }
-  /// True once terminateSecondary() was called (or with a single lane).
-  bool secondaryTerminated() const {
-    for (std::size_t i = 1; i < lambda.size(); ++i)
-      if (pdf[i] != 0) return false;
-    return true;
-  }
 };
 
 } // namespace nx

@@ -32,7 +32,7 @@ public:
   /// Density at nm (0 outside the range).
   double pdf(double nm) const;
 
-  /// Estimator weight of lane i: 1 / (kLanes * pdf_i), or 0 for a terminated lane. Summing
+  /// Estimator weight of lane i: 1 / (kLanes * pdf_i), or 0 where pdf_i is 0. Summing
   /// f(lambda_i) * weight_i over the lanes estimates the integral of f over the range.
   static float laneWeight(const SampledWavelengths& w, int i) {
     return w.pdf[i] > 0 ? 1.0f / (static_cast<float>(kLanes) * w.pdf[i]) : 0.0f;

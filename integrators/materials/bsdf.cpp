@@ -52,13 +52,19 @@ bool SurfaceBsdf::sampleMixture(float uLobe, Sample2 u, BsdfSample& out) const {
   }
   out.weight = rho_;
   out.terminateSecondary = false;
-  out.transmitted = false;
+  out.eta = 1;
   return true;
 }
 
 // Smooth dielectric: reflect with probability F(hero), else refract (Snell); total internal
-// reflection when there is no refracted direction. Secondary wavelengths keep a reflection
-// weight of F_i / F_hero; a refraction through a dispersive interface terminates them.
+// reflection when there is no refracted direction. Lane i's weight is F_i / F_hero after a
+// reflection and, through a non-dispersive interface, (1 - F_i) / (1 - F_hero) after a
+// refraction. Through a dispersive interface the refracted direction is the hero's alone:
+// the sample asks to terminate the secondaries (their weight is 0 here; the integrator makes
+// the hero's estimator stand alone from this vertex on, see heroOnly()). Unbiased: given the
+// lanes' wavelengths, lane i's expected weight is F_i R_i + [i = 0] (1 - F_0) T_0 kLanes, and
+// with every lane's marginal density the same, the lanes' sum estimates the integral of
+// F R + (1 - F) T (docs/rendering.md, "Dispersion").
 bool SurfaceBsdf::sampleDielectric(float uLobe, BsdfSample& out) const {
   const float cosO = dot(wo_, n_);
   const bool entering = cosO > 0;
@@ -82,13 +88,13 @@ bool SurfaceBsdf::sampleDielectric(float uLobe, BsdfSample& out) const {
     out.wi = reflect(wo_, n);
     for (int i = 0; i < kLanes; ++i) out.weight[i] = rho_[i] * fresnel[i] / fHero;
     out.terminateSecondary = false;
-    out.transmitted = false;
+    out.eta = 1;
     return true;
   }
   Vec3 wt;
   if (!refract(wo_, n, eta[0], wt)) return false; // unreachable: F = 1 under TIR
   out.wi = normalize(wt);
-  out.transmitted = true;
+  out.eta = eta[0];
   out.terminateSecondary = dispersive;
   for (int i = 0; i < kLanes; ++i) {
     const float scale = mode_ == TransportMode::Radiance ? 1.0f / (eta[i] * eta[i]) : 1.0f;

@@ -16,7 +16,9 @@ struct BsdfSample {
   float pdf = 0;                   ///< density of wi if drawn from the continuous part, else 0
   bool specular = false;           ///< drawn from a delta lobe (mirror, refraction)
   bool terminateSecondary = false; ///< the direction depends on the hero wavelength (dispersion)
-  bool transmitted = false;        ///< wi leaves on the other side of the surface
+  /// Relative index n_transmitted / n_incident of the hero lane for a refraction, else 1: the
+  /// radiance scaling 1 / eta^2 inside `weight` that Russian roulette must not see.
+  float eta = 1;
 };
 
 /// Whether weights carry the 1/eta^2 radiance scaling at refraction (camera paths) or not

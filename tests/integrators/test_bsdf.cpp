@@ -147,14 +147,16 @@ TEST(Bsdf, DielectricFresnelSnellAndTotalInternalReflection) {
       EXPECT_TRUE(s.specular);
       const float sinO = std::sqrt(1 - cosTheta * cosTheta);
       const float sinI = std::sqrt(std::max(0.0f, 1 - s.wi.z * s.wi.z));
-      if (!s.transmitted) {
+      if (s.wi.z * cosTheta > 0) {
         ++reflected;
         EXPECT_NEAR(s.wi.z, cosTheta, 1e-5f); // mirror about the normal
         EXPECT_NEAR(s.weight[0], 1.0f, 1e-5f);
+        EXPECT_EQ(s.eta, 1.0f);
       } else {
         EXPECT_LT(s.wi.z * cosTheta, 0.0f);                     // other side
         EXPECT_NEAR(sinO, etaRel * sinI, 1e-4f);                // Snell
         EXPECT_NEAR(s.weight[0], 1 / (etaRel * etaRel), 1e-4f); // radiance scaling
+        EXPECT_NEAR(s.eta, etaRel, 1e-6f);                      // what Russian roulette divides out
       }
     }
     const double sd = std::sqrt(n * F * (1 - F));
@@ -182,7 +184,7 @@ TEST(Bsdf, DispersionTerminatesSecondariesOnlyOnRefraction) {
   for (int i = 0; i < 200 && !(sawReflection && sawRefraction); ++i) {
     BsdfSample s;
     ASSERT_TRUE(bsdf.sample(static_cast<float>(i) / 200.0f, {0.5f, 0.5f}, s));
-    if (s.transmitted) {
+    if (s.wi.z < 0) {
       sawRefraction = true;
       EXPECT_TRUE(s.terminateSecondary);
       for (int k = 1; k < kLanes; ++k) EXPECT_EQ(s.weight[k], 0.0f);
@@ -194,12 +196,11 @@ TEST(Bsdf, DispersionTerminatesSecondariesOnlyOnRefraction) {
     }
   }
   EXPECT_TRUE(sawReflection && sawRefraction);
-  SampledWavelengths w = someWavelengths();
-  w.terminateSecondary();
-  if (kLanes > 1) {
-    EXPECT_EQ(w.pdf[1], 0.0f);
-    EXPECT_FLOAT_EQ(w.pdf[0], 1.0f / 300.0f / kLanes);
-  }
+  SampledSpectrum beta;
+  for (int k = 0; k < kLanes; ++k) beta[k] = 0.5f + static_cast<float>(k);
+  const SampledSpectrum hero = heroOnly(beta);
+  EXPECT_FLOAT_EQ(hero[0], 0.5f * kLanes); // with the film's 1 / (kLanes pdf): 1 / pdf
+  for (int k = 1; k < kLanes; ++k) EXPECT_EQ(hero[k], 0.0f);
 }
 
 } // namespace
