@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     const RenderScene scene = buildRenderScene(loadScene(scenePath));
     const LightSampler lights(scene);
     const Film film(scene.settings.width, scene.settings.height, scene.settings.bands);
-    const WavelengthSampler wavelengths(film.minNm(), film.maxNm());
+    const WavelengthSampler wavelengths(film.tracedMinNm(), film.tracedMaxNm());
     const uint32_t pixels = static_cast<uint32_t>(scene.settings.width * scene.settings.height);
 
     // Surface points of camera rays (emitters and misses skipped).

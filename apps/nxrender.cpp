@@ -164,8 +164,9 @@ int run(int argc, char** argv) {
                  "Also write the EXR every SECONDS while rendering")
       ->check(CLI::Range(1.0, 1e9));
   app.add_option("--target-error", targetError,
-                 "Stop once the estimated relative RMS error of the image is at most E (checked "
-                 "after each pass)")
+                 "Stop once the estimated relative RMS error of the image's luminance Y (CIE "
+                 "1931 over 360-830 nm, whatever the bands; not the bands' error) is at most E "
+                 "(checked after each pass)")
       ->check(CLI::Range(1e-9, 1e9));
   app.add_option("--time-limit", timeLimit, "Stop before a pass that would end after SECONDS")
       ->check(CLI::Range(1e-3, 1e12));

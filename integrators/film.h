@@ -34,9 +34,14 @@ public:
   int height() const { return height_; } ///< full image height
   const PixelRect& rect() const { return rect_; }
   const SpectralBands& bands() const { return bands_; }
-  /// The wavelength range the bands need: what the renderer traces, no wider.
-  double minNm() const { return bands_.lower(0); }
-  double maxNm() const { return bands_.upper(bands_.count() - 1); }
+  /// Shortest wavelength the renderer traces: the bands' range joined with the CIE range
+  /// (360-830 nm), so that XYZ, RGB, the preview and Variance.Y integrate the colour matching
+  /// functions over their whole range whatever the bands.
+  double tracedMinNm() const { return std::min(bands_.lower(0), static_cast<double>(kCieMinNm)); }
+  /// Longest wavelength the renderer traces (see tracedMinNm()).
+  double tracedMaxNm() const {
+    return std::max(bands_.upper(bands_.count() - 1), static_cast<double>(kCieMaxNm));
+  }
 
   /// Accumulator for one pixel's samples (lives on the stack of the tile task), kept per
   /// replicate: [0] the even-numbered samples, [1] the odd-numbered ones.
@@ -59,9 +64,10 @@ public:
   /// Samples an accumulator holds.
   static uint32_t samplesIn(const Pixel& p) { return p.samples[0] + p.samples[1]; }
 
-  /// Adds one sample: radiance L carried by the lanes of `lambda` (sensor wavelengths), each
-  /// lane weighted 1 / (kLanes pdf). Band b receives L / bandwidth for lanes inside it;
-  /// XYZ receives L * cmf / integral(y-bar). Samples with a non-finite value are dropped
+  /// Adds one sample: radiance L carried by the lanes of `lambda` (sensor wavelengths, drawn
+  /// over the traced range), each lane weighted 1 / (kLanes pdf). Band b receives
+  /// L / bandwidth for lanes inside it; XYZ receives L * cmf / integral(y-bar) for lanes
+  /// inside 360-830 nm. Samples with a non-finite value are dropped
   /// and counted (returns false).
   /// `odd`: the sample belongs to the second of the two independently scrambled replicates
   /// (odd sample numbers); the difference of the two half means estimates the error.

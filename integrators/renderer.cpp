@@ -47,7 +47,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const LightSampler lights(scene);
   const IntegratorContext ctx{&scene, &lights, options.lightSampling,
                               scene.hasFluorescence || options.forceFluorescencePath};
-  const WavelengthSampler wavelengths(out.film.minNm(), out.film.maxNm());
+  const WavelengthSampler wavelengths(out.film.tracedMinNm(), out.film.tracedMaxNm());
   const bool whitted = settings.mode == RenderMode::Rt;
 
   const int ts = std::max(1, options.tileSize);

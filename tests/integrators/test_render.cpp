@@ -6,6 +6,7 @@
 
 #include "integrators/renderer.h"
 #include "spectra/bands.h"
+#include "spectra/colour.h"
 #include "support/statistics.h"
 
 namespace nx {
@@ -176,6 +177,43 @@ TEST(Render, RussianRouletteKeepsLosslessGlassPathsAlive) {
       }
     EXPECT_LT(worst, 1e-4) << "ior " << ior;
   }
+}
+
+// XYZ (and so RGB, the preview, Variance.Y and --target-error) integrates the CIE functions
+// over 360-830 nm whatever the bands: an equal-energy emitter of radiance 1 reads the XYZ of
+// the equal-energy spectrum with the default bands, bands inside the visible range (then the
+// traced range is the same and XYZ is identical bit for bit) and bands reaching into the near
+// infrared. (With the bands' range alone, 500:600:10 read XYZ (0.499, 0.799, 0.056).)
+TEST(Render, ColourChannelsDoNotDependOnBands) {
+  const std::string text = sceneText(
+      "<xres>8</xres><yres>8</yres><mode>spectral_mcpt</mode><depth>2</depth><sampl>256</sampl>",
+      kFurnaceCamera,
+      "<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
+      "<reflectance>0</reflectance><emission>1</emission></sphere>");
+  const Xyz e = spectrumToXyz(Spectrum(ConstantSpectrum{1.0}));
+  std::map<std::string, RenderOutput> outs;
+  for (const char* bands : {"400:700:10", "500:600:10", "700:997:3", "320:340:20"}) {
+    RenderOptions o;
+    o.bands = SpectralBands::parse(bands);
+    const RenderOutput out = renderText(text, o);
+    test::RunningStats x, y, z;
+    for (int py = 0; py < 8; ++py)
+      for (int px = 0; px < 8; ++px) {
+        const Xyz c = out.film.xyzMean(px, py);
+        x.add(c.x), y.add(c.y), z.add(c.z);
+      }
+    EXPECT_LT(std::abs(x.mean - e.x), 5 * x.standardError() + 1e-4) << bands;
+    EXPECT_LT(std::abs(y.mean - e.y), 5 * y.standardError() + 1e-4) << bands;
+    EXPECT_LT(std::abs(z.mean - e.z), 5 * z.standardError() + 1e-4) << bands;
+    outs.emplace(bands, out);
+  }
+  for (int py = 0; py < 8; ++py)
+    for (int px = 0; px < 8; ++px) {
+      EXPECT_EQ(outs.at("500:600:10").film.xyzMean(px, py).y,
+                outs.at("400:700:10").film.xyzMean(px, py).y);
+      EXPECT_EQ(outs.at("500:600:10").film.yVariance(px, py),
+                outs.at("400:700:10").film.yVariance(px, py));
+    }
 }
 
 // Per-pixel variance of a strategy, from two independent renders: E[(A - B)^2] / 2.
