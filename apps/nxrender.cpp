@@ -346,6 +346,11 @@ int run(int argc, char** argv) {
     sppTotal = result.stats.samplesReached; // the image holds exactly this sample range
   }
 
+  // A render whose every sample was non-finite holds nothing: say so rather than write black.
+  if (result.stats.samples > 0 && result.stats.nonFinite == result.stats.samples)
+    throw nx::Error(scenePath + ": every one of the " + std::to_string(result.stats.samples) +
+                    " samples had a NaN or infinite value (a value of the scene beyond single "
+                    "precision, about 3.4e38?); nothing was written");
   const nx::SpectralImage image = imageOf(result.film, result.stats.seconds);
   nx::writeSpectralExr(exrPath, image);
   if (result.stats.stopped) {
@@ -370,7 +375,8 @@ int run(int argc, char** argv) {
                wholeImage ? " and " : "", wholeImage ? previewPath.c_str() : "");
   if (result.stats.nonFinite > 0)
     std::fprintf(stderr,
-                 "nxrender: warning: %llu samples with a NaN or infinite value were dropped\n",
+                 "nxrender: warning: %llu samples with a NaN or infinite value were counted as "
+                 "zero (black)\n",
                  static_cast<unsigned long long>(result.stats.nonFinite));
   return 0;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // The one exception type nxrender throws for bad input and failed I/O.
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -11,5 +12,12 @@ class Error : public std::runtime_error {
 public:
   explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
+
+/// A number as error messages show it: up to 7 significant digits, no trailing zeros.
+inline std::string numberText(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.7g", v);
+  return buf;
+}
 
 } // namespace nx

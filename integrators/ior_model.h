@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 
 namespace nx {
 
@@ -38,5 +39,13 @@ struct IorModel {
 /// Built-in glasses (Sellmeier coefficients): "bk7" (Schott N-BK7), "diamond" (n_D = 2.417),
 /// "fused_silica" (Malitson 1965). Returns false for other names.
 bool namedGlass(const char* name, IorModel& out);
+
+/// A wavelength in [loNm, hiNm] where n is not finite or not within [nMin, nMax] (a
+/// Sellmeier pole counts), or nullopt if n stays inside at every wavelength of the interval.
+/// Exact, not sampled: Cauchy's n is a quadratic in 1/l^2 (ends and vertex checked);
+/// Sellmeier's n^2 - 1 is a sum of terms B s / (s - C), s = l^2, each monotone between poles,
+/// so interval bounds refined by bisection decide every sub-interval.
+std::optional<double> iorOutsideRange(const IorModel& m, double loNm, double hiNm, double nMin,
+                                      double nMax);
 
 } // namespace nx

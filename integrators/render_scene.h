@@ -68,7 +68,7 @@ struct RenderScene {
   std::vector<PointLight> pointLights;
   std::optional<Spectrum> background; ///< uniform environment radiance
   Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
-  bool hasFluorescence = false, hasDispersion = false;
+  bool hasFluorescence = false; ///< some material re-radiates (the fluorescent path tracer runs)
 
   /// Appearance of the shape a hit is on.
   const ShapeAppearance& appearance(const SurfaceHit& hit) const {
@@ -85,8 +85,9 @@ struct RenderScene {
 
 /// Resolves a SceneDesc into a RenderScene: names to spectra (built-in or the scene's
 /// <spectrum> definitions), CSV spectra and matrices read, RGB colours upsampled (rt and
-/// mcpt), value ranges checked (reflectances within [0, 1], IOR >= 1 over 360-830 nm), the
-/// Embree scene built. Errors carry the file:line of the offending item.
+/// mcpt), value ranges checked exactly over the traced range (reflectances within [0, 1],
+/// emission >= 0, IOR within [1, 10] over 300-1000 nm), the Embree scene built. Errors carry the
+/// file:line of the offending item.
 RenderScene buildRenderScene(const SceneDesc& desc);
 
 /// The same checks and resolution without building the Embree scene (`geometry` stays null):

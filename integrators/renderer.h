@@ -54,7 +54,7 @@ struct RenderStats {
   double seconds = 0;
   uint64_t samples = 0;          ///< pixel samples taken by this run
   uint64_t rays = 0;             ///< camera, scattered and shadow rays
-  uint64_t nonFinite = 0;        ///< samples dropped for a NaN or infinite value
+  uint64_t nonFinite = 0;        ///< samples with a NaN or infinite value (counted as zero)
   bool stopped = false;          ///< ended early by the stop flag
   bool reachedTarget = false;    ///< ended because the error target was met
   bool reachedTimeLimit = false; ///< ended because the next pass would pass the time limit

@@ -9,6 +9,7 @@
 #include "spectra/illuminants.h"
 #include "spectra/named_spectra.h"
 #include "spectra/rgb_upsampling.h"
+#include "spectra/spectrum_bounds.h"
 
 namespace nx {
 namespace {
@@ -44,9 +45,6 @@ public:
       scene.materials.push_back(material(o, spectral));
       scene.materials.back().reflectance = forRendering(scene.materials.back().reflectance);
       if (scene.materials.back().reradiation) scene.hasFluorescence = true;
-      if (scene.materials.back().kind == MaterialKind::Dielectric &&
-          scene.materials.back().ior.dispersive())
-        scene.hasDispersion = true;
       if (auto e = emission(o, spectral)) {
         app.emission = static_cast<int32_t>(scene.emission.size());
         scene.emission.push_back(forRendering(*e));
@@ -89,7 +87,14 @@ public:
   }
 
 private:
-  Spectrum resolve(const SpectrumDesc& s, SpectrumRole role, int depth = 0) const {
+  // Resolves a spectrum reference; emission spectra are checked to be >= 0 everywhere.
+  Spectrum resolve(const SpectrumDesc& s, SpectrumRole role) const {
+    Spectrum r = resolveUnchecked(s, role, 0);
+    if (role == SpectrumRole::Emission) checkNonNegative(r, s.loc);
+    return r;
+  }
+
+  Spectrum resolveUnchecked(const SpectrumDesc& s, SpectrumRole role, int depth) const {
     try {
       switch (s.kind) {
       case SpectrumDesc::Kind::Number:
@@ -109,7 +114,7 @@ private:
         throw Error(s.loc.str() +
                     ": expected spectrum definitions without a cycle, found one through '" +
                     s.name + "'");
-      return resolve(it->second->spectrum, role, depth + 1);
+      return resolveUnchecked(it->second->spectrum, role, depth + 1);
     }
     if (role == SpectrumRole::Reflectance) {
       if (auto r = namedReflectance(s.name)) return *r;
@@ -133,20 +138,29 @@ private:
         s.name + "'");
   }
 
+  // "300-1000 nm": the traced range, where every spectrum is checked.
+  static std::string tracedRange() {
+    return std::to_string(static_cast<int>(kTraceMinNm)) + "-" +
+           std::to_string(static_cast<int>(kTraceMaxNm)) + " nm";
+  }
+
+  // At every wavelength that can be traced (exactly, between whole nanometres too).
   static void checkUnitRange(const Spectrum& s, const SourceLocation& loc, const char* what) {
-    double worst = 0, worstNm = 0;
-    for (int nm = 360; nm <= 830; ++nm) {
-      const double v = s(nm);
-      if (!std::isfinite(v) || v < 0 || v > 1) {
-        worst = v;
-        worstNm = nm;
-        break;
-      }
-    }
-    if (worstNm != 0)
-      throw Error(loc.str() + ": expected a " + what +
-                  " within [0, 1] at every wavelength, found " + std::to_string(worst) + " at " +
-                  std::to_string(static_cast<int>(worstNm)) + " nm");
+    const SpectrumExtremes e = spectrumExtremes(s, kTraceMinNm, kTraceMaxNm);
+    if (e.min >= 0 && e.max <= 1) return;
+    const bool low = !(e.min >= 0);
+    throw Error(loc.str() + ": expected a " + what + " within [0, 1] at every wavelength of " +
+                tracedRange() + ", found " + numberText(low ? e.min : e.max) + " at " +
+                numberText(low ? e.minNm : e.maxNm) + " nm");
+  }
+
+  static void checkNonNegative(const Spectrum& s, const SourceLocation& loc) {
+    const SpectrumExtremes e = spectrumExtremes(s, kTraceMinNm, kTraceMaxNm);
+    if (e.min >= 0 && std::isfinite(e.max)) return;
+    throw Error(loc.str() + ": expected an emission spectrum that is finite and >= 0 at every " +
+                "wavelength of " + tracedRange() + ", found " +
+                (std::isnan(e.min) ? std::string("a non-finite value")
+                                   : numberText(e.min) + " at " + numberText(e.minNm) + " nm"));
   }
 
   Material material(const ObjectDesc& o, bool spectral) const {
@@ -226,7 +240,9 @@ private:
       m = IorModel::constant(d.value);
       break;
     case IorDesc::Kind::Named:
-      namedGlass(d.name.c_str(), m);
+      if (!namedGlass(d.name.c_str(), m))
+        throw Error(d.loc.str() + ": expected a named glass bk7, diamond or fused_silica, found '" +
+                    d.name + "'");
       break;
     case IorDesc::Kind::Cauchy:
       m.kind = IorModel::Kind::Cauchy;
@@ -242,13 +258,10 @@ private:
       for (size_t i = 0; i < 6; ++i) m.c[i] = d.coefficients[i];
       break;
     }
-    for (int nm = 360; nm <= 830; ++nm) {
-      const double n = m.at(nm);
-      if (!(std::isfinite(n) && n >= 1.0 && n <= 10.0))
-        throw Error(d.loc.str() +
-                    ": expected an index of refraction within [1, 10] over 360-830 nm, found " +
-                    std::to_string(n) + " at " + std::to_string(nm) + " nm");
-    }
+    if (const auto nm = iorOutsideRange(m, kTraceMinNm, kTraceMaxNm, 1.0, 10.0))
+      throw Error(d.loc.str() + ": expected an index of refraction within [1, 10] over " +
+                  tracedRange() + ", found " + numberText(m.at(*nm)) + " at " + numberText(*nm) +
+                  " nm");
     return m;
   }
 

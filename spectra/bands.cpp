@@ -22,8 +22,9 @@ SpectralBands SpectralBands::parse(const std::string& text) {
   if (!(b.stepNm > 0))
     throw Error(where + ": expected a positive step, found " + text.substr(c2 + 1));
   if (!(b.endNm >= b.startNm)) throw Error(where + ": expected END >= START, found " + text);
-  if (b.lower(0) < 300.0 || b.endNm + 0.5 * b.stepNm > 1000.0)
-    throw Error(where + ": expected bands within 300-1000 nm, found " + std::to_string(b.lower(0)) +
+  if (b.lower(0) < kTraceMinNm || b.endNm + 0.5 * b.stepNm > kTraceMaxNm)
+    throw Error(where + ": expected bands within " + std::to_string(int(kTraceMinNm)) + "-" +
+                std::to_string(int(kTraceMaxNm)) + " nm, found " + std::to_string(b.lower(0)) +
                 "-" + std::to_string(b.endNm + 0.5 * b.stepNm) + " nm");
   const double n = (b.endNm - b.startNm) / b.stepNm;
   if (std::abs(n - std::round(n)) > 1e-6)

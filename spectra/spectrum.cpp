@@ -51,7 +51,7 @@ Spectrum forRendering(const Spectrum& s) {
       std::holds_alternative<DenseSpectrum>(s.kind()))
     return s;
   DenseSpectrum d;
-  const int n = static_cast<int>((1000.0 - d.startNm) / d.stepNm) + 1;
+  const int n = static_cast<int>((kTraceMaxNm - d.startNm) / d.stepNm) + 1;
   d.value.reserve(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) d.value.push_back(static_cast<float>(s(d.startNm + i * d.stepNm)));
   return Spectrum(std::move(d));

@@ -9,6 +9,12 @@
 
 namespace nx {
 
+/// Shortest wavelength that can be traced (nm): bands lie in [kTraceMinNm, kTraceMaxNm], every
+/// spectrum of a scene is validated over it, analytic spectra are tabulated over it.
+inline constexpr double kTraceMinNm = 300;
+/// Longest wavelength that can be traced (nm).
+inline constexpr double kTraceMaxNm = 1000;
+
 /// The same value at every wavelength.
 struct ConstantSpectrum {
   double value = 0;
@@ -52,7 +58,7 @@ struct SigmoidPolynomialSpectrum {
 /// Samples of a smooth spectrum on a uniform grid, linearly interpolated; zero outside it.
 /// Used at render time for the analytic kinds (an exp or atan per evaluation becomes a lookup).
 struct DenseSpectrum {
-  static constexpr double startNm = 300, stepNm = 0.25; ///< the grid (1 / stepNm is exact)
+  static constexpr double startNm = kTraceMinNm, stepNm = 0.25; ///< grid (1/stepNm exact)
   std::vector<float> value;
   double operator()(double nm) const { return at(static_cast<float>(nm)); }
   /// Value at nm in single precision: the render loop's lookup (a multiply, no division).
@@ -120,7 +126,7 @@ private:
 };
 
 /// The spectrum as the renderer evaluates it: analytic kinds (Gaussian, skew-Cauchy, black
-/// body, sigmoid polynomial) sampled every 0.25 nm over 300-1000 nm (relative interpolation
+/// body, sigmoid polynomial) sampled every 0.25 nm over the traced range (relative interpolation
 /// error below 1e-4 for the smooth built-in spectra); constant and tabulated kinds unchanged.
 Spectrum forRendering(const Spectrum& s);
 

@@ -61,7 +61,6 @@ TEST(SceneBuilder, ThesisScene) {
   EXPECT_DOUBLE_EQ(s.materials[3].reradiation->absorptance(peak), 1.0);
   EXPECT_LT(ReradiationMatrix::centre(peak), 460);
   EXPECT_TRUE(s.hasFluorescence);
-  EXPECT_FALSE(s.hasDispersion);
   ASSERT_EQ(s.emission.size(), 1u);
   EXPECT_EQ(s.spheres[3].emission, 0);
   EXPECT_NEAR(relativeLuminance(s.emission[0]), 1.0,
@@ -85,13 +84,24 @@ TEST(SceneBuilder, ExtensionsResolve) {
 
 TEST(SceneBuilder, DispersiveGlasses) {
   const RenderScene s = buildRenderScene(loadScene(NX_SOURCE_DIR "/scenes/dispersion.scn"));
-  EXPECT_TRUE(s.hasDispersion);
+  EXPECT_TRUE(s.materials[1].ior.dispersive());
   EXPECT_NEAR(s.materials[1].ior.at(589.3), 2.417, 2e-3);  // diamond n_D
   EXPECT_NEAR(s.materials[2].ior.at(587.6), 1.5168, 1e-4); // N-BK7 n_d
   EXPECT_GT(s.materials[2].ior.at(400), s.materials[2].ior.at(700));
   IorModel silica;
   ASSERT_TRUE(namedGlass("fused_silica", silica));
   EXPECT_NEAR(silica.at(587.6), 1.4585, 1e-4);
+}
+
+// The build step does not trust the loader's check of glass names: an unknown name in a
+// scene description made otherwise (a tool, later the Python module) is an error, not n = 1.5.
+TEST(SceneBuilder, UnknownGlassNameIsAnError) {
+  SceneDesc d = parseScene(scene("<sphere><center>0,0,0</center><radius>1</radius><material>glass"
+                                 "</material><ior>bk7</ior></sphere>\n"),
+                           "t.scn");
+  d.objects[0].ior->name = "crown";
+  EXPECT_EQ(test::errorMessage([&] { buildRenderScene(d); }),
+            "t.scn:4: expected a named glass bk7, diamond or fused_silica, found 'crown'");
 }
 
 TEST(SceneBuilder, RgbModesUpsampleColours) {
@@ -144,8 +154,9 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
       {scene(sphere + "<material>matte</material><reflectance csv=\"missing.csv\"/></sphere>\n"),
        "t.scn:4: missing.csv: cannot open the file for reading"},
       {scene(sphere + "<material>matte</material><reflectance>1.5</reflectance></sphere>\n"),
-       "t.scn:4: expected a reflectance within [0, 1] at every wavelength, found 1.500000 at 360 "
-       "nm"},
+       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1000 nm, found "
+       "1.5 "
+       "at 300 nm"},
       {scene(sphere + "<material>glass</material><roughness>0.2</roughness></sphere>\n"),
        "t.scn:4: expected no <roughness> on a smooth dielectric (glass), found one"},
       {scene(sphere +
@@ -162,8 +173,33 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
       {scene(sphere + "<material>matte</material></sphere>\n", "mcpt"),
        "t.scn:4: expected <reflectance> or <color> on a non-emitting matte object, found neither"},
       {scene(sphere + "<material>glass</material><ior>cauchy: 0.5, 0.001</ior></sphere>\n"),
-       "t.scn:4: expected an index of refraction within [1, 10] over 360-830 nm, found 0.507716 at "
-       "360 nm"},
+       "t.scn:4: expected an index of refraction within [1, 10] over 300-1000 nm, found 0.501 at "
+       "1000 nm"},
+      // Checked over the whole traced range (300-1000 nm), not only 360-830 nm.
+      {scene(sphere + "<material>glass</material><ior>cauchy: 0.985, 0.012</ior></sphere>\n"),
+       "t.scn:4: expected an index of refraction within [1, 10] over 300-1000 nm, found 0.997 at "
+       "1000 nm"},
+      // Exactly, not at whole nanometres: a Sellmeier pole at 500.5 nm.
+      {scene(
+           sphere +
+           "<material>glass</material><ior>sellmeier: 1, 0, 0, 0.25050025, 0, 0</ior></sphere>\n"),
+       "t.scn:4: expected an index of refraction within [1, 10] over 300-1000 nm, found"},
+      {scene(sphere +
+             "<material>matte</material><reflectance>400:0.5, 880:0.5, 900:1.3</reflectance>"
+             "</sphere>\n"),
+       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1000 nm, found "
+       "1.3 "
+       "at 900 nm"},
+      {scene(sphere +
+             "<material>matte</material><reflectance>500:0.5, 500.4:1.5, 500.8:0.5</reflectance>"
+             "</sphere>\n"),
+       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1000 nm, found "
+       "1.5 "
+       "at 500.4 nm"},
+      {scene(sphere + "<material>matte</material><emission>400:1, 500:-0.5, 600:1</emission>"
+                      "</sphere>\n"),
+       "t.scn:4: expected an emission spectrum that is finite and >= 0 at every wavelength of "
+       "300-1000 nm, found -0.5 at 500 nm"},
       {scene(sphere +
              "<material>matte</material><reflectance>gray</reflectance><fluorescence>"
              "<absorption>teal</absorption><stokes>100</stokes></fluorescence></sphere>\n"),
@@ -174,7 +210,9 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
        "expected spectrum definitions without a cycle, found one through"},
       {scene(sphere +
              "<material>matte</material><reflectance>400:0.5, 500:2</reflectance></sphere>\n"),
-       "t.scn:4: expected a reflectance within [0, 1] at every wavelength, found"},
+       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1000 nm, found 2 "
+       "at "
+       "500 nm"},
   };
   for (const auto& [text, message] : cases) {
     const std::string got = errorOf(text);

@@ -8,6 +8,7 @@
 #include "core/math_util.h"
 #include "spectra/named_spectra.h"
 #include "spectra/spectrum.h"
+#include "spectra/spectrum_bounds.h"
 #include "support/errors.h"
 
 namespace nx {
@@ -112,6 +113,50 @@ TEST(NamedSpectra, NiixtracerReflectances) {
   EXPECT_EQ(*namedAbsorptionPeak("uv"), 370.0);
   EXPECT_EQ(*namedAbsorptionPeak("blue"), 460.0);
   EXPECT_FALSE(namedAbsorptionPeak("gray").has_value());
+}
+
+// The exact extremes over an interval agree with a brute-force scan every 0.001 nm: nothing
+// the scan finds lies outside them, they are attained where they say, and a spike between
+// whole nanometres (which a 1 nm scan misses) is found.
+TEST(SpectrumExtremes, MatchBruteForceForEveryKind) {
+  const std::vector<std::pair<const char*, Spectrum>> cases{
+      {"constant scaled negative", Spectrum(ConstantSpectrum{0.3}, -2.0)},
+      {"tabulated spike",
+       Spectrum(makeTabulated({350, 500, 500.4, 500.8, 900}, {0.2, 0.5, 1.5, 0.5, 0.1}, "t"))},
+      {"tabulated inside the range (zero outside)",
+       Spectrum(makeTabulated({400, 700}, {0.3, 0.6}, "t"))},
+      {"dense gaussian", forRendering(Spectrum(GaussianSpectrum{612.3, 7, 2}))},
+      {"gaussian", Spectrum(GaussianSpectrum{612.3, 7, 2})},
+      {"gaussian outside", Spectrum(GaussianSpectrum{1200, 40, 1})},
+      {"blackbody 3000 K", Spectrum(BlackbodySpectrum{3000})},
+      {"blackbody 6500 K", Spectrum(BlackbodySpectrum{6500})},
+      {"sigmoid with a vertex inside", Spectrum(SigmoidPolynomialSpectrum{40, -30, 2})},
+      {"skew-cauchy", Spectrum(SkewCauchySpectrum{520, 3, 6}, 5.0)},
+  };
+  for (const auto& [what, sp] : cases) {
+    const double lo = 300, hi = 1000;
+    const SpectrumExtremes e = spectrumExtremes(sp, lo, hi);
+    ASSERT_TRUE(std::isfinite(e.min) && std::isfinite(e.max)) << what;
+    double scanMin = INFINITY, scanMax = -INFINITY;
+    for (double nm = lo; nm <= hi; nm += 0.001) {
+      scanMin = std::min(scanMin, sp(nm));
+      scanMax = std::max(scanMax, sp(nm));
+    }
+    const double tol = 1e-9 * std::max(1.0, std::abs(e.max));
+    EXPECT_LE(e.min, scanMin + tol) << what;
+    EXPECT_GE(e.max, scanMax - tol) << what;
+    EXPECT_NEAR(sp(e.minNm), e.min, tol) << what;
+    EXPECT_NEAR(sp(e.maxNm), e.max, tol) << what;
+    // Tight: the scan comes within its resolution of the extremes.
+    EXPECT_NEAR(scanMax, e.max, 1e-4 * std::max(1.0, std::abs(e.max))) << what;
+  }
+  const SpectrumExtremes spike = spectrumExtremes(cases[1].second, 300, 1000);
+  EXPECT_EQ(spike.max, 1.5);
+  EXPECT_EQ(spike.maxNm, 500.4);
+  EXPECT_EQ(spike.min, 0.0); // zero beyond the table's last wavelength
+  const SpectrumExtremes inner = spectrumExtremes(cases[2].second, 300, 1000);
+  EXPECT_EQ(inner.min, 0.0);
+  EXPECT_EQ(inner.max, 0.6);
 }
 
 } // namespace
