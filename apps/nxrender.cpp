@@ -17,6 +17,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/text_table.h"
 #include "integrators/renderer.h"
 #include "io/atomic_file.h"
@@ -41,12 +42,6 @@ std::string replaceExtension(const std::string& path, const std::string& ext) {
 
 const char* modeName(nx::RenderMode m) {
   return m == nx::RenderMode::Rt ? "rt" : m == nx::RenderMode::Mcpt ? "mcpt" : "spectral_mcpt";
-}
-
-// FNV-1a, 64 bits: identifies the scene file and the options that change the image.
-uint64_t fnv1a(const std::string& data, uint64_t h = 0xcbf29ce484222325ULL) {
-  for (unsigned char c : data) h = (h ^ c) * 0x100000001b3ULL;
-  return h;
 }
 
 std::string hex(uint64_t v) {
@@ -259,12 +254,12 @@ int run(int argc, char** argv) {
                        pixels * (2.0 * nb + 8) * 4 + (wholeImage ? pixels * 3 : 0) + (1 << 20));
   }
 
-  std::ifstream sceneFile(scenePath, std::ios::binary);
-  std::ostringstream sceneBytes;
-  sceneBytes << sceneFile.rdbuf();
+  // Identifies what the image is an estimate of: the resolved scene content (its text and every
+  // file it refers to), the options that change the image, the lanes and the version.
   const std::string renderKey =
-      hex(fnv1a(sampler + "|" + lightSampling + "|" + (noFluorescence ? "nofl" : "fl") + "|" +
-                std::to_string(nx::kLanes) + "|" + sceneBytes.str()));
+      hex(nx::fnv1a64(std::string(NX_VERSION) + "|" + sampler + "|" + lightSampling + "|" +
+                          (noFluorescence ? "nofl" : "fl") + "|" + std::to_string(nx::kLanes),
+                      scene.contentDigest));
   const nx::Xyz white = nx::spectrumToXyz(scene.previewWhite);
   const int firstSample = options.firstSample;
   int sppTotal = options.samples > 0 ? options.samples : scene.settings.samples;
@@ -282,7 +277,9 @@ int run(int argc, char** argv) {
     };
     const nx::PixelRect want = options.crop ? *options.crop : nx::PixelRect{0, 0, width, height};
     if (attr("nxrender.renderKey") != renderKey)
-      throw nx::Error(resumePath + ": was rendered from another scene file or with other options");
+      throw nx::Error(resumePath +
+                      ": was rendered from another scene, other data files (CSV spectra, "
+                      "matrices), other options or another nxrender version");
     if (attr("nxrender.seed") != std::to_string(seedUsed) ||
         attr("nxrender.bands") != bands.toString() ||
         attr("nxrender.sampleRange") !=

@@ -2,6 +2,7 @@
 // Stateless integer hashing: the root of every random number nxrender draws.
 
 #include <cstdint>
+#include <string_view>
 
 namespace nx {
 
@@ -22,6 +23,16 @@ constexpr uint32_t hash4(uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
   h = mix32(h ^ c);
   h = mix32(h + b);
   return mix32(h ^ a);
+}
+
+/// 64-bit FNV-1a hash of bytes, continuing from h (content digests: render keys, not random
+/// numbers).
+inline uint64_t fnv1a64(std::string_view data, uint64_t h = 0xcbf29ce484222325ULL) {
+  for (unsigned char c : data) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return h;
 }
 
 } // namespace nx

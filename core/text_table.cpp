@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_text.h"
 
 namespace nx {
 namespace {
@@ -96,18 +97,7 @@ NumberTable parseNumberTable(const std::string& text, const std::string& source,
 }
 
 NumberTable readNumberTable(const std::string& path, bool allowHeader) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw Error(path + (std::filesystem::exists(path, ec)
-                            ? ": expected a regular file, found something else"
-                            : ": cannot open the file for reading"));
-  if (std::filesystem::file_size(path, ec) > (64u << 20))
-    throw Error(path + ": expected a table of at most 64 MiB");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(path + ": cannot open the file for reading");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parseNumberTable(text.str(), path, allowHeader);
+  return parseNumberTable(readRegularFile(path, 64u << 20, "table file"), path, allowHeader);
 }
 
 } // namespace nx

@@ -69,6 +69,9 @@ struct RenderScene {
   std::optional<Spectrum> background; ///< uniform environment radiance
   Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
   bool hasFluorescence = false; ///< some material re-radiates (the fluorescent path tracer runs)
+  /// Digest of everything the scene was resolved from: its text and the bytes of every file
+  /// it refers to (CSV spectra, matrices). Part of the render key of resume and merge.
+  uint64_t contentDigest = 0;
 
   /// Appearance of the shape a hit is on.
   const ShapeAppearance& appearance(const SurfaceHit& hit) const {

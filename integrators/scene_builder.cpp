@@ -3,6 +3,8 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/file_text.h"
+#include "core/hash.h"
 #include "core/text_table.h"
 #include "integrators/render_scene.h"
 #include "spectra/colour.h"
@@ -19,7 +21,7 @@ enum class SpectrumRole { Reflectance, Emission };
 
 class Builder {
 public:
-  explicit Builder(const SceneDesc& desc) : desc_(desc) {
+  explicit Builder(const SceneDesc& desc) : desc_(desc), digest_(desc.textDigest) {
     for (const auto& s : desc.spectra) named_[s.name] = &s;
   }
 
@@ -79,6 +81,7 @@ public:
       pl.intensity = forRendering(pl.intensity);
       scene.pointLights.push_back(std::move(pl));
     }
+    scene.contentDigest = digest_;
     if (!withGeometry) return scene;
     scene.device = std::make_unique<EmbreeDevice>();
     scene.geometry = std::make_unique<GeometryScene>(*scene.device, std::move(spheres),
@@ -87,6 +90,14 @@ public:
   }
 
 private:
+  // The bytes of a file the scene refers to (a table), folded into the content digest with its
+  // path, so that renders made with different data do not resume or merge together.
+  std::string readReferencedFile(const std::string& path) const {
+    std::string text = readRegularFile(path, 64u << 20, "table file");
+    digest_ = fnv1a64(text, fnv1a64(std::string_view(path.c_str(), path.size() + 1), digest_));
+    return text;
+  }
+
   // Resolves a spectrum reference; emission spectra are checked to be >= 0 everywhere.
   Spectrum resolve(const SpectrumDesc& s, SpectrumRole role) const {
     Spectrum r = resolveUnchecked(s, role, 0);
@@ -102,7 +113,7 @@ private:
       case SpectrumDesc::Kind::Pairs:
         return Spectrum(makeTabulated(s.nm, s.value, "nm:value pairs"));
       case SpectrumDesc::Kind::CsvFile:
-        return Spectrum(readSpectrumCsv(s.path));
+        return Spectrum(parseSpectrumCsv(readReferencedFile(s.path), s.path));
       case SpectrumDesc::Kind::Name:
         break;
       }
@@ -220,7 +231,8 @@ private:
       if (o.fluorescence->matrixCsv) {
         try {
           m.reradiation = std::make_shared<const ReradiationMatrix>(
-              ReradiationMatrix::fromMeasured(readMeasuredMatrixCsv(*o.fluorescence->matrixCsv)));
+              ReradiationMatrix::fromMeasured(parseMeasuredMatrixCsv(
+                  readReferencedFile(*o.fluorescence->matrixCsv), *o.fluorescence->matrixCsv)));
         } catch (const Error& e) {
           throw Error(o.fluorescence->loc.str() + ": " + e.what());
         }
@@ -302,6 +314,7 @@ private:
 
   const SceneDesc& desc_;
   std::map<std::string, const NamedSpectrumDesc*> named_;
+  mutable uint64_t digest_; ///< the scene text's digest, then every referenced file's bytes
 };
 
 } // namespace

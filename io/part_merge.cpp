@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 
 #include "core/error.h"
@@ -49,7 +50,8 @@ SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
         throw Error(p.name + ": does not belong with " + first.name + ": its " + key + " is '" +
                     attribute(p, key) + "', not '" + attribute(first, key) + "'" +
                     (std::string(key) == "nxrender.renderKey"
-                         ? " (another scene file or other render options)"
+                         ? " (another scene, other data files, other render options or another "
+                           "nxrender version)"
                          : ""));
     if (p.image.displayWidth() != width || p.image.displayHeight() != height)
       throw Error(p.name + ": does not belong with " + first.name + ": its image is " +
@@ -184,6 +186,31 @@ SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
   out.attributes["nxrender.sampleRange"] =
       contiguous ? std::to_string(lo) + ":" + std::to_string(hi) : "merged";
   out.attributes["nxrender.mergedParts"] = std::to_string(parts.size());
+  // The render time of the whole: the parts' times added (CPU-side cost of the image, not the
+  // wall clock of a farm that ran them at once).
+  double seconds = 0;
+  bool timed = true;
+  for (const ImagePart& p : parts) {
+    const auto it = p.image.attributes.find("nxrender.renderSeconds");
+    char* end = nullptr;
+    const double t = it == p.image.attributes.end() ? NAN : std::strtod(it->second.c_str(), &end);
+    if (!(t >= 0) || end == nullptr || *end != '\0') timed = false;
+    seconds += t;
+  }
+  if (timed)
+    out.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
+  else
+    out.attributes.erase("nxrender.renderSeconds");
+  // The merged image's own error estimate (the first part's would describe only that part).
+  if (variances) {
+    double var = 0, mean = 0;
+    for (size_t i = 0; i < pixels; ++i) var += out.yVariance[i], mean += out.xyz[i * 3 + 1];
+    const double n = static_cast<double>(pixels);
+    out.attributes["nxrender.estimatedRelativeError"] =
+        std::to_string(mean > 0 ? std::sqrt(var / n) / (mean / n) : INFINITY);
+  } else {
+    out.attributes.erase("nxrender.estimatedRelativeError");
+  }
   return out;
 }
 

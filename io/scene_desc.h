@@ -1,8 +1,10 @@
 #pragma once
 // A scene as written in a scene file: plain data, every item with its file and line.
-// Nothing here is resolved (names stay names); see integrators/scene_builder.h for that.
+// Nothing here is resolved (names stay names); buildRenderScene (integrators/render_scene.h)
+// does that.
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -119,6 +121,8 @@ struct SettingsDesc {
 /// Everything a scene file says.
 struct SceneDesc {
   std::string file; ///< the scene file as given
+  uint64_t textDigest =
+      0; ///< FNV-1a of the scene text (with the referenced files' bytes, the render key)
   SettingsDesc settings;
   CameraDesc camera;
   std::vector<PointLightDesc> lights;

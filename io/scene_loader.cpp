@@ -13,6 +13,8 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_text.h"
+#include "core/hash.h"
 #include "core/text_table.h"
 #include "io/scene_desc.h"
 
@@ -607,20 +609,13 @@ private:
 } // namespace
 
 SceneDesc parseScene(const std::string& text, const std::string& file) {
-  return SceneParser(text, file).parse();
+  SceneDesc d = SceneParser(text, file).parse();
+  d.textDigest = fnv1a64(text);
+  return d;
 }
 
 SceneDesc loadScene(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw Error(path + ": expected a scene file, found a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open the scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (text.str().size() > (64u << 20))
-    throw Error(path + ": expected a scene file of at most 64 MiB");
-  return parseScene(text.str(), path);
+  return parseScene(readRegularFile(path, 64u << 20, "scene file"), path);
 }
 
 } // namespace nx

@@ -77,8 +77,10 @@ TabulatedSpectrum makeTabulated(std::vector<double> nm, std::vector<double> valu
   return TabulatedSpectrum{std::move(nm), std::move(value)};
 }
 
-TabulatedSpectrum readSpectrumCsv(const std::string& path) {
-  const NumberTable table = readNumberTable(path, /*allowHeader=*/true);
+namespace {
+// A tabulated spectrum from a parsed two-column table (errors name table.source and line).
+TabulatedSpectrum spectrumFromTable(const NumberTable& table) {
+  const std::string& path = table.source;
   std::vector<double> nm, value;
   for (const auto& row : table.rows) {
     const std::string where = path + ":" + std::to_string(row.line);
@@ -92,6 +94,15 @@ TabulatedSpectrum readSpectrumCsv(const std::string& path) {
     value.push_back(row.values[1]);
   }
   return makeTabulated(std::move(nm), std::move(value), path);
+}
+} // namespace
+
+TabulatedSpectrum readSpectrumCsv(const std::string& path) {
+  return spectrumFromTable(readNumberTable(path, /*allowHeader=*/true));
+}
+
+TabulatedSpectrum parseSpectrumCsv(const std::string& text, const std::string& source) {
+  return spectrumFromTable(parseNumberTable(text, source, /*allowHeader=*/true));
 }
 
 } // namespace nx

@@ -139,4 +139,7 @@ TabulatedSpectrum makeTabulated(std::vector<double> nm, std::vector<double> valu
 /// optional header line is allowed. Errors name the file and line.
 TabulatedSpectrum readSpectrumCsv(const std::string& path);
 
+/// The same from the file's text; `source` names it in errors.
+TabulatedSpectrum parseSpectrumCsv(const std::string& text, const std::string& source);
+
 } // namespace nx

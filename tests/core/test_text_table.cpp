@@ -39,7 +39,7 @@ TEST(TextTable, UnreadableFile) {
     readNumberTable("/nonexistent/dir/x.csv", true);
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "/nonexistent/dir/x.csv: cannot open the file for reading");
+    EXPECT_STREQ(e.what(), "/nonexistent/dir/x.csv: cannot open the table file");
   }
 }
 

@@ -35,6 +35,8 @@ ImagePart part(const std::string& name, std::optional<PixelRect> crop, int first
   img.attributes["nxrender.bands"] = img.bands.toString();
   img.attributes["nxrender.sampleRange"] =
       std::to_string(first) + ":" + std::to_string(first + count);
+  img.attributes["nxrender.renderSeconds"] = std::to_string(0.25 + count);
+  img.attributes["nxrender.estimatedRelativeError"] = "0.5";
   return {name, img};
 }
 
@@ -61,6 +63,15 @@ TEST(Farm, SampleRangesMergeUpToRounding) {
     EXPECT_NEAR(merged.radiance[i], full.radiance[i],
                 4e-7 * std::max(1.0f, std::abs(full.radiance[i])));
   EXPECT_EQ(merged.sampleCount, full.sampleCount);
+  // The merged time is the parts' times added (0.25 + 2 and 0.25 + 4), not the first part's.
+  EXPECT_DOUBLE_EQ(std::stod(merged.attributes.at("nxrender.renderSeconds")), 6.5);
+  // The merged error estimate describes the merged image, not the first part.
+  double y = 0, v = 0;
+  for (size_t i = 0; i < merged.yVariance.size(); ++i)
+    v += merged.yVariance[i], y += merged.xyz[3 * i + 1];
+  const double n = static_cast<double>(merged.yVariance.size());
+  EXPECT_NEAR(std::stod(merged.attributes.at("nxrender.estimatedRelativeError")),
+              std::sqrt(v / n) / (y / n), 1e-5);
   // The merged error estimate (sum of (n_k / N)^2 var_k) agrees with the full render's.
   double fullVar = 0, mergedVar = 0;
   for (size_t i = 0; i < full.yVariance.size(); ++i)

@@ -152,7 +152,7 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
       {scene(sphere + "<material>matte</material><emission>D66x</emission></sphere>\n"),
        "t.scn:4: expected an illuminant name (A, D50"},
       {scene(sphere + "<material>matte</material><reflectance csv=\"missing.csv\"/></sphere>\n"),
-       "t.scn:4: missing.csv: cannot open the file for reading"},
+       "t.scn:4: missing.csv: cannot open the table file"},
       {scene(sphere + "<material>matte</material><reflectance>1.5</reflectance></sphere>\n"),
        "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1000 nm, found "
        "1.5 "
@@ -219,6 +219,24 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
     EXPECT_NE(got.find(message), std::string::npos)
         << "got:      " << got << "\nexpected: " << message;
   }
+}
+
+// The content digest (part of the render key of resume and merge) covers the bytes of every
+// file the scene refers to, not only the scene text: a CSV edited between two farm parts
+// changes it.
+TEST(SceneBuilder, ContentDigestCoversReferencedFiles) {
+  const std::string dir = ::testing::TempDir();
+  const std::string text =
+      scene("<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
+            "<reflectance csv=\"" +
+            dir + "digest.csv\"/></sphere>\n");
+  std::ofstream(dir + "digest.csv") << "400,0.5\n700,0.5\n";
+  const uint64_t a = build(text).contentDigest, again = build(text).contentDigest;
+  std::ofstream(dir + "digest.csv") << "400,0.5\n700,0.6\n";
+  const uint64_t b = build(text).contentDigest;
+  EXPECT_EQ(a, again);
+  EXPECT_NE(a, b);
+  EXPECT_NE(build(text + " ").contentDigest, b); // and the scene text itself
 }
 
 TEST(SceneBuilder, MeasuredMatrixCsv) {

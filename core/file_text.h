@@ -1,0 +1,18 @@
+#pragma once
+// Reading an input file whole, safely: regular files only, size checked before reading.
+
+#include <cstdint>
+#include <string>
+
+namespace nx {
+
+/// The content of the regular file at `path`, of at most maxBytes bytes. `what` names the
+/// kind of file in errors ("scene file", "table"). Refused with an nx::Error naming the file:
+/// a missing or unreadable file ("cannot open the <what>"), a directory, FIFO, socket or
+/// device ("expected a <what>, found a directory" / "... found a FIFO or device"), a file over
+/// the limit (checked before reading, and the read itself stops at the limit, so a file that
+/// grows or lies about its size cannot exhaust memory).
+std::string readRegularFile(const std::string& path, std::uintmax_t maxBytes,
+                            const std::string& what);
+
+} // namespace nx
