@@ -14,8 +14,10 @@ namespace nx {
 enum class LightSampling : uint8_t {
   Mis,      ///< next-event estimation and BSDF sampling, combined by the power heuristic
   BsdfOnly, ///< lights are found only by BSDF-sampled rays
-  NeeOnly,  ///< direct light only by next-event estimation (emitters hit after a diffuse bounce
-            ///< count zero)
+  NeeOnly,  ///< emitting spheres light diffuse surfaces by next-event estimation alone (a
+            ///< sphere hit after a diffuse bounce counts zero); emitters that next-event
+            ///< estimation cannot sample (planes, triangles, the background) are still found
+            ///< by BSDF-sampled rays, so the image stays unbiased
 };
 
 /// Longest path the path tracer follows, far beyond any <depth>: Russian roulette ends paths

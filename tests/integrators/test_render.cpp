@@ -326,7 +326,7 @@ TEST(Render, WhittedEqualsPathTracingWithoutIndirectLight) {
 
 TEST(Render, EveryExampleSceneRendersAtLowSpp) {
   for (const char* name : {"thesis", "materials", "dispersion", "rgb_mcpt", "rt_whitted",
-                           "extensions", "blacklight", "measured"}) {
+                           "extensions", "blacklight", "measured", "glass"}) {
     SceneDesc desc = loadScene(std::string(NX_SOURCE_DIR "/scenes/") + name + ".scn");
     desc.settings.width = 32;
     desc.settings.height = 24;

@@ -29,7 +29,7 @@ std::string errorOf(const std::string& text) {
 
 TEST(SceneBuilder, EveryExampleSceneBuilds) {
   for (const char* name : {"thesis", "materials", "dispersion", "rgb_mcpt", "rt_whitted",
-                           "extensions", "blacklight", "measured"}) {
+                           "extensions", "blacklight", "measured", "glass"}) {
     const std::string path = std::string(NX_SOURCE_DIR "/scenes/") + name + ".scn";
     EXPECT_NO_THROW(buildRenderScene(loadScene(path))) << path;
   }
