@@ -272,8 +272,11 @@ private:
     }
     if (const auto nm = iorOutsideRange(m, kTraceMinNm, kTraceMaxNm, 1.0, 10.0))
       throw Error(d.loc.str() + ": expected an index of refraction within [1, 10] over " +
-                  tracedRange() + ", found " + numberText(m.at(*nm)) + " at " + numberText(*nm) +
-                  " nm");
+                  tracedRange() + ", found " +
+                  (std::isfinite(m.at(*nm)) ? numberText(m.at(*nm))
+                                            : std::string("no finite real index (a pole of the "
+                                                          "formula, or n^2 < 0)")) +
+                  " at " + numberText(*nm) + " nm");
     return m;
   }
 
