@@ -370,6 +370,12 @@ int run(int argc, char** argv) {
                static_cast<double>(result.stats.samples) / s,
                static_cast<double>(result.stats.rays) / s, exrPath.c_str(),
                wholeImage ? " and " : "", wholeImage ? previewPath.c_str() : "");
+  if (result.stats.truncated > 0)
+    std::fprintf(stderr,
+                 "nxrender: warning: %llu rt samples reached the budget of %d rays per sample "
+                 "(a tree of reflections and refractions branching at every bounce) and kept "
+                 "what they had traced\n",
+                 static_cast<unsigned long long>(result.stats.truncated), nx::kWhittedRayBudget);
   if (result.stats.nonFinite > 0)
     std::fprintf(stderr,
                  "nxrender: warning: %llu samples with a NaN or infinite value were counted as "

@@ -44,9 +44,14 @@ struct IntegratorContext {
   bool fluorescence = false; ///< run the fluorescent variant (scenes with fluorescent materials)
 };
 
+/// Most rays one camera sample of Whitted ray tracing may trace (its tree branches at every
+/// dielectric); a sample that reaches it keeps what it found and is counted as truncated.
+inline constexpr int kWhittedRayBudget = 1 << 14;
+
 /// Per-task counters (summed after rendering).
 struct TraceCounters {
   uint64_t rays = 0;
+  uint64_t truncated = 0; ///< Whitted samples that reached kWhittedRayBudget
 };
 
 /// Radiance arriving along `ray` at the lanes of `lambda` (spectral path tracing with
@@ -58,7 +63,8 @@ SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, const SampledWa
 
 /// Radiance along `ray` by Whitted ray tracing through the same materials: emission seen
 /// directly or through specular chains, direct light on diffuse lobes from every light,
-/// Fresnel-split reflection and refraction up to the scene's depth.
+/// Fresnel-split reflection and refraction up to the scene's depth (at most kMaxPathBounces),
+/// iteratively, with at most kWhittedRayBudget rays.
 SampledSpectrum traceWhitted(const IntegratorContext& ctx, const Ray& ray,
                              const SampledWavelengths& lambda, PixelSampleStream& rng,
                              TraceCounters& counters);

@@ -55,7 +55,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const int tiles = tilesX * tilesY;
   const int passSize = std::max(1, options.passSamples);
   const int passes = (out.samplesPerPixel + passSize - 1) / passSize;
-  std::atomic<uint64_t> rays{0}, nonFinite{0}, samples{0};
+  std::atomic<uint64_t> rays{0}, nonFinite{0}, samples{0}, truncated{0};
   std::atomic<int64_t> finished{0};
   std::mutex progressMutex;
 
@@ -110,6 +110,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
         }
       }
       rays += counters.rays;
+      truncated += counters.truncated;
       nonFinite += dropped;
       samples += taken;
       const int64_t done = ++finished;
@@ -135,6 +136,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   out.stats.samples = samples;
   out.stats.rays = rays;
   out.stats.nonFinite = nonFinite;
+  out.stats.truncated = truncated;
   return out;
 }
 

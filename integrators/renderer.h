@@ -55,6 +55,7 @@ struct RenderStats {
   uint64_t samples = 0;          ///< pixel samples taken by this run
   uint64_t rays = 0;             ///< camera, scattered and shadow rays
   uint64_t nonFinite = 0;        ///< samples with a NaN or infinite value (counted as zero)
+  uint64_t truncated = 0;        ///< rt samples that reached kWhittedRayBudget
   bool stopped = false;          ///< ended early by the stop flag
   bool reachedTarget = false;    ///< ended because the error target was met
   bool reachedTimeLimit = false; ///< ended because the next pass would pass the time limit

@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/ray_offset.h"
 #include "integrators/fluorescent_vertex.h"
@@ -9,10 +11,23 @@
 namespace nx {
 namespace {
 
-void whitted(const IntegratorContext& ctx, const Ray& ray, const SampledWavelengths& lambda,
-             SampledSpectrum beta, int bounce, bool heroOnlyPath, PixelSampleStream& rng,
-             TraceCounters& counters, SampledSpectrum& L) {
+// One pending ray of the Whitted tree: what it carries and how deep it is.
+struct WhittedRay {
+  Ray ray;
+  SampledSpectrum beta;
+  int bounce = 0;
+  bool heroOnlyPath = false;
+};
+
+// Traces one ray of the tree: adds what it sees directly (emission, background, direct light on
+// a diffuse lobe) to L and pushes its reflected and refracted children (refraction first, so
+// that the reflection's subtree is traced first, as the recursive form did).
+void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDepth,
+               const SampledWavelengths& lambda, PixelSampleStream& rng, TraceCounters& counters,
+               SampledSpectrum& L, std::vector<WhittedRay>& stack) {
   const RenderScene& scene = *ctx.scene;
+  const Ray& ray = node.ray;
+  const SampledSpectrum& beta = node.beta;
   SurfaceHit hit;
   ++counters.rays;
   if (!scene.geometry->intersect(ray, hit)) {
@@ -52,15 +67,17 @@ void whitted(const IntegratorContext& ctx, const Ray& ray, const SampledWaveleng
       L += beta * f * ls.radiance * (1.0f / (ls.pdf * static_cast<float>(ctx.lights->count())));
     }
   }
-  if (bounce >= scene.settings.depth) return;
+  if (node.bounce >= maxDepth) return;
 
   auto spawn = [&](const Vec3& wi, const SampledSpectrum& weight, bool hero) {
     if (weight.isBlack()) return;
-    Ray next;
-    next.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, wi);
-    next.d = wi;
-    whitted(ctx, next, lambda, hero && !heroOnlyPath ? heroOnly(beta * weight) : beta * weight,
-            bounce + 1, heroOnlyPath || hero, rng, counters, L);
+    WhittedRay next;
+    next.ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, wi);
+    next.ray.d = wi;
+    next.beta = hero && !node.heroOnlyPath ? heroOnly(beta * weight) : beta * weight;
+    next.bounce = node.bounce + 1;
+    next.heroOnlyPath = node.heroOnlyPath || hero;
+    stack.push_back(next);
   };
 
   if (material.kind == MaterialKind::Mixture) {
@@ -82,9 +99,9 @@ void whitted(const IntegratorContext& ctx, const Ray& ray, const SampledWaveleng
     fr[i] = fresnelDielectric(std::abs(cosO), eta);
     tr[i] = (1 - fr[i]) / (eta * eta);
   }
-  spawn(reflect(wo, n), rho * fr, false);
   Vec3 wt;
   if (refract(wo, n, etaHero, wt)) spawn(normalize(wt), rho * tr, dispersive);
+  spawn(reflect(wo, n), rho * fr, false);
 }
 
 } // namespace
@@ -92,8 +109,25 @@ void whitted(const IntegratorContext& ctx, const Ray& ray, const SampledWaveleng
 SampledSpectrum traceWhitted(const IntegratorContext& ctx, const Ray& ray,
                              const SampledWavelengths& lambda, PixelSampleStream& rng,
                              TraceCounters& counters) {
+  // The tree is traced depth first from an explicit stack (never the call stack: two facing
+  // mirrors at <depth> 100000 overflowed it), at most kMaxPathBounces deep like the path
+  // tracer, and at most kWhittedRayBudget rays per sample (glass between mirrors branches at
+  // every bounce); a sample that reaches the budget keeps what it has and is counted.
+  thread_local std::vector<WhittedRay> stack; // reused: no allocation per sample
+  stack.clear();
+  const int maxDepth = std::min(ctx.scene->settings.depth, kMaxPathBounces);
   SampledSpectrum L;
-  whitted(ctx, ray, lambda, SampledSpectrum::filled(1.0f), 0, false, rng, counters, L);
+  stack.push_back({ray, SampledSpectrum::filled(1.0f), 0, false});
+  int traced = 0;
+  while (!stack.empty()) {
+    if (traced++ == kWhittedRayBudget) {
+      ++counters.truncated;
+      break;
+    }
+    const WhittedRay node = stack.back();
+    stack.pop_back();
+    traceNode(ctx, node, maxDepth, lambda, rng, counters, L, stack);
+  }
   return L;
 }
 

@@ -110,6 +110,14 @@ SpectralImage readSpectralExr(const std::string& path) {
     img.fullHeight = disp.max.y + 1;
     img.originX = dw.min.x;
     img.originY = dw.min.y;
+    // The data window must be a non-empty part of the display window (a crop of the image):
+    // every reader and nxmerge index the full image by it.
+    if (dw.min.x < 0 || dw.min.y < 0 || dw.max.x > disp.max.x || dw.max.y > disp.max.y ||
+        dw.max.x < dw.min.x || dw.max.y < dw.min.y)
+      throw Error(path + ": expected a data window inside the display window 0,0-" +
+                  std::to_string(disp.max.x) + "," + std::to_string(disp.max.y) + ", found " +
+                  std::to_string(dw.min.x) + "," + std::to_string(dw.min.y) + "-" +
+                  std::to_string(dw.max.x) + "," + std::to_string(dw.max.y));
     img.width = dw.max.x - dw.min.x + 1;
     img.height = dw.max.y - dw.min.y + 1;
     for (auto it = h.begin(); it != h.end(); ++it)
@@ -159,7 +167,11 @@ SpectralImage readSpectralExr(const std::string& path) {
                 Imf::Slice::Make(Imf::FLOAT, img.yVariance.data(), dw, sizeof(float),
                                  sizeof(float) * img.width));
     }
-    if (h.channels().findChannel(kSampleCountChannel)) {
+    if (const Imf::Channel* c = h.channels().findChannel(kSampleCountChannel)) {
+      if (c->type != Imf::UINT)
+        throw Error(path + ": expected the " + std::string(kSampleCountChannel) +
+                    " channel as 32-bit unsigned integers (sample counts), found " +
+                    (c->type == Imf::HALF ? "half floats" : "floats"));
       img.sampleCount.assign(pixels, 0);
       fb.insert(kSampleCountChannel,
                 Imf::Slice::Make(Imf::UINT, img.sampleCount.data(), dw, sizeof(uint32_t),

@@ -216,6 +216,40 @@ TEST(Render, ColourChannelsDoNotDependOnBands) {
     }
 }
 
+// Whitted is iterative and bounded: two facing mirrors at <depth> 100000 used to overflow
+// the call stack; glass planes between mirrors branch at every bounce (1.6x per bounce: hours
+// at depth 50). Both now finish, the first at the 1024-bounce cap, the second at the ray
+// budget per sample, which is counted.
+TEST(Render, WhittedBetweenMirrorsIsBounded) {
+  const std::string settings =
+      "<xres>8</xres><yres>8</yres><mode>rt</mode><sampl>1</sampl><depth>DEPTH</depth>";
+  const std::string camera = "<position>0,0,0</position><look_at>0,0.05,1</look_at><fov>20</fov>";
+  const std::string mirrors =
+      "<plane><normal>0,0,1</normal><distance>-5</distance><material>mirror</material>"
+      "<reflectance>1</reflectance></plane>"
+      "<plane><normal>0,0,-1</normal><distance>-5</distance><material>mirror</material>"
+      "<reflectance>1</reflectance></plane>"
+      "<sphere><center>0,3,0</center><radius>0.5</radius><material>matte</material>"
+      "<emission>1</emission></sphere>";
+  auto withDepth = [&](const std::string& depth) {
+    std::string t = settings;
+    return t.replace(t.find("DEPTH"), 5, depth);
+  };
+  const RenderOutput deep = renderText(sceneText(withDepth("100000"), camera, mirrors));
+  EXPECT_EQ(deep.stats.truncated, 0u);
+  // Every sample traced the camera ray and 1024 mirror bounces, no more.
+  EXPECT_LE(deep.stats.rays, 64u * (kMaxPathBounces + 1) * 3);
+  const std::string glass = "<plane><normal>0,0,1</normal><distance>-2</distance>"
+                            "<material>glass</material></plane>"
+                            "<plane><normal>0,0,1</normal><distance>2</distance>"
+                            "<material>glass</material></plane>";
+  const RenderOutput tree = renderText(sceneText(withDepth("50"), camera, mirrors + glass));
+  EXPECT_GT(tree.stats.truncated, 0u);
+  EXPECT_LE(tree.stats.rays, 64u * kWhittedRayBudget * 3);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) EXPECT_TRUE(std::isfinite(tree.film.xyzMean(x, y).y));
+}
+
 // Per-pixel variance of a strategy, from two independent renders: E[(A - B)^2] / 2.
 double pixelVariance(const std::string& text, LightSampling strategy, double& mean) {
   RenderOptions o;

@@ -4,6 +4,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 
 #include <filesystem>
@@ -11,6 +12,7 @@
 
 #include "core/error.h"
 #include "io/spectral_exr.h"
+#include "support/errors.h"
 
 namespace nx {
 namespace {
@@ -98,6 +100,42 @@ TEST(SpectralExr, UnwritablePathIsAClearErrorAndWritesNothing) {
   img.radiance.pop_back();
   EXPECT_THROW(writeSpectralExr(::testing::TempDir() + "bad.exr", img), Error);
   EXPECT_FALSE(std::filesystem::exists(::testing::TempDir() + "bad.exr"));
+}
+
+// An EXR made by another tool whose data window is not inside its display window (nxmerge
+// read out of bounds on one), or whose sample counts are floats (a resume silently restarted
+// from zero), is refused by the reader with what it found.
+TEST(SpectralExr, DataWindowOutsideDisplayWindowAndFloatCountsAreRefused) {
+  auto write = [](const std::string& path, Imath::Box2i display, Imath::Box2i data,
+                  Imf::PixelType countType) {
+    Imf::Header h(display, data);
+    h.insert("nxrender.bands", Imf::StringAttribute("500:600:100"));
+    for (const std::string& c : {spectralChannelName(500), spectralChannelName(600),
+                                 std::string("R"), std::string("G"), std::string("B")})
+      h.channels().insert(c, Imf::Channel(Imf::FLOAT));
+    h.channels().insert(kSampleCountChannel, Imf::Channel(countType));
+    const int w = data.max.x - data.min.x + 1, rows = data.max.y - data.min.y + 1;
+    std::vector<float> zeros(static_cast<size_t>(w) * rows, 0.0f);
+    Imf::FrameBuffer fb;
+    fb.insert("R",
+              Imf::Slice::Make(Imf::FLOAT, zeros.data(), data, sizeof(float), sizeof(float) * w));
+    Imf::OutputFile f(path.c_str(), h);
+    f.setFrameBuffer(fb); // the other channels are written as zeros
+    f.writePixels(rows);
+  };
+  const std::string dir = ::testing::TempDir();
+  write(dir + "outside.exr", {{0, 0}, {7, 5}}, {{6, 4}, {9, 7}}, Imf::UINT);
+  EXPECT_EQ(test::errorMessage([&] { readSpectralExr(dir + "outside.exr"); }),
+            dir + "outside.exr: expected a data window inside the display window 0,0-7,5, found "
+                  "6,4-9,7");
+  write(dir + "counts.exr", {{0, 0}, {7, 5}}, {{0, 0}, {7, 5}}, Imf::FLOAT);
+  EXPECT_EQ(test::errorMessage([&] { readSpectralExr(dir + "counts.exr"); }),
+            dir + "counts.exr: expected the SampleCount channel as 32-bit unsigned integers "
+                  "(sample counts), found floats");
+  write(dir + "fine.exr", {{0, 0}, {7, 5}}, {{2, 1}, {5, 3}}, Imf::UINT);
+  const SpectralImage img = readSpectralExr(dir + "fine.exr");
+  EXPECT_EQ(img.originX, 2);
+  EXPECT_EQ(img.width, 4);
 }
 
 } // namespace
