@@ -73,15 +73,20 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
       out.stats.reachedTimeLimit = true;
       break;
     }
+    // The stop flag is looked at before every sample (a relaxed load), so a stop takes effect
+    // within one sample wherever the render is; each pixel keeps the samples it finished (its
+    // count stays true, and a resume continues after them).
+    auto stopping = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
     tbb::parallel_for(0, tiles, [&](int tile) {
-      if (options.stop && options.stop->load(std::memory_order_relaxed)) return;
+      if (stopping()) return;
       const int x0 = rect.x0 + (tile % tilesX) * ts, y0 = rect.y0 + (tile / tilesX) * ts;
       const int x1 = std::min(x0 + ts, rect.x1), y1 = std::min(y0 + ts, rect.y1);
       TraceCounters counters;
       uint64_t dropped = 0, taken = 0;
       Film::Pixel pixel = out.film.newPixel();
-      for (int y = y0; y < y1; ++y) {
-        for (int x = x0; x < x1; ++x) {
+      bool halted = false;
+      for (int y = y0; y < y1 && !halted; ++y) {
+        for (int x = x0; x < x1 && !halted; ++x) {
           Film::resetPixel(pixel);
           const uint32_t pixelIndex =
               static_cast<uint32_t>(y) * static_cast<uint32_t>(settings.width) +
@@ -95,6 +100,10 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           // Each pixel continues after the samples it already has (a resumed film may hold
           // more in some pixels than in others).
           for (int s = begin + static_cast<int>(out.film.samples(x, y)); s < passEnd; ++s) {
+            if (stopping()) {
+              halted = true;
+              break;
+            }
             const bool odd = (s & 1) != 0;
             PixelSampleStream rng(replicates[odd], static_cast<uint32_t>(s) >> 1);
             const SampledWavelengths lambda = wavelengths.sample(rng.next1D());
