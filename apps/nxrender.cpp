@@ -343,11 +343,7 @@ int run(int argc, char** argv) {
     sppTotal = result.stats.samplesReached; // the image holds exactly this sample range
   }
 
-  // A render whose every sample was non-finite holds nothing: say so rather than write black.
-  if (result.stats.samples > 0 && result.stats.nonFinite == result.stats.samples)
-    throw nx::Error(scenePath + ": every one of the " + std::to_string(result.stats.samples) +
-                    " samples had a NaN or infinite value (a value of the scene beyond single "
-                    "precision, about 3.4e38?); nothing was written");
+  nx::requireSomeFiniteSamples(result.stats, scenePath); // else nothing is written
   const nx::SpectralImage image = imageOf(result.film, result.stats.seconds);
   nx::writeSpectralExr(exrPath, image);
   if (result.stats.stopped) {

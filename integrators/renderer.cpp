@@ -149,6 +149,12 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   return out;
 }
 
+void requireSomeFiniteSamples(const RenderStats& stats, const std::string& what) {
+  if (stats.samples > 0 && stats.nonFinite == stats.samples)
+    throw Error(what + ": every one of the " + std::to_string(stats.samples) +
+                " samples had a NaN or infinite value; nothing was written");
+}
+
 SpectralImage toSpectralImage(const Film& film) {
   SpectralImage img;
   const PixelRect& r = film.rect();

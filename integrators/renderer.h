@@ -71,6 +71,10 @@ struct RenderOutput {
   uint32_t seed = 0;
 };
 
+/// Throws nx::Error naming `what` when every sample of a render was non-finite: such an
+/// image holds nothing and must not be written as a black one.
+void requireSomeFiniteSamples(const RenderStats& stats, const std::string& what);
+
 /// Renders the scene with its mode (spectral_mcpt and mcpt: path tracing; rt: Whitted).
 RenderOutput render(const RenderScene& scene, const RenderOptions& options);
 

@@ -70,7 +70,7 @@ public:
       PointLight pl;
       pl.position = Vec3(l.position);
       if (spectral && l.emission) {
-        pl.intensity = resolve(*l.emission, SpectrumRole::Emission);
+        pl.intensity = resolve(*l.emission, SpectrumRole::Emission).scaled(l.emissionScale);
       } else {
         try {
           pl.intensity = upsampleSrgbIlluminant({l.color[0], l.color[1], l.color[2]});
@@ -78,6 +78,7 @@ public:
           throw Error(l.loc.str() + ": " + e.what());
         }
       }
+      checkEmission(pl.intensity, l.emission ? l.emission->loc : l.loc);
       pl.intensity = forRendering(pl.intensity);
       scene.pointLights.push_back(std::move(pl));
     }
@@ -101,7 +102,7 @@ private:
   // Resolves a spectrum reference; emission spectra are checked to be >= 0 everywhere.
   Spectrum resolve(const SpectrumDesc& s, SpectrumRole role) const {
     Spectrum r = resolveUnchecked(s, role, 0);
-    if (role == SpectrumRole::Emission) checkNonNegative(r, s.loc);
+    if (role == SpectrumRole::Emission) checkEmission(r, s.loc);
     return r;
   }
 
@@ -165,13 +166,17 @@ private:
                 numberText(low ? e.minNm : e.maxNm) + " nm");
   }
 
-  static void checkNonNegative(const Spectrum& s, const SourceLocation& loc) {
+  // Emission (radiance, or a point light's intensity) within [0, kMaxEmission] everywhere.
+  static void checkEmission(const Spectrum& s, const SourceLocation& loc) {
     const SpectrumExtremes e = spectrumExtremes(s, kTraceMinNm, kTraceMaxNm);
-    if (e.min >= 0 && std::isfinite(e.max)) return;
-    throw Error(loc.str() + ": expected an emission spectrum that is finite and >= 0 at every " +
-                "wavelength of " + tracedRange() + ", found " +
+    if (e.min >= 0 && e.max <= kMaxEmission) return;
+    const bool low = !(e.min >= 0);
+    throw Error(loc.str() + ": expected an emission within [0, " + numberText(kMaxEmission) +
+                "] (W m^-2 sr^-1 nm^-1; W sr^-1 nm^-1 for point lights) at every wavelength of " +
+                tracedRange() + ", found " +
                 (std::isnan(e.min) ? std::string("a non-finite value")
-                                   : numberText(e.min) + " at " + numberText(e.minNm) + " nm"));
+                                   : numberText(low ? e.min : e.max) + " at " +
+                                         numberText(low ? e.minNm : e.maxNm) + " nm"));
   }
 
   Material material(const ObjectDesc& o, bool spectral) const {
@@ -302,17 +307,26 @@ private:
     return p;
   }
 
+  // The object's emitted radiance, checked again after its scale.
   std::optional<Spectrum> emission(const ObjectDesc& o, bool spectral) const {
     if (!o.emission) return std::nullopt;
-    if (spectral) return resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale);
-    // rt and mcpt: a numeric <emission> is scaled by <color> (white if absent); a spectrum is
-    // used as in spectral mode.
-    if (o.emission->kind != SpectrumDesc::Kind::Number)
-      return resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale);
-    const double k = o.emission->number * o.emissionScale;
-    const Rgb c =
-        o.color ? Rgb{(*o.color)[0] * k, (*o.color)[1] * k, (*o.color)[2] * k} : Rgb{k, k, k};
-    return upsampleSrgbIlluminant(c);
+    Spectrum e;
+    if (spectral || o.emission->kind != SpectrumDesc::Kind::Number) {
+      e = resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale);
+    } else {
+      // rt and mcpt: a numeric <emission> is scaled by <color> (white if absent); a spectrum
+      // is used as in spectral mode.
+      const double k = o.emission->number * o.emissionScale;
+      const Rgb c =
+          o.color ? Rgb{(*o.color)[0] * k, (*o.color)[1] * k, (*o.color)[2] * k} : Rgb{k, k, k};
+      try {
+        e = upsampleSrgbIlluminant(c);
+      } catch (const Error& err) {
+        throw Error(o.emission->loc.str() + ": " + err.what());
+      }
+    }
+    checkEmission(e, o.emission->loc);
+    return e;
   }
 
   const SceneDesc& desc_;

@@ -93,6 +93,7 @@ struct PointLightDesc {
   Vec3d position;
   std::array<double, 4> color{};        ///< RGBA, A ignored
   std::optional<SpectrumDesc> emission; ///< spectral emission (nxrender extension)
+  double emissionScale = 1;             ///< <emission scale="...">
   SourceLocation loc;
 };
 

@@ -431,8 +431,20 @@ private:
     l.loc = loc(n);
     l.position = vec3(required(c, n, "position"), "a light position x, y, z");
     l.color = colour(required(c, n, "color"), false);
-    if (c.count("emission")) l.emission = spectrum(c.at("emission"), true);
+    if (c.count("emission")) {
+      l.emission = spectrum(c.at("emission"), true, {"scale"});
+      l.emissionScale = emissionScale(c.at("emission"));
+    }
     return l;
+  }
+
+  // The optional scale="..." of an <emission>: a positive number, 1 if absent.
+  double emissionScale(const pugi::xml_node& e) const {
+    const pugi::xml_attribute sc = e.attribute("scale");
+    if (!sc) return 1.0;
+    const double v = parseNumber(sc.value(), loc(e).str(), "an emission scale in scale=\"...\"");
+    if (!(v > 0)) fail(e, "a positive emission scale", shownText(sc.value()));
+    return v;
   }
 
   std::array<double, 4> colour(const pugi::xml_node& n, bool reflectance) const {
@@ -494,11 +506,7 @@ private:
     if (c.count("emission")) {
       const pugi::xml_node e = c.at("emission");
       o.emission = spectrum(e, true, {"scale"});
-      if (pugi::xml_attribute sc = e.attribute("scale")) {
-        o.emissionScale =
-            parseNumber(sc.value(), loc(e).str(), "an emission scale in scale=\"...\"");
-        if (!(o.emissionScale > 0)) fail(e, "a positive emission scale", shownText(sc.value()));
-      }
+      o.emissionScale = emissionScale(e);
     }
     if (c.count("roughness")) {
       o.roughness = number(c.at("roughness"), "a roughness", 0, 1);

@@ -7,6 +7,7 @@
 #include "integrators/renderer.h"
 #include "spectra/bands.h"
 #include "spectra/colour.h"
+#include "support/errors.h"
 #include "support/statistics.h"
 
 namespace nx {
@@ -248,6 +249,25 @@ TEST(Render, WhittedBetweenMirrorsIsBounded) {
   EXPECT_LE(tree.stats.rays, 64u * kWhittedRayBudget * 3);
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x) EXPECT_TRUE(std::isfinite(tree.film.xyzMean(x, y).y));
+}
+
+// A render whose every sample is non-finite is an error, not a black image. The build step
+// refuses every scene value that could cause it (emission above 1e12, reflectance above 1), so
+// the scene is altered after building: an emission that overflows single precision.
+TEST(Render, EverySampleNonFiniteIsAnError) {
+  RenderScene scene = buildRenderScene(parseScene(
+      sceneText("<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode><sampl>2</sampl>",
+                kFurnaceCamera,
+                "<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
+                "<reflectance>0.5</reflectance><emission>1</emission></sphere>"),
+      "t.scn"));
+  const RenderOutput fine = render(scene, {});
+  EXPECT_NO_THROW(requireSomeFiniteSamples(fine.stats, "t.scn"));
+  scene.emission[0] = Spectrum(ConstantSpectrum{1e39});
+  const RenderOutput out = render(scene, {});
+  EXPECT_EQ(out.stats.nonFinite, out.stats.samples);
+  EXPECT_EQ(test::errorMessage([&] { requireSomeFiniteSamples(out.stats, "t.scn"); }),
+            "t.scn: every one of the 32 samples had a NaN or infinite value; nothing was written");
 }
 
 // Per-pixel variance of a strategy, from two independent renders: E[(A - B)^2] / 2.

@@ -198,8 +198,20 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
        "at 500.4 nm"},
       {scene(sphere + "<material>matte</material><emission>400:1, 500:-0.5, 600:1</emission>"
                       "</sphere>\n"),
-       "t.scn:4: expected an emission spectrum that is finite and >= 0 at every wavelength of "
-       "300-1000 nm, found -0.5 at 500 nm"},
+       "t.scn:4: expected an emission within [0, 1e+12] (W m^-2 sr^-1 nm^-1; W sr^-1 nm^-1 for "
+       "point lights) at every wavelength of 300-1000 nm, found -0.5 at 500 nm"},
+      // Values that would overflow single precision (or its square in the error estimate)
+      // are refused with the limit, whether given directly, through a scale or as a light.
+      {scene(sphere + "<material>matte</material><emission>1e21</emission></sphere>\n"),
+       "t.scn:4: expected an emission within [0, 1e+12] (W m^-2 sr^-1 nm^-1; W sr^-1 nm^-1 for "
+       "point lights) at every wavelength of 300-1000 nm, found 1e+21 at 300 nm"},
+      {scene(sphere + "<material>matte</material><emission scale=\"1e300\">D65</emission>"
+                      "</sphere>\n"),
+       "t.scn:4: expected an emission within [0, 1e+12]"},
+      {scene(sphere + "<material>matte</material><emission>1e21</emission></sphere>\n", "rt"),
+       "t.scn:4: expected an emission within [0, 1e+12]"},
+      {scene("<light><position>0,5,0</position><color>1e13, 1e13, 1e13</color></light>\n"),
+       "t.scn:4: expected an emission within [0, 1e+12]"},
       {scene(sphere +
              "<material>matte</material><reflectance>gray</reflectance><fluorescence>"
              "<absorption>teal</absorption><stokes>100</stokes></fluorescence></sphere>\n"),
@@ -237,6 +249,20 @@ TEST(SceneBuilder, ContentDigestCoversReferencedFiles) {
   EXPECT_EQ(a, again);
   EXPECT_NE(a, b);
   EXPECT_NE(build(text + " ").contentDigest, b); // and the scene text itself
+}
+
+// A point light's <emission> takes scale="..." like an object's.
+TEST(SceneBuilder, PointLightEmissionScale) {
+  const RenderScene s = build(scene(
+      "<light><position>0,5,0</position><color>1,1,1</color><emission scale=\"50\">A</emission>"
+      "</light>\n<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
+      "<reflectance>0.5</reflectance></sphere>\n"));
+  const RenderScene one = build(
+      scene("<light><position>0,5,0</position><color>1,1,1</color><emission>A</emission>"
+            "</light>\n<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
+            "<reflectance>0.5</reflectance></sphere>\n"));
+  EXPECT_NEAR(s.pointLights[0].intensity(560), 50 * one.pointLights[0].intensity(560),
+              1e-9 * s.pointLights[0].intensity(560));
 }
 
 TEST(SceneBuilder, MeasuredMatrixCsv) {
