@@ -5,9 +5,10 @@
 // Prints the largest absolute and relative differences of the spectral and XYZ channels (the
 // data) and of the RGB channels (derived from XYZ through a matrix with negative entries, so
 // tiny values there can differ much more in relative terms), and whether the sample counts
-// agree. Exit status 0 when the counts agree, the spectral and XYZ channels differ by at most
-// R relatively (default 0: identical bit for bit) and RGB is identical when R is 0; 1
-// otherwise; 2 on errors.
+// agree; names what differs when the size, position or bands do. Exit status 0 when the
+// counts agree, no value is NaN or infinite (a NaN is never equal to anything), the spectral
+// and XYZ channels differ by at most R relatively (default 0: identical bit for bit) and RGB
+// is identical when R is 0; 1 otherwise; 2 on errors.
 
 #include <CLI/CLI.hpp>
 
@@ -28,18 +29,33 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     const nx::SpectralImage x = nx::readSpectralExr(a), y = nx::readSpectralExr(b);
-    if (x.width != y.width || x.height != y.height || x.originX != y.originX ||
-        x.originY != y.originY || x.bands.toString() != y.bands.toString()) {
-      std::printf("nxdiff: the images differ in size, position or bands\n");
+    // Say which of size, position and bands differ, with both values.
+    std::string layout;
+    auto differs = [&](const char* what, const std::string& u, const std::string& v) {
+      if (u != v) layout += std::string(layout.empty() ? "" : "; ") + what + " " + u + " vs " + v;
+    };
+    differs("size", std::to_string(x.width) + "x" + std::to_string(x.height),
+            std::to_string(y.width) + "x" + std::to_string(y.height));
+    differs("position", std::to_string(x.originX) + "," + std::to_string(x.originY),
+            std::to_string(y.originX) + "," + std::to_string(y.originY));
+    differs("bands", x.bands.toString(), y.bands.toString());
+    if (!layout.empty()) {
+      std::printf("nxdiff: the images differ: %s\n", layout.c_str());
       return 1;
     }
     struct Stats {
       double maxAbs = 0, maxRel = 0;
       bool sizes = true;
+      size_t nonFinite = 0; ///< positions where either value is NaN or infinite
     };
+    // A non-finite value never equals anything (NaN would compare as "no difference").
     auto compare = [](const std::vector<float>& u, const std::vector<float>& v, Stats& st) {
       st.sizes = st.sizes && u.size() == v.size();
       for (size_t i = 0; i < u.size() && i < v.size(); ++i) {
+        if (!std::isfinite(u[i]) || !std::isfinite(v[i])) {
+          ++st.nonFinite;
+          continue;
+        }
         const double d = std::abs(static_cast<double>(u[i]) - v[i]);
         st.maxAbs = std::max(st.maxAbs, d);
         const double scale =
@@ -51,13 +67,16 @@ int main(int argc, char** argv) {
     compare(x.radiance, y.radiance, data);
     compare(x.xyz, y.xyz, data);
     compare(x.rgb, y.rgb, rgb);
+    if (data.nonFinite + rgb.nonFinite > 0)
+      std::printf("nxdiff: %zu values are NaN or infinite in one of the images\n",
+                  data.nonFinite + rgb.nonFinite);
     const bool countsEqual = x.sampleCount == y.sampleCount;
     std::printf("nxdiff: spectral+XYZ max absolute difference %.9g, max relative %.9g; RGB max "
                 "absolute %.9g; "
                 "sample counts %s\n",
                 data.maxAbs, data.maxRel, rgb.maxAbs, countsEqual ? "equal" : "differ");
-    const bool ok = data.sizes && rgb.sizes && countsEqual && data.maxRel <= maxRelative &&
-                    (maxRelative > 0 || rgb.maxAbs == 0);
+    const bool ok = data.sizes && rgb.sizes && countsEqual && data.nonFinite + rgb.nonFinite == 0 &&
+                    data.maxRel <= maxRelative && (maxRelative > 0 || rgb.maxAbs == 0);
     return ok ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nxdiff: error: %s\n", e.what());

@@ -152,9 +152,11 @@ TEST(Farm, StopAndResumeEqualsUninterrupted) {
   bool someBehind = false;
   for (int y = 0; y < 30; ++y)
     for (int x = 0; x < 40; ++x) {
+      // A stop takes effect before the next sample, so a pixel holds the first pass (4) and
+      // any part of the second (up to 8).
       const uint32_t n = partial.film.samples(x, y);
-      EXPECT_TRUE(n == 4 || n == 8) << n;
-      someBehind = someBehind || n == 4;
+      EXPECT_TRUE(n >= 4 && n <= 8) << n;
+      someBehind = someBehind || n < 8;
       taken += n;
     }
   EXPECT_TRUE(someBehind);
