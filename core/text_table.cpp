@@ -1,11 +1,13 @@
 #include "core/text_table.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "core/error.h"
 #include "core/file_text.h"
@@ -67,9 +69,22 @@ double parseNumber(const std::string& text, const std::string& where, const std:
   return value;
 }
 
-NumberTable parseNumberTable(const std::string& text, const std::string& source, bool allowHeader) {
+NumberTable parseNumberTable(const std::string& rawText, const std::string& source,
+                             bool allowHeader) {
   NumberTable table;
   table.source = source;
+  // A UTF-8 byte-order mark (spreadsheet exports) is skipped: it made the first row look like
+  // a header. UTF-16 and other binary text is refused, whole, with what it is.
+  const std::string_view bom = "\xEF\xBB\xBF";
+  const std::string_view view(rawText);
+  const std::string text(view.substr(view.substr(0, 3) == bom ? 3 : 0));
+  if (text.size() >= 2 &&
+      ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF')))
+    throw Error(source + ": expected UTF-8 or ASCII text, found UTF-16 (save the table as UTF-8)");
+  if (const size_t nul = text.find('\0'); nul != std::string::npos)
+    throw Error(source + ":" +
+                std::to_string(1 + std::count(text.begin(), text.begin() + nul, '\n')) +
+                ": expected text, found a NUL byte (a binary or UTF-16 file?)");
   std::istringstream in(text);
   std::string line;
   int lineNumber = 0;
@@ -90,6 +105,7 @@ NumberTable parseNumberTable(const std::string& text, const std::string& source,
     for (const auto& cell : cells) row.values.push_back(parseNumber(cell, where, "a number"));
     table.rows.push_back(std::move(row));
   }
+  if (lineNumber == 0) throw Error(source + ": expected rows of numbers, found an empty file");
   if (table.rows.empty())
     throw Error(source + ":" + std::to_string(lineNumber) +
                 ": expected rows of numbers, found none");

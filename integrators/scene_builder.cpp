@@ -35,6 +35,12 @@ public:
 
     scene.previewWhite =
         s.illuminant ? resolve(*s.illuminant, SpectrumRole::Emission) : *namedEmission("D65");
+    // The preview is white-balanced from this white's chromaticity: it needs visible light.
+    if (const Xyz w = spectrumToXyz(scene.previewWhite); s.illuminant && !(w.y > 0))
+      throw Error(s.illuminant->loc.str() +
+                  ": expected an <illum> with visible light (the preview's white balance "
+                  "needs its colour), found luminance Y = " +
+                  numberText(w.y));
     if (s.background)
       scene.background = forRendering(resolve(*s.background, SpectrumRole::Emission));
 

@@ -31,7 +31,29 @@ TEST(TextTable, ErrorsNameFileLineExpectedAndFound) {
   EXPECT_EQ(errorOf("400,1e999\n"),
             "t.csv:1: expected a number, found '1e999' (not a finite value)");
   EXPECT_EQ(errorOf("# only a comment\n"), "t.csv:1: expected rows of numbers, found none");
-  EXPECT_EQ(errorOf(""), "t.csv:0: expected rows of numbers, found none");
+  EXPECT_EQ(errorOf(""), "t.csv: expected rows of numbers, found an empty file");
+}
+
+// A UTF-8 byte-order mark is skipped (it turned the first row into a header, which was then
+// lost); UTF-16 is refused whole, not cut at its first NUL byte.
+TEST(TextTable, ByteOrderMarksAndUtf16) {
+  const auto t = parseNumberTable("\xEF\xBB\xBF"
+                                  "400,0.5\n500,0.25\n",
+                                  "t.csv", true);
+  EXPECT_TRUE(t.header.empty());
+  ASSERT_EQ(t.rows.size(), 2u);
+  EXPECT_DOUBLE_EQ(t.rows[0].values[0], 400.0);
+  const std::string utf16("\xFF\xFE"
+                          "4\0"
+                          "0\0"
+                          "0\0",
+                          8);
+  EXPECT_EQ(errorOf(utf16),
+            "t.csv: expected UTF-8 or ASCII text, found UTF-16 (save the table as UTF-8)");
+  EXPECT_EQ(errorOf(std::string("400,0.5\n4\0"
+                                "10,1\n",
+                                14)),
+            "t.csv:2: expected text, found a NUL byte (a binary or UTF-16 file?)");
 }
 
 TEST(TextTable, UnreadableFile) {

@@ -200,6 +200,17 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
                       "</sphere>\n"),
        "t.scn:4: expected an emission within [0, 1e+12] (W m^-2 sr^-1 nm^-1; W sr^-1 nm^-1 for "
        "point lights) at every wavelength of 300-1000 nm, found -0.5 at 500 nm"},
+      // A white without visible light has no colour to balance the preview with (it wrote
+      // previewWhite = -nan,1,-nan and a black preview).
+      {"<scene>\n<settings><xres>8</xres><yres>6</yres><mode>spectral_mcpt</mode>"
+       "<illum>0</illum></settings>\n<camera><position>0,0,-5</position><look_at>0,0,0</look_at>"
+       "</camera>\n</scene>\n",
+       "t.scn:2: expected an <illum> with visible light (the preview's white balance needs its "
+       "colour), found luminance Y = 0"},
+      {"<scene>\n<settings><xres>8</xres><yres>6</yres><mode>spectral_mcpt</mode>"
+       "<illum>300:1, 350:1</illum></settings>\n<camera><position>0,0,-5</position>"
+       "<look_at>0,0,0</look_at></camera>\n</scene>\n",
+       "t.scn:2: expected an <illum> with visible light"},
       // Values that would overflow single precision (or its square in the error estimate)
       // are refused with the limit, whether given directly, through a scale or as a light.
       {scene(sphere + "<material>matte</material><emission>1e21</emission></sphere>\n"),
