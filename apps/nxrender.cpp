@@ -290,7 +290,11 @@ int run(int argc, char** argv) {
     if (prev.displayWidth() != width || prev.displayHeight() != height || prev.originX != want.x0 ||
         prev.originY != want.y0 || prev.width != want.width() || prev.height != want.height())
       throw nx::Error(resumePath + ": covers another image size or crop than this render");
-    resumeFilm = nx::filmFromImage(prev, firstSample);
+    try {
+      resumeFilm = nx::filmFromImage(prev, firstSample, sppTotal);
+    } catch (const nx::Error& e) {
+      throw nx::Error(resumePath + ": " + e.what());
+    }
     options.resumeFrom = &*resumeFilm;
   }
 

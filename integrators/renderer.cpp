@@ -193,13 +193,34 @@ SpectralImage toSpectralImage(const Film& film) {
   return img;
 }
 
-Film filmFromImage(const SpectralImage& img, int firstSample) {
+Film filmFromImage(const SpectralImage& img, int firstSample, int maxSamples) {
   if (img.sampleCount.empty() || img.xyz.empty())
     throw Error("the image holds no per-pixel sample counts or XYZ channels to continue from");
+  const int nb = img.bands.count();
+  const size_t pixels = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
+  // What a render of ours can hold: counts within the range, finite non-negative values.
+  // Anything else (a file edited or made by another tool) would be copied into the output.
+  auto where = [&](size_t i) {
+    return "pixel " + std::to_string(img.originX + static_cast<int>(i % img.width)) + "," +
+           std::to_string(img.originY + static_cast<int>(i / img.width));
+  };
+  auto check = [&](const std::vector<float>& v, size_t perPixel, const char* what) {
+    for (size_t k = 0; k < v.size(); ++k)
+      if (!(v[k] >= 0 && std::isfinite(v[k])))
+        throw Error(where(k / perPixel) + ": expected finite values >= 0 in " + what +
+                    " to continue from, found " + numberText(v[k]));
+  };
+  check(img.radiance, static_cast<size_t>(nb), "the spectral channels");
+  check(img.xyz, 3, "X, Y, Z");
+  check(img.bandVariance, static_cast<size_t>(nb), "the Variance channels");
+  check(img.yVariance, 1, "Variance.Y");
+  for (size_t i = 0; i < pixels; ++i)
+    if (img.sampleCount[i] > static_cast<uint32_t>(maxSamples))
+      throw Error(where(i) + ": expected at most the " + std::to_string(maxSamples) +
+                  " samples of the render's range, found " + std::to_string(img.sampleCount[i]));
   Film film(img.displayWidth(), img.displayHeight(),
             {img.originX, img.originY, img.originX + img.width, img.originY + img.height},
             img.bands);
-  const int nb = img.bands.count();
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const size_t i = static_cast<size_t>(y) * img.width + x;

@@ -83,8 +83,9 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options);
 SpectralImage toSpectralImage(const Film& film);
 
 /// Loads a film from a spectral image whose pixels hold samples firstSample onwards (to
-/// resume a render).
-Film filmFromImage(const SpectralImage& image, int firstSample = 0);
+/// resume a render of maxSamples samples per pixel). Refuses, naming the pixel, counts above
+/// maxSamples and values that are negative or not finite.
+Film filmFromImage(const SpectralImage& image, int firstSample, int maxSamples);
 
 /// An 8-bit preview of linear XYZ pixels: white-balanced from the chromaticity of `white`
 /// to D65 (Bradford), converted to sRGB, tone-mapped (Reinhard 2002). Interleaved RGB bytes.

@@ -162,7 +162,7 @@ TEST(Farm, StopAndResumeEqualsUninterrupted) {
   EXPECT_TRUE(someBehind);
   EXPECT_EQ(taken, partial.stats.samples);
 
-  const Film stored = filmFromImage(toSpectralImage(partial.film));
+  const Film stored = filmFromImage(toSpectralImage(partial.film), 0, 12);
   RenderOptions r;
   r.samples = 12;
   r.passSamples = 4;
@@ -176,6 +176,28 @@ TEST(Farm, StopAndResumeEqualsUninterrupted) {
         EXPECT_NEAR(resumed.film.bandMean(x, y, b), whole.film.bandMean(x, y, b),
                     2e-7 * std::max(1.0, std::abs(whole.film.bandMean(x, y, b))));
     }
+}
+
+// A partial with NaN pixels or impossible counts is refused, naming the pixel, rather than
+// copied into the resumed output.
+TEST(Farm, ResumeRefusesNonFiniteValuesAndImpossibleCounts) {
+  RenderOptions o;
+  o.samples = 4;
+  const SpectralImage good = toSpectralImage(render(scene(), o).film);
+  EXPECT_NO_THROW(filmFromImage(good, 0, 8));
+  SpectralImage nan = good;
+  nan.radiance[5 * static_cast<size_t>(good.bands.count()) + 1] = NAN;
+  EXPECT_EQ(test::errorMessage([&] { filmFromImage(nan, 0, 8); }),
+            "pixel 5,0: expected finite values >= 0 in the spectral channels to continue from, "
+            "found nan");
+  SpectralImage counts = good;
+  counts.sampleCount[40 + 2] = 9; // pixel 2,1 of a 40-pixel-wide image
+  EXPECT_EQ(test::errorMessage([&] { filmFromImage(counts, 0, 8); }),
+            "pixel 2,1: expected at most the 8 samples of the render's range, found 9");
+  SpectralImage variance = good;
+  variance.yVariance[3] = -1;
+  EXPECT_EQ(test::errorMessage([&] { filmFromImage(variance, 0, 8); }),
+            "pixel 3,0: expected finite values >= 0 in Variance.Y to continue from, found -1");
 }
 
 } // namespace
