@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "core/error.h"
 #include "core/text_table.h"
@@ -19,8 +20,11 @@ SpectralBands SpectralBands::parse(const std::string& text) {
   b.startNm = parseNumber(text.substr(0, c1), where, "a start wavelength in nm");
   b.endNm = parseNumber(text.substr(c1 + 1, c2 - c1 - 1), where, "an end wavelength in nm");
   b.stepNm = parseNumber(text.substr(c2 + 1), where, "a step in nm");
-  if (!(b.stepNm > 0))
-    throw Error(where + ": expected a positive step, found " + text.substr(c2 + 1));
+  if (!(b.stepNm >= 1e-3))
+    throw Error(where +
+                ": expected a step of at least 0.001 nm (channel names hold 6 decimals), "
+                "found " +
+                text.substr(c2 + 1));
   if (!(b.endNm >= b.startNm)) throw Error(where + ": expected END >= START, found " + text);
   if (b.lower(0) < kTraceMinNm || b.endNm + 0.5 * b.stepNm > kTraceMaxNm)
     throw Error(where + ": expected bands within " + std::to_string(int(kTraceMinNm)) + "-" +
@@ -44,10 +48,22 @@ int SpectralBands::bandOf(double nm) const {
   return i < count() ? i : -1;
 }
 
-std::string SpectralBands::toString() const {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "%g:%g:%g", startNm, endNm, stepNm);
+namespace {
+// The shortest decimal text that reads back as exactly v (at most 17 significant digits).
+std::string exactText(double v) {
+  char buf[40];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
   return buf;
+}
+} // namespace
+
+std::string SpectralBands::toString() const {
+  // Exact: the text is stored in the EXR and parsed back by nxmerge, nxdiff and --resume,
+  // which find the channels by the centres it gives (6 significant digits lost 400.00001).
+  return exactText(startNm) + ":" + exactText(endNm) + ":" + exactText(stepNm);
 }
 
 double bandAverage(const Spectrum& s, const SpectralBands& bands, int i) {
