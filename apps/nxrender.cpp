@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/memory.h"
 #include "core/text_table.h"
 #include "integrators/renderer.h"
 #include "io/atomic_file.h"
@@ -250,6 +251,13 @@ int run(int argc, char** argv) {
     const nx::PixelRect r = options.crop ? *options.crop : nx::PixelRect{0, 0, width, height};
     const double pixels = static_cast<double>(r.width()) * r.height();
     const int nb = (options.bands ? *options.bands : scene.settings.bands).count();
+    // The scene file's own bands were checked when loading; --bands may ask for more, and a
+    // resume holds a second film.
+    nx::requireMemory(nx::renderBufferBytes(r.width(), r.height(), nb) *
+                          (resumePath.empty() ? 1 : 2),
+                      scenePath, "a render",
+                      std::to_string(r.width()) + "x" + std::to_string(r.height()) + " with " +
+                          std::to_string(nb) + " bands");
     nx::checkFreeSpace(exrPath,
                        pixels * (2.0 * nb + 8) * 4 + (wholeImage ? pixels * 3 : 0) + (1 << 20));
   }

@@ -138,6 +138,10 @@ struct SceneDesc {
 /// buffers would not fit in memory.
 SceneDesc loadScene(const std::string& path);
 
+/// Bytes the film and the output image of a width x height render with `bands` bands take
+/// (what the memory checks compare with the memory budget).
+double renderBufferBytes(int width, int height, int bands);
+
 /// Parses scene text; `file` names it in messages and anchors relative paths.
 SceneDesc parseScene(const std::string& text, const std::string& file);
 

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/hash.h"
+#include "core/memory.h"
 #include "core/text_table.h"
 #include "io/scene_desc.h"
 
@@ -593,20 +594,10 @@ private:
   }
 
   void checkMemory(const SettingsDesc& s) const {
-    // Film accumulators (two doubles per band, plus XYZ, a luminance half-sum and counts) and
-    // the output image (float band means and variances, RGB, XYZ, a variance, a count).
-    const double pixels = static_cast<double>(s.width) * s.height;
-    const double bytes =
-        pixels * ((2.0 * s.bands.count() + 6) * 8.0 + (2.0 * s.bands.count() + 9) * 4.0);
-    const double available =
-        static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
-    if (bytes > 0.8 * available) {
-      std::ostringstream found;
-      found << s.width << "x" << s.height << " with " << s.bands.count() << " bands (needs "
-            << bytes / (1 << 30) << " GiB of " << available / (1 << 30) << " GiB)";
-      throw Error(s.widthLoc.str() + ": expected a resolution whose buffers fit in memory, found " +
-                  found.str());
-    }
+    const double bytes = renderBufferBytes(s.width, s.height, s.bands.count());
+    std::ostringstream found;
+    found << s.width << "x" << s.height << " with " << s.bands.count() << " bands";
+    requireMemory(bytes, s.widthLoc.str(), "a resolution", found.str());
   }
 
   std::string file_;
@@ -615,6 +606,13 @@ private:
 };
 
 } // namespace
+
+double renderBufferBytes(int width, int height, int bands) {
+  // Film accumulators (two doubles per band, plus XYZ, a luminance half-sum and counts) and
+  // the output image (float band means and variances, RGB, XYZ, a variance, a count).
+  const double pixels = static_cast<double>(width) * height;
+  return pixels * ((2.0 * bands + 6) * 8.0 + (2.0 * bands + 9) * 4.0);
+}
 
 SceneDesc parseScene(const std::string& text, const std::string& file) {
   SceneDesc d = SceneParser(text, file).parse();

@@ -187,4 +187,21 @@ SpectralImage readSpectralExr(const std::string& path) {
   }
 }
 
+ExrFootprint spectralExrFootprint(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i dw = file.header().dataWindow(), disp = file.header().displayWindow();
+    ExrFootprint f;
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+      ++f.channels;
+    f.displayPixels = (static_cast<double>(disp.max.x) - disp.min.x + 1) *
+                      (static_cast<double>(disp.max.y) - disp.min.y + 1);
+    f.dataPixels = (static_cast<double>(dw.max.x) - dw.min.x + 1) *
+                   (static_cast<double>(dw.max.y) - dw.min.y + 1);
+    return f;
+  } catch (const std::exception& e) {
+    throw Error(path + ": cannot read the EXR file: " + e.what());
+  }
+}
+
 } // namespace nx

@@ -52,4 +52,14 @@ void writeSpectralExr(const std::string& path, const SpectralImage& image);
 /// else from uniform S0 channel names). Errors name the file and what is wrong.
 SpectralImage readSpectralExr(const std::string& path);
 
+/// The size of an EXR's contents from its header alone (memory checks before reading).
+struct ExrFootprint {
+  double dataPixels = 0;    ///< pixels of the data window (stored)
+  double displayPixels = 0; ///< pixels of the display window (the full image)
+  double channels = 0;      ///< channels per pixel (each read as 4 bytes)
+};
+
+/// The footprint of the EXR at `path` (reads the header only).
+ExrFootprint spectralExrFootprint(const std::string& path);
+
 } // namespace nx
