@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "spectra/colour.h"
 
 namespace nx {
@@ -97,7 +98,14 @@ SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
   });
   std::vector<double> bandVar(variances ? pixels * nb : 0, 0.0), yVar(variances ? pixels : 0, 0.0);
   std::vector<uint64_t> count(pixels, 0);
+  // Which sample ranges cover each pixel, as an order-independent sum of the ranges' hashes:
+  // every pixel must end up with the same set (crops of different ranges merged into one
+  // image would record a range that no pixel has, and a later resume would repeat samples).
+  std::vector<uint64_t> rangeSet(pixels, 0);
   std::vector<int> covering(pixels, 0), owner(pixels, -1);
+  std::vector<uint64_t> rangeHash;
+  for (const auto& r : ranges)
+    rangeHash.push_back(fnv1a64(std::to_string(r.first) + ":" + std::to_string(r.second)));
   for (size_t k = 0; k < parts.size(); ++k) {
     const SpectralImage& p = parts[k].image;
     for (int y = 0; y < p.height; ++y)
@@ -115,6 +123,7 @@ SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
           yVar[dst] += p.yVariance[src] * n * n;
         }
         count[dst] += p.sampleCount[src];
+        rangeSet[dst] += rangeHash[k];
         ++covering[dst];
         owner[dst] = static_cast<int>(k);
       }
@@ -134,6 +143,22 @@ SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
     throw Error("missing region: " + std::to_string(missing) + " pixels within " +
                 rectText(mx0, my0, mx1, my1) + " have fewer than the " + std::to_string(full) +
                 " samples of the others (a part is missing)");
+
+  // The sample ranges each pixel holds, as text (for the message below).
+  auto rangesAt = [&](size_t i) {
+    const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
+    std::string text;
+    for (size_t k = 0; k < parts.size(); ++k) {
+      const SpectralImage& p = parts[k].image;
+      if (x >= p.originX && x < p.originX + p.width && y >= p.originY && y < p.originY + p.height)
+        text += (text.empty() ? "" : " ") + attribute(parts[k], "nxrender.sampleRange");
+    }
+    return "pixel " + std::to_string(x) + "," + std::to_string(y) + " holds samples " + text;
+  };
+  for (size_t i = 1; i < pixels; ++i)
+    if (rangeSet[i] != rangeSet[0])
+      throw Error("parts cover different sample ranges in different pixels: " + rangesAt(i) + ", " +
+                  rangesAt(0) + " (merge crops of the same range, and ranges of the same pixels)");
 
   out.radiance.resize(pixels * nb);
   out.xyz.resize(pixels * 3);

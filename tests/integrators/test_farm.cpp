@@ -178,6 +178,18 @@ TEST(Farm, StopAndResumeEqualsUninterrupted) {
     }
 }
 
+// Crops rendered with different sample ranges have equal counts but not the same samples:
+// merged, the image would record a range no pixel has. Refused, naming both.
+TEST(Farm, CropsOfDifferentSampleRangesAreRefused) {
+  const std::string message = test::errorMessage([] {
+    mergeParts({part("top", PixelRect{0, 0, 40, 15}, 0, 4),
+                part("bottom", PixelRect{0, 15, 40, 30}, 4, 4)});
+  });
+  EXPECT_EQ(message, "parts cover different sample ranges in different pixels: pixel 0,15 holds "
+                     "samples 4:8, pixel 0,0 holds samples 0:4 (merge crops of the same range, "
+                     "and ranges of the same pixels)");
+}
+
 // A partial with NaN pixels or impossible counts is refused, naming the pixel, rather than
 // copied into the resumed output.
 TEST(Farm, ResumeRefusesNonFiniteValuesAndImpossibleCounts) {
