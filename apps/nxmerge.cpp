@@ -59,8 +59,11 @@ int main(int argc, char** argv) {
     std::vector<nx::Xyz> xyz;
     for (size_t i = 0; i < merged.xyz.size(); i += 3)
       xyz.push_back({merged.xyz[i], merged.xyz[i + 1], merged.xyz[i + 2]});
-    nx::writeSpectralExr(output, merged);
-    nx::writePreview(preview, merged.width, merged.height, nx::previewPixels(xyz, white));
+    {
+      const nx::OutputLock lock(output); // the EXR and its preview as one pair
+      nx::writeSpectralExr(output, merged);
+      nx::writePreview(preview, merged.width, merged.height, nx::previewPixels(xyz, white));
+    }
     std::fprintf(stderr, "nxmerge: merged %zu parts into %s and %s (%dx%d, samples %s)\n",
                  parts.size(), output.c_str(), preview.c_str(), merged.width, merged.height,
                  merged.attributes.at("nxrender.sampleRange").c_str());

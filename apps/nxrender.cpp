@@ -341,6 +341,7 @@ int run(int argc, char** argv) {
     options.afterPass = [&](const nx::Film& film) {
       const auto now = std::chrono::steady_clock::now();
       if (std::chrono::duration<double>(now - lastCheckpoint).count() < checkpointSeconds) return;
+      const nx::OutputLock lock(exrPath);
       nx::writeSpectralExr(exrPath,
                            imageOf(film, std::chrono::duration<double>(now - start).count()));
       lastCheckpoint = now;
@@ -357,7 +358,15 @@ int run(int argc, char** argv) {
 
   nx::requireSomeFiniteSamples(result.stats, scenePath); // else nothing is written
   const nx::SpectralImage image = imageOf(result.film, result.stats.seconds);
-  nx::writeSpectralExr(exrPath, image);
+  {
+    // The EXR and its preview as one pair (another process writing the same output waits),
+    // the preview also for a stopped render (an older one would sit beside the new EXR).
+    const nx::OutputLock lock(exrPath);
+    nx::writeSpectralExr(exrPath, image);
+    if (wholeImage)
+      nx::writePreview(previewPath, image.width, image.height,
+                       nx::previewPixels(result.film, scene.previewWhite));
+  }
   if (result.stats.stopped) {
     std::fprintf(stderr,
                  "nxrender: stopped by signal %d; wrote the %llu samples finished so far to %s "
@@ -366,9 +375,6 @@ int run(int argc, char** argv) {
                  exrPath.c_str(), exrPath.c_str());
     return 3;
   }
-  if (wholeImage)
-    nx::writePreview(previewPath, image.width, image.height,
-                     nx::previewPixels(result.film, scene.previewWhite));
 
   const double s = result.stats.seconds;
   std::fprintf(stderr,

@@ -19,7 +19,9 @@ rc=$?
 set -e
 [ "$rc" = 3 ] || { echo "expected exit status 3 after SIGINT, got $rc"; cat "$d/log"; exit 1; }
 grep -q "stopped by signal 2" "$d/log" || { echo "no stop message"; cat "$d/log"; exit 1; }
-if ls "$d" | grep -q tmp; then echo "a temporary file was left behind"; ls "$d"; exit 1; fi
+if ls -A "$d" | grep -q nxtmp; then echo "a temporary file was left behind"; ls -A "$d"; exit 1; fi
+# The partial's preview is written beside it (an older preview would not match the EXR).
+[ -s "$d/int.png" ] || { echo "no preview of the interrupted render"; ls -A "$d"; exit 1; }
 
 "$bin/nxrender" --threads 2 --spp 128 -o "$d/whole.exr" "$scene" 2>/dev/null
 # The partial image is valid but has fewer samples than the whole one.

@@ -105,7 +105,46 @@ TEST(AtomicFile, FailedWriteLeavesNoFile) {
                                }),
                Error);
   EXPECT_FALSE(std::filesystem::exists(path));
-  EXPECT_FALSE(std::filesystem::exists(path + ".tmp-" + std::to_string(::getpid())));
+  EXPECT_FALSE(std::filesystem::exists(atomicTempName(path, ::getpid())));
+}
+
+// A name of 250 bytes is written (the temporary name is short whatever the target's).
+TEST(AtomicFile, LongNamesAreWritten) {
+  const std::string path = ::testing::TempDir() + std::string(246, 'n') + ".exr";
+  writeAtomically(path, [](const std::string& temp) { std::ofstream(temp) << "x"; });
+  EXPECT_TRUE(std::filesystem::exists(path));
+  std::filesystem::remove(path);
+}
+
+// Temporary files of a process killed while writing (SIGKILL) are removed by the next check of
+// the same target; those of a live process are kept.
+TEST(AtomicFile, StaleTemporariesAreRemoved) {
+  const std::string path = ::testing::TempDir() + "stale.exr";
+  const std::string dead = atomicTempName(path, 0x7ffffff0),
+                    alive = atomicTempName(path, ::getpid());
+  std::ofstream(dead) << "left by a killed process";
+  std::ofstream(alive) << "being written";
+  checkWritable(path);
+  EXPECT_FALSE(std::filesystem::exists(dead));
+  EXPECT_TRUE(std::filesystem::exists(alive));
+  std::filesystem::remove(alive);
+}
+
+// Writing through a symlink replaces the file it points to and keeps the link.
+TEST(AtomicFile, SymlinkTargetIsReplacedNotTheLink) {
+  const std::string dir = ::testing::TempDir();
+  std::filesystem::remove(dir + "link.exr");
+  std::ofstream(dir + "real.exr") << "old";
+  std::filesystem::create_symlink(dir + "real.exr", dir + "link.exr");
+  checkWritable(dir + "link.exr");
+  writeAtomically(dir + "link.exr", [](const std::string& temp) { std::ofstream(temp) << "new"; });
+  EXPECT_TRUE(std::filesystem::is_symlink(dir + "link.exr"));
+  std::ifstream in(dir + "real.exr");
+  std::string text;
+  in >> text;
+  EXPECT_EQ(text, "new");
+  std::filesystem::remove(dir + "link.exr");
+  std::filesystem::remove(dir + "real.exr");
 }
 
 } // namespace
