@@ -55,6 +55,12 @@ bool looksNumeric(const std::string& cell) {
 } // namespace
 
 double parseNumber(const std::string& text, const std::string& where, const std::string& what) {
+  // Decimal numbers only: strtod also reads hexadecimal ("0x1p3" = 8), which no scene or
+  // table of spectra means.
+  const size_t digits = text.find_first_not_of(" \t\r\n+-");
+  const std::string prefix = digits == std::string::npos ? "" : text.substr(digits, 2);
+  if (prefix == "0x" || prefix == "0X")
+    throw Error(where + ": expected " + what + ", found '" + text + "' (not a decimal number)");
   const char* begin = text.c_str();
   while (*begin == ' ' || *begin == '\t' || *begin == '\n' || *begin == '\r') ++begin;
   char* end = nullptr;

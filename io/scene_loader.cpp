@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -45,9 +46,10 @@ public:
       if (text[i] == '\n') newlines_.push_back(i);
     if (trim(text).empty())
       failAt(1, "expected an XML document with a <scene> element, found an empty file");
-    const pugi::xml_parse_result r =
-        doc_.load_buffer(text.data(), text.size(),
-                         pugi::parse_default | pugi::parse_ws_pcdata_single, pugi::encoding_utf8);
+    const pugi::xml_parse_result r = doc_.load_buffer(text.data(), text.size(),
+                                                      (pugi::parse_default & ~pugi::parse_escapes) |
+                                                          pugi::parse_ws_pcdata_single,
+                                                      pugi::encoding_utf8);
     if (r.status == pugi::status_no_document_element)
       failAt(1, "expected an XML document with a <scene> element, found no XML element");
     if (!r)
@@ -185,9 +187,63 @@ private:
       if (c.type() == pugi::node_element)
         fail(c, "text inside <" + std::string(n.name()) + ">",
              "element <" + std::string(c.name()) + ">");
-      if (c.type() == pugi::node_pcdata || c.type() == pugi::node_cdata) t += c.value();
+      if (c.type() == pugi::node_pcdata) t += decoded(c.value(), n);
+      if (c.type() == pugi::node_cdata) t += c.value();
     }
     return trim(t);
+  }
+
+  // Character references resolved here rather than by pugixml, which keeps an undefined entity
+  // such as "&foo;" as literal text: the five predefined entities and &#...; / &#x...; are
+  // known, anything else after '&' is an error at the element.
+  std::string decoded(const char* raw, const pugi::xml_node& where) const {
+    std::string out;
+    for (const char* p = raw; *p;) {
+      if (*p != '&') {
+        out += *p++;
+        continue;
+      }
+      const char* semi = std::strchr(p, ';');
+      const std::string ref = semi ? std::string(p + 1, semi) : std::string(p + 1);
+      static const std::map<std::string, char> predefined{
+          {"amp", '&'}, {"lt", '<'}, {"gt", '>'}, {"quot", '"'}, {"apos", '\''}};
+      if (!semi)
+        fail(where, "'&' only in an entity such as &amp;", shownText(std::string(p).substr(0, 12)));
+      if (const auto it = predefined.find(ref); it != predefined.end()) {
+        out += it->second;
+      } else if (ref.size() > 1 && ref[0] == '#') {
+        const bool hex = ref[1] == 'x' || ref[1] == 'X';
+        const std::string digits = ref.substr(hex ? 2 : 1);
+        char* end = nullptr;
+        const unsigned long code = std::strtoul(digits.c_str(), &end, hex ? 16 : 10);
+        if (digits.empty() || *end != '\0' || code == 0 || code > 0x10FFFF)
+          fail(where, "a character reference &#N; or &#xN;", shownText("&" + ref + ";"));
+        appendUtf8(out, static_cast<uint32_t>(code));
+      } else {
+        fail(where, "only the entities &amp; &lt; &gt; &quot; &apos; and character references",
+             "the undefined entity " + shownText("&" + ref + ";"));
+      }
+      p = semi + 1;
+    }
+    return out;
+  }
+
+  static void appendUtf8(std::string& out, uint32_t c) {
+    if (c < 0x80) {
+      out += static_cast<char>(c);
+    } else if (c < 0x800) {
+      out += static_cast<char>(0xC0 | (c >> 6));
+      out += static_cast<char>(0x80 | (c & 0x3F));
+    } else if (c < 0x10000) {
+      out += static_cast<char>(0xE0 | (c >> 12));
+      out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (c & 0x3F));
+    } else {
+      out += static_cast<char>(0xF0 | (c >> 18));
+      out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
+      out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (c & 0x3F));
+    }
   }
 
   std::vector<std::string> tokens(const std::string& t) const {
@@ -291,9 +347,10 @@ private:
     if (pugi::xml_attribute csv = n.attribute("csv")) {
       if (!t.empty())
         fail(n, "either csv=\"file\" or text in <" + std::string(n.name()) + ">", "both");
-      if (trim(csv.value()).empty()) fail(n, "a file name in csv=\"...\"", "an empty one");
+      const std::string csvName = decoded(csv.value(), n);
+      if (trim(csvName).empty()) fail(n, "a file name in csv=\"...\"", "an empty one");
       s.kind = SpectrumDesc::Kind::CsvFile;
-      s.path = relativeToScene(csv.value());
+      s.path = relativeToScene(csvName);
       return s;
     }
     if (t.empty()) {
@@ -349,7 +406,7 @@ private:
   NamedSpectrumDesc parseNamedSpectrum(const pugi::xml_node& n) const {
     NamedSpectrumDesc d;
     d.loc = loc(n);
-    const std::string name = trim(n.attribute("name").value());
+    const std::string name = trim(decoded(n.attribute("name").value(), n));
     if (name.empty()) fail(n, "a name=\"...\" attribute on <spectrum>", "none");
     if (name.find_first_of(" \t,:") != std::string::npos ||
         std::isdigit(static_cast<unsigned char>(name[0])))
@@ -443,8 +500,9 @@ private:
   double emissionScale(const pugi::xml_node& e) const {
     const pugi::xml_attribute sc = e.attribute("scale");
     if (!sc) return 1.0;
-    const double v = parseNumber(sc.value(), loc(e).str(), "an emission scale in scale=\"...\"");
-    if (!(v > 0)) fail(e, "a positive emission scale", shownText(sc.value()));
+    const std::string text = decoded(sc.value(), e);
+    const double v = parseNumber(text, loc(e).str(), "an emission scale in scale=\"...\"");
+    if (!(v > 0)) fail(e, "a positive emission scale", shownText(text));
     return v;
   }
 

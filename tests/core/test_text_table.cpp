@@ -65,6 +65,13 @@ TEST(TextTable, UnreadableFile) {
   }
 }
 
+// Hexadecimal floats are not numbers of a scene or a table (strtod reads "0x1p3" as 8).
+TEST(TextTable, HexadecimalIsNotANumber) {
+  EXPECT_EQ(test::errorMessage([] { parseNumber("0x1p3", "t.scn:3", "a radius"); }),
+            "t.scn:3: expected a radius, found '0x1p3' (not a decimal number)");
+  EXPECT_EQ(errorOf("400,0X1\n"), "t.csv:1: expected a number, found '0X1' (not a decimal number)");
+}
+
 TEST(TextTable, ParseNumber) {
   EXPECT_DOUBLE_EQ(parseNumber(" 2.5 ", "w", "a radius"), 2.5);
   EXPECT_THROW(parseNumber("2.5x", "w", "a radius"), Error);

@@ -268,6 +268,29 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
   }
 }
 
+// Entities: the predefined five and character references are resolved; an undefined entity is
+// an error at its element (pugixml kept "&foo;" as literal text, e.g. in a file name).
+TEST(SceneLoader, EntitiesResolvedOrRefused) {
+  const std::string head =
+      "<scene>\n<settings><xres>8</xres><yres>6</yres><mode>spectral_mcpt</mode></settings>\n"
+      "<camera><position>0, 0, 0</position><look_at>0, 0, 1</look_at></camera>\n";
+  const SceneDesc d = parseScene(
+      head + "<spectrum name=\"a&amp;b&#x41;&#66;\">0.5</spectrum>\n"
+             "<sphere><center>0,0,&#53;</center><radius>1</radius><material>matte</material>"
+             "<reflectance>a&amp;bAB</reflectance></sphere>\n</scene>\n",
+      "t.scn");
+  EXPECT_EQ(d.spectra[0].name, "a&bAB");
+  EXPECT_EQ(d.objects[0].center[2], 5.0);
+  EXPECT_EQ(errorOf(head + "<sphere><center>0,0,5</center><radius>1</radius><material>matte"
+                           "</material><reflectance>&foo;</reflectance></sphere>\n</scene>\n"),
+            "t.scn:4: expected only the entities &amp; &lt; &gt; &quot; &apos; and character "
+            "references, found the undefined entity '&foo;'");
+  EXPECT_EQ(errorOf(head + "<sphere><center>0,0,5</center><radius>1</radius><material>matte"
+                           "</material><reflectance csv=\"&bar;.csv\"/></sphere>\n</scene>\n"),
+            "t.scn:4: expected only the entities &amp; &lt; &gt; &quot; &apos; and character "
+            "references, found the undefined entity '&bar;'");
+}
+
 TEST(SceneLoader, FilesThatAreNotScenes) {
   EXPECT_THROW(loadScene("/nonexistent/x.scn"), Error);
   try {
