@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/hash.h"
+#include "core/math_util.h"
 #include "core/text_table.h"
 #include "integrators/render_scene.h"
 #include "spectra/colour.h"
@@ -29,8 +30,7 @@ public:
     RenderScene scene;
     const SettingsDesc& s = desc_.settings;
     scene.settings = {s.width, s.height, s.mode, s.depth, s.samples, s.seed, s.bands, s.outputPath};
-    const CameraDesc& c = desc_.camera;
-    scene.camera = PinholeCamera(c.position, c.lookAt, c.up, c.fovDegrees, s.width, s.height);
+    scene.camera = camera(desc_.camera, s);
     const bool spectral = s.mode == RenderMode::SpectralMcpt;
 
     scene.previewWhite =
@@ -97,6 +97,73 @@ public:
   }
 
 private:
+  // The camera: the look-at form as it always was, or OpenCV's calibration (either part may
+  // stand alone: intrinsics with a look-at pose, extrinsics with a field of view).
+  static PinholeCamera camera(const CameraDesc& c, const SettingsDesc& s) {
+    if (!c.intrinsics && !c.extrinsics && c.distortion == std::array<double, 5>{})
+      return PinholeCamera(c.position, c.lookAt, c.up, c.fovDegrees, s.width, s.height);
+    CameraCalibration cal =
+        c.extrinsics ? CameraCalibration{}
+                     : PinholeCamera(c.position, c.lookAt, c.up, c.fovDegrees, s.width, s.height)
+                           .calibration();
+    if (c.intrinsics) {
+      cal.fx = (*c.intrinsics)[0], cal.fy = (*c.intrinsics)[1];
+      cal.cx = (*c.intrinsics)[2], cal.cy = (*c.intrinsics)[3];
+    } else if (c.extrinsics) {
+      cal.fx = cal.fy = 0.5 * s.width / std::tan(0.5 * c.fovDegrees * kPi / 180.0);
+      cal.cx = 0.5 * s.width - 0.5, cal.cy = 0.5 * s.height - 0.5;
+    }
+    if (c.extrinsics) {
+      const auto& e = *c.extrinsics;
+      cal.R = exactRotation({{{e[0], e[1], e[2]}, {e[3], e[4], e[5]}, {e[6], e[7], e[8]}}});
+      cal.t = Vec3d(e[9], e[10], e[11]);
+    }
+    cal.distortion = c.distortion;
+    if (cal.distorted()) checkNoFold(cal, s, c.distortionLoc);
+    return PinholeCamera(cal, s.width, s.height);
+  }
+
+  // The rotation nearest to a printed one (polar decomposition by Newton's iteration
+  // R <- (R + R^-T) / 2), so that rays are exactly what the calibration means.
+  static Matrix3 exactRotation(Matrix3 r) {
+    for (int it = 0; it < 20; ++it) {
+      const Matrix3 inv = inverse(r);
+      Matrix3 next{};
+      double change = 0;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          next[i][j] = 0.5 * (r[i][j] + inv[j][i]);
+          change = std::max(change, std::abs(next[i][j] - r[i][j]));
+        }
+      r = next;
+      if (change < 1e-16) break;
+    }
+    return r;
+  }
+
+  // The distortion must map the image one to one: on a 65 x 65 grid over the film (edges
+  // included) the inverse must converge and the Jacobian of the distortion stay positive
+  // there (a fold makes two directions meet in one pixel, and no inverse is the right one).
+  static void checkNoFold(const CameraCalibration& cal, const SettingsDesc& s,
+                          const SourceLocation& loc) {
+    const int n = 64;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const double px = s.width * static_cast<double>(i) / n - 0.5,
+                     py = s.height * static_cast<double>(j) / n - 0.5;
+        const double xd = (px - cal.cx) / cal.fx, yd = (py - cal.cy) / cal.fy;
+        double x = 0, y = 0, jac[4], dx = 0, dy = 0;
+        const bool ok = cal.undistort(xd, yd, x, y);
+        if (ok) cal.distort(x, y, dx, dy, jac);
+        if (!ok || !(jac[0] * jac[3] - jac[1] * jac[2] > 0))
+          throw Error(loc.str() +
+                      ": expected a <distortion> that maps the image one to one, found a fold "
+                      "near pixel " +
+                      numberText(px) + "," + numberText(py) +
+                      " (the coefficients do not describe a lens over this field of view)");
+      }
+  }
+
   // The bytes of a file the scene refers to (a table), folded into the content digest with its
   // path, so that renders made with different data do not resume or merge together.
   std::string readReferencedFile(const std::string& path) const {

@@ -102,7 +102,12 @@ struct CameraDesc {
   Vec3d position, lookAt;
   Vec3d up{0, 1, 0};
   double fovDegrees = 81.8; ///< horizontal; the thesis-era default
-  SourceLocation loc;
+  /// OpenCV calibration (nxrender extension): fx, fy, cx, cy in pixels of the xres x yres image
+  std::optional<std::array<double, 4>> intrinsics;
+  /// r11 .. r33, t1, t2, t3: x_cam = R x_world + t (replaces position/look_at/up)
+  std::optional<std::array<double, 12>> extrinsics;
+  std::array<double, 5> distortion{}; ///< k1, k2, p1, p2, k3 (OpenCV's order; zero if absent)
+  SourceLocation loc, distortionLoc;
 };
 
 /// <settings>.

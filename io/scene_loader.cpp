@@ -464,22 +464,77 @@ private:
 
   CameraDesc parseCamera(const pugi::xml_node& n) const {
     checkAttributes(n, {});
-    const auto c = uniqueChildren(n, {"position", "look_at", "up", "fov"});
+    const auto c = uniqueChildren(
+        n, {"position", "look_at", "up", "fov", "intrinsics", "extrinsics", "distortion"});
     CameraDesc cam;
     cam.loc = loc(n);
-    cam.position = vec3(required(c, n, "position"), "a camera position x, y, z");
-    cam.lookAt = vec3(required(c, n, "look_at"), "a point to look at x, y, z");
-    if (length(cam.lookAt - cam.position) == 0)
-      fail(c.at("look_at"), "a look_at point different from the camera position",
-           shownText(text(c.at("look_at"))));
-    if (c.count("up")) {
-      cam.up = vec3(c.at("up"), "an up direction x, y, z");
-      if (length(cam.up) == 0)
-        fail(c.at("up"), "a non-zero up direction", shownText(text(c.at("up"))));
+    if (c.count("extrinsics")) {
+      for (const char* tag : {"position", "look_at", "up"})
+        if (c.count(tag))
+          fail(c.at(tag), "either <extrinsics> or <position>/<look_at>/<up> in <camera>",
+               "both (<" + std::string(tag) + "> and <extrinsics>)");
+      cam.extrinsics = extrinsics(c.at("extrinsics"));
+    } else {
+      cam.position = vec3(required(c, n, "position"), "a camera position x, y, z");
+      cam.lookAt = vec3(required(c, n, "look_at"), "a point to look at x, y, z");
+      if (length(cam.lookAt - cam.position) == 0)
+        fail(c.at("look_at"), "a look_at point different from the camera position",
+             shownText(text(c.at("look_at"))));
+      if (c.count("up")) {
+        cam.up = vec3(c.at("up"), "an up direction x, y, z");
+        if (length(cam.up) == 0)
+          fail(c.at("up"), "a non-zero up direction", shownText(text(c.at("up"))));
+      }
     }
+    if (c.count("intrinsics") && c.count("fov"))
+      fail(c.at("fov"), "either <intrinsics> or <fov> in <camera>", "both");
     if (c.count("fov"))
       cam.fovDegrees = number(c.at("fov"), "a horizontal field of view in degrees", 0, 179, true);
+    if (c.count("intrinsics")) {
+      const pugi::xml_node k = c.at("intrinsics");
+      const auto v = numbers(k, 4, 4, "fx, fy, cx, cy in pixels");
+      if (!(v[0] > 0 && v[1] > 0))
+        fail(k, "focal lengths fx, fy > 0 in <intrinsics>", shownText(text(k)));
+      if (std::abs(v[2]) > 1e7 || std::abs(v[3]) > 1e7 || v[0] > 1e9 || v[1] > 1e9)
+        fail(k, "fx, fy and the principal point cx, cy within 1e9 and 1e7 pixels",
+             shownText(text(k)));
+      cam.intrinsics = std::array<double, 4>{v[0], v[1], v[2], v[3]};
+    }
+    if (c.count("distortion")) {
+      const pugi::xml_node d = c.at("distortion");
+      const auto v = numbers(d, 4, 5, "k1, k2, p1, p2[, k3]");
+      for (size_t i = 0; i < v.size(); ++i) {
+        if (std::abs(v[i]) > 1e4)
+          fail(d, "distortion coefficients within [-1e4, 1e4]", shownText(text(d)));
+        cam.distortion[i] = v[i];
+      }
+      cam.distortionLoc = loc(d);
+    }
     return cam;
+  }
+
+  // R (row by row) and t of x_cam = R x_world + t; R must be a rotation up to the rounding of
+  // printed calibration output (R^T R within 1e-4 of the identity, determinant +1).
+  std::array<double, 12> extrinsics(const pugi::xml_node& e) const {
+    const auto v = numbers(e, 12, 12, "r11, r12, r13, r21, r22, r23, r31, r32, r33, t1, t2, t3");
+    std::array<double, 12> out{};
+    std::copy(v.begin(), v.end(), out.begin());
+    double worst = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        double dotij = 0;
+        for (int k = 0; k < 3; ++k) dotij += v[3 * k + i] * v[3 * k + j];
+        worst = std::max(worst, std::abs(dotij - (i == j ? 1.0 : 0.0)));
+      }
+    const double det = v[0] * (v[4] * v[8] - v[5] * v[7]) - v[1] * (v[3] * v[8] - v[5] * v[6]) +
+                       v[2] * (v[3] * v[7] - v[4] * v[6]);
+    if (worst > 1e-4 || !(det > 0))
+      fail(e, "a rotation R in <extrinsics> (R^T R = I within 1e-4, determinant +1)",
+           "R^T R off by " + numberText(worst) + ", determinant " + numberText(det));
+    if (std::abs(v[9]) > kMaxCoordinate || std::abs(v[10]) > kMaxCoordinate ||
+        std::abs(v[11]) > kMaxCoordinate)
+      fail(e, "a translation within 1e12", shownText(text(e)));
+    return out;
   }
 
   PointLightDesc parseLight(const pugi::xml_node& n) const {

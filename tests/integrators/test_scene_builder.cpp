@@ -276,6 +276,53 @@ TEST(SceneBuilder, PointLightEmissionScale) {
               1e-9 * s.pointLights[0].intensity(560));
 }
 
+// A camera pasted from an OpenCV calibration: K, R, t and distortion as given (R made exactly
+// orthonormal), the centre of projection at -R^T t; and the camera's errors, each at its line.
+TEST(SceneBuilder, CalibratedCamera) {
+  auto sceneWith = [](const std::string& camera) {
+    return "<scene>\n<settings><xres>640</xres><yres>480</yres><mode>spectral_mcpt</mode>"
+           "</settings>\n<camera>\n" +
+           camera +
+           "</camera>\n<sphere><center>0,0,0</center><radius>1</radius><material>matte"
+           "</material><reflectance>0.5</reflectance></sphere>\n</scene>\n";
+  };
+  const std::string k = "<intrinsics>800, 790, 320.5, 240.25</intrinsics>\n";
+  const std::string e = "<extrinsics>0, 0, -1, 0, 1, 0, 1, 0, 0, 0.5, 0, 4</extrinsics>\n";
+  const RenderScene s = build(sceneWith(k + e + "<distortion>-0.1, 0.02, 0, 0</distortion>\n"));
+  const CameraCalibration& c = s.camera.calibration();
+  EXPECT_EQ(c.fx, 800);
+  EXPECT_EQ(c.cy, 240.25);
+  EXPECT_EQ(c.R[0][2], -1);
+  EXPECT_EQ(c.t.z, 4);
+  EXPECT_EQ(c.distortion[0], -0.1);
+  // R maps world +x to camera z, so the camera looks along world +x from C = -R^T t.
+  EXPECT_NEAR(s.camera.position().x, -4, 1e-12);
+  EXPECT_NEAR(s.camera.position().z, 0.5, 1e-12);
+  EXPECT_NEAR(s.camera.forward().x, 1, 1e-12);
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"<intrinsics>0, 800, 320, 240</intrinsics>\n<position>0,0,-5</position>"
+       "<look_at>0,0,0</look_at>\n",
+       "t.scn:4: expected focal lengths fx, fy > 0 in <intrinsics>, found '0, 800, 320, 240'"},
+      {k + "<extrinsics>2, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 4</extrinsics>\n",
+       "t.scn:5: expected a rotation R in <extrinsics> (R^T R = I within 1e-4, determinant +1), "
+       "found R^T R off by 3, determinant 2"},
+      {k + "<extrinsics>1, 0, 0, 0, 1, 0, 0, 0, -1, 0, 0, 4</extrinsics>\n",
+       "t.scn:5: expected a rotation R in <extrinsics> (R^T R = I within 1e-4, determinant +1), "
+       "found R^T R off by 0, determinant -1"},
+      {k + e + "<position>0,0,-5</position>\n",
+       "t.scn:6: expected either <extrinsics> or <position>/<look_at>/<up> in <camera>, found "
+       "both (<position> and <extrinsics>)"},
+      {k + e + "<fov>40</fov>\n",
+       "t.scn:6: expected either <intrinsics> or <fov> in <camera>, found both"},
+      {k + e + "<distortion>-1.5, 0, 0, 0</distortion>\n",
+       "t.scn:6: expected a <distortion> that maps the image one to one, found a fold near pixel"},
+  };
+  for (const auto& [camera, message] : cases) {
+    const std::string got = errorOf(sceneWith(camera));
+    EXPECT_EQ(got.substr(0, message.size()), message) << got;
+  }
+}
+
 TEST(SceneBuilder, MeasuredMatrixCsv) {
   const std::string dir = ::testing::TempDir();
   std::ofstream(dir + "m.csv") << "ex/em,400,500,600\n350,0.1,0.2,0.1\n450,0.05,0.3,0.2\n";
