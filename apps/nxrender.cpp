@@ -22,6 +22,7 @@
 #include "core/text_table.h"
 #include "integrators/renderer.h"
 #include "io/atomic_file.h"
+#include "io/camera_attributes.h"
 #include "io/preview_image.h"
 #include "io/spectral_exr.h"
 #include "spectra/colour.h"
@@ -324,6 +325,8 @@ int run(int argc, char** argv) {
                                                 std::to_string(white.z / white.y);
     image.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
     image.attributes["nxrender.estimatedRelativeError"] = std::to_string(film.relativeRmsError());
+    for (const auto& [key, value] : nx::cameraAttributes(scene.camera.calibration()))
+      image.attributes[key] = value;
     return image;
   };
 

@@ -11,6 +11,7 @@
 #include <regex>
 
 #include "core/error.h"
+#include "io/camera_attributes.h"
 #include "io/spectral_exr.h"
 #include "support/errors.h"
 
@@ -136,6 +137,37 @@ TEST(SpectralExr, DataWindowOutsideDisplayWindowAndFloatCountsAreRefused) {
   const SpectralImage img = readSpectralExr(dir + "fine.exr");
   EXPECT_EQ(img.originX, 2);
   EXPECT_EQ(img.width, 4);
+}
+
+// The camera attributes give K, R, t and distortion exactly (they read back to the same
+// doubles), and worldToCamera is [R t; 0 0 0 1].
+TEST(CameraAttributes, ExactAndConsistent) {
+  CameraCalibration c;
+  c.fx = 812.123456789, c.fy = 790.5, c.cx = 331.7, c.cy = 251.2;
+  c.R = {{{0.36, 0.48, -0.8}, {-0.8, 0.6, 0}, {0.48, 0.64, 0.6}}};
+  c.t = Vec3d(0.1, -0.2, 4.5);
+  c.distortion = {-0.21, 0.07, 0.0012, -0.0009, 0.013};
+  const auto a = cameraAttributes(c);
+  auto values = [&](const std::string& key) {
+    std::vector<double> v;
+    std::string text = a.at(key);
+    size_t pos = 0;
+    while (pos <= text.size()) {
+      const size_t comma = std::min(text.find(',', pos), text.size());
+      v.push_back(std::stod(text.substr(pos, comma - pos)));
+      pos = comma + 1;
+    }
+    return v;
+  };
+  EXPECT_EQ(values("nxrender.camera.K"),
+            (std::vector<double>{c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1}));
+  EXPECT_EQ(values("nxrender.camera.t"), (std::vector<double>{0.1, -0.2, 4.5}));
+  EXPECT_EQ(values("nxrender.camera.distortion")[4], 0.013);
+  const auto w = values("nxrender.camera.worldToCamera");
+  ASSERT_EQ(w.size(), 16u);
+  EXPECT_EQ(w[2], -0.8);
+  EXPECT_EQ(w[11], 4.5);
+  EXPECT_EQ(w[15], 1.0);
 }
 
 } // namespace

@@ -1,0 +1,35 @@
+#include "io/camera_attributes.h"
+
+#include <cstdio>
+#include <initializer_list>
+
+namespace nx {
+namespace {
+std::string numbers(std::initializer_list<double> values) {
+  std::string out;
+  char buf[32];
+  for (double v : values) {
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    if (!out.empty()) out += ',';
+    out += buf;
+  }
+  return out;
+}
+} // namespace
+
+std::map<std::string, std::string> cameraAttributes(const CameraCalibration& c) {
+  const Matrix3& R = c.R;
+  const std::array<double, 5>& d = c.distortion;
+  return {
+      {"nxrender.camera.K", numbers({c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1})},
+      {"nxrender.camera.R",
+       numbers({R[0][0], R[0][1], R[0][2], R[1][0], R[1][1], R[1][2], R[2][0], R[2][1], R[2][2]})},
+      {"nxrender.camera.t", numbers({c.t.x, c.t.y, c.t.z})},
+      {"nxrender.camera.distortion", numbers({d[0], d[1], d[2], d[3], d[4]})},
+      {"nxrender.camera.worldToCamera",
+       numbers({R[0][0], R[0][1], R[0][2], c.t.x, R[1][0], R[1][1], R[1][2], c.t.y, R[2][0],
+                R[2][1], R[2][2], c.t.z, 0, 0, 0, 1})},
+  };
+}
+
+} // namespace nx

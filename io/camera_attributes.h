@@ -1,0 +1,17 @@
+#pragma once
+// The camera recorded in an image's attributes, so that a file says how to project a 3D point
+// into it (OpenCV's conventions: pixel centres at integer coordinates, x right, y down).
+
+#include <map>
+#include <string>
+
+#include "core/camera.h"
+
+namespace nx {
+
+/// String attributes for a calibration, numbers comma-separated, row-major, exact (17
+/// significant digits): nxrender.camera.K (3x3), .R (3x3), .t (3), .distortion (k1, k2, p1,
+/// p2, k3) and .worldToCamera (4x4, [R t; 0 0 0 1]).
+std::map<std::string, std::string> cameraAttributes(const CameraCalibration& c);
+
+} // namespace nx
