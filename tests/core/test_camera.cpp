@@ -4,34 +4,10 @@
 #include <random>
 
 #include "core/camera.h"
+#include "support/opencv_projection.h"
 
 namespace nx {
 namespace {
-
-// OpenCV's projection (the formulas of cv::projectPoints, written here independently of the
-// camera's ray generation): world point to pixel coordinates, centres at integers.
-void projectOpenCv(const CameraCalibration& c, const Vec3d& X, double& u, double& v) {
-  const Vector3d xc = multiply(c.R, {X.x, X.y, X.z});
-  const double x = (xc[0] + c.t.x) / (xc[2] + c.t.z), y = (xc[1] + c.t.y) / (xc[2] + c.t.z);
-  const double k1 = c.distortion[0], k2 = c.distortion[1], p1 = c.distortion[2],
-               p2 = c.distortion[3], k3 = c.distortion[4];
-  const double r2 = x * x + y * y, r4 = r2 * r2, r6 = r4 * r2;
-  const double radial = 1 + k1 * r2 + k2 * r4 + k3 * r6;
-  const double xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x);
-  const double yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y;
-  u = c.fx * xd + c.cx;
-  v = c.fy * yd + c.cy;
-}
-
-// Rotation from a Rodrigues vector (axis times angle), as cv::Rodrigues.
-Matrix3 rodrigues(const Vec3d& w) {
-  const double a = length(w);
-  const Vec3d k = w / a;
-  const double c = std::cos(a), s = std::sin(a), C = 1 - c;
-  return {{{c + k.x * k.x * C, k.x * k.y * C - k.z * s, k.x * k.z * C + k.y * s},
-           {k.y * k.x * C + k.z * s, c + k.y * k.y * C, k.y * k.z * C - k.x * s},
-           {k.z * k.x * C - k.y * s, k.z * k.y * C + k.x * s, c + k.z * k.z * C}}};
-}
 
 // Distance of X from the ray's line, relative to its distance from the ray's origin.
 double missRelative(const Ray& r, const Vec3d& X) {
@@ -46,7 +22,7 @@ double missRelative(const Ray& r, const Vec3d& X) {
 TEST(Camera, CalibratedRaysPassThroughOpenCvProjections) {
   CameraCalibration cal;
   cal.fx = 812.5, cal.fy = 790.25, cal.cx = 331.7, cal.cy = 251.2;
-  cal.R = rodrigues(Vec3d(0.21, -0.37, 0.08));
+  cal.R = test::rodrigues(Vec3d(0.21, -0.37, 0.08));
   cal.t = Vec3d(0.3, -0.2, 4.5);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -65,7 +41,7 @@ TEST(Camera, CalibratedRaysPassThroughOpenCvProjections) {
       const Vector3d w = multiply(rt, q);
       const Vec3d X(w[0], w[1], w[2]);
       double px = 0, py = 0;
-      projectOpenCv(cal, X, px, py);
+      test::projectOpenCv(cal, X, px, py);
       if (px < -0.5 || px > 639.5 || py < -0.5 || py > 479.5) continue;
       ++seen;
       // Film position: OpenCV's pixel centre (0, 0) is at (0.5, 0.5) on the film.
