@@ -325,7 +325,7 @@ int run(int argc, char** argv) {
                                                 std::to_string(white.z / white.y);
     image.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
     image.attributes["nxrender.estimatedRelativeError"] = std::to_string(film.relativeRmsError());
-    for (const auto& [key, value] : nx::cameraAttributes(scene.camera.calibration()))
+    for (const auto& [key, value] : nx::cameraAttributes(scene.camera))
       image.attributes[key] = value;
     return image;
   };

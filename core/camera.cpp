@@ -97,7 +97,14 @@ void PinholeCamera::finish(int, int) {
   distorted_ = cal_.distorted();
 }
 
-Ray PinholeCamera::generateRay(double x, double y) const {
+void PinholeCamera::setThinLens(double apertureRadius, double focusDistance) {
+  if (!(apertureRadius >= 0 && focusDistance > 0))
+    throw Error("camera: a thin lens needs an aperture radius >= 0 and a focus distance > 0");
+  lensRadius_ = apertureRadius;
+  focusDistance_ = focusDistance;
+}
+
+Ray PinholeCamera::generateRay(double x, double y, double lensX, double lensY) const {
   // Film position to OpenCV pixel coordinates (centres at integers), then to normalised
   // coordinates, undistorted when the lens distorts.
   double nx = (x - 0.5 - cal_.cx) / cal_.fx, ny = (y - 0.5 - cal_.cy) / cal_.fy;
@@ -105,9 +112,19 @@ Ray PinholeCamera::generateRay(double x, double y) const {
     double ux = nx, uy = ny;
     if (cal_.undistort(nx, ny, ux, uy)) nx = ux, ny = uy; // checked over the image at load
   }
-  const Vector3d d = multiply(cameraToWorld_, {nx, ny, 1.0});
+  Vector3d dCam{nx, ny, 1.0};
+  Vec3d origin = position_;
+  if (lensRadius_ > 0) {
+    // Thin lens (camera space): every ray through the pinhole direction's point on the plane of
+    // focus z = focusDistance, from a point of the aperture disk in the plane z = 0.
+    const double lx = lensRadius_ * lensX, ly = lensRadius_ * lensY;
+    dCam = {nx * focusDistance_ - lx, ny * focusDistance_ - ly, focusDistance_};
+    const Vector3d o = multiply(cameraToWorld_, {lx, ly, 0.0});
+    origin = position_ + Vec3d(o[0], o[1], o[2]);
+  }
+  const Vector3d d = multiply(cameraToWorld_, dCam);
   Ray r;
-  r.o = Vec3(position_);
+  r.o = Vec3(origin);
   r.d = Vec3(normalize(Vec3d(d[0], d[1], d[2])));
   return r;
 }

@@ -43,8 +43,18 @@ public:
 
   /// Primary ray through film position (x, y) in pixels: (0, 0) is the top-left corner of the
   /// top-left pixel (whose centre, OpenCV's (0, 0), is at (0.5, 0.5)), x grows to the right and
-  /// y downwards. Directions are unit length.
-  Ray generateRay(double x, double y) const;
+  /// y downwards. Directions are unit length. With a thin lens, (lensX, lensY) is the point of
+  /// the unit disk the ray leaves the lens from (ignored by a pinhole).
+  Ray generateRay(double x, double y, double lensX = 0, double lensY = 0) const;
+
+  /// Makes the pinhole a thin lens of the given aperture radius, focused at `focusDistance`
+  /// along the optical axis (both in scene units; radius 0: a pinhole).
+  void setThinLens(double apertureRadius, double focusDistance);
+  /// True for a thin lens (a ray then needs a point on the lens).
+  bool hasLens() const { return lensRadius_ > 0; }
+  /// Aperture radius and focus distance (scene units).
+  double lensRadius() const { return lensRadius_; }
+  double focusDistance() const { return focusDistance_; }
 
   /// The calibration (for a look-at camera, its equivalent K, R, t).
   const CameraCalibration& calibration() const { return cal_; }
@@ -63,6 +73,7 @@ private:
   Vec3d position_, forward_, right_, up_;
   Matrix3 cameraToWorld_; ///< R transposed
   bool distorted_ = false;
+  double lensRadius_ = 0, focusDistance_ = 1;
 };
 
 } // namespace nx

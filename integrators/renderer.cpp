@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/matrix3.h"
+#include "integrators/sampling.h"
 #include "spectra/colour.h"
 #include "spectra/tonemap.h"
 #include "spectra/wavelength_sampler.h"
@@ -108,8 +109,10 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
             PixelSampleStream rng(replicates[odd], static_cast<uint32_t>(s) >> 1);
             const SampledWavelengths lambda = wavelengths.sample(rng.next1D());
             const Sample2 jitter = rng.next2D();
-            const Ray ray = scene.camera.generateRay(static_cast<double>(x) + jitter.u,
-                                                     static_cast<double>(y) + jitter.v);
+            float lensX = 0, lensY = 0; // a point of the aperture, for a thin lens only
+            if (scene.camera.hasLens()) sampleConcentricDisk(rng.next2D(), lensX, lensY);
+            const Ray ray = scene.camera.generateRay(
+                static_cast<double>(x) + jitter.u, static_cast<double>(y) + jitter.v, lensX, lensY);
             const SampledSpectrum L = whitted ? traceWhitted(ctx, ray, lambda, rng, counters)
                                               : tracePath(ctx, ray, lambda, rng, counters);
             if (!out.film.addSample(pixel, lambda, L, odd)) ++dropped;

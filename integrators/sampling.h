@@ -10,9 +10,9 @@
 
 namespace nx {
 
-/// Cosine-weighted direction on the hemisphere around +z (Malley's method through the
-/// concentric disk mapping of Shirley & Chiu 1997). Density cos(theta) / pi.
-inline Vec3 sampleCosineHemisphere(Sample2 u) {
+/// Uniform point on the unit disk (the concentric mapping of Shirley & Chiu 1997: it keeps
+/// the square's stratification). Density 1 / pi.
+inline void sampleConcentricDisk(Sample2 u, float& x, float& y) {
   const float a = 2 * u.u - 1, b = 2 * u.v - 1;
   float r = 0, phi = 0;
   if (a != 0 || b != 0) {
@@ -25,7 +25,14 @@ inline Vec3 sampleCosineHemisphere(Sample2 u) {
       phi = 2 * quarterPi - quarterPi * (a / b);
     }
   }
-  const float x = r * std::cos(phi), y = r * std::sin(phi);
+  x = r * std::cos(phi), y = r * std::sin(phi);
+}
+
+/// Cosine-weighted direction on the hemisphere around +z (Malley's method: a uniform point
+/// of the concentric disk lifted to the hemisphere). Density cos(theta) / pi.
+inline Vec3 sampleCosineHemisphere(Sample2 u) {
+  float x = 0, y = 0;
+  sampleConcentricDisk(u, x, y);
   return {x, y, std::sqrt(std::max(0.0f, 1 - x * x - y * y))};
 }
 

@@ -100,6 +100,12 @@ private:
   // The camera: the look-at form as it always was, or OpenCV's calibration (either part may
   // stand alone: intrinsics with a look-at pose, extrinsics with a field of view).
   static PinholeCamera camera(const CameraDesc& c, const SettingsDesc& s) {
+    PinholeCamera cam = pinhole(c, s);
+    if (c.thinLens) cam.setThinLens((*c.thinLens)[0], (*c.thinLens)[1]);
+    return cam;
+  }
+
+  static PinholeCamera pinhole(const CameraDesc& c, const SettingsDesc& s) {
     if (!c.intrinsics && !c.extrinsics && c.distortion == std::array<double, 5>{})
       return PinholeCamera(c.position, c.lookAt, c.up, c.fovDegrees, s.width, s.height);
     CameraCalibration cal =

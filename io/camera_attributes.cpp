@@ -17,10 +17,11 @@ std::string numbers(std::initializer_list<double> values) {
 }
 } // namespace
 
-std::map<std::string, std::string> cameraAttributes(const CameraCalibration& c) {
+std::map<std::string, std::string> cameraAttributes(const PinholeCamera& camera) {
+  const CameraCalibration& c = camera.calibration();
   const Matrix3& R = c.R;
   const std::array<double, 5>& d = c.distortion;
-  return {
+  std::map<std::string, std::string> a{
       {"nxrender.camera.K", numbers({c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1})},
       {"nxrender.camera.R",
        numbers({R[0][0], R[0][1], R[0][2], R[1][0], R[1][1], R[1][2], R[2][0], R[2][1], R[2][2]})},
@@ -30,6 +31,9 @@ std::map<std::string, std::string> cameraAttributes(const CameraCalibration& c) 
        numbers({R[0][0], R[0][1], R[0][2], c.t.x, R[1][0], R[1][1], R[1][2], c.t.y, R[2][0],
                 R[2][1], R[2][2], c.t.z, 0, 0, 0, 1})},
   };
+  if (camera.hasLens())
+    a["nxrender.camera.thinLens"] = numbers({camera.lensRadius(), camera.focusDistance()});
+  return a;
 }
 
 } // namespace nx

@@ -107,6 +107,8 @@ struct CameraDesc {
   /// r11 .. r33, t1, t2, t3: x_cam = R x_world + t (replaces position/look_at/up)
   std::optional<std::array<double, 12>> extrinsics;
   std::array<double, 5> distortion{}; ///< k1, k2, p1, p2, k3 (OpenCV's order; zero if absent)
+  /// <thin_lens>aperture radius, focus distance</thin_lens> (scene units), if any
+  std::optional<std::array<double, 2>> thinLens;
   SourceLocation loc, distortionLoc;
 };
 

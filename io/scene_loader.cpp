@@ -464,8 +464,8 @@ private:
 
   CameraDesc parseCamera(const pugi::xml_node& n) const {
     checkAttributes(n, {});
-    const auto c = uniqueChildren(
-        n, {"position", "look_at", "up", "fov", "intrinsics", "extrinsics", "distortion"});
+    const auto c = uniqueChildren(n, {"position", "look_at", "up", "fov", "intrinsics",
+                                      "extrinsics", "distortion", "thin_lens"});
     CameraDesc cam;
     cam.loc = loc(n);
     if (c.count("extrinsics")) {
@@ -509,6 +509,14 @@ private:
         cam.distortion[i] = v[i];
       }
       cam.distortionLoc = loc(d);
+    }
+    if (c.count("thin_lens")) {
+      const pugi::xml_node l = c.at("thin_lens");
+      const auto v = numbers(l, 2, 2, "an aperture radius and a focus distance");
+      if (!(v[0] >= 0 && v[0] <= kMaxCoordinate && v[1] > 0 && v[1] <= kMaxCoordinate))
+        fail(l, "an aperture radius >= 0 and a focus distance > 0 (scene units) in <thin_lens>",
+             shownText(text(l)));
+      cam.thinLens = std::array<double, 2>{v[0], v[1]};
     }
     return cam;
   }

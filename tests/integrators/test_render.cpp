@@ -320,6 +320,43 @@ TEST(Render, SmallEmitterCentroidIsItsOpenCvProjection) {
   EXPECT_GT(std::hypot(u - u0, v - v0), 1.5); // the distortion matters here
 }
 
+// Thin lens: an emitting square of side 2h facing the camera at depth z, seen through an
+// aperture of radius R focused at D, images as a square of side L = 2 h f / z pixels blurred
+// by a uniform disk of radius rho = f R |1/D - 1/z| pixels: the variance of the image along x
+// is L^2 / 12 + rho^2 / 4 (variances of independent offsets add), plus about 1/12 for the
+// pixels' box (Sheppard's correction; at most 0.3% here). In focus (z = D) only the square.
+TEST(Render, ThinLensBlurMatchesTheCircleOfConfusion) {
+  const double f = 100, R = 1.2, D = 4, h = 0.4;
+  for (const double z : {4.0, 8.0}) {
+    char camera[256], square[512];
+    std::snprintf(camera, sizeof camera,
+                  "<intrinsics>100, 100, 31.5, 31.5</intrinsics><extrinsics>1,0,0, 0,1,0, 0,0,1, "
+                  "0,0,0</extrinsics><thin_lens>%g, %g</thin_lens>",
+                  R, D);
+    std::snprintf(square, sizeof square,
+                  "<triangle><vA>%g,%g,%g</vA><vB>%g,%g,%g</vB><vC>%g,%g,%g</vC><material>matte"
+                  "</material><emission>1</emission></triangle>"
+                  "<triangle><vA>%g,%g,%g</vA><vB>%g,%g,%g</vB><vC>%g,%g,%g</vC><material>matte"
+                  "</material><emission>1</emission></triangle>",
+                  -h, -h, z, h, -h, z, h, h, z, -h, -h, z, h, h, z, -h, h, z);
+    const RenderOutput out = renderText(
+        sceneText("<xres>64</xres><yres>64</yres><mode>spectral_mcpt</mode><depth>1</depth>"
+                  "<sampl>256</sampl>",
+                  camera, square));
+    double sum = 0, sx = 0, sxx = 0;
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) {
+        const double v = out.film.xyzMean(x, y).y;
+        sum += v, sx += v * x, sxx += v * x * x;
+      }
+    const double mean = sx / sum, var = sxx / sum - mean * mean;
+    const double L = 2 * h * f / z, rho = f * R * std::abs(1 / D - 1 / z);
+    const double expected = L * L / 12 + rho * rho / 4;
+    EXPECT_NEAR(mean, 31.5, 0.05) << "z " << z;
+    EXPECT_NEAR(var, expected, 0.01 * expected) << "z " << z << " rho " << rho;
+  }
+}
+
 // Per-pixel variance of a strategy, from two independent renders: E[(A - B)^2] / 2.
 double pixelVariance(const std::string& text, LightSampling strategy, double& mean) {
   RenderOptions o;

@@ -51,6 +51,26 @@ TEST(Sampling, CosineHemisphere) {
                             [](const Vec3& w) { return cosineHemispherePdf(w.z); });
 }
 
+// The concentric disk mapping (a thin lens's aperture) is uniform: cells of equal area in
+// (r^2, phi) receive equal counts.
+TEST(Sampling, ConcentricDiskIsUniform) {
+  const int nr = 30, nphi = 40, n = 200000;
+  std::vector<double> obs(nr * nphi, 0), exp(nr * nphi, static_cast<double>(n) / (nr * nphi));
+  for (int i = 0; i < n; ++i) {
+    float x = 0, y = 0;
+    sampleConcentricDisk(uniform2(static_cast<uint32_t>(i)), x, y);
+    const double r2 = static_cast<double>(x) * x + static_cast<double>(y) * y;
+    ASSERT_LE(r2, 1.0 + 1e-6);
+    double phi = std::atan2(y, x);
+    if (phi < 0) phi += 2 * kPi;
+    const int ir = std::min(nr - 1, static_cast<int>(r2 * nr));
+    const int ip = std::min(nphi - 1, static_cast<int>(phi / (2 * kPi) * nphi));
+    obs[ir * nphi + ip] += 1;
+  }
+  const auto [stat, dof] = test::chiSquare(obs, exp);
+  EXPECT_LT(test::chiSquareZ(stat, dof), 4.0) << "chi2 " << stat << " dof " << dof;
+}
+
 TEST(Sampling, UniformSphere) {
   expectDirectionsFollowPdf(sampleUniformSphere, [](const Vec3&) { return 1 / (4 * kPi); });
 }

@@ -316,6 +316,9 @@ TEST(SceneBuilder, CalibratedCamera) {
        "t.scn:6: expected either <intrinsics> or <fov> in <camera>, found both"},
       {k + e + "<distortion>-1.5, 0, 0, 0</distortion>\n",
        "t.scn:6: expected a <distortion> that maps the image one to one, found a fold near pixel"},
+      {k + e + "<thin_lens>0.1, 0</thin_lens>\n",
+       "t.scn:6: expected an aperture radius >= 0 and a focus distance > 0 (scene units) in "
+       "<thin_lens>, found '0.1, 0'"},
   };
   for (const auto& [camera, message] : cases) {
     const std::string got = errorOf(sceneWith(camera));

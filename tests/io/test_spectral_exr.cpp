@@ -147,7 +147,10 @@ TEST(CameraAttributes, ExactAndConsistent) {
   c.R = {{{0.36, 0.48, -0.8}, {-0.8, 0.6, 0}, {0.48, 0.64, 0.6}}};
   c.t = Vec3d(0.1, -0.2, 4.5);
   c.distortion = {-0.21, 0.07, 0.0012, -0.0009, 0.013};
-  const auto a = cameraAttributes(c);
+  PinholeCamera camera(c, 640, 480);
+  EXPECT_EQ(cameraAttributes(camera).count("nxrender.camera.thinLens"), 0u);
+  camera.setThinLens(0.025, 3.5);
+  const auto a = cameraAttributes(camera);
   auto values = [&](const std::string& key) {
     std::vector<double> v;
     std::string text = a.at(key);
@@ -168,6 +171,7 @@ TEST(CameraAttributes, ExactAndConsistent) {
   EXPECT_EQ(w[2], -0.8);
   EXPECT_EQ(w[11], 4.5);
   EXPECT_EQ(w[15], 1.0);
+  EXPECT_EQ(values("nxrender.camera.thinLens"), (std::vector<double>{0.025, 3.5}));
 }
 
 } // namespace
