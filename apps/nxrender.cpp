@@ -132,7 +132,7 @@ int run(int argc, char** argv) {
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
   std::string output, bandsText, lightSampling = "mis", sampler = "sobol", scenePath, cropText,
                                  rangeText, resumePath;
-  bool noFluorescence = false, tileOfArray = false;
+  bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   app.add_option("--spp", spp, "Samples per pixel (default: the scene's <sampl>)")
@@ -151,6 +151,12 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"sobol", "independent"}));
   app.add_flag("--no-fluorescence", noFluorescence,
                "Render fluorescent materials as their ordinary reflectance (for comparisons)");
+  app.add_flag("--no-variance", noVariance,
+               "Leave out the Variance channels (error estimates; a resume from such a file "
+               "restarts its estimates)");
+  app.add_flag("--half", halfFloat,
+               "Store the EXR's channels as half floats (16 bits, ~3 digits, up to 65504; "
+               "falls back to floats with a warning when a value does not fit)");
   app.add_option("--crop", cropText,
                  "Render only pixels X0,Y0,X1,Y1 (half-open) of the full image");
   app.add_option("--spp-range", rangeText, "Render samples A..B-1 of each pixel's sequence (A:B)");
@@ -338,6 +344,17 @@ int run(int argc, char** argv) {
   options.stop = &gStop;
   Progress progress;
   options.progress = [&](int64_t done, int64_t total) { progress.update(done, total); };
+  // The EXR as asked: without the Variance channels, in half floats where every value fits.
+  auto writeImage = [&](nx::SpectralImage image) {
+    if (noVariance) image.bandVariance.clear(), image.yVariance.clear();
+    if (halfFloat && nx::fitsInHalf(image)) return nx::writeSpectralExrHalf(exrPath, image);
+    if (halfFloat)
+      std::fprintf(stderr,
+                   "nxrender: warning: values beyond the half-float range (65504); "
+                   "%s is written in floats\n",
+                   exrPath.c_str());
+    nx::writeSpectralExr(exrPath, image);
+  };
   auto lastCheckpoint = std::chrono::steady_clock::now();
   const auto start = lastCheckpoint;
   if (checkpointSeconds > 0)
@@ -345,8 +362,7 @@ int run(int argc, char** argv) {
       const auto now = std::chrono::steady_clock::now();
       if (std::chrono::duration<double>(now - lastCheckpoint).count() < checkpointSeconds) return;
       const nx::OutputLock lock(exrPath);
-      nx::writeSpectralExr(exrPath,
-                           imageOf(film, std::chrono::duration<double>(now - start).count()));
+      writeImage(imageOf(film, std::chrono::duration<double>(now - start).count()));
       lastCheckpoint = now;
     };
   const nx::RenderOutput result = nx::render(scene, options);
@@ -365,7 +381,7 @@ int run(int argc, char** argv) {
     // The EXR and its preview as one pair (another process writing the same output waits),
     // the preview also for a stopped render (an older one would sit beside the new EXR).
     const nx::OutputLock lock(exrPath);
-    nx::writeSpectralExr(exrPath, image);
+    writeImage(image);
     if (wholeImage)
       nx::writePreview(previewPath, image.width, image.height,
                        nx::previewPixels(result.film, scene.previewWhite));

@@ -1,5 +1,6 @@
 #include "io/spectral_exr.h"
 
+#include <Imath/half.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -25,7 +26,33 @@ std::string spectralChannelName(double nm) {
   return name;
 }
 
+namespace {
+void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored);
+} // namespace
+
 void writeSpectralExr(const std::string& path, const SpectralImage& image) {
+  writeExr(path, image, Imf::FLOAT);
+}
+
+void writeSpectralExrHalf(const std::string& path, const SpectralImage& image) {
+  if (!fitsInHalf(image))
+    throw Error(path + ": expected values within the half-float range (65504) for half output, "
+                       "found larger ones");
+  writeExr(path, image, Imf::HALF);
+}
+
+bool fitsInHalf(const SpectralImage& image) {
+  for (const std::vector<float>* v :
+       {&image.radiance, &image.rgb, &image.xyz, &image.bandVariance, &image.yVariance})
+    for (float x : *v)
+      if (!(std::abs(x) <= 65504.0f)) return false;
+  return true;
+}
+
+namespace {
+// Float channels are stored as `stored` (FLOAT or HALF; OpenEXR converts from the float
+// buffers); SampleCount always as UINT.
+void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored) {
   const int nBands = image.bands.count();
   const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
   if (image.width <= 0 || image.height <= 0 || image.radiance.size() != pixels * nBands ||
@@ -50,37 +77,36 @@ void writeSpectralExr(const std::string& path, const SpectralImage& image) {
       header.insert(key, Imf::StringAttribute(value));
 
     Imf::FrameBuffer fb;
-    const size_t pixelStride = sizeof(float) * nBands;
-    for (int b = 0; b < nBands; ++b) {
-      const std::string name = spectralChannelName(image.bands.centre(b));
-      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-      fb.insert(name, Imf::Slice::Make(Imf::FLOAT, image.radiance.data() + b, data, pixelStride,
-                                       pixelStride * image.width));
-    }
+    // A float channel: `first` is its value in the first pixel, `stride` floats apart. Half
+    // channels get converted copies (OpenEXR converts half to float when reading, not float to
+    // half when writing).
+    std::vector<std::vector<half>> halves;
+    halves.reserve(2 * static_cast<size_t>(nBands) + 8);
+    auto addChannel = [&](const std::string& name, const float* first, size_t stride) {
+      header.channels().insert(name, Imf::Channel(stored));
+      if (stored == Imf::FLOAT) {
+        fb.insert(name, Imf::Slice::Make(Imf::FLOAT, first, data, sizeof(float) * stride,
+                                         sizeof(float) * stride * image.width));
+        return;
+      }
+      std::vector<half>& h = halves.emplace_back(pixels);
+      for (size_t p = 0; p < pixels; ++p) h[p] = half(first[p * stride]);
+      fb.insert(name, Imf::Slice::Make(Imf::HALF, h.data(), data, sizeof(half),
+                                       sizeof(half) * image.width));
+    };
+    const size_t nb = static_cast<size_t>(nBands);
+    for (int b = 0; b < nBands; ++b)
+      addChannel(spectralChannelName(image.bands.centre(b)), image.radiance.data() + b, nb);
     const char* rgbNames[3] = {"R", "G", "B"};
-    for (int c = 0; c < 3; ++c) {
-      header.channels().insert(rgbNames[c], Imf::Channel(Imf::FLOAT));
-      fb.insert(rgbNames[c], Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + c, data,
-                                              sizeof(float) * 3, sizeof(float) * 3 * image.width));
-    }
+    for (int c = 0; c < 3; ++c) addChannel(rgbNames[c], image.rgb.data() + c, 3);
     const char* xyzNames[3] = {"X", "Y", "Z"};
-    for (int c = 0; c < 3 && !image.xyz.empty(); ++c) {
-      header.channels().insert(xyzNames[c], Imf::Channel(Imf::FLOAT));
-      fb.insert(xyzNames[c], Imf::Slice::Make(Imf::FLOAT, image.xyz.data() + c, data,
-                                              sizeof(float) * 3, sizeof(float) * 3 * image.width));
-    }
-    for (int b = 0; b < nBands && !image.bandVariance.empty(); ++b) {
-      const std::string name = kVariancePrefix + spectralChannelName(image.bands.centre(b));
-      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-      fb.insert(name, Imf::Slice::Make(Imf::FLOAT, image.bandVariance.data() + b, data, pixelStride,
-                                       pixelStride * image.width));
-    }
-    if (!image.yVariance.empty()) {
-      const std::string name = std::string(kVariancePrefix) + "Y";
-      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-      fb.insert(name, Imf::Slice::Make(Imf::FLOAT, image.yVariance.data(), data, sizeof(float),
-                                       sizeof(float) * image.width));
-    }
+    for (int c = 0; c < 3 && !image.xyz.empty(); ++c)
+      addChannel(xyzNames[c], image.xyz.data() + c, 3);
+    for (int b = 0; b < nBands && !image.bandVariance.empty(); ++b)
+      addChannel(kVariancePrefix + spectralChannelName(image.bands.centre(b)),
+                 image.bandVariance.data() + b, nb);
+    if (!image.yVariance.empty())
+      addChannel(std::string(kVariancePrefix) + "Y", image.yVariance.data(), 1);
     if (!image.sampleCount.empty()) {
       header.channels().insert(kSampleCountChannel, Imf::Channel(Imf::UINT));
       fb.insert(kSampleCountChannel,
@@ -97,6 +123,7 @@ void writeSpectralExr(const std::string& path, const SpectralImage& image) {
     file.writePixels(image.height);
   });
 }
+} // namespace
 
 SpectralImage readSpectralExr(const std::string& path) {
   try {

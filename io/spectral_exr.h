@@ -48,6 +48,15 @@ std::string spectralChannelName(double nm);
 /// attribute. The file appears atomically (temporary name, then rename).
 void writeSpectralExr(const std::string& path, const SpectralImage& image);
 
+/// The same with every float channel stored as a half float (16 bits: about 3 significant
+/// digits, values up to 65504; SampleCount stays a 32-bit integer), half the size. Throws
+/// nx::Error, writing nothing, when a value would not fit (see fitsInHalf).
+void writeSpectralExrHalf(const std::string& path, const SpectralImage& image);
+
+/// True when every value of the image's float channels is finite and at most 65504 in size
+/// (the largest half float), so writeSpectralExrHalf keeps it.
+bool fitsInHalf(const SpectralImage& image);
+
 /// Reads a spectral EXR written by writeSpectralExr (bands from the nxrender.bands attribute,
 /// else from uniform S0 channel names). Errors name the file and what is wrong.
 SpectralImage readSpectralExr(const std::string& path);

@@ -103,6 +103,32 @@ TEST(SpectralExr, UnwritablePathIsAClearErrorAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(::testing::TempDir() + "bad.exr"));
 }
 
+// Half-float output reads back within half precision (2^-11 relative; 2^-24 absolute near
+// zero, the smallest half), with sample counts exact; a value beyond 65504 is refused and
+// nothing is written.
+TEST(SpectralExr, HalfFloatOutput) {
+  SpectralImage img = testImage();
+  img.sampleCount.assign(15, 123456789u);
+  img.radiance[3] = 1e-6f;
+  const std::string path = ::testing::TempDir() + "half.exr";
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  ASSERT_TRUE(fitsInHalf(img));
+  writeSpectralExrHalf(path, img);
+  const SpectralImage back = readSpectralExr(path);
+  ASSERT_EQ(back.radiance.size(), img.radiance.size());
+  for (size_t i = 0; i < img.radiance.size(); ++i)
+    EXPECT_NEAR(back.radiance[i], img.radiance[i],
+                std::max(std::abs(img.radiance[i]) * 0.00049, 6e-8))
+        << i;
+  EXPECT_EQ(back.sampleCount, img.sampleCount);
+  img.rgb[7] = 70000.0f;
+  EXPECT_FALSE(fitsInHalf(img));
+  const std::string big = ::testing::TempDir() + "half_big.exr";
+  std::filesystem::remove(big);
+  EXPECT_THROW(writeSpectralExrHalf(big, img), Error);
+  EXPECT_FALSE(std::filesystem::exists(big));
+}
+
 // An EXR made by another tool whose data window is not inside its display window (nxmerge
 // read out of bounds on one), or whose sample counts are floats (a resume silently restarted
 // from zero), is refused by the reader with what it found.
