@@ -6,15 +6,20 @@
 #   output_files.sh NXRENDER SCENE WORK_DIR
 set -euo pipefail
 nxrender="$1" scene="$2" work="$3"
+# An immutable file needs root and a file system with attributes (ext4 here); the build
+# directory is tried first, then a temporary directory.
+make_locked() {
+  echo old >"$1/out.exr"
+  if [ "$(id -u)" = 0 ]; then chattr +i "$1/out.exr" 2>/dev/null; else chmod 444 "$1/out.exr"; fi
+}
 d="$work/output_files.$$"
 mkdir -p "$d"
-cleanup() { chattr -i "$d/out.exr" 2>/dev/null || true; chmod -R u+w "$d" 2>/dev/null; rm -rf "$d"; }
+cleanup() { chattr -i "$d/out.exr" 2>/dev/null || true; rm -rf "$d"; }
 trap cleanup EXIT
-echo old >"$d/out.exr"
-if [ "$(id -u)" = 0 ]; then
-  chattr +i "$d/out.exr" || { echo "chattr +i failed: the work directory's file system cannot hold an immutable file"; exit 1; }
-else
-  chmod 444 "$d/out.exr"
+if ! make_locked "$d"; then
+  rm -rf "$d"
+  d="$(mktemp -d)"
+  make_locked "$d" || { echo "no file system here can hold an immutable file: cannot test"; exit 77; }
 fi
 set +e
 "$nxrender" --spp 64 -o "$d/out.exr" "$scene" 2>"$d/err"
