@@ -178,7 +178,7 @@ private:
     return text;
   }
 
-  // Resolves a spectrum reference; emission spectra are checked to be >= 0 everywhere.
+  // Resolves a spectrum reference; emission spectra are checked to lie within [0, 1e12].
   Spectrum resolve(const SpectrumDesc& s, SpectrumRole role) const {
     Spectrum r = resolveUnchecked(s, role, 0);
     if (role == SpectrumRole::Emission) checkEmission(r, s.loc);
