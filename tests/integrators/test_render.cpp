@@ -272,6 +272,23 @@ TEST(Render, EverySampleNonFiniteIsAnError) {
             "t.scn: every one of the 32 samples had a NaN or infinite value; nothing was written");
 }
 
+// Luminance-weighted moments of an image over pixel centres (OpenCV's pixel coordinates).
+struct LuminanceMoments {
+  double sum = 0, meanX = 0, meanY = 0, varianceX = 0;
+};
+LuminanceMoments luminanceMoments(const Film& film) {
+  LuminanceMoments m;
+  double sx = 0, sy = 0, sxx = 0;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x) {
+      const double v = film.xyzMean(x, y).y;
+      m.sum += v, sx += v * x, sy += v * y, sxx += v * x * x;
+    }
+  m.meanX = sx / m.sum, m.meanY = sy / m.sum;
+  m.varianceX = sxx / m.sum - m.meanX * m.meanX;
+  return m;
+}
+
 // A calibrated camera with strong barrel distortion images a small emitter (a sphere of 2 px
 // radius in the image) where OpenCV projects it: the centroid of the rendered luminance lies
 // within 0.1 px of the projection of the emitter's centre (and about 2 px from where an
@@ -303,17 +320,12 @@ TEST(Render, SmallEmitterCentroidIsItsOpenCvProjection) {
   const RenderOutput out = renderText(sceneText(
       "<xres>96</xres><yres>72</yres><mode>spectral_mcpt</mode><depth>1</depth><sampl>256</sampl>",
       camera, sphere));
-  double sum = 0, sx = 0, sy = 0;
-  for (int y = 0; y < 72; ++y)
-    for (int x = 0; x < 96; ++x) {
-      const double v = out.film.xyzMean(x, y).y;
-      sum += v, sx += v * x, sy += v * y;
-    }
-  ASSERT_GT(sum, 0);
+  const LuminanceMoments m = luminanceMoments(out.film);
+  ASSERT_GT(m.sum, 0);
   double u = 0, v = 0;
   test::projectOpenCv(cal, Vec3d(w[0], w[1], w[2]), u, v);
-  EXPECT_NEAR(sx / sum, u, 0.1);
-  EXPECT_NEAR(sy / sum, v, 0.1);
+  EXPECT_NEAR(m.meanX, u, 0.1);
+  EXPECT_NEAR(m.meanY, v, 0.1);
   cal.distortion = {};
   double u0 = 0, v0 = 0;
   test::projectOpenCv(cal, Vec3d(w[0], w[1], w[2]), u0, v0);
@@ -343,13 +355,8 @@ TEST(Render, ThinLensBlurMatchesTheCircleOfConfusion) {
         sceneText("<xres>64</xres><yres>64</yres><mode>spectral_mcpt</mode><depth>1</depth>"
                   "<sampl>256</sampl>",
                   camera, square));
-    double sum = 0, sx = 0, sxx = 0;
-    for (int y = 0; y < 64; ++y)
-      for (int x = 0; x < 64; ++x) {
-        const double v = out.film.xyzMean(x, y).y;
-        sum += v, sx += v * x, sxx += v * x * x;
-      }
-    const double mean = sx / sum, var = sxx / sum - mean * mean;
+    const LuminanceMoments m = luminanceMoments(out.film);
+    const double mean = m.meanX, var = m.varianceX;
     const double L = 2 * h * f / z, rho = f * R * std::abs(1 / D - 1 / z);
     const double expected = L * L / 12 + rho * rho / 4;
     EXPECT_NEAR(mean, 31.5, 0.05) << "z " << z;
