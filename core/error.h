@@ -2,6 +2,7 @@
 // The one exception type nxrender throws for bad input and failed I/O.
 
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +13,17 @@ class Error : public std::runtime_error {
 public:
   explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
+
+/// The shortest decimal text that reads back as exactly v (at most 17 significant digits):
+/// numbers stored in files to be parsed again (bands, camera attributes).
+inline std::string exactNumberText(double v) {
+  char buf[40];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
 
 /// A number as error messages show it: up to 7 significant digits, no trailing zeros.
 inline std::string numberText(double v) {

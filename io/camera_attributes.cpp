@@ -1,17 +1,16 @@
 #include "io/camera_attributes.h"
 
-#include <cstdio>
 #include <initializer_list>
+
+#include "core/error.h"
 
 namespace nx {
 namespace {
 std::string numbers(std::initializer_list<double> values) {
   std::string out;
-  char buf[32];
   for (double v : values) {
-    std::snprintf(buf, sizeof buf, "%.17g", v);
     if (!out.empty()) out += ',';
-    out += buf;
+    out += exactNumberText(v);
   }
   return out;
 }

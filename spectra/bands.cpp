@@ -48,22 +48,10 @@ int SpectralBands::bandOf(double nm) const {
   return i < count() ? i : -1;
 }
 
-namespace {
-// The shortest decimal text that reads back as exactly v (at most 17 significant digits).
-std::string exactText(double v) {
-  char buf[40];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
-}
-} // namespace
-
 std::string SpectralBands::toString() const {
   // Exact: the text is stored in the EXR and parsed back by nxmerge, nxdiff and --resume,
   // which find the channels by the centres it gives (6 significant digits lost 400.00001).
-  return exactText(startNm) + ":" + exactText(endNm) + ":" + exactText(stepNm);
+  return exactNumberText(startNm) + ":" + exactNumberText(endNm) + ":" + exactNumberText(stepNm);
 }
 
 double bandAverage(const Spectrum& s, const SpectralBands& bands, int i) {
