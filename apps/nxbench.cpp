@@ -160,7 +160,7 @@ int main(int argc, char** argv) {
     std::ofstream csv(csvPath);
     csv << "spp,seconds,samples_per_s,rays_per_s,rmse_Y,rel_rmse_Y";
     for (int b = 0; b < scene.settings.bands.count(); ++b)
-      csv << ",rmse_" << scene.settings.bands.centre(b) << "nm";
+      csv << ",rmse_" << scene.settings.bands.centroid(b) << "nm";
     csv << "\n";
     PlotSeries measured{"nxrender (" + sampler + ")", {}, {}, 200, 40, 40, false};
     std::vector<double> logSpp, logErr;

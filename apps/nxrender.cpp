@@ -122,6 +122,16 @@ private:
   bool ended_ = false;
 };
 
+// --sensor: a description (gaussian:..., boxes:..., START:END:STEP) or a CSV file of responses.
+nx::Sensor sensorFromOption(const std::string& text) {
+  for (const char* prefix : {"gaussian:", "boxes:", "table:"})
+    if (text.rfind(prefix, 0) == 0) return nx::Sensor::parse(text, "--sensor");
+  std::error_code ec;
+  if (!std::filesystem::exists(text, ec) && text.find(':') != std::string::npos)
+    return nx::Sensor::parse(text, "--sensor");
+  return nx::Sensor::readCsv(text);
+}
+
 int run(int argc, char** argv) {
   CLI::App app{
       "nxrender: spectral path tracer for fluorescence research\n"
@@ -130,8 +140,8 @@ int run(int argc, char** argv) {
   int threads = 0, spp = 0;
   long long seed = -1;
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
-  std::string output, bandsText, lightSampling = "mis", sampler = "sobol", scenePath, cropText,
-                                 rangeText, resumePath;
+  std::string output, bandsText, sensorText, lightSampling = "mis", sampler = "sobol", scenePath,
+                                             cropText, rangeText, resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
@@ -141,7 +151,12 @@ int run(int argc, char** argv) {
                  "Spectral EXR to write; the preview goes beside it as .png "
                  "(default: the preview at the scene's <path>, the EXR beside it)");
   app.add_option("--bands", bandsText,
-                 "Output bands START:END:STEP in nm (default: the scene's, else 400:700:10)");
+                 "Output bands START:END:STEP in nm, uniform boxes (default: the scene's, else "
+                 "400:700:10)");
+  app.add_option("--sensor", sensorText,
+                 "The camera's bands: a CSV of measured responses (header nm,<band>,...), or "
+                 "gaussian:CENTRES@FWHM (CENTRES a,b,c or START:END:STEP; one FWHM or one per "
+                 "centre), or boxes:LO-HI,LO-HI,... (default: the scene's <bands>/<sensor>)");
   app.add_option("--seed", seed, "Random seed (default: the scene's <seed>, else 0)")
       ->check(CLI::Range(0LL, 2147483647LL));
   app.add_option("--light-sampling", lightSampling,
@@ -192,7 +207,10 @@ int run(int argc, char** argv) {
   nx::RenderOptions options;
   options.samples = spp;
   if (seed >= 0) options.seed = static_cast<uint32_t>(seed);
-  if (!bandsText.empty()) options.bands = nx::SpectralBands::parse(bandsText);
+  if (!bandsText.empty() && !sensorText.empty())
+    throw nx::Error("expected one of --bands and --sensor, found both");
+  if (!bandsText.empty()) options.bands = nx::Sensor(nx::SpectralBands::parse(bandsText));
+  if (!sensorText.empty()) options.bands = sensorFromOption(sensorText);
   options.lightSampling = lightSampling == "bsdf"  ? nx::LightSampling::BsdfOnly
                           : lightSampling == "nee" ? nx::LightSampling::NeeOnly
                                                    : nx::LightSampling::Mis;
@@ -281,7 +299,7 @@ int run(int argc, char** argv) {
   options.targetRelativeError = targetError;
   options.timeLimitSeconds = timeLimit;
   const uint32_t seedUsed = options.seed ? *options.seed : scene.settings.seed;
-  const nx::SpectralBands bands = options.bands ? *options.bands : scene.settings.bands;
+  const nx::Sensor bands = options.bands ? *options.bands : scene.settings.bands;
 
   std::optional<nx::Film> resumeFilm;
   if (!resumePath.empty()) {
@@ -299,9 +317,11 @@ int run(int argc, char** argv) {
         attr("nxrender.bands") != bands.toString() ||
         attr("nxrender.sampleRange") !=
             std::to_string(firstSample) + ":" + std::to_string(firstSample + sppTotal))
-      throw nx::Error(resumePath + ": has another seed, bands or sample range (" +
-                      attr("nxrender.seed") + ", " + attr("nxrender.bands") + ", " +
-                      attr("nxrender.sampleRange") + ") than this render");
+      throw nx::Error(
+          resumePath + ": has another seed, bands or sample range (" + attr("nxrender.seed") +
+          ", " + prev.bands.summary() + ", " + attr("nxrender.sampleRange") +
+          ") than this render (" + std::to_string(seedUsed) + ", " + bands.summary() + ", " +
+          std::to_string(firstSample) + ":" + std::to_string(firstSample + sppTotal) + ")");
     if (prev.displayWidth() != width || prev.displayHeight() != height || prev.originX != want.x0 ||
         prev.originY != want.y0 || prev.width != want.width() || prev.height != want.height())
       throw nx::Error(resumePath + ": covers another image size or crop than this render");

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "spectra/bands.h"
 #include "spectra/cie.h"
 #include "spectra/sampled_wavelengths.h"
+#include "spectra/sensor.h"
 #include "spectra/wavelength_sampler.h"
 
 namespace nx {
@@ -25,23 +25,21 @@ struct PixelRect {
 class Film {
 public:
   /// A film for `rect` of a width x height image, with the given output bands.
-  Film(int width, int height, const PixelRect& rect, const SpectralBands& bands);
+  Film(int width, int height, const PixelRect& rect, const Sensor& bands);
   /// A film covering the whole image.
-  Film(int width, int height, const SpectralBands& bands)
+  Film(int width, int height, const Sensor& bands)
       : Film(width, height, {0, 0, width, height}, bands) {}
 
   int width() const { return width_; }   ///< full image width
   int height() const { return height_; } ///< full image height
   const PixelRect& rect() const { return rect_; }
-  const SpectralBands& bands() const { return bands_; }
+  const Sensor& bands() const { return bands_; }
   /// Shortest wavelength the renderer traces: the bands' range joined with the CIE range
   /// (360-830 nm), so that XYZ, RGB, the preview and Variance.Y integrate the colour matching
   /// functions over their whole range whatever the bands.
-  double tracedMinNm() const { return std::min(bands_.lower(0), static_cast<double>(kCieMinNm)); }
+  double tracedMinNm() const { return std::min(bands_.minNm(), static_cast<double>(kCieMinNm)); }
   /// Longest wavelength the renderer traces (see tracedMinNm()).
-  double tracedMaxNm() const {
-    return std::max(bands_.upper(bands_.count() - 1), static_cast<double>(kCieMaxNm));
-  }
+  double tracedMaxNm() const { return std::max(bands_.maxNm(), static_cast<double>(kCieMaxNm)); }
 
   /// Accumulator for one pixel's samples (lives on the stack of the tile task), kept per
   /// replicate: [0] the even-numbered samples, [1] the odd-numbered ones.
@@ -66,10 +64,9 @@ public:
 
   /// Adds one sample: radiance L carried by the lanes of `lambda` (sensor wavelengths, drawn
   /// over the traced range), each lane weighted 1 / (kLanes pdf). Band b receives
-  /// L / bandwidth for lanes inside it; XYZ receives L * cmf / integral(y-bar) for lanes
-  /// inside 360-830 nm. Samples with a non-finite value are dropped
-  /// and counted (returns false).
-  /// `odd`: the sample belongs to the second of the two independently scrambled replicates
+  /// L R_b / integral(R_b) (a box: L / width inside it); XYZ receives L * cmf / integral(y-bar) for
+  /// lanes inside 360-830 nm. Samples with a non-finite value are dropped and counted (returns
+  /// false). `odd`: the sample belongs to the second of the two independently scrambled replicates
   /// (odd sample numbers); the difference of the two half means estimates the error.
   bool addSample(Pixel& pixel, const SampledWavelengths& lambda, const SampledSpectrum& L,
                  bool odd) const;
@@ -103,9 +100,9 @@ private:
   }
   int width_, height_;
   PixelRect rect_;
-  SpectralBands bands_;
+  Sensor bands_;
   int nBands_;
-  float bandStart_, bandScale_; ///< band of nm: (nm - bandStart_) * bandScale_, floored
+  SensorResponseTable responses_; ///< R / integral(R) of every band, per wavelength
   /// x-bar, y-bar, z-bar / integral(y-bar) at 1 nm from kCieMinNm, interleaved (one lookup
   /// touches one place), with a zero entry past the end.
   std::vector<float> cmf_;

@@ -10,7 +10,7 @@
 #include "core/camera.h"
 #include "integrators/ior_model.h"
 #include "io/scene_desc.h"
-#include "spectra/bands.h"
+#include "spectra/sensor.h"
 #include "spectra/reradiation_matrix.h"
 #include "spectra/spectrum.h"
 
@@ -58,7 +58,7 @@ struct RenderSettings {
   int depth = 5;
   int samples = 16;
   uint32_t seed = 0;
-  SpectralBands bands;
+  Sensor bands;
   std::string outputPath; ///< the scene's <path> (preview), possibly empty
 };
 

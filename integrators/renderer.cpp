@@ -25,7 +25,7 @@ uint32_t oddSamplesIn(int64_t first, int64_t n) {
 RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const RenderSettings& settings = scene.settings;
-  const SpectralBands bands = options.bands ? *options.bands : settings.bands;
+  const Sensor bands = options.bands ? *options.bands : settings.bands;
   const PixelRect rect =
       options.crop ? *options.crop : PixelRect{0, 0, settings.width, settings.height};
   if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > settings.width || rect.y1 > settings.height ||

@@ -20,7 +20,7 @@ struct RenderOptions {
   int firstSample = 0; ///< render samples [firstSample, firstSample + samples) of each pixel
   std::optional<PixelRect> crop;      ///< default: the whole image
   std::optional<uint32_t> seed;       ///< default: the scene's <seed>
-  std::optional<SpectralBands> bands; ///< default: the scene's <bands>
+  std::optional<Sensor> bands; ///< default: the scene's <bands> or <sensor>
   LightSampling lightSampling = LightSampling::Mis;
   SamplerKind sampler = SamplerKind::SobolOwen;
   int tileSize = 16;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/vec3.h"
-#include "spectra/bands.h"
+#include "spectra/sensor.h"
 
 namespace nx {
 
@@ -120,7 +120,7 @@ struct SettingsDesc {
   int depth = 5;
   int samples = 16;
   std::optional<SpectrumDesc> illuminant; ///< <illum>
-  SpectralBands bands;
+  Sensor bands;
   std::optional<SpectrumDesc> background; ///< uniform environment radiance
   uint32_t seed = 0;
   SourceLocation loc, widthLoc, modeLoc;

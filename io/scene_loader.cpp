@@ -417,11 +417,42 @@ private:
     return d;
   }
 
+  // <sensor csv="file"/>, <sensor gaussian="CENTRES" fwhm="FWHM"/> or <sensor boxes="LO-HI,..."/>.
+  Sensor sensor(const pugi::xml_node& n) const {
+    checkAttributes(n, {"csv", "gaussian", "fwhm", "boxes"});
+    if (n.first_child()) fail(n, "an empty <sensor .../> with attributes", "content");
+    const bool csv = n.attribute("csv"), gaussian = n.attribute("gaussian"),
+               boxes = n.attribute("boxes");
+    if (csv + gaussian + boxes != 1)
+      fail(n,
+           "exactly one of csv=\"file\", gaussian=\"centres\" fwhm=\"...\" or boxes=\"LO-HI,...\"",
+           csv + gaussian + boxes == 0 ? std::string("none") : std::string("several"));
+    if (n.attribute("fwhm") && !gaussian)
+      fail(n, "fwhm=\"...\" only with gaussian=\"...\"", "fwhm alone");
+    const std::string where = loc(n).str() + ": <sensor>";
+    try {
+      if (csv) {
+        const std::string name = trim(decoded(n.attribute("csv").value(), n));
+        if (name.empty()) fail(n, "a file name in csv=\"...\"", "an empty one");
+        return Sensor::readCsv(relativeToScene(name));
+      }
+      if (boxes) return Sensor::parse("boxes:" + decoded(n.attribute("boxes").value(), n), where);
+      if (!n.attribute("fwhm")) fail(n, "a fwhm=\"...\" attribute with gaussian=\"...\"", "none");
+      return Sensor::parse("gaussian:" + decoded(n.attribute("gaussian").value(), n) + "@" +
+                               decoded(n.attribute("fwhm").value(), n),
+                           where);
+    } catch (const Error& e) {
+      const std::string m = e.what();
+      if (m.rfind(loc(n).str(), 0) == 0) throw;
+      throw Error(loc(n).str() + ": " + m);
+    }
+  }
+
   // ---- elements ----
   SettingsDesc parseSettings(const pugi::xml_node& n) const {
     checkAttributes(n, {});
     const auto c = uniqueChildren(n, {"xres", "yres", "path", "mode", "depth", "sampl", "samp1",
-                                      "illum", "bands", "background", "seed"});
+                                      "illum", "bands", "sensor", "background", "seed"});
     SettingsDesc s;
     s.loc = loc(n);
     const pugi::xml_node xres = required(c, n, "xres");
@@ -452,10 +483,14 @@ private:
     if (c.count("background")) s.background = spectrum(c.at("background"), true);
     if (c.count("bands")) {
       try {
-        s.bands = SpectralBands::parse(text(c.at("bands")));
+        s.bands = Sensor(SpectralBands::parse(text(c.at("bands"))));
       } catch (const Error& e) {
         throw Error(loc(c.at("bands")).str() + ": " + e.what());
       }
+    }
+    if (c.count("sensor")) {
+      if (c.count("bands")) fail(c.at("sensor"), "one of <bands> and <sensor>", "both");
+      s.bands = sensor(c.at("sensor"));
     }
     if (c.count("seed"))
       s.seed = static_cast<uint32_t>(integer(c.at("seed"), "a seed", 0, 2147483647));

@@ -96,14 +96,14 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
     };
     const size_t nb = static_cast<size_t>(nBands);
     for (int b = 0; b < nBands; ++b)
-      addChannel(spectralChannelName(image.bands.centre(b)), image.radiance.data() + b, nb);
+      addChannel(spectralChannelName(image.bands.centroid(b)), image.radiance.data() + b, nb);
     const char* rgbNames[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c) addChannel(rgbNames[c], image.rgb.data() + c, 3);
     const char* xyzNames[3] = {"X", "Y", "Z"};
     for (int c = 0; c < 3 && !image.xyz.empty(); ++c)
       addChannel(xyzNames[c], image.xyz.data() + c, 3);
     for (int b = 0; b < nBands && !image.bandVariance.empty(); ++b)
-      addChannel(kVariancePrefix + spectralChannelName(image.bands.centre(b)),
+      addChannel(kVariancePrefix + spectralChannelName(image.bands.centroid(b)),
                  image.bandVariance.data() + b, nb);
     if (!image.yVariance.empty())
       addChannel(std::string(kVariancePrefix) + "Y", image.yVariance.data(), 1);
@@ -155,18 +155,18 @@ SpectralImage readSpectralExr(const std::string& path) {
     const auto bandsAttr = img.attributes.find("nxrender.bands");
     if (bandsAttr == img.attributes.end())
       throw Error(path + ": expected an nxrender.bands attribute, found none");
-    img.bands = SpectralBands::parse(bandsAttr->second);
+    img.bands = Sensor::parse(bandsAttr->second, path + ": nxrender.bands");
     const int nb = img.bands.count();
     for (int b = 0; b < nb; ++b)
-      if (!h.channels().findChannel(spectralChannelName(img.bands.centre(b))))
-        throw Error(path + ": expected a channel " + spectralChannelName(img.bands.centre(b)) +
+      if (!h.channels().findChannel(spectralChannelName(img.bands.centroid(b))))
+        throw Error(path + ": expected a channel " + spectralChannelName(img.bands.centroid(b)) +
                     ", found none");
     const size_t pixels = static_cast<size_t>(img.width) * img.height;
     img.radiance.assign(pixels * nb, 0.0f);
     img.rgb.assign(pixels * 3, 0.0f);
     Imf::FrameBuffer fb;
     for (int b = 0; b < nb; ++b)
-      fb.insert(spectralChannelName(img.bands.centre(b)),
+      fb.insert(spectralChannelName(img.bands.centroid(b)),
                 Imf::Slice::Make(Imf::FLOAT, img.radiance.data() + b, dw, sizeof(float) * nb,
                                  sizeof(float) * nb * img.width));
     const char* rgbNames[3] = {"R", "G", "B"};
@@ -181,10 +181,10 @@ SpectralImage readSpectralExr(const std::string& path) {
         fb.insert(xyzNames[c], Imf::Slice::Make(Imf::FLOAT, img.xyz.data() + c, dw,
                                                 sizeof(float) * 3, sizeof(float) * 3 * img.width));
     }
-    if (h.channels().findChannel(kVariancePrefix + spectralChannelName(img.bands.centre(0)))) {
+    if (h.channels().findChannel(kVariancePrefix + spectralChannelName(img.bands.centroid(0)))) {
       img.bandVariance.assign(pixels * nb, 0.0f);
       for (int b = 0; b < nb; ++b)
-        fb.insert(kVariancePrefix + spectralChannelName(img.bands.centre(b)),
+        fb.insert(kVariancePrefix + spectralChannelName(img.bands.centroid(b)),
                   Imf::Slice::Make(Imf::FLOAT, img.bandVariance.data() + b, dw, sizeof(float) * nb,
                                    sizeof(float) * nb * img.width));
     }

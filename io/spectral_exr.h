@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "spectra/bands.h"
+#include "spectra/sensor.h"
 
 namespace nx {
 
@@ -17,7 +17,7 @@ struct SpectralImage {
   int width = 0, height = 0;         ///< size of the stored region (EXR data window)
   int originX = 0, originY = 0;      ///< its top-left pixel in the full image
   int fullWidth = 0, fullHeight = 0; ///< the full image (EXR display window); 0 = the region
-  SpectralBands bands;
+  Sensor bands;
   std::vector<float> radiance;     ///< [pixel][band], W m^-2 sr^-1 nm^-1 averaged over the band
   std::vector<float> rgb;          ///< [pixel][3], linear sRGB (D65), negatives already clamped
   std::vector<float> xyz;          ///< [pixel][3], CIE XYZ (unclamped); empty: not stored

@@ -27,9 +27,9 @@ SpectralBands SpectralBands::parse(const std::string& text) {
                 text.substr(c2 + 1));
   if (!(b.endNm >= b.startNm)) throw Error(where + ": expected END >= START, found " + text);
   if (b.lower(0) < kTraceMinNm || b.endNm + 0.5 * b.stepNm > kTraceMaxNm)
-    throw Error(where + ": expected bands within " + std::to_string(int(kTraceMinNm)) + "-" +
-                std::to_string(int(kTraceMaxNm)) + " nm, found " + std::to_string(b.lower(0)) +
-                "-" + std::to_string(b.endNm + 0.5 * b.stepNm) + " nm");
+    throw Error(where + ": expected bands within " + numberText(kTraceMinNm) + "-" +
+                numberText(kTraceMaxNm) + " nm (edges included), found " + numberText(b.lower(0)) +
+                "-" + numberText(b.endNm + 0.5 * b.stepNm) + " nm");
   const double n = (b.endNm - b.startNm) / b.stepNm;
   if (std::abs(n - std::round(n)) > 1e-6)
     throw Error(where + ": expected END - START to be a multiple of STEP, found " + text);
@@ -52,14 +52,6 @@ std::string SpectralBands::toString() const {
   // Exact: the text is stored in the EXR and parsed back by nxmerge, nxdiff and --resume,
   // which find the channels by the centres it gives (6 significant digits lost 400.00001).
   return exactNumberText(startNm) + ":" + exactNumberText(endNm) + ":" + exactNumberText(stepNm);
-}
-
-double bandAverage(const Spectrum& s, const SpectralBands& bands, int i) {
-  const double lo = bands.lower(i), hi = bands.upper(i);
-  const int n = std::max(1, static_cast<int>(std::ceil((hi - lo) / 0.1)));
-  double sum = 0; // midpoint rule
-  for (int k = 0; k < n; ++k) sum += s(lo + (k + 0.5) * (hi - lo) / n);
-  return sum / n;
 }
 
 } // namespace nx

@@ -31,7 +31,5 @@ struct SpectralBands {
   std::string toString() const;
 };
 
-/// Average of s over band i (fine quadrature, exact for piecewise-linear data at 0.1 nm).
-double bandAverage(const Spectrum& s, const SpectralBands& bands, int i);
 
 } // namespace nx

@@ -13,7 +13,7 @@ namespace nx {
 /// spectrum of a scene is validated over it, analytic spectra are tabulated over it.
 inline constexpr double kTraceMinNm = 300;
 /// Longest wavelength that can be traced (nm).
-inline constexpr double kTraceMaxNm = 1000;
+inline constexpr double kTraceMaxNm = 1100;
 
 /// The same value at every wavelength.
 struct ConstantSpectrum {

@@ -40,8 +40,8 @@ std::vector<double> solve(std::vector<std::vector<double>> a, std::vector<double
 }
 
 // Bands of 10 nm starting at 400 cover two 5 nm grid bins each: their average.
-double bandOfBins(const std::vector<double>& perBin, const SpectralBands& bands, int b) {
-  const int first = RM::binOf(bands.lower(b) + 0.1);
+double bandOfBins(const std::vector<double>& perBin, const Sensor& bands, int b) {
+  const int first = RM::binOf(bands.channel(b).lo + 0.1);
   return 0.5 * (perBin[static_cast<size_t>(first)] + perBin[static_cast<size_t>(first) + 1]);
 }
 
@@ -53,9 +53,9 @@ void expectBandsEqual(const Film& film, const std::function<double(int)>& expect
       for (int x = 0; x < film.width(); ++x) s.add(film.bandMean(x, y, b));
     const double e = expected(b);
     EXPECT_LT(std::abs(s.mean - e), 5 * s.standardError() + 1e-9)
-        << what << " band " << film.bands().centre(b) << " mean " << s.mean << " expected " << e;
+        << what << " band " << film.bands().centroid(b) << " mean " << s.mean << " expected " << e;
     EXPECT_LT(s.standardError(), precision * std::max(e, 0.1))
-        << what << " band " << film.bands().centre(b);
+        << what << " band " << film.bands().centroid(b);
   }
 }
 
@@ -145,10 +145,10 @@ TEST(Fluorescence, StokesShiftOnlyTowardsLongerWavelengths) {
     for (int y = 0; y < 8; ++y)
       for (int x = 0; x < 8; ++x) {
         const double v = f.bandMean(x, y, b);
-        if (f.bands().upper(b) <= 385) {
-          EXPECT_EQ(v, 0.0) << "band " << f.bands().centre(b);
+        if (f.bands().channel(b).hi <= 385) {
+          EXPECT_EQ(v, 0.0) << "band " << f.bands().centroid(b);
         }
-        if (f.bands().centre(b) >= 440 && f.bands().centre(b) <= 520) visible += v;
+        if (f.bands().centroid(b) >= 440 && f.bands().centroid(b) <= 520) visible += v;
       }
   EXPECT_GT(visible, 0.0);
 }

@@ -44,9 +44,9 @@ void expectBands(const Film& film, const std::function<double(int)>& expected, d
     const test::RunningStats s = bandStats(film, b, use);
     const double e = expected(b);
     EXPECT_LT(std::abs(s.mean - e), 5 * s.standardError() + 1e-6 * e)
-        << what << " band " << film.bands().centre(b) << ": mean " << s.mean << " expected " << e
+        << what << " band " << film.bands().centroid(b) << ": mean " << s.mean << " expected " << e
         << " se " << s.standardError();
-    EXPECT_LT(s.standardError(), precision * e) << what << " band " << film.bands().centre(b);
+    EXPECT_LT(s.standardError(), precision * e) << what << " band " << film.bands().centroid(b);
   }
 }
 

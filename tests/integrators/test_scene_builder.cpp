@@ -154,7 +154,7 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
       {scene(sphere + "<material>matte</material><reflectance csv=\"missing.csv\"/></sphere>\n"),
        "t.scn:4: missing.csv: cannot open the table file"},
       {scene(sphere + "<material>matte</material><reflectance>1.5</reflectance></sphere>\n"),
-       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1000 nm, found "
+       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1100 nm, found "
        "1.5 "
        "at 300 nm"},
       {scene(sphere + "<material>glass</material><roughness>0.2</roughness></sphere>\n"),
@@ -173,33 +173,33 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
       {scene(sphere + "<material>matte</material></sphere>\n", "mcpt"),
        "t.scn:4: expected <reflectance> or <color> on a non-emitting matte object, found neither"},
       {scene(sphere + "<material>glass</material><ior>cauchy: 0.5, 0.001</ior></sphere>\n"),
-       "t.scn:4: expected an index of refraction within [1, 10] over 300-1000 nm, found 0.501 at "
-       "1000 nm"},
-      // Checked over the whole traced range (300-1000 nm), not only 360-830 nm.
+       "t.scn:4: expected an index of refraction within [1, 10] over 300-1100 nm, found 0.5008264 at "
+       "1100 nm"},
+      // Checked over the whole traced range (300-1100 nm), not only 360-830 nm.
       {scene(sphere + "<material>glass</material><ior>cauchy: 0.985, 0.012</ior></sphere>\n"),
-       "t.scn:4: expected an index of refraction within [1, 10] over 300-1000 nm, found 0.997 at "
-       "1000 nm"},
+       "t.scn:4: expected an index of refraction within [1, 10] over 300-1100 nm, found 0.9949174 at "
+       "1100 nm"},
       // Exactly, not at whole nanometres: a Sellmeier pole at 500.5 nm.
       {scene(
            sphere +
            "<material>glass</material><ior>sellmeier: 1, 0, 0, 0.25050025, 0, 0</ior></sphere>\n"),
-       "t.scn:4: expected an index of refraction within [1, 10] over 300-1000 nm, found"},
+       "t.scn:4: expected an index of refraction within [1, 10] over 300-1100 nm, found"},
       {scene(sphere +
              "<material>matte</material><reflectance>400:0.5, 880:0.5, 900:1.3</reflectance>"
              "</sphere>\n"),
-       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1000 nm, found "
+       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1100 nm, found "
        "1.3 "
        "at 900 nm"},
       {scene(sphere +
              "<material>matte</material><reflectance>500:0.5, 500.4:1.5, 500.8:0.5</reflectance>"
              "</sphere>\n"),
-       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1000 nm, found "
+       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1100 nm, found "
        "1.5 "
        "at 500.4 nm"},
       {scene(sphere + "<material>matte</material><emission>400:1, 500:-0.5, 600:1</emission>"
                       "</sphere>\n"),
        "t.scn:4: expected an emission within [0, 1e+12] (W m^-2 sr^-1 nm^-1; W sr^-1 nm^-1 for "
-       "point lights) at every wavelength of 300-1000 nm, found -0.5 at 500 nm"},
+       "point lights) at every wavelength of 300-1100 nm, found -0.5 at 500 nm"},
       // A white without visible light has no colour to balance the preview with (it wrote
       // previewWhite = -nan,1,-nan and a black preview).
       {"<scene>\n<settings><xres>8</xres><yres>6</yres><mode>spectral_mcpt</mode>"
@@ -215,7 +215,7 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
       // are refused with the limit, whether given directly, through a scale or as a light.
       {scene(sphere + "<material>matte</material><emission>1e21</emission></sphere>\n"),
        "t.scn:4: expected an emission within [0, 1e+12] (W m^-2 sr^-1 nm^-1; W sr^-1 nm^-1 for "
-       "point lights) at every wavelength of 300-1000 nm, found 1e+21 at 300 nm"},
+       "point lights) at every wavelength of 300-1100 nm, found 1e+21 at 300 nm"},
       {scene(sphere + "<material>matte</material><emission scale=\"1e300\">D65</emission>"
                       "</sphere>\n"),
        "t.scn:4: expected an emission within [0, 1e+12]"},
@@ -233,7 +233,7 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
        "expected spectrum definitions without a cycle, found one through"},
       {scene(sphere +
              "<material>matte</material><reflectance>400:0.5, 500:2</reflectance></sphere>\n"),
-       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1000 nm, found 2 "
+       "t.scn:4: expected a reflectance within [0, 1] at every wavelength of 300-1100 nm, found 2 "
        "at "
        "500 nm"},
   };

@@ -74,7 +74,7 @@ TEST(SpectralExr, RoundTripThroughOpenExr) {
   std::vector<float> bands(15 * nb), rgb(15 * 3);
   Imf::FrameBuffer fb;
   for (int b = 0; b < nb; ++b)
-    fb.insert(spectralChannelName(img.bands.centre(b)),
+    fb.insert(spectralChannelName(img.bands.centroid(b)),
               Imf::Slice(Imf::FLOAT, (char*)(bands.data() + b), sizeof(float) * nb,
                          sizeof(float) * nb * 5));
   const char* rgbNames[3] = {"R", "G", "B"};

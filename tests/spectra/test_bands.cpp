@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "spectra/bands.h"
+#include "spectra/sensor.h"
 
 namespace nx {
 namespace {
@@ -57,7 +57,7 @@ TEST(Bands, TextRoundTripsExactly) {
 TEST(Bands, AverageOfLinearSpectrumIsItsCentreValue) {
   const SpectralBands b = SpectralBands::defaults();
   const Spectrum s(makeTabulated({300, 900}, {0, 6}, "t")); // 0.01 per nm
-  for (int i = 0; i < b.count(); ++i) EXPECT_NEAR(bandAverage(s, b, i), s(b.centre(i)), 1e-9);
+  for (int i = 0; i < b.count(); ++i) EXPECT_NEAR(bandAverage(s, Sensor(b), i), s(b.centre(i)), 1e-9);
 }
 
 } // namespace
