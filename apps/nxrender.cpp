@@ -300,6 +300,9 @@ int run(int argc, char** argv) {
   options.timeLimitSeconds = timeLimit;
   const uint32_t seedUsed = options.seed ? *options.seed : scene.settings.seed;
   const nx::Sensor bands = options.bands ? *options.bands : scene.settings.bands;
+  for (const auto& w :
+       nx::extrapolationWarnings(scene, nx::Film::tracedMinNm(bands), nx::Film::tracedMaxNm(bands)))
+    std::fprintf(stderr, "%s\n", w.c_str());
 
   std::optional<nx::Film> resumeFilm;
   if (!resumePath.empty()) {

@@ -37,9 +37,17 @@ public:
   /// Shortest wavelength the renderer traces: the bands' range joined with the CIE range
   /// (360-830 nm), so that XYZ, RGB, the preview and Variance.Y integrate the colour matching
   /// functions over their whole range whatever the bands.
-  double tracedMinNm() const { return std::min(bands_.minNm(), static_cast<double>(kCieMinNm)); }
+  double tracedMinNm() const { return tracedMinNm(bands_); }
   /// Longest wavelength the renderer traces (see tracedMinNm()).
-  double tracedMaxNm() const { return std::max(bands_.maxNm(), static_cast<double>(kCieMaxNm)); }
+  double tracedMaxNm() const { return tracedMaxNm(bands_); }
+  /// The shortest wavelength traced for a sensor.
+  static double tracedMinNm(const Sensor& s) {
+    return std::min(s.minNm(), static_cast<double>(kCieMinNm));
+  }
+  /// The longest wavelength traced for a sensor.
+  static double tracedMaxNm(const Sensor& s) {
+    return std::max(s.maxNm(), static_cast<double>(kCieMaxNm));
+  }
 
   /// Accumulator for one pixel's samples (lives on the stack of the tile task), kept per
   /// replicate: [0] the even-numbered samples, [1] the odd-numbered ones.

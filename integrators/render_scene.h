@@ -10,8 +10,8 @@
 #include "core/camera.h"
 #include "integrators/ior_model.h"
 #include "io/scene_desc.h"
-#include "spectra/sensor.h"
 #include "spectra/reradiation_matrix.h"
+#include "spectra/sensor.h"
 #include "spectra/spectrum.h"
 
 namespace nx {
@@ -63,6 +63,13 @@ struct RenderSettings {
 };
 
 /// Everything an integrator needs, immutable after building.
+/// A tabulated spectrum of the scene and the wavelengths its table covers.
+struct TabulatedRange {
+  std::string where; ///< "file:line" of the element
+  std::string what;  ///< its name, file or "nm:value pairs"
+  double loNm = 0, hiNm = 0;
+};
+
 struct RenderScene {
   RenderSettings settings;
   PinholeCamera camera{{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 60, 1, 1};
@@ -78,6 +85,9 @@ struct RenderScene {
   /// Digest of everything the scene was resolved from: its text and the bytes of every file
   /// it refers to (CSV spectra, matrices). Part of the render key of resume and merge.
   uint64_t contentDigest = 0;
+  /// Tables the scene uses without an extrapolate="..." choice (zero beyond them), with their
+  /// range: a render tracing beyond one warns (extrapolationWarnings).
+  std::vector<TabulatedRange> tables;
 
   /// Appearance of the shape a hit is on.
   const ShapeAppearance& appearance(const SurfaceHit& hit) const {
@@ -95,9 +105,13 @@ struct RenderScene {
 /// Resolves a SceneDesc into a RenderScene: names to spectra (built-in or the scene's
 /// <spectrum> definitions), CSV spectra and matrices read, RGB colours upsampled (rt and
 /// mcpt), value ranges checked exactly over the traced range (reflectances within [0, 1],
-/// emission >= 0, IOR within [1, 10] over 300-1000 nm), the Embree scene built. Errors carry the
+/// emission >= 0, IOR within [1, 10] over 300-1100 nm), the Embree scene built. Errors carry the
 /// file:line of the offending item.
 RenderScene buildRenderScene(const SceneDesc& desc);
+
+/// Warnings for the scene's tables that end inside [loNm, hiNm], the range a render traces:
+/// "file:line: warning: spectrum '<what>' is tabulated over A-B nm ... (extrapolate=...)".
+std::vector<std::string> extrapolationWarnings(const RenderScene& scene, double loNm, double hiNm);
 
 /// The same checks and resolution without building the Embree scene (`geometry` stays null):
 /// for tools that only validate scenes, such as the fuzzer.

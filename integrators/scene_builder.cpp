@@ -89,6 +89,7 @@ public:
       scene.pointLights.push_back(std::move(pl));
     }
     scene.contentDigest = digest_;
+    scene.tables = tables_;
     if (!withGeometry) return scene;
     scene.device = std::make_unique<EmbreeDevice>();
     scene.geometry = std::make_unique<GeometryScene>(*scene.device, std::move(spheres),
@@ -180,20 +181,42 @@ private:
 
   // Resolves a spectrum reference; emission spectra are checked to lie within [0, 1e12].
   Spectrum resolve(const SpectrumDesc& s, SpectrumRole role) const {
-    Spectrum r = resolveUnchecked(s, role, 0);
+    Spectrum r = resolveUnchecked(s, role, 0, s.extrapolate);
     if (role == SpectrumRole::Emission) checkEmission(r, s.loc);
     return r;
   }
 
-  Spectrum resolveUnchecked(const SpectrumDesc& s, SpectrumRole role, int depth) const {
+  // A table's behaviour beyond its wavelengths: held, zero by choice, or zero and remembered
+  // for a warning when a render traces beyond it.
+  Spectrum extrapolated(Spectrum r, SpectrumDesc::Extrapolation mode, const SourceLocation& loc,
+                        const std::string& what) const {
+    if (const auto* t = std::get_if<TabulatedSpectrum>(&r.kind())) {
+      if (mode == SpectrumDesc::Extrapolation::Hold) {
+        TabulatedSpectrum held = *t;
+        held.holdEnds = true;
+        return Spectrum(std::move(held), r.scale());
+      }
+      if (mode == SpectrumDesc::Extrapolation::Unset)
+        tables_.push_back({loc.str(), what, t->nm.front(), t->nm.back()});
+    }
+    return r;
+  }
+
+  // `mode`: the extrapolation asked for by the outermost reference that names one (a use of a
+  // <spectrum> definition overrides the definition's own).
+  Spectrum resolveUnchecked(const SpectrumDesc& s, SpectrumRole role, int depth,
+                            SpectrumDesc::Extrapolation mode) const {
+    if (mode == SpectrumDesc::Extrapolation::Unset) mode = s.extrapolate;
     try {
       switch (s.kind) {
       case SpectrumDesc::Kind::Number:
         return Spectrum(ConstantSpectrum{s.number});
       case SpectrumDesc::Kind::Pairs:
-        return Spectrum(makeTabulated(s.nm, s.value, "nm:value pairs"));
+        return extrapolated(Spectrum(makeTabulated(s.nm, s.value, "nm:value pairs")), mode, s.loc,
+                            "nm:value pairs");
       case SpectrumDesc::Kind::CsvFile:
-        return Spectrum(parseSpectrumCsv(readReferencedFile(s.path), s.path));
+        return extrapolated(Spectrum(parseSpectrumCsv(readReferencedFile(s.path), s.path)), mode,
+                            s.loc, s.path);
       case SpectrumDesc::Kind::Name:
         break;
       }
@@ -205,10 +228,10 @@ private:
         throw Error(s.loc.str() +
                     ": expected spectrum definitions without a cycle, found one through '" +
                     s.name + "'");
-      return resolveUnchecked(it->second->spectrum, role, depth + 1);
+      return resolveUnchecked(it->second->spectrum, role, depth + 1, mode);
     }
     if (role == SpectrumRole::Reflectance) {
-      if (auto r = namedReflectance(s.name)) return *r;
+      if (auto r = namedReflectance(s.name)) return extrapolated(*r, mode, s.loc, s.name);
       throw Error(s.loc.str() +
                   ": expected a reflectance name (red, orange, yellow, green, blue, purple, uv, "
                   "gray, const, null, or a <spectrum> of the scene), found '" +
@@ -220,7 +243,7 @@ private:
     } catch (const Error& err) {
       throw Error(s.loc.str() + ": " + err.what());
     }
-    if (e) return *e;
+    if (e) return extrapolated(*e, mode, s.loc, s.name);
     throw Error(
         s.loc.str() +
         ": expected an illuminant name (A, D50, D55, D65, D75, D<nn>, daylight:<K>, F1-F12, "
@@ -229,10 +252,9 @@ private:
         s.name + "'");
   }
 
-  // "300-1000 nm": the traced range, where every spectrum is checked.
+  // "300-1100 nm": the traced range, where every spectrum is checked.
   static std::string tracedRange() {
-    return std::to_string(static_cast<int>(kTraceMinNm)) + "-" +
-           std::to_string(static_cast<int>(kTraceMaxNm)) + " nm";
+    return numberText(kTraceMinNm) + "-" + numberText(kTraceMaxNm) + " nm";
   }
 
   // At every wavelength that can be traced (exactly, between whole nanometres too).
@@ -379,6 +401,14 @@ private:
       p.absorptionPeakNm = *f.absorptionNm;
     }
     p.stokesNm = *f.stokesNm;
+    // The matrix grid is the traced range (300-1100 nm): an emission centred beyond it would be
+    // renormalised into the grid's last bins, i.e. emitted where the material does not emit.
+    const double emissionNm = p.absorptionPeakNm + p.stokesNm;
+    if (emissionNm > kTraceMaxNm)
+      throw Error(f.loc.str() +
+                  ": expected the fluorescence emission (absorption peak + Stokes "
+                  "shift) within the traced range " +
+                  tracedRange() + ", found " + numberText(emissionNm) + " nm");
     if (f.widthNm) p.widthNm = *f.widthNm;
     if (f.skew) p.skew = *f.skew;
     if (f.quantumYield) p.quantumYield = *f.quantumYield;
@@ -410,6 +440,7 @@ private:
 
   const SceneDesc& desc_;
   std::map<std::string, const NamedSpectrumDesc*> named_;
+  mutable std::vector<TabulatedRange> tables_; ///< tables without an extrapolate choice
   mutable uint64_t digest_; ///< the scene text's digest, then every referenced file's bytes
 };
 
@@ -421,6 +452,20 @@ RenderScene buildRenderScene(const SceneDesc& desc) {
 
 RenderScene resolveRenderScene(const SceneDesc& desc) {
   return Builder(desc).build(false);
+}
+
+std::vector<std::string> extrapolationWarnings(const RenderScene& scene, double loNm, double hiNm) {
+  std::vector<std::string> out;
+  for (const TabulatedRange& t : scene.tables) {
+    if (t.loNm <= loNm && t.hiNm >= hiNm) continue;
+    std::string w = t.where + ": warning: spectrum '" + t.what + "' is tabulated over " +
+                    numberText(t.loNm) + "-" + numberText(t.hiNm) + " nm and this render traces " +
+                    numberText(loNm) + "-" + numberText(hiNm) +
+                    " nm: it is 0 beyond its table (write extrapolate=\"zero\" or "
+                    "extrapolate=\"hold\" on the element to choose)";
+    if (std::find(out.begin(), out.end(), w) == out.end()) out.push_back(std::move(w));
+  }
+  return out;
 }
 
 } // namespace nx

@@ -28,7 +28,11 @@ enum class RenderMode { Rt, Mcpt, SpectralMcpt };
 /// A spectrum as a scene refers to it.
 struct SpectrumDesc {
   enum class Kind { Name, Number, Pairs, CsvFile };
+  /// What a table does beyond its wavelengths (extrapolate="zero|hold"; unset: zero, with a
+  /// warning when the render traces beyond it).
+  enum class Extrapolation { Unset, Zero, Hold };
   Kind kind = Kind::Number;
+  Extrapolation extrapolate = Extrapolation::Unset;
   std::string name;          ///< Kind::Name: a built-in or scene-defined spectrum name
   double number = 0;         ///< Kind::Number: a flat spectrum
   std::vector<double> nm;    ///< Kind::Pairs: wavelengths

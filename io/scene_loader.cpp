@@ -341,9 +341,19 @@ private:
                                        const std::vector<std::string>& extraAttributes = {}) const {
     std::vector<std::string> attrs = extraAttributes;
     attrs.push_back("csv");
+    attrs.push_back("extrapolate");
     const std::string t = text(n, attrs);
     SpectrumDesc s;
     s.loc = loc(n);
+    if (pugi::xml_attribute e = n.attribute("extrapolate")) {
+      const std::string mode = trim(decoded(e.value(), n));
+      if (mode == "zero")
+        s.extrapolate = SpectrumDesc::Extrapolation::Zero;
+      else if (mode == "hold")
+        s.extrapolate = SpectrumDesc::Extrapolation::Hold;
+      else
+        fail(n, "extrapolate=\"zero\" or extrapolate=\"hold\"", shownText(mode));
+    }
     if (pugi::xml_attribute csv = n.attribute("csv")) {
       if (!t.empty())
         fail(n, "either csv=\"file\" or text in <" + std::string(n.name()) + ">", "both");

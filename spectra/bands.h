@@ -31,5 +31,4 @@ struct SpectralBands {
   std::string toString() const;
 };
 
-
 } // namespace nx

@@ -34,7 +34,8 @@ double round3(double v) {
 Spectrum illuminantA() {
   // CIE 15: S_A = 100 (560/l)^5 (exp(1.435e7 / (2848 * 560)) - 1) / (exp(1.435e7 / (2848 l)) - 1)
   std::vector<double> nm, v;
-  for (int l = 300; l <= 830; ++l) {
+  // Computed over the whole traced range (a formula has no end to warn about).
+  for (int l = static_cast<int>(kTraceMinNm); l <= static_cast<int>(kTraceMaxNm); ++l) {
     const double c2 = 1.435e7, t = 2848.0;
     nm.push_back(l);
     v.push_back(100.0 * std::pow(560.0 / l, 5.0) * std::expm1(c2 / (t * 560.0)) /
@@ -83,7 +84,7 @@ Spectrum illuminantE() {
 Spectrum blackLight() {
   std::vector<double> nm, v;
   const GaussianSpectrum uv{368.0, 10.0, 1.0}, violet{404.7, 4.0, 0.3};
-  for (int l = 300; l <= 500; ++l) {
+  for (int l = static_cast<int>(kTraceMinNm); l <= static_cast<int>(kTraceMaxNm); ++l) {
     nm.push_back(l);
     v.push_back(uv(l) + violet(l));
   }

@@ -8,7 +8,8 @@
 
 namespace nx {
 
-/// CIE standard illuminant A from its defining formula (relative, 100 at 560 nm).
+/// CIE standard illuminant A from its defining formula (relative, 100 at 560 nm), tabulated
+/// every nm over the whole traced range (300-1100 nm).
 Spectrum illuminantA();
 
 /// CIE daylight at correlated colour temperature cct (4000-25000 K) from the S0/S1/S2 basis

@@ -33,11 +33,13 @@ struct MeasuredMatrix {
 /// absorptance a per bin, and per-column sampling tables.
 class ReradiationMatrix {
 public:
-  /// Number of 5 nm bins covering [360, 830) nm.
-  static constexpr int kBins = 94;
-  static constexpr double kMinNm = 360, kBinNm = 5;
+  /// Number of 5 nm bins covering [300, 1100) nm: the whole range a sensor can see, so that
+  /// emission in the near infrared lands where it belongs (a 360-830 nm grid renormalised a
+  /// 910 nm emission into its last bin).
+  static constexpr int kBins = 160;
+  static constexpr double kMinNm = 300, kBinNm = 5;
 
-  /// Bin containing nm, or -1 outside [360, 830).
+  /// Bin containing nm, or -1 outside [300, 1100).
   static int binOf(double nm) {
     const double x = (nm - kMinNm) / kBinNm;
     return x >= 0 && x < kBins ? static_cast<int>(x) : -1;

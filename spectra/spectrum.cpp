@@ -30,7 +30,9 @@ double BlackbodySpectrum::operator()(double nm) const {
 }
 
 double TabulatedSpectrum::operator()(double x) const {
-  if (nm.empty() || x < nm.front() || x > nm.back()) return 0.0;
+  if (nm.empty()) return 0.0;
+  if (x < nm.front()) return holdEnds ? value.front() : 0.0;
+  if (x > nm.back()) return holdEnds ? value.back() : 0.0;
   const auto it = std::upper_bound(nm.begin(), nm.end(), x);
   if (it == nm.end()) return value.back();
   const size_t i = static_cast<size_t>(it - nm.begin()) - 1;

@@ -41,10 +41,12 @@ struct BlackbodySpectrum {
   double operator()(double nm) const;
 };
 
-/// Piecewise-linear interpolation of (wavelength, value) pairs; zero outside their range.
+/// Piecewise-linear interpolation of (wavelength, value) pairs; outside their range zero, or
+/// the first/last value when holdEnds is set (a scene's extrapolate="hold").
 struct TabulatedSpectrum {
   std::vector<double> nm;    ///< strictly increasing wavelengths
   std::vector<double> value; ///< one value per wavelength
+  bool holdEnds = false;     ///< beyond the table: the end values instead of zero
   double operator()(double nm) const;
 };
 

@@ -173,11 +173,13 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
       {scene(sphere + "<material>matte</material></sphere>\n", "mcpt"),
        "t.scn:4: expected <reflectance> or <color> on a non-emitting matte object, found neither"},
       {scene(sphere + "<material>glass</material><ior>cauchy: 0.5, 0.001</ior></sphere>\n"),
-       "t.scn:4: expected an index of refraction within [1, 10] over 300-1100 nm, found 0.5008264 at "
+       "t.scn:4: expected an index of refraction within [1, 10] over 300-1100 nm, found 0.5008264 "
+       "at "
        "1100 nm"},
       // Checked over the whole traced range (300-1100 nm), not only 360-830 nm.
       {scene(sphere + "<material>glass</material><ior>cauchy: 0.985, 0.012</ior></sphere>\n"),
-       "t.scn:4: expected an index of refraction within [1, 10] over 300-1100 nm, found 0.9949174 at "
+       "t.scn:4: expected an index of refraction within [1, 10] over 300-1100 nm, found 0.9949174 "
+       "at "
        "1100 nm"},
       // Exactly, not at whole nanometres: a Sellmeier pole at 500.5 nm.
       {scene(
@@ -345,6 +347,52 @@ TEST(SceneBuilder, MeasuredMatrixCsv) {
       got.find(dir + "bad.csv:2: expected 4 cells (excitation wavelength and 3 values), found 3"),
       std::string::npos)
       << got;
+}
+
+} // namespace
+} // namespace nx
+
+namespace nx {
+namespace {
+
+// A table that ends inside the traced range warns, naming the element, the spectrum and both
+// ranges; extrapolate="zero" or "hold" chooses (hold keeps the end values), silently; a use of a
+// <spectrum> definition may choose for it.
+TEST(SceneBuilder, TablesEndingInsideTheTracedRangeWarnUnlessTheyChoose) {
+  const std::string sphere = "<sphere><center>0,0,0</center><radius>1</radius>";
+  const RenderScene s = build(scene(
+      "<spectrum name=\"paint\">400:0.2, 700:0.6</spectrum>\n" + sphere +
+      "<material>matte</material><reflectance>paint</reflectance></sphere>\n" + sphere +
+      "<material>matte</material><reflectance extrapolate=\"hold\">paint</reflectance></sphere>\n" +
+      sphere + "<material>matte</material><reflectance extrapolate=\"zero\">400:0.2, 700:0.6" +
+      "</reflectance></sphere>\n" + sphere +
+      "<material>matte</material><emission>D65</emission></sphere>\n" + sphere +
+      "<material>matte</material><emission>A</emission></sphere>\n"));
+  const auto visible = extrapolationWarnings(s, 360, 830);
+  ASSERT_EQ(visible.size(), 1u);
+  EXPECT_EQ(visible[0], "t.scn:4: warning: spectrum 'nm:value pairs' is tabulated over 400-700 nm "
+                        "and this render traces 360-830 nm: it is 0 beyond its table (write "
+                        "extrapolate=\"zero\" or extrapolate=\"hold\" on the element to choose)");
+  const auto infrared = extrapolationWarnings(s, 360, 1005);
+  ASSERT_EQ(infrared.size(), 2u);
+  EXPECT_NE(infrared[1].find("t.scn:8: warning: spectrum 'D65' is tabulated over 300-830 nm and "
+                             "this render traces 360-1005 nm"),
+            std::string::npos)
+      << infrared[1];
+  EXPECT_TRUE(extrapolationWarnings(s, 400, 700).empty());
+  // Values beyond the table: zero, or held (the second sphere), or A's formula beyond 830 nm.
+  ASSERT_GE(s.spheres.size(), 5u);
+  const auto reflectanceAt = [&](int sphereIndex, double nm) {
+    return s.materials[s.spheres[sphereIndex].material].reflectance(nm);
+  };
+  EXPECT_DOUBLE_EQ(reflectanceAt(0, 900), 0.0);
+  EXPECT_DOUBLE_EQ(reflectanceAt(1, 900), 0.6);
+  EXPECT_DOUBLE_EQ(reflectanceAt(1, 350), 0.2);
+  EXPECT_DOUBLE_EQ(reflectanceAt(2, 900), 0.0);
+  EXPECT_GT(s.emission[s.spheres[4].emission](1000), s.emission[s.spheres[4].emission](830));
+  EXPECT_EQ(errorOf(scene(sphere + "<material>matte</material><emission extrapolate=\"last\">D65"
+                                   "</emission></sphere>\n")),
+            "t.scn:4: expected extrapolate=\"zero\" or extrapolate=\"hold\", found 'last'");
 }
 
 } // namespace

@@ -57,7 +57,8 @@ TEST(Bands, TextRoundTripsExactly) {
 TEST(Bands, AverageOfLinearSpectrumIsItsCentreValue) {
   const SpectralBands b = SpectralBands::defaults();
   const Spectrum s(makeTabulated({300, 900}, {0, 6}, "t")); // 0.01 per nm
-  for (int i = 0; i < b.count(); ++i) EXPECT_NEAR(bandAverage(s, Sensor(b), i), s(b.centre(i)), 1e-9);
+  for (int i = 0; i < b.count(); ++i)
+    EXPECT_NEAR(bandAverage(s, Sensor(b), i), s(b.centre(i)), 1e-9);
 }
 
 } // namespace

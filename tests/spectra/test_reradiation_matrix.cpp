@@ -18,14 +18,17 @@ FluorescenceModel model(double peak, double stokes, double yield = 1, double wid
 }
 
 TEST(ReradiationMatrix, Grid) {
-  EXPECT_EQ(RM::kBins, 94);
-  EXPECT_EQ(RM::binOf(360), 0);
-  EXPECT_EQ(RM::binOf(364.99), 0);
-  EXPECT_EQ(RM::binOf(365), 1);
-  EXPECT_EQ(RM::binOf(829.99), 93);
-  EXPECT_EQ(RM::binOf(830), -1);
-  EXPECT_EQ(RM::binOf(359.9), -1);
-  EXPECT_DOUBLE_EQ(RM::centre(0), 362.5);
+  // The grid covers the whole traced range, 300-1100 nm.
+  EXPECT_EQ(RM::kBins, 160);
+  EXPECT_EQ(RM::binOf(300), 0);
+  EXPECT_EQ(RM::binOf(304.99), 0);
+  EXPECT_EQ(RM::binOf(305), 1);
+  EXPECT_EQ(RM::binOf(1099.99), 159);
+  EXPECT_EQ(RM::binOf(1100), -1);
+  EXPECT_EQ(RM::binOf(299.9), -1);
+  EXPECT_DOUBLE_EQ(RM::centre(0), 302.5);
+  EXPECT_DOUBLE_EQ(RM::kMinNm, kTraceMinNm);
+  EXPECT_DOUBLE_EQ(RM::kMinNm + RM::kBins * RM::kBinNm, kTraceMaxNm);
 }
 
 // M[i][o] = a_i Q e_o l_i / l_o above the diagonal, 0 on and below it; a peaks at a_max;
@@ -110,12 +113,12 @@ void expectExcitationSamplingMatches(const RM& m, double nm) {
 TEST(ReradiationMatrix, ExcitationSamplingMatchesTheMatrix) {
   const RM m = RM::fromModel(model(430, 90, 1));
   const RM measured = RM::fromMeasured(parseMeasuredMatrixCsv(m.toCsv(), "m.csv"));
-  for (double nm : {372.5, 532.0, 601.0, 829.0}) {
+  for (double nm : {372.5, 532.0, 601.0, 829.0, 1012.0}) {
     expectExcitationSamplingMatches(m, nm);
     expectExcitationSamplingMatches(measured, nm);
   }
   float w = 1;
-  EXPECT_EQ(m.sampleExcitation(900, 0.6f, 0.5f, 0.5f, w), 900); // outside the grid: reflector
+  EXPECT_EQ(m.sampleExcitation(1100, 0.6f, 0.5f, 0.5f, w), 1100); // outside the grid: reflector
   EXPECT_FLOAT_EQ(w, 0.6f);
 }
 
