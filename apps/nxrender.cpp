@@ -140,8 +140,9 @@ int run(int argc, char** argv) {
   int threads = 0, spp = 0;
   long long seed = -1;
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
-  std::string output, bandsText, sensorText, lightSampling = "mis", sampler = "sobol", scenePath,
-                                             cropText, rangeText, resumePath;
+  std::string output, bandsText, sensorText, density = "sensor", lightSampling = "mis",
+                                             sampler = "sobol", scenePath, cropText, rangeText,
+                                             resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
@@ -157,6 +158,11 @@ int run(int argc, char** argv) {
                  "The camera's bands: a CSV of measured responses (header nm,<band>,...), or "
                  "gaussian:CENTRES@FWHM (CENTRES a,b,c or START:END:STEP; one FWHM or one per "
                  "centre), or boxes:LO-HI,LO-HI,... (default: the scene's <bands>/<sensor>)");
+  app.add_option("--wavelength-density", density,
+                 "sensor (default: half the lanes over the bands, each band the same share, half "
+                 "over the visible range for XYZ and the preview) or visible (the eye's density "
+                 "alone, as earlier versions)")
+      ->check(CLI::IsMember({"sensor", "visible"}));
   app.add_option("--seed", seed, "Random seed (default: the scene's <seed>, else 0)")
       ->check(CLI::Range(0LL, 2147483647LL));
   app.add_option("--light-sampling", lightSampling,
@@ -216,6 +222,8 @@ int run(int argc, char** argv) {
                                                    : nx::LightSampling::Mis;
   options.sampler =
       sampler == "independent" ? nx::SamplerKind::Independent : nx::SamplerKind::SobolOwen;
+  options.wavelengthDensity =
+      density == "visible" ? nx::WavelengthDensity::Visible : nx::WavelengthDensity::Sensor;
   if (!rangeText.empty()) {
     if (spp > 0) throw nx::Error("--spp-range and --spp: give one of them");
     const auto r = integers(rangeText, ':', 2, "--spp-range");
@@ -289,10 +297,10 @@ int run(int argc, char** argv) {
 
   // Identifies what the image is an estimate of: the resolved scene content (its text and every
   // file it refers to), the options that change the image, the lanes and the version.
-  const std::string renderKey =
-      hex(nx::fnv1a64(std::string(NX_VERSION) + "|" + sampler + "|" + lightSampling + "|" +
-                          (noFluorescence ? "nofl" : "fl") + "|" + std::to_string(nx::kLanes),
-                      scene.contentDigest));
+  const std::string renderKey = hex(
+      nx::fnv1a64(std::string(NX_VERSION) + "|" + sampler + "|" + lightSampling + "|" + density +
+                      "|" + (noFluorescence ? "nofl" : "fl") + "|" + std::to_string(nx::kLanes),
+                  scene.contentDigest));
   const nx::Xyz white = nx::spectrumToXyz(scene.previewWhite);
   const int firstSample = options.firstSample;
   int sppTotal = options.samples > 0 ? options.samples : scene.settings.samples;

@@ -48,7 +48,11 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const LightSampler lights(scene);
   const IntegratorContext ctx{&scene, &lights, options.lightSampling,
                               scene.hasFluorescence || options.forceFluorescencePath};
-  const WavelengthSampler wavelengths(out.film.tracedMinNm(), out.film.tracedMaxNm());
+  const WavelengthSampler wavelengths =
+      options.wavelengthDensity == WavelengthDensity::Visible
+          ? WavelengthSampler(out.film.tracedMinNm(), out.film.tracedMaxNm())
+          : WavelengthSampler::forSensor(out.film.bands(), out.film.tracedMinNm(),
+                                         out.film.tracedMaxNm());
   const bool whitted = settings.mode == RenderMode::Rt;
 
   const int ts = std::max(1, options.tileSize);

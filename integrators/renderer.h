@@ -14,14 +14,20 @@
 
 namespace nx {
 
+/// The density wavelengths are drawn from (see WavelengthSampler).
+enum class WavelengthDensity { Sensor, Visible };
+
 /// What to render beyond the scene itself.
 struct RenderOptions {
   int samples = 0;     ///< samples per pixel; 0 = the scene's <sampl>
   int firstSample = 0; ///< render samples [firstSample, firstSample + samples) of each pixel
-  std::optional<PixelRect> crop;      ///< default: the whole image
-  std::optional<uint32_t> seed;       ///< default: the scene's <seed>
-  std::optional<Sensor> bands; ///< default: the scene's <bands> or <sensor>
+  std::optional<PixelRect> crop; ///< default: the whole image
+  std::optional<uint32_t> seed;  ///< default: the scene's <seed>
+  std::optional<Sensor> bands;   ///< default: the scene's <bands> or <sensor>
   LightSampling lightSampling = LightSampling::Mis;
+  /// Where wavelengths are drawn: the sensor's bands and the colour range (default), or the
+  /// visible density alone (the density of earlier versions, for comparisons).
+  WavelengthDensity wavelengthDensity = WavelengthDensity::Sensor;
   SamplerKind sampler = SamplerKind::SobolOwen;
   int tileSize = 16;
   int passSamples = 8; ///< samples per pixel in one pass (progress, checkpoints, stops)

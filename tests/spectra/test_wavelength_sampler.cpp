@@ -109,3 +109,41 @@ TEST(WavelengthSampler, RejectsBadRanges) {
 
 } // namespace
 } // namespace nx
+
+namespace nx {
+namespace {
+
+// The sensor density is a density (integrates to 1 over the traced range), its samples follow
+// it (chi-square over 2 nm bins), and it keeps mass over the whole CIE range (XYZ stays
+// unbiased) and over every band.
+TEST(WavelengthSampler, SensorDensityIsSampledAsItsPdfSays) {
+  for (const char* spec :
+       {"400:700:10", "405:995:10", "gaussian:450,550,870@20,10,40", "boxes:320-340,1000-1100"}) {
+    const Sensor sensor = Sensor::parse(spec);
+    const double lo = std::min(sensor.minNm(), 360.0), hi = std::max(sensor.maxNm(), 830.0);
+    const WavelengthSampler s = WavelengthSampler::forSensor(sensor, lo, hi);
+    double integral = 0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) integral += s.pdf(lo + (hi - lo) * (i + 0.5) / n) * (hi - lo) / n;
+    EXPECT_NEAR(integral, 1.0, 1e-5) << spec;
+    for (double nm = 360; nm <= 830; nm += 1) ASSERT_GT(s.pdf(nm), 0.0) << spec << " " << nm;
+    for (int b = 0; b < sensor.count(); ++b)
+      EXPECT_GT(s.pdf(sensor.centroid(b)), 0.0) << spec << " band " << b;
+    const int bins = static_cast<int>((hi - lo) / 2), draws = 400000;
+    std::vector<double> obs(static_cast<size_t>(bins), 0), exp(static_cast<size_t>(bins), 0);
+    for (int i = 0; i < draws; ++i) {
+      const double l = s.wavelength(sampleValue(SamplerKind::Independent, i, 0, 0, 7));
+      obs[static_cast<size_t>(std::min(bins - 1, static_cast<int>((l - lo) / 2)))] += 1;
+    }
+    for (int b = 0; b < bins; ++b) {
+      double p = 0;
+      for (int k = 0; k < 200; ++k) p += s.pdf(lo + 2 * b + 2 * (k + 0.5) / 200) * 0.01;
+      exp[static_cast<size_t>(b)] = p * draws;
+    }
+    const auto [stat, dof] = test::chiSquare(obs, exp);
+    EXPECT_LT(test::chiSquareZ(stat, dof), 4.0) << spec;
+  }
+}
+
+} // namespace
+} // namespace nx
