@@ -132,6 +132,22 @@ nx::Sensor sensorFromOption(const std::string& text) {
   return nx::Sensor::readCsv(text);
 }
 
+// --error-of: luminance, bands, or bands:LO-HI.
+nx::ErrorMeasure errorMeasureFromOption(const std::string& text) {
+  nx::ErrorMeasure m;
+  if (text == "luminance") return m;
+  m.bands = true;
+  if (text == "bands") return m;
+  const auto dash = text.find('-', 7);
+  if (text.rfind("bands:", 0) != 0 || dash == std::string::npos)
+    throw nx::Error("--error-of: expected luminance, bands or bands:LO-HI (nm), found '" + text +
+                    "'");
+  m.loNm = nx::parseNumber(text.substr(6, dash - 6), "--error-of", "a wavelength in nm");
+  m.hiNm = nx::parseNumber(text.substr(dash + 1), "--error-of", "a wavelength in nm");
+  if (!(m.hiNm >= m.loNm)) throw nx::Error("--error-of: expected LO <= HI, found '" + text + "'");
+  return m;
+}
+
 int run(int argc, char** argv) {
   CLI::App app{
       "nxrender: spectral path tracer for fluorescence research\n"
@@ -140,9 +156,9 @@ int run(int argc, char** argv) {
   int threads = 0, spp = 0;
   long long seed = -1;
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
-  std::string output, bandsText, sensorText, density = "sensor", lightSampling = "mis",
-                                             sampler = "sobol", scenePath, cropText, rangeText,
-                                             resumePath;
+  std::string output, bandsText, sensorText, density = "sensor", errorOf = "luminance",
+                                             lightSampling = "mis", sampler = "sobol", scenePath,
+                                             cropText, rangeText, resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
@@ -188,10 +204,13 @@ int run(int argc, char** argv) {
                  "Also write the EXR every SECONDS while rendering")
       ->check(CLI::Range(1.0, 1e9));
   app.add_option("--target-error", targetError,
-                 "Stop once the estimated relative RMS error of the image's luminance Y (CIE "
-                 "1931 over 360-830 nm, whatever the bands; not the bands' error) is at most E "
+                 "Stop once the estimated relative RMS error named by --error-of is at most E "
                  "(checked after each pass)")
       ->check(CLI::Range(1e-9, 1e9));
+  app.add_option("--error-of", errorOf,
+                 "The error --target-error aims at: luminance (default; Y, CIE 1931 over 360-830 "
+                 "nm, whatever the bands), bands (the worst band's relative RMS error), or "
+                 "bands:LO-HI (the worst among the bands whose centroid lies in LO-HI nm)");
   app.add_option("--time-limit", timeLimit, "Stop before a pass that would end after SECONDS")
       ->check(CLI::Range(1e-3, 1e12));
   app.add_option("--resume", resumePath,
@@ -305,6 +324,7 @@ int run(int argc, char** argv) {
   const int firstSample = options.firstSample;
   int sppTotal = options.samples > 0 ? options.samples : scene.settings.samples;
   options.targetRelativeError = targetError;
+  options.errorMeasure = errorMeasureFromOption(errorOf);
   options.timeLimitSeconds = timeLimit;
   const uint32_t seedUsed = options.seed ? *options.seed : scene.settings.seed;
   const nx::Sensor bands = options.bands ? *options.bands : scene.settings.bands;

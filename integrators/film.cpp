@@ -125,6 +125,30 @@ double Film::relativeRmsError() const {
   return std::sqrt(var / pixels) / (mean / pixels);
 }
 
+double Film::bandRelativeRmsError(int b) const {
+  double var = 0, mean = 0;
+  for (size_t i = 0; i < counts_.size(); ++i) {
+    if (oddCounts_[i] == 0 || oddCounts_[i] >= counts_[i]) return INFINITY;
+    var += halfDifferenceVariance(bandSums_[i * nBands_ + b], bandOddSums_[i * nBands_ + b],
+                                  counts_[i], oddCounts_[i]);
+    mean += bandSums_[i * nBands_ + b] / counts_[i];
+  }
+  if (!(mean > 0)) return NAN;
+  return std::sqrt(var / counts_.size()) / (mean / counts_.size());
+}
+
+double Film::worstBandRelativeRmsError(double loNm, double hiNm) const {
+  double worst = -1;
+  for (int b = 0; b < nBands_; ++b) {
+    const double c = bands_.centroid(b);
+    if (c < loNm || c > hiNm) continue;
+    const double e = bandRelativeRmsError(b);
+    if (std::isnan(e)) continue;
+    worst = std::max(worst, e);
+  }
+  return worst < 0 ? INFINITY : worst;
+}
+
 double Film::bandMean(int x, int y, int b) const {
   const size_t i = index(x, y);
   return counts_[i] ? bandSums_[i * nBands_ + b] / counts_[i] : 0.0;

@@ -101,6 +101,12 @@ public:
   /// Estimated relative RMS error of the image: sqrt(mean of the pixels' Y variances) over
   /// the mean Y (infinite before two samples per pixel or on a black image).
   double relativeRmsError() const;
+  /// The same for band b: sqrt(mean of the pixels' band variances) over the band's mean
+  /// (infinite before two samples per pixel; NaN for a band that is black everywhere).
+  double bandRelativeRmsError(int b) const;
+  /// The largest bandRelativeRmsError over the bands whose centroid lies in [loNm, hiNm]
+  /// (black bands skipped); infinite when no band qualifies or before two samples per pixel.
+  double worstBandRelativeRmsError(double loNm, double hiNm) const;
 
 private:
   size_t index(int x, int y) const {

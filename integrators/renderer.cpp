@@ -140,12 +140,12 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
     lastPassSeconds = now() - clockStart - elapsed;
     if (options.afterPass) options.afterPass(out.film);
     if (!out.stats.stopped && options.targetRelativeError > 0 && passEnd < end &&
-        out.film.relativeRmsError() <= options.targetRelativeError) {
+        options.errorMeasure.of(out.film) <= options.targetRelativeError) {
       out.stats.reachedTarget = true;
       break;
     }
   }
-  out.stats.relativeError = out.film.relativeRmsError();
+  out.stats.relativeError = options.errorMeasure.of(out.film);
 
   out.stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

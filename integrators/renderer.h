@@ -17,6 +17,17 @@ namespace nx {
 /// The density wavelengths are drawn from (see WavelengthSampler).
 enum class WavelengthDensity { Sensor, Visible };
 
+/// An image error: the luminance's (Film::relativeRmsError), or the worst band's among the
+/// bands whose centroid lies in [loNm, hiNm] (Film::worstBandRelativeRmsError).
+struct ErrorMeasure {
+  bool bands = false;
+  double loNm = 0, hiNm = 1e9;
+  /// The error of a film.
+  double of(const Film& film) const {
+    return bands ? film.worstBandRelativeRmsError(loNm, hiNm) : film.relativeRmsError();
+  }
+};
+
 /// What to render beyond the scene itself.
 struct RenderOptions {
   int samples = 0;     ///< samples per pixel; 0 = the scene's <sampl>
@@ -31,9 +42,10 @@ struct RenderOptions {
   SamplerKind sampler = SamplerKind::SobolOwen;
   int tileSize = 16;
   int passSamples = 8; ///< samples per pixel in one pass (progress, checkpoints, stops)
-  /// Stop after the first pass whose estimated relative RMS error (Film::relativeRmsError)
-  /// is at most this; 0: off.
+  /// Stop after the first pass whose estimated relative RMS error is at most this; 0: off.
   double targetRelativeError = 0;
+  /// Which error targetRelativeError and RenderStats::relativeError mean.
+  ErrorMeasure errorMeasure;
   /// Do not start a pass that would end after this many seconds (judged by the last pass's
   /// duration; the first pass always runs); 0: off.
   double timeLimitSeconds = 0;

@@ -91,3 +91,54 @@ TEST(Convergence, TimeLimitEndsWithinOnePass) {
 
 } // namespace
 } // namespace nx
+
+namespace nx {
+namespace {
+
+// Measured relative RMS error of band b against a reference.
+double measuredBandError(const Film& film, const Film& ref, int b) {
+  double se = 0, mean = 0;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x) {
+      const double d = film.bandMean(x, y, b) - ref.bandMean(x, y, b);
+      se += d * d;
+      mean += ref.bandMean(x, y, b);
+    }
+  const double n = film.width() * film.height();
+  return std::sqrt(se / n) / (mean / n);
+}
+
+// --error-of bands: the render stops when its worst band (among those asked for) reaches the
+// target, and that band's error against an independent reference is near the target; the
+// bands outside the range asked for are not what stopped it.
+TEST(Convergence, TargetErrorOnTheBands) {
+  const Sensor bands(SpectralBands::parse("420:980:80"));
+  RenderOptions refOptions;
+  refOptions.samples = 2048;
+  refOptions.seed = 99;
+  refOptions.bands = bands;
+  const RenderOutput ref = render(scene(), refOptions);
+  for (auto [lo, hi] : {std::pair{0.0, 1e9}, std::pair{850.0, 1000.0}}) {
+    RenderOptions o;
+    o.samples = 2048;
+    o.bands = bands;
+    o.targetRelativeError = 0.06;
+    o.errorMeasure = {true, lo, hi};
+    const RenderOutput out = render(scene(), o);
+    ASSERT_TRUE(out.stats.reachedTarget);
+    EXPECT_LE(out.stats.relativeError, 0.06);
+    EXPECT_LT(out.stats.samplesReached, 2048);
+    double worst = 0, estimatedWorst = 0;
+    for (int b = 0; b < bands.count(); ++b) {
+      if (bands.centroid(b) < lo || bands.centroid(b) > hi) continue;
+      worst = std::max(worst, measuredBandError(out.film, ref.film, b));
+      estimatedWorst = std::max(estimatedWorst, out.film.bandRelativeRmsError(b));
+    }
+    EXPECT_EQ(estimatedWorst, out.stats.relativeError);
+    EXPECT_GT(worst, 0.06 / 1.5) << lo << "-" << hi << " at " << out.stats.samplesReached;
+    EXPECT_LT(worst, 0.06 * 1.5) << lo << "-" << hi << " at " << out.stats.samplesReached;
+  }
+}
+
+} // namespace
+} // namespace nx
