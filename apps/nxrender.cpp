@@ -23,6 +23,7 @@
 #include "integrators/renderer.h"
 #include "io/atomic_file.h"
 #include "io/camera_attributes.h"
+#include "io/envi_export.h"
 #include "io/preview_image.h"
 #include "io/spectral_exr.h"
 #include "spectra/colour.h"
@@ -159,7 +160,8 @@ int run(int argc, char** argv) {
   std::string output, bandsText, sensorText, density = "sensor", errorOf = "luminance",
                                              lightSampling = "mis", sampler = "sobol", scenePath,
                                              cropText, rangeText, resumePath;
-  bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false;
+  bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false,
+       envi = false;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   app.add_option("--spp", spp, "Samples per pixel (default: the scene's <sampl>)")
@@ -191,6 +193,9 @@ int run(int argc, char** argv) {
   app.add_flag("--no-variance", noVariance,
                "Leave out the Variance channels (error estimates; a resume from such a file "
                "restarts its estimates)");
+  app.add_flag("--envi", envi,
+               "Also write the bands as an ENVI cube beside the EXR: OUT.img (BSQ float32) and "
+               "OUT.hdr (wavelength and fwhm lists), for spectral-imaging tools");
   app.add_flag("--half", halfFloat,
                "Store the EXR's channels as half floats (16 bits, ~3 digits, up to 65504; "
                "falls back to floats with a warning when a value does not fit)");
@@ -297,6 +302,11 @@ int run(int argc, char** argv) {
   const bool wholeImage = !options.crop && rangeText.empty();
   nx::checkWritable(exrPath);
   if (wholeImage) nx::checkWritable(previewPath);
+  const std::string enviPath = envi ? replaceExtension(exrPath, ".img") : std::string();
+  if (envi) {
+    nx::checkWritable(enviPath);
+    nx::checkWritable(nx::enviHeaderPath(enviPath));
+  }
   {
     // Upper bound of the EXR (uncompressed float channels: bands and their variances, RGB,
     // XYZ, a variance and a count) plus the preview.
@@ -436,6 +446,7 @@ int run(int argc, char** argv) {
     if (wholeImage)
       nx::writePreview(previewPath, image.width, image.height,
                        nx::previewPixels(result.film, scene.previewWhite));
+    if (envi) nx::writeEnvi(enviPath, image);
   }
   if (result.stats.stopped) {
     std::fprintf(stderr,
@@ -449,11 +460,12 @@ int run(int argc, char** argv) {
   const double s = result.stats.seconds;
   std::fprintf(stderr,
                "nxrender: %dx%d, %d spp, %s, %d threads: %.2f s, %.3g samples/s, %.3g rays/s; "
-               "wrote %s%s%s\n",
+               "wrote %s%s%s%s%s\n",
                image.width, image.height, sppTotal, modeName(scene.settings.mode), nThreads, s,
                static_cast<double>(result.stats.samples) / s,
                static_cast<double>(result.stats.rays) / s, exrPath.c_str(),
-               wholeImage ? " and " : "", wholeImage ? previewPath.c_str() : "");
+               wholeImage ? " and " : "", wholeImage ? previewPath.c_str() : "",
+               envi ? " and the ENVI cube " : "", envi ? enviPath.c_str() : "");
   if (result.stats.truncated > 0)
     std::fprintf(stderr,
                  "nxrender: warning: %llu rt samples reached the budget of %d rays per sample "

@@ -89,6 +89,35 @@ TEST(SpectralExr, RoundTripThroughOpenExr) {
     EXPECT_EQ(e.path().filename().string().find("roundtrip.exr.tmp"), std::string::npos);
 }
 
+// A measured sensor travels with the file: its responses are in nxrender.bands, the channels
+// are named at the bands' centroids, and the reader rebuilds the same sensor (so nxmerge,
+// nxdiff and --resume find the same channels).
+TEST(SpectralExr, MeasuredSensorIsStoredInTheFile) {
+  SpectralImage img = testImage();
+  img.bands = Sensor::fromCsv("nm,blue,nir\n440,0,0\n450,1,0\n470,0,0\n900,0,0\n910,0.5,0\n"
+                              "930,0,1\n931,0,0\n",
+                              "srf.csv");
+  // Band 0 is two triangles: 440-470 nm (peak 1 at 450; area 15, centroid (440+450+470)/3) and
+  // 900-930 nm (peak 0.5 at 910; area 7.5, centroid (900+910+930)/3).
+  const double c0 = (15 * (440 + 450 + 470) / 3.0 + 7.5 * (900 + 910 + 930) / 3.0) / 22.5;
+  ASSERT_NEAR(img.bands.centroid(0), c0, 1e-9);
+  img.radiance.clear();
+  for (int p = 0; p < 15; ++p)
+    for (int b = 0; b < 2; ++b) img.radiance.push_back(float(p) + 0.5f * float(b));
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  const std::string path = ::testing::TempDir() + "measured.exr";
+  writeSpectralExr(path, img);
+  Imf::InputFile in(path.c_str());
+  EXPECT_TRUE(in.header().channels().findChannel(spectralChannelName(img.bands.centroid(0))));
+  EXPECT_TRUE(in.header().channels().findChannel(spectralChannelName(img.bands.centroid(1))));
+  const SpectralImage back = readSpectralExr(path);
+  ASSERT_EQ(back.bands.count(), 2);
+  EXPECT_EQ(back.bands.toString(), img.bands.toString());
+  EXPECT_EQ(back.bands.channel(1).name, "nir");
+  EXPECT_EQ(back.bands.centroid(0), img.bands.centroid(0));
+  EXPECT_EQ(back.radiance, img.radiance);
+}
+
 TEST(SpectralExr, UnwritablePathIsAClearErrorAndWritesNothing) {
   SpectralImage img = testImage();
   try {
