@@ -39,8 +39,10 @@ std::string rectText(int x0, int y0, int x1, int y1) {
 
 } // namespace
 
-SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
-  if (parts.empty()) throw Error("nothing to merge");
+namespace {
+
+// Parts that share their bands: crops assembled, sample ranges averaged.
+SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
   const ImagePart& first = parts.front();
   const int width = first.image.displayWidth(), height = first.image.displayHeight();
   const int nb = first.image.bands.count();
@@ -237,6 +239,128 @@ SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
     out.attributes.erase("nxrender.estimatedRelativeError");
   }
   return out;
+}
+
+// Images of the same scene, seed, pixels and samples with disjoint bands: one image with every
+// band, ordered by centroid. XYZ, RGB and Variance.Y come from the first image (each image
+// estimated them from its own wavelengths; they are not averaged, since the images share
+// their random numbers and are not independent).
+SpectralImage stitchBands(const std::vector<ImagePart>& images) {
+  const ImagePart& first = images.front();
+  const SpectralImage& a = first.image;
+  const size_t pixels = static_cast<size_t>(a.width) * static_cast<size_t>(a.height);
+  struct Source {
+    size_t image;
+    int band;
+  };
+  std::vector<SensorChannel> channels;
+  std::vector<Source> sources;
+  std::map<std::string, std::string> layerOwner;
+  for (size_t k = 0; k < images.size(); ++k) {
+    const ImagePart& p = images[k];
+    for (const char* key : {"nxrender.renderKey", "nxrender.seed", "nxrender.sampleRange"})
+      if (attribute(p, key) != attribute(first, key))
+        throw Error(p.name + ": cannot be stitched with " + first.name + " (other bands): its " +
+                    key + " is '" + attribute(p, key) + "', not '" + attribute(first, key) +
+                    "' (band ranges are stitched from renders of the same scene, options, seed "
+                    "and samples)");
+    if (p.image.width != a.width || p.image.height != a.height || p.image.originX != a.originX ||
+        p.image.originY != a.originY || p.image.displayWidth() != a.displayWidth() ||
+        p.image.displayHeight() != a.displayHeight())
+      throw Error(p.name + ": cannot be stitched with " + first.name +
+                  ": it covers other pixels (stitch whole images of the same size)");
+    if (p.image.sampleCount != a.sampleCount)
+      throw Error(p.name + ": cannot be stitched with " + first.name +
+                  ": its pixels hold other sample counts");
+    const Sensor& s = p.image.bands;
+    for (int b = 0; b < s.count(); ++b) {
+      const std::string layer = spectralChannelName(s.centroid(b));
+      if (auto [it, fresh] = layerOwner.emplace(layer, p.name); !fresh)
+        throw Error(p.name + ": cannot be stitched with " + it->second + ": both hold the band " +
+                    layer + " (stitch renders of disjoint bands)");
+      channels.push_back(s.channel(b));
+      sources.push_back({k, b});
+    }
+  }
+  // Order by centroid.
+  std::vector<size_t> order(channels.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::vector<double> centroids;
+  for (const Source& src : sources)
+    centroids.push_back(images[src.image].image.bands.centroid(src.band));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t x, size_t y) { return centroids[x] < centroids[y]; });
+  std::vector<SensorChannel> sortedChannels;
+  std::vector<Source> sortedSources;
+  for (size_t i : order) sortedChannels.push_back(channels[i]), sortedSources.push_back(sources[i]);
+
+  SpectralImage out = a;
+  out.bands = Sensor::fromChannels(std::move(sortedChannels), "stitched bands");
+  try {
+    out.attributes["nxrender.bands"] = out.bands.toString();
+  } catch (const Error&) {
+    throw Error("cannot stitch bands of different kinds (boxes, Gaussians and measured "
+                "responses): render them with one kind of sensor");
+  }
+  const size_t nb = sortedSources.size();
+  const bool variances = std::all_of(images.begin(), images.end(), [](const ImagePart& p) {
+    return !p.image.bandVariance.empty();
+  });
+  out.radiance.assign(pixels * nb, 0.0f);
+  out.bandVariance.assign(variances ? pixels * nb : 0, 0.0f);
+  for (size_t c = 0; c < nb; ++c) {
+    const SpectralImage& src = images[sortedSources[c].image].image;
+    const size_t srcBands = static_cast<size_t>(src.bands.count()),
+                 b = static_cast<size_t>(sortedSources[c].band);
+    for (size_t i = 0; i < pixels; ++i) {
+      out.radiance[i * nb + c] = src.radiance[i * srcBands + b];
+      if (variances) out.bandVariance[i * nb + c] = src.bandVariance[i * srcBands + b];
+    }
+  }
+  double seconds = 0;
+  bool timed = true;
+  for (const ImagePart& p : images) {
+    const auto it = p.image.attributes.find("nxrender.renderSeconds");
+    if (it == p.image.attributes.end())
+      timed = false;
+    else
+      seconds += std::strtod(it->second.c_str(), nullptr);
+  }
+  if (timed) out.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
+  out.attributes["nxrender.stitchedBandSets"] = std::to_string(images.size());
+  return out;
+}
+
+} // namespace
+
+SpectralImage mergeParts(const std::vector<ImagePart>& parts) {
+  if (parts.empty()) throw Error("nothing to merge");
+  // Parts are grouped by their bands; each group is merged, then the groups are stitched.
+  std::vector<std::string> keys;
+  std::vector<std::vector<ImagePart>> groups;
+  for (const ImagePart& p : parts) {
+    const std::string key = attribute(p, "nxrender.bands");
+    const auto it = std::find(keys.begin(), keys.end(), key);
+    if (it == keys.end()) {
+      keys.push_back(key);
+      groups.emplace_back();
+    }
+    groups[static_cast<size_t>(std::find(keys.begin(), keys.end(), key) - keys.begin())].push_back(
+        p);
+  }
+  if (groups.size() == 1) return mergeSameBands(parts);
+  std::vector<ImagePart> merged;
+  for (const auto& g : groups) {
+    std::string names;
+    for (const ImagePart& p : g) names += (names.empty() ? "" : "+") + p.name;
+    try {
+      merged.push_back({names, mergeSameBands(g)});
+    } catch (const Error& e) {
+      throw Error("the parts with bands " + g.front().image.bands.summary() + " (" + names +
+                  "): " + e.what());
+    }
+  }
+  return stitchBands(merged);
 }
 
 } // namespace nx

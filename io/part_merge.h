@@ -1,5 +1,5 @@
 #pragma once
-// Merging the parts of a render (crops and sample ranges) into one image.
+// Merging the parts of a render (crops, sample ranges, band ranges) into one image.
 
 #include <string>
 #include <utility>
@@ -24,6 +24,11 @@ struct ImagePart {
 /// their range says (interrupted); overlapping sample ranges on the same pixels (overlapping
 /// crops or repeated ranges); and reports missing regions (pixels with fewer samples than
 /// the best-covered pixel).
+/// Parts with different bands (renders of disjoint band ranges, e.g. one per farm node) are
+/// merged per band set, then stitched into one image holding every band, ordered by centroid:
+/// they must share the scene, options, seed, pixels and sample counts, no band may appear in
+/// two sets, and the sets must be of one kind (boxes, Gaussians or measured responses). XYZ,
+/// RGB and Variance.Y are the first set's.
 SpectralImage mergeParts(const std::vector<ImagePart>& parts);
 
 } // namespace nx

@@ -103,11 +103,13 @@ TEST(Farm, RefusesPartsThatDoNotBelongTogether) {
   seed.image.attributes["nxrender.seed"] = "7";
   EXPECT_EQ(mergeError({a, seed}),
             "b.exr: does not belong with a.exr: its nxrender.seed is '7', not '0'");
+  // Other bands: merged as a separate band set, whose crops must cover the image.
   ImagePart bands = b;
   bands.image.attributes["nxrender.bands"] = "400:700:20";
-  EXPECT_EQ(
-      mergeError({a, bands}),
-      "b.exr: does not belong with a.exr: its nxrender.bands is '400:700:20', not '400:700:10'");
+  EXPECT_EQ(mergeError({a, bands}),
+            "the parts with bands 31 box bands responding over 395-705 nm (a.exr): missing "
+            "region: 600 pixels within 0,15,40,30 have fewer than the 2 samples of the others (a "
+            "part is missing)");
   ImagePart size = b;
   size.image.fullWidth = 80;
   EXPECT_EQ(mergeError({a, size}),
@@ -131,6 +133,57 @@ TEST(Farm, RefusesPartsThatDoNotBelongTogether) {
           .rfind("b.exr: holds 1 samples in some pixels instead of the 2 of its range 0:2", 0),
       0u);
   EXPECT_EQ(mergeError({}), "nothing to merge");
+}
+
+ImagePart bandPart(const std::string& name, const char* bands, std::optional<PixelRect> crop,
+                   int first, int count) {
+  RenderOptions o;
+  o.bands = Sensor::parse(bands);
+  o.crop = crop;
+  o.firstSample = first;
+  o.samples = count;
+  SpectralImage img = toSpectralImage(render(scene(), o).film);
+  img.attributes["nxrender.renderKey"] = "key";
+  img.attributes["nxrender.seed"] = "0";
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  img.attributes["nxrender.sampleRange"] =
+      std::to_string(first) + ":" + std::to_string(first + count);
+  return {name, img};
+}
+
+// Renders of disjoint band ranges (each possibly split into crops) stitch into one image with
+// every band in wavelength order, each band bit for bit its render's; overlapping bands,
+// other samples and mixed kinds of bands are refused.
+TEST(Farm, DisjointBandRangesStitch) {
+  const ImagePart nir = bandPart("nir.exr", "710:1000:10", std::nullopt, 0, 2);
+  const ImagePart vis = bandPart("vis.exr", "400:700:10", std::nullopt, 0, 2);
+  const ImagePart visTop = bandPart("top.exr", "400:700:10", PixelRect{0, 0, 40, 12}, 0, 2),
+                  visBottom = bandPart("bottom.exr", "400:700:10", PixelRect{0, 12, 40, 30}, 0, 2);
+  const SpectralImage s = mergeParts({nir, visTop, visBottom});
+  ASSERT_EQ(s.bands.count(), 31 + 30);
+  for (int b = 1; b < s.bands.count(); ++b) EXPECT_LT(s.bands.centroid(b - 1), s.bands.centroid(b));
+  EXPECT_DOUBLE_EQ(s.bands.centroid(0), 400);
+  EXPECT_DOUBLE_EQ(s.bands.centroid(60), 1000);
+  EXPECT_EQ(Sensor::parse(s.attributes.at("nxrender.bands")).count(), 61);
+  const size_t pixels = 40 * 30;
+  for (size_t i = 0; i < pixels; ++i) {
+    for (int b = 0; b < 31; ++b)
+      ASSERT_EQ(s.radiance[i * 61 + b], vis.image.radiance[i * 31 + b]) << i << " " << b;
+    for (int b = 0; b < 30; ++b)
+      ASSERT_EQ(s.radiance[i * 61 + 31 + b], nir.image.radiance[i * 30 + b]) << i << " " << b;
+  }
+  EXPECT_EQ(s.xyz, nir.image.xyz); // the first set's colour channels
+  EXPECT_EQ(s.sampleCount, vis.image.sampleCount);
+  EXPECT_EQ(mergeError({vis, bandPart("more.exr", "690:1000:10", std::nullopt, 0, 2)}),
+            "more.exr: cannot be stitched with vis.exr: both hold the band S0.690,000000nm "
+            "(stitch renders of disjoint bands)");
+  EXPECT_EQ(mergeError({vis, bandPart("later.exr", "710:1000:10", std::nullopt, 2, 2)}),
+            "later.exr: cannot be stitched with vis.exr (other bands): its nxrender.sampleRange "
+            "is '2:4', not '0:2' (band ranges are stitched from renders of the same scene, "
+            "options, seed and samples)");
+  EXPECT_EQ(mergeError({vis, bandPart("gauss.exr", "gaussian:900@20", std::nullopt, 0, 2)}),
+            "cannot stitch bands of different kinds (boxes, Gaussians and measured responses): "
+            "render them with one kind of sensor");
 }
 
 // A render stopped part-way holds whole tiles with their true sample counts; resuming it
