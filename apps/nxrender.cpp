@@ -133,6 +133,19 @@ nx::Sensor sensorFromOption(const std::string& text) {
   return nx::Sensor::readCsv(text);
 }
 
+// The items of a comma list (empty items skipped).
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    if (!item.empty()) out.push_back(item);
+    start = comma + 1;
+  }
+  return out;
+}
+
 // --error-of: luminance, bands, or bands:LO-HI.
 nx::ErrorMeasure errorMeasureFromOption(const std::string& text) {
   nx::ErrorMeasure m;
@@ -157,7 +170,7 @@ int run(int argc, char** argv) {
   int threads = 0, spp = 0;
   long long seed = -1;
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
-  std::string output, bandsText, sensorText, density = "sensor", errorOf = "luminance",
+  std::string output, bandsText, sensorText, density = "sensor", errorOf = "luminance", aovText,
                                              lightSampling = "mis", sampler = "sobol", scenePath,
                                              cropText, rangeText, resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false,
@@ -193,6 +206,11 @@ int run(int argc, char** argv) {
   app.add_flag("--no-variance", noVariance,
                "Leave out the Variance channels (error estimates; a resume from such a file "
                "restarts its estimates)");
+  app.add_option("--aov", aovText,
+                 "Extra channels, a comma list of: white (white.S0.<band>: the radiance a white "
+                 "Lambertian surface would reflect at the first hit, for flat-fielding; one more "
+                 "path per sample), ids (ObjectId, MaterialId at the pixel centre; 0 = none), "
+                 "depth (Depth: camera-space z at the pixel centre; 0 = none)");
   app.add_flag("--envi", envi,
                "Also write the bands as an ENVI cube beside the EXR: OUT.img (BSQ float32) and "
                "OUT.hdr (wavelength and fwhm lists), for spectral-imaging tools");
@@ -326,15 +344,27 @@ int run(int argc, char** argv) {
 
   // Identifies what the image is an estimate of: the resolved scene content (its text and every
   // file it refers to), the options that change the image, the lanes and the version.
-  const std::string renderKey = hex(
-      nx::fnv1a64(std::string(NX_VERSION) + "|" + sampler + "|" + lightSampling + "|" + density +
-                      "|" + (noFluorescence ? "nofl" : "fl") + "|" + std::to_string(nx::kLanes),
-                  scene.contentDigest));
+  const std::string renderKey =
+      hex(nx::fnv1a64(std::string(NX_VERSION) + "|" + sampler + "|" + lightSampling + "|" +
+                          density + "|" + (options.whiteReference ? "white|" : "") +
+                          (noFluorescence ? "nofl" : "fl") + "|" + std::to_string(nx::kLanes),
+                      scene.contentDigest));
   const nx::Xyz white = nx::spectrumToXyz(scene.previewWhite);
   const int firstSample = options.firstSample;
   int sppTotal = options.samples > 0 ? options.samples : scene.settings.samples;
   options.targetRelativeError = targetError;
   options.errorMeasure = errorMeasureFromOption(errorOf);
+  bool aovIds = false, aovDepth = false;
+  for (const std::string& aov : splitList(aovText)) {
+    if (aov == "white")
+      options.whiteReference = true;
+    else if (aov == "ids")
+      aovIds = true;
+    else if (aov == "depth")
+      aovDepth = true;
+    else
+      throw nx::Error("--aov: expected a comma list of white, ids and depth, found '" + aov + "'");
+  }
   options.timeLimitSeconds = timeLimit;
   const uint32_t seedUsed = options.seed ? *options.seed : scene.settings.seed;
   const nx::Sensor bands = options.bands ? *options.bands : scene.settings.bands;
@@ -394,6 +424,11 @@ int run(int argc, char** argv) {
     image.attributes["nxrender.estimatedRelativeError"] = std::to_string(film.relativeRmsError());
     for (const auto& [key, value] : nx::cameraAttributes(scene.camera))
       image.attributes[key] = value;
+    if (aovIds || aovDepth) {
+      nx::addGeometryAovs(scene, image);
+      if (!aovIds) image.objectId.clear(), image.materialId.clear();
+      if (!aovDepth) image.depth.clear();
+    }
     return image;
   };
 

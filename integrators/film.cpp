@@ -5,7 +5,7 @@
 
 namespace nx {
 
-Film::Film(int width, int height, const PixelRect& rect, const Sensor& bands)
+Film::Film(int width, int height, const PixelRect& rect, const Sensor& bands, bool whiteReference)
     : width_(width), height_(height), rect_(rect), bands_(bands), nBands_(bands.count()),
       responses_(bands) {
   const CieTables& cie = cieTables();
@@ -22,11 +22,13 @@ Film::Film(int width, int height, const PixelRect& rect, const Sensor& bands)
   yOddSums_.assign(pixels, 0.0);
   oddCounts_.assign(pixels, 0);
   counts_.assign(pixels, 0);
+  if (whiteReference) whiteSums_.assign(pixels * static_cast<size_t>(nBands_), 0.0);
 }
 
 Film::Pixel Film::newPixel() const {
   Pixel p;
   for (auto& b : p.bands) b.assign(static_cast<size_t>(nBands_), 0.0);
+  if (hasWhite()) p.white.assign(static_cast<size_t>(nBands_), 0.0);
   return p;
 }
 
@@ -58,8 +60,30 @@ bool Film::addSample(Pixel& pixel, const SampledWavelengths& lambda, const Sampl
   return true;
 }
 
+bool Film::addWhiteSample(Pixel& pixel, const SampledWavelengths& lambda,
+                          const SampledSpectrum& L) const {
+  double sum = 0;
+  for (int i = 0; i < kLanes; ++i) sum += static_cast<double>(L[i]);
+  if (!std::isfinite(sum)) return false;
+  double* white = pixel.white.data();
+  for (int i = 0; i < kLanes; ++i) {
+    const float v = L[i] * WavelengthSampler::laneWeight(lambda, i);
+    if (v == 0) continue;
+    responses_.forEach(lambda.lambda[i],
+                       [&](int b, float w) { white[b] += static_cast<double>(v * w); });
+  }
+  return true;
+}
+
+double Film::whiteMean(int x, int y, int b) const {
+  const size_t i = index(x, y);
+  return counts_[i] && hasWhite() ? whiteSums_[i * nBands_ + b] / counts_[i] : 0.0;
+}
+
 void Film::add(int x, int y, const Pixel& pixel) {
   const size_t i = index(x, y);
+  if (hasWhite())
+    for (int b = 0; b < nBands_; ++b) whiteSums_[i * nBands_ + b] += pixel.white[b];
   for (int b = 0; b < nBands_; ++b) {
     const double even = pixel.bands[0][static_cast<size_t>(b)],
                  odd = pixel.bands[1][static_cast<size_t>(b)];
@@ -83,7 +107,7 @@ double halfDifferenceVariance(double sum, double oddSum, uint32_t n, uint32_t nO
 
 void Film::setFromMeans(int x, int y, const float* bandMeans, const float* bandVariances,
                         const double xyzMean[3], double yVariance, uint32_t samples,
-                        uint32_t oddSamples) {
+                        uint32_t oddSamples, const float* whiteMeans) {
   // The odd replicate's sum is rebuilt from the stored variance: A - B = 2 sqrt(var) (the sign
   // of the difference is not stored, so the estimate after resuming keeps its size, not its sign).
   const size_t i = index(x, y);
@@ -95,6 +119,9 @@ void Film::setFromMeans(int x, int y, const float* bandMeans, const float* bandV
         (mean - std::sqrt(bandVariances ? std::max(0.0f, bandVariances[b]) : 0.0f)) * nOdd;
   }
   for (int c = 0; c < 3; ++c) xyzSums_[i * 3 + c] = xyzMean[c] * n;
+  if (hasWhite())
+    for (int b = 0; b < nBands_; ++b)
+      whiteSums_[i * nBands_ + b] = whiteMeans ? whiteMeans[b] * n : 0.0;
   yOddSums_[i] = (xyzMean[1] - std::sqrt(std::max(0.0, yVariance))) * nOdd;
   counts_[i] = samples;
   oddCounts_[i] = oddSamples;

@@ -25,10 +25,14 @@ struct PixelRect {
 class Film {
 public:
   /// A film for `rect` of a width x height image, with the given output bands.
-  Film(int width, int height, const PixelRect& rect, const Sensor& bands);
+  /// With `whiteReference`, it also accumulates the white-reference AOV (addWhiteSample).
+  Film(int width, int height, const PixelRect& rect, const Sensor& bands,
+       bool whiteReference = false);
   /// A film covering the whole image.
   Film(int width, int height, const Sensor& bands)
       : Film(width, height, {0, 0, width, height}, bands) {}
+  /// True when the film holds the white reference.
+  bool hasWhite() const { return !whiteSums_.empty(); }
 
   int width() const { return width_; }   ///< full image width
   int height() const { return height_; } ///< full image height
@@ -54,6 +58,7 @@ public:
   struct Pixel {
     std::vector<double> bands[2]; ///< sums of band estimates
     double xyz[2][3] = {};        ///< sums of XYZ estimates
+    std::vector<double> white;    ///< sums of white-reference band estimates (if kept)
     uint32_t samples[2] = {0, 0};
   };
 
@@ -66,6 +71,7 @@ public:
       p.xyz[r][0] = p.xyz[r][1] = p.xyz[r][2] = 0;
       p.samples[r] = 0;
     }
+    std::fill(p.white.begin(), p.white.end(), 0.0);
   }
   /// Samples an accumulator holds.
   static uint32_t samplesIn(const Pixel& p) { return p.samples[0] + p.samples[1]; }
@@ -79,16 +85,23 @@ public:
   bool addSample(Pixel& pixel, const SampledWavelengths& lambda, const SampledSpectrum& L,
                  bool odd) const;
 
+  /// Adds one sample of the white reference (radiance L of a white Lambertian surface at the
+  /// first hit) to the bands, like addSample; false (and nothing added) when not finite.
+  bool addWhiteSample(Pixel& pixel, const SampledWavelengths& lambda,
+                      const SampledSpectrum& L) const;
+
   /// Adds a pixel's accumulated samples (each pixel is written by one tile task at a time).
   void add(int x, int y, const Pixel& pixel);
   /// Sets a pixel from stored means, variances of the means (null: unknown) and their sample
   /// count (resuming from a file).
   void setFromMeans(int x, int y, const float* bandMeans, const float* bandVariances,
                     const double xyzMean[3], double yVariance, uint32_t samples,
-                    uint32_t oddSamples);
+                    uint32_t oddSamples, const float* whiteMeans = nullptr);
 
   /// Mean band radiance of pixel (x, y), band b.
   double bandMean(int x, int y, int b) const;
+  /// Mean white-reference radiance of pixel (x, y), band b (0 without the white reference).
+  double whiteMean(int x, int y, int b) const;
   /// Mean XYZ of pixel (x, y).
   Xyz xyzMean(int x, int y) const;
   /// Samples taken in pixel (x, y).
@@ -126,6 +139,7 @@ private:
   std::vector<double> yOddSums_;    ///< [pixel]
   std::vector<uint32_t> oddCounts_; ///< [pixel]
   std::vector<uint32_t> counts_;
+  std::vector<double> whiteSums_; ///< [pixel][band]; empty without the white reference
 };
 
 } // namespace nx

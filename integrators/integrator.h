@@ -36,6 +36,14 @@ inline SampledSpectrum evaluate(const Spectrum& s, const SampledWavelengths& lam
 /// rounding of that distance.
 inline constexpr float kShadowShorten = 1.0f - 1e-5f;
 
+/// True when next-event estimation from the outside of an emitting sphere (a ray arriving
+/// along rayDir from outside) aimed at that sphere itself: its outside cannot see itself, but a
+/// point rounded to just inside the sphere would be sampled "from inside" and lit by its own
+/// emission (a bias, now excluded). From the inside (a camera in a furnace) it sees itself.
+inline bool aimsAtOwnSphere(const SurfaceHit& hit, const LightSample& ls, const Vec3& rayDir) {
+  return hit.kind == ShapeKind::Sphere && ls.sphere == hit.index && dot(rayDir, hit.ng) < 0;
+}
+
 /// Everything a per-sample estimator needs besides the sample itself.
 struct IntegratorContext {
   const RenderScene* scene;
@@ -60,6 +68,14 @@ struct TraceCounters {
 /// the hero lane alone, scaled by kLanes (see heroOnly()).
 SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
                           PixelSampleStream& rng, TraceCounters& counters);
+
+/// The white reference along `ray`: the radiance a white Lambertian surface (reflectance 1,
+/// not emitting) put in place of the first surface hit would reflect towards the camera, lit by
+/// the scene as it is (direct and indirect light, path traced as tracePath). Zero where the ray
+/// hits nothing.
+SampledSpectrum traceWhiteReference(const IntegratorContext& ctx, Ray ray,
+                                    const SampledWavelengths& lambda, PixelSampleStream& rng,
+                                    TraceCounters& counters);
 
 /// Radiance along `ray` by Whitted ray tracing through the same materials: emission seen
 /// directly or through specular chains, direct light on diffuse lobes from every light,

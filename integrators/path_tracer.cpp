@@ -9,9 +9,19 @@
 namespace nx {
 namespace {
 
+// The white reference's surface: a Lambertian reflector of reflectance 1.
+const Material& whiteLambertian() {
+  static const Material white{
+      MaterialKind::Mixture,           1.0f,         IorModel::constant(1.5),
+      Spectrum(ConstantSpectrum{1.0}), std::nullopt, nullptr};
+  return white;
+}
+
 // kFluorescence: compiled in only for scenes with fluorescent materials, so that other
 // scenes run exactly the code they would without the feature.
-template <bool kFluorescence>
+// kWhite: the first surface hit is replaced by a white Lambertian reflector that does not emit
+// (the white-reference AOV); later bounces see the scene as it is.
+template <bool kFluorescence, bool kWhite>
 SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
                               const SampledWavelengths& lambda, PixelSampleStream& rng,
                               TraceCounters& counters) {
@@ -38,7 +48,8 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       break;
     }
     const ShapeAppearance& app = scene.appearance(hit);
-    if (app.emission >= 0) {
+    const bool whiteHere = kWhite && bounce == 0;
+    if (app.emission >= 0 && !whiteHere) {
       float w = 1;
       if (!specular && hit.kind == ShapeKind::Sphere &&
           ctx.lightSampling != LightSampling::BsdfOnly) {
@@ -52,7 +63,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     }
     if (bounce >= kMaxPathBounces) break;
 
-    const Material& material = scene.materials[app.material];
+    const Material& material = whiteHere ? whiteLambertian() : scene.materials[app.material];
     const Vec3 wo = -ray.d;
     const SampledSpectrum rho = evaluate(material.reflectance, current);
     const SurfaceBsdf bsdf(material, current, rho, hit.ng, wo);
@@ -74,7 +85,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       const Sample2 uLight = rng.next2D();
       LightSample ls;
       const SampledWavelengths& lit = fluorescent ? shift.excited : current;
-      if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls)) {
+      if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls) && !aimsAtOwnSphere(hit, ls, ray.d)) {
         const SampledSpectrum f =
             fluorescent ? shift.albedo * bsdf.diffuseFactor(ls.wi) : bsdf.evalDiffuse(ls.wi);
         if (!f.isBlack()) {
@@ -135,8 +146,15 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
 
 SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
                           PixelSampleStream& rng, TraceCounters& counters) {
-  return ctx.fluorescence ? tracePathImpl<true>(ctx, ray, lambda, rng, counters)
-                          : tracePathImpl<false>(ctx, ray, lambda, rng, counters);
+  return ctx.fluorescence ? tracePathImpl<true, false>(ctx, ray, lambda, rng, counters)
+                          : tracePathImpl<false, false>(ctx, ray, lambda, rng, counters);
+}
+
+SampledSpectrum traceWhiteReference(const IntegratorContext& ctx, Ray ray,
+                                    const SampledWavelengths& lambda, PixelSampleStream& rng,
+                                    TraceCounters& counters) {
+  return ctx.fluorescence ? tracePathImpl<true, true>(ctx, ray, lambda, rng, counters)
+                          : tracePathImpl<false, true>(ctx, ray, lambda, rng, counters);
 }
 
 } // namespace nx

@@ -48,7 +48,9 @@ struct PointLight {
 /// Per-shape appearance: material index and optional emitted radiance.
 struct ShapeAppearance {
   uint32_t material = 0;
-  int32_t emission = -1; ///< index into RenderScene::emission, or -1
+  int32_t emission = -1;   ///< index into RenderScene::emission, or -1
+  uint32_t objectId = 0;   ///< 1 + the object's position among the scene file's objects
+  uint32_t materialId = 0; ///< 1 + the index of the first object with the same material
 };
 
 /// Settings resolved from the scene file.

@@ -15,6 +15,7 @@
 namespace nx {
 namespace {
 constexpr uint32_t kOddReplicateSalt = 0x68e31da4U;
+constexpr uint32_t kWhiteSalt = 0x1b56c4e9U;
 
 // Samples of [first, first + n) with odd numbers.
 uint32_t oddSamplesIn(int64_t first, int64_t n) {
@@ -34,8 +35,9 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                 std::to_string(rect.x1) + "," + std::to_string(rect.y1) +
                 " is not a non-empty rectangle inside the " + std::to_string(settings.width) + "x" +
                 std::to_string(settings.height) + " image");
-  RenderOutput out{options.resumeFrom ? *options.resumeFrom
-                                      : Film(settings.width, settings.height, rect, bands),
+  RenderOutput out{options.resumeFrom
+                       ? *options.resumeFrom
+                       : Film(settings.width, settings.height, rect, bands, options.whiteReference),
                    {},
                    options.firstSample,
                    0,
@@ -102,6 +104,9 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           const PixelSequence replicates[2] = {
               PixelSequence(options.sampler, pixelIndex, seed),
               PixelSequence(options.sampler, pixelIndex, seed ^ kOddReplicateSalt)};
+          const PixelSequence whiteSequences[2] = {
+              PixelSequence(options.sampler, pixelIndex, seed ^ kWhiteSalt),
+              PixelSequence(options.sampler, pixelIndex, seed ^ kWhiteSalt ^ kOddReplicateSalt)};
           // Each pixel continues after the samples it already has (a resumed film may hold
           // more in some pixels than in others).
           for (int s = begin + static_cast<int>(out.film.samples(x, y)); s < passEnd; ++s) {
@@ -120,6 +125,12 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
             const SampledSpectrum L = whitted ? traceWhitted(ctx, ray, lambda, rng, counters)
                                               : tracePath(ctx, ray, lambda, rng, counters);
             if (!out.film.addSample(pixel, lambda, L, odd)) ++dropped;
+            if (out.film.hasWhite()) {
+              // Its own random numbers (a salted seed): the same for every thread count.
+              PixelSampleStream whiteRng(whiteSequences[odd], static_cast<uint32_t>(s) >> 1);
+              out.film.addWhiteSample(pixel, lambda,
+                                      traceWhiteReference(ctx, ray, lambda, whiteRng, counters));
+            }
           }
           taken += Film::samplesIn(pixel);
           out.film.add(x, y, pixel);
@@ -196,6 +207,8 @@ SpectralImage toSpectralImage(const Film& film) {
       img.xyz.push_back(static_cast<float>(xyz.y));
       img.xyz.push_back(static_cast<float>(xyz.z));
       img.sampleCount.push_back(film.samples(x, y));
+      for (int b = 0; b < nb && film.hasWhite(); ++b)
+        img.white.push_back(static_cast<float>(film.whiteMean(x, y, b)));
     }
   return img;
 }
@@ -221,13 +234,14 @@ Film filmFromImage(const SpectralImage& img, int firstSample, int maxSamples) {
   check(img.xyz, 3, "X, Y, Z");
   check(img.bandVariance, static_cast<size_t>(nb), "the Variance channels");
   check(img.yVariance, 1, "Variance.Y");
+  check(img.white, static_cast<size_t>(nb), "the white-reference channels");
   for (size_t i = 0; i < pixels; ++i)
     if (img.sampleCount[i] > static_cast<uint32_t>(maxSamples))
       throw Error(where(i) + ": expected at most the " + std::to_string(maxSamples) +
                   " samples of the render's range, found " + std::to_string(img.sampleCount[i]));
   Film film(img.displayWidth(), img.displayHeight(),
             {img.originX, img.originY, img.originX + img.width, img.originY + img.height},
-            img.bands);
+            img.bands, !img.white.empty());
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const size_t i = static_cast<size_t>(y) * img.width + x;
@@ -235,9 +249,32 @@ Film filmFromImage(const SpectralImage& img, int firstSample, int maxSamples) {
       film.setFromMeans(img.originX + x, img.originY + y, &img.radiance[i * nb],
                         img.bandVariance.empty() ? nullptr : &img.bandVariance[i * nb], xyz,
                         img.yVariance.empty() ? 0.0 : img.yVariance[i], img.sampleCount[i],
-                        oddSamplesIn(firstSample, img.sampleCount[i]));
+                        oddSamplesIn(firstSample, img.sampleCount[i]),
+                        img.white.empty() ? nullptr : &img.white[i * nb]);
     }
   return film;
+}
+
+void addGeometryAovs(const RenderScene& scene, SpectralImage& image) {
+  const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+  image.objectId.assign(pixels, 0);
+  image.materialId.assign(pixels, 0);
+  image.depth.assign(pixels, 0.0f);
+  const Vec3d eye = scene.camera.position(), forward = scene.camera.forward();
+  tbb::parallel_for(0, image.height, [&](int row) {
+    for (int col = 0; col < image.width; ++col) {
+      const double x = image.originX + col + 0.5, y = image.originY + row + 0.5;
+      const Ray ray = scene.camera.generateRay(x, y, 0.0f, 0.0f); // the pixel centre, lens centre
+      SurfaceHit hit;
+      if (!scene.geometry->intersect(ray, hit)) continue;
+      const size_t i = static_cast<size_t>(row) * image.width + col;
+      const ShapeAppearance& app = scene.appearance(hit);
+      image.objectId[i] = app.objectId;
+      image.materialId[i] = app.materialId;
+      const Vec3d p(hit.p.x, hit.p.y, hit.p.z);
+      image.depth[i] = static_cast<float>(dot(p - eye, forward));
+    }
+  });
 }
 
 std::vector<uint8_t> previewPixels(const std::vector<Xyz>& xyz, const Xyz& w) {

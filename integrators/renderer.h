@@ -39,6 +39,9 @@ struct RenderOptions {
   /// Where wavelengths are drawn: the sensor's bands and the colour range (default), or the
   /// visible density alone (the density of earlier versions, for comparisons).
   WavelengthDensity wavelengthDensity = WavelengthDensity::Sensor;
+  /// Also estimate the white reference (traceWhiteReference) per band: one more path per
+  /// sample, in every mode.
+  bool whiteReference = false;
   SamplerKind sampler = SamplerKind::SobolOwen;
   int tileSize = 16;
   int passSamples = 8; ///< samples per pixel in one pass (progress, checkpoints, stops)
@@ -99,6 +102,10 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options);
 /// The spectral image of a film (its rectangle inside the full image): band means, XYZ,
 /// linear sRGB from XYZ with negatives clamped to 0, and per-pixel sample counts.
 SpectralImage toSpectralImage(const Film& film);
+
+/// Adds the geometry AOVs of the image's pixels: ObjectId and MaterialId of the surface seen
+/// through each pixel's centre (0 for none) and its depth (camera-space z, 0 for none).
+void addGeometryAovs(const RenderScene& scene, SpectralImage& image);
 
 /// Loads a film from a spectral image whose pixels hold samples firstSample onwards (to
 /// resume a render of maxSamples samples per pixel). Refuses, naming the pixel, counts above

@@ -47,11 +47,18 @@ public:
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
     std::vector<TriangleShape> triangles;
+    std::vector<std::pair<std::vector<double>, uint32_t>> materialIds; // key -> id
     for (const ObjectDesc& o : desc_.objects) {
       ShapeAppearance app;
       app.material = static_cast<uint32_t>(scene.materials.size());
       scene.materials.push_back(material(o, spectral));
       scene.materials.back().reflectance = forRendering(scene.materials.back().reflectance);
+      app.objectId = app.material + 1;
+      const std::vector<double> key = materialKey(scene.materials.back());
+      const auto same = std::find_if(materialIds.begin(), materialIds.end(),
+                                     [&](const auto& m) { return m.first == key; });
+      app.materialId = same != materialIds.end() ? same->second : app.objectId;
+      if (same == materialIds.end()) materialIds.emplace_back(key, app.objectId);
       if (scene.materials.back().reradiation) scene.hasFluorescence = true;
       if (auto e = emission(o, spectral)) {
         app.emission = static_cast<int32_t>(scene.emission.size());
@@ -169,6 +176,23 @@ private:
                       numberText(px) + "," + numberText(py) +
                       " (the coefficients do not describe a lens over this field of view)");
       }
+  }
+
+  // What makes two materials the same for the MaterialId channel: kind, roughness, the index
+  // of refraction and the reflectance every 5 nm over the traced range, the fluorescence.
+  static std::vector<double> materialKey(const Material& m) {
+    std::vector<double> key = {static_cast<double>(m.kind), m.roughness};
+    for (double nm = kTraceMinNm; nm <= kTraceMaxNm; nm += 5) {
+      key.push_back(m.reflectance(nm));
+      key.push_back(m.kind == MaterialKind::Dielectric ? m.ior.at(nm) : 0.0);
+    }
+    key.push_back(static_cast<double>(reinterpret_cast<uintptr_t>(m.reradiation.get())));
+    if (m.fluorescenceModel) {
+      const FluorescenceModel& f = *m.fluorescenceModel;
+      key.insert(key.end(), {f.absorptionPeakNm, f.stokesNm, f.widthNm, f.skew, f.quantumYield,
+                             f.peakAbsorptance});
+    }
+    return key;
   }
 
   // The bytes of a file the scene refers to (a table), folded into the content digest with its

@@ -54,7 +54,9 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
       const float uChoice =
           (static_cast<float>(k) + 0.5f) / static_cast<float>(ctx.lights->count());
       LightSample ls;
-      if (!ctx.lights->sample(hit.p, uChoice, rng.next2D(), shift.excited, ls)) continue;
+      if (!ctx.lights->sample(hit.p, uChoice, rng.next2D(), shift.excited, ls) ||
+          aimsAtOwnSphere(hit, ls, ray.d))
+        continue;
       const SampledSpectrum f = shift.albedo * bsdf.diffuseFactor(ls.wi);
       if (f.isBlack()) continue;
       Ray shadow;

@@ -99,6 +99,17 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
     return !p.image.bandVariance.empty() && !p.image.yVariance.empty();
   });
   std::vector<double> bandVar(variances ? pixels * nb : 0, 0.0), yVar(variances ? pixels : 0, 0.0);
+  // The AOVs, when every part has them: the white reference averaged like the bands; ids and
+  // depth (the same in every sample range) taken from a part covering the pixel.
+  auto all = [&](auto member) {
+    return std::all_of(parts.begin(), parts.end(),
+                       [&](const ImagePart& p) { return !(p.image.*member).empty(); });
+  };
+  const bool white = all(&SpectralImage::white), ids = all(&SpectralImage::objectId),
+             depth = all(&SpectralImage::depth);
+  std::vector<double> whiteSum(white ? pixels * nb : 0, 0.0);
+  if (ids) out.objectId.assign(pixels, 0), out.materialId.assign(pixels, 0);
+  if (depth) out.depth.assign(pixels, 0.0f);
   std::vector<uint64_t> count(pixels, 0);
   // Which sample ranges cover each pixel, as an order-independent sum of the ranges' hashes:
   // every pixel must end up with the same set (crops of different ranges merged into one
@@ -124,6 +135,11 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
             bandVar[dst * nb + b] += p.bandVariance[src * nb + b] * n * n;
           yVar[dst] += p.yVariance[src] * n * n;
         }
+        if (white)
+          for (int b = 0; b < nb; ++b)
+            whiteSum[dst * nb + b] += static_cast<double>(p.white[src * nb + b]) * n;
+        if (ids) out.objectId[dst] = p.objectId[src], out.materialId[dst] = p.materialId[src];
+        if (depth) out.depth[dst] = p.depth[src];
         count[dst] += p.sampleCount[src];
         rangeSet[dst] += rangeHash[k];
         ++covering[dst];
@@ -170,6 +186,7 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
     out.bandVariance.resize(pixels * nb);
     out.yVariance.resize(pixels);
   }
+  if (white) out.white.resize(pixels * nb);
   for (size_t i = 0; i < pixels; ++i) {
     out.sampleCount[i] = static_cast<uint32_t>(count[i]);
     if (covering[i] == 1) { // a single part: its values, bit for bit
@@ -179,6 +196,7 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
       std::copy_n(&p.radiance[src * nb], nb, &out.radiance[i * nb]);
       std::copy_n(&p.xyz[src * 3], 3, &out.xyz[i * 3]);
       std::copy_n(&p.rgb[src * 3], 3, &out.rgb[i * 3]);
+      if (white) std::copy_n(&p.white[src * nb], nb, &out.white[i * nb]);
       if (variances) {
         std::copy_n(&p.bandVariance[src * nb], nb, &out.bandVariance[i * nb]);
         out.yVariance[i] = p.yVariance[src];
@@ -188,6 +206,8 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
     const double n = static_cast<double>(count[i]);
     for (int b = 0; b < nb; ++b)
       out.radiance[i * nb + b] = static_cast<float>(bandSum[i * nb + b] / n);
+    for (int b = 0; b < nb && white; ++b)
+      out.white[i * nb + b] = static_cast<float>(whiteSum[i * nb + b] / n);
     if (variances) {
       for (int b = 0; b < nb; ++b)
         out.bandVariance[i * nb + b] = static_cast<float>(bandVar[i * nb + b] / (n * n));
@@ -306,8 +326,11 @@ SpectralImage stitchBands(const std::vector<ImagePart>& images) {
   const bool variances = std::all_of(images.begin(), images.end(), [](const ImagePart& p) {
     return !p.image.bandVariance.empty();
   });
+  const bool white = std::all_of(images.begin(), images.end(),
+                                 [](const ImagePart& p) { return !p.image.white.empty(); });
   out.radiance.assign(pixels * nb, 0.0f);
   out.bandVariance.assign(variances ? pixels * nb : 0, 0.0f);
+  out.white.assign(white ? pixels * nb : 0, 0.0f);
   for (size_t c = 0; c < nb; ++c) {
     const SpectralImage& src = images[sortedSources[c].image].image;
     const size_t srcBands = static_cast<size_t>(src.bands.count()),
@@ -315,6 +338,7 @@ SpectralImage stitchBands(const std::vector<ImagePart>& images) {
     for (size_t i = 0; i < pixels; ++i) {
       out.radiance[i * nb + c] = src.radiance[i * srcBands + b];
       if (variances) out.bandVariance[i * nb + c] = src.bandVariance[i * srcBands + b];
+      if (white) out.white[i * nb + c] = src.white[i * srcBands + b];
     }
   }
   double seconds = 0;

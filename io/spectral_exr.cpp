@@ -42,8 +42,8 @@ void writeSpectralExrHalf(const std::string& path, const SpectralImage& image) {
 }
 
 bool fitsInHalf(const SpectralImage& image) {
-  for (const std::vector<float>* v :
-       {&image.radiance, &image.rgb, &image.xyz, &image.bandVariance, &image.yVariance})
+  for (const std::vector<float>* v : {&image.radiance, &image.rgb, &image.xyz, &image.bandVariance,
+                                      &image.yVariance, &image.white, &image.depth})
     for (float x : *v)
       if (!(std::abs(x) <= 65504.0f)) return false;
   return true;
@@ -60,7 +60,11 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
       (!image.sampleCount.empty() && image.sampleCount.size() != pixels) ||
       (!image.xyz.empty() && image.xyz.size() != pixels * 3) ||
       (!image.bandVariance.empty() && image.bandVariance.size() != pixels * nBands) ||
-      (!image.yVariance.empty() && image.yVariance.size() != pixels) || image.originX < 0 ||
+      (!image.yVariance.empty() && image.yVariance.size() != pixels) ||
+      (!image.white.empty() && image.white.size() != pixels * nBands) ||
+      (!image.objectId.empty() && image.objectId.size() != pixels) ||
+      (!image.materialId.empty() && image.materialId.size() != pixels) ||
+      (!image.depth.empty() && image.depth.size() != pixels) || image.originX < 0 ||
       image.originY < 0 || image.originX + image.width > image.displayWidth() ||
       image.originY + image.height > image.displayHeight())
     throw Error(path + ": internal error: image buffers do not match its size");
@@ -107,12 +111,19 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
                  image.bandVariance.data() + b, nb);
     if (!image.yVariance.empty())
       addChannel(std::string(kVariancePrefix) + "Y", image.yVariance.data(), 1);
-    if (!image.sampleCount.empty()) {
-      header.channels().insert(kSampleCountChannel, Imf::Channel(Imf::UINT));
-      fb.insert(kSampleCountChannel,
-                Imf::Slice::Make(Imf::UINT, image.sampleCount.data(), data, sizeof(uint32_t),
-                                 sizeof(uint32_t) * image.width));
-    }
+    for (int b = 0; b < nBands && !image.white.empty(); ++b)
+      addChannel(kWhitePrefix + spectralChannelName(image.bands.centroid(b)),
+                 image.white.data() + b, nb);
+    if (!image.depth.empty()) addChannel(kDepthChannel, image.depth.data(), 1);
+    auto addUint = [&](const char* name, const std::vector<uint32_t>& v) {
+      if (v.empty()) return;
+      header.channels().insert(name, Imf::Channel(Imf::UINT));
+      fb.insert(name, Imf::Slice::Make(Imf::UINT, v.data(), data, sizeof(uint32_t),
+                                       sizeof(uint32_t) * image.width));
+    };
+    addUint(kSampleCountChannel, image.sampleCount);
+    addUint(kObjectIdChannel, image.objectId);
+    addUint(kMaterialIdChannel, image.materialId);
     // Compress line blocks on as many threads as the render may use (the zlib compression
     // of ~70 float channels otherwise takes longer than a short render).
     const int threads = static_cast<int>(
@@ -194,16 +205,32 @@ SpectralImage readSpectralExr(const std::string& path) {
                 Imf::Slice::Make(Imf::FLOAT, img.yVariance.data(), dw, sizeof(float),
                                  sizeof(float) * img.width));
     }
-    if (const Imf::Channel* c = h.channels().findChannel(kSampleCountChannel)) {
-      if (c->type != Imf::UINT)
-        throw Error(path + ": expected the " + std::string(kSampleCountChannel) +
-                    " channel as 32-bit unsigned integers (sample counts), found " +
-                    (c->type == Imf::HALF ? "half floats" : "floats"));
-      img.sampleCount.assign(pixels, 0);
-      fb.insert(kSampleCountChannel,
-                Imf::Slice::Make(Imf::UINT, img.sampleCount.data(), dw, sizeof(uint32_t),
-                                 sizeof(uint32_t) * img.width));
+    if (h.channels().findChannel(kWhitePrefix + spectralChannelName(img.bands.centroid(0)))) {
+      img.white.assign(pixels * nb, 0.0f);
+      for (int b = 0; b < nb; ++b)
+        fb.insert(kWhitePrefix + spectralChannelName(img.bands.centroid(b)),
+                  Imf::Slice::Make(Imf::FLOAT, img.white.data() + b, dw, sizeof(float) * nb,
+                                   sizeof(float) * nb * img.width));
     }
+    if (h.channels().findChannel(kDepthChannel)) {
+      img.depth.assign(pixels, 0.0f);
+      fb.insert(kDepthChannel, Imf::Slice::Make(Imf::FLOAT, img.depth.data(), dw, sizeof(float),
+                                                sizeof(float) * img.width));
+    }
+    auto readUint = [&](const char* name, const char* what, std::vector<uint32_t>& v) {
+      const Imf::Channel* c = h.channels().findChannel(name);
+      if (!c) return;
+      if (c->type != Imf::UINT)
+        throw Error(path + ": expected the " + std::string(name) +
+                    " channel as 32-bit unsigned integers (" + what + "), found " +
+                    (c->type == Imf::HALF ? "half floats" : "floats"));
+      v.assign(pixels, 0);
+      fb.insert(name, Imf::Slice::Make(Imf::UINT, v.data(), dw, sizeof(uint32_t),
+                                       sizeof(uint32_t) * img.width));
+    };
+    readUint(kSampleCountChannel, "sample counts", img.sampleCount);
+    readUint(kObjectIdChannel, "object ids", img.objectId);
+    readUint(kMaterialIdChannel, "material ids", img.materialId);
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     return img;

@@ -24,6 +24,12 @@ struct SpectralImage {
   std::vector<float> bandVariance; ///< [pixel][band] variance of each band mean; empty: not stored
   std::vector<float> yVariance;    ///< [pixel] variance of the mean luminance Y; empty: not stored
   std::vector<uint32_t> sampleCount; ///< [pixel] samples behind each value; empty: not stored
+  /// [pixel][band] the radiance a white Lambertian surface (reflectance 1) would reflect at
+  /// the first hit (a white reference for flat-fielding); empty: not stored
+  std::vector<float> white;
+  std::vector<uint32_t> objectId;   ///< [pixel] object seen at the pixel centre (0: none)
+  std::vector<uint32_t> materialId; ///< [pixel] its material (0: none)
+  std::vector<float> depth; ///< [pixel] camera-space z of the surface at the pixel centre (0: none)
   std::map<std::string, std::string> attributes; ///< provenance, written as string attributes
 
   /// Full image size (the region's when fullWidth/fullHeight are 0).
@@ -35,6 +41,12 @@ struct SpectralImage {
 inline constexpr const char* kSampleCountChannel = "SampleCount";
 /// Prefix of the variance channels ("Variance.Y", "Variance.S0.550,000000nm").
 inline constexpr const char* kVariancePrefix = "Variance.";
+/// Prefix of the white-reference channels ("white.S0.550,000000nm").
+inline constexpr const char* kWhitePrefix = "white.";
+/// Names of the id and depth channels.
+inline constexpr const char* kObjectIdChannel = "ObjectId";
+inline constexpr const char* kMaterialIdChannel = "MaterialId";
+inline constexpr const char* kDepthChannel = "Depth";
 
 /// Channel name of a band centred at nm for Stokes component 0, e.g. "S0.550,000000nm"
 /// (a comma as decimal separator, since a dot separates EXR layers).

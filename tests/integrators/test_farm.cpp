@@ -186,6 +186,42 @@ TEST(Farm, DisjointBandRangesStitch) {
             "render them with one kind of sensor");
 }
 
+ImagePart aovPart(const std::string& name, std::optional<PixelRect> crop, int first, int count) {
+  RenderOptions o;
+  o.crop = crop;
+  o.firstSample = first;
+  o.samples = count;
+  o.whiteReference = true;
+  SpectralImage img = toSpectralImage(render(scene(), o).film);
+  addGeometryAovs(scene(), img);
+  img.attributes["nxrender.renderKey"] = "key";
+  img.attributes["nxrender.seed"] = "0";
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  img.attributes["nxrender.sampleRange"] =
+      std::to_string(first) + ":" + std::to_string(first + count);
+  return {name, img};
+}
+
+// The AOVs merge with the rest: crops bit for bit, sample ranges averaged (white reference)
+// or taken as they are (ids and depth, the same in every range).
+TEST(Farm, AovsMergeLikeTheBands) {
+  const SpectralImage full = aovPart("full", std::nullopt, 0, 4).image;
+  ASSERT_FALSE(full.white.empty());
+  const SpectralImage crops = mergeParts(
+      {aovPart("a", PixelRect{0, 0, 40, 13}, 0, 4), aovPart("b", PixelRect{0, 13, 40, 30}, 0, 4)});
+  EXPECT_EQ(crops.white, full.white);
+  EXPECT_EQ(crops.objectId, full.objectId);
+  EXPECT_EQ(crops.materialId, full.materialId);
+  EXPECT_EQ(crops.depth, full.depth);
+  const SpectralImage ranges =
+      mergeParts({aovPart("r1", std::nullopt, 0, 1), aovPart("r2", std::nullopt, 1, 3)});
+  ASSERT_EQ(ranges.white.size(), full.white.size());
+  for (size_t i = 0; i < full.white.size(); ++i)
+    ASSERT_NEAR(ranges.white[i], full.white[i], 1e-5f * (1 + full.white[i])) << i;
+  EXPECT_EQ(ranges.objectId, full.objectId);
+  EXPECT_EQ(ranges.depth, full.depth);
+}
+
 // A render stopped part-way holds whole tiles with their true sample counts; resuming it
 // ends with the uninterrupted image (up to float rounding of the stored means).
 TEST(Farm, StopAndResumeEqualsUninterrupted) {
