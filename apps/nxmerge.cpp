@@ -15,19 +15,24 @@
 #include "core/memory.h"
 #include "integrators/renderer.h"
 #include "io/atomic_file.h"
+#include "io/envi_export.h"
 #include "io/part_merge.h"
 #include "io/preview_image.h"
 #include "io/spectral_exr.h"
 #include "spectra/colour.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"nxmerge: merges crops and sample ranges of an nxrender image"};
+  CLI::App app{"nxmerge: merges crops, sample ranges and band ranges of an nxrender image"};
   std::string output;
   std::vector<std::string> inputs;
+  bool envi = false;
+  app.add_flag("--envi", envi,
+               "Also write the merged bands as an ENVI cube beside it (OUT.img and OUT.hdr)");
   app.add_option("-o,--output", output, "Merged spectral EXR (its preview goes beside it as .png)")
       ->required();
   app.add_option("parts", inputs,
-                 "Parts written by nxrender (--crop, --spp-range, --tile-of-array)")
+                 "Parts written by nxrender (--crop, --spp-range, --tile-of-array, or disjoint "
+                 "--bands/--sensor ranges of the same scene, seed and samples)")
       ->required();
   CLI11_PARSE(app, argc, argv);
   try {
@@ -36,6 +41,9 @@ int main(int argc, char** argv) {
     const std::string preview = std::filesystem::path(output).replace_extension(".png").string();
     nx::checkWritable(output);
     nx::checkWritable(preview);
+    const std::string enviPath =
+        envi ? std::filesystem::path(output).replace_extension(".img").string() : std::string();
+    if (envi) nx::checkWritable(enviPath), nx::checkWritable(nx::enviHeaderPath(enviPath));
     // Every part is held in memory with the merged image (floats) and its double-precision
     // sums: checked from the headers before anything is read (two 1080p parts took 2.7 GiB).
     double bytes = 0;
@@ -63,6 +71,7 @@ int main(int argc, char** argv) {
       const nx::OutputLock lock(output); // the EXR and its preview as one pair
       nx::writeSpectralExr(output, merged);
       nx::writePreview(preview, merged.width, merged.height, nx::previewPixels(xyz, white));
+      if (envi) nx::writeEnvi(enviPath, merged);
     }
     std::fprintf(stderr, "nxmerge: merged %zu parts into %s and %s (%dx%d, samples %s)\n",
                  parts.size(), output.c_str(), preview.c_str(), merged.width, merged.height,

@@ -316,3 +316,42 @@ TEST(SceneLoader, DeepNestingIsRefusedQuickly) {
 
 } // namespace
 } // namespace nx
+
+namespace nx {
+namespace {
+
+// <sensor> in <settings>: measured responses from a CSV file (relative to the scene), Gaussian
+// bands from centres and FWHMs, boxes with their own edges.
+TEST(SceneLoader, SensorForms) {
+  const std::string dir = ::testing::TempDir() + "sensor_scene";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream csv(dir + "/srf.csv");
+    csv << "nm,a,b\n500,0,0\n510,1,0\n520,0,0\n600,0,0\n610,0,1\n620,0,0\n";
+  }
+  const auto settings = [&](const std::string& sensor) {
+    return "<scene><settings><xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>" + sensor +
+           "</settings><camera><position>0,0,-5</position><look_at>0,0,0</look_at></camera>"
+           "</scene>";
+  };
+  {
+    std::ofstream scene(dir + "/s.scn");
+    scene << settings("<sensor csv=\"srf.csv\"/>");
+  }
+  const SceneDesc csv = loadScene(dir + "/s.scn");
+  ASSERT_EQ(csv.settings.bands.count(), 2);
+  EXPECT_EQ(csv.settings.bands.channel(1).name, "b");
+  EXPECT_NEAR(csv.settings.bands.centroid(1), 610, 1e-9);
+  const SceneDesc g =
+      parseScene(settings("<sensor gaussian=\"450, 550\" fwhm=\"10, 20\"/>"), "t.scn");
+  ASSERT_EQ(g.settings.bands.count(), 2);
+  EXPECT_DOUBLE_EQ(g.settings.bands.fwhm(1), 20);
+  const SceneDesc boxes = parseScene(settings("<sensor boxes=\"400-420, 420-460\"/>"), "t.scn");
+  EXPECT_DOUBLE_EQ(boxes.settings.bands.centroid(1), 440);
+  EXPECT_EQ(
+      test::errorMessage([&] { parseScene(settings("<sensor gaussian=\"450\"/>"), "t.scn"); }),
+      "t.scn:1: expected a fwhm=\"...\" attribute with gaussian=\"...\", found none");
+}
+
+} // namespace
+} // namespace nx
