@@ -24,20 +24,28 @@ const RenderScene& scene() {
   return s;
 }
 
-ImagePart part(const std::string& name, std::optional<PixelRect> crop, int first, int count) {
-  RenderOptions o;
+// A part rendered with `o` for samples [first, first + count) of `crop`, with the attributes
+// nxrender writes for merging.
+ImagePart renderedPart(const std::string& name, RenderOptions o, std::optional<PixelRect> crop,
+                       int first, int count, bool geometryAovs = false) {
   o.crop = crop;
   o.firstSample = first;
   o.samples = count;
   SpectralImage img = toSpectralImage(render(scene(), o).film);
+  if (geometryAovs) addGeometryAovs(scene(), img);
   img.attributes["nxrender.renderKey"] = "key";
   img.attributes["nxrender.seed"] = "0";
   img.attributes["nxrender.bands"] = img.bands.toString();
   img.attributes["nxrender.sampleRange"] =
       std::to_string(first) + ":" + std::to_string(first + count);
-  img.attributes["nxrender.renderSeconds"] = std::to_string(0.25 + count);
-  img.attributes["nxrender.estimatedRelativeError"] = "0.5";
   return {name, img};
+}
+
+ImagePart part(const std::string& name, std::optional<PixelRect> crop, int first, int count) {
+  ImagePart p = renderedPart(name, {}, crop, first, count);
+  p.image.attributes["nxrender.renderSeconds"] = std::to_string(0.25 + count);
+  p.image.attributes["nxrender.estimatedRelativeError"] = "0.5";
+  return p;
 }
 
 // Crops merge into exactly the full render, bit for bit.
@@ -139,16 +147,7 @@ ImagePart bandPart(const std::string& name, const char* bands, std::optional<Pix
                    int first, int count) {
   RenderOptions o;
   o.bands = Sensor::parse(bands);
-  o.crop = crop;
-  o.firstSample = first;
-  o.samples = count;
-  SpectralImage img = toSpectralImage(render(scene(), o).film);
-  img.attributes["nxrender.renderKey"] = "key";
-  img.attributes["nxrender.seed"] = "0";
-  img.attributes["nxrender.bands"] = img.bands.toString();
-  img.attributes["nxrender.sampleRange"] =
-      std::to_string(first) + ":" + std::to_string(first + count);
-  return {name, img};
+  return renderedPart(name, o, crop, first, count);
 }
 
 // Renders of disjoint band ranges (each possibly split into crops) stitch into one image with
@@ -188,18 +187,8 @@ TEST(Farm, DisjointBandRangesStitch) {
 
 ImagePart aovPart(const std::string& name, std::optional<PixelRect> crop, int first, int count) {
   RenderOptions o;
-  o.crop = crop;
-  o.firstSample = first;
-  o.samples = count;
   o.whiteReference = true;
-  SpectralImage img = toSpectralImage(render(scene(), o).film);
-  addGeometryAovs(scene(), img);
-  img.attributes["nxrender.renderKey"] = "key";
-  img.attributes["nxrender.seed"] = "0";
-  img.attributes["nxrender.bands"] = img.bands.toString();
-  img.attributes["nxrender.sampleRange"] =
-      std::to_string(first) + ":" + std::to_string(first + count);
-  return {name, img};
+  return renderedPart(name, o, crop, first, count, /*geometryAovs=*/true);
 }
 
 // The AOVs merge with the rest: crops bit for bit, sample ranges averaged (white reference)
