@@ -186,12 +186,10 @@ private:
       key.push_back(m.reflectance(nm));
       key.push_back(m.kind == MaterialKind::Dielectric ? m.ior.at(nm) : 0.0);
     }
-    key.push_back(static_cast<double>(reinterpret_cast<uintptr_t>(m.reradiation.get())));
-    if (m.fluorescenceModel) {
-      const FluorescenceModel& f = *m.fluorescenceModel;
-      key.insert(key.end(), {f.absorptionPeakNm, f.stokesNm, f.widthNm, f.skew, f.quantumYield,
-                             f.peakAbsorptance});
-    }
+    if (m.reradiation) // the matrix's content (each object builds its own copy)
+      for (int o = 0; o < ReradiationMatrix::kBins; ++o)
+        key.insert(key.end(), {m.reradiation->columnSum(o), m.reradiation->absorptance(o),
+                               m.reradiation->elastic(o, 1.0)});
     return key;
   }
 
