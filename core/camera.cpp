@@ -74,7 +74,7 @@ PinholeCamera::PinholeCamera(const Vec3d& position, const Vec3d& lookAt, const V
              {forward.x, forward.y, forward.z}}};
   const Vector3d rp = multiply(cal_.R, {position.x, position.y, position.z});
   cal_.t = Vec3d(-rp[0], -rp[1], -rp[2]);
-  finish(width, height);
+  finish();
 }
 
 PinholeCamera::PinholeCamera(const CameraCalibration& calibration, int width, int height)
@@ -82,10 +82,10 @@ PinholeCamera::PinholeCamera(const CameraCalibration& calibration, int width, in
   if (width <= 0 || height <= 0) throw Error("camera: image size must be positive");
   if (!(cal_.fx > 0 && cal_.fy > 0 && std::isfinite(cal_.fx) && std::isfinite(cal_.fy)))
     throw Error("camera: focal lengths must be positive");
-  finish(width, height);
+  finish();
 }
 
-void PinholeCamera::finish(int, int) {
+void PinholeCamera::finish() {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) cameraToWorld_[i][j] = cal_.R[j][i];
   // Centre of projection: R C + t = 0, so C = -R^T t.

@@ -68,7 +68,7 @@ public:
   const Vec3d& up() const { return up_; }
 
 private:
-  void finish(int width, int height);
+  void finish(); // derived quantities from cal_
   CameraCalibration cal_;
   Vec3d position_, forward_, right_, up_;
   Matrix3 cameraToWorld_; ///< R transposed
