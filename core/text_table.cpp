@@ -108,6 +108,12 @@ NumberTable parseNumberTable(const std::string& rawText, const std::string& sour
     TableRow row;
     row.line = lineNumber;
     const std::string where = source + ":" + std::to_string(lineNumber);
+    // A spreadsheet in a decimal-comma locale writes "400;0,5": split on both, that reads as
+    // three numbers. Say what it is instead of a column-count error.
+    if (line.find(';') != std::string::npos && line.find(',') != std::string::npos)
+      throw Error(where + ": expected numbers with decimal points, found '" + trim(line) +
+                  "' (semicolons and decimal commas, as a spreadsheet in a decimal-comma locale "
+                  "writes; export with decimal points, e.g. 400,0.5 or 400;0.5)");
     for (const auto& cell : cells) row.values.push_back(parseNumber(cell, where, "a number"));
     table.rows.push_back(std::move(row));
   }

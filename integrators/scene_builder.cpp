@@ -237,8 +237,9 @@ private:
         return extrapolated(Spectrum(makeTabulated(s.nm, s.value, "nm:value pairs")), mode, s.loc,
                             "nm:value pairs");
       case SpectrumDesc::Kind::CsvFile:
-        return extrapolated(Spectrum(parseSpectrumCsv(readReferencedFile(s.path), s.path)), mode,
-                            s.loc, s.path);
+        return extrapolated(
+            Spectrum(parseSpectrumCsv(readReferencedFile(s.path), s.path, s.column)), mode, s.loc,
+            s.column.empty() ? s.path : s.path + " (column " + s.column + ")");
       case SpectrumDesc::Kind::Name:
         break;
       }

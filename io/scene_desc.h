@@ -38,6 +38,7 @@ struct SpectrumDesc {
   std::vector<double> nm;    ///< Kind::Pairs: wavelengths
   std::vector<double> value; ///< Kind::Pairs: values
   std::string path;          ///< Kind::CsvFile: resolved relative to the scene file
+  std::string column;        ///< Kind::CsvFile: the header's name of the value column, or ""
   SourceLocation loc;
 };
 

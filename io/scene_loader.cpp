@@ -341,6 +341,7 @@ private:
                                        const std::vector<std::string>& extraAttributes = {}) const {
     std::vector<std::string> attrs = extraAttributes;
     attrs.push_back("csv");
+    attrs.push_back("column");
     attrs.push_back("extrapolate");
     const std::string t = text(n, attrs);
     SpectrumDesc s;
@@ -354,6 +355,8 @@ private:
       else
         fail(n, "extrapolate=\"zero\" or extrapolate=\"hold\"", shownText(mode));
     }
+    if (n.attribute("column") && !n.attribute("csv"))
+      fail(n, "column=\"...\" only with csv=\"file\"", "column alone");
     if (pugi::xml_attribute csv = n.attribute("csv")) {
       if (!t.empty())
         fail(n, "either csv=\"file\" or text in <" + std::string(n.name()) + ">", "both");
@@ -361,6 +364,10 @@ private:
       if (trim(csvName).empty()) fail(n, "a file name in csv=\"...\"", "an empty one");
       s.kind = SpectrumDesc::Kind::CsvFile;
       s.path = relativeToScene(csvName);
+      if (pugi::xml_attribute column = n.attribute("column")) {
+        s.column = trim(decoded(column.value(), n));
+        if (s.column.empty()) fail(n, "a column name in column=\"...\"", "an empty one");
+      }
       return s;
     }
     if (t.empty()) {

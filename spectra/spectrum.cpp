@@ -80,31 +80,56 @@ TabulatedSpectrum makeTabulated(std::vector<double> nm, std::vector<double> valu
 }
 
 namespace {
-// A tabulated spectrum from a parsed two-column table (errors name table.source and line).
-TabulatedSpectrum spectrumFromTable(const NumberTable& table) {
+// The header's names, for messages: "nm, a, b".
+std::string headerList(const NumberTable& table) {
+  std::string out;
+  for (const std::string& h : table.header) out += (out.empty() ? "" : ", ") + h;
+  return out;
+}
+
+// A tabulated spectrum from a parsed table: the wavelength column and the value column (the
+// second, or the one the header names `column`). Errors name table.source and line.
+TabulatedSpectrum spectrumFromTable(const NumberTable& table, const std::string& column) {
   const std::string& path = table.source;
+  size_t valueColumn = 1, columns = 2;
+  if (!column.empty()) {
+    const auto it = std::find(table.header.begin(), table.header.end(), column);
+    if (table.header.empty())
+      throw Error(path + ":1: expected a header naming the columns (to find column '" + column +
+                  "'), found none");
+    if (it == table.header.begin() || it == table.header.end())
+      throw Error(path + ":1: expected a value column named '" + column + "', found the columns " +
+                  headerList(table));
+    valueColumn = static_cast<size_t>(it - table.header.begin());
+    columns = table.header.size();
+  }
   std::vector<double> nm, value;
   for (const auto& row : table.rows) {
     const std::string where = path + ":" + std::to_string(row.line);
-    if (row.values.size() != 2)
-      throw Error(where + ": expected 2 columns (wavelength, value), found " +
-                  std::to_string(row.values.size()));
+    if (row.values.size() != columns)
+      throw Error(where + ": expected " + std::to_string(columns) +
+                  (column.empty() ? " columns (wavelength, value)" : " columns (as the header)") +
+                  ", found " + std::to_string(row.values.size()) +
+                  (column.empty() && row.values.size() > 2 && table.header.size() > 2
+                       ? " (choose one with column=\"name\": " + headerList(table) + ")"
+                       : ""));
     if (!nm.empty() && row.values[0] <= nm.back())
       throw Error(where + ": expected wavelengths in increasing order, found " +
                   std::to_string(row.values[0]) + " after " + std::to_string(nm.back()));
     nm.push_back(row.values[0]);
-    value.push_back(row.values[1]);
+    value.push_back(row.values[valueColumn]);
   }
   return makeTabulated(std::move(nm), std::move(value), path);
 }
 } // namespace
 
-TabulatedSpectrum readSpectrumCsv(const std::string& path) {
-  return spectrumFromTable(readNumberTable(path, /*allowHeader=*/true));
+TabulatedSpectrum readSpectrumCsv(const std::string& path, const std::string& column) {
+  return spectrumFromTable(readNumberTable(path, /*allowHeader=*/true), column);
 }
 
-TabulatedSpectrum parseSpectrumCsv(const std::string& text, const std::string& source) {
-  return spectrumFromTable(parseNumberTable(text, source, /*allowHeader=*/true));
+TabulatedSpectrum parseSpectrumCsv(const std::string& text, const std::string& source,
+                                   const std::string& column) {
+  return spectrumFromTable(parseNumberTable(text, source, /*allowHeader=*/true), column);
 }
 
 } // namespace nx

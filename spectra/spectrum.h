@@ -137,11 +137,13 @@ Spectrum forRendering(const Spectrum& s);
 TabulatedSpectrum makeTabulated(std::vector<double> nm, std::vector<double> value,
                                 const std::string& where);
 
-/// A tabulated spectrum read from a two-column CSV file (wavelength in nm, value); an
-/// optional header line is allowed. Errors name the file and line.
-TabulatedSpectrum readSpectrumCsv(const std::string& path);
+/// A tabulated spectrum read from a CSV file: wavelength in nm, then the value; an optional
+/// header line is allowed. With `column`, the file may hold several value columns and the
+/// header names the one to take. Errors name the file and line.
+TabulatedSpectrum readSpectrumCsv(const std::string& path, const std::string& column = "");
 
 /// The same from the file's text; `source` names it in errors.
-TabulatedSpectrum parseSpectrumCsv(const std::string& text, const std::string& source);
+TabulatedSpectrum parseSpectrumCsv(const std::string& text, const std::string& source,
+                                   const std::string& column = "");
 
 } // namespace nx

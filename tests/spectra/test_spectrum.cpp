@@ -161,3 +161,39 @@ TEST(SpectrumExtremes, MatchBruteForceForEveryKind) {
 
 } // namespace
 } // namespace nx
+
+namespace nx {
+namespace {
+
+// A multi-column spectral file (e.g. a chart's patches): column="name" takes that column; a
+// wrong name lists the columns there are; without a column the message says how to choose.
+TEST(Spectrum, CsvColumnSelection) {
+  const std::string csv = "wavelength,dark_skin,light_skin\n400,0.05,0.18\n500,0.06,0.3\n";
+  const TabulatedSpectrum light = parseSpectrumCsv(csv, "cc.csv", "light_skin");
+  EXPECT_DOUBLE_EQ(light(450), 0.24);
+  EXPECT_DOUBLE_EQ(parseSpectrumCsv(csv, "cc.csv", "dark_skin")(500), 0.06);
+  EXPECT_EQ(test::errorMessage([&] { parseSpectrumCsv(csv, "cc.csv", "cyan"); }),
+            "cc.csv:1: expected a value column named 'cyan', found the columns wavelength, "
+            "dark_skin, light_skin");
+  EXPECT_EQ(test::errorMessage([&] { parseSpectrumCsv(csv, "cc.csv", "wavelength"); }),
+            "cc.csv:1: expected a value column named 'wavelength', found the columns wavelength, "
+            "dark_skin, light_skin");
+  EXPECT_EQ(test::errorMessage([&] { parseSpectrumCsv(csv, "cc.csv"); }),
+            "cc.csv:2: expected 2 columns (wavelength, value), found 3 (choose one with "
+            "column=\"name\": wavelength, dark_skin, light_skin)");
+  EXPECT_EQ(test::errorMessage([&] { parseSpectrumCsv("400,1\n500,2\n", "n.csv", "a"); }),
+            "n.csv:1: expected a header naming the columns (to find column 'a'), found none");
+}
+
+// Semicolons with decimal commas (a spreadsheet in a decimal-comma locale) are named as such;
+// semicolons alone are a separator like commas.
+TEST(Spectrum, DecimalCommasAreNamed) {
+  EXPECT_EQ(test::errorMessage([] { parseSpectrumCsv("nm;value\n400;0,5\n", "de.csv"); }),
+            "de.csv:2: expected numbers with decimal points, found '400;0,5' (semicolons and "
+            "decimal commas, as a spreadsheet in a decimal-comma locale writes; export with "
+            "decimal points, e.g. 400,0.5 or 400;0.5)");
+  EXPECT_DOUBLE_EQ(parseSpectrumCsv("400;0.5\n500;0.7\n", "s.csv")(500), 0.7);
+}
+
+} // namespace
+} // namespace nx
