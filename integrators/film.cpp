@@ -25,6 +25,16 @@ Film::Film(int width, int height, const PixelRect& rect, const Sensor& bands, bo
   if (whiteReference) whiteSums_.assign(pixels * static_cast<size_t>(nBands_), 0.0);
 }
 
+namespace {
+// True when every lane is finite (a sum of floats in double cannot overflow: it is non-finite
+// only through a lane).
+bool allFinite(const SampledSpectrum& L) {
+  double sum = 0;
+  for (int i = 0; i < kLanes; ++i) sum += static_cast<double>(L[i]);
+  return std::isfinite(sum);
+}
+} // namespace
+
 Film::Pixel Film::newPixel() const {
   Pixel p;
   for (auto& b : p.bands) b.assign(static_cast<size_t>(nBands_), 0.0);
@@ -36,9 +46,7 @@ bool Film::addSample(Pixel& pixel, const SampledWavelengths& lambda, const Sampl
                      bool odd) const {
   const int r = odd ? 1 : 0;
   ++pixel.samples[r];
-  double sum = 0; // a sum of floats in double cannot overflow: non-finite only through a lane
-  for (int i = 0; i < kLanes; ++i) sum += static_cast<double>(L[i]);
-  if (!std::isfinite(sum)) return false;
+  if (!allFinite(L)) return false;
   double* bandSums = pixel.bands[r].data();
   double* xyz = pixel.xyz[r];
   // Each lane adds its estimate to the bands that respond at its wavelength
@@ -62,9 +70,7 @@ bool Film::addSample(Pixel& pixel, const SampledWavelengths& lambda, const Sampl
 
 bool Film::addWhiteSample(Pixel& pixel, const SampledWavelengths& lambda,
                           const SampledSpectrum& L) const {
-  double sum = 0;
-  for (int i = 0; i < kLanes; ++i) sum += static_cast<double>(L[i]);
-  if (!std::isfinite(sum)) return false;
+  if (!allFinite(L)) return false;
   double* white = pixel.white.data();
   for (int i = 0; i < kLanes; ++i) {
     const float v = L[i] * WavelengthSampler::laneWeight(lambda, i);
@@ -161,7 +167,8 @@ double Film::bandRelativeRmsError(int b) const {
     mean += bandSums_[i * nBands_ + b] / counts_[i];
   }
   if (!(mean > 0)) return NAN;
-  return std::sqrt(var / counts_.size()) / (mean / counts_.size());
+  const double pixels = static_cast<double>(counts_.size());
+  return std::sqrt(var / pixels) / (mean / pixels);
 }
 
 double Film::worstBandRelativeRmsError(double loNm, double hiNm) const {

@@ -32,6 +32,24 @@ std::pair<long long, long long> sampleRange(const ImagePart& p) {
   return {a, b};
 }
 
+// The render time of the whole: the parts' times added (CPU-side cost of the image, not the
+// wall clock of a farm that ran them at once); none when a part has no valid time.
+void setTotalRenderSeconds(SpectralImage& out, const std::vector<ImagePart>& parts) {
+  double seconds = 0;
+  bool timed = true;
+  for (const ImagePart& p : parts) {
+    const auto it = p.image.attributes.find("nxrender.renderSeconds");
+    char* end = nullptr;
+    const double t = it == p.image.attributes.end() ? NAN : std::strtod(it->second.c_str(), &end);
+    if (!(t >= 0) || end == nullptr || *end != '\0') timed = false;
+    seconds += t;
+  }
+  if (timed)
+    out.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
+  else
+    out.attributes.erase("nxrender.renderSeconds");
+}
+
 std::string rectText(int x0, int y0, int x1, int y1) {
   return std::to_string(x0) + "," + std::to_string(y0) + "," + std::to_string(x1) + "," +
          std::to_string(y1);
@@ -233,21 +251,7 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
   out.attributes["nxrender.sampleRange"] =
       contiguous ? std::to_string(lo) + ":" + std::to_string(hi) : "merged";
   out.attributes["nxrender.mergedParts"] = std::to_string(parts.size());
-  // The render time of the whole: the parts' times added (CPU-side cost of the image, not the
-  // wall clock of a farm that ran them at once).
-  double seconds = 0;
-  bool timed = true;
-  for (const ImagePart& p : parts) {
-    const auto it = p.image.attributes.find("nxrender.renderSeconds");
-    char* end = nullptr;
-    const double t = it == p.image.attributes.end() ? NAN : std::strtod(it->second.c_str(), &end);
-    if (!(t >= 0) || end == nullptr || *end != '\0') timed = false;
-    seconds += t;
-  }
-  if (timed)
-    out.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
-  else
-    out.attributes.erase("nxrender.renderSeconds");
+  setTotalRenderSeconds(out, parts);
   // The merged image's own error estimate (the first part's would describe only that part).
   if (variances) {
     double var = 0, mean = 0;
@@ -341,16 +345,7 @@ SpectralImage stitchBands(const std::vector<ImagePart>& images) {
       if (white) out.white[i * nb + c] = src.white[i * srcBands + b];
     }
   }
-  double seconds = 0;
-  bool timed = true;
-  for (const ImagePart& p : images) {
-    const auto it = p.image.attributes.find("nxrender.renderSeconds");
-    if (it == p.image.attributes.end())
-      timed = false;
-    else
-      seconds += std::strtod(it->second.c_str(), nullptr);
-  }
-  if (timed) out.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
+  setTotalRenderSeconds(out, images);
   out.attributes["nxrender.stitchedBandSets"] = std::to_string(images.size());
   return out;
 }

@@ -10,23 +10,29 @@
 namespace nx {
 namespace {
 
+// Adds one sample of a 3000 K black body seen directly, at the wavelengths drawn for primary
+// sample u.
+void addBlackbodySample(const Film& film, Film::Pixel& pixel, const WavelengthSampler& wavelengths,
+                        float u) {
+  static const Spectrum radiance(BlackbodySpectrum{3000});
+  const SampledWavelengths w = wavelengths.sample(u);
+  SampledSpectrum L;
+  for (int k = 0; k < kLanes; ++k) L[k] = static_cast<float>(radiance(w.lambda[k]));
+  film.addSample(pixel, w, L, false);
+}
+
 // Relative standard deviation of each band's pixel estimate for a smooth radiance (a 3000 K
 // black body seen directly), `spp` samples per pixel, over many pixels: the noise the wavelength
 // density alone puts into the bands.
 std::vector<double> bandNoise(const Sensor& sensor, const WavelengthSampler& wavelengths, int spp) {
   const Film film(1, 1, sensor);
-  const Spectrum radiance(BlackbodySpectrum{3000});
   std::vector<test::RunningStats> stats(static_cast<size_t>(sensor.count()));
   Film::Pixel pixel = film.newPixel();
   for (uint32_t p = 0; p < 3000; ++p) {
     Film::resetPixel(pixel);
-    for (int i = 0; i < spp; ++i) {
-      const SampledWavelengths w =
-          wavelengths.sample(sampleValue(SamplerKind::Independent, p, i, 0, 3));
-      SampledSpectrum L;
-      for (int k = 0; k < kLanes; ++k) L[k] = static_cast<float>(radiance(w.lambda[k]));
-      film.addSample(pixel, w, L, false);
-    }
+    for (int i = 0; i < spp; ++i)
+      addBlackbodySample(film, pixel, wavelengths,
+                         sampleValue(SamplerKind::Independent, p, i, 0, 3));
     for (int b = 0; b < sensor.count(); ++b)
       stats[static_cast<size_t>(b)].add(pixel.bands[0][static_cast<size_t>(b)] / spp);
   }
@@ -67,11 +73,7 @@ TEST(Film, SensorDensityBandsAreUnbiased) {
   Film::Pixel pixel = film.newPixel();
   for (uint32_t i = 0; i < 200000; ++i) {
     Film::resetPixel(pixel);
-    const SampledWavelengths w =
-        wavelengths.sample(sampleValue(SamplerKind::Independent, 0, i, 0, 5));
-    SampledSpectrum L;
-    for (int k = 0; k < kLanes; ++k) L[k] = static_cast<float>(radiance(w.lambda[k]));
-    film.addSample(pixel, w, L, false);
+    addBlackbodySample(film, pixel, wavelengths, sampleValue(SamplerKind::Independent, 0, i, 0, 5));
     for (int b = 0; b < sensor.count(); ++b)
       stats[static_cast<size_t>(b)].add(pixel.bands[0][static_cast<size_t>(b)]);
   }
