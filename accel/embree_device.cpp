@@ -10,6 +10,12 @@ EmbreeDevice::EmbreeDevice(const std::string& config) {
     throw Error("cannot create the Embree device (error " +
                 std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
   rtcSetDeviceErrorFunction(device_, &EmbreeDevice::onError, this);
+  rtcSetDeviceMemoryMonitorFunction(device_, &EmbreeDevice::onMemory, this);
+}
+
+bool EmbreeDevice::onMemory(void* self, ssize_t bytes, bool) {
+  static_cast<EmbreeDevice*>(self)->bytes_.fetch_add(bytes, std::memory_order_relaxed);
+  return true; // never refuse: the memory budget is checked before building
 }
 
 EmbreeDevice::~EmbreeDevice() {

@@ -3,6 +3,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <atomic>
+#include <cstdint>
 #include <string>
 
 namespace nx {
@@ -21,9 +23,13 @@ public:
   RTCDevice handle() const { return device_; }
   /// Throws nx::Error if Embree reported an error since the last call, naming `context`.
   void throwIfError(const std::string& context);
+  /// Bytes Embree holds now (its memory monitor's running sum).
+  int64_t bytesInUse() const { return bytes_.load(std::memory_order_relaxed); }
 
 private:
   static void onError(void* self, RTCError code, const char* message);
+  static bool onMemory(void* self, ssize_t bytes, bool post);
+  std::atomic<int64_t> bytes_{0};
   RTCDevice device_ = nullptr;
   std::string lastError_;
 };

@@ -1,10 +1,13 @@
 #include "accel/geometry_scene.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
 
 #include "core/error.h"
+#include "core/frame.h"
+#include "core/math_util.h"
 #include "core/ray_offset.h"
 
 namespace nx {
@@ -60,16 +63,7 @@ void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
   }
 }
 
-// Embree's intersection context extended with the sphere an occlusion query skips (the
-// context pointer reaches the callbacks unchanged).
-struct OcclusionContext {
-  RTCIntersectContext embree;
-  uint32_t ignoredSphere;
-};
-
 void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
-  if (reinterpret_cast<const OcclusionContext*>(args->context)->ignoredSphere == args->primID)
-    return;
   const auto& s = static_cast<const SphereShape*>(args->geometryUserPtr)[args->primID];
   const unsigned n = args->N;
   for (unsigned i = 0; i < n; ++i) {
@@ -100,10 +94,18 @@ RTCRay toEmbree(const Ray& r) {
 } // namespace
 
 GeometryScene::GeometryScene(EmbreeDevice& device, std::vector<SphereShape> spheres,
-                             std::vector<PlaneShape> planes, std::vector<TriangleShape> triangles)
-    : spheres_(std::move(spheres)), planes_(std::move(planes)), triangles_(std::move(triangles)) {
+                             std::vector<PlaneShape> planes, std::vector<TriangleMesh> meshes)
+    : spheres_(std::move(spheres)), planes_(std::move(planes)), meshes_(std::move(meshes)) {
+  const int64_t before = device.bytesInUse();
   scene_ = rtcNewScene(device.handle());
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  auto attach = [&](RTCGeometry g, GeometryEntry entry) {
+    rtcCommitGeometry(g);
+    const unsigned id = rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+    if (byGeomId_.size() <= id) byGeomId_.resize(id + 1, {ShapeKind::Sphere, 0});
+    byGeomId_[id] = entry;
+  };
   if (!spheres_.empty()) {
     RTCGeometry g = rtcNewGeometry(device.handle(), RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(spheres_.size()));
@@ -111,32 +113,33 @@ GeometryScene::GeometryScene(EmbreeDevice& device, std::vector<SphereShape> sphe
     rtcSetGeometryBoundsFunction(g, sphereBounds, nullptr);
     rtcSetGeometryIntersectFunction(g, sphereIntersect);
     rtcSetGeometryOccludedFunction(g, sphereOccluded);
-    rtcCommitGeometry(g);
-    sphereGeomId_ = rtcAttachGeometry(scene_, g);
-    rtcReleaseGeometry(g);
+    attach(g, {ShapeKind::Sphere, 0});
   }
-  if (!triangles_.empty()) {
+  for (size_t m = 0; m < meshes_.size(); ++m) {
+    const TriangleMesh& mesh = meshes_[m];
     RTCGeometry g = rtcNewGeometry(device.handle(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * triangles_.size()));
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles_.size()));
-    if (!v || !idx) device.throwIfError("triangle buffers");
-    for (size_t t = 0; t < triangles_.size(); ++t) {
-      const Vec3d* corners[3] = {&triangles_[t].a, &triangles_[t].b, &triangles_[t].c};
-      for (int k = 0; k < 3; ++k) {
-        v[9 * t + 3 * k + 0] = static_cast<float>(corners[k]->x);
-        v[9 * t + 3 * k + 1] = static_cast<float>(corners[k]->y);
-        v[9 * t + 3 * k + 2] = static_cast<float>(corners[k]->z);
-        idx[3 * t + k] = static_cast<unsigned>(3 * t + k);
-      }
-    }
-    rtcCommitGeometry(g);
-    triangleGeomId_ = rtcAttachGeometry(scene_, g);
-    rtcReleaseGeometry(g);
+    // Embree reads the mesh's buffers in place (no copy): they live as long as this scene.
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                               mesh.positionData(), 0, 3 * sizeof(float), mesh.vertexCount());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indexData(), 0,
+                               3 * sizeof(uint32_t), mesh.triangleCount());
+    device.throwIfError("mesh buffers");
+    attach(g, {ShapeKind::Triangle, static_cast<uint32_t>(m)});
   }
   rtcCommitScene(scene_);
   device.throwIfError("building the scene's BVH");
+  embreeBytes_ = static_cast<size_t>(std::max<int64_t>(0, device.bytesInUse() - before));
+}
+
+BoundingBox GeometryScene::bounds() const {
+  BoundingBox b;
+  for (const SphereShape& s : spheres_) {
+    b.add(s.center - Vec3d(s.radius, s.radius, s.radius));
+    b.add(s.center + Vec3d(s.radius, s.radius, s.radius));
+  }
+  for (const TriangleMesh& m : meshes_)
+    for (uint32_t i = 0; i < m.vertexCount(); ++i) b.add(Vec3d(m.position(i)));
+  return b;
 }
 
 GeometryScene::~GeometryScene() {
@@ -149,7 +152,7 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
   float tBest = ray.tMax;
   bool found = false;
   ShapeKind kind = ShapeKind::Plane;
-  uint32_t index = 0;
+  uint32_t index = 0, prim = 0;
   Vec3 ng;
   // Without branches on the outcome (a plane is hit by about half of all rays, which no
   // predictor can guess) and with the divisions independent of each other.
@@ -176,8 +179,10 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     found = true;
     tBest = rh.ray.tfar;
     ng = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-    kind = rh.hit.geomID == triangleGeomId_ ? ShapeKind::Triangle : ShapeKind::Sphere;
-    index = rh.hit.primID;
+    const GeometryEntry& entry = byGeomId_[rh.hit.geomID];
+    kind = entry.kind;
+    index = kind == ShapeKind::Sphere ? rh.hit.primID : entry.mesh;
+    prim = rh.hit.primID;
     baryU = rh.hit.u;
     baryV = rh.hit.v;
   }
@@ -186,6 +191,7 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.t = tBest;
   hit.kind = kind;
   hit.index = index;
+  hit.prim = kind == ShapeKind::Triangle ? prim : 0;
   if (kind == ShapeKind::Sphere) {
     // Re-project onto the surface in double precision: the point is then as accurate as the
     // float it is stored in, whatever the sphere's size.
@@ -193,25 +199,24 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     const Vec3d n = normalize(o + d * static_cast<double>(tBest) - s.center);
     hit.p = Vec3(s.center + n * s.radius);
     hit.ng = Vec3(n);
+    hit.ns = hit.ng;
+    // u = phi / 2 pi around the y axis, v = theta / pi from +y; dp/du = 2 pi (-z, 0, x) r.
+    const double phi = std::atan2(n.x, n.z);
+    hit.u = static_cast<float>((phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi));
+    hit.v = static_cast<float>(std::acos(std::clamp(n.y, -1.0, 1.0)) / kPi);
+    hit.dpdu = Vec3(Vec3d(n.z, 0, -n.x) * (2 * kPi * s.radius));
+    hit.pError = roundingError(hit.p);
   } else if (kind == ShapeKind::Plane) {
     const PlaneShape& pl = planes_[index];
     const Vec3d q = o + d * static_cast<double>(tBest);
     hit.p = Vec3(q - pl.normal * (dot(pl.normal, q) - pl.distance)); // exactly onto the plane
-    hit.ng = ng;
+    hit.ng = hit.ns = ng;
+    hit.u = hit.v = 0;
+    hit.dpdu = Frame::fromNormal(ng).s;
+    hit.pError = roundingError(hit.p);
   } else {
-    // Barycentric interpolation in double from Embree's (u, v): the error is that of u and v
-    // (a few float ULPs of the edges) plus the final rounding (pbrt-v4 6.8.5).
-    const TriangleShape& tr = triangles_[index];
-    const double u = baryU, v = baryV, w = 1.0 - u - v;
-    const Vec3d q = tr.a * w + tr.b * u + tr.c * v;
-    hit.p = Vec3(q);
-    const Vec3d spread(std::abs(w * tr.a.x) + std::abs(u * tr.b.x) + std::abs(v * tr.c.x),
-                       std::abs(w * tr.a.y) + std::abs(u * tr.b.y) + std::abs(v * tr.c.y),
-                       std::abs(w * tr.a.z) + std::abs(u * tr.b.z) + std::abs(v * tr.c.z));
-    hit.pError = Vec3(spread * static_cast<double>(floatGamma(7)));
-    hit.ng = normalize(ng);
+    fillMeshHit(baryU, baryV, ng, hit);
   }
-  if (kind != ShapeKind::Triangle) hit.pError = roundingError(hit.p);
   if (!isFinite(hit.p) || !isFinite(hit.ng)) {
     assert(!"a non-finite hit left the intersector"); // debug builds stop here
     nonFinite_.fetch_add(1, std::memory_order_relaxed);
@@ -220,7 +225,48 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
   return true;
 }
 
-bool GeometryScene::occluded(const Ray& ray, uint32_t ignoredSphere) const {
+void GeometryScene::fillMeshHit(float baryU, float baryV, const Vec3& ngEmbree,
+                                SurfaceHit& hit) const {
+  const TriangleMesh& mesh = meshes_[hit.index];
+  const uint32_t* idx = mesh.triangle(hit.prim);
+  const TriangleShape tr = mesh.corners(hit.prim);
+  // Barycentric interpolation in double from Embree's (u, v): the error is that of u and v
+  // (a few float ULPs of the edges) plus the final rounding (pbrt-v4 6.8.5).
+  const double u = baryU, v = baryV, w = 1.0 - u - v;
+  hit.p = Vec3(tr.a * w + tr.b * u + tr.c * v);
+  const Vec3d spread(std::abs(w * tr.a.x) + std::abs(u * tr.b.x) + std::abs(v * tr.c.x),
+                     std::abs(w * tr.a.y) + std::abs(u * tr.b.y) + std::abs(v * tr.c.y),
+                     std::abs(w * tr.a.z) + std::abs(u * tr.b.z) + std::abs(v * tr.c.z));
+  hit.pError = Vec3(spread * static_cast<double>(floatGamma(7)));
+  hit.ng = normalize(ngEmbree);
+  // Surface coordinates: the mesh's uv, or the barycentrics mapped to (0,0), (1,0), (1,1).
+  float uv[3][2] = {{0, 0}, {1, 0}, {1, 1}};
+  if (mesh.hasUv())
+    for (int k = 0; k < 3; ++k) mesh.uv(idx[k], uv[k][0], uv[k][1]);
+  hit.u = static_cast<float>(w * uv[0][0] + u * uv[1][0] + v * uv[2][0]);
+  hit.v = static_cast<float>(w * uv[0][1] + u * uv[1][1] + v * uv[2][1]);
+  // dp/du from the uv differences (pbrt-v4 6.5.3); a degenerate uv map gets any tangent.
+  const double du02 = uv[0][0] - uv[2][0], du12 = uv[1][0] - uv[2][0];
+  const double dv02 = uv[0][1] - uv[2][1], dv12 = uv[1][1] - uv[2][1];
+  const double det = du02 * dv12 - dv02 * du12;
+  const Vec3d dp02 = tr.a - tr.c, dp12 = tr.b - tr.c;
+  const Vec3d dpdu = (dp02 * dv12 - dp12 * dv02) * (1.0 / det);
+  hit.dpdu = std::abs(det) > 1e-12 && isFinite(Vec3(dpdu)) && length(cross(dpdu, Vec3d(hit.ng))) > 0
+                 ? Vec3(dpdu)
+                 : Frame::fromNormal(hit.ng).s;
+  hit.ns = hit.ng;
+  if (mesh.hasNormals()) {
+    const Vec3 n = mesh.normal(idx[0]) * static_cast<float>(w) +
+                   mesh.normal(idx[1]) * static_cast<float>(u) +
+                   mesh.normal(idx[2]) * static_cast<float>(v);
+    const float len = length(n);
+    // The shading normal lies on the geometric normal's side (pbrt-v4's convention), so that
+    // both describe the same surface side.
+    if (len > 0 && std::isfinite(len)) hit.ns = dot(n, hit.ng) < 0 ? -(n / len) : n / len;
+  }
+}
+
+bool GeometryScene::occluded(const Ray& ray) const {
   const Vec3d o(ray.o), d(ray.d);
   bool blocked = false;
   for (const auto& p : planes_) {
@@ -228,11 +274,10 @@ bool GeometryScene::occluded(const Ray& ray, uint32_t ignoredSphere) const {
     blocked |= t > ray.tMin && t < ray.tMax;
   }
   if (blocked) return true;
-  OcclusionContext context;
-  rtcInitIntersectContext(&context.embree);
-  context.ignoredSphere = ignoredSphere;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
   RTCRay r = toEmbree(ray);
-  rtcOccluded1(scene_, &context.embree, &r);
+  rtcOccluded1(scene_, &context, &r);
   return r.tfar == -std::numeric_limits<float>::infinity();
 }
 

@@ -1,6 +1,7 @@
 #pragma once
-// The scene's geometry in Embree: spheres as user geometry, triangles as Embree triangles,
-// and infinite planes intersected analytically after the BVH query.
+// The scene's geometry in Embree: spheres as user geometry, each triangle mesh as one Embree
+// triangle geometry reading the mesh's own buffers, and infinite planes intersected
+// analytically after the BVH query.
 //
 // Why planes are not in the BVH: Embree silently drops primitives with bounds beyond about
 // 1.8e18, and huge finite bounds make every BVH node around them useless (measured here: +20%
@@ -10,12 +11,15 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "accel/embree_device.h"
 #include "accel/shapes.h"
+#include "accel/triangle_mesh.h"
 #include "core/ray.h"
 
 namespace nx {
@@ -30,43 +34,68 @@ struct SurfaceHit {
   Vec3 pError; ///< bound on |p - true surface point| per component
   Vec3 ng;     ///< unit geometric normal (outward for spheres; the plane's normal;
                ///< (b - a) x (c - a) for triangles), not flipped towards the ray
+  Vec3 ns;     ///< unit shading normal: interpolated vertex normals on meshes that have them
+               ///< (on the side of ng), else ng
+  Vec3 dpdu;   ///< surface tangent along u (not unit; orthogonal to nothing in particular)
+  float u = 0, v = 0; ///< surface coordinates: mesh uv (or barycentrics), sphere (phi, theta)
+                      ///< / (2 pi, pi), plane 0
   ShapeKind kind = ShapeKind::Sphere;
-  uint32_t index = 0; ///< index of the shape within its kind
+  uint32_t index = 0; ///< index of the shape within its kind (sphere, plane, mesh)
+  uint32_t prim = 0;  ///< triangle within the mesh (0 for spheres and planes)
+};
+
+/// An axis-aligned box; empty when lo > hi.
+struct BoundingBox {
+  Vec3d lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  /// Grows the box to hold p.
+  void add(const Vec3d& p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  /// True if nothing was added.
+  bool empty() const { return lo.x > hi.x; }
 };
 
 /// The geometry of a scene, ready for ray queries from any number of threads.
 class GeometryScene {
 public:
-  /// Builds the BVH over spheres and triangles; planes are kept for the analytic pass.
+  /// Builds the BVH over spheres and meshes; planes are kept for the analytic pass. Meshes must
+  /// be valid (TriangleMesh::validate()).
   GeometryScene(EmbreeDevice& device, std::vector<SphereShape> spheres,
-                std::vector<PlaneShape> planes, std::vector<TriangleShape> triangles);
+                std::vector<PlaneShape> planes, std::vector<TriangleMesh> meshes);
   ~GeometryScene();
   GeometryScene(const GeometryScene&) = delete;
   GeometryScene& operator=(const GeometryScene&) = delete;
 
   /// Nearest hit of `ray` in (ray.tMin, ray.tMax), or false.
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
-  /// Sphere index meaning "no sphere" for occluded().
-  static constexpr uint32_t kNoSphere = 0xffffffffu;
-  /// True if anything blocks `ray` in (ray.tMin, ray.tMax). Sphere `ignoredSphere` is not
-  /// tested: a shadow ray towards a sphere light ends before that sphere's surface, where the
-  /// sphere cannot block it, so its test would only cost time.
-  bool occluded(const Ray& ray, uint32_t ignoredSphere = kNoSphere) const;
+  /// True if anything blocks `ray` in (ray.tMin, ray.tMax).
+  bool occluded(const Ray& ray) const;
 
   /// Number of hits discarded because their point or normal was not finite (should be 0).
   uint64_t nonFiniteHits() const { return nonFinite_.load(std::memory_order_relaxed); }
 
   const std::vector<SphereShape>& spheres() const { return spheres_; }
   const std::vector<PlaneShape>& planes() const { return planes_; }
-  const std::vector<TriangleShape>& triangles() const { return triangles_; }
+  const std::vector<TriangleMesh>& meshes() const { return meshes_; }
+  /// Bounds of the spheres and meshes (planes are unbounded).
+  BoundingBox bounds() const;
+  /// Bytes Embree's BVH and buffers take beyond the meshes' own (from its memory monitor).
+  size_t embreeBytes() const { return embreeBytes_; }
 
 private:
   std::vector<SphereShape> spheres_;
   std::vector<PlaneShape> planes_;
-  std::vector<TriangleShape> triangles_;
+  std::vector<TriangleMesh> meshes_;
   RTCScene scene_ = nullptr;
-  unsigned sphereGeomId_ = RTC_INVALID_GEOMETRY_ID;
-  unsigned triangleGeomId_ = RTC_INVALID_GEOMETRY_ID;
+  /// The primitive table: what each Embree geometry id is (sphere set or mesh number).
+  struct GeometryEntry {
+    ShapeKind kind;
+    uint32_t mesh;
+  };
+  std::vector<GeometryEntry> byGeomId_;
+  size_t embreeBytes_ = 0;
+  void fillMeshHit(float baryU, float baryV, const Vec3& ngEmbree, SurfaceHit& hit) const;
   mutable std::atomic<uint64_t> nonFinite_{0};
 };
 

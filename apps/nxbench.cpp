@@ -71,21 +71,11 @@ Errors compare(const Film& f, const SpectralImage& ref) {
 // box of its spheres, triangles and camera, directions uniform. The rays are made before the
 // clock starts, so the figure is the queries' alone.
 double rawRaysPerSecond(const RenderScene& scene) {
-  Vec3d lo = Vec3d(scene.camera.forward()) * 0.0, hi = lo;
-  bool any = false;
-  auto grow = [&](const Vec3d& p) {
-    if (!any) lo = hi = p, any = true;
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  };
-  for (const auto& s : scene.geometry->spheres()) {
-    grow(s.center - Vec3d(s.radius, s.radius, s.radius));
-    grow(s.center + Vec3d(s.radius, s.radius, s.radius));
-  }
-  for (const auto& t : scene.geometry->triangles()) grow(t.a), grow(t.b), grow(t.c);
+  BoundingBox box = scene.geometry->bounds();
   const Ray camRay =
       scene.camera.generateRay(0.5 * scene.settings.width, 0.5 * scene.settings.height);
-  grow(Vec3d(camRay.o));
+  box.add(Vec3d(camRay.o));
+  const Vec3d lo = box.lo, hi = box.hi;
   const uint64_t rays = 4000000;
   std::vector<Ray> batch(rays);
   tbb::parallel_for(

@@ -132,11 +132,8 @@ int main(int argc, char** argv) {
         }));
     row("per ray: shadow ray", nsPerCall(n, [&](size_t i) {
           if (!lit[i]) return;
-          Ray shadow;
-          shadow.o = offsetRayOrigin(in[i].hit.p, in[i].hit.pError, in[i].hit.ng, ls[i].wi);
-          shadow.d = ls[i].wi;
-          shadow.tMax = ls[i].distance * kShadowShorten;
-          keep(scene.geometry->occluded(shadow, ls[i].sphere));
+          keep(scene.geometry->occluded(
+              shadowRayTo(in[i].hit.p, in[i].hit.pError, in[i].hit.ng, ls[i])));
         }));
     row("per vertex: reflectance at the lanes", nsPerCall(n, [&](size_t i) {
           const Material& m = scene.materials[scene.appearance(in[i].hit).material];

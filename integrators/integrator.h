@@ -5,7 +5,7 @@
 
 #include "core/ray.h"
 #include "core/sampler.h"
-#include "integrators/light_sampler.h"
+#include "integrators/lights/light_sampler.h"
 #include "integrators/render_scene.h"
 
 namespace nx {
@@ -14,10 +14,10 @@ namespace nx {
 enum class LightSampling : uint8_t {
   Mis,      ///< next-event estimation and BSDF sampling, combined by the power heuristic
   BsdfOnly, ///< lights are found only by BSDF-sampled rays
-  NeeOnly,  ///< emitting spheres light diffuse surfaces by next-event estimation alone (a
-            ///< sphere hit after a diffuse bounce counts zero); emitters that next-event
-            ///< estimation cannot sample (planes, triangles, the background) are still found
-            ///< by BSDF-sampled rays, so the image stays unbiased
+  NeeOnly,  ///< lights reach diffuse surfaces by next-event estimation alone (an emitter hit
+            ///< after a diffuse bounce counts zero); emitters that next-event estimation
+            ///< cannot sample (planes) are still found by BSDF-sampled rays, so the image
+            ///< stays unbiased
 };
 
 /// Longest path the path tracer follows, far beyond any <depth>: Russian roulette ends paths
@@ -29,19 +29,6 @@ inline SampledSpectrum evaluate(const Spectrum& s, const SampledWavelengths& lam
   SampledSpectrum out;
   s.evaluate(lambda, out);
   return out;
-}
-
-/// Shadow rays stop this fraction short of the light: the light's own surface is at the sampled
-/// distance exactly (same float ray, double-precision root); the margin only absorbs the
-/// rounding of that distance.
-inline constexpr float kShadowShorten = 1.0f - 1e-5f;
-
-/// True when next-event estimation from the outside of an emitting sphere (a ray arriving
-/// along rayDir from outside) aimed at that sphere itself: its outside cannot see itself, but a
-/// point rounded to just inside the sphere would be sampled "from inside" and lit by its own
-/// emission (a bias, now excluded). From the inside (a camera in a furnace) it sees itself.
-inline bool aimsAtOwnSphere(const SurfaceHit& hit, const LightSample& ls, const Vec3& rayDir) {
-  return hit.kind == ShapeKind::Sphere && ls.sphere == hit.index && dot(rayDir, hit.ng) < 0;
 }
 
 /// Everything a per-sample estimator needs besides the sample itself.

@@ -3,6 +3,7 @@
 #include "core/ray_offset.h"
 #include "integrators/fluorescent_vertex.h"
 #include "integrators/integrator.h"
+#include "integrators/lights/direct_lighting.h"
 #include "integrators/materials/bsdf.h"
 #include "integrators/sampling.h"
 
@@ -43,21 +44,22 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
   for (int bounce = 0;; ++bounce) {
     SurfaceHit hit;
     ++counters.rays;
+    // Weight of an emitter found by this BSDF-sampled ray that next-event estimation could
+    // also have sampled, with density lightPdf.
+    auto emitterWeight = [&](float lightPdf) {
+      if (specular || ctx.lightSampling == LightSampling::BsdfOnly || !(lightPdf > 0)) return 1.0f;
+      return ctx.lightSampling == LightSampling::NeeOnly ? 0.0f : powerHeuristic(prevPdf, lightPdf);
+    };
     if (!scene.geometry->intersect(ray, hit)) {
-      if (scene.background) L += beta * evaluate(*scene.background, current);
+      if (scene.background)
+        L += beta * evaluate(*scene.background, current) *
+             emitterWeight(ctx.lights->pdfBackground(prevP));
       break;
     }
     const ShapeAppearance& app = scene.appearance(hit);
     const bool whiteHere = kWhite && bounce == 0;
     if (app.emission >= 0 && !whiteHere) {
-      float w = 1;
-      if (!specular && hit.kind == ShapeKind::Sphere &&
-          ctx.lightSampling != LightSampling::BsdfOnly) {
-        // This light could also have been reached by next-event estimation.
-        w = ctx.lightSampling == LightSampling::NeeOnly
-                ? 0.0f
-                : powerHeuristic(prevPdf, ctx.lights->pdfSphere(prevP, hit.index, ray.d));
-      }
+      const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d));
       if (w > 0)
         L += beta * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) * w;
     }
@@ -85,22 +87,13 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       const Sample2 uLight = rng.next2D();
       LightSample ls;
       const SampledWavelengths& lit = fluorescent ? shift.excited : current;
-      if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls) && !aimsAtOwnSphere(hit, ls, ray.d)) {
-        const SampledSpectrum f =
-            fluorescent ? shift.albedo * bsdf.diffuseFactor(ls.wi) : bsdf.evalDiffuse(ls.wi);
-        if (!f.isBlack()) {
-          Ray shadow;
-          shadow.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ls.wi);
-          shadow.d = ls.wi;
-          shadow.tMax = ls.distance * kShadowShorten;
-          ++counters.rays;
-          if (!scene.geometry->occluded(shadow, ls.sphere)) {
-            const float w = (ls.delta || ctx.lightSampling == LightSampling::NeeOnly)
-                                ? 1.0f
-                                : powerHeuristic(ls.pdf, bsdf.pdfDiffuse(ls.wi));
-            L += beta * f * ls.radiance * (w / ls.pdf);
-          }
-        }
+      if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls)) {
+        auto f = [&](const Vec3& wi) {
+          return fluorescent ? shift.albedo * bsdf.diffuseFactor(wi) : bsdf.evalDiffuse(wi);
+        };
+        auto pdf = [&](const Vec3& wi) { return bsdf.pdfDiffuse(wi); };
+        L += beta * directLight(scene, hit, ray.d, ls, f, pdf,
+                                ctx.lightSampling != LightSampling::NeeOnly, counters);
       }
     }
 

@@ -53,6 +53,15 @@ struct ShapeAppearance {
   uint32_t materialId = 0; ///< 1 + the index of the first object with the same material
 };
 
+/// The appearance of a mesh: one for the whole mesh (a mesh file), or one per triangle (the
+/// scene's inline triangles, gathered into one mesh).
+struct MeshAppearance {
+  ShapeAppearance whole;
+  std::vector<ShapeAppearance> perTriangle; ///< empty: `whole` for every triangle
+  /// The appearance of triangle t.
+  const ShapeAppearance& of(uint32_t t) const { return perTriangle.empty() ? whole : perTriangle[t]; }
+};
+
 /// Settings resolved from the scene file.
 struct RenderSettings {
   int width = 0, height = 0;
@@ -79,7 +88,8 @@ struct RenderScene {
   std::unique_ptr<GeometryScene> geometry;
   std::vector<Material> materials;
   std::vector<Spectrum> emission; ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
-  std::vector<ShapeAppearance> spheres, planes, triangles; ///< parallel to the geometry's shapes
+  std::vector<ShapeAppearance> spheres, planes; ///< parallel to the geometry's shapes
+  std::vector<MeshAppearance> meshes;           ///< parallel to the geometry's meshes
   std::vector<PointLight> pointLights;
   std::optional<Spectrum> background; ///< uniform environment radiance
   Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
@@ -99,7 +109,7 @@ struct RenderScene {
     case ShapeKind::Plane:
       return planes[hit.index];
     default:
-      return triangles[hit.index];
+      return meshes[hit.index].of(hit.prim);
     }
   }
 };

@@ -46,7 +46,9 @@ public:
 
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
-    std::vector<TriangleShape> triangles;
+    std::vector<TriangleShape> triangles; // the inline triangles, gathered into one mesh
+    MeshAppearance inlineTriangles;
+    std::vector<TriangleMesh> meshes;
     std::vector<std::pair<std::vector<double>, uint32_t>> materialIds; // key -> id
     for (const ObjectDesc& o : desc_.objects) {
       ShapeAppearance app;
@@ -75,7 +77,7 @@ public:
         break;
       case ShapeType::Triangle:
         triangles.push_back({o.vertices[0], o.vertices[1], o.vertices[2]});
-        scene.triangles.push_back(app);
+        inlineTriangles.perTriangle.push_back(app);
         break;
       }
     }
@@ -95,12 +97,16 @@ public:
       pl.intensity = forRendering(pl.intensity);
       scene.pointLights.push_back(std::move(pl));
     }
+    if (!triangles.empty()) {
+      meshes.push_back(TriangleMesh::fromTriangles(triangles));
+      scene.meshes.push_back(std::move(inlineTriangles));
+    }
     scene.contentDigest = digest_;
     scene.tables = tables_;
     if (!withGeometry) return scene;
     scene.device = std::make_unique<EmbreeDevice>();
     scene.geometry = std::make_unique<GeometryScene>(*scene.device, std::move(spheres),
-                                                     std::move(planes), std::move(triangles));
+                                                     std::move(planes), std::move(meshes));
     return scene;
   }
 

@@ -5,6 +5,7 @@
 #include "core/ray_offset.h"
 #include "integrators/fluorescent_vertex.h"
 #include "integrators/integrator.h"
+#include "integrators/lights/direct_lighting.h"
 #include "integrators/materials/bsdf.h"
 #include "integrators/materials/fresnel.h"
 
@@ -50,23 +51,13 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
     const FluorescentShift shift =
         fluorescent ? sampleFluorescentShift(*material.reradiation, lambda, rho, rng)
                     : FluorescentShift{lambda, rho};
+    auto f = [&](const Vec3& wi) { return shift.albedo * bsdf.diffuseFactor(wi); };
+    auto noPdf = [](const Vec3&) { return 0.0f; };
     for (int k = 0; k < ctx.lights->count(); ++k) {
-      const float uChoice =
-          (static_cast<float>(k) + 0.5f) / static_cast<float>(ctx.lights->count());
+      const float uTriangle = rng.next1D();
       LightSample ls;
-      if (!ctx.lights->sample(hit.p, uChoice, rng.next2D(), shift.excited, ls) ||
-          aimsAtOwnSphere(hit, ls, ray.d))
-        continue;
-      const SampledSpectrum f = shift.albedo * bsdf.diffuseFactor(ls.wi);
-      if (f.isBlack()) continue;
-      Ray shadow;
-      shadow.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ls.wi);
-      shadow.d = ls.wi;
-      shadow.tMax = ls.distance * kShadowShorten;
-      ++counters.rays;
-      if (scene.geometry->occluded(shadow, ls.sphere)) continue;
-      // ls.pdf includes the choice probability 1/count; every light is visited, so undo it.
-      L += beta * f * ls.radiance * (1.0f / (ls.pdf * static_cast<float>(ctx.lights->count())));
+      if (ctx.lights->sampleLight(k, hit.p, uTriangle, rng.next2D(), shift.excited, ls))
+        L += beta * directLight(scene, hit, ray.d, ls, f, noPdf, false, counters);
     }
   }
   if (node.bounce >= maxDepth) return;

@@ -2,7 +2,7 @@
 
 #include "core/frame.h"
 #include "core/math_util.h"
-#include "integrators/light_sampler.h"
+#include "integrators/lights/light_sampler.h"
 #include "integrators/sampling.h"
 #include "support/statistics.h"
 
@@ -24,8 +24,17 @@ SampledWavelengths flatWavelengths() {
   return w;
 }
 
+// The density LightSampler::pdf gives the surface a ray from p along wi meets (0 if none).
+float pdfTowards(const RenderScene& s, const LightSampler& lights, const Vec3& p, const Vec3& wi) {
+  Ray r;
+  r.o = p;
+  r.d = wi;
+  SurfaceHit hit;
+  return s.geometry->intersect(r, hit) ? lights.pdf(p, hit, wi) : 0.0f;
+}
+
 // Directions towards a sphere light are uniform in the cone it subtends (chi-square in the
-// cone's cos theta and phi), and pdfSphere agrees with sample().
+// cone's cos theta and phi), and pdf() agrees with sample().
 TEST(LightSampler, SphereConeSamplingMatchesPdf) {
   const RenderScene s = sceneWithLight(
       "<sphere><center>0, 4, 0</center><radius>1.5</radius><material>matte</material>"
@@ -41,7 +50,7 @@ TEST(LightSampler, SphereConeSamplingMatchesPdf) {
     LightSample ls;
     ASSERT_TRUE(lights.sample(p, 0.5f, samplePair(SamplerKind::Independent, i, 0, 0, 1),
                               flatWavelengths(), ls));
-    EXPECT_NEAR(ls.pdf, lights.pdfSphere(p, 0, ls.wi), 1e-3f * ls.pdf);
+    EXPECT_NEAR(ls.pdf, pdfTowards(s, lights, p, ls.wi), 1e-3f * ls.pdf);
     EXPECT_FLOAT_EQ(ls.radiance[0], 2.0f);
     const Vec3 local = frame.toLocal(ls.wi);
     const int iz = std::min(nz - 1, static_cast<int>((1 - local.z) / (1 - cosMax) * nz));
@@ -53,7 +62,7 @@ TEST(LightSampler, SphereConeSamplingMatchesPdf) {
   }
   const auto [stat, dof] = test::chiSquare(obs, exp);
   EXPECT_LT(test::chiSquareZ(stat, dof), 4.0);
-  EXPECT_EQ(lights.pdfSphere(p, 0, -axis), 0.0f); // outside the cone
+  EXPECT_EQ(pdfTowards(s, lights, p, -axis), 0.0f); // outside the cone
 }
 
 // Next-event estimation of the irradiance from a sphere of radiance L above a surface:

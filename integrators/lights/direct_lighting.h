@@ -1,0 +1,29 @@
+#pragma once
+// The one next-event estimate every integrator uses: a light sample, its shadow ray, its
+// weight.
+
+#include "integrators/integrator.h"
+#include "integrators/lights/light_sample.h"
+#include "integrators/sampling.h"
+
+namespace nx {
+
+/// What a light sample contributes at a surface hit reached along rayDir: f(wi) Le w / pdf,
+/// zero when the light is blocked or lies on the hit's own surface. `f(wi)` gives the BSDF
+/// times |cos| per lane; with `mis`, w is the power heuristic against `bsdfPdf(wi)` (1 for
+/// point lights), else 1. One shadow ray, spawned to the light's point with error-bounded
+/// offsets at both ends.
+template <class Eval, class BsdfPdf>
+SampledSpectrum directLight(const RenderScene& scene, const SurfaceHit& hit, const Vec3& rayDir,
+                            const LightSample& ls, Eval&& f, BsdfPdf&& bsdfPdf, bool mis,
+                            TraceCounters& counters) {
+  if (lightsItsOwnSurface(hit, ls, rayDir)) return {};
+  const SampledSpectrum fv = f(ls.wi);
+  if (fv.isBlack()) return {};
+  ++counters.rays;
+  if (scene.geometry->occluded(shadowRayTo(hit.p, hit.pError, hit.ng, ls))) return {};
+  const float w = (ls.delta || !mis) ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf(ls.wi));
+  return fv * ls.radiance * (w / ls.pdf);
+}
+
+} // namespace nx

@@ -1,0 +1,364 @@
+#include "integrators/lights/light_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/frame.h"
+#include "core/math_util.h"
+#include "core/ray_offset.h"
+#include "integrators/integrator.h"
+#include "integrators/lights/triangle_sampling.h"
+#include "integrators/sampling.h"
+
+namespace nx {
+namespace {
+
+// Integral of a spectrum over the traced range (1 nm trapezoids), W per unit of what it is.
+double tracedIntegral(const Spectrum& s) {
+  double sum = 0.5 * (s(kTraceMinNm) + s(kTraceMaxNm));
+  for (double nm = kTraceMinNm + 1; nm < kTraceMaxNm; nm += 1) sum += s(nm);
+  return sum;
+}
+
+double triangleArea(const TriangleShape& t) {
+  return 0.5 * length(cross(t.b - t.a, t.c - t.a));
+}
+
+// Radius of a sphere around the scene's bounded shapes and the camera: the uniform background's
+// power is that of the radiance falling on it (4 pi^2 R^2 L).
+double sceneRadius(const RenderScene& scene) {
+  BoundingBox b = scene.geometry->bounds();
+  b.add(scene.camera.position());
+  return std::max(1e-3, 0.5 * length(b.hi - b.lo));
+}
+
+} // namespace
+
+LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
+    : scene_(&scene), selection_(selection) {
+  const GeometryScene& geometry = *scene.geometry;
+  auto emissionOf = [&](const ShapeAppearance& a) {
+    return &scene.emission[static_cast<size_t>(a.emission)];
+  };
+  sphereLight_.assign(scene.spheres.size(), -1);
+  for (size_t i = 0; i < scene.spheres.size(); ++i) {
+    if (scene.spheres[i].emission < 0) continue;
+    sphereLight_[i] = static_cast<int32_t>(lights_.size());
+    const double r = geometry.spheres()[i].radius;
+    const Spectrum* e = emissionOf(scene.spheres[i]);
+    const double le = tracedIntegral(*e);
+    lights_.push_back({LightKind::Sphere, static_cast<uint32_t>(i), -1, e, 0, 0,
+                       kPi * 4 * kPi * r * r * le, le, Vec3(geometry.spheres()[i].center),
+                       static_cast<float>(r)});
+  }
+  meshLight_.assign(scene.meshes.size(), -1);
+  triangleLight_.resize(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const MeshAppearance& app = scene.meshes[m];
+    const TriangleMesh& mesh = geometry.meshes()[m];
+    if (app.perTriangle.empty()) {
+      if (app.whole.emission < 0) continue;
+      Light l{LightKind::Mesh, static_cast<uint32_t>(m), -1, emissionOf(app.whole), 0,
+              areaCdf_.size(), 0, 0, Vec3(), 0};
+      for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+        l.area += triangleArea(mesh.corners(t));
+        areaCdf_.push_back(l.area);
+      }
+      if (!(l.area > 0)) continue;
+      // Both faces emit: power 2 pi A integral(L).
+      l.radiance = tracedIntegral(*l.emission);
+      l.power = 2 * kPi * l.area * l.radiance;
+      BoundingBox box;
+      for (uint32_t v = 0; v < mesh.vertexCount(); ++v) box.add(Vec3d(mesh.position(v)));
+      l.center = Vec3((box.lo + box.hi) * 0.5);
+      l.radius = static_cast<float>(0.5 * length(box.hi - box.lo));
+      meshLight_[m] = static_cast<int32_t>(lights_.size());
+      lights_.push_back(l);
+      continue;
+    }
+    triangleLight_[m].assign(mesh.triangleCount(), -1);
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      if (app.perTriangle[t].emission < 0) continue;
+      Light l{LightKind::Mesh, static_cast<uint32_t>(m), static_cast<int32_t>(t),
+              emissionOf(app.perTriangle[t]), triangleArea(mesh.corners(t)), 0, 0, 0, Vec3(), 0};
+      if (!(l.area > 0)) continue;
+      l.radiance = tracedIntegral(*l.emission);
+      l.power = 2 * kPi * l.area * l.radiance;
+      const TriangleShape c = mesh.corners(t);
+      l.center = Vec3((c.a + c.b + c.c) * (1.0 / 3));
+      l.radius = static_cast<float>(std::max({length(c.a - Vec3d(l.center)),
+                                              length(c.b - Vec3d(l.center)),
+                                              length(c.c - Vec3d(l.center))}));
+      triangleLight_[m][t] = static_cast<int32_t>(lights_.size());
+      lights_.push_back(l);
+    }
+  }
+  for (size_t i = 0; i < scene.pointLights.size(); ++i) {
+    const Spectrum* e = &scene.pointLights[i].intensity;
+    const double ie = tracedIntegral(*e);
+    lights_.push_back({LightKind::Point, static_cast<uint32_t>(i), -1, e, 0, 0, 4 * kPi * ie, ie,
+                       scene.pointLights[i].position, 0});
+  }
+  if (scene.background) {
+    const double r = sceneRadius(scene);
+    background_ = static_cast<int32_t>(lights_.size());
+    const double le = tracedIntegral(*scene.background);
+    lights_.push_back({LightKind::Background, 0, -1, &*scene.background, 0, 0,
+                       4 * kPi * kPi * r * r * le, le, Vec3(0, 0, 0), 0});
+  }
+  if (selection_ == LightSelection::Local && count() > kMaxLocalLights)
+    selection_ = LightSelection::Power;
+
+  // Choice probabilities: by power (uniform when every power is zero or not finite).
+  double total = 0;
+  for (const Light& l : lights_) total += l.power;
+  const bool byPower = selection_ != LightSelection::Uniform && total > 0 && std::isfinite(total);
+  double running = 0;
+  for (const Light& l : lights_) {
+    const double p = byPower ? l.power / total : 1.0 / static_cast<double>(lights_.size());
+    pmf_.push_back(static_cast<float>(p));
+    running += p;
+    cdf_.push_back(running);
+  }
+  if (!cdf_.empty()) cdf_.back() = 1.0;
+}
+
+float LightSampler::localWeight(const Light& l, const Vec3& p) const {
+  const Vec3 toCenter = l.center - p;
+  const float d2 = dot(toCenter, toCenter);
+  const float r2 = l.radius * l.radius;
+  float solidAngle = 0;
+  switch (l.kind) {
+  case LightKind::Point:
+    solidAngle = 1 / std::max(d2, 1e-30f); // intensity / d^2
+    break;
+  case LightKind::Sphere:
+    solidAngle = d2 <= r2 ? static_cast<float>(4 * kPi)
+                          : static_cast<float>(2 * kPi * oneMinusCosFromSin2(r2 / d2));
+    break;
+  case LightKind::Mesh: // at most a hemisphere of one face; A / d^2 when far
+    solidAngle = d2 <= r2 ? static_cast<float>(2 * kPi)
+                          : std::min(static_cast<float>(2 * kPi),
+                                     static_cast<float>(l.area) / d2);
+    break;
+  case LightKind::Background:
+    solidAngle = static_cast<float>(4 * kPi);
+    break;
+  }
+  // Never zero for a light that emits: every light that can shine keeps a chance.
+  return std::max(static_cast<float>(l.radiance) * solidAngle, 1e-30f) *
+         (l.radiance > 0 ? 1.0f : 0.0f);
+}
+
+float LightSampler::probability(int k, const Vec3& p) const {
+  if (selection_ != LightSelection::Local) return pmf_[static_cast<size_t>(k)];
+  float total = 0;
+  for (const Light& l : lights_) total += localWeight(l, p);
+  return total > 0 ? localWeight(lights_[static_cast<size_t>(k)], p) / total : 0.0f;
+}
+
+float LightSampler::pdfBackground(const Vec3& p) const {
+  return background_ < 0 ? 0.0f
+                         : static_cast<float>(1.0 / (4 * kPi)) * probability(background_, p);
+}
+
+bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
+                          LightSample& out) const {
+  if (lights_.empty()) return false;
+  // The first light whose running probability exceeds uChoice; uChoice is then rescaled to
+  // [0, 1) within that light's share, for the light's own choice of triangle.
+  const double uc = uChoice;
+  size_t k;
+  double lo, share;
+  if (selection_ == LightSelection::Local) {
+    // Two passes over the weights (no allocation): their sum, then the running sum.
+    float total = 0;
+    for (const Light& l : lights_) total += localWeight(l, p);
+    if (!(total > 0)) return false;
+    const double target = uc * total;
+    double running = 0;
+    k = lights_.size() - 1;
+    lo = 0, share = 0;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+      const double w = localWeight(lights_[i], p);
+      if (target < running + w || i + 1 == lights_.size()) {
+        k = i, lo = running / total, share = w / total;
+        break;
+      }
+      running += w;
+    }
+  } else {
+    k = std::min(static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), uc) -
+                                     cdf_.begin()),
+                 lights_.size() - 1);
+    lo = k == 0 ? 0.0 : cdf_[k - 1];
+    share = pmf_[k];
+  }
+  const float uRest =
+      static_cast<float>(std::clamp((uc - lo) / std::max(share, 1e-300), 0.0, 0.99999994));
+  if (!(share > 0) || !sampleLight(static_cast<int>(k), p, uRest, u, lambda, out)) return false;
+  if (!out.delta) out.pdf *= static_cast<float>(share);
+  else out.pdf = static_cast<float>(share);
+  return true;
+}
+
+bool LightSampler::sampleLight(int k, const Vec3& p, float uChoice, Sample2 u,
+                               const SampledWavelengths& lambda, LightSample& out) const {
+  const Light& l = lights_[static_cast<size_t>(k)];
+  out.delta = false;
+  out.infinite = false;
+  switch (l.kind) {
+  case LightKind::Point: {
+    const PointLight& pl = scene_->pointLights[l.shape];
+    const Vec3 toLight = pl.position - p;
+    const float d2 = dot(toLight, toLight);
+    if (!(d2 > 0)) return false;
+    out.distance = std::sqrt(d2);
+    out.wi = toLight / out.distance;
+    out.p = pl.position;
+    out.pError = Vec3(0, 0, 0);
+    out.n = Vec3(0, 0, 0);
+    out.radiance = evaluate(*l.emission, lambda) * (1.0f / d2);
+    out.pdf = 1;
+    out.delta = true;
+    return true;
+  }
+  case LightKind::Sphere:
+    if (!sampleSphere(l, p, u, out)) return false;
+    break;
+  case LightKind::Mesh:
+    if (!sampleMesh(l, p, uChoice, u, out)) return false;
+    break;
+  case LightKind::Background:
+    out.wi = sampleUniformSphere(u);
+    out.distance = INFINITY;
+    out.pdf = static_cast<float>(1.0 / (4 * kPi));
+    out.infinite = true;
+    break;
+  }
+  out.radiance = evaluate(*l.emission, lambda);
+  return true;
+}
+
+bool LightSampler::sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const {
+  const SphereShape& s = scene_->geometry->spheres()[l.shape];
+  const Vec3d axis = s.center - Vec3d(p);
+  const double d2 = dot(axis, axis);
+  const double r2 = s.radius * s.radius;
+  Vec3 wi;
+  double pdf, dist;
+  if (d2 <= r2) {
+    wi = sampleUniformSphere(u); // inside: every direction meets the sphere
+    pdf = 1.0 / (4 * kPi);
+    const auto t = intersectSphere(s, Vec3d(p), Vec3d(wi), 0.0, INFINITY);
+    dist = t ? *t : 0.0;
+  } else {
+    // Few dependent divisions and square roots: they are most of this function's time.
+    const double d = std::sqrt(d2), invD = 1.0 / d;
+    const double oneMinusCosMax = oneMinusCosFromSin2(r2 * invD * invD);
+    // The frame and the local direction are unit to float rounding, so wi is too.
+    wi = Frame::fromNormal(Vec3(axis * invD)).toWorld(sampleUniformCone(u, oneMinusCosMax));
+    pdf = uniformConePdf(oneMinusCosMax);
+    // Distance to the near side along the sampled theta (law of cosines), in double: the
+    // same 1 - cos(theta) as sampleUniformCone. Directions at the silhouette get the tangent
+    // distance (the square root is zero up to rounding).
+    const double oneMinusCos = u.u * oneMinusCosMax;
+    const double sin2 = oneMinusCos * (2.0 - oneMinusCos);
+    dist = d * (1.0 - oneMinusCos) - std::sqrt(std::max(0.0, r2 - d2 * sin2));
+  }
+  if (!(dist > 0) || !std::isfinite(pdf)) return false;
+  // The point, projected onto the surface in double precision (error: its float rounding).
+  const Vec3d n = normalize(Vec3d(p) + Vec3d(wi) * dist - s.center);
+  out.wi = wi;
+  out.distance = static_cast<float>(dist);
+  out.p = Vec3(s.center + n * s.radius);
+  out.pError = roundingError(out.p);
+  out.n = Vec3(n);
+  out.pdf = static_cast<float>(pdf);
+  out.kind = ShapeKind::Sphere;
+  out.shape = l.shape;
+  out.prim = 0;
+  return true;
+}
+
+bool LightSampler::sampleMesh(const Light& l, const Vec3& p, float uTriangle, Sample2 u,
+                              LightSample& out) const {
+  const TriangleMesh& mesh = scene_->geometry->meshes()[l.shape];
+  size_t t = static_cast<size_t>(l.triangle);
+  if (l.triangle < 0) { // a triangle of the whole mesh, in proportion to its area
+    const auto first = areaCdf_.begin() + static_cast<std::ptrdiff_t>(l.firstCdf);
+    const auto last = first + static_cast<std::ptrdiff_t>(mesh.triangleCount());
+    const double target = static_cast<double>(uTriangle) * l.area;
+    t = std::min(static_cast<size_t>(std::upper_bound(first, last, target) - first),
+                 mesh.triangleCount() - 1);
+  }
+  const TriangleShape tri = mesh.corners(t);
+  double b1, b2;
+  sampleUniformTriangle(u, b1, b2);
+  const Vec3d q = trianglePoint(tri, b1, b2);
+  const Vec3d nd = cross(tri.b - tri.a, tri.c - tri.a);
+  const Vec3d toLight = q - Vec3d(p);
+  const double d2 = dot(toLight, toLight);
+  const double nLen = length(nd);
+  if (!(d2 > 0) || !(nLen > 0)) return false;
+  const double d = std::sqrt(d2);
+  const Vec3d wi = toLight * (1.0 / d);
+  const double cosLight = std::abs(dot(nd, wi)) / nLen;
+  if (!(cosLight > 0)) return false;
+  // Area density 1 / A over the light (the triangle by area, then uniform in it), in solid
+  // angle: d^2 / (|cos| A).
+  const double pdf = d2 / (cosLight * l.area);
+  if (!std::isfinite(pdf)) return false;
+  out.wi = Vec3(wi);
+  out.distance = static_cast<float>(d);
+  out.p = Vec3(q);
+  // Error of the barycentric combination in double, then rounding to float.
+  out.pError = roundingError(out.p);
+  out.n = Vec3(nd * (1.0 / nLen));
+  out.pdf = static_cast<float>(pdf);
+  out.kind = ShapeKind::Triangle;
+  out.shape = l.shape;
+  out.prim = static_cast<uint32_t>(t);
+  return true;
+}
+
+int LightSampler::lightOf(const SurfaceHit& hit) const {
+  switch (hit.kind) {
+  case ShapeKind::Sphere:
+    return hit.index < sphereLight_.size() ? sphereLight_[hit.index] : -1;
+  case ShapeKind::Triangle:
+    if (hit.index >= meshLight_.size()) return -1;
+    if (!triangleLight_[hit.index].empty()) return triangleLight_[hit.index][hit.prim];
+    return meshLight_[hit.index];
+  default:
+    return -1;
+  }
+}
+
+float LightSampler::spherePdf(uint32_t sphere, const Vec3& p, const Vec3& wi) const {
+  const SphereShape& s = scene_->geometry->spheres()[sphere];
+  const Vec3d axis = s.center - Vec3d(p);
+  const double d2 = dot(axis, axis), r2 = s.radius * s.radius;
+  if (d2 <= r2) return static_cast<float>(1.0 / (4 * kPi));
+  const double oneMinusCosMax = oneMinusCosFromSin2(r2 / d2);
+  if (dot(axis, Vec3d(wi)) / std::sqrt(d2) < 1.0 - oneMinusCosMax) return 0; // outside the cone
+  return static_cast<float>(uniformConePdf(oneMinusCosMax));
+}
+
+float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi) const {
+  const int k = lightOf(lightHit);
+  if (k < 0) return 0;
+  const Light& l = lights_[static_cast<size_t>(k)];
+  float pdf = 0;
+  if (l.kind == LightKind::Sphere) {
+    pdf = spherePdf(l.shape, p, wi);
+  } else {
+    const Vec3d toLight = Vec3d(lightHit.p) - Vec3d(p);
+    const double cosLight = std::abs(dot(Vec3d(lightHit.ng), Vec3d(wi)));
+    pdf = static_cast<float>(dot(toLight, toLight) / (cosLight * l.area));
+    if (!std::isfinite(pdf)) return 0;
+  }
+  return pdf * probability(k, p);
+}
+
+} // namespace nx

@@ -1,0 +1,96 @@
+#pragma once
+// Next-event estimation: choosing a light by its power and a direction towards it.
+
+#include <vector>
+
+#include "core/sampler.h"
+#include "integrators/lights/light_sample.h"
+#include "integrators/render_scene.h"
+
+namespace nx {
+
+/// How the light sampler chooses among the scene's lights.
+enum class LightSelection : uint8_t {
+  /// In proportion to the power each light sends towards the shading point: its radiance
+  /// integrated over the traced range times the solid angle it subtends there (intensity / d^2
+  /// for point lights) - the default. Scenes with more than kMaxLocalLights lights use Power.
+  Local,
+  Power,   ///< in proportion to emitted power over the traced range, the same everywhere
+  Uniform, ///< each light equally often
+};
+
+/// Most lights for which LightSelection::Local weighs every light at every shading point.
+inline constexpr int kMaxLocalLights = 64;
+
+/// The lights next-event estimation can aim at: point lights, emitting spheres (sampled through
+/// the cone they subtend, or uniformly over directions from inside), emitting meshes and inline
+/// triangles (a triangle in proportion to its area, then a uniform point on it) and the uniform
+/// background (uniform directions). Emitting planes are infinite: BSDF sampling alone finds
+/// them. Nothing is allocated after construction.
+class LightSampler {
+public:
+  explicit LightSampler(const RenderScene& scene, LightSelection selection = LightSelection::Local);
+
+  /// Number of lights it can choose from.
+  int count() const { return static_cast<int>(lights_.size()); }
+  /// The selection in use (Local falls back to Power beyond kMaxLocalLights lights).
+  LightSelection selection() const { return selection_; }
+  /// Probability that sample() chooses light k for shading point p.
+  float probability(int k, const Vec3& p) const;
+  /// The kind of light k.
+  LightKind kind(int k) const { return lights_[static_cast<size_t>(k)].kind; }
+  /// Emitted power of light k over the traced range (W; the selection's weights).
+  double power(int k) const { return lights_[static_cast<size_t>(k)].power; }
+
+  /// A light chosen with uChoice, then a sample of it for shading point p (pdf includes the
+  /// choice); false if there is no light or the configuration is degenerate.
+  bool sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
+              LightSample& out) const;
+  /// A sample of light k itself (pdf without any choice probability); uChoice, in [0, 1),
+  /// picks the triangle of a mesh light.
+  bool sampleLight(int k, const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
+                   LightSample& out) const;
+
+  /// Light number of the emitter a hit is on, or -1 if next-event estimation cannot sample it.
+  int lightOf(const SurfaceHit& hit) const;
+  /// Density (solid angle, with the choice probability) with which sample() returns direction
+  /// wi from p towards the point `lightHit` (found by a ray from p along wi); 0 if that surface
+  /// is not a light it samples.
+  float pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi) const;
+  /// Density with which sample() returns direction wi from p towards the background; 0
+  /// without one.
+  float pdfBackground(const Vec3& p) const;
+
+private:
+  struct Light {
+    LightKind kind;
+    uint32_t shape;            ///< sphere, mesh or point-light index
+    int32_t triangle = -1;     ///< an inline triangle of the mesh, or -1 for the whole mesh
+    const Spectrum* emission;  ///< radiance, or a point light's intensity
+    double area = 0;           ///< mesh lights: total area
+    size_t firstCdf = 0;       ///< whole meshes: start of the triangles' area CDF in areaCdf_
+    double power = 0;
+    double radiance = 0;       ///< integral of the emission over the traced range
+    Vec3 center;               ///< bounding sphere (spheres, meshes) or position (points)
+    float radius = 0;
+  };
+  /// Weight of light l at p for LightSelection::Local (positive wherever it can shine).
+  float localWeight(const Light& l, const Vec3& p) const;
+  bool sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const;
+  bool sampleMesh(const Light& l, const Vec3& p, float uTriangle, Sample2 u,
+                  LightSample& out) const;
+  float spherePdf(uint32_t sphere, const Vec3& p, const Vec3& wi) const;
+
+  const RenderScene* scene_;
+  std::vector<Light> lights_;
+  LightSelection selection_;
+  std::vector<float> pmf_;              ///< Power and Uniform: choice probabilities
+  std::vector<double> cdf_;             ///< their running sum (cdf_[k] = P(light <= k))
+  std::vector<double> areaCdf_;         ///< per whole-mesh light: running area of its triangles
+  std::vector<int32_t> sphereLight_;    ///< light number per sphere, or -1
+  std::vector<int32_t> meshLight_;      ///< light number per mesh (whole meshes), or -1
+  std::vector<std::vector<int32_t>> triangleLight_; ///< per mesh with inline triangles
+  int32_t background_ = -1;
+};
+
+} // namespace nx
