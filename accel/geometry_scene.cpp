@@ -131,6 +131,14 @@ GeometryScene::GeometryScene(EmbreeDevice& device, std::vector<SphereShape> sphe
   embreeBytes_ = static_cast<size_t>(std::max<int64_t>(0, device.bytesInUse() - before));
 }
 
+void sphereUv(SurfaceHit& hit) {
+  // u = phi / 2 pi around the y axis (from +z towards +x), v = theta / pi from +y.
+  const Vec3d n(hit.ng);
+  const double phi = std::atan2(n.x, n.z);
+  hit.u = static_cast<float>((phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi));
+  hit.v = static_cast<float>(std::acos(std::clamp(n.y, -1.0, 1.0)) / kPi);
+}
+
 BoundingBox GeometryScene::bounds() const {
   BoundingBox b;
   for (const SphereShape& s : spheres_) {
@@ -200,10 +208,7 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     hit.p = Vec3(s.center + n * s.radius);
     hit.ng = Vec3(n);
     hit.ns = hit.ng;
-    // u = phi / 2 pi around the y axis, v = theta / pi from +y; dp/du = 2 pi (-z, 0, x) r.
-    const double phi = std::atan2(n.x, n.z);
-    hit.u = static_cast<float>((phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi));
-    hit.v = static_cast<float>(std::acos(std::clamp(n.y, -1.0, 1.0)) / kPi);
+    hit.u = hit.v = 0; // sphereUv() computes them when a texture needs them
     hit.dpdu = Vec3(Vec3d(n.z, 0, -n.x) * (2 * kPi * s.radius));
     hit.pError = roundingError(hit.p);
   } else if (kind == ShapeKind::Plane) {

@@ -37,12 +37,16 @@ struct SurfaceHit {
   Vec3 ns;     ///< unit shading normal: interpolated vertex normals on meshes that have them
                ///< (on the side of ng), else ng
   Vec3 dpdu;   ///< surface tangent along u (not unit; orthogonal to nothing in particular)
-  float u = 0, v = 0; ///< surface coordinates: mesh uv (or barycentrics), sphere (phi, theta)
-                      ///< / (2 pi, pi), plane 0
+  float u = 0, v = 0; ///< surface coordinates: mesh uv (or barycentrics mapped to (0,0),
+                      ///< (1,0), (1,1)); spheres: 0 until sphereUv(); planes: 0
   ShapeKind kind = ShapeKind::Sphere;
   uint32_t index = 0; ///< index of the shape within its kind (sphere, plane, mesh)
   uint32_t prim = 0;  ///< triangle within the mesh (0 for spheres and planes)
 };
+
+/// Fills a sphere hit's (u, v) = (phi / 2 pi, theta / pi), phi around +y from +z towards +x
+/// and theta from +y; left out of intersect() so that untextured spheres do not pay for it.
+void sphereUv(SurfaceHit& hit);
 
 /// An axis-aligned box; empty when lo > hi.
 struct BoundingBox {

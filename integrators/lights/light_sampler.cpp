@@ -151,7 +151,8 @@ float LightSampler::localWeight(const Light& l, const Vec3& p) const {
 }
 
 float LightSampler::probability(int k, const Vec3& p) const {
-  if (selection_ != LightSelection::Local) return pmf_[static_cast<size_t>(k)];
+  if (selection_ != LightSelection::Local || lights_.size() == 1)
+    return pmf_[static_cast<size_t>(k)];
   float total = 0;
   for (const Light& l : lights_) total += localWeight(l, p);
   return total > 0 ? localWeight(lights_[static_cast<size_t>(k)], p) / total : 0.0f;
@@ -170,7 +171,9 @@ bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const Sampled
   const double uc = uChoice;
   size_t k;
   double lo, share;
-  if (selection_ == LightSelection::Local) {
+  if (lights_.size() == 1) {
+    k = 0, lo = 0, share = 1;
+  } else if (selection_ == LightSelection::Local) {
     // Two passes over the weights (no allocation): their sum, then the running sum.
     float total = 0;
     for (const Light& l : lights_) total += localWeight(l, p);
