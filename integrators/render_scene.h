@@ -93,6 +93,7 @@ struct RenderScene {
   std::vector<PointLight> pointLights;
   std::optional<Spectrum> background; ///< uniform environment radiance
   Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
+  size_t meshBytes = 0;         ///< bytes the meshes' buffers take
   bool hasFluorescence = false; ///< some material re-radiates (the fluorescent path tracer runs)
   /// Digest of everything the scene was resolved from: its text and the bytes of every file
   /// it refers to (CSV spectra, matrices). Part of the render key of resume and merge.

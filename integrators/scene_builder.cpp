@@ -1,6 +1,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/file_text.h"
@@ -8,6 +9,7 @@
 #include "core/math_util.h"
 #include "core/text_table.h"
 #include "integrators/render_scene.h"
+#include "io/mesh_reader.h"
 #include "spectra/colour.h"
 #include "spectra/illuminants.h"
 #include "spectra/named_spectra.h"
@@ -49,19 +51,40 @@ public:
     std::vector<TriangleShape> triangles; // the inline triangles, gathered into one mesh
     MeshAppearance inlineTriangles;
     std::vector<TriangleMesh> meshes;
-    std::vector<std::pair<std::vector<double>, uint32_t>> materialIds; // key -> id
-    for (const ObjectDesc& o : desc_.objects) {
+    // Materials are stored once per distinct description (a <material id>, or inline
+    // parameters written identically), so 16,000 triangles of one colour share one material and
+    // one upsampling fit.
+    std::map<std::string, uint32_t> materialByText;
+    // MaterialId: materials with the same content (compared every 5 nm) share the id of the
+    // first object that uses one of them.
+    std::vector<std::pair<std::vector<double>, uint32_t>> idByContent;
+    std::vector<uint32_t> materialIdOf; // per material index
+    for (size_t objectIndex = 0; objectIndex < desc_.objects.size(); ++objectIndex) {
+      const ObjectDesc& o = desc_.objects[objectIndex];
       ShapeAppearance app;
-      app.material = static_cast<uint32_t>(scene.materials.size());
-      scene.materials.push_back(material(o, spectral));
-      scene.materials.back().reflectance = forRendering(scene.materials.back().reflectance);
-      app.objectId = app.material + 1;
-      const std::vector<double> key = materialKey(scene.materials.back());
-      const auto same = std::find_if(materialIds.begin(), materialIds.end(),
-                                     [&](const auto& m) { return m.first == key; });
-      app.materialId = same != materialIds.end() ? same->second : app.objectId;
-      if (same == materialIds.end()) materialIds.emplace_back(key, app.objectId);
-      if (scene.materials.back().reradiation) scene.hasFluorescence = true;
+      app.objectId = static_cast<uint32_t>(objectIndex + 1);
+      const bool emitter = o.emission.has_value();
+      const std::string text = o.materialRef.empty()
+                                   ? materialText(o, emitter)
+                                   : "id:" + o.materialRef + (emitter ? ":emitter" : "");
+      if (auto it = materialByText.find(text); it != materialByText.end()) {
+        app.material = it->second;
+      } else {
+        const MaterialDesc& md = o.materialRef.empty() ? static_cast<const MaterialDesc&>(o)
+                                                       : namedMaterial(o.materialRef);
+        Material m = material(md, o.loc, emitter, spectral);
+        m.reflectance = forRendering(m.reflectance);
+        if (m.reradiation) scene.hasFluorescence = true;
+        std::vector<double> key = materialKey(m);
+        const auto same = std::find_if(idByContent.begin(), idByContent.end(),
+                                       [&](const auto& c) { return c.first == key; });
+        materialIdOf.push_back(same != idByContent.end() ? same->second : app.objectId);
+        if (same == idByContent.end()) idByContent.emplace_back(std::move(key), app.objectId);
+        app.material = static_cast<uint32_t>(scene.materials.size());
+        scene.materials.push_back(std::move(m));
+        materialByText.emplace(text, app.material);
+      }
+      app.materialId = materialIdOf[app.material];
       if (auto e = emission(o, spectral)) {
         app.emission = static_cast<int32_t>(scene.emission.size());
         scene.emission.push_back(forRendering(*e));
@@ -78,6 +101,14 @@ public:
       case ShapeType::Triangle:
         triangles.push_back({o.vertices[0], o.vertices[1], o.vertices[2]});
         inlineTriangles.perTriangle.push_back(app);
+        break;
+      case ShapeType::Quad:
+        meshes.push_back(quadMesh(o.vertices[0], o.vertices[1], o.vertices[2]));
+        scene.meshes.push_back({app, {}});
+        break;
+      case ShapeType::Mesh:
+        meshes.push_back(meshFromFile(o));
+        scene.meshes.push_back({app, {}});
         break;
       }
     }
@@ -101,6 +132,8 @@ public:
       meshes.push_back(TriangleMesh::fromTriangles(triangles));
       scene.meshes.push_back(std::move(inlineTriangles));
     }
+    scene.meshBytes = 0;
+    for (const TriangleMesh& m : meshes) scene.meshBytes += m.bytes();
     scene.contentDigest = digest_;
     scene.tables = tables_;
     if (!withGeometry) return scene;
@@ -309,7 +342,72 @@ private:
                                          numberText(low ? e.minNm : e.maxNm) + " nm"));
   }
 
-  Material material(const ObjectDesc& o, bool spectral) const {
+  // Every parameter of an inline material as text: equal texts are the same material.
+  static std::string materialText(const MaterialDesc& m, bool emitter) {
+    std::ostringstream t;
+    t.precision(17);
+    auto spectrumText = [&](const std::optional<SpectrumDesc>& s) {
+      if (!s) return t << "-;", void();
+      t << static_cast<int>(s->kind) << ',' << static_cast<int>(s->extrapolate) << ',' << s->name
+        << ',' << s->number << ',' << s->path << ',' << s->column << ',';
+      for (size_t i = 0; i < s->nm.size(); ++i) t << s->nm[i] << ':' << s->value[i] << ' ';
+      t << ';';
+    };
+    t << m.material << ';' << emitter << ';';
+    if (m.color) t << (*m.color)[0] << ',' << (*m.color)[1] << ',' << (*m.color)[2];
+    t << ';';
+    spectrumText(m.reflectance);
+    t << (m.roughness ? *m.roughness : -1.0) << ';';
+    if (m.ior) {
+      t << static_cast<int>(m.ior->kind) << ',' << m.ior->value << ',' << m.ior->name;
+      for (double c : m.ior->coefficients) t << ',' << c;
+    }
+    t << ';';
+    if (const auto& f = m.fluorescence) {
+      auto opt = [&](const std::optional<double>& v) { t << (v ? *v : -1e300) << ','; };
+      t << (f->absorptionName ? *f->absorptionName : "") << ',';
+      opt(f->absorptionNm), opt(f->stokesNm), opt(f->widthNm), opt(f->skew);
+      opt(f->quantumYield), opt(f->peakAbsorptance);
+      t << (f->matrixCsv ? *f->matrixCsv : "");
+    }
+    return t.str();
+  }
+
+  // The definition of a <material id> (the loader checked that it exists).
+  const MaterialDesc& namedMaterial(const std::string& id) const {
+    for (const NamedMaterialDesc& m : desc_.materials)
+      if (m.id == id) return m.material;
+    throw Error("no material '" + id + "'"); // unreachable after loading
+  }
+
+  // A quad as two triangles with uv (0,0) at the origin corner, (1,1) at the opposite one.
+  static TriangleMesh quadMesh(const Vec3d& origin, const Vec3d& edgeU, const Vec3d& edgeV) {
+    TriangleMesh m;
+    const uint32_t a = m.addVertex(Vec3(origin)), b = m.addVertex(Vec3(origin + edgeU)),
+                   c = m.addVertex(Vec3(origin + edgeU + edgeV)),
+                   d = m.addVertex(Vec3(origin + edgeV));
+    m.addTriangle(a, b, c);
+    m.addTriangle(a, c, d);
+    m.setAttributes({}, {0, 0, 1, 0, 1, 1, 0, 1});
+    return m;
+  }
+
+  // A mesh file, read and transformed; its bytes join the content digest.
+  TriangleMesh meshFromFile(const ObjectDesc& o) const {
+    try {
+      MeshFile f = readMeshFile(o.meshPath);
+      digest_ = fnv1a64(f.bytes, fnv1a64(std::string_view(o.meshPath.c_str(), o.meshPath.size() + 1), digest_));
+      f.mesh.transform(o.transform.m, o.transform.t);
+      if (const std::string problem = f.mesh.validate(); !problem.empty())
+        throw Error("mesh '" + o.meshPath + "' after its <transform>: " + problem);
+      return std::move(f.mesh);
+    } catch (const Error& e) {
+      throw Error(o.loc.str() + ": " + e.what());
+    }
+  }
+
+  Material material(const MaterialDesc& o, const SourceLocation& objectLoc, bool emitter,
+                    bool spectral) const {
     Material m;
     const std::string& name = o.material;
     const bool dielectric =
@@ -337,7 +435,6 @@ private:
 
     // Each mode prefers its own tag (<reflectance> in spectral_mcpt, <color> in rt and mcpt)
     // and falls back on the other, so every scene renders in every mode.
-    const bool emitter = o.emission.has_value();
     const bool useSpectrum = o.reflectance && (spectral || !o.color);
     if (useSpectrum) {
       m.reflectance = resolve(*o.reflectance, SpectrumRole::Reflectance);
@@ -347,15 +444,15 @@ private:
       try {
         m.reflectance = upsampleSrgbReflectance({(*o.color)[0], (*o.color)[1], (*o.color)[2]});
       } catch (const Error& e) {
-        throw Error(o.loc.str() + ": " + e.what());
+        throw Error(objectLoc.str() + ": " + e.what());
       }
     } else if (dielectric) {
       m.reflectance = Spectrum(ConstantSpectrum{1.0}); // clear
     } else if (emitter) {
       m.reflectance = Spectrum(ConstantSpectrum{0.0}); // a black emitter
     } else {
-      throw Error(o.loc.str() + ": expected <reflectance> or <color> on a non-emitting " + name +
-                  " object, found neither");
+      throw Error(objectLoc.str() + ": expected <reflectance> or <color> on a non-emitting " +
+                  name + " object, found neither");
     }
     if (o.fluorescence) {
       if (dielectric)

@@ -70,27 +70,49 @@ struct FluorescenceDesc {
 };
 
 /// The shapes a scene can hold.
-enum class ShapeType { Sphere, Plane, Triangle };
+enum class ShapeType { Sphere, Plane, Triangle, Quad, Mesh };
 
-/// A sphere, plane or triangle with its appearance.
-struct ObjectDesc {
+/// How a surface scatters: a material kind with its parameters (inline on an object, or a
+/// top-level <material id="..." type="...">).
+struct MaterialDesc {
+  std::string material; ///< the kind: matte, metal, plastic, mirror, glass, ...
+  SourceLocation materialLoc;
+  std::optional<std::array<double, 4>> color; ///< RGBA (rt, mcpt)
+  std::optional<SpectrumDesc> reflectance;    ///< spectral_mcpt
+  std::optional<double> roughness;
+  SourceLocation roughnessLoc;
+  std::optional<IorDesc> ior;
+  std::optional<FluorescenceDesc> fluorescence;
+};
+
+/// <material id="..." type="...">: a material defined once and used by objects by its id.
+struct NamedMaterialDesc {
+  std::string id;
+  MaterialDesc material;
+  SourceLocation loc;
+};
+
+/// An affine map p -> m p + t (row-major m), composed from a <transform>'s steps.
+struct AffineDesc {
+  std::array<std::array<double, 3>, 3> m{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  Vec3d t;
+};
+
+/// A sphere, plane, triangle, quad or mesh file with its appearance: its own material (the
+/// MaterialDesc part) or a reference to a <material id>.
+struct ObjectDesc : MaterialDesc {
   ShapeType shape = ShapeType::Sphere;
   SourceLocation loc;
   Vec3d center;                  ///< sphere
   double radius = 0;             ///< sphere
   Vec3d normal;                  ///< plane (unit length after loading)
   double distance = 0;           ///< plane: dot(normal, p) = distance
-  std::array<Vec3d, 3> vertices; ///< triangle vA, vB, vC
-  std::string material;
-  SourceLocation materialLoc;
-  std::optional<std::array<double, 4>> color; ///< RGBA (rt, mcpt)
-  std::optional<SpectrumDesc> reflectance;    ///< spectral_mcpt
-  std::optional<SpectrumDesc> emission;       ///< absent, 0 or empty: not a light
-  double emissionScale = 1;                   ///< <emission scale="...">
-  std::optional<double> roughness;
-  SourceLocation roughnessLoc;
-  std::optional<IorDesc> ior;
-  std::optional<FluorescenceDesc> fluorescence;
+  std::array<Vec3d, 3> vertices; ///< triangle vA, vB, vC; quad: origin, edge u, edge v
+  std::string meshPath;          ///< mesh: the file, resolved relative to the scene file
+  AffineDesc transform;          ///< mesh: applied to its vertices
+  std::string materialRef;       ///< the id of a <material id> (then no inline material)
+  std::optional<SpectrumDesc> emission; ///< absent, 0 or empty: not a light
+  double emissionScale = 1;             ///< <emission scale="...">
 };
 
 /// A point light.
@@ -141,6 +163,7 @@ struct SceneDesc {
   std::vector<PointLightDesc> lights;
   std::vector<ObjectDesc> objects;
   std::vector<NamedSpectrumDesc> spectra;
+  std::vector<NamedMaterialDesc> materials; ///< top-level <material id="...">
   std::vector<std::string> warnings; ///< "file:line: ..." notes that are not errors
 };
 

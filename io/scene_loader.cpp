@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/hash.h"
+#include "core/math_util.h"
 #include "core/memory.h"
 #include "core/text_table.h"
 #include "io/scene_desc.h"
@@ -90,15 +91,21 @@ public:
         scene.camera = parseCamera(n);
       } else if (tag == "light") {
         scene.lights.push_back(parseLight(n));
-      } else if (tag == "sphere" || tag == "plane" || tag == "triangle") {
+      } else if (tag == "sphere" || tag == "plane" || tag == "triangle" || tag == "quad" ||
+                 tag == "mesh") {
         scene.objects.push_back(parseObject(n));
       } else if (tag == "spectrum") {
         scene.spectra.push_back(parseNamedSpectrum(n));
+      } else if (tag == "material") {
+        scene.materials.push_back(parseNamedMaterial(n));
       } else {
-        fail(n, "one of <settings>, <camera>, <light>, <sphere>, <plane>, <triangle>, <spectrum>",
+        fail(n,
+             "one of <settings>, <camera>, <light>, <sphere>, <plane>, <triangle>, <quad>, "
+             "<mesh>, <material>, <spectrum>",
              "<" + tag + ">");
       }
     }
+    resolveMaterialReferences(scene);
     if (!haveSettings) fail(root, "a <settings> element", "none");
     if (!haveCamera) fail(root, "a <camera> element", "none");
     checkMemory(scene.settings);
@@ -632,14 +639,148 @@ private:
     return rgba;
   }
 
-  ObjectDesc parseObject(const pugi::xml_node& n) const {
+  // The built-in material kinds.
+  static const std::set<std::string>& materialKinds() {
+    static const std::set<std::string> kinds{"matte",   "metal",  "plastic",     "mirror",
+                                             "diamond", "glass",  "translucent", "transparent",
+                                             "default", "diffuse"};
+    return kinds;
+  }
+  static constexpr const char* kMaterialKindList =
+      "matte, metal, plastic, mirror, glass, diamond, translucent, transparent, default or diffuse";
+
+  // The parameters of a material from an element's children (an object's, or a <material id>'s).
+  void parseMaterialParameters(const std::map<std::string, pugi::xml_node>& c,
+                               MaterialDesc& m) const {
+    if (c.count("color")) m.color = colour(c.at("color"), true);
+    if (c.count("reflectance")) m.reflectance = spectrum(c.at("reflectance"), false);
+    if (c.count("roughness")) {
+      m.roughness = number(c.at("roughness"), "a roughness", 0, 1);
+      m.roughnessLoc = loc(c.at("roughness"));
+    }
+    if (c.count("ior")) m.ior = ior(c.at("ior"));
+    if (c.count("fluorescence")) m.fluorescence = fluorescence(c.at("fluorescence"));
+  }
+
+  // <material id="name" type="kind"> with the material's parameters as children.
+  NamedMaterialDesc parseNamedMaterial(const pugi::xml_node& n) const {
+    checkAttributes(n, {"id", "type"});
+    NamedMaterialDesc d;
+    d.loc = loc(n);
+    if (!n.attribute("id")) fail(n, "an id=\"...\" on a top-level <material>", "none");
+    if (!n.attribute("type"))
+      fail(n, "a type=\"...\" (" + std::string(kMaterialKindList) + ") on <material>", "none");
+    d.id = trim(decoded(n.attribute("id").value(), n));
+    if (d.id.empty()) fail(n, "a non-empty material id", "id=\"\"");
+    if (materialKinds().count(d.id))
+      fail(n, "a material id that is not a built-in kind's name", shownText(d.id));
+    d.material.material = trim(decoded(n.attribute("type").value(), n));
+    d.material.materialLoc = d.loc;
+    if (!materialKinds().count(d.material.material))
+      fail(n, "a material type " + std::string(kMaterialKindList),
+           shownText(d.material.material));
+    const auto c = uniqueChildren(n, {"color", "reflectance", "roughness", "ior", "fluorescence"});
+    parseMaterialParameters(c, d.material);
+    return d;
+  }
+
+  // Objects whose <material> names a <material id>: checked to exist and to carry no material
+  // parameters of their own; ids defined twice are errors.
+  void resolveMaterialReferences(SceneDesc& scene) const {
+    std::map<std::string, const NamedMaterialDesc*> byId;
+    for (const NamedMaterialDesc& m : scene.materials)
+      if (!byId.emplace(m.id, &m).second)
+        throw Error(m.loc.str() + ": expected a new material id, found '" + m.id +
+                    "' defined twice (first at " + byId.at(m.id)->loc.str() + ")");
+    for (ObjectDesc& o : scene.objects) {
+      if (o.materialRef.empty()) continue;
+      const auto it = byId.find(o.materialRef);
+      if (it == byId.end())
+        throw Error(o.materialLoc.str() + ": expected a material " + kMaterialKindList +
+                    " or the id of a <material id=\"...\"> of the scene, found " +
+                    shownText(o.materialRef));
+      const bool ownParameters = o.color || o.reflectance || o.roughness || o.ior ||
+                                 o.fluorescence;
+      if (ownParameters)
+        throw Error(o.loc.str() + ": expected no <color>, <reflectance>, <roughness>, <ior> or "
+                                  "<fluorescence> on an object whose material '" +
+                    o.materialRef + "' is defined at " + it->second->loc.str() +
+                    ", found some (define a second material instead)");
+    }
+  }
+
+  // <transform>: translate, rotate (axis x, y, z and an angle in degrees), scale (one or three
+  // factors) and matrix (4x4, row-major, last row 0 0 0 1) steps, applied in the order written.
+  AffineDesc transform(const pugi::xml_node& n) const {
     checkAttributes(n, {});
+    AffineDesc a;
+    auto then = [&](const std::array<std::array<double, 3>, 3>& m, const Vec3d& t) {
+      AffineDesc r;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          r.m[i][j] = m[i][0] * a.m[0][j] + m[i][1] * a.m[1][j] + m[i][2] * a.m[2][j];
+      r.t = Vec3d(m[0][0] * a.t.x + m[0][1] * a.t.y + m[0][2] * a.t.z,
+                  m[1][0] * a.t.x + m[1][1] * a.t.y + m[1][2] * a.t.z,
+                  m[2][0] * a.t.x + m[2][1] * a.t.y + m[2][2] * a.t.z) +
+            t;
+      a = r;
+    };
+    using M = std::array<std::array<double, 3>, 3>;
+    const M identity{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    for (pugi::xml_node c : elements(n)) {
+      const std::string tag = c.name();
+      if (tag == "translate") {
+        then(identity, vec3(c, "a translation x, y, z"));
+      } else if (tag == "rotate") {
+        const auto v = numbers(c, 4, 4, "axis x, y, z and an angle in degrees");
+        const Vec3d axis(v[0], v[1], v[2]);
+        const double len = length(axis);
+        if (!(len > 0)) fail(c, "a non-zero rotation axis", shownText(text(c)));
+        const Vec3d k = axis / len;
+        const double th = v[3] * kPi / 180, co = std::cos(th), si = std::sin(th), t = 1 - co;
+        // Rodrigues' rotation formula.
+        then({{{t * k.x * k.x + co, t * k.x * k.y - si * k.z, t * k.x * k.z + si * k.y},
+               {t * k.x * k.y + si * k.z, t * k.y * k.y + co, t * k.y * k.z - si * k.x},
+               {t * k.x * k.z - si * k.y, t * k.y * k.z + si * k.x, t * k.z * k.z + co}}},
+             Vec3d(0, 0, 0));
+      } else if (tag == "scale") {
+        const auto v = numbers(c, 1, 3, "one factor or three factors x, y, z");
+        if (v.size() == 2) fail(c, "one or three scale factors", "2");
+        const Vec3d f = v.size() == 1 ? Vec3d(v[0], v[0], v[0]) : Vec3d(v[0], v[1], v[2]);
+        if (!(f.x != 0 && f.y != 0 && f.z != 0))
+          fail(c, "non-zero scale factors", shownText(text(c)));
+        then({{{f.x, 0, 0}, {0, f.y, 0}, {0, 0, f.z}}}, Vec3d(0, 0, 0));
+      } else if (tag == "matrix") {
+        const auto v = numbers(c, 16, 16, "a 4x4 matrix, row by row");
+        if (v[12] != 0 || v[13] != 0 || v[14] != 0 || v[15] != 1)
+          fail(c, "an affine matrix (last row 0, 0, 0, 1)", shownText(text(c)));
+        then({{{v[0], v[1], v[2]}, {v[4], v[5], v[6]}, {v[8], v[9], v[10]}}},
+             Vec3d(v[3], v[7], v[11]));
+      } else {
+        fail(c, "one of <translate>, <rotate>, <scale>, <matrix> inside <transform>",
+             "<" + tag + ">");
+      }
+    }
+    const double det = a.m[0][0] * (a.m[1][1] * a.m[2][2] - a.m[1][2] * a.m[2][1]) -
+                       a.m[0][1] * (a.m[1][0] * a.m[2][2] - a.m[1][2] * a.m[2][0]) +
+                       a.m[0][2] * (a.m[1][0] * a.m[2][1] - a.m[1][1] * a.m[2][0]);
+    if (!(std::abs(det) > 1e-300) || !std::isfinite(det))
+      fail(n, "a transform that keeps volume (non-zero determinant)",
+           "determinant " + numberText(det));
+    return a;
+  }
+
+  ObjectDesc parseObject(const pugi::xml_node& n) const {
     const std::string tag = n.name();
+    checkAttributes(n, tag == "mesh" ? std::vector<std::string>{"file"}
+                                     : std::vector<std::string>{});
     std::vector<std::string> allowed{"material",     "color",     "reflectance", "emission",
                                      "fluorescence", "roughness", "ior"};
     if (tag == "sphere") allowed.insert(allowed.end(), {"center", "radius"});
     if (tag == "plane") allowed.insert(allowed.end(), {"normal", "distance"});
     if (tag == "triangle") allowed.insert(allowed.end(), {"vA", "vB", "vC"});
+    if (tag == "quad") allowed.insert(allowed.end(), {"origin", "edge_u", "edge_v"});
+    if (tag == "mesh") allowed.insert(allowed.end(), {"transform"});
     const auto c = uniqueChildren(n, allowed);
     ObjectDesc o;
     o.loc = loc(n);
@@ -656,38 +797,43 @@ private:
       o.normal = o.normal / len;
       o.distance =
           number(required(c, n, "distance"), "a plane distance", -kMaxCoordinate, kMaxCoordinate);
-    } else {
+    } else if (tag == "triangle") {
       o.shape = ShapeType::Triangle;
       o.vertices = {vec3(required(c, n, "vA"), "a vertex x, y, z"),
                     vec3(required(c, n, "vB"), "a vertex x, y, z"),
                     vec3(required(c, n, "vC"), "a vertex x, y, z")};
       if (!(length(cross(o.vertices[1] - o.vertices[0], o.vertices[2] - o.vertices[0])) > 0))
         fail(n, "a triangle with non-zero area", "collinear vertices");
+    } else if (tag == "quad") {
+      o.shape = ShapeType::Quad;
+      o.vertices = {vec3(required(c, n, "origin"), "a corner x, y, z"),
+                    vec3(required(c, n, "edge_u"), "an edge vector x, y, z"),
+                    vec3(required(c, n, "edge_v"), "an edge vector x, y, z")};
+      if (!(length(cross(o.vertices[1], o.vertices[2])) > 0))
+        fail(n, "a quad with non-zero area (edge_u and edge_v not parallel)",
+             "parallel or zero edges");
+    } else {
+      o.shape = ShapeType::Mesh;
+      const std::string f = trim(decoded(n.attribute("file").value(), n));
+      if (f.empty()) fail(n, "a file=\"...\" (a .ply or .obj mesh) on <mesh>", "none");
+      o.meshPath = relativeToScene(f);
+      if (c.count("transform")) o.transform = transform(c.at("transform"));
     }
     const pugi::xml_node mat = required(c, n, "material");
     o.material = text(mat);
     o.materialLoc = loc(mat);
-    static const std::set<std::string> kMaterials{"matte",   "metal",  "plastic",     "mirror",
-                                                  "diamond", "glass",  "translucent", "transparent",
-                                                  "default", "diffuse"};
-    if (!kMaterials.count(o.material))
-      fail(mat,
-           "a material matte, metal, plastic, mirror, glass, diamond, translucent, transparent, "
-           "default or diffuse",
-           shownText(o.material));
-    if (c.count("color")) o.color = colour(c.at("color"), true);
-    if (c.count("reflectance")) o.reflectance = spectrum(c.at("reflectance"), false);
+    if (!materialKinds().count(o.material)) {
+      if (o.material.empty())
+        fail(mat, std::string("a material ") + kMaterialKindList + " or a <material id>",
+             "nothing");
+      o.materialRef = o.material; // checked once every <material id> is known
+    }
+    parseMaterialParameters(c, o);
     if (c.count("emission")) {
       const pugi::xml_node e = c.at("emission");
       o.emission = spectrum(e, true, {"scale"});
       o.emissionScale = emissionScale(e);
     }
-    if (c.count("roughness")) {
-      o.roughness = number(c.at("roughness"), "a roughness", 0, 1);
-      o.roughnessLoc = loc(c.at("roughness"));
-    }
-    if (c.count("ior")) o.ior = ior(c.at("ior"));
-    if (c.count("fluorescence")) o.fluorescence = fluorescence(c.at("fluorescence"));
     return o;
   }
 

@@ -128,7 +128,7 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
       {"wrong root", "<scen></scen>", "t.scn:1: expected the root element <scene>, found <scen>"},
       {"unknown top tag", scene("<shpere></shpere>\n"),
        "t.scn:4: expected one of <settings>, <camera>, <light>, <sphere>, <plane>, <triangle>, "
-       "<spectrum>, found <shpere>"},
+       "<quad>, <mesh>, <material>, <spectrum>, found <shpere>"},
       {"unknown child", scene("<sphere><centre>0,0,0</centre></sphere>\n"),
        "t.scn:4: expected one of <material>, <color>, <reflectance>, <emission>, <fluorescence>, "
        "<roughness>, <ior>, "
@@ -188,8 +188,8 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
        scene("<sphere><center>0,0,0</center><radius>1</radius><material>velvet</material></"
              "sphere>\n"),
        "t.scn:4: expected a material matte, metal, plastic, mirror, glass, diamond, translucent, "
-       "transparent, default or "
-       "diffuse, found 'velvet'"},
+       "transparent, default or diffuse or the id of a <material id=\"...\"> of the scene, found "
+       "'velvet'"},
       {"colour count",
        scene("<sphere><center>0,0,0</center><radius>1</radius><material>matte</material><color>1, "
              "0</color></sphere>\n"),
