@@ -171,7 +171,7 @@ int run(int argc, char** argv) {
   long long seed = -1;
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
   std::string output, bandsText, sensorText, density = "sensor", errorOf = "luminance", aovText,
-                                             lightSampling = "mis", sampler = "sobol", scenePath,
+                                             lightSampling = "mis", lightSelection = "local", sampler = "sobol", scenePath,
                                              cropText, rangeText, resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false,
        envi = false;
@@ -199,6 +199,10 @@ int run(int argc, char** argv) {
   app.add_option("--light-sampling", lightSampling,
                  "mis (default), bsdf or nee: how diffuse surfaces find lights")
       ->check(CLI::IsMember({"mis", "bsdf", "nee"}));
+  app.add_option("--light-selection", lightSelection,
+                 "local (default: by the power each light sends to the shading point), power "
+                 "(by emitted power) or uniform: how next-event estimation chooses a light")
+      ->check(CLI::IsMember({"local", "power", "uniform"}));
   app.add_option("--sampler", sampler, "sobol (Owen-scrambled, default) or independent")
       ->check(CLI::IsMember({"sobol", "independent"}));
   app.add_flag("--no-fluorescence", noFluorescence,
@@ -262,6 +266,9 @@ int run(int argc, char** argv) {
   options.lightSampling = lightSampling == "bsdf"  ? nx::LightSampling::BsdfOnly
                           : lightSampling == "nee" ? nx::LightSampling::NeeOnly
                                                    : nx::LightSampling::Mis;
+  options.lightSelection = lightSelection == "power"     ? nx::LightSelection::Power
+                           : lightSelection == "uniform" ? nx::LightSelection::Uniform
+                                                         : nx::LightSelection::Local;
   options.sampler =
       sampler == "independent" ? nx::SamplerKind::Independent : nx::SamplerKind::SobolOwen;
   options.wavelengthDensity =
@@ -345,7 +352,7 @@ int run(int argc, char** argv) {
   // Identifies what the image is an estimate of: the resolved scene content (its text and every
   // file it refers to), the options that change the image, the lanes and the version.
   const std::string renderKey =
-      hex(nx::fnv1a64(std::string(NX_VERSION) + "|" + sampler + "|" + lightSampling + "|" +
+      hex(nx::fnv1a64(std::string(NX_VERSION) + "|" + sampler + "|" + lightSampling + "|" + lightSelection + "|" +
                           density + "|" + (options.whiteReference ? "white|" : "") +
                           (noFluorescence ? "nofl" : "fl") + "|" + std::to_string(nx::kLanes),
                       scene.contentDigest));
@@ -416,6 +423,7 @@ int run(int argc, char** argv) {
     image.attributes["nxrender.bands"] = film.bands().toString();
     image.attributes["nxrender.sampler"] = sampler;
     image.attributes["nxrender.lightSampling"] = lightSampling;
+    image.attributes["nxrender.lightSelection"] = lightSelection;
     image.attributes["nxrender.fluorescence"] = scene.hasFluorescence ? "on" : "off";
     image.attributes["nxrender.previewWhite"] = std::to_string(white.x / white.y) + "," +
                                                 std::to_string(1.0) + "," +

@@ -47,7 +47,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const uint32_t seed = out.seed;
   const int begin = options.firstSample, end = options.firstSample + out.samplesPerPixel;
 
-  const LightSampler lights(scene);
+  const LightSampler lights(scene, options.lightSelection);
   const IntegratorContext ctx{&scene, &lights, options.lightSampling,
                               scene.hasFluorescence || options.forceFluorescencePath};
   const WavelengthSampler wavelengths =

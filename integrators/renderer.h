@@ -36,6 +36,7 @@ struct RenderOptions {
   std::optional<uint32_t> seed;  ///< default: the scene's <seed>
   std::optional<Sensor> bands;   ///< default: the scene's <bands> or <sensor>
   LightSampling lightSampling = LightSampling::Mis;
+  LightSelection lightSelection = LightSelection::Local; ///< how next-event estimation picks lights
   /// Where wavelengths are drawn: the sensor's bands and the colour range (default), or the
   /// visible density alone (the density of earlier versions, for comparisons).
   WavelengthDensity wavelengthDensity = WavelengthDensity::Sensor;

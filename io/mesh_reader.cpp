@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/file_text.h"
+#include "io/mesh_file_check.h"
 
 namespace nx {
 namespace {
@@ -40,6 +41,8 @@ MeshFile readMeshFile(const std::string& path) {
     throw Error("expected a mesh file ending in .ply or .obj, found '" + path + "'");
   MeshFile out;
   out.bytes = readRegularFile(path, kMaxMeshFileBytes, "mesh file");
+  if (ext == "ply") checkPlyFile(out.bytes, path);
+  else checkObjFile(out.bytes, path);
   Assimp::Importer importer;
   // Points and lines are dropped, not turned into degenerate triangles.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
