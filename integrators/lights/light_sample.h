@@ -31,6 +31,7 @@ struct LightSample {
   bool infinite = false; ///< the background: the shadow ray has no end
   ShapeKind kind = ShapeKind::Sphere; ///< the shape the point lies on (area lights)
   uint32_t shape = 0, prim = 0;       ///< its index within its kind, and triangle
+  int32_t light = -1;                 ///< the light's number in its LightSampler
 };
 
 /// Shadow rays end this fraction short of the light's offset point (pbrt-v4's ShadowEpsilon):

@@ -210,6 +210,7 @@ bool LightSampler::sampleLight(int k, const Vec3& p, float uChoice, Sample2 u,
   const Light& l = lights_[static_cast<size_t>(k)];
   out.delta = false;
   out.infinite = false;
+  out.light = k;
   switch (l.kind) {
   case LightKind::Point: {
     const PointLight& pl = scene_->pointLights[l.shape];
