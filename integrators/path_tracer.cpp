@@ -68,20 +68,20 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     const Material& material = whiteHere ? whiteLambertian() : scene.materials[app.material];
     const Vec3 wo = -ray.d;
     const SampledSpectrum rho = evaluate(material.reflectance, current);
-    const SurfaceBsdf bsdf(material, current, rho, hit.ng, wo);
+    const SurfaceBsdf bsdf(material, current, rho, hit.ng, hit.ns, wo);
 
     // A fluorescent diffuse lobe: every lane's excitation wavelength is chosen once, for both
     // next-event estimation and the continuation through the diffuse lobe.
     [[maybe_unused]] FluorescentShift shift;
     [[maybe_unused]] bool fluorescent = false;
     if constexpr (kFluorescence) {
-      if (material.reradiation && bsdf.hasDiffuse()) {
+      if (material.reradiation && bsdf.hasNonSpecular()) {
         shift = sampleFluorescentShift(*material.reradiation, current, rho, rng);
         fluorescent = true;
       }
     }
 
-    if (bsdf.hasDiffuse() && ctx.lightSampling != LightSampling::BsdfOnly &&
+    if (bsdf.hasNonSpecular() && ctx.lightSampling != LightSampling::BsdfOnly &&
         ctx.lights->count() > 0) {
       const float uChoice = rng.next1D();
       const Sample2 uLight = rng.next2D();
@@ -89,9 +89,9 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       const SampledWavelengths& lit = fluorescent ? shift.excited : current;
       if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls)) {
         auto f = [&](const Vec3& wi) {
-          return fluorescent ? shift.albedo * bsdf.diffuseFactor(wi) : bsdf.evalDiffuse(wi);
+          return fluorescent ? shift.albedo * bsdf.diffuseFactor(wi) : bsdf.f(wi);
         };
-        auto pdf = [&](const Vec3& wi) { return bsdf.pdfDiffuse(wi); };
+        auto pdf = [&](const Vec3& wi) { return bsdf.pdf(wi); };
         L += beta * directLight(scene, hit, ray.d, ls, f, pdf,
                                 ctx.lightSampling != LightSampling::NeeOnly, counters);
       }

@@ -42,11 +42,11 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
   const Material& material = scene.materials[app.material];
   const Vec3 wo = -ray.d;
   const SampledSpectrum rho = evaluate(material.reflectance, lambda);
-  const SurfaceBsdf bsdf(material, lambda, rho, hit.ng, wo);
+  const SurfaceBsdf bsdf(material, lambda, rho, hit.ng, hit.ns, wo);
 
   // Direct light on the diffuse lobe, from every light (one sample each). A fluorescent lobe
   // sees the lights at its lanes' excitation wavelengths.
-  if (bsdf.hasDiffuse()) {
+  if (bsdf.hasNonSpecular()) {
     const bool fluorescent = material.reradiation != nullptr;
     const FluorescentShift shift =
         fluorescent ? sampleFluorescentShift(*material.reradiation, lambda, rho, rng)

@@ -8,23 +8,34 @@
 namespace nx {
 
 SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
-                         const SampledSpectrum& rho, const Vec3& ng, const Vec3& wo,
-                         TransportMode mode)
+                         const SampledSpectrum& rho, const Vec3& ng, const Vec3& ns,
+                         const Vec3& wo, TransportMode mode)
     : material_(&m), lambda_(&lambda), rho_(rho), wo_(wo), mode_(mode) {
-  // Opaque surfaces scatter on the side they are seen from; dielectrics keep the outward
-  // normal to know whether the path enters or leaves.
-  n_ = (m.kind == MaterialKind::Mixture && dot(wo, ng) < 0) ? -ng : ng;
+  // Opaque surfaces scatter on the side they are seen from (decided by the geometric normal);
+  // dielectrics keep the outward normal to know whether the path enters or leaves.
+  const bool flip = m.kind == MaterialKind::Mixture && dot(wo, ng) < 0;
+  ng_ = flip ? -ng : ng;
+  n_ = flip ? -ns : ns;
+}
+
+uint8_t SurfaceBsdf::lobes() const {
+  if (material_->kind == MaterialKind::Dielectric)
+    return kSpecularReflection | kSpecularTransmission;
+  const float r = material_->roughness;
+  return static_cast<uint8_t>((r > 0 ? kDiffuseReflection : 0) | (r < 1 ? kSpecularReflection : 0));
 }
 
 float SurfaceBsdf::diffuseFactor(const Vec3& wi) const {
-  if (!hasDiffuse()) return 0;
+  if (material_->kind != MaterialKind::Mixture || !(material_->roughness > 0)) return 0;
   const float c = dot(wi, n_);
-  if (c <= 0 || dot(wo_, n_) <= 0) return 0;
+  if (c <= 0 || dot(wo_, n_) <= 0 || dot(wi, ng_) <= 0) return 0;
   return material_->roughness * static_cast<float>(kInvPi) * c;
 }
 
-float SurfaceBsdf::pdfDiffuse(const Vec3& wi) const {
-  if (!hasDiffuse() || dot(wo_, n_) <= 0) return 0;
+float SurfaceBsdf::pdf(const Vec3& wi) const {
+  if (material_->kind != MaterialKind::Mixture || !(material_->roughness > 0) ||
+      dot(wo_, n_) <= 0)
+    return 0;
   return material_->roughness * cosineHemispherePdf(dot(wi, n_));
 }
 
@@ -50,6 +61,8 @@ bool SurfaceBsdf::sampleMixture(float uLobe, Sample2 u, BsdfSample& out) const {
     out.pdf = 0;
     out.specular = true;
   }
+  // A direction the shading frame allows below the geometric surface is absorbed.
+  if (dot(out.wi, ng_) <= 0) return false;
   out.weight = rho_;
   out.terminateSecondary = false;
   out.eta = 1;

@@ -21,6 +21,18 @@ struct BsdfSample {
   float eta = 1;
 };
 
+/// The kinds of scattering a BSDF has (bit flags): integrators ask for what they need (can a
+/// light be sampled here? is there a delta lobe?) without naming a material's lobes.
+enum BsdfLobe : uint8_t {
+  kDiffuseReflection = 1,
+  kGlossyReflection = 2,
+  kSpecularReflection = 4,
+  kDiffuseTransmission = 8,
+  kGlossyTransmission = 16,
+  kSpecularTransmission = 32,
+  kNonSpecular = kDiffuseReflection | kGlossyReflection | kDiffuseTransmission | kGlossyTransmission,
+};
+
 /// Whether weights carry the 1/eta^2 radiance scaling at refraction (camera paths) or not
 /// (energy, used to check conservation).
 enum class TransportMode : uint8_t { Radiance, Energy };
@@ -30,27 +42,35 @@ class SurfaceBsdf {
 public:
   /// Keeps references to `m` and `lambda` (they must outlive it).
   /// `rho` is the material's reflectance at the path's wavelengths; ng the geometric normal
-  /// (outward for spheres); wo points away from the surface (towards the previous vertex).
+  /// (outward for spheres), ns the shading normal (on ng's side; ng itself where the surface
+  /// has none); wo points away from the surface (towards the previous vertex). Lobes are
+  /// evaluated and sampled in ns's frame; a direction on the other geometric side of the
+  /// surface than wo is never reflected (no light leaks through interpolated normals).
   SurfaceBsdf(const Material& m, const SampledWavelengths& lambda, const SampledSpectrum& rho,
-              const Vec3& ng, const Vec3& wo, TransportMode mode = TransportMode::Radiance);
+              const Vec3& ng, const Vec3& ns, const Vec3& wo,
+              TransportMode mode = TransportMode::Radiance);
+  /// The same with the shading normal equal to the geometric one.
+  SurfaceBsdf(const Material& m, const SampledWavelengths& lambda, const SampledSpectrum& rho,
+              const Vec3& ng, const Vec3& wo, TransportMode mode = TransportMode::Radiance)
+      : SurfaceBsdf(m, lambda, rho, ng, ng, wo, mode) {}
 
+  /// The lobes this surface has (BsdfLobe flags).
+  uint8_t lobes() const;
   /// True if some of the scattering is non-specular (light sampling can help).
-  bool hasDiffuse() const {
-    return material_->kind == MaterialKind::Mixture && material_->roughness > 0;
-  }
+  bool hasNonSpecular() const { return (lobes() & kNonSpecular) != 0; }
 
-  /// f(wo, wi) |cos(wi)| of the non-specular part, per lane (zero below the surface).
-  SampledSpectrum evalDiffuse(const Vec3& wi) const { return rho_ * diffuseFactor(wi); }
+  /// f(wo, wi) |cos(wi)| of the non-specular lobes, per lane (zero below the surface).
+  SampledSpectrum f(const Vec3& wi) const { return rho_ * diffuseFactor(wi); }
   /// r |cos(wi)| / pi: the diffuse lobe without its albedo (fluorescent lobes supply their own).
   float diffuseFactor(const Vec3& wi) const;
-  /// Density with which sample() returns wi through its non-specular part.
-  float pdfDiffuse(const Vec3& wi) const;
+  /// Density with which sample() returns wi through its non-specular lobes.
+  float pdf(const Vec3& wi) const;
 
   /// Draws a direction: uLobe picks the lobe, u the direction within it. Returns false when
   /// nothing is scattered (a black surface).
   bool sample(float uLobe, Sample2 u, BsdfSample& out) const;
 
-  /// The normal on the side of wo (Mixture) or the geometric normal (Dielectric).
+  /// The shading normal on the side of wo (Mixture) or the outward one (Dielectric).
   const Vec3& normal() const { return n_; }
 
 private:
@@ -60,7 +80,7 @@ private:
   const Material* material_;
   const SampledWavelengths* lambda_;
   SampledSpectrum rho_;
-  Vec3 n_, wo_;
+  Vec3 n_, ng_, wo_; ///< shading normal, geometric normal (both on wo's side for Mixture)
   TransportMode mode_;
 };
 

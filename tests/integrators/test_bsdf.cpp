@@ -63,7 +63,7 @@ TEST(Bsdf, MixtureSamplingMatchesPdf) {
         EXPECT_NEAR(dot(s.wi, reflect(wo, ng)), 1.0f, 1e-5f);
         continue;
       }
-      EXPECT_NEAR(s.pdf, bsdf.pdfDiffuse(s.wi), 1e-4f * s.pdf);
+      EXPECT_NEAR(s.pdf, bsdf.pdf(s.wi), 1e-4f * s.pdf);
       const int iz = std::min(nz - 1, static_cast<int>(s.wi.z * nz));
       double phi = std::atan2(s.wi.y, s.wi.x) + kPi;
       obs[iz * nphi + std::min(nphi - 1, static_cast<int>(phi / (2 * kPi) * nphi))] += 1;
@@ -88,12 +88,12 @@ TEST(Bsdf, MixtureEvalIsReciprocalAndBelowSurfaceIsBlack) {
   const Vec3 a = normalize(Vec3(0.2f, 0.1f, 0.9f)), b = normalize(Vec3(-0.5f, 0.3f, 0.4f));
   const SurfaceBsdf fromA(m, lambda, rho, Vec3(0, 0, 1), a),
       fromB(m, lambda, rho, Vec3(0, 0, 1), b);
-  EXPECT_NEAR(fromA.evalDiffuse(b)[0] / b.z, fromB.evalDiffuse(a)[0] / a.z, 1e-6f);
-  EXPECT_NEAR(fromA.evalDiffuse(b)[0], 0.4f * 0.6f / static_cast<float>(kPi) * b.z, 1e-6f);
-  EXPECT_EQ(fromA.evalDiffuse(Vec3(0, 0, -1))[0], 0.0f);
+  EXPECT_NEAR(fromA.f(b)[0] / b.z, fromB.f(a)[0] / a.z, 1e-6f);
+  EXPECT_NEAR(fromA.f(b)[0], 0.4f * 0.6f / static_cast<float>(kPi) * b.z, 1e-6f);
+  EXPECT_EQ(fromA.f(Vec3(0, 0, -1))[0], 0.0f);
   // Seen from below, the opaque surface scatters on its lower side.
   const SurfaceBsdf below(m, lambda, rho, Vec3(0, 0, 1), -a);
-  EXPECT_GT(below.evalDiffuse(Vec3(0, 0, -1))[0], 0.0f);
+  EXPECT_GT(below.f(Vec3(0, 0, -1))[0], 0.0f);
 }
 
 // Albedo (energy, no radiance scaling) of every material for many directions: <= 1, and
