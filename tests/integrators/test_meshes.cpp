@@ -1,0 +1,220 @@
+// Meshes from files in renders: the same triangles inline and from a PLY render alike, a
+// tessellated sphere converges to the analytic one (as a light and as a lit surface).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+#include "core/math_util.h"
+#include "integrators/lights/light_sampler.h"
+#include "integrators/renderer.h"
+#include "support/statistics.h"
+
+namespace nx {
+namespace {
+
+std::string tempPath(const std::string& name) {
+  return ::testing::TempDir() + "/" + name;
+}
+
+// Writes a binary little-endian PLY with positions and, if given, normals.
+void writePly(const std::string& path, const std::vector<Vec3>& p, const std::vector<Vec3>& n,
+              const std::vector<std::array<int, 3>>& faces) {
+  std::ofstream f(path, std::ios::binary);
+  f << "ply\nformat binary_little_endian 1.0\nelement vertex " << p.size()
+    << "\nproperty float x\nproperty float y\nproperty float z\n";
+  if (!n.empty()) f << "property float nx\nproperty float ny\nproperty float nz\n";
+  f << "element face " << faces.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (size_t i = 0; i < p.size(); ++i) {
+    f.write(reinterpret_cast<const char*>(&p[i]), 12);
+    if (!n.empty()) f.write(reinterpret_cast<const char*>(&n[i]), 12);
+  }
+  for (const auto& t : faces) {
+    const uint8_t three = 3;
+    f.write(reinterpret_cast<const char*>(&three), 1);
+    f.write(reinterpret_cast<const char*>(t.data()), 12);
+  }
+}
+
+// A latitude-longitude sphere of radius r at c with `rings` rings and 2 rings segments, vertices
+// on the sphere, outward normals.
+void writeSphere(const std::string& path, int rings, double r, const Vec3& c) {
+  std::vector<Vec3> p, n;
+  std::vector<std::array<int, 3>> faces;
+  const int segments = 2 * rings;
+  for (int i = 0; i <= rings; ++i)
+    for (int j = 0; j <= segments; ++j) {
+      const double th = kPi * i / rings, ph = 2 * kPi * j / segments;
+      const Vec3 d(static_cast<float>(std::sin(th) * std::cos(ph)),
+                   static_cast<float>(std::cos(th)),
+                   static_cast<float>(std::sin(th) * std::sin(ph)));
+      p.push_back(c + d * static_cast<float>(r));
+      n.push_back(d);
+    }
+  auto at = [&](int i, int j) { return i * (segments + 1) + j; };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      if (i > 0) faces.push_back({at(i, j), at(i, j + 1), at(i + 1, j)});
+      if (i + 1 < rings) faces.push_back({at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
+    }
+  writePly(path, p, n, faces);
+}
+
+RenderScene sceneOf(const std::string& body) {
+  return buildRenderScene(parseScene(
+      "<scene><settings><xres>24</xres><yres>16</yres><mode>spectral_mcpt</mode><sampl>16</sampl>"
+      "<depth>3</depth></settings><camera><position>0,1.5,-3</position><look_at>0,0.3,0"
+      "</look_at><fov>40</fov></camera><plane><normal>0,1,0</normal><distance>0</distance>"
+      "<material>matte</material><reflectance>0.5</reflectance></plane>"
+      "<light><position>1,3,-1</position><color>4,4,4</color></light>" +
+          body + "</scene>",
+      tempPath("mesh.scn")));
+}
+
+// A "tent" of four triangles: inline, and from a PLY file (moved into place by a <transform>).
+// The images agree within their noise, band by band (z-test of the mean difference).
+TEST(Meshes, PlyMeshRendersLikeTheSameTrianglesInline) {
+  const std::vector<Vec3> p = {{-0.5f, 0, -0.5f}, {0.5f, 0, -0.5f}, {0.5f, 0, 0.5f},
+                               {-0.5f, 0, 0.5f},  {0, 0.8f, 0}};
+  const std::vector<std::array<int, 3>> f = {{0, 4, 1}, {1, 4, 2}, {2, 4, 3}, {3, 4, 0}};
+  // The file holds the tent 10 units down; the transform lifts it back.
+  std::vector<Vec3> low = p;
+  for (Vec3& v : low) v.y -= 10;
+  writePly(tempPath("tent.ply"), low, {}, f);
+  std::string inlineText;
+  for (const auto& t : f) {
+    inlineText += "<triangle>";
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& v = p[static_cast<size_t>(t[static_cast<size_t>(k)])];
+      const char* tag = k == 0 ? "vA" : k == 1 ? "vB" : "vC";
+      inlineText += std::string("<") + tag + ">" + std::to_string(v.x) + "," +
+                    std::to_string(v.y) + "," + std::to_string(v.z) + "</" + tag + ">";
+    }
+    inlineText += "<material>matte</material><reflectance>0.8</reflectance></triangle>";
+  }
+  const RenderScene a = sceneOf(inlineText);
+  const RenderScene b = sceneOf("<mesh file=\"tent.ply\"><material>matte</material><reflectance>"
+                                "0.8</reflectance><transform><translate>0,10,0</translate>"
+                                "</transform></mesh>");
+  RenderOptions o;
+  o.seed = 1;
+  const RenderOutput ra = render(a, o);
+  o.seed = 2;
+  const RenderOutput rb = render(b, o);
+  for (int band = 0; band < ra.film.bands().count(); band += 5) {
+    test::RunningStats d;
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 24; ++x)
+        d.add(ra.film.bandMean(x, y, band) - rb.film.bandMean(x, y, band));
+    EXPECT_LT(std::abs(d.mean), 5 * d.standardError() + 1e-9) << band;
+  }
+  // And pixel by pixel the same surface is seen (depth at the pixel centres).
+  int compared = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 24; ++x) {
+      const Ray r = a.camera.generateRay(x + 0.5, y + 0.5);
+      SurfaceHit ha, hb;
+      ASSERT_EQ(a.geometry->intersect(r, ha), b.geometry->intersect(r, hb));
+      if (ha.kind != ShapeKind::Triangle) continue;
+      ++compared;
+      EXPECT_NEAR(ha.t, hb.t, 1e-5f * ha.t);
+    }
+  EXPECT_GT(compared, 20);
+}
+
+// Irradiance at p (normal n) from a triangle of radiance 1 entirely above p's horizon: Lambert's
+// polygon formula E = 1/2 sum_i Theta_i (n . Gamma_i) over the edges (Theta_i the angle the edge
+// subtends, Gamma_i the unit normal of the plane through p and the edge).
+double lambertTriangle(const TriangleShape& t, const Vec3d& p, const Vec3d& n) {
+  const Vec3d v[3] = {normalize(t.a - p), normalize(t.b - p), normalize(t.c - p)};
+  double sum = 0;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3d& a = v[i];
+    const Vec3d& b = v[(i + 1) % 3];
+    const Vec3d c = cross(a, b);
+    const double len = length(c);
+    if (len > 0) sum += std::atan2(len, dot(a, b)) * dot(n, c) / len;
+  }
+  return 0.5 * std::abs(sum);
+}
+
+// The irradiance a tessellated emitting sphere of radiance 1 gives a point facing it. Next-event
+// estimation (a triangle by area, a point on it, a shadow ray) agrees with the exact value for
+// the polyhedron (Lambert's formula over its front faces) at each tessellation, and that value
+// converges to the analytic sphere's pi (r / d)^2.
+TEST(Meshes, TessellatedSphereLightConvergesToTheAnalyticSphere) {
+  const Vec3 p(0, 0, -3), n(0, 0, 1);
+  const double sphere = kPi / 9;
+  SampledWavelengths w;
+  for (int i = 0; i < kLanes; ++i) w.lambda[i] = 550, w.pdf[i] = 1;
+  double previous = 1;
+  for (int rings : {4, 8, 16, 48}) {
+    writeSphere(tempPath("ball.ply"), rings, 1, Vec3(0, 0, 0));
+    const RenderScene s = buildRenderScene(parseScene(
+        "<scene><settings><xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode></settings>"
+        "<camera><position>0,0,-5</position><look_at>0,0,0</look_at></camera>"
+        "<mesh file=\"ball.ply\"><material>matte</material><emission>1</emission></mesh></scene>",
+        tempPath("ball.scn")));
+    // The polyhedron's exact irradiance: its faces that face p.
+    const TriangleMesh& mesh = s.geometry->meshes()[0];
+    double exact = 0;
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      const TriangleShape c = mesh.corners(t);
+      // The outward face normal (the sphere is centred at the origin); faces turned towards p.
+      Vec3d outward = cross(c.b - c.a, c.c - c.a);
+      if (dot(outward, c.a + c.b + c.c) < 0) outward = -outward;
+      if (dot(outward, Vec3d(p) - c.a) > 0) exact += lambertTriangle(c, Vec3d(p), Vec3d(n));
+    }
+    const LightSampler lights(s);
+    test::RunningStats e;
+    for (uint32_t i = 0; i < 100000; ++i) {
+      LightSample ls;
+      double v = 0;
+      if (lights.sample(p, sampleValue(SamplerKind::Independent, i, 0, 0, 9),
+                        samplePair(SamplerKind::Independent, i, 0, 1, 9), w, ls) &&
+          !s.geometry->occluded(shadowRayTo(p, Vec3(0, 0, 0), n, ls)))
+        v = ls.radiance[0] * std::max(0.0f, dot(ls.wi, n)) / ls.pdf;
+      e.add(v);
+    }
+    const double err = std::abs(exact / sphere - 1);
+    std::printf("%d rings: NEE %.5f +- %.5f, polyhedron %.5f, sphere %.5f (relative %.5f)\n", rings,
+                e.mean, e.standardError(), exact, sphere, err);
+    EXPECT_LT(std::abs(e.mean - exact), 4 * e.standardError()) << rings;
+    EXPECT_LT(e.standardError(), 0.02 * exact);
+    EXPECT_LT(err, previous) << rings;
+    previous = err;
+  }
+  EXPECT_LT(previous, 1e-3); // 48 rings
+}
+
+// A matte tessellated sphere with vertex normals, lit by a point light, converges to the image
+// of the analytic sphere: the mean absolute difference of the images falls with the resolution.
+TEST(Meshes, TessellatedSphereImageConvergesToTheAnalyticSphere) {
+  const std::string look = "<material>matte</material><reflectance>0.7</reflectance>";
+  const RenderScene analytic =
+      sceneOf("<sphere><center>0,0.5,0</center><radius>0.5</radius>" + look + "</sphere>");
+  RenderOptions o;
+  o.samples = 64;
+  o.seed = 5;
+  const RenderOutput ref = render(analytic, o);
+  double previous = INFINITY;
+  for (int rings : {6, 24}) {
+    writeSphere(tempPath("ball2.ply"), rings, 0.5, Vec3(0, 0.5f, 0));
+    const RenderScene mesh = sceneOf("<mesh file=\"ball2.ply\">" + look + "</mesh>");
+    o.seed = 6;
+    const RenderOutput out = render(mesh, o);
+    double diff = 0;
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 24; ++x) diff += std::abs(out.film.xyzMean(x, y).y - ref.film.xyzMean(x, y).y);
+    diff /= 24 * 16;
+    std::printf("%d rings: mean |Y difference| %.5f\n", rings, diff);
+    EXPECT_LT(diff, previous);
+    previous = diff;
+  }
+}
+
+} // namespace
+} // namespace nx
