@@ -119,8 +119,8 @@ GeometryScene::GeometryScene(EmbreeDevice& device, std::vector<SphereShape> sphe
     const TriangleMesh& mesh = meshes_[m];
     RTCGeometry g = rtcNewGeometry(device.handle(), RTC_GEOMETRY_TYPE_TRIANGLE);
     // Embree reads the mesh's buffers in place (no copy): they live as long as this scene.
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                               mesh.positionData(), 0, 3 * sizeof(float), mesh.vertexCount());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.positionData(),
+                               0, 3 * sizeof(float), mesh.vertexCount());
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indexData(), 0,
                                3 * sizeof(uint32_t), mesh.triangleCount());
     device.throwIfError("mesh buffers");

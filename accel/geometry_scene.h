@@ -29,14 +29,14 @@ enum class ShapeKind : uint8_t { Sphere, Plane, Triangle };
 
 /// The nearest surface a ray meets.
 struct SurfaceHit {
-  float t = 0; ///< ray parameter
-  Vec3 p;      ///< hit point
-  Vec3 pError; ///< bound on |p - true surface point| per component
-  Vec3 ng;     ///< unit geometric normal (outward for spheres; the plane's normal;
-               ///< (b - a) x (c - a) for triangles), not flipped towards the ray
-  Vec3 ns;     ///< unit shading normal: interpolated vertex normals on meshes that have them
-               ///< (on the side of ng), else ng
-  Vec3 dpdu;   ///< surface tangent along u (not unit; orthogonal to nothing in particular)
+  float t = 0;        ///< ray parameter
+  Vec3 p;             ///< hit point
+  Vec3 pError;        ///< bound on |p - true surface point| per component
+  Vec3 ng;            ///< unit geometric normal (outward for spheres; the plane's normal;
+                      ///< (b - a) x (c - a) for triangles), not flipped towards the ray
+  Vec3 ns;            ///< unit shading normal: interpolated vertex normals on meshes that have them
+                      ///< (on the side of ng), else ng
+  Vec3 dpdu;          ///< surface tangent along u (not unit; orthogonal to nothing in particular)
   float u = 0, v = 0; ///< surface coordinates: mesh uv (or barycentrics mapped to (0,0),
                       ///< (1,0), (1,1)); spheres: 0 until sphereUv(); planes: 0
   ShapeKind kind = ShapeKind::Sphere;

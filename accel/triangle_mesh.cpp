@@ -3,7 +3,6 @@
 #include <cmath>
 #include <string>
 
-
 namespace nx {
 
 TriangleMesh TriangleMesh::fromTriangles(const std::vector<TriangleShape>& triangles) {
@@ -12,7 +11,8 @@ TriangleMesh TriangleMesh::fromTriangles(const std::vector<TriangleShape>& trian
   std::vector<float> uv;
   uv.reserve(6 * triangles.size());
   for (const TriangleShape& t : triangles) {
-    const uint32_t a = m.addVertex(Vec3(t.a)), b = m.addVertex(Vec3(t.b)), c = m.addVertex(Vec3(t.c));
+    const uint32_t a = m.addVertex(Vec3(t.a)), b = m.addVertex(Vec3(t.b)),
+                   c = m.addVertex(Vec3(t.c));
     m.addTriangle(a, b, c);
     uv.insert(uv.end(), {0, 0, 1, 0, 1, 1});
   }

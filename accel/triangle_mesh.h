@@ -25,7 +25,9 @@ public:
   /// Appends a vertex; returns its index.
   uint32_t addVertex(const Vec3& p);
   /// Appends a triangle of three vertex indices (checked by validate()).
-  void addTriangle(uint32_t a, uint32_t b, uint32_t c) { indices_.insert(indices_.end(), {a, b, c}); }
+  void addTriangle(uint32_t a, uint32_t b, uint32_t c) {
+    indices_.insert(indices_.end(), {a, b, c});
+  }
   /// Sets per-vertex normals (3 floats per vertex) and uv (2 floats per vertex); either may be
   /// empty.
   void setAttributes(std::vector<float> normals, std::vector<float> uv);

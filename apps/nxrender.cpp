@@ -170,9 +170,9 @@ int run(int argc, char** argv) {
   int threads = 0, spp = 0;
   long long seed = -1;
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
-  std::string output, bandsText, sensorText, density = "sensor", errorOf = "luminance", aovText,
-                                             lightSampling = "mis", lightSelection = "local", sampler = "sobol", scenePath,
-                                             cropText, rangeText, resumePath;
+  std::string output, bandsText, sensorText,
+      density = "sensor", errorOf = "luminance", aovText, lightSampling = "mis",
+      lightSelection = "local", sampler = "sobol", scenePath, cropText, rangeText, resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false,
        envi = false;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
@@ -351,11 +351,11 @@ int run(int argc, char** argv) {
 
   // Identifies what the image is an estimate of: the resolved scene content (its text and every
   // file it refers to), the options that change the image, the lanes and the version.
-  const std::string renderKey =
-      hex(nx::fnv1a64(std::string(NX_VERSION) + "|" + sampler + "|" + lightSampling + "|" + lightSelection + "|" +
-                          density + "|" + (options.whiteReference ? "white|" : "") +
-                          (noFluorescence ? "nofl" : "fl") + "|" + std::to_string(nx::kLanes),
-                      scene.contentDigest));
+  const std::string renderKey = hex(nx::fnv1a64(
+      std::string(NX_VERSION) + "|" + sampler + "|" + lightSampling + "|" + lightSelection + "|" +
+          density + "|" + (options.whiteReference ? "white|" : "") +
+          (noFluorescence ? "nofl" : "fl") + "|" + std::to_string(nx::kLanes),
+      scene.contentDigest));
   const nx::Xyz white = nx::spectrumToXyz(scene.previewWhite);
   const int firstSample = options.firstSample;
   int sppTotal = options.samples > 0 ? options.samples : scene.settings.samples;

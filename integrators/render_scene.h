@@ -59,7 +59,9 @@ struct MeshAppearance {
   ShapeAppearance whole;
   std::vector<ShapeAppearance> perTriangle; ///< empty: `whole` for every triangle
   /// The appearance of triangle t.
-  const ShapeAppearance& of(uint32_t t) const { return perTriangle.empty() ? whole : perTriangle[t]; }
+  const ShapeAppearance& of(uint32_t t) const {
+    return perTriangle.empty() ? whole : perTriangle[t];
+  }
 };
 
 /// Settings resolved from the scene file.
@@ -87,13 +89,13 @@ struct RenderScene {
   std::unique_ptr<EmbreeDevice> device;
   std::unique_ptr<GeometryScene> geometry;
   std::vector<Material> materials;
-  std::vector<Spectrum> emission; ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
+  std::vector<Spectrum> emission;               ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
   std::vector<ShapeAppearance> spheres, planes; ///< parallel to the geometry's shapes
   std::vector<MeshAppearance> meshes;           ///< parallel to the geometry's meshes
   std::vector<PointLight> pointLights;
   std::optional<Spectrum> background; ///< uniform environment radiance
   Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
-  size_t meshBytes = 0;         ///< bytes the meshes' buffers take
+  size_t meshBytes = 0;               ///< bytes the meshes' buffers take
   bool hasFluorescence = false; ///< some material re-radiates (the fluorescent path tracer runs)
   /// Digest of everything the scene was resolved from: its text and the bytes of every file
   /// it refers to (CSV spectra, matrices). Part of the render key of resume and merge.

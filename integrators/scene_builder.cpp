@@ -396,7 +396,8 @@ private:
   TriangleMesh meshFromFile(const ObjectDesc& o) const {
     try {
       MeshFile f = readMeshFile(o.meshPath);
-      digest_ = fnv1a64(f.bytes, fnv1a64(std::string_view(o.meshPath.c_str(), o.meshPath.size() + 1), digest_));
+      digest_ = fnv1a64(
+          f.bytes, fnv1a64(std::string_view(o.meshPath.c_str(), o.meshPath.size() + 1), digest_));
       f.mesh.transform(o.transform.m, o.transform.t);
       if (const std::string problem = f.mesh.validate(); !problem.empty())
         throw Error("mesh '" + o.meshPath + "' after its <transform>: " + problem);

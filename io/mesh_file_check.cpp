@@ -59,8 +59,7 @@ bool parseDouble(const std::string& s, double& v) {
 int plyTypeSize(const std::string& t) {
   if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
   if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
-  if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" ||
-      t == "float32")
+  if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32")
     return 4;
   if (t == "double" || t == "float64") return 8;
   return 0;
@@ -81,7 +80,8 @@ struct PlyElement {
 
 uint64_t readUnsigned(const unsigned char* p, int size, bool bigEndian) {
   uint64_t v = 0;
-  for (int i = 0; i < size; ++i) v |= static_cast<uint64_t>(p[bigEndian ? size - 1 - i : i]) << (8 * i);
+  for (int i = 0; i < size; ++i)
+    v |= static_cast<uint64_t>(p[bigEndian ? size - 1 - i : i]) << (8 * i);
   return v;
 }
 
@@ -103,8 +103,8 @@ void checkPlyFile(const std::string& bytes, const std::string& path) {
     if (w.empty()) continue;
     if (w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "format") {
-      if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" &&
-                            w[1] != "binary_big_endian"))
+      if (w.size() != 3 ||
+          (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
         fail("expected 'format ascii|binary_little_endian|binary_big_endian 1.0', found '" + line +
              "'");
       format = w[1];
@@ -117,12 +117,13 @@ void checkPlyFile(const std::string& bytes, const std::string& path) {
       if (elements.empty()) fail("expected an element before '" + line + "'");
       if (w.size() == 3 && plyTypeSize(w[1]) > 0) {
         elements.back().properties.push_back({w[2], w[1], ""});
-      } else if (w.size() == 5 && w[1] == "list" && plyTypeSize(w[2]) > 0 &&
-                 plyIntegerType(w[2]) && plyTypeSize(w[3]) > 0) {
+      } else if (w.size() == 5 && w[1] == "list" && plyTypeSize(w[2]) > 0 && plyIntegerType(w[2]) &&
+                 plyTypeSize(w[3]) > 0) {
         elements.back().properties.push_back({w[4], w[3], w[2]});
       } else {
         fail("expected 'property <type> <name>' or 'property list <count type> <type> <name>', "
-             "found '" + line + "'");
+             "found '" +
+             line + "'");
       }
     } else if (w[0] == "end_header") {
       ended = true;
@@ -162,8 +163,9 @@ void checkPlyFile(const std::string& bytes, const std::string& path) {
         size_t k = 0;
         auto value = [&](const std::string& type, const char* what) {
           double v;
-          if (k >= w.size()) fail("expected more numbers on this " + e.name + " line, found " +
-                                  std::to_string(w.size()));
+          if (k >= w.size())
+            fail("expected more numbers on this " + e.name + " line, found " +
+                 std::to_string(w.size()));
           if (!parseDouble(w[k], v) || (plyIntegerType(type) && v != std::floor(v)))
             fail(std::string("expected ") + what + ", found '" + w[k] + "'");
           ++k;
@@ -175,7 +177,8 @@ void checkPlyFile(const std::string& bytes, const std::string& path) {
             continue;
           }
           const double n = value(p.countType, "a whole list length");
-          const bool indices = &e == face && (p.name == "vertex_indices" || p.name == "vertex_index");
+          const bool indices =
+              &e == face && (p.name == "vertex_indices" || p.name == "vertex_index");
           if (n < 0 || (indices && n < 3))
             fail("expected a face of at least 3 vertices, found " + w[k - 1]);
           for (double i = 0; i < n; ++i) {
@@ -225,10 +228,11 @@ void checkPlyFile(const std::string& bytes, const std::string& path) {
 
 void checkObjFile(const std::string& bytes, const std::string& path) {
   static const std::set<std::string> kIgnored{
-      "g",    "o",     "s",     "usemtl", "mtllib", "l",    "p",     "vp",     "cstype",
-      "deg",  "bmat",  "step",  "curv",   "curv2",  "surf", "parm",  "trim",   "hole",
-      "scrv", "sp",    "end",   "con",    "mg",     "bevel", "c_interp", "d_interp", "lod",
-      "maplib", "usemap", "shadow_obj", "trace_obj", "ctech", "stech"};
+      "g",      "o",          "s",         "usemtl",   "mtllib",   "l",    "p",
+      "vp",     "cstype",     "deg",       "bmat",     "step",     "curv", "curv2",
+      "surf",   "parm",       "trim",      "hole",     "scrv",     "sp",   "end",
+      "con",    "mg",         "bevel",     "c_interp", "d_interp", "lod",  "maplib",
+      "usemap", "shadow_obj", "trace_obj", "ctech",    "stech"};
   LineReader lines(bytes);
   std::string line;
   auto fail = [&](const std::string& what) {
@@ -257,8 +261,8 @@ void checkObjFile(const std::string& bytes, const std::string& path) {
       numbers(3, 3, "x y z");
       ++vn;
     } else if (w[0] == "f") {
-      if (w.size() < 4) fail("expected a face of at least 3 vertices, found " +
-                             std::to_string(w.size() - 1));
+      if (w.size() < 4)
+        fail("expected a face of at least 3 vertices, found " + std::to_string(w.size() - 1));
       for (size_t i = 1; i < w.size(); ++i) {
         // v, v/t, v//n or v/t/n, each index 1-based or negative (relative).
         const std::string& ref = w[i];
@@ -274,11 +278,14 @@ void checkObjFile(const std::string& bytes, const std::string& path) {
             const long long idx = std::strtoll(s.c_str(), &end, 10);
             if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE || idx == 0)
               fail("expected a vertex reference (v, v/t, v//n or v/t/n with indices from 1 or "
-                   "negative), found '" + ref + "'");
+                   "negative), found '" +
+                   ref + "'");
             const int64_t resolved = idx > 0 ? idx : counts[part] + 1 + idx;
             if (resolved < 1 || resolved > counts[part])
               fail("expected references to the " + std::to_string(counts[part]) + " " +
-                   (part == 0 ? "vertices" : part == 1 ? "texture coordinates" : "normals") +
+                   (part == 0   ? "vertices"
+                    : part == 1 ? "texture coordinates"
+                                : "normals") +
                    " read so far, found '" + ref + "'");
           }
           if (slash == std::string::npos) break;

@@ -29,7 +29,8 @@ std::string lowerExtension(const std::string& path) {
 void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
              std::vector<std::pair<const aiMesh*, aiMatrix4x4>>& out) {
   const aiMatrix4x4 m = parent * node.mTransformation;
-  for (unsigned i = 0; i < node.mNumMeshes; ++i) out.emplace_back(scene.mMeshes[node.mMeshes[i]], m);
+  for (unsigned i = 0; i < node.mNumMeshes; ++i)
+    out.emplace_back(scene.mMeshes[node.mMeshes[i]], m);
   for (unsigned i = 0; i < node.mNumChildren; ++i) collect(scene, *node.mChildren[i], m, out);
 }
 
@@ -41,11 +42,14 @@ MeshFile readMeshFile(const std::string& path) {
     throw Error("expected a mesh file ending in .ply or .obj, found '" + path + "'");
   MeshFile out;
   out.bytes = readRegularFile(path, kMaxMeshFileBytes, "mesh file");
-  if (ext == "ply") checkPlyFile(out.bytes, path);
-  else checkObjFile(out.bytes, path);
+  if (ext == "ply")
+    checkPlyFile(out.bytes, path);
+  else
+    checkObjFile(out.bytes, path);
   Assimp::Importer importer;
   // Points and lines are dropped, not turned into degenerate triangles.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_SortByPType | aiProcess_ValidateDataStructure;
   const aiScene* scene =

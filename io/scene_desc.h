@@ -103,14 +103,14 @@ struct AffineDesc {
 struct ObjectDesc : MaterialDesc {
   ShapeType shape = ShapeType::Sphere;
   SourceLocation loc;
-  Vec3d center;                  ///< sphere
-  double radius = 0;             ///< sphere
-  Vec3d normal;                  ///< plane (unit length after loading)
-  double distance = 0;           ///< plane: dot(normal, p) = distance
-  std::array<Vec3d, 3> vertices; ///< triangle vA, vB, vC; quad: origin, edge u, edge v
-  std::string meshPath;          ///< mesh: the file, resolved relative to the scene file
-  AffineDesc transform;          ///< mesh: applied to its vertices
-  std::string materialRef;       ///< the id of a <material id> (then no inline material)
+  Vec3d center;                         ///< sphere
+  double radius = 0;                    ///< sphere
+  Vec3d normal;                         ///< plane (unit length after loading)
+  double distance = 0;                  ///< plane: dot(normal, p) = distance
+  std::array<Vec3d, 3> vertices;        ///< triangle vA, vB, vC; quad: origin, edge u, edge v
+  std::string meshPath;                 ///< mesh: the file, resolved relative to the scene file
+  AffineDesc transform;                 ///< mesh: applied to its vertices
+  std::string materialRef;              ///< the id of a <material id> (then no inline material)
   std::optional<SpectrumDesc> emission; ///< absent, 0 or empty: not a light
   double emissionScale = 1;             ///< <emission scale="...">
 };
@@ -164,7 +164,7 @@ struct SceneDesc {
   std::vector<ObjectDesc> objects;
   std::vector<NamedSpectrumDesc> spectra;
   std::vector<NamedMaterialDesc> materials; ///< top-level <material id="...">
-  std::vector<std::string> warnings; ///< "file:line: ..." notes that are not errors
+  std::vector<std::string> warnings;        ///< "file:line: ..." notes that are not errors
 };
 
 /// Reads a scene file. Throws nx::Error "file:line: expected ..., found ..." on any problem:

@@ -677,8 +677,7 @@ private:
     d.material.material = trim(decoded(n.attribute("type").value(), n));
     d.material.materialLoc = d.loc;
     if (!materialKinds().count(d.material.material))
-      fail(n, "a material type " + std::string(kMaterialKindList),
-           shownText(d.material.material));
+      fail(n, "a material type " + std::string(kMaterialKindList), shownText(d.material.material));
     const auto c = uniqueChildren(n, {"color", "reflectance", "roughness", "ior", "fluorescence"});
     parseMaterialParameters(c, d.material);
     return d;
@@ -699,11 +698,11 @@ private:
         throw Error(o.materialLoc.str() + ": expected a material " + kMaterialKindList +
                     " or the id of a <material id=\"...\"> of the scene, found " +
                     shownText(o.materialRef));
-      const bool ownParameters = o.color || o.reflectance || o.roughness || o.ior ||
-                                 o.fluorescence;
+      const bool ownParameters = o.color || o.reflectance || o.roughness || o.ior || o.fluorescence;
       if (ownParameters)
-        throw Error(o.loc.str() + ": expected no <color>, <reflectance>, <roughness>, <ior> or "
-                                  "<fluorescence> on an object whose material '" +
+        throw Error(o.loc.str() +
+                    ": expected no <color>, <reflectance>, <roughness>, <ior> or "
+                    "<fluorescence> on an object whose material '" +
                     o.materialRef + "' is defined at " + it->second->loc.str() +
                     ", found some (define a second material instead)");
     }
@@ -772,8 +771,8 @@ private:
 
   ObjectDesc parseObject(const pugi::xml_node& n) const {
     const std::string tag = n.name();
-    checkAttributes(n, tag == "mesh" ? std::vector<std::string>{"file"}
-                                     : std::vector<std::string>{});
+    checkAttributes(n,
+                    tag == "mesh" ? std::vector<std::string>{"file"} : std::vector<std::string>{});
     std::vector<std::string> allowed{"material",     "color",     "reflectance", "emission",
                                      "fluorescence", "roughness", "ior"};
     if (tag == "sphere") allowed.insert(allowed.end(), {"center", "radius"});

@@ -58,8 +58,16 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
     const TriangleMesh& mesh = geometry.meshes()[m];
     if (app.perTriangle.empty()) {
       if (app.whole.emission < 0) continue;
-      Light l{LightKind::Mesh, static_cast<uint32_t>(m), -1, emissionOf(app.whole), 0,
-              areaCdf_.size(), 0, 0, Vec3(), 0};
+      Light l{LightKind::Mesh,
+              static_cast<uint32_t>(m),
+              -1,
+              emissionOf(app.whole),
+              0,
+              areaCdf_.size(),
+              0,
+              0,
+              Vec3(),
+              0};
       for (size_t t = 0; t < mesh.triangleCount(); ++t) {
         l.area += triangleArea(mesh.corners(t));
         areaCdf_.push_back(l.area);
@@ -79,16 +87,24 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
     triangleLight_[m].assign(mesh.triangleCount(), -1);
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       if (app.perTriangle[t].emission < 0) continue;
-      Light l{LightKind::Mesh, static_cast<uint32_t>(m), static_cast<int32_t>(t),
-              emissionOf(app.perTriangle[t]), triangleArea(mesh.corners(t)), 0, 0, 0, Vec3(), 0};
+      Light l{LightKind::Mesh,
+              static_cast<uint32_t>(m),
+              static_cast<int32_t>(t),
+              emissionOf(app.perTriangle[t]),
+              triangleArea(mesh.corners(t)),
+              0,
+              0,
+              0,
+              Vec3(),
+              0};
       if (!(l.area > 0)) continue;
       l.radiance = tracedIntegral(*l.emission);
       l.power = 2 * kPi * l.area * l.radiance;
       const TriangleShape c = mesh.corners(t);
       l.center = Vec3((c.a + c.b + c.c) * (1.0 / 3));
-      l.radius = static_cast<float>(std::max({length(c.a - Vec3d(l.center)),
-                                              length(c.b - Vec3d(l.center)),
-                                              length(c.c - Vec3d(l.center))}));
+      l.radius =
+          static_cast<float>(std::max({length(c.a - Vec3d(l.center)), length(c.b - Vec3d(l.center)),
+                                       length(c.c - Vec3d(l.center))}));
       triangleLight_[m][t] = static_cast<int32_t>(lights_.size());
       lights_.push_back(l);
     }
@@ -138,8 +154,7 @@ float LightSampler::localWeight(const Light& l, const Vec3& p) const {
     break;
   case LightKind::Mesh: // at most a hemisphere of one face; A / d^2 when far
     solidAngle = d2 <= r2 ? static_cast<float>(2 * kPi)
-                          : std::min(static_cast<float>(2 * kPi),
-                                     static_cast<float>(l.area) / d2);
+                          : std::min(static_cast<float>(2 * kPi), static_cast<float>(l.area) / d2);
     break;
   case LightKind::Background:
     solidAngle = static_cast<float>(4 * kPi);
@@ -159,8 +174,7 @@ float LightSampler::probability(int k, const Vec3& p) const {
 }
 
 float LightSampler::pdfBackground(const Vec3& p) const {
-  return background_ < 0 ? 0.0f
-                         : static_cast<float>(1.0 / (4 * kPi)) * probability(background_, p);
+  return background_ < 0 ? 0.0f : static_cast<float>(1.0 / (4 * kPi)) * probability(background_, p);
 }
 
 bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
@@ -191,8 +205,7 @@ bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const Sampled
       running += w;
     }
   } else {
-    k = std::min(static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), uc) -
-                                     cdf_.begin()),
+    k = std::min(static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), uc) - cdf_.begin()),
                  lights_.size() - 1);
     lo = k == 0 ? 0.0 : cdf_[k - 1];
     share = pmf_[k];
@@ -200,8 +213,10 @@ bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const Sampled
   const float uRest =
       static_cast<float>(std::clamp((uc - lo) / std::max(share, 1e-300), 0.0, 0.99999994));
   if (!(share > 0) || !sampleLight(static_cast<int>(k), p, uRest, u, lambda, out)) return false;
-  if (!out.delta) out.pdf *= static_cast<float>(share);
-  else out.pdf = static_cast<float>(share);
+  if (!out.delta)
+    out.pdf *= static_cast<float>(share);
+  else
+    out.pdf = static_cast<float>(share);
   return true;
 }
 

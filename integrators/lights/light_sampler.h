@@ -64,14 +64,14 @@ public:
 private:
   struct Light {
     LightKind kind;
-    uint32_t shape;            ///< sphere, mesh or point-light index
-    int32_t triangle = -1;     ///< an inline triangle of the mesh, or -1 for the whole mesh
-    const Spectrum* emission;  ///< radiance, or a point light's intensity
-    double area = 0;           ///< mesh lights: total area
-    size_t firstCdf = 0;       ///< whole meshes: start of the triangles' area CDF in areaCdf_
+    uint32_t shape;           ///< sphere, mesh or point-light index
+    int32_t triangle = -1;    ///< an inline triangle of the mesh, or -1 for the whole mesh
+    const Spectrum* emission; ///< radiance, or a point light's intensity
+    double area = 0;          ///< mesh lights: total area
+    size_t firstCdf = 0;      ///< whole meshes: start of the triangles' area CDF in areaCdf_
     double power = 0;
-    double radiance = 0;       ///< integral of the emission over the traced range
-    Vec3 center;               ///< bounding sphere (spheres, meshes) or position (points)
+    double radiance = 0; ///< integral of the emission over the traced range
+    Vec3 center;         ///< bounding sphere (spheres, meshes) or position (points)
     float radius = 0;
   };
   /// Weight of light l at p for LightSelection::Local (positive wherever it can shine).
@@ -84,11 +84,11 @@ private:
   const RenderScene* scene_;
   std::vector<Light> lights_;
   LightSelection selection_;
-  std::vector<float> pmf_;              ///< Power and Uniform: choice probabilities
-  std::vector<double> cdf_;             ///< their running sum (cdf_[k] = P(light <= k))
-  std::vector<double> areaCdf_;         ///< per whole-mesh light: running area of its triangles
-  std::vector<int32_t> sphereLight_;    ///< light number per sphere, or -1
-  std::vector<int32_t> meshLight_;      ///< light number per mesh (whole meshes), or -1
+  std::vector<float> pmf_;           ///< Power and Uniform: choice probabilities
+  std::vector<double> cdf_;          ///< their running sum (cdf_[k] = P(light <= k))
+  std::vector<double> areaCdf_;      ///< per whole-mesh light: running area of its triangles
+  std::vector<int32_t> sphereLight_; ///< light number per sphere, or -1
+  std::vector<int32_t> meshLight_;   ///< light number per mesh (whole meshes), or -1
   std::vector<std::vector<int32_t>> triangleLight_; ///< per mesh with inline triangles
   int32_t background_ = -1;
 };

@@ -8,8 +8,8 @@
 namespace nx {
 
 SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
-                         const SampledSpectrum& rho, const Vec3& ng, const Vec3& ns,
-                         const Vec3& wo, TransportMode mode)
+                         const SampledSpectrum& rho, const Vec3& ng, const Vec3& ns, const Vec3& wo,
+                         TransportMode mode)
     : material_(&m), lambda_(&lambda), rho_(rho), wo_(wo), mode_(mode) {
   // Opaque surfaces scatter on the side they are seen from (decided by the geometric normal);
   // dielectrics keep the outward normal to know whether the path enters or leaves.
@@ -33,8 +33,7 @@ float SurfaceBsdf::diffuseFactor(const Vec3& wi) const {
 }
 
 float SurfaceBsdf::pdf(const Vec3& wi) const {
-  if (material_->kind != MaterialKind::Mixture || !(material_->roughness > 0) ||
-      dot(wo_, n_) <= 0)
+  if (material_->kind != MaterialKind::Mixture || !(material_->roughness > 0) || dot(wo_, n_) <= 0)
     return 0;
   return material_->roughness * cosineHemispherePdf(dot(wi, n_));
 }

@@ -30,7 +30,8 @@ enum BsdfLobe : uint8_t {
   kDiffuseTransmission = 8,
   kGlossyTransmission = 16,
   kSpecularTransmission = 32,
-  kNonSpecular = kDiffuseReflection | kGlossyReflection | kDiffuseTransmission | kGlossyTransmission,
+  kNonSpecular =
+      kDiffuseReflection | kGlossyReflection | kDiffuseTransmission | kGlossyTransmission,
 };
 
 /// Whether weights carry the 1/eta^2 radiance scaling at refraction (camera paths) or not

@@ -49,12 +49,12 @@ double rectangleFactor(double x0, double x1, double z0, double z1, double h) {
 // configuration factor of the square seen from the floor point. Next-event estimation with MIS
 // reaches it with low noise at 16 spp (BSDF sampling alone: relative noise 0.79 per pixel).
 TEST(AreaLights, EmittingSquareOverFloorMatchesConfigurationFactor) {
-  const RenderScene scene = sceneOf(
-      "<plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>"
-      "<reflectance>0.5</reflectance></plane>"
-      "<quad><origin>-0.25,1,-0.25</origin><edge_u>0.5,0,0</edge_u><edge_v>0,0,0.5</edge_v>"
-      "<material>matte</material><emission>1</emission></quad>",
-      "<sampl>16</sampl>");
+  const RenderScene scene =
+      sceneOf("<plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>"
+              "<reflectance>0.5</reflectance></plane>"
+              "<quad><origin>-0.25,1,-0.25</origin><edge_u>0.5,0,0</edge_u><edge_v>0,0,0.5</edge_v>"
+              "<material>matte</material><emission>1</emission></quad>",
+              "<sampl>16</sampl>");
   std::map<LightSampling, std::pair<double, double>> noise; // mean and rms relative error
   for (LightSampling strategy : {LightSampling::Mis, LightSampling::BsdfOnly}) {
     RenderOptions o;
@@ -90,9 +90,9 @@ TEST(AreaLights, EmittingSquareOverFloorMatchesConfigurationFactor) {
 // Points drawn on a quad light are uniform over its area (chi-square over an 8 x 8 grid of equal
 // cells), and the density sample() returns is the one pdf() gives the same direction.
 TEST(AreaLights, QuadSamplesAreUniformAndMatchPdf) {
-  const RenderScene scene = sceneOf(
-      "<quad><origin>-1,2,-0.5</origin><edge_u>2,0.5,0</edge_u><edge_v>0,0,1.5</edge_v>"
-      "<material>matte</material><emission>1</emission></quad>");
+  const RenderScene scene =
+      sceneOf("<quad><origin>-1,2,-0.5</origin><edge_u>2,0.5,0</edge_u><edge_v>0,0,1.5</edge_v>"
+              "<material>matte</material><emission>1</emission></quad>");
   const LightSampler lights(scene);
   ASSERT_EQ(lights.count(), 1);
   const Vec3 p(0.2f, 0, 0.1f);
@@ -107,7 +107,8 @@ TEST(AreaLights, QuadSamplesAreUniformAndMatchPdf) {
     const Vec3d q = Vec3d(ls.p) - Vec3d(-1, 2, -0.5);
     const double t = q.z / 1.5, s = q.x / 2;
     EXPECT_NEAR(q.y, 0.5 * s, 1e-5);
-    const int cs = std::min(g - 1, static_cast<int>(s * g)), ct = std::min(g - 1, static_cast<int>(t * g));
+    const int cs = std::min(g - 1, static_cast<int>(s * g)),
+              ct = std::min(g - 1, static_cast<int>(t * g));
     obs[static_cast<size_t>(ct * g + cs)] += 1;
     if (i % 97 == 0) {
       Ray r;
@@ -126,16 +127,17 @@ TEST(AreaLights, QuadSamplesAreUniformAndMatchPdf) {
 // The light chosen for a shading point follows probability(k, p) in each selection (chi-square
 // over the lights), for a point light, a sphere, a quad, inline triangles and the background.
 TEST(AreaLights, LightChoiceFollowsItsProbabilities) {
-  const RenderScene scene = sceneOf(
-      "<light><position>0,3,0</position><color>1,1,1</color></light>"
-      "<sphere><center>2,1,0</center><radius>0.3</radius><material>matte</material>"
-      "<emission>5</emission></sphere>"
-      "<quad><origin>-1,2,-0.5</origin><edge_u>1,0,0</edge_u><edge_v>0,0,1</edge_v>"
-      "<material>matte</material><emission>2</emission></quad>"
-      "<triangle><vA>3,0,0</vA><vB>3,1,0</vB><vC>3,0,1</vC><material>matte</material>"
-      "<emission>A</emission></triangle>",
-      "<background>0.1</background>");
-  for (LightSelection sel : {LightSelection::Local, LightSelection::Power, LightSelection::Uniform}) {
+  const RenderScene scene =
+      sceneOf("<light><position>0,3,0</position><color>1,1,1</color></light>"
+              "<sphere><center>2,1,0</center><radius>0.3</radius><material>matte</material>"
+              "<emission>5</emission></sphere>"
+              "<quad><origin>-1,2,-0.5</origin><edge_u>1,0,0</edge_u><edge_v>0,0,1</edge_v>"
+              "<material>matte</material><emission>2</emission></quad>"
+              "<triangle><vA>3,0,0</vA><vB>3,1,0</vB><vC>3,0,1</vC><material>matte</material>"
+              "<emission>A</emission></triangle>",
+              "<background>0.1</background>");
+  for (LightSelection sel :
+       {LightSelection::Local, LightSelection::Power, LightSelection::Uniform}) {
     const LightSampler lights(scene, sel);
     ASSERT_EQ(lights.count(), 5);
     const Vec3 p(0.5f, 0, 0.2f);

@@ -77,8 +77,8 @@ RenderScene sceneOf(const std::string& body) {
 // A "tent" of four triangles: inline, and from a PLY file (moved into place by a <transform>).
 // The images agree within their noise, band by band (z-test of the mean difference).
 TEST(Meshes, PlyMeshRendersLikeTheSameTrianglesInline) {
-  const std::vector<Vec3> p = {{-0.5f, 0, -0.5f}, {0.5f, 0, -0.5f}, {0.5f, 0, 0.5f},
-                               {-0.5f, 0, 0.5f},  {0, 0.8f, 0}};
+  const std::vector<Vec3> p = {
+      {-0.5f, 0, -0.5f}, {0.5f, 0, -0.5f}, {0.5f, 0, 0.5f}, {-0.5f, 0, 0.5f}, {0, 0.8f, 0}};
   const std::vector<std::array<int, 3>> f = {{0, 4, 1}, {1, 4, 2}, {2, 4, 3}, {3, 4, 0}};
   // The file holds the tent 10 units down; the transform lifts it back.
   std::vector<Vec3> low = p;
@@ -90,8 +90,8 @@ TEST(Meshes, PlyMeshRendersLikeTheSameTrianglesInline) {
     for (int k = 0; k < 3; ++k) {
       const Vec3& v = p[static_cast<size_t>(t[static_cast<size_t>(k)])];
       const char* tag = k == 0 ? "vA" : k == 1 ? "vB" : "vC";
-      inlineText += std::string("<") + tag + ">" + std::to_string(v.x) + "," +
-                    std::to_string(v.y) + "," + std::to_string(v.z) + "</" + tag + ">";
+      inlineText += std::string("<") + tag + ">" + std::to_string(v.x) + "," + std::to_string(v.y) +
+                    "," + std::to_string(v.z) + "</" + tag + ">";
     }
     inlineText += "<material>matte</material><reflectance>0.8</reflectance></triangle>";
   }
@@ -208,7 +208,8 @@ TEST(Meshes, TessellatedSphereImageConvergesToTheAnalyticSphere) {
     const RenderOutput out = render(mesh, o);
     double diff = 0;
     for (int y = 0; y < 16; ++y)
-      for (int x = 0; x < 24; ++x) diff += std::abs(out.film.xyzMean(x, y).y - ref.film.xyzMean(x, y).y);
+      for (int x = 0; x < 24; ++x)
+        diff += std::abs(out.film.xyzMean(x, y).y - ref.film.xyzMean(x, y).y);
     diff /= 24 * 16;
     std::printf("%d rings: mean |Y difference| %.5f\n", rings, diff);
     EXPECT_LT(diff, previous);

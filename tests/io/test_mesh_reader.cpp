@@ -44,7 +44,8 @@ std::string asciiPly() {
   return s;
 }
 
-template <class T> void put(std::string& s, T v, bool bigEndian) {
+template <class T>
+void put(std::string& s, T v, bool bigEndian) {
   char b[sizeof(T)];
   std::memcpy(b, &v, sizeof(T));
   if (bigEndian) std::reverse(b, b + sizeof(T));
@@ -180,8 +181,7 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
   for (size_t i = 0; i < cases.size(); ++i) {
     const std::string path = writeFile(cases[i].first, cases[i].second);
     const std::string message = test::errorMessage([&] { readMeshFile(path); });
-    EXPECT_NE(message.find(expected[i]), std::string::npos)
-        << cases[i].first << ": " << message;
+    EXPECT_NE(message.find(expected[i]), std::string::npos) << cases[i].first << ": " << message;
   }
 }
 

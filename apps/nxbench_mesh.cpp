@@ -1,0 +1,111 @@
+// nxbench-mesh: loading and rendering a large mesh file.
+//
+//   nxbench-mesh [--triangles N] [--dir DIR]
+//
+// Writes a binary PLY heightfield of about N triangles (default 1,000,000) and a scene that
+// shows it, then reports: the file's size, the time to read it (checks, Assimp, the mesh
+// buffers), the time to build the Embree BVH, the bytes per triangle of the mesh buffers and of
+// Embree (its memory monitor), the process's peak resident memory, and the time of a 64x36
+// render at 1 spp.
+
+#include <CLI/CLI.hpp>
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "integrators/renderer.h"
+#include "io/mesh_reader.h"
+
+namespace {
+
+double seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+double peakResidentMb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0; // ru_maxrss is in KiB on Linux
+}
+
+// A (n+1) x (n+1) vertex grid over [-1, 1]^2, heights 0.1 sin(8x) cos(8z), 2 n^2 triangles.
+void writeHeightfield(const std::string& path, int n) {
+  std::ofstream f(path, std::ios::binary);
+  const long long verts = static_cast<long long>(n + 1) * (n + 1), faces = 2LL * n * n;
+  f << "ply\nformat binary_little_endian 1.0\nelement vertex " << verts
+    << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << faces
+    << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const float x = static_cast<float>(-1 + 2.0 * i / n),
+                  z = static_cast<float>(-1 + 2.0 * j / n);
+      const float p[3] = {x, 0.1f * std::sin(8 * x) * std::cos(8 * z), z};
+      f.write(reinterpret_cast<const char*>(p), sizeof p);
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      const int tris[2][3] = {{a, b, c}, {a, c, d}};
+      for (const auto& t : tris) {
+        const unsigned char three = 3;
+        f.write(reinterpret_cast<const char*>(&three), 1);
+        f.write(reinterpret_cast<const char*>(t), sizeof t);
+      }
+    }
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Load and render time, memory per triangle, for a large PLY mesh"};
+  long long triangles = 1000000;
+  std::string dir = "/tmp";
+  app.add_option("--triangles", triangles, "About how many triangles (default 1,000,000)")
+      ->check(CLI::Range(2LL, 200000000LL));
+  app.add_option("--dir", dir, "Where the PLY and the scene are written (default /tmp)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const int n = std::max(1, static_cast<int>(std::lround(std::sqrt(triangles / 2.0))));
+    const std::string ply = dir + "/nxbench-mesh.ply", scn = dir + "/nxbench-mesh.scn";
+    auto t0 = std::chrono::steady_clock::now();
+    writeHeightfield(ply, n);
+    std::ofstream(scn) << "<scene><settings><xres>64</xres><yres>36</yres><mode>spectral_mcpt"
+                          "</mode><sampl>1</sampl></settings><camera><position>0,1.5,-2.5"
+                          "</position><look_at>0,0,0</look_at></camera><mesh file=\"nxbench-mesh"
+                          ".ply\"><material>matte</material><reflectance>0.5</reflectance></mesh>"
+                          "<light><position>0,3,0</position><color>5,5,5</color></light></scene>";
+    const double writeS = seconds(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    const nx::MeshFile file = nx::readMeshFile(ply);
+    const double readS = seconds(t0);
+    const double tris = static_cast<double>(file.mesh.triangleCount());
+
+    t0 = std::chrono::steady_clock::now();
+    const nx::RenderScene scene = nx::buildRenderScene(nx::loadScene(scn));
+    const double loadS = seconds(t0);
+    nx::RenderOptions o;
+    t0 = std::chrono::steady_clock::now();
+    const nx::RenderOutput out = nx::render(scene, o);
+    const double renderS = seconds(t0);
+
+    std::printf("triangles                      %.0f (%d x %d grid)\n", tris, n, n);
+    std::printf("PLY file                       %.1f MB (written in %.2f s)\n",
+                static_cast<double>(file.bytes.size()) / 1e6, writeS);
+    std::printf("read (checks + Assimp)         %.2f s\n", readS);
+    std::printf("scene load (read + BVH build)  %.2f s\n", loadS);
+    std::printf("mesh buffers                   %.1f bytes/triangle\n",
+                static_cast<double>(scene.meshBytes) / tris);
+    std::printf("Embree (BVH)                   %.1f bytes/triangle\n",
+                static_cast<double>(scene.geometry->embreeBytes()) / tris);
+    std::printf("render 64x36, 1 spp            %.3f s\n", renderS);
+    std::printf("peak resident memory           %.0f MB\n", peakResidentMb());
+    return out.stats.nonFinite == 0 ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "nxbench-mesh: error: %s\n", e.what());
+    return 1;
+  }
+}
