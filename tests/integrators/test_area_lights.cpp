@@ -10,6 +10,7 @@
 #include "core/math_util.h"
 #include "integrators/lights/light_sampler.h"
 #include "integrators/renderer.h"
+#include "support/flat_wavelengths.h"
 #include "support/statistics.h"
 
 namespace nx {
@@ -22,12 +23,6 @@ RenderScene sceneOf(const std::string& body, const std::string& settings = "") {
           "<fov>20</fov></camera>" +
           body + "</scene>",
       "t.scn"));
-}
-
-SampledWavelengths flatWavelengths() {
-  SampledWavelengths w;
-  for (int i = 0; i < kLanes; ++i) w.lambda[i] = 550, w.pdf[i] = 1;
-  return w;
 }
 
 // The configuration factor from a point to a parallel rectangle [0, a] x [0, b] at height h
@@ -101,8 +96,8 @@ TEST(AreaLights, QuadSamplesAreUniformAndMatchPdf) {
   for (int i = 0; i < n; ++i) {
     LightSample ls;
     ASSERT_TRUE(lights.sample(p, sampleValue(SamplerKind::Independent, i, 0, 0, 3),
-                              samplePair(SamplerKind::Independent, i, 0, 1, 3), flatWavelengths(),
-                              ls));
+                              samplePair(SamplerKind::Independent, i, 0, 1, 3),
+                              test::flatWavelengths(550), ls));
     // The quad's own (s, t): p = origin + s edge_u + t edge_v.
     const Vec3d q = Vec3d(ls.p) - Vec3d(-1, 2, -0.5);
     const double t = q.z / 1.5, s = q.x / 2;
@@ -150,7 +145,8 @@ TEST(AreaLights, LightChoiceFollowsItsProbabilities) {
     for (int i = 0; i < n; ++i) {
       LightSample ls;
       if (lights.sample(p, sampleValue(SamplerKind::Independent, i, 0, 0, 5),
-                        samplePair(SamplerKind::Independent, i, 0, 1, 5), flatWavelengths(), ls))
+                        samplePair(SamplerKind::Independent, i, 0, 1, 5),
+                        test::flatWavelengths(550), ls))
         obs[static_cast<size_t>(ls.light)] += 1;
     }
     const auto [stat, dof] = test::chiSquare(obs, exp);

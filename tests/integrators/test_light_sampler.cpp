@@ -4,6 +4,7 @@
 #include "core/math_util.h"
 #include "integrators/lights/light_sampler.h"
 #include "integrators/sampling.h"
+#include "support/flat_wavelengths.h"
 #include "support/statistics.h"
 
 namespace nx {
@@ -16,12 +17,6 @@ RenderScene sceneWithLight(const std::string& lights) {
                  "</camera>" +
                      lights + "</scene>",
                  "t.scn"));
-}
-
-SampledWavelengths flatWavelengths() {
-  SampledWavelengths w;
-  for (int i = 0; i < kLanes; ++i) w.lambda[i] = 500, w.pdf[i] = 1;
-  return w;
 }
 
 // The density LightSampler::pdf gives the surface a ray from p along wi meets (0 if none).
@@ -49,7 +44,7 @@ TEST(LightSampler, SphereConeSamplingMatchesPdf) {
   for (int i = 0; i < n; ++i) {
     LightSample ls;
     ASSERT_TRUE(lights.sample(p, 0.5f, samplePair(SamplerKind::Independent, i, 0, 0, 1),
-                              flatWavelengths(), ls));
+                              test::flatWavelengths(500), ls));
     EXPECT_NEAR(ls.pdf, pdfTowards(s, lights, p, ls.wi), 1e-3f * ls.pdf);
     EXPECT_FLOAT_EQ(ls.radiance[0], 2.0f);
     const Vec3 local = frame.toLocal(ls.wi);
@@ -80,7 +75,7 @@ TEST(LightSampler, IrradianceFromSphereLight) {
     LightSample ls;
     const float uChoice = sampleValue(SamplerKind::Independent, i, 0, 2, 1);
     if (!lights.sample(p, uChoice, samplePair(SamplerKind::Independent, i, 0, 0, 1),
-                       flatWavelengths(), ls)) {
+                       test::flatWavelengths(500), ls)) {
       stats.add(0);
       continue;
     }
@@ -96,7 +91,7 @@ TEST(LightSampler, PointLightInverseSquare) {
       sceneWithLight("<light><position>0, 2, 0</position><color>4, 4, 4</color></light>");
   const LightSampler lights(s);
   LightSample ls;
-  ASSERT_TRUE(lights.sample(Vec3(0, 0, 0), 0.3f, {0.5f, 0.5f}, flatWavelengths(), ls));
+  ASSERT_TRUE(lights.sample(Vec3(0, 0, 0), 0.3f, {0.5f, 0.5f}, test::flatWavelengths(500), ls));
   EXPECT_TRUE(ls.delta);
   EXPECT_FLOAT_EQ(ls.distance, 2.0f);
   EXPECT_NEAR(ls.radiance[0], s.pointLights[0].intensity(500) / 4, 1e-5);
@@ -110,7 +105,7 @@ TEST(LightSampler, InsideASphereLightEveryDirectionCounts) {
   for (int i = 0; i < 1000; ++i) {
     LightSample ls;
     ASSERT_TRUE(lights.sample(Vec3(1, 2, 3), 0.1f, samplePair(SamplerKind::Independent, i, 0, 0, 1),
-                              flatWavelengths(), ls));
+                              test::flatWavelengths(500), ls));
     EXPECT_NEAR(ls.pdf, 1 / (4 * kPi), 1e-6);
     EXPECT_NEAR(length(Vec3(1, 2, 3) + ls.wi * ls.distance), 10.0f, 1e-4f);
   }
@@ -129,7 +124,7 @@ TEST(LightSampler, TinyConeFarAwayIsExactAndFinite) {
   for (int i = 0; i < 100; ++i) {
     LightSample ls;
     ASSERT_TRUE(lights.sample(p, 0.5f, samplePair(SamplerKind::Independent, i, 0, 0, 1),
-                              flatWavelengths(), ls));
+                              test::flatWavelengths(500), ls));
     ASSERT_TRUE(std::isfinite(ls.pdf));
     EXPECT_NEAR(ls.radiance[0] * dot(ls.wi, n) / ls.pdf, expected, 1e-5 * expected);
     EXPECT_NEAR(ls.distance, static_cast<float>(d - 6), 1e-6f * static_cast<float>(d));

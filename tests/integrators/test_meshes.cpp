@@ -11,6 +11,7 @@
 #include "core/math_util.h"
 #include "integrators/lights/light_sampler.h"
 #include "integrators/renderer.h"
+#include "support/flat_wavelengths.h"
 #include "support/statistics.h"
 
 namespace nx {
@@ -148,8 +149,7 @@ double lambertTriangle(const TriangleShape& t, const Vec3d& p, const Vec3d& n) {
 TEST(Meshes, TessellatedSphereLightConvergesToTheAnalyticSphere) {
   const Vec3 p(0, 0, -3), n(0, 0, 1);
   const double sphere = kPi / 9;
-  SampledWavelengths w;
-  for (int i = 0; i < kLanes; ++i) w.lambda[i] = 550, w.pdf[i] = 1;
+  const SampledWavelengths w = test::flatWavelengths(550);
   double previous = 1;
   for (int rings : {4, 8, 16, 48}) {
     writeSphere(tempPath("ball.ply"), rings, 1, Vec3(0, 0, 0));
