@@ -14,7 +14,7 @@ namespace {
 const Material& whiteLambertian() {
   static const Material white{
       MaterialKind::Mixture,           1.0f,         IorModel::constant(1.5),
-      Spectrum(ConstantSpectrum{1.0}), std::nullopt, nullptr};
+      Spectrum(ConstantSpectrum{1.0}), std::nullopt, nullptr, nullptr};
   return white;
 }
 
@@ -67,7 +67,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
 
     const Material& material = whiteHere ? whiteLambertian() : scene.materials[app.material];
     const Vec3 wo = -ray.d;
-    const SampledSpectrum rho = evaluate(material.reflectance, current);
+    const SampledSpectrum rho = scene.reflectanceAt(material, hit, current);
     const SurfaceBsdf bsdf(material, current, rho, hit.ng, hit.ns, wo);
 
     // A fluorescent diffuse lobe: every lane's excitation wavelength is chosen once, for both

@@ -9,6 +9,7 @@
 #include "accel/geometry_scene.h"
 #include "core/camera.h"
 #include "integrators/ior_model.h"
+#include "integrators/materials/reflectance_texture.h"
 #include "io/scene_desc.h"
 #include "spectra/reradiation_matrix.h"
 #include "spectra/sensor.h"
@@ -31,6 +32,8 @@ struct Material {
   std::optional<FluorescenceModel> fluorescenceModel; ///< the parameters, if not measured
   std::shared_ptr<const ReradiationMatrix>
       reradiation; ///< fluorescence of the diffuse lobe, or null
+  /// A reflectance varying over the surface (by the hit's uv), replacing `reflectance`; or null
+  std::shared_ptr<const ReflectanceTexture> texture;
 };
 
 /// Largest emitted radiance (W m^-2 sr^-1 nm^-1) or point-light intensity (W sr^-1 nm^-1) a
@@ -38,6 +41,9 @@ struct Material {
 /// magnitude while every sample value, and its square in the error estimate, stays finite in
 /// single precision (an emission of 1e21 made every Variance channel infinite; 1e39 every sample).
 inline constexpr double kMaxEmission = 1e12;
+
+/// Largest spectral EXR a reflectance texture may be read from (bytes).
+inline constexpr std::uintmax_t kMaxTextureFileBytes = 4ull << 30;
 
 /// A point light: radiant intensity I(lambda) in W sr^-1 nm^-1 at a position.
 struct PointLight {
@@ -75,7 +81,6 @@ struct RenderSettings {
   std::string outputPath; ///< the scene's <path> (preview), possibly empty
 };
 
-/// Everything an integrator needs, immutable after building.
 /// A tabulated spectrum of the scene and the wavelengths its table covers.
 struct TabulatedRange {
   std::string where; ///< "file:line" of the element
@@ -83,6 +88,7 @@ struct TabulatedRange {
   double loNm = 0, hiNm = 0;
 };
 
+/// Everything an integrator needs, immutable after building.
 struct RenderScene {
   RenderSettings settings;
   PinholeCamera camera{{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 60, 1, 1};
@@ -103,6 +109,19 @@ struct RenderScene {
   /// Tables the scene uses without an extrapolate="..." choice (zero beyond them), with their
   /// range: a render tracing beyond one warns (extrapolationWarnings).
   std::vector<TabulatedRange> tables;
+
+  /// The reflectance of `material` at a hit for the lanes: its texture at the hit's uv (filled
+  /// in for spheres here), else its spectrum.
+  SampledSpectrum reflectanceAt(const Material& material, SurfaceHit& hit,
+                                const SampledWavelengths& lambda) const {
+    SampledSpectrum out;
+    if (!material.texture) {
+      material.reflectance.evaluate(lambda, out);
+      return out;
+    }
+    if (hit.kind == ShapeKind::Sphere) sphereUv(hit);
+    return material.texture->evaluate(hit.u, hit.v, lambda);
+  }
 
   /// Appearance of the shape a hit is on.
   const ShapeAppearance& appearance(const SurfaceHit& hit) const {

@@ -10,6 +10,7 @@
 #include "core/text_table.h"
 #include "integrators/render_scene.h"
 #include "io/mesh_reader.h"
+#include "io/spectral_exr.h"
 #include "spectra/colour.h"
 #include "spectra/illuminants.h"
 #include "spectra/named_spectra.h"
@@ -220,7 +221,8 @@ private:
   // What makes two materials the same for the MaterialId channel: kind, roughness, the index
   // of refraction and the reflectance every 5 nm over the traced range, the fluorescence.
   static std::vector<double> materialKey(const Material& m) {
-    std::vector<double> key = {static_cast<double>(m.kind), m.roughness};
+    std::vector<double> key = {static_cast<double>(m.kind), m.roughness,
+                               static_cast<double>(reinterpret_cast<uintptr_t>(m.texture.get()))};
     for (double nm = kTraceMinNm; nm <= kTraceMaxNm; nm += 5) {
       key.push_back(m.reflectance(nm));
       key.push_back(m.kind == MaterialKind::Dielectric ? m.ior.at(nm) : 0.0);
@@ -281,6 +283,8 @@ private:
             s.column.empty() ? s.path : s.path + " (column " + s.column + ")");
       case SpectrumDesc::Kind::Name:
         break;
+      case SpectrumDesc::Kind::Texture: // the loader allows textures on <reflectance> only
+        throw Error("expected a spectrum, found a texture");
       }
     } catch (const Error& e) {
       throw Error(s.loc.str() + ": " + e.what());
@@ -296,7 +300,8 @@ private:
       if (auto r = namedReflectance(s.name)) return extrapolated(*r, mode, s.loc, s.name);
       throw Error(s.loc.str() +
                   ": expected a reflectance name (red, orange, yellow, green, blue, purple, uv, "
-                  "gray, const, null, or a <spectrum> of the scene), found '" +
+                  "gray, const, null, colorchecker:<patch> (dark_skin, ..., black_2), or a "
+                  "<spectrum> of the scene), found '" +
                   s.name + "'");
     }
     std::optional<Spectrum> e;
@@ -349,7 +354,7 @@ private:
     auto spectrumText = [&](const std::optional<SpectrumDesc>& s) {
       if (!s) return t << "-;", void();
       t << static_cast<int>(s->kind) << ',' << static_cast<int>(s->extrapolate) << ',' << s->name
-        << ',' << s->number << ',' << s->path << ',' << s->column << ',';
+        << ',' << s->number << ',' << s->path << ',' << s->column << ',' << s->texture << ',';
       for (size_t i = 0; i < s->nm.size(); ++i) t << s->nm[i] << ':' << s->value[i] << ' ';
       t << ';';
     };
@@ -437,7 +442,10 @@ private:
     // Each mode prefers its own tag (<reflectance> in spectral_mcpt, <color> in rt and mcpt)
     // and falls back on the other, so every scene renders in every mode.
     const bool useSpectrum = o.reflectance && (spectral || !o.color);
-    if (useSpectrum) {
+    if (useSpectrum && o.reflectance->kind == SpectrumDesc::Kind::Texture) {
+      m.texture = texture(*o.reflectance);
+      m.reflectance = Spectrum(ConstantSpectrum{0.5}); // unused: the texture replaces it
+    } else if (useSpectrum) {
       m.reflectance = resolve(*o.reflectance, SpectrumRole::Reflectance);
       checkUnitRange(m.reflectance, o.reflectance->loc,
                      dielectric ? "transmission tint" : "reflectance");
@@ -476,6 +484,40 @@ private:
       }
     }
     return m;
+  }
+
+  // A reflectance texture: the built-in chart, or a spectral EXR checked to hold reflectances.
+  std::shared_ptr<const ReflectanceTexture> texture(const SpectrumDesc& d) const {
+    if (d.texture == "colorchecker") return ReflectanceTexture::colorChecker();
+    try {
+      const std::string bytes = readRegularFile(d.texture, kMaxTextureFileBytes, "texture file");
+      digest_ = fnv1a64(bytes, fnv1a64(std::string_view(d.texture.c_str(), d.texture.size() + 1), digest_));
+      const SpectralImage img = readSpectralExr(d.texture);
+      const int nb = img.bands.count();
+      std::vector<int> order(static_cast<size_t>(nb));
+      for (int b = 0; b < nb; ++b) order[static_cast<size_t>(b)] = b;
+      std::sort(order.begin(), order.end(), [&](int a, int b) {
+        return img.bands.centroid(a) < img.bands.centroid(b);
+      });
+      std::vector<double> centroids;
+      for (int b : order) centroids.push_back(img.bands.centroid(b));
+      std::vector<float> values(img.radiance.size());
+      const size_t pixels = static_cast<size_t>(img.width) * img.height;
+      for (size_t p = 0; p < pixels; ++p)
+        for (size_t k = 0; k < order.size(); ++k) {
+          const float v = img.radiance[p * static_cast<size_t>(nb) + static_cast<size_t>(order[k])];
+          if (!(v >= 0 && v <= 1))
+            throw Error(d.texture + ": expected reflectances within [0, 1], found " +
+                        numberText(v) + " at pixel " + std::to_string(p % img.width) + "," +
+                        std::to_string(p / img.width) + " in band " + numberText(centroids[k]) +
+                        " nm");
+          values[p * order.size() + k] = v;
+        }
+      return ReflectanceTexture::spectralImage(img.width, img.height, std::move(centroids),
+                                               std::move(values));
+    } catch (const Error& e) {
+      throw Error(d.loc.str() + ": " + e.what());
+    }
   }
 
   IorModel iorModel(const IorDesc& d) const {

@@ -41,7 +41,7 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
 
   const Material& material = scene.materials[app.material];
   const Vec3 wo = -ray.d;
-  const SampledSpectrum rho = evaluate(material.reflectance, lambda);
+  const SampledSpectrum rho = scene.reflectanceAt(material, hit, lambda);
   const SurfaceBsdf bsdf(material, lambda, rho, hit.ng, hit.ns, wo);
 
   // Direct light on the diffuse lobe, from every light (one sample each). A fluorescent lobe

@@ -27,7 +27,7 @@ enum class RenderMode { Rt, Mcpt, SpectralMcpt };
 
 /// A spectrum as a scene refers to it.
 struct SpectrumDesc {
-  enum class Kind { Name, Number, Pairs, CsvFile };
+  enum class Kind { Name, Number, Pairs, CsvFile, Texture };
   /// What a table does beyond its wavelengths (extrapolate="zero|hold"; unset: zero, with a
   /// warning when the render traces beyond it).
   enum class Extrapolation { Unset, Zero, Hold };
@@ -39,6 +39,7 @@ struct SpectrumDesc {
   std::vector<double> value; ///< Kind::Pairs: values
   std::string path;          ///< Kind::CsvFile: resolved relative to the scene file
   std::string column;        ///< Kind::CsvFile: the header's name of the value column, or ""
+  std::string texture; ///< Kind::Texture: "colorchecker" or a spectral EXR (relative to the scene)
   SourceLocation loc;
 };
 

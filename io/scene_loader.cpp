@@ -344,6 +344,23 @@ private:
 
   // ---- spectra ----
   // A spectrum written as text: a number, "nm:value" pairs, or a name; or csv="file".
+  // A <reflectance>: a spectrum, or texture="colorchecker" / texture="image.exr".
+  std::optional<SpectrumDesc> reflectance(const pugi::xml_node& n) const {
+    const pugi::xml_attribute tex = n.attribute("texture");
+    if (!tex) return spectrum(n, false);
+    const std::string t = text(n, {"texture"});
+    if (!t.empty()) fail(n, "either texture=\"...\" or text in <reflectance>", "both");
+    SpectrumDesc s;
+    s.loc = loc(n);
+    s.kind = SpectrumDesc::Kind::Texture;
+    const std::string name = trim(decoded(tex.value(), n));
+    if (name.empty())
+      fail(n, "texture=\"colorchecker\" or a spectral EXR file in texture=\"...\"",
+           "an empty one");
+    s.texture = name == "colorchecker" ? name : relativeToScene(name);
+    return s;
+  }
+
   std::optional<SpectrumDesc> spectrum(const pugi::xml_node& n, bool emptyMeansNone,
                                        const std::vector<std::string>& extraAttributes = {}) const {
     std::vector<std::string> attrs = extraAttributes;
@@ -653,7 +670,7 @@ private:
   void parseMaterialParameters(const std::map<std::string, pugi::xml_node>& c,
                                MaterialDesc& m) const {
     if (c.count("color")) m.color = colour(c.at("color"), true);
-    if (c.count("reflectance")) m.reflectance = spectrum(c.at("reflectance"), false);
+    if (c.count("reflectance")) m.reflectance = reflectance(c.at("reflectance"));
     if (c.count("roughness")) {
       m.roughness = number(c.at("roughness"), "a roughness", 0, 1);
       m.roughnessLoc = loc(c.at("roughness"));

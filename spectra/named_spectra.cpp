@@ -3,6 +3,8 @@
 #include <array>
 #include <utility>
 
+#include "spectra/colorchecker.h"
+
 namespace nx {
 namespace {
 constexpr std::array<std::pair<const char*, double>, 7> kColourPeaks{{{"red", 680},
@@ -20,6 +22,7 @@ std::optional<Spectrum> namedReflectance(const std::string& name) {
   if (name == "const") return Spectrum(ConstantSpectrum{1.0});
   if (name == "null") return Spectrum(ConstantSpectrum{0.0});
   if (name == "gray") return Spectrum(ConstantSpectrum{0.5});
+  if (name.rfind("colorchecker:", 0) == 0) return colorCheckerPatch(name.substr(13));
   return std::nullopt;
 }
 

@@ -1,0 +1,87 @@
+#include "integrators/materials/reflectance_texture.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "spectra/colorchecker.h"
+
+namespace nx {
+
+std::shared_ptr<const ReflectanceTexture>
+ReflectanceTexture::spectralImage(int width, int height, std::vector<double> centroidsNm,
+                                  std::vector<float> values) {
+  auto t = std::make_shared<ReflectanceTexture>();
+  t->kind_ = Kind::Image;
+  t->width_ = width;
+  t->height_ = height;
+  t->centroids_ = std::move(centroidsNm);
+  t->values_ = std::move(values);
+  return t;
+}
+
+std::shared_ptr<const ReflectanceTexture> ReflectanceTexture::colorChecker() {
+  auto t = std::make_shared<ReflectanceTexture>();
+  t->kind_ = Kind::Chart;
+  t->width_ = kColorCheckerColumns;
+  t->height_ = kColorCheckerRows;
+  return t;
+}
+
+SampledSpectrum ReflectanceTexture::evaluate(float u, float v,
+                                             const SampledWavelengths& lambda) const {
+  return kind_ == Kind::Chart ? chartAt(u, v, lambda) : imageAt(u, v, lambda);
+}
+
+SampledSpectrum ReflectanceTexture::chartAt(float u, float v,
+                                            const SampledWavelengths& lambda) const {
+  const float x = std::clamp(u, 0.0f, 1.0f) * kColorCheckerColumns;
+  const float y = (1 - std::clamp(v, 0.0f, 1.0f)) * kColorCheckerRows;
+  const int col = std::min(static_cast<int>(x), kColorCheckerColumns - 1);
+  const int row = std::min(static_cast<int>(y), kColorCheckerRows - 1);
+  const float fx = x - static_cast<float>(col), fy = y - static_cast<float>(row);
+  const float margin = 0.5f * (1 - kColorCheckerPatchFraction);
+  if (fx < margin || fx > 1 - margin || fy < margin || fy > 1 - margin)
+    return SampledSpectrum::filled(kColorCheckerFrame);
+  SampledSpectrum out;
+  colorCheckerPatch(row * kColorCheckerColumns + col).evaluate(lambda, out);
+  return out;
+}
+
+SampledSpectrum ReflectanceTexture::imageAt(float u, float v,
+                                            const SampledWavelengths& lambda) const {
+  // Texel centres at (i + 1/2) / width; bilinear between the four nearest, edges clamped.
+  const float x = u * static_cast<float>(width_) - 0.5f;
+  const float y = (1 - v) * static_cast<float>(height_) - 0.5f;
+  const float fx0 = std::floor(x), fy0 = std::floor(y);
+  const float ax = x - fx0, ay = y - fy0;
+  auto clampX = [&](float c) { return std::clamp(static_cast<int>(c), 0, width_ - 1); };
+  auto clampY = [&](float c) { return std::clamp(static_cast<int>(c), 0, height_ - 1); };
+  const int x0 = clampX(fx0), x1 = clampX(fx0 + 1), y0 = clampY(fy0), y1 = clampY(fy0 + 1);
+  const size_t bands = centroids_.size();
+  const float* t00 = &values_[(static_cast<size_t>(y0) * width_ + x0) * bands];
+  const float* t10 = &values_[(static_cast<size_t>(y0) * width_ + x1) * bands];
+  const float* t01 = &values_[(static_cast<size_t>(y1) * width_ + x0) * bands];
+  const float* t11 = &values_[(static_cast<size_t>(y1) * width_ + x1) * bands];
+  auto texel = [&](size_t b) {
+    return (1 - ay) * ((1 - ax) * t00[b] + ax * t10[b]) + ay * ((1 - ax) * t01[b] + ax * t11[b]);
+  };
+  SampledSpectrum out;
+  for (int i = 0; i < kLanes; ++i) {
+    const double nm = lambda.lambda[i];
+    // Linear between the centroids around nm; the end bands held beyond them.
+    const size_t hi = static_cast<size_t>(
+        std::upper_bound(centroids_.begin(), centroids_.end(), nm) - centroids_.begin());
+    if (hi == 0) {
+      out[i] = texel(0);
+    } else if (hi == bands) {
+      out[i] = texel(bands - 1);
+    } else {
+      const double w =
+          (nm - centroids_[hi - 1]) / (centroids_[hi] - centroids_[hi - 1]);
+      out[i] = static_cast<float>((1 - w) * texel(hi - 1) + w * texel(hi));
+    }
+  }
+  return out;
+}
+
+} // namespace nx

@@ -1,0 +1,49 @@
+#pragma once
+// Reflectance that varies over a surface: looked up by the hit's (u, v) for all lanes at once.
+
+#include <memory>
+#include <vector>
+
+#include "spectra/sampled_wavelengths.h"
+
+namespace nx {
+
+/// A reflectance texture: a spectral image (bands at their centroid wavelengths, bilinear in
+/// space, linear between bands, the end bands held beyond them) or the built-in ColorChecker
+/// chart. (u, v) = (0, 0) is the image's bottom-left corner, (1, 1) its top-right (row 0 of an
+/// image is its top); outside [0, 1] the edge texels continue.
+class ReflectanceTexture {
+public:
+  /// A spectral image of width x height texels, `values` [texel][band] (row 0 at the top)
+  /// at the given increasing band centroids (nm). Values must lie in [0, 1].
+  static std::shared_ptr<const ReflectanceTexture>
+  spectralImage(int width, int height, std::vector<double> centroidsNm, std::vector<float> values);
+
+  /// The ColorChecker Classic, 6 x 4 patches (dark_skin top left at v = 1, black_2 bottom
+  /// right), each cell's central kColorCheckerPatchFraction its patch's measured reflectance,
+  /// the rest the chart's black frame (reflectance kColorCheckerFrame).
+  static std::shared_ptr<const ReflectanceTexture> colorChecker();
+
+  /// Reflectance at (u, v) for the lanes of lambda.
+  SampledSpectrum evaluate(float u, float v, const SampledWavelengths& lambda) const;
+
+  /// Texels across and down (the chart: 6 x 4).
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+private:
+  enum class Kind : uint8_t { Image, Chart };
+  Kind kind_ = Kind::Image;
+  int width_ = 0, height_ = 0;
+  std::vector<double> centroids_;
+  std::vector<float> values_;
+  SampledSpectrum imageAt(float u, float v, const SampledWavelengths& lambda) const;
+  SampledSpectrum chartAt(float u, float v, const SampledWavelengths& lambda) const;
+};
+
+/// Share of each ColorChecker cell (per direction) its patch covers; the rest is frame.
+inline constexpr float kColorCheckerPatchFraction = 0.85f;
+/// Reflectance of the ColorChecker's black frame (flat).
+inline constexpr float kColorCheckerFrame = 0.03f;
+
+} // namespace nx
