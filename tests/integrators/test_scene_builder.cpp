@@ -148,7 +148,7 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {scene(sphere + "<material>matte</material><reflectance>teal</reflectance></sphere>\n"),
        "t.scn:4: expected a reflectance name (red, orange, yellow, green, blue, purple, uv, gray, "
-       "const, null, or a "
+       "const, null, colorchecker:<patch> (dark_skin, ..., black_2), or a "
        "<spectrum> of the scene), found 'teal'"},
       {scene(sphere + "<material>matte</material><emission>D66x</emission></sphere>\n"),
        "t.scn:4: expected an illuminant name (A, D50"},

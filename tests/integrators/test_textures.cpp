@@ -1,0 +1,141 @@
+// Reflectance textures: lookups against known texels, the ColorChecker chart, a spectral EXR on
+// a quad, and the errors of malformed textures.
+
+#include <gtest/gtest.h>
+
+#include "integrators/renderer.h"
+#include "io/spectral_exr.h"
+#include "spectra/colorchecker.h"
+#include "support/errors.h"
+#include "support/flat_wavelengths.h"
+#include "support/statistics.h"
+
+namespace nx {
+namespace {
+
+float fl(int i) {
+  return static_cast<float>(i);
+}
+
+// A 2 x 2 texture with bands at 500, 600, 700 nm: texel (x, y) band b holds
+// 0.1 (1 + x + 2 y) + 0.01 b.
+std::shared_ptr<const ReflectanceTexture> smallTexture() {
+  std::vector<float> v;
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x)
+      for (int b = 0; b < 3; ++b)
+        v.push_back(0.1f * static_cast<float>(1 + x + 2 * y) + 0.01f * static_cast<float>(b));
+  return ReflectanceTexture::spectralImage(2, 2, {500, 600, 700}, v);
+}
+
+TEST(Textures, ImageLookupsMatchKnownTexels) {
+  const auto t = smallTexture();
+  // Texel centres: (u, v) = ((x + 1/2) / 2, 1 - (y + 1/2) / 2); row 0 is the top.
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) {
+      const float u = (static_cast<float>(x) + 0.5f) / 2,
+                  v = 1 - (static_cast<float>(y) + 0.5f) / 2;
+      EXPECT_NEAR(t->evaluate(u, v, test::flatWavelengths(600))[0],
+                  0.1f * fl(1 + x + 2 * y) + 0.01f, 1e-6f);
+    }
+  // Bilinear: the centre of the image is the mean of the four texels.
+  EXPECT_NEAR(t->evaluate(0.5f, 0.5f, test::flatWavelengths(500))[0], 0.25f, 1e-6f);
+  // A quarter of the way from texel (0,0) to texel (1,0).
+  EXPECT_NEAR(t->evaluate(0.375f, 0.75f, test::flatWavelengths(500))[0], 0.125f, 1e-6f);
+  // Linear between band centroids, held beyond the ends.
+  EXPECT_NEAR(t->evaluate(0.25f, 0.75f, test::flatWavelengths(550))[0], 0.105f, 1e-6f);
+  EXPECT_NEAR(t->evaluate(0.25f, 0.75f, test::flatWavelengths(420))[0], 0.1f, 1e-6f);
+  EXPECT_NEAR(t->evaluate(0.25f, 0.75f, test::flatWavelengths(900))[0], 0.12f, 1e-6f);
+  // Outside [0, 1] the edge texels continue.
+  EXPECT_NEAR(t->evaluate(-3.0f, 7.0f, test::flatWavelengths(500))[0], 0.1f, 1e-6f);
+}
+
+TEST(Textures, ChartPatchesAndFrame) {
+  const auto chart = ReflectanceTexture::colorChecker();
+  for (int row = 0; row < kColorCheckerRows; ++row)
+    for (int col = 0; col < kColorCheckerColumns; ++col) {
+      const float u = (fl(col) + 0.5f) / kColorCheckerColumns,
+                  v = 1 - (fl(row) + 0.5f) / kColorCheckerRows;
+      for (float nm : {450.0f, 550.0f, 650.0f})
+        EXPECT_FLOAT_EQ(chart->evaluate(u, v, test::flatWavelengths(nm))[0],
+                        static_cast<float>(colorCheckerPatch(row * kColorCheckerColumns + col)(nm)))
+            << row << "," << col;
+      // The frame between patches.
+      const float edgeU = fl(col) / kColorCheckerColumns + 0.01f;
+      EXPECT_FLOAT_EQ(chart->evaluate(edgeU, v, test::flatWavelengths(550))[0], kColorCheckerFrame);
+    }
+}
+
+std::string sceneWith(const std::string& reflectance) {
+  // A 0.6 x 0.4 quad facing the camera under a uniform background of radiance 1, nothing else:
+  // its radiance is its reflectance (it sees the background over its whole hemisphere).
+  return "<scene><settings><xres>60</xres><yres>40</yres><mode>spectral_mcpt</mode><sampl>16"
+         "</sampl><depth>1</depth><background>1</background></settings><camera><position>0,0,-1"
+         "</position><look_at>0,0,0</look_at><fov>33.4</fov></camera>"
+         "<quad><origin>-0.3,-0.2,0</origin><edge_u>0.6,0,0</edge_u><edge_v>0,0.4,0</edge_v>"
+         "<material>matte</material>" +
+         reflectance + "</quad></scene>";
+}
+
+// The chart on a quad: the pixels at a patch's centre read the patch's reflectance, band by
+// band (the band average of the measured spectrum).
+TEST(Textures, ChartOnAQuadRendersEachPatch) {
+  const RenderScene scene =
+      buildRenderScene(parseScene(sceneWith("<reflectance texture=\"colorchecker\"/>"), "t.scn"));
+  RenderOptions o;
+  const RenderOutput out = render(scene, o);
+  // The quad spans the image (fov chosen so), so the pixel of (u, v) is (60 u, 40 (1 - v)).
+  for (int patch : {0, 6, 14, 18, 23}) {
+    const int row = patch / kColorCheckerColumns, col = patch % kColorCheckerColumns;
+    const int px = col * 10 + 5, py = row * 10 + 5;
+    for (int b = 0; b < out.film.bands().count(); b += 6) {
+      test::RunningStats s;
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) s.add(out.film.bandMean(px + dx, py + dy, b));
+      const double expected = bandAverage(colorCheckerPatch(patch), out.film.bands(), b);
+      EXPECT_NEAR(s.mean, expected, 5 * s.standardError() + 0.01 * expected)
+          << colorCheckerPatchNames()[static_cast<size_t>(patch)] << " band " << b;
+    }
+  }
+}
+
+// A spectral EXR in this project's layout is read as a texture: its texels come back at their
+// uv; reflectances outside [0, 1] are refused with the pixel and band named.
+TEST(Textures, SpectralExrTextureIsReadAndChecked) {
+  SpectralImage img;
+  img.width = 3;
+  img.height = 2;
+  img.bands = Sensor(SpectralBands::parse("450:650:100"));
+  for (int p = 0; p < 6; ++p) {
+    for (int b = 0; b < 3; ++b)
+      img.radiance.push_back(0.1f * static_cast<float>(p) + 0.02f * fl(b));
+    for (int c = 0; c < 3; ++c) img.rgb.push_back(0.5f);
+  }
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  const std::string path = ::testing::TempDir() + "/chart_texture.exr";
+  writeSpectralExr(path, img);
+  const RenderScene scene = buildRenderScene(parseScene(
+      sceneWith("<reflectance texture=\"chart_texture.exr\"/>"), ::testing::TempDir() + "/t.scn"));
+  const auto& tex = scene.materials[scene.meshes[0].whole.material].texture;
+  ASSERT_TRUE(tex);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x)
+      for (int b = 0; b < 3; ++b) {
+        const float u = (fl(x) + 0.5f) / 3, v = 1 - (fl(y) + 0.5f) / 2;
+        EXPECT_NEAR(tex->evaluate(u, v, test::flatWavelengths(450.0f + 100.0f * fl(b)))[0],
+                    0.1f * fl(y * 3 + x) + 0.02f * fl(b), 1e-6f);
+      }
+  img.radiance[4 * 3 + 1] = 1.5f; // pixel (1, 1), band 550 nm
+  writeSpectralExr(path, img);
+  const std::string message = test::errorMessage([&] {
+    buildRenderScene(parseScene(sceneWith("<reflectance texture=\"chart_texture.exr\"/>"),
+                                ::testing::TempDir() + "/t.scn"));
+  });
+  EXPECT_NE(message.find("expected reflectances within [0, 1], found 1.5 at pixel 1,1 in band "
+                         "550 nm"),
+            std::string::npos)
+      << message;
+}
+
+} // namespace
+} // namespace nx
