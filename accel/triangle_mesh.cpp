@@ -76,8 +76,11 @@ void TriangleMesh::transform(const Matrix3& m, const Vec3d& t) {
 std::string TriangleMesh::validate() const {
   const size_t n = vertexCount();
   if (triangleCount() == 0) return "no triangles";
-  for (size_t i = 0; i + 1 < xyz_.size(); ++i)
+  for (size_t i = 0; i + 1 < xyz_.size(); ++i) {
     if (!std::isfinite(xyz_[i])) return "vertex " + std::to_string(i / 3) + " is not finite";
+    if (std::abs(xyz_[i]) > kMaxMeshCoordinate)
+      return "vertex " + std::to_string(i / 3) + " lies beyond +/-1e12";
+  }
   if (!normals_.empty() && normals_.size() != 3 * n) return "normals do not match the vertices";
   if (!uv_.empty() && uv_.size() != 2 * n) return "uv do not match the vertices";
   for (float v : normals_)

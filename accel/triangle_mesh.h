@@ -11,6 +11,10 @@
 
 namespace nx {
 
+/// Largest coordinate a mesh vertex may have (as for the scene's own shapes: far below
+/// Embree's limit of about 1.8e18, beyond which it drops primitives silently).
+inline constexpr float kMaxMeshCoordinate = 1e12f;
+
 /// Vertex positions, triangle indices and optional per-vertex normals and uv. The position
 /// buffer carries one float of padding after the last vertex, because Embree reads vertices as
 /// 16-byte vectors (its documented requirement for shared vertex buffers).
@@ -65,8 +69,9 @@ public:
   /// M must be non-singular.
   void transform(const Matrix3& m, const Vec3d& t);
 
-  /// Empty if every index is in range, every position and attribute finite and some triangle
-  /// has a non-zero area; else what is wrong ("triangle 12 refers to vertex 99 of 40").
+  /// Empty if every index is in range, every position finite and within kMaxMeshCoordinate,
+  /// every attribute finite and some triangle has a non-zero area; else what is wrong
+  /// ("triangle 12 refers to vertex 99 of 40").
   std::string validate() const;
 
 private:

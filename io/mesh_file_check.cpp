@@ -87,7 +87,7 @@ uint64_t readUnsigned(const unsigned char* p, int size, bool bigEndian) {
 
 } // namespace
 
-void checkPlyFile(const std::string& bytes, const std::string& path) {
+MeshFileCounts checkPlyFile(const std::string& bytes, const std::string& path) {
   LineReader lines(bytes);
   std::string line;
   auto fail = [&](const std::string& what) {
@@ -195,7 +195,7 @@ void checkPlyFile(const std::string& bytes, const std::string& path) {
     }
     while (lines.next(line))
       if (!words(line).empty()) fail("expected the end of the file after the last element");
-    return;
+    return {vertex->count, face->count};
   }
 
   // Binary: walk the items (list lengths read from the data) and check that they fit.
@@ -224,9 +224,10 @@ void checkPlyFile(const std::string& bytes, const std::string& path) {
                     std::to_string(item) + " (truncated at byte " + std::to_string(size) + ")");
     }
   }
+  return {vertex->count, face->count};
 }
 
-void checkObjFile(const std::string& bytes, const std::string& path) {
+MeshFileCounts checkObjFile(const std::string& bytes, const std::string& path) {
   static const std::set<std::string> kIgnored{
       "g",      "o",          "s",         "usemtl",   "mtllib",   "l",    "p",
       "vp",     "cstype",     "deg",       "bmat",     "step",     "curv", "curv2",
@@ -299,6 +300,7 @@ void checkObjFile(const std::string& bytes, const std::string& path) {
     }
   }
   if (faces == 0) throw Error(path + ": expected faces ('f' lines), found none");
+  return {static_cast<uint64_t>(v), static_cast<uint64_t>(faces)};
 }
 
 } // namespace nx

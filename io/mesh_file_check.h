@@ -5,20 +5,26 @@
 // "vertex index out of range" for an OBJ vertex with a non-number; these checks find such
 // problems first and name the line (ASCII) or the element and byte offset (binary).
 
+#include <cstdint>
 #include <string>
 
 namespace nx {
+
+/// What a mesh file's check counted: its vertices and faces (polygons, before triangulation).
+struct MeshFileCounts {
+  uint64_t vertices = 0, faces = 0;
+};
 
 /// Throws nx::Error "<path>:<line>: ..." (ASCII) or "<path>: ..." (binary) unless `bytes` is a
 /// PLY file with a valid header (format, elements, properties), a vertex element with x, y, z, a
 /// face element with a vertex index list, and a body holding every element item: ASCII items
 /// with exactly their properties' numbers (finite, whole where integers), faces of at least 3
 /// vertices that exist; binary bodies at least as long as their items.
-void checkPlyFile(const std::string& bytes, const std::string& path);
+MeshFileCounts checkPlyFile(const std::string& bytes, const std::string& path);
 
 /// Throws nx::Error "<path>:<line>: ..." unless every statement of the OBJ text is known, with
 /// finite numbers (v: 3 to 7, vt: 1 to 3, vn: 3) and faces of at least 3 vertex references that
 /// exist (1-based, or negative: relative to the vertices read so far), and some face exists.
-void checkObjFile(const std::string& bytes, const std::string& path);
+MeshFileCounts checkObjFile(const std::string& bytes, const std::string& path);
 
 } // namespace nx

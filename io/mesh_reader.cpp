@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/file_text.h"
+#include "core/memory.h"
 #include "io/mesh_file_check.h"
 
 namespace nx {
