@@ -53,7 +53,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     if (!scene.geometry->intersect(ray, hit)) {
       if (scene.background)
         L += beta * evaluate(*scene.background, current) *
-             emitterWeight(ctx.lights->pdfBackground(prevP));
+             (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP)));
       break;
     }
     const ShapeAppearance& app = scene.appearance(hit);
