@@ -68,7 +68,8 @@ int main(int argc, char** argv) {
   app.add_option("--dir", dir, "Where the PLY and the scene are written (default /tmp)");
   CLI11_PARSE(app, argc, argv);
   try {
-    const int n = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(triangles) / 2.0))));
+    const int n =
+        std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(triangles) / 2.0))));
     const std::string ply = dir + "/nxbench-mesh.ply", scn = dir + "/nxbench-mesh.scn";
     auto t0 = std::chrono::steady_clock::now();
     writeHeightfield(ply, n);
