@@ -12,9 +12,13 @@ namespace {
 
 // The white reference's surface: a Lambertian reflector of reflectance 1.
 const Material& whiteLambertian() {
-  static const Material white{
-      MaterialKind::Mixture,           1.0f,         IorModel::constant(1.5),
-      Spectrum(ConstantSpectrum{1.0}), std::nullopt, nullptr, nullptr};
+  static const Material white{MaterialKind::Mixture,
+                              1.0f,
+                              IorModel::constant(1.5),
+                              Spectrum(ConstantSpectrum{1.0}),
+                              std::nullopt,
+                              nullptr,
+                              nullptr};
   return white;
 }
 

@@ -491,14 +491,14 @@ private:
     if (d.texture == "colorchecker") return ReflectanceTexture::colorChecker();
     try {
       const std::string bytes = readRegularFile(d.texture, kMaxTextureFileBytes, "texture file");
-      digest_ = fnv1a64(bytes, fnv1a64(std::string_view(d.texture.c_str(), d.texture.size() + 1), digest_));
+      digest_ = fnv1a64(
+          bytes, fnv1a64(std::string_view(d.texture.c_str(), d.texture.size() + 1), digest_));
       const SpectralImage img = readSpectralExr(d.texture);
       const int nb = img.bands.count();
       std::vector<int> order(static_cast<size_t>(nb));
       for (int b = 0; b < nb; ++b) order[static_cast<size_t>(b)] = b;
-      std::sort(order.begin(), order.end(), [&](int a, int b) {
-        return img.bands.centroid(a) < img.bands.centroid(b);
-      });
+      std::sort(order.begin(), order.end(),
+                [&](int a, int b) { return img.bands.centroid(a) < img.bands.centroid(b); });
       std::vector<double> centroids;
       for (int b : order) centroids.push_back(img.bands.centroid(b));
       std::vector<float> values(img.radiance.size());

@@ -355,8 +355,7 @@ private:
     s.kind = SpectrumDesc::Kind::Texture;
     const std::string name = trim(decoded(tex.value(), n));
     if (name.empty())
-      fail(n, "texture=\"colorchecker\" or a spectral EXR file in texture=\"...\"",
-           "an empty one");
+      fail(n, "texture=\"colorchecker\" or a spectral EXR file in texture=\"...\"", "an empty one");
     s.texture = name == "colorchecker" ? name : relativeToScene(name);
     return s;
   }

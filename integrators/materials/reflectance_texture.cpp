@@ -76,8 +76,7 @@ SampledSpectrum ReflectanceTexture::imageAt(float u, float v,
     } else if (hi == bands) {
       out[i] = texel(bands - 1);
     } else {
-      const double w =
-          (nm - centroids_[hi - 1]) / (centroids_[hi] - centroids_[hi - 1]);
+      const double w = (nm - centroids_[hi - 1]) / (centroids_[hi] - centroids_[hi - 1]);
       out[i] = static_cast<float>((1 - w) * texel(hi - 1) + w * texel(hi));
     }
   }
