@@ -217,5 +217,32 @@ TEST(Meshes, TessellatedSphereImageConvergesToTheAnalyticSphere) {
   }
 }
 
+// A closed tessellated sphere of reflectance 0.5 emitting 1, seen from inside: a furnace,
+// L = Le / (1 - rho) = 2 everywhere, whichever way the mesh light is found (its own triangles
+// light each other by next-event estimation, found by BSDF sampling, or both with MIS).
+TEST(Meshes, ClosedEmittingMeshIsAFurnace) {
+  writeSphere(tempPath("furnace.ply"), 12, 1, Vec3(0, 0, 0));
+  const RenderScene scene = buildRenderScene(parseScene(
+      "<scene><settings><xres>12</xres><yres>12</yres><mode>spectral_mcpt</mode><sampl>32"
+      "</sampl><depth>3</depth></settings><camera><position>0,0,0</position><look_at>0,0,1"
+      "</look_at></camera><mesh file=\"furnace.ply\"><material>matte</material><reflectance>0.5"
+      "</reflectance><emission>1</emission></mesh></scene>",
+      tempPath("furnace.scn")));
+  for (LightSampling s : {LightSampling::Mis, LightSampling::NeeOnly, LightSampling::BsdfOnly}) {
+    RenderOptions o;
+    o.lightSampling = s;
+    const RenderOutput out = render(scene, o);
+    test::RunningStats px;
+    for (int y = 0; y < 12; ++y)
+      for (int x = 0; x < 12; ++x) {
+        double v = 0;
+        for (int b = 0; b < out.film.bands().count(); ++b) v += out.film.bandMean(x, y, b);
+        px.add(v / out.film.bands().count());
+      }
+    EXPECT_LT(std::abs(px.mean - 2.0), 5 * px.standardError() + 1e-3) << int(s);
+    EXPECT_LT(px.standardError(), 0.02) << int(s); // power: 5 se < 5% of the value
+  }
+}
+
 } // namespace
 } // namespace nx
