@@ -1,6 +1,7 @@
 #include "integrators/lights/light_sampler.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/frame.h"
@@ -188,16 +189,17 @@ bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const Sampled
   if (lights_.size() == 1) {
     k = 0, lo = 0, share = 1;
   } else if (selection_ == LightSelection::Local) {
-    // Two passes over the weights (no allocation): their sum, then the running sum.
+    // Each weight computed once, kept on the stack (at most kMaxLocalLights: no allocation).
+    std::array<float, kMaxLocalLights> weights;
     float total = 0;
-    for (const Light& l : lights_) total += localWeight(l, p);
+    for (size_t i = 0; i < lights_.size(); ++i) total += weights[i] = localWeight(lights_[i], p);
     if (!(total > 0)) return false;
     const double target = uc * total;
     double running = 0;
     k = lights_.size() - 1;
     lo = 0, share = 0;
     for (size_t i = 0; i < lights_.size(); ++i) {
-      const double w = localWeight(lights_[i], p);
+      const double w = weights[i];
       if (target < running + w || i + 1 == lights_.size()) {
         k = i, lo = running / total, share = w / total;
         break;
