@@ -344,7 +344,7 @@ private:
 
   // ---- spectra ----
   // A spectrum written as text: a number, "nm:value" pairs, or a name; or csv="file".
-  // A <reflectance>: a spectrum, or texture="colorchecker" / texture="image.exr".
+  // A <reflectance>: a spectrum, or texture="colorchecker" / "image.exr" / "image.png".
   std::optional<SpectrumDesc> reflectance(const pugi::xml_node& n) const {
     const pugi::xml_attribute tex = n.attribute("texture");
     if (!tex) return spectrum(n, false);
@@ -355,7 +355,8 @@ private:
     s.kind = SpectrumDesc::Kind::Texture;
     const std::string name = trim(decoded(tex.value(), n));
     if (name.empty())
-      fail(n, "texture=\"colorchecker\" or a spectral EXR file in texture=\"...\"", "an empty one");
+      fail(n, "texture=\"colorchecker\", a spectral EXR or a PNG/JPEG file in texture=\"...\"",
+           "an empty one");
     s.texture = name == "colorchecker" ? name : relativeToScene(name);
     return s;
   }

@@ -8,10 +8,9 @@
 namespace nx {
 
 /// A smooth reflectance spectrum in [0, 1] whose colour under D65 is the given linear sRGB
-/// colour (each channel in [0, 1]). The three sigmoid-polynomial coefficients are fitted by
-/// damped Gauss-Newton on the CIELAB difference, walking from mid grey to the target so that
-/// saturated colours start near a solution (the paper's continuation idea, done per colour
-/// instead of through a precomputed table). Black and white give constant spectra.
+/// colour (each channel in [0, 1]): the sigmoid-polynomial coefficients interpolated in the
+/// built-in table (srgbSigmoidTable(), fitted at build time). Black and white give constant
+/// spectra.
 Spectrum upsampleSrgbReflectance(const Rgb& linearSrgb);
 
 /// An emission spectrum whose colour is the given linear sRGB colour (any non-negative

@@ -41,7 +41,7 @@ double TabulatedSpectrum::operator()(double x) const {
 }
 
 double SigmoidPolynomialSpectrum::operator()(double nm) const {
-  const double x = (nm - 360.0) / 470.0;
+  const double x = (nm - kSigmoidStartNm) / kSigmoidSpanNm;
   const double p = (c0 * x + c1) * x + c2;
   if (std::isinf(p)) return p > 0 ? 1.0 : 0.0;
   return 0.5 + p / (2.0 * std::sqrt(1.0 + p * p));

@@ -50,6 +50,9 @@ struct TabulatedSpectrum {
   double operator()(double nm) const;
 };
 
+/// The sigmoid polynomial's wavelength variable is x = (nm - kSigmoidStartNm) / kSigmoidSpanNm.
+inline constexpr double kSigmoidStartNm = 360.0, kSigmoidSpanNm = 470.0;
+
 /// The smooth sigmoid-polynomial spectrum of Jakob & Hanika (EGSR 2019):
 /// s(lambda) = 1/2 + p / (2 sqrt(1 + p^2)), p = c0 x^2 + c1 x + c2, x = (lambda-360)/470.
 struct SigmoidPolynomialSpectrum {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "spectra/colorchecker.h"
+#include "spectra/spectrum.h"
 
 namespace nx {
 
@@ -19,6 +20,16 @@ ReflectanceTexture::spectralImage(int width, int height, std::vector<double> cen
   return t;
 }
 
+std::shared_ptr<const ReflectanceTexture>
+ReflectanceTexture::sigmoidImage(int width, int height, std::vector<float> coefficients) {
+  auto t = std::make_shared<ReflectanceTexture>();
+  t->kind_ = Kind::Sigmoid;
+  t->width_ = width;
+  t->height_ = height;
+  t->values_ = std::move(coefficients);
+  return t;
+}
+
 std::shared_ptr<const ReflectanceTexture> ReflectanceTexture::colorChecker() {
   auto t = std::make_shared<ReflectanceTexture>();
   t->kind_ = Kind::Chart;
@@ -29,7 +40,15 @@ std::shared_ptr<const ReflectanceTexture> ReflectanceTexture::colorChecker() {
 
 SampledSpectrum ReflectanceTexture::evaluate(float u, float v,
                                              const SampledWavelengths& lambda) const {
-  return kind_ == Kind::Chart ? chartAt(u, v, lambda) : imageAt(u, v, lambda);
+  switch (kind_) {
+  case Kind::Image:
+    return imageAt(u, v, lambda);
+  case Kind::Sigmoid:
+    return sigmoidAt(u, v, lambda);
+  case Kind::Chart:
+    break;
+  }
+  return chartAt(u, v, lambda);
 }
 
 SampledSpectrum ReflectanceTexture::chartAt(float u, float v,
@@ -47,8 +66,7 @@ SampledSpectrum ReflectanceTexture::chartAt(float u, float v,
   return out;
 }
 
-SampledSpectrum ReflectanceTexture::imageAt(float u, float v,
-                                            const SampledWavelengths& lambda) const {
+ReflectanceTexture::Bilinear ReflectanceTexture::bilinear(float u, float v) const {
   // Texel centres at (i + 1/2) / width; bilinear between the four nearest, edges clamped.
   const float x = u * static_cast<float>(width_) - 0.5f;
   const float y = (1 - v) * static_cast<float>(height_) - 0.5f;
@@ -57,13 +75,19 @@ SampledSpectrum ReflectanceTexture::imageAt(float u, float v,
   auto clampX = [&](float c) { return std::clamp(static_cast<int>(c), 0, width_ - 1); };
   auto clampY = [&](float c) { return std::clamp(static_cast<int>(c), 0, height_ - 1); };
   const int x0 = clampX(fx0), x1 = clampX(fx0 + 1), y0 = clampY(fy0), y1 = clampY(fy0 + 1);
+  auto at = [&](int tx, int ty) { return static_cast<size_t>(ty) * width_ + tx; };
+  return {{at(x0, y0), at(x1, y0), at(x0, y1), at(x1, y1)},
+          {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay}};
+}
+
+SampledSpectrum ReflectanceTexture::imageAt(float u, float v,
+                                            const SampledWavelengths& lambda) const {
+  const Bilinear b = bilinear(u, v);
   const size_t bands = centroids_.size();
-  const float* t00 = &values_[(static_cast<size_t>(y0) * width_ + x0) * bands];
-  const float* t10 = &values_[(static_cast<size_t>(y0) * width_ + x1) * bands];
-  const float* t01 = &values_[(static_cast<size_t>(y1) * width_ + x0) * bands];
-  const float* t11 = &values_[(static_cast<size_t>(y1) * width_ + x1) * bands];
-  auto texel = [&](size_t b) {
-    return (1 - ay) * ((1 - ax) * t00[b] + ax * t10[b]) + ay * ((1 - ax) * t01[b] + ax * t11[b]);
+  auto texel = [&](size_t band) {
+    float sum = 0;
+    for (int k = 0; k < 4; ++k) sum += b.weight[k] * values_[b.texel[k] * bands + band];
+    return sum;
   };
   SampledSpectrum out;
   for (int i = 0; i < kLanes; ++i) {
@@ -79,6 +103,25 @@ SampledSpectrum ReflectanceTexture::imageAt(float u, float v,
       const double w = (nm - centroids_[hi - 1]) / (centroids_[hi] - centroids_[hi - 1]);
       out[i] = static_cast<float>((1 - w) * texel(hi - 1) + w * texel(hi));
     }
+  }
+  return out;
+}
+
+SampledSpectrum ReflectanceTexture::sigmoidAt(float u, float v,
+                                              const SampledWavelengths& lambda) const {
+  const Bilinear b = bilinear(u, v);
+  SampledSpectrum out;
+  for (int i = 0; i < kLanes; ++i) {
+    // The texels' spectra (Jakob & Hanika's sigmoid of a quadratic), weighted bilinearly.
+    const float x = static_cast<float>((lambda.lambda[i] - kSigmoidStartNm) / kSigmoidSpanNm);
+    float sum = 0;
+    for (int k = 0; k < 4; ++k) {
+      const float* c = &values_[b.texel[k] * 3];
+      // |p| capped where S(p) is within 1e-18 of 0 or 1, so that p * p cannot overflow.
+      const float p = std::clamp((c[0] * x + c[1]) * x + c[2], -1e9f, 1e9f);
+      sum += b.weight[k] * (0.5f + 0.5f * p / std::sqrt(1.0f + p * p));
+    }
+    out[i] = sum;
   }
   return out;
 }

@@ -9,15 +9,21 @@
 namespace nx {
 
 /// A reflectance texture: a spectral image (bands at their centroid wavelengths, bilinear in
-/// space, linear between bands, the end bands held beyond them) or the built-in ColorChecker
-/// chart. (u, v) = (0, 0) is the image's bottom-left corner, (1, 1) its top-right (row 0 of an
-/// image is its top); outside [0, 1] the edge texels continue.
+/// space, linear between bands, the end bands held beyond them), an RGB image upsampled per
+/// texel, or the built-in ColorChecker chart. (u, v) = (0, 0) is the image's bottom-left corner,
+/// (1, 1) its top-right (row 0 of an image is its top); outside [0, 1] the edge texels continue.
 class ReflectanceTexture {
 public:
   /// A spectral image of width x height texels, `values` [texel][band] (row 0 at the top)
   /// at the given increasing band centroids (nm). Values must lie in [0, 1].
   static std::shared_ptr<const ReflectanceTexture>
   spectralImage(int width, int height, std::vector<double> centroidsNm, std::vector<float> values);
+
+  /// An RGB image upsampled per texel: `coefficients` [texel][3] are each texel's
+  /// sigmoid-polynomial coefficients (row 0 at the top), bilinear in space between the
+  /// texels' spectra.
+  static std::shared_ptr<const ReflectanceTexture> sigmoidImage(int width, int height,
+                                                                std::vector<float> coefficients);
 
   /// The ColorChecker Classic, 6 x 4 patches (dark_skin top left at v = 1, black_2 bottom
   /// right), each cell's central kColorCheckerPatchFraction its patch's measured reflectance,
@@ -32,12 +38,19 @@ public:
   int height() const { return height_; }
 
 private:
-  enum class Kind : uint8_t { Image, Chart };
+  enum class Kind : uint8_t { Image, Sigmoid, Chart };
+  /// The four texels around (u, v) (indices into the texel grid) and their bilinear weights.
+  struct Bilinear {
+    size_t texel[4];
+    float weight[4];
+  };
+  Bilinear bilinear(float u, float v) const;
   Kind kind_ = Kind::Image;
   int width_ = 0, height_ = 0;
   std::vector<double> centroids_;
   std::vector<float> values_;
   SampledSpectrum imageAt(float u, float v, const SampledWavelengths& lambda) const;
+  SampledSpectrum sigmoidAt(float u, float v, const SampledWavelengths& lambda) const;
   SampledSpectrum chartAt(float u, float v, const SampledWavelengths& lambda) const;
 };
 

@@ -1,11 +1,14 @@
 // Reflectance textures: lookups against known texels, the ColorChecker chart, a spectral EXR on
-// a quad, and the errors of malformed textures.
+// a quad, an sRGB PNG upsampled per texel, and the errors of malformed textures.
 
 #include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
 
 #include "integrators/renderer.h"
 #include "io/spectral_exr.h"
 #include "spectra/colorchecker.h"
+#include "spectra/colour.h"
+#include "spectra/rgb_upsampling.h"
 #include "support/errors.h"
 #include "support/flat_wavelengths.h"
 #include "support/statistics.h"
@@ -135,6 +138,38 @@ TEST(Textures, SpectralExrTextureIsReadAndChecked) {
                          "550 nm"),
             std::string::npos)
       << message;
+}
+
+// An sRGB PNG is upsampled per texel through the table: at a texel's centre the texture is
+// the upsampled spectrum of that texel's colour, between texels the bilinear mix of spectra.
+TEST(Textures, SrgbPngTexelsAreUpsampledSpectra) {
+  const std::vector<unsigned char> px = {230, 40, 30, 20, 180, 60, 40, 60, 200, 128, 128, 128};
+  const std::string path = ::testing::TempDir() + "/rgb_texture.png";
+  ASSERT_TRUE(stbi_write_png(path.c_str(), 2, 2, 3, px.data(), 6));
+  const RenderScene scene = buildRenderScene(parseScene(
+      sceneWith("<reflectance texture=\"rgb_texture.png\"/>"), ::testing::TempDir() + "/t.scn"));
+  const auto& tex = scene.materials[scene.meshes[0].whole.material].texture;
+  ASSERT_TRUE(tex);
+  std::vector<Spectrum> expected;
+  for (int t = 0; t < 4; ++t) {
+    const unsigned char* c = &px[static_cast<size_t>(t * 3)];
+    expected.push_back(upsampleSrgbReflectance(
+        {srgbDecode(c[0] / 255.0), srgbDecode(c[1] / 255.0), srgbDecode(c[2] / 255.0)}));
+  }
+  for (float nm : {400.0f, 480.0f, 550.0f, 610.0f, 700.0f}) {
+    for (int y = 0; y < 2; ++y)
+      for (int x = 0; x < 2; ++x) {
+        const float u = (fl(x) + 0.5f) / 2, v = 1 - (fl(y) + 0.5f) / 2;
+        EXPECT_NEAR(tex->evaluate(u, v, test::flatWavelengths(nm))[0],
+                    expected[static_cast<size_t>(y * 2 + x)](nm), 1e-5)
+            << nm << " nm, texel " << x << "," << y;
+      }
+    double mean = 0;
+    for (const Spectrum& e : expected) mean += e(nm) / 4;
+    EXPECT_NEAR(tex->evaluate(0.5f, 0.5f, test::flatWavelengths(nm))[0], mean, 1e-5) << nm;
+  }
+  // The red texel reflects red: more at 650 nm than at 450 nm.
+  EXPECT_GT(expected[0](650), 3 * expected[0](450));
 }
 
 } // namespace
