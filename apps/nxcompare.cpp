@@ -1,0 +1,361 @@
+// nxcompare: compares a render with a capture (or two cubes) band by band.
+//
+//   nxcompare RENDER CAPTURE [--srf FILE.csv] [--capture-wavelengths L] [--capture-fwhm F]
+//             [--rect X,Y,W,H]... [--mask MASK.png] [--labels] [--scale none|global|band]
+//             [--crop X,Y,W,H] [--offset DX,DY] [--csv OUT.csv] [--region-csv OUT.csv]
+//             [--max-sam DEG] [--max-relative-rmse R]
+//
+// Either side may be a spectral EXR, an ENVI cube or a multi-band TIFF. The render's bands
+// are resampled through the capture's (Gaussians from its fwhm, or measured responses from an
+// SRF CSV) unless both have the same bands. Prints per-band figures and spectral-angle
+// statistics; exit status 0 within the thresholds, 1 beyond them, 2 on errors.
+// See docs/compare.md.
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/file_text.h"
+#include "core/text_table.h"
+#include "io/atomic_file.h"
+#include "io/spectral_cube.h"
+#include "io/srgb_image.h"
+#include "spectra/band_resampling.h"
+#include "spectra/cube_comparison.h"
+
+namespace {
+
+using nx::Error;
+
+// "a,b,c" or "START:END:STEP" as numbers.
+std::vector<double> numberList(const std::string& text, const std::string& option) {
+  std::vector<double> out;
+  if (text.find(':') != std::string::npos) {
+    std::vector<double> p;
+    std::stringstream ss(text);
+    std::string cell;
+    while (std::getline(ss, cell, ':')) p.push_back(nx::parseNumber(cell, option, "a number"));
+    if (p.size() != 3 || !(p[2] > 0) || !(p[1] >= p[0]))
+      throw Error(option + ": expected START:END:STEP with END >= START and STEP > 0, found '" +
+                  text + "'");
+    for (double x = p[0]; x <= p[1] + 1e-9 * p[2]; x += p[2]) out.push_back(x);
+    return out;
+  }
+  std::stringstream ss(text);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(nx::parseNumber(cell, option, "a number"));
+  return out;
+}
+
+// "X,Y,W,H" or "DX,DY".
+std::vector<long> integers(const std::string& text, size_t count, const std::string& option) {
+  std::vector<long> out;
+  for (double v : numberList(text, option)) {
+    if (v != std::floor(v) || std::abs(v) > 1e9)
+      throw Error(option + ": expected whole numbers, found '" + text + "'");
+    out.push_back(static_cast<long>(v));
+  }
+  if (out.size() != count)
+    throw Error(option + ": expected " + std::to_string(count) +
+                " comma-separated whole numbers, found '" + text + "'");
+  return out;
+}
+
+std::string fixed(double v, int digits) {
+  if (std::isnan(v)) return "-";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+void writeText(const std::string& path, const std::string& text) {
+  nx::writeAtomically(path, [&](const std::string& tmp) {
+    std::ofstream f(tmp, std::ios::binary);
+    f << text;
+    if (!f.flush()) throw Error(tmp + ": cannot write");
+  });
+}
+
+std::string general(double v) {
+  if (std::isnan(v)) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"nxcompare: compares a render with a capture band by band"};
+  std::string renderPath, capturePath, srf, wavelengths, fwhm, mask, scaleName = "none", crop,
+                                                                     offset, csv, regionCsv;
+  std::vector<std::string> rects;
+  bool labels = false;
+  double maxSam = -1, maxRelRmse = -1;
+  app.add_option("render", renderPath, "The render (spectral EXR, ENVI cube or TIFF)")->required();
+  app.add_option("capture", capturePath, "The capture (ENVI cube, TIFF or spectral EXR)")
+      ->required();
+  app.add_option(
+      "--srf", srf,
+      "CSV of the capture's band responses: nm,<band>,... (else Gaussians from its fwhm)");
+  app.add_option("--capture-wavelengths", wavelengths,
+                 "The capture's band centres when its file has none: a,b,c or START:END:STEP (nm)");
+  app.add_option("--capture-fwhm", fwhm,
+                 "The capture's band widths (nm): one value, or one per band");
+  app.add_option("--rect", rects, "A region X,Y,W,H in render pixels (repeatable)");
+  app.add_option("--mask", mask, "A PNG of the render's size: non-zero pixels are compared");
+  app.add_flag("--labels", labels,
+               "One region per object id (the render's ObjectId channel: --aov ids)");
+  app.add_option("--scale", scaleName,
+                 "Scale the render: none, global or band (least squares, reported)")
+      ->check(CLI::IsMember({"none", "global", "band"}));
+  app.add_option("--crop", crop, "Compare only the render's pixels X,Y,W,H");
+  app.add_option("--offset", offset,
+                 "DX,DY: render pixel (x, y) is capture pixel (x + DX, y + DY)");
+  app.add_option("--csv", csv, "Per-band figures as CSV");
+  app.add_option("--region-csv", regionCsv, "Per-region mean spectra as CSV");
+  app.add_option("--max-sam", maxSam, "Exit 1 when the mean spectral angle exceeds DEG")
+      ->check(CLI::Range(0.0, 180.0));
+  app.add_option("--max-relative-rmse", maxRelRmse, "Exit 1 when a band's relative RMSE exceeds R")
+      ->check(CLI::Range(0.0, 1e9));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    for (const std::string& out : {csv, regionCsv})
+      if (!out.empty()) nx::checkWritable(out);
+    nx::CubeReadOptions captureOptions;
+    if (!wavelengths.empty())
+      captureOptions.wavelengthNm = numberList(wavelengths, "--capture-wavelengths");
+    if (!fwhm.empty()) captureOptions.fwhmNm = numberList(fwhm, "--capture-fwhm");
+    const nx::SpectralCube render = nx::readSpectralCube(renderPath);
+    const nx::SpectralCube capture = nx::readSpectralCube(capturePath, captureOptions);
+
+    // Band matching.
+    const bool same = render.bands() == capture.bands() && [&] {
+      for (int b = 0; b < render.bands(); ++b)
+        if (std::abs(render.wavelengthNm[static_cast<size_t>(b)] -
+                     capture.wavelengthNm[static_cast<size_t>(b)]) > 0.01)
+          return false;
+      return true;
+    }();
+    nx::BandResampling resampling = nx::BandResampling::identity(render.bands());
+    std::string matching = "identical bands";
+    if (!srf.empty()) {
+      const nx::Sensor responses = nx::Sensor::readCsv(srf);
+      if (responses.count() != capture.bands())
+        throw Error(srf + ": expected " + std::to_string(capture.bands()) +
+                    " band responses (the capture's bands), found " +
+                    std::to_string(responses.count()));
+      resampling = nx::BandResampling::through(render.wavelengthNm, responses, capturePath);
+      matching = "render resampled through the responses in " + srf;
+    } else if (!same) {
+      if (capture.fwhmNm.empty())
+        throw Error(capturePath + ": its " + std::to_string(capture.bands()) + " bands (" +
+                    general(capture.wavelengthNm.front()) + "-" +
+                    general(capture.wavelengthNm.back()) + " nm) differ from the render's " +
+                    std::to_string(render.bands()) + " (" + general(render.wavelengthNm.front()) +
+                    "-" + general(render.wavelengthNm.back()) +
+                    " nm) and it gives no fwhm: expected --capture-fwhm or --srf");
+      const nx::Sensor gauss =
+          nx::Sensor::gaussian(capture.wavelengthNm, capture.fwhmNm, capturePath);
+      resampling = nx::BandResampling::through(render.wavelengthNm, gauss, capturePath);
+      matching = "render resampled through Gaussian bands (the capture's fwhm)";
+    }
+
+    // The compared window: the crop in the render, the offset into the capture.
+    long cx = 0, cy = 0, cw = render.width, ch = render.height, dx = 0, dy = 0;
+    if (!crop.empty()) {
+      const auto c = integers(crop, 4, "--crop");
+      cx = c[0], cy = c[1], cw = c[2], ch = c[3];
+      if (cx < 0 || cy < 0 || cw <= 0 || ch <= 0 || cx + cw > render.width ||
+          cy + ch > render.height)
+        throw Error("--crop: expected a window inside the render's " +
+                    std::to_string(render.width) + " x " + std::to_string(render.height) +
+                    " pixels, found " + crop);
+    }
+    if (!offset.empty()) {
+      const auto o = integers(offset, 2, "--offset");
+      dx = o[0], dy = o[1];
+    }
+    if (cx + dx < 0 || cy + dy < 0 || cx + dx + cw > capture.width || cy + dy + ch > capture.height)
+      throw Error(
+          capturePath + ": expected the compared window (" + std::to_string(cw) + " x " +
+          std::to_string(ch) + " pixels at " + std::to_string(cx + dx) + "," +
+          std::to_string(cy + dy) + " in the capture) inside its " + std::to_string(capture.width) +
+          " x " + std::to_string(capture.height) + " pixels; the render is " +
+          std::to_string(render.width) + " x " + std::to_string(render.height) +
+          (crop.empty() && offset.empty() ? " (give --crop and --offset to align them)" : ""));
+
+    // Both cubes on the window, the render through the capture's bands.
+    const int nb = capture.bands();
+    const size_t np = static_cast<size_t>(cw) * static_cast<size_t>(ch);
+    std::vector<float> r(np * static_cast<size_t>(nb)), c(np * static_cast<size_t>(nb)), v;
+    const bool variance = !render.variance.empty();
+    if (variance) v.resize(r.size());
+    for (long y = 0; y < ch; ++y)
+      for (long x = 0; x < cw; ++x) {
+        const size_t p = static_cast<size_t>(y * cw + x);
+        const size_t rp = static_cast<size_t>((y + cy) * render.width + (x + cx));
+        const size_t cp = static_cast<size_t>((y + cy + dy) * capture.width + (x + cx + dx));
+        resampling.apply(&render.values[rp * static_cast<size_t>(render.bands())],
+                         &r[p * static_cast<size_t>(nb)]);
+        if (variance)
+          resampling.applyToVariance(&render.variance[rp * static_cast<size_t>(render.bands())],
+                                     &v[p * static_cast<size_t>(nb)]);
+        for (int b = 0; b < nb; ++b)
+          c[p * static_cast<size_t>(nb) + static_cast<size_t>(b)] =
+              capture.values[cp * static_cast<size_t>(nb) + static_cast<size_t>(b)];
+      }
+
+    nx::ComparisonInputs in;
+    in.width = static_cast<int>(cw);
+    in.height = static_cast<int>(ch);
+    in.bands = nb;
+    in.originX = static_cast<int>(cx);
+    in.originY = static_cast<int>(cy);
+    in.wavelengthNm = capture.wavelengthNm;
+    in.render = r.data();
+    in.capture = c.data();
+    in.renderVariance = variance ? v.data() : nullptr;
+    // Regions, in render pixels, cut to the window.
+    auto windowMask = [&](const std::function<bool(long, long)>& inside) {
+      std::vector<uint8_t> m(np, 0);
+      for (long y = 0; y < ch; ++y)
+        for (long x = 0; x < cw; ++x)
+          m[static_cast<size_t>(y * cw + x)] = inside(x + cx, y + cy) ? 1 : 0;
+      return m;
+    };
+    for (const std::string& rect : rects) {
+      const auto q = integers(rect, 4, "--rect");
+      if (q[2] <= 0 || q[3] <= 0)
+        throw Error("--rect: expected a positive width and height, found " + rect);
+      in.regions.push_back({"rect " + rect, windowMask([&](long x, long y) {
+                              return x >= q[0] && x < q[0] + q[2] && y >= q[1] && y < q[1] + q[3];
+                            })});
+    }
+    if (!mask.empty()) {
+      const nx::LinearSrgbImage m =
+          nx::decodeSrgbImage(nx::readRegularFile(mask, 1ull << 31, "mask file"), mask);
+      if (m.width != render.width || m.height != render.height)
+        throw Error(mask + ": expected a mask of the render's " + std::to_string(render.width) +
+                    " x " + std::to_string(render.height) + " pixels, found " +
+                    std::to_string(m.width) + " x " + std::to_string(m.height));
+      in.regions.push_back({"mask " + mask, windowMask([&](long x, long y) {
+                              const size_t p = static_cast<size_t>(y * m.width + x) * 3;
+                              return m.rgb[p] > 0 || m.rgb[p + 1] > 0 || m.rgb[p + 2] > 0;
+                            })});
+    }
+    if (labels) {
+      if (render.objectId.empty())
+        throw Error(
+            renderPath +
+            ": expected an ObjectId channel for --labels (render with --aov ids), found none");
+      std::map<uint32_t, bool> ids;
+      for (long y = cy; y < cy + ch; ++y)
+        for (long x = cx; x < cx + cw; ++x)
+          ids[render.objectId[static_cast<size_t>(y * render.width + x)]] = true;
+      for (const auto& [id, unused] : ids) {
+        if (id == 0) continue;
+        in.regions.push_back(
+            {"object " + std::to_string(id), windowMask([&, id = id](long x, long y) {
+               return render.objectId[static_cast<size_t>(y * render.width + x)] == id;
+             })});
+      }
+    }
+
+    const nx::ScaleFit fit = scaleName == "global" ? nx::ScaleFit::Global
+                             : scaleName == "band" ? nx::ScaleFit::PerBand
+                                                   : nx::ScaleFit::None;
+    nx::ComparisonReport rep;
+    try {
+      rep = nx::compareCubes(in, fit);
+    } catch (const Error& e) {
+      throw Error("comparing " + renderPath + " with " + capturePath + ": " + e.what());
+    }
+
+    std::printf("render  %s: %s, %d x %d, %d bands (%s-%s nm)\n", renderPath.c_str(),
+                render.format.c_str(), render.width, render.height, render.bands(),
+                general(render.wavelengthNm.front()).c_str(),
+                general(render.wavelengthNm.back()).c_str());
+    std::printf("capture %s: %s, %d x %d, %d bands (%s-%s nm)\n", capturePath.c_str(),
+                capture.format.c_str(), capture.width, capture.height, capture.bands(),
+                general(capture.wavelengthNm.front()).c_str(),
+                general(capture.wavelengthNm.back()).c_str());
+    std::printf(
+        "bands: %s; %ld pixels compared%s\n", matching.c_str(), rep.pixels,
+        in.regions.empty() ? "" : (" (" + std::to_string(in.regions.size()) + " regions)").c_str());
+    if (fit == nx::ScaleFit::Global)
+      std::printf("scale (least squares, global): %.6g\n", rep.bands[0].scale);
+    std::printf("\n%10s %10s %12s %12s %12s %12s %10s %8s %8s\n", "nm", "scale", "render",
+                "capture", "bias", "rmse", "rel.rmse", "psnr dB", "z");
+    double worstRel = 0;
+    for (const nx::BandFigures& f : rep.bands) {
+      std::printf("%10s %10s %12s %12s %12s %12s %10s %8s %8s\n", fixed(f.wavelengthNm, 2).c_str(),
+                  general(f.scale).c_str(), general(f.renderMean).c_str(),
+                  general(f.captureMean).c_str(), general(f.bias).c_str(), general(f.rmse).c_str(),
+                  fixed(f.relativeRmse, 4).c_str(), fixed(f.psnrDb, 1).c_str(),
+                  fixed(f.zMean, 2).c_str());
+      worstRel = std::max(worstRel, std::abs(f.relativeRmse));
+    }
+    std::printf("\nspectral angle (degrees) over %ld pixels: mean %s, median %s, 95th percentile "
+                "%s, max %s",
+                rep.sam.pixels, fixed(rep.sam.meanDeg, 4).c_str(),
+                fixed(rep.sam.medianDeg, 4).c_str(), fixed(rep.sam.p95Deg, 4).c_str(),
+                fixed(rep.sam.maxDeg, 4).c_str());
+    if (rep.sam.undefinedPixels > 0)
+      std::printf(" (%ld pixels all zero on one side)", rep.sam.undefinedPixels);
+    std::printf("\n");
+    for (const nx::RegionFigures& g : rep.regions)
+      std::printf("region %-24s %8ld pixels, mean spectral angle %s\n", g.name.c_str(), g.pixels,
+                  fixed(g.samMeanDeg, 4).c_str());
+
+    if (!csv.empty()) {
+      std::ostringstream out;
+      out << "wavelength_nm,rmse,relative_rmse,bias,psnr_db,render_mean,capture_mean,scale,z_mean,"
+             "rms_z\n";
+      for (const nx::BandFigures& f : rep.bands)
+        out << general(f.wavelengthNm) << ',' << general(f.rmse) << ',' << general(f.relativeRmse)
+            << ',' << general(f.bias) << ',' << general(f.psnrDb) << ',' << general(f.renderMean)
+            << ',' << general(f.captureMean) << ',' << general(f.scale) << ',' << general(f.zMean)
+            << ',' << general(f.rmsZ) << '\n';
+      writeText(csv, out.str());
+    }
+    if (!regionCsv.empty()) {
+      std::ostringstream out;
+      out << "region,pixels,side";
+      for (double nm : capture.wavelengthNm) out << ',' << general(nm);
+      out << '\n';
+      for (const nx::RegionFigures& g : rep.regions)
+        for (int side = 0; side < 2; ++side) {
+          out << '"' << g.name << "\"," << g.pixels << ',' << (side ? "capture" : "render");
+          for (double x : side ? g.captureMean : g.renderMean) out << ',' << general(x);
+          out << '\n';
+        }
+      writeText(regionCsv, out.str());
+    }
+    bool pass = true;
+    if (maxSam >= 0 && !(rep.sam.meanDeg <= maxSam)) {
+      std::printf("FAIL: mean spectral angle %s exceeds %s degrees\n",
+                  fixed(rep.sam.meanDeg, 4).c_str(), general(maxSam).c_str());
+      pass = false;
+    }
+    if (maxRelRmse >= 0 && !(worstRel <= maxRelRmse)) {
+      std::printf("FAIL: relative RMSE %s exceeds %s\n", fixed(worstRel, 4).c_str(),
+                  general(maxRelRmse).c_str());
+      pass = false;
+    }
+    return pass ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "nxcompare: error: %s\n", e.what());
+    return 2;
+  }
+}

@@ -1,0 +1,303 @@
+#include "io/spectral_cube.h"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal.h>
+#include <gdal_frmts.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+
+#include "core/error.h"
+#include "core/memory.h"
+#include "core/text_table.h"
+#include "io/spectral_exr.h"
+
+namespace nx {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+std::string extensionOf(const std::string& path) {
+  return lower(fs::path(path).extension().string());
+}
+
+// GDAL's messages go to our errors, not to stderr.
+struct QuietGdal {
+  QuietGdal() { CPLPushErrorHandler(CPLQuietErrorHandler); }
+  ~QuietGdal() { CPLPopErrorHandler(); }
+  QuietGdal(const QuietGdal&) = delete;
+  QuietGdal& operator=(const QuietGdal&) = delete;
+};
+
+std::string gdalMessage() {
+  const char* m = CPLGetLastErrorMsg();
+  return m && *m ? m : "unknown GDAL error";
+}
+
+void registerDrivers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    GDALRegister_ENVI();
+    GDALRegister_GTiff();
+  });
+}
+
+// The data file of an ENVI header: the header's stem with no extension or a usual one.
+std::string enviDataFor(const std::string& header) {
+  const fs::path stem = fs::path(header).replace_extension("");
+  std::vector<std::string> tried;
+  for (const char* ext : {"", ".img", ".dat", ".raw", ".bsq", ".bil", ".bip", ".bin", ".envi"}) {
+    fs::path p = stem;
+    p += ext;
+    std::error_code ec;
+    if (fs::is_regular_file(p, ec)) return p.string();
+    tried.push_back(p.filename().string());
+  }
+  std::string list;
+  for (const std::string& t : tried) list += (list.empty() ? "" : ", ") + t;
+  throw Error(header + ": expected the ENVI data file beside the header (one of " + list +
+              "), found none");
+}
+
+// The header of an ENVI data file: GDAL's convention (extension replaced, or .hdr appended).
+bool hasEnviHeader(const std::string& data) {
+  std::error_code ec;
+  return fs::is_regular_file(fs::path(data).replace_extension(".hdr"), ec) ||
+         fs::is_regular_file(data + ".hdr", ec);
+}
+
+// Wavelengths in nm from values in `units` (an ENVI or TIFF unit name, or empty).
+std::vector<double> toNanometres(std::vector<double> v, const std::string& units,
+                                 const std::string& where) {
+  const std::string u = lower(units);
+  double scale = 0;
+  if (u == "nanometers" || u == "nanometres" || u == "nm") {
+    scale = 1;
+  } else if (u == "micrometers" || u == "micrometres" || u == "microns" || u == "um" ||
+             u == "\xc2\xb5m") {
+    scale = 1000;
+  } else if (u.empty() || u == "unknown") {
+    const bool allNm = std::all_of(v.begin(), v.end(), [](double x) { return x >= 100; });
+    const bool allUm = std::all_of(v.begin(), v.end(), [](double x) { return x > 0 && x <= 30; });
+    if (allNm)
+      scale = 1;
+    else if (allUm)
+      scale = 1000;
+    else
+      throw Error(where + ": expected wavelength units (Nanometers or Micrometers), found none, "
+                          "and the values do not tell");
+  } else {
+    throw Error(where + ": expected wavelength units Nanometers or Micrometers, found '" + units +
+                "'");
+  }
+  for (double& x : v) x *= scale;
+  return v;
+}
+
+const char* typeName(GDALDataType t) {
+  return GDALGetDataTypeName(t);
+}
+
+SpectralCube fromExr(const std::string& path) {
+  SpectralImage img = readSpectralExr(path);
+  SpectralCube c;
+  c.path = path;
+  c.format = "spectral EXR";
+  c.width = img.width;
+  c.height = img.height;
+  for (int b = 0; b < img.bands.count(); ++b) {
+    c.wavelengthNm.push_back(img.bands.centroid(b));
+    c.fwhmNm.push_back(img.bands.fwhm(b));
+  }
+  c.values = std::move(img.radiance);
+  c.variance = std::move(img.bandVariance);
+  c.objectId = std::move(img.objectId);
+  return c;
+}
+
+SpectralCube fromGdal(const std::string& path, const std::string& shownPath, bool envi,
+                      const CubeReadOptions& options) {
+  registerDrivers();
+  QuietGdal quiet;
+  const char* drivers[] = {envi ? "ENVI" : "GTiff", nullptr};
+  std::unique_ptr<void, void (*)(void*)> ds(
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers, nullptr, nullptr),
+      [](void* d) {
+        if (d) GDALClose(d);
+      });
+  if (!ds)
+    throw Error(shownPath + ": cannot read it as " + (envi ? "an ENVI cube" : "a TIFF") + ": " +
+                gdalMessage());
+  const int w = GDALGetRasterXSize(ds.get()), h = GDALGetRasterYSize(ds.get()),
+            nb = GDALGetRasterCount(ds.get());
+  if (w <= 0 || h <= 0 || nb <= 0)
+    throw Error(shownPath + ": expected at least one band of at least 1 x 1 pixels, found " +
+                std::to_string(w) + " x " + std::to_string(h) + " x " + std::to_string(nb));
+  const GDALDataType type = GDALGetRasterDataType(GDALGetRasterBand(ds.get(), 1));
+  if (GDALDataTypeIsComplex(type))
+    throw Error(shownPath + ": expected real-valued bands, found " + typeName(type));
+  SpectralCube c;
+  c.path = shownPath;
+  c.width = w;
+  c.height = h;
+  std::string interleave = "";
+  if (const char* il = GDALGetMetadataItem(ds.get(), "INTERLEAVE", "IMAGE_STRUCTURE"))
+    interleave = il;
+  c.format = std::string(envi ? "ENVI" : "TIFF") + " (" +
+             (interleave == "BAND"    ? "BSQ"
+              : interleave == "LINE"  ? "BIL"
+              : interleave == "PIXEL" ? "BIP"
+                                      : interleave) +
+             ", " + typeName(type) + ")";
+
+  // The data must be all there: GDAL would read a short file's missing part as zeros.
+  if (envi) {
+    double offset = 0;
+    if (const char* o = GDALGetMetadataItem(ds.get(), "header_offset", "ENVI"))
+      offset = parseNumber(o, shownPath, "a header offset");
+    const double need = offset + static_cast<double>(w) * h * nb * GDALGetDataTypeSizeBytes(type);
+    std::error_code ec;
+    const double have = static_cast<double>(fs::file_size(path, ec));
+    if (!ec && have < need)
+      throw Error(path + ": expected " + std::to_string(static_cast<long long>(need)) +
+                  " bytes (header offset + " + std::to_string(w) + " x " + std::to_string(h) +
+                  " x " + std::to_string(nb) + " " + typeName(type) + " values), found " +
+                  std::to_string(static_cast<long long>(have)) + ": the data file is cut short");
+  }
+
+  // Wavelengths and widths: the options, else the ENVI header, else the TIFF's band metadata.
+  std::string units;
+  std::vector<double> wl, fwhm;
+  if (envi) {
+    if (const char* s = GDALGetMetadataItem(ds.get(), "wavelength", "ENVI"))
+      wl = parseEnviNumberList(s, shownPath, "the header's wavelength list");
+    if (const char* s = GDALGetMetadataItem(ds.get(), "fwhm", "ENVI"))
+      fwhm = parseEnviNumberList(s, shownPath, "the header's fwhm list");
+    if (const char* s = GDALGetMetadataItem(ds.get(), "wavelength_units", "ENVI")) units = s;
+  } else {
+    for (int b = 1; b <= nb; ++b) {
+      GDALRasterBandH band = GDALGetRasterBand(ds.get(), b);
+      const char* s = GDALGetMetadataItem(band, "wavelength", nullptr);
+      if (!s) {
+        wl.clear();
+        break;
+      }
+      wl.push_back(parseNumber(s, shownPath + " band " + std::to_string(b), "a wavelength"));
+      if (const char* f = GDALGetMetadataItem(band, "fwhm", nullptr))
+        fwhm.push_back(parseNumber(f, shownPath + " band " + std::to_string(b), "an fwhm"));
+      if (const char* u = GDALGetMetadataItem(band, "wavelength_units", nullptr)) units = u;
+    }
+    if (fwhm.size() != wl.size()) fwhm.clear();
+  }
+  if (!options.wavelengthNm.empty()) {
+    wl = options.wavelengthNm;
+    units = "nm";
+  } else if (!wl.empty()) {
+    wl = toNanometres(wl, units, shownPath);
+    if (!fwhm.empty()) fwhm = toNanometres(fwhm, units.empty() ? "nm" : units, shownPath);
+  }
+  if (!options.fwhmNm.empty())
+    fwhm = options.fwhmNm.size() == 1
+               ? std::vector<double>(static_cast<size_t>(nb), options.fwhmNm[0])
+               : options.fwhmNm;
+  if (wl.empty())
+    throw Error(shownPath + ": expected a wavelength list (" +
+                (envi ? std::string("'wavelength = {...}' in the ENVI header")
+                      : std::string("a 'wavelength' metadata item on every band")) +
+                ", or --capture-wavelengths), found none");
+  if (static_cast<int>(wl.size()) != nb)
+    throw Error(shownPath + ": expected " + std::to_string(nb) +
+                " wavelengths (one per band), found " + std::to_string(wl.size()));
+  if (!fwhm.empty() && static_cast<int>(fwhm.size()) != nb)
+    throw Error(shownPath + ": expected " + std::to_string(nb) +
+                " fwhm values (one per band), found " + std::to_string(fwhm.size()));
+  for (size_t i = 0; i < wl.size(); ++i)
+    if (!(wl[i] > 0 && std::isfinite(wl[i])) ||
+        (!fwhm.empty() && !(fwhm[i] > 0 && std::isfinite(fwhm[i]))))
+      throw Error(shownPath + ": expected positive wavelengths and fwhm, found band " +
+                  std::to_string(i + 1) + " at " + numberText(wl[i]) + " nm" +
+                  (fwhm.empty() ? "" : " with fwhm " + numberText(fwhm[i])));
+  c.wavelengthNm = wl;
+  c.fwhmNm = fwhm;
+
+  const double pixels = static_cast<double>(w) * h;
+  requireMemory(pixels * nb * 8.0, shownPath, "a cube",
+                std::to_string(w) + " x " + std::to_string(h) + " x " + std::to_string(nb));
+  c.values.resize(static_cast<size_t>(pixels) * static_cast<size_t>(nb));
+  std::vector<float> plane(static_cast<size_t>(pixels));
+  for (int b = 0; b < nb; ++b) {
+    if (GDALRasterIO(GDALGetRasterBand(ds.get(), b + 1), GF_Read, 0, 0, w, h, plane.data(), w, h,
+                     GDT_Float32, 0, 0) != CE_None)
+      throw Error(shownPath + ": cannot read band " + std::to_string(b + 1) + ": " + gdalMessage());
+    for (size_t p = 0; p < plane.size(); ++p)
+      c.values[p * static_cast<size_t>(nb) + static_cast<size_t>(b)] = plane[p];
+  }
+  return c;
+}
+
+} // namespace
+
+std::vector<double> parseEnviNumberList(const std::string& text, const std::string& where,
+                                        const std::string& what) {
+  std::string body = text;
+  const size_t open = body.find('{'), close = body.rfind('}');
+  if (open != std::string::npos) {
+    if (close == std::string::npos || close < open)
+      throw Error(where + ": expected " + what + " as {a, b, ...}, found no closing brace");
+    body = body.substr(open + 1, close - open - 1);
+  }
+  std::vector<double> out;
+  size_t start = 0;
+  while (start <= body.size()) {
+    size_t end = body.find(',', start);
+    if (end == std::string::npos) end = body.size();
+    std::string cell = body.substr(start, end - start);
+    const auto first = cell.find_first_not_of(" \t\r\n"), last = cell.find_last_not_of(" \t\r\n");
+    cell = first == std::string::npos ? "" : cell.substr(first, last - first + 1);
+    if (!cell.empty())
+      out.push_back(parseNumber(cell, where, "a number in " + what));
+    else if (end != body.size() || !out.empty())
+      throw Error(where + ": expected a number in " + what + ", found an empty entry");
+    start = end + 1;
+  }
+  return out;
+}
+
+SpectralCube readSpectralCube(const std::string& path, const CubeReadOptions& options) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(path + ": cannot open the file (it does not exist)");
+  const std::string ext = extensionOf(path);
+  SpectralCube c;
+  if (ext == ".exr") {
+    c = fromExr(path);
+    if (!options.wavelengthNm.empty() || !options.fwhmNm.empty())
+      throw Error(path + ": a spectral EXR names its own bands; expected no wavelength options");
+  } else if (ext == ".hdr") {
+    c = fromGdal(enviDataFor(path), path, true, options);
+  } else if (ext == ".tif" || ext == ".tiff") {
+    c = fromGdal(path, path, false, options);
+  } else if (hasEnviHeader(path)) {
+    c = fromGdal(path, path, true, options);
+  } else {
+    throw Error(path + ": expected a spectral EXR (.exr), an ENVI cube (.hdr or a data file "
+                       "with its .hdr beside it) or a TIFF (.tif), found neither");
+  }
+  for (size_t i = 1; i < c.wavelengthNm.size(); ++i)
+    if (!(c.wavelengthNm[i] > c.wavelengthNm[i - 1]))
+      throw Error(path + ": expected increasing band wavelengths, found " +
+                  numberText(c.wavelengthNm[i - 1]) + " nm then " + numberText(c.wavelengthNm[i]) +
+                  " nm");
+  return c;
+}
+
+} // namespace nx

@@ -1,0 +1,85 @@
+#pragma once
+// Figures comparing a render with a capture band by band and pixel by pixel: per-band RMSE,
+// relative RMSE, bias, PSNR and noise z-scores, per-pixel spectral angle, per-region means.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace nx {
+
+/// How the render is scaled before it is compared (absolute calibration is often unknown).
+enum class ScaleFit {
+  None,    ///< compared as they are
+  Global,  ///< one factor s minimising sum (capture - s render)^2 over all bands and pixels
+  PerBand, ///< one such factor per band
+};
+
+/// A named set of pixels (mask[pixel] != 0).
+struct ComparisonRegion {
+  std::string name;
+  std::vector<uint8_t> mask;
+};
+
+/// Two cubes on the same pixels and bands, [pixel][band], and what to compare.
+struct ComparisonInputs {
+  int width = 0, height = 0, bands = 0;
+  int originX = 0, originY = 0;          ///< pixel (0, 0)'s position in the render (for messages)
+  std::vector<double> wavelengthNm;      ///< the bands' wavelengths (for reports)
+  const float* render = nullptr;         ///< the render's values (resampled to the capture's bands)
+  const float* capture = nullptr;        ///< the capture's values
+  const float* renderVariance = nullptr; ///< variance of each render value, or null
+  std::vector<ComparisonRegion> regions; ///< the regions; none: every pixel
+};
+
+/// One band's figures over the compared pixels (the union of the regions).
+struct BandFigures {
+  double wavelengthNm = 0;
+  double scale = 1;        ///< factor applied to the render
+  double renderMean = 0;   ///< mean of the scaled render
+  double captureMean = 0;  ///< mean of the capture
+  double bias = 0;         ///< mean of (scaled render - capture)
+  double rmse = 0;         ///< root mean square of (scaled render - capture)
+  double relativeRmse = 0; ///< rmse / renderMean
+  double psnrDb = 0;       ///< 20 log10(largest capture value / rmse); infinite when rmse = 0
+  /// bias / its standard error from the render's Monte Carlo variance (NaN without variances):
+  /// |z| much above 2-3 says the difference is not the render's noise.
+  double zMean = 0;
+  /// root mean square over pixels of (difference / the render value's standard deviation):
+  /// about 1 when the differences are the render's noise alone.
+  double rmsZ = 0;
+};
+
+/// One region's figures.
+struct RegionFigures {
+  std::string name;
+  long pixels = 0;
+  std::vector<double> renderMean, captureMean; ///< per band, scaled render and capture
+  double samMeanDeg = 0;                       ///< mean spectral angle over its pixels
+};
+
+/// Spectral angle statistics (degrees) over the compared pixels where both spectra are
+/// non-zero.
+struct SamFigures {
+  double meanDeg = 0, medianDeg = 0, p95Deg = 0, maxDeg = 0;
+  long pixels = 0;          ///< pixels with an angle
+  long undefinedPixels = 0; ///< compared pixels where one spectrum is all zero
+};
+
+/// Everything compareCubes finds.
+struct ComparisonReport {
+  ScaleFit fit = ScaleFit::None;
+  long pixels = 0;                ///< compared pixels
+  std::vector<BandFigures> bands; ///< one per band
+  SamFigures sam;
+  std::vector<float> samMapDeg; ///< [pixel] angle in degrees; NaN where not compared
+  std::vector<RegionFigures> regions;
+};
+
+/// Compares the cubes. The render is scaled as `fit` says (the factors are reported), then
+/// per band: bias, RMSE, relative RMSE, PSNR, z-scores; per pixel: the spectral angle
+/// acos(r.c / (|r| |c|)) between scaled render and capture; per region: mean spectra and mean
+/// angle. Throws nx::Error when no pixel is compared or a compared value is not finite.
+ComparisonReport compareCubes(const ComparisonInputs& in, ScaleFit fit);
+
+} // namespace nx

@@ -1,0 +1,203 @@
+// The comparison figures against values computed here independently: scaled captures, constant
+// offsets, known angles, noise z-scores, regions.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/error.h"
+#include "spectra/band_resampling.h"
+#include "spectra/cube_comparison.h"
+
+namespace nx {
+namespace {
+
+struct Cubes {
+  int w = 6, h = 4, nb = 5;
+  std::vector<float> render, capture, variance;
+  ComparisonInputs inputs() const {
+    ComparisonInputs in;
+    in.width = w, in.height = h, in.bands = nb;
+    for (int b = 0; b < nb; ++b) in.wavelengthNm.push_back(400 + 50 * b);
+    in.render = render.data();
+    in.capture = capture.data();
+    in.renderVariance = variance.empty() ? nullptr : variance.data();
+    return in;
+  }
+};
+
+// A render with a different spectrum at every pixel.
+Cubes cubes() {
+  Cubes c;
+  for (int p = 0; p < c.w * c.h; ++p)
+    for (int b = 0; b < c.nb; ++b)
+      c.render.push_back(0.2f + 0.05f * static_cast<float>((p * 7 + b * 3) % 11));
+  return c;
+}
+
+TEST(CubeComparison, ScaledCaptureHasZeroAngleAndItsScaleIsFound) {
+  Cubes c = cubes();
+  for (float v : c.render) c.capture.push_back(1.07f * v);
+  const ComparisonReport global = compareCubes(c.inputs(), ScaleFit::Global);
+  for (const BandFigures& f : global.bands) {
+    EXPECT_NEAR(f.scale, 1.07, 1e-6);
+    EXPECT_NEAR(f.rmse, 0, 1e-6);
+    EXPECT_NEAR(f.bias, 0, 1e-6);
+  }
+  EXPECT_NEAR(global.sam.meanDeg, 0, 1e-3);
+  EXPECT_NEAR(global.sam.maxDeg, 0, 1e-3);
+  // Unscaled: the angle is still 0 (SAM ignores scale); the bias is -0.07 x the band mean.
+  const ComparisonReport none = compareCubes(c.inputs(), ScaleFit::None);
+  EXPECT_NEAR(none.sam.maxDeg, 0, 1e-3);
+  for (const BandFigures& f : none.bands) {
+    EXPECT_EQ(f.scale, 1);
+    EXPECT_NEAR(f.bias, -0.07 * f.renderMean, 1e-6);
+    EXPECT_NEAR(f.relativeRmse, f.rmse / f.renderMean, 1e-12);
+  }
+}
+
+TEST(CubeComparison, ConstantOffsetGivesItsRmseBiasAndPsnr) {
+  Cubes c = cubes();
+  for (float v : c.render) c.capture.push_back(v - 0.03f);
+  const ComparisonReport r = compareCubes(c.inputs(), ScaleFit::None);
+  for (size_t b = 0; b < r.bands.size(); ++b) {
+    const BandFigures& f = r.bands[b];
+    EXPECT_NEAR(f.bias, 0.03, 1e-6);
+    EXPECT_NEAR(f.rmse, 0.03, 1e-6);
+    double maxCapture = 0, meanRender = 0;
+    for (int p = 0; p < c.w * c.h; ++p) {
+      maxCapture = std::max(maxCapture, double(c.capture[static_cast<size_t>(p * c.nb) + b]));
+      meanRender += c.render[static_cast<size_t>(p * c.nb) + b] / double(c.w * c.h);
+    }
+    EXPECT_NEAR(f.psnrDb, 20 * std::log10(maxCapture / 0.03), 1e-3);
+    EXPECT_NEAR(f.renderMean, meanRender, 1e-6);
+    EXPECT_NEAR(f.relativeRmse, 0.03 / meanRender, 1e-5);
+  }
+}
+
+// Two-band spectra at a known angle: render (1, 0), capture (cos t, sin t).
+TEST(CubeComparison, SpectralAngleStatisticsOfKnownAngles) {
+  Cubes c;
+  c.w = 5, c.h = 1, c.nb = 2;
+  const double deg[5] = {1, 2, 3, 4, 10};
+  for (double d : deg) {
+    c.render.insert(c.render.end(), {1.0f, 0.0f});
+    c.capture.push_back(static_cast<float>(std::cos(d * M_PI / 180)));
+    c.capture.push_back(static_cast<float>(std::sin(d * M_PI / 180)));
+  }
+  const ComparisonReport r = compareCubes(c.inputs(), ScaleFit::None);
+  EXPECT_NEAR(r.sam.meanDeg, 4.0, 1e-4);
+  EXPECT_NEAR(r.sam.medianDeg, 3.0, 1e-4);
+  EXPECT_NEAR(r.sam.maxDeg, 10.0, 1e-4);
+  EXPECT_NEAR(r.sam.p95Deg, 4 + 0.8 * 6, 1e-4); // rank 3.8 between 4 and 10
+  for (int p = 0; p < 5; ++p) EXPECT_NEAR(r.samMapDeg[static_cast<size_t>(p)], deg[p], 1e-4);
+}
+
+// Differences that are the render's own noise give |z| of order 1 and rms z near 1; a real
+// bias of 5 standard errors is flagged.
+TEST(CubeComparison, NoiseZScoresFollowTheVariance) {
+  Cubes c;
+  c.w = 100, c.h = 100, c.nb = 2;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0, 1);
+  const double sigma = 0.01;
+  for (int p = 0; p < c.w * c.h; ++p)
+    for (int b = 0; b < 2; ++b) {
+      c.capture.push_back(0.5f);
+      c.variance.push_back(static_cast<float>(sigma * sigma));
+      const double bias = b == 1 ? 5 * sigma / 100 : 0; // 5 standard errors of the mean
+      c.render.push_back(static_cast<float>(0.5 + bias + sigma * noise(rng)));
+    }
+  const ComparisonReport r = compareCubes(c.inputs(), ScaleFit::None);
+  EXPECT_LT(std::abs(r.bands[0].zMean), 4.0);
+  EXPECT_NEAR(r.bands[0].rmsZ, 1.0, 0.05);
+  EXPECT_GT(r.bands[1].zMean, 2.0); // 5 +- 1
+  EXPECT_LT(r.bands[1].zMean, 8.0);
+  // Without variances there are no z-scores.
+  c.variance.clear();
+  EXPECT_TRUE(std::isnan(compareCubes(c.inputs(), ScaleFit::None).bands[0].zMean));
+}
+
+TEST(CubeComparison, PerBandScalesAndRegions) {
+  Cubes c = cubes();
+  for (size_t i = 0; i < c.render.size(); ++i)
+    c.capture.push_back(c.render[i] * (1.0f + 0.1f * static_cast<float>(i % 5)));
+  ComparisonInputs in = c.inputs();
+  std::vector<uint8_t> left(24, 0), right(24, 0);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 6; ++x) (x < 3 ? left : right)[static_cast<size_t>(y * 6 + x)] = 1;
+  in.regions = {{"left", left}, {"right", right}};
+  const ComparisonReport r = compareCubes(in, ScaleFit::PerBand);
+  for (int b = 0; b < 5; ++b)
+    EXPECT_NEAR(r.bands[static_cast<size_t>(b)].scale, 1.0 + 0.1 * b, 1e-6);
+  ASSERT_EQ(r.regions.size(), 2u);
+  EXPECT_EQ(r.regions[0].pixels, 12);
+  double mean = 0;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 3; ++x) mean += c.capture[static_cast<size_t>((y * 6 + x) * 5 + 2)] / 12.0;
+  EXPECT_NEAR(r.regions[0].captureMean[2], mean, 1e-6);
+  EXPECT_NEAR(r.regions[0].renderMean[2], mean, 1e-6); // scaled render = capture
+  // Only the left half compared.
+  in.regions = {{"left", left}};
+  EXPECT_EQ(compareCubes(in, ScaleFit::None).pixels, 12);
+}
+
+TEST(CubeComparison, NonFiniteValuesAndEmptyRegionsAreErrors) {
+  Cubes c = cubes();
+  c.capture = c.render;
+  c.capture[7 * 5 + 2] = NAN; // pixel 1,1 band 500 nm
+  EXPECT_THROW(compareCubes(c.inputs(), ScaleFit::None), Error);
+  try {
+    compareCubes(c.inputs(), ScaleFit::None);
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("capture value nan at pixel 1,1 in band 500 nm"),
+              std::string::npos)
+        << e.what();
+  }
+  ComparisonInputs in = c.inputs();
+  in.regions = {{"none", std::vector<uint8_t>(24, 0)}};
+  EXPECT_THROW(compareCubes(in, ScaleFit::None), Error);
+}
+
+// Resampling a spectrum linear in wavelength through Gaussian bands gives its value at each
+// band's centre (a symmetric response averages a linear function to its centre value).
+TEST(BandResampling, LinearSpectrumThroughGaussiansGivesCentreValues) {
+  std::vector<double> centroids;
+  std::vector<float> values;
+  for (double nm = 380; nm <= 760; nm += 5) {
+    centroids.push_back(nm);
+    values.push_back(static_cast<float>(0.1 + 0.001 * (nm - 380)));
+  }
+  const std::vector<double> centres = {420.5, 500, 563.2, 640, 700};
+  const Sensor capture = Sensor::gaussian(centres, {12.0}, "test");
+  const BandResampling r = BandResampling::through(centroids, capture, "test");
+  std::vector<float> out(centres.size());
+  r.apply(values.data(), out.data());
+  for (size_t i = 0; i < centres.size(); ++i)
+    EXPECT_NEAR(out[i], 0.1 + 0.001 * (centres[i] - 380), 1e-5) << centres[i];
+  // Each row of weights sums to 1 (a flat spectrum stays flat).
+  for (int i = 0; i < r.outputs(); ++i) {
+    double sum = 0;
+    for (int j = 0; j < r.inputs(); ++j)
+      sum += r.weights()[static_cast<size_t>(i * r.inputs() + j)];
+    EXPECT_NEAR(sum, 1.0, 1e-9);
+  }
+}
+
+TEST(BandResampling, BandsBeyondTheRenderAreRefused) {
+  const Sensor capture = Sensor::gaussian({450, 690}, {20.0}, "test");
+  EXPECT_THROW(BandResampling::through({400, 450, 500, 550, 600, 650, 700}, capture, "c.hdr"),
+               Error);
+  try {
+    BandResampling::through({400, 450, 500, 550, 600, 650, 700}, capture, "c.hdr");
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("c.hdr: capture band 2 (centroid 690 nm, fwhm 20 nm) lies "
+                                         "beyond the render's bands (400-700 nm)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+} // namespace
+} // namespace nx
