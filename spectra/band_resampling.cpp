@@ -56,7 +56,7 @@ BandResampling BandResampling::through(const std::vector<double>& c, const Senso
   return r;
 }
 
-void BandResampling::apply(const float* in, float* out) const {
+void BandResampling::applyWeights(const float* in, float* out, bool squared) const {
   if (identity_) {
     for (int i = 0; i < inputs_; ++i) out[i] = in[i];
     return;
@@ -65,23 +65,17 @@ void BandResampling::apply(const float* in, float* out) const {
     double sum = 0;
     const double* w = &w_[static_cast<size_t>(i) * inputs_];
     for (int j = 0; j < inputs_; ++j)
-      if (w[j] != 0) sum += w[j] * in[j];
+      if (w[j] != 0) sum += (squared ? w[j] * w[j] : w[j]) * in[j];
     out[i] = static_cast<float>(sum);
   }
 }
 
+void BandResampling::apply(const float* in, float* out) const {
+  applyWeights(in, out, false);
+}
+
 void BandResampling::applyToVariance(const float* in, float* out) const {
-  if (identity_) {
-    for (int i = 0; i < inputs_; ++i) out[i] = in[i];
-    return;
-  }
-  for (int i = 0; i < outputs_; ++i) {
-    double sum = 0;
-    const double* w = &w_[static_cast<size_t>(i) * inputs_];
-    for (int j = 0; j < inputs_; ++j)
-      if (w[j] != 0) sum += w[j] * w[j] * in[j];
-    out[i] = static_cast<float>(sum);
-  }
+  applyWeights(in, out, true);
 }
 
 } // namespace nx

@@ -38,6 +38,7 @@ public:
   bool isIdentity() const { return identity_; }
 
 private:
+  void applyWeights(const float* in, float* out, bool squared) const;
   int inputs_ = 0, outputs_ = 0;
   bool identity_ = false;
   std::vector<double> w_;
