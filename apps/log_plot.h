@@ -1,19 +1,9 @@
 #pragma once
 // A small log-log line plot rendered to RGB pixels (for benchmark reports).
 
-#include <cstdint>
-#include <string>
-#include <vector>
+#include "apps/plot_canvas.h"
 
 namespace nx {
-
-/// One series of (x, y) points, drawn as a polyline with dots.
-struct PlotSeries {
-  std::string label;
-  std::vector<double> x, y;
-  uint8_t r = 0, g = 0, b = 0;
-  bool dashed = false;
-};
 
 /// Renders series on log10 axes spanning all positive points (whole decades), with a grid,
 /// axis labels and a legend. Returns width x height interleaved RGB bytes.

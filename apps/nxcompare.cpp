@@ -3,6 +3,7 @@
 //   nxcompare RENDER CAPTURE [--srf FILE.csv] [--capture-wavelengths L] [--capture-fwhm F]
 //             [--rect X,Y,W,H]... [--mask MASK.png] [--labels] [--scale none|global|band]
 //             [--crop X,Y,W,H] [--offset DX,DY] [--csv OUT.csv] [--region-csv OUT.csv]
+//             [--plot FIG.png] [--colour radiance|reflectance] [--illuminant NAME]
 //             [--max-sam DEG] [--max-relative-rmse R]
 //
 // Either side may be a spectral EXR, an ENVI cube or a multi-band TIFF. The render's bands
@@ -17,16 +18,20 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
+#include "apps/compare_figure.h"
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/text_table.h"
 #include "io/atomic_file.h"
+#include "io/preview_image.h"
 #include "io/spectral_cube.h"
 #include "io/srgb_image.h"
 #include "spectra/band_resampling.h"
 #include "spectra/cube_comparison.h"
+#include "spectra/illuminants.h"
 
 namespace {
 
@@ -95,6 +100,7 @@ int main(int argc, char** argv) {
   CLI::App app{"nxcompare: compares a render with a capture band by band"};
   std::string renderPath, capturePath, srf, wavelengths, fwhm, mask, scaleName = "none", crop,
                                                                      offset, csv, regionCsv;
+  std::string plot, colourMode = "radiance", illuminantName = "D65";
   std::vector<std::string> rects;
   bool labels = false;
   double maxSam = -1, maxRelRmse = -1;
@@ -120,6 +126,14 @@ int main(int argc, char** argv) {
                  "DX,DY: render pixel (x, y) is capture pixel (x + DX, y + DY)");
   app.add_option("--csv", csv, "Per-band figures as CSV");
   app.add_option("--region-csv", regionCsv, "Per-region mean spectra as CSV");
+  app.add_option("--plot", plot,
+                 "A PNG figure: per-band error, region spectra, spectral-angle map");
+  app.add_option(
+         "--colour", colourMode,
+         "Region colours from radiance (white: the brightest region) or reflectance spectra")
+      ->check(CLI::IsMember({"radiance", "reflectance"}));
+  app.add_option("--illuminant", illuminantName,
+                 "The white of the region colours (an illuminant name; default D65)");
   app.add_option("--max-sam", maxSam, "Exit 1 when the mean spectral angle exceeds DEG")
       ->check(CLI::Range(0.0, 180.0));
   app.add_option("--max-relative-rmse", maxRelRmse, "Exit 1 when a band's relative RMSE exceeds R")
@@ -130,7 +144,13 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
-    for (const std::string& out : {csv, regionCsv})
+    const std::optional<nx::Spectrum> illuminant = nx::namedEmission(illuminantName);
+    if (!illuminant)
+      throw Error("--illuminant: expected an illuminant name (D65, A, F11, ...), found '" +
+                  illuminantName + "'");
+    if (!plot.empty() && !nx::isPreviewPath(plot))
+      throw Error("--plot: expected a .png or .bmp file name, found '" + plot + "'");
+    for (const std::string& out : {csv, regionCsv, plot})
       if (!out.empty()) nx::checkWritable(out);
     nx::CubeReadOptions captureOptions;
     if (!wavelengths.empty())
@@ -282,6 +302,11 @@ int main(int argc, char** argv) {
       throw Error("comparing " + renderPath + " with " + capturePath + ": " + e.what());
     }
 
+    nx::ColourOptions colours;
+    colours.reflectance = colourMode == "reflectance";
+    colours.illuminant = *illuminant;
+    nx::addRegionColours(rep, capture.wavelengthNm, colours);
+
     std::printf("render  %s: %s, %d x %d, %d bands (%s-%s nm)\n", renderPath.c_str(),
                 render.format.c_str(), render.width, render.height, render.bands(),
                 general(render.wavelengthNm.front()).c_str(),
@@ -314,9 +339,18 @@ int main(int argc, char** argv) {
     if (rep.sam.undefinedPixels > 0)
       std::printf(" (%ld pixels all zero on one side)", rep.sam.undefinedPixels);
     std::printf("\n");
-    for (const nx::RegionFigures& g : rep.regions)
-      std::printf("region %-24s %8ld pixels, mean spectral angle %s\n", g.name.c_str(), g.pixels,
-                  fixed(g.samMeanDeg, 4).c_str());
+    if (!rep.regions.empty())
+      std::printf("\n%-24s %8s %10s %26s %26s %8s\n", "region", "pixels", "SAM deg",
+                  ("render L*a*b* (" + colourMode + ", " + illuminantName + ")").c_str(),
+                  "capture L*a*b*", "dE2000");
+    for (const nx::RegionFigures& g : rep.regions) {
+      auto lab = [](const nx::Lab& l) {
+        return fixed(l.l, 2) + " " + fixed(l.a, 2) + " " + fixed(l.b, 2);
+      };
+      std::printf("%-24s %8ld %10s %26s %26s %8s\n", g.name.c_str(), g.pixels,
+                  fixed(g.samMeanDeg, 4).c_str(), lab(g.renderLab).c_str(),
+                  lab(g.captureLab).c_str(), fixed(g.deltaE2000, 3).c_str());
+    }
 
     if (!csv.empty()) {
       std::ostringstream out;
@@ -331,17 +365,21 @@ int main(int argc, char** argv) {
     }
     if (!regionCsv.empty()) {
       std::ostringstream out;
-      out << "region,pixels,side";
+      out << "region,pixels,side,L,a,b,delta_e_2000";
       for (double nm : capture.wavelengthNm) out << ',' << general(nm);
       out << '\n';
       for (const nx::RegionFigures& g : rep.regions)
         for (int side = 0; side < 2; ++side) {
-          out << '"' << g.name << "\"," << g.pixels << ',' << (side ? "capture" : "render");
+          const nx::Lab& l = side ? g.captureLab : g.renderLab;
+          out << '"' << g.name << "\"," << g.pixels << ',' << (side ? "capture" : "render") << ','
+              << general(l.l) << ',' << general(l.a) << ',' << general(l.b) << ','
+              << general(g.deltaE2000);
           for (double x : side ? g.captureMean : g.renderMean) out << ',' << general(x);
           out << '\n';
         }
       writeText(regionCsv, out.str());
     }
+    if (!plot.empty()) nx::writeComparisonFigure(plot, rep, in.width, in.height);
     bool pass = true;
     if (maxSam >= 0 && !(rep.sam.meanDeg <= maxSam)) {
       std::printf("FAIL: mean spectral angle %s exceeds %s degrees\n",

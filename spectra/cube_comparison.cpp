@@ -166,4 +166,31 @@ ComparisonReport compareCubes(const ComparisonInputs& in, ScaleFit fit) {
   return rep;
 }
 
+void addRegionColours(ComparisonReport& report, const std::vector<double>& wavelengthNm,
+                      const ColourOptions& options) {
+  auto spectrumOf = [&](const std::vector<double>& v) {
+    return Spectrum(TabulatedSpectrum{wavelengthNm, v, true});
+  };
+  auto xyzOf = [&](const std::vector<double>& v) {
+    return options.reflectance ? reflectanceToXyz(spectrumOf(v), options.illuminant)
+                               : spectrumToXyz(spectrumOf(v));
+  };
+  Xyz white = spectrumToXyz(options.illuminant);
+  if (options.reflectance) {
+    white = {white.x / white.y, 1.0, white.z / white.y};
+  } else {
+    double yMax = 0;
+    for (const RegionFigures& r : report.regions)
+      yMax = std::max({yMax, xyzOf(r.renderMean).y, xyzOf(r.captureMean).y});
+    if (!(yMax > 0)) yMax = 1;
+    white = {white.x / white.y * yMax, yMax, white.z / white.y * yMax};
+  }
+  for (RegionFigures& r : report.regions) {
+    if (r.pixels == 0) continue;
+    r.renderLab = xyzToLab(xyzOf(r.renderMean), white);
+    r.captureLab = xyzToLab(xyzOf(r.captureMean), white);
+    r.deltaE2000 = deltaE2000(r.renderLab, r.captureLab);
+  }
+}
+
 } // namespace nx

@@ -3,8 +3,12 @@
 // relative RMSE, bias, PSNR and noise z-scores, per-pixel spectral angle, per-region means.
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
+
+#include "spectra/colour.h"
+#include "spectra/spectrum.h"
 
 namespace nx {
 
@@ -56,6 +60,8 @@ struct RegionFigures {
   long pixels = 0;
   std::vector<double> renderMean, captureMean; ///< per band, scaled render and capture
   double samMeanDeg = 0;                       ///< mean spectral angle over its pixels
+  Lab renderLab, captureLab;                   ///< colours of the mean spectra (addRegionColours)
+  double deltaE2000 = std::numeric_limits<double>::quiet_NaN(); ///< their CIEDE2000
 };
 
 /// Spectral angle statistics (degrees) over the compared pixels where both spectra are
@@ -75,6 +81,20 @@ struct ComparisonReport {
   std::vector<float> samMapDeg; ///< [pixel] angle in degrees; NaN where not compared
   std::vector<RegionFigures> regions;
 };
+
+/// How region spectra become colours.
+struct ColourOptions {
+  /// Reflectances: XYZ under `illuminant`, white = the illuminant (Y = 1). Otherwise radiances:
+  /// XYZ of the spectrum itself, white = the illuminant's chromaticity at the largest Y of the
+  /// regions' means (both sides), so the brightest region has L* = 100.
+  bool reflectance = false;
+  Spectrum illuminant; ///< the white (D65 by default in nxcompare)
+};
+
+/// Adds CIELAB colours and CIEDE2000 to each region of `report` from its mean spectra at the
+/// bands' wavelengths (linear between bands, the end values held beyond them).
+void addRegionColours(ComparisonReport& report, const std::vector<double>& wavelengthNm,
+                      const ColourOptions& options);
 
 /// Compares the cubes. The render is scaled as `fit` says (the factors are reported), then
 /// per band: bias, RMSE, relative RMSE, PSNR, z-scores; per pixel: the spectral angle

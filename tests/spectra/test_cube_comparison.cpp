@@ -201,3 +201,46 @@ TEST(BandResampling, BandsBeyondTheRenderAreRefused) {
 
 } // namespace
 } // namespace nx
+
+namespace nx {
+namespace {
+
+// Flat spectra have closed-form colours: reflectance rho under any illuminant has
+// L* = 116 rho^(1/3) - 16 and a* = b* = 0; radiances under an equal-energy white scaled to the
+// brightest region likewise.
+TEST(CubeComparison, RegionColoursOfFlatSpectra) {
+  auto lstar = [](double y) { return 116 * std::cbrt(y) - 16; };
+  // CIEDE2000 of a pure lightness difference: dL / S_L.
+  auto de = [](double l1, double l2) {
+    const double m = (l1 + l2) / 2 - 50;
+    return std::abs(l1 - l2) / (1 + 0.015 * m * m / std::sqrt(20 + m * m));
+  };
+  ComparisonReport rep;
+  RegionFigures r;
+  r.name = "card";
+  r.pixels = 1;
+  r.renderMean.assign(41, 0.18);
+  r.captureMean.assign(41, 0.2);
+  rep.regions.push_back(r);
+  std::vector<double> nm;
+  for (int i = 0; i <= 40; ++i) nm.push_back(380 + 10 * i);
+  ColourOptions o;
+  o.reflectance = true;
+  o.illuminant = Spectrum(ConstantSpectrum{1.0});
+  addRegionColours(rep, nm, o);
+  EXPECT_NEAR(rep.regions[0].renderLab.l, lstar(0.18), 1e-6);
+  EXPECT_NEAR(rep.regions[0].captureLab.l, lstar(0.2), 1e-6);
+  EXPECT_NEAR(rep.regions[0].captureLab.a, 0, 1e-6);
+  EXPECT_NEAR(rep.regions[0].deltaE2000, de(lstar(0.18), lstar(0.2)), 1e-6);
+  // Radiances 1 and 0.5: the brighter is the white (L* = 100).
+  rep.regions[0].renderMean.assign(41, 1.0);
+  rep.regions[0].captureMean.assign(41, 0.5);
+  o.reflectance = false;
+  addRegionColours(rep, nm, o);
+  EXPECT_NEAR(rep.regions[0].renderLab.l, 100, 1e-6);
+  EXPECT_NEAR(rep.regions[0].captureLab.l, lstar(0.5), 1e-6);
+  EXPECT_NEAR(rep.regions[0].deltaE2000, de(100, lstar(0.5)), 1e-6);
+}
+
+} // namespace
+} // namespace nx
