@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # nxcompare from the command line: a render against its own ENVI export (identical bands,
 # angle 0, exit 0), thresholds (exit 1), resampling through Gaussian bands, CSV columns, and
-# the errors (exit 2) of mismatched sizes, bands beyond the render and masks of the wrong size.
+# the simulated camera, and the errors (exit 2) of mismatched sizes, bands beyond the render and masks of the wrong size.
 #
-#   nxcompare_cli.sh NXRENDER NXCOMPARE SCENE
+#   nxcompare_cli.sh NXRENDER NXCOMPARE NXCAMERA SCENE
 set -euo pipefail
-nxrender="$1" nxcompare="$2" scene="$3"
+nxrender="$1" nxcompare="$2" nxcamera="$3" scene="$4"
 d="$(mktemp -d)"
 trap 'rm -rf "$d"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
@@ -53,4 +53,15 @@ expect_error "--crop: expected a window inside the render's" "$d/r.exr" "$d/r.hd
 expect_error "cannot open the file (it does not exist)" "$d/r.exr" "$d/absent.hdr"
 printf 'P' >"$d/m.png"
 expect_error "m.png: expected a PNG or JPEG image" "$d/r.exr" "$d/r.hdr" --mask "$d/m.png"
+# The simulated camera: its ENVI capture compared with a per-band scale agrees in colour; the
+# figure is written; a bad parameter is refused with nothing written.
+"$nxcamera" "$d/r.exr" -o "$d/cap.exr" --envi "$d/cap.img" --exposure 0.0002 --full-well 1e9 \
+  --bits 32 --offset 0 --dark-current 0 >/dev/null
+"$nxcompare" "$d/r.exr" "$d/cap.hdr" --scale band --labels --plot "$d/fig.png" >"$d/out" ||
+  fail "camera capture: exit $?"
+test -s "$d/fig.png" || fail "no figure"
+grep -q "dE2000" "$d/out" || fail "no colour differences"
+if "$nxcamera" "$d/r.exr" -o "$d/bad.exr" --qe 1.5 2>"$d/err"; then fail "qe 1.5 accepted"; fi
+grep -q "expected quantum efficiencies in \[0, 1\], found 1.5" "$d/err" || fail "qe message: $(cat "$d/err")"
+test ! -e "$d/bad.exr" || fail "bad.exr written"
 echo "nxcompare CLI: all checks passed"
