@@ -13,9 +13,11 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "core/file_text.h"
 #include "core/memory.h"
 #include "core/text_table.h"
 #include "io/spectral_exr.h"
+#include "io/srgb_image.h"
 
 namespace nx {
 namespace {
@@ -245,6 +247,81 @@ SpectralCube fromGdal(const std::string& path, const std::string& shownPath, boo
   return c;
 }
 
+// True when a sorts before b with digit runs compared as numbers ("x_2.png" < "x_10.png").
+bool naturalLess(const std::string& a, const std::string& b) {
+  size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (std::isdigit(static_cast<unsigned char>(a[i])) &&
+        std::isdigit(static_cast<unsigned char>(b[j]))) {
+      size_t ie = i, je = j;
+      while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
+      while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
+      const std::string na = a.substr(i, ie - i), nb = b.substr(j, je - j);
+      const std::string ta = na.substr(std::min(na.find_first_not_of('0'), na.size())),
+                        tb = nb.substr(std::min(nb.find_first_not_of('0'), nb.size()));
+      if (ta.size() != tb.size()) return ta.size() < tb.size();
+      if (ta != tb) return ta < tb;
+      i = ie, j = je;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i, ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
+}
+
+// A directory of per-band grey PNGs (the CAVE layout: name_01.png ... name_31.png), in
+// natural name order, wavelengths from the options.
+SpectralCube fromPngStack(const std::string& dirPath, const CubeReadOptions& options) {
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(dirPath))
+    if (e.is_regular_file() && extensionOf(e.path().string()) == ".png")
+      files.push_back(e.path().string());
+  std::sort(files.begin(), files.end(), [](const std::string& a, const std::string& b) {
+    return naturalLess(fs::path(a).filename().string(), fs::path(b).filename().string());
+  });
+  if (files.empty())
+    throw Error(dirPath + ": expected per-band PNG files in the directory, found none");
+  if (options.wavelengthNm.empty())
+    throw Error(dirPath + ": expected --capture-wavelengths for a stack of " +
+                std::to_string(files.size()) +
+                " per-band PNGs (e.g. 400:700:10 for the CAVE data), found none");
+  if (options.wavelengthNm.size() != files.size())
+    throw Error(dirPath + ": expected " + std::to_string(files.size()) +
+                " wavelengths (one per PNG file), found " +
+                std::to_string(options.wavelengthNm.size()));
+  SpectralCube c;
+  c.path = dirPath;
+  c.wavelengthNm = options.wavelengthNm;
+  if (!options.fwhmNm.empty())
+    c.fwhmNm = options.fwhmNm.size() == 1 ? std::vector<double>(files.size(), options.fwhmNm[0])
+                                          : options.fwhmNm;
+  const size_t nb = files.size();
+  int bits = 8;
+  for (size_t b = 0; b < nb; ++b) {
+    const GreyImage img =
+        decodeGreyImage(readRegularFile(files[b], 1ull << 31, "PNG file"), files[b]);
+    if (b == 0) {
+      c.width = img.width;
+      c.height = img.height;
+      bits = img.bitsPerChannel;
+      requireMemory(static_cast<double>(img.width) * img.height * static_cast<double>(nb) * 4.0,
+                    dirPath, "a cube",
+                    std::to_string(img.width) + " x " + std::to_string(img.height) + " x " +
+                        std::to_string(nb));
+      c.values.resize(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * nb);
+    } else if (img.width != c.width || img.height != c.height) {
+      throw Error(files[b] + ": expected " + std::to_string(c.width) + " x " +
+                  std::to_string(c.height) + " pixels like " +
+                  fs::path(files[0]).filename().string() + ", found " + std::to_string(img.width) +
+                  " x " + std::to_string(img.height));
+    }
+    for (size_t p = 0; p < img.value.size(); ++p) c.values[p * nb + b] = img.value[p];
+  }
+  c.format = "PNG stack (" + std::to_string(nb) + " " + std::to_string(bits) + "-bit files)";
+  return c;
+}
+
 } // namespace
 
 std::vector<double> parseEnviNumberList(const std::string& text, const std::string& where,
@@ -278,7 +355,9 @@ SpectralCube readSpectralCube(const std::string& path, const CubeReadOptions& op
   if (!fs::exists(path, ec)) throw Error(path + ": cannot open the file (it does not exist)");
   const std::string ext = extensionOf(path);
   SpectralCube c;
-  if (ext == ".exr") {
+  if (fs::is_directory(path, ec)) {
+    c = fromPngStack(path, options);
+  } else if (ext == ".exr") {
     c = fromExr(path);
     if (!options.wavelengthNm.empty() || !options.fwhmNm.empty())
       throw Error(path + ": a spectral EXR names its own bands; expected no wavelength options");
@@ -290,7 +369,8 @@ SpectralCube readSpectralCube(const std::string& path, const CubeReadOptions& op
     c = fromGdal(path, path, true, options);
   } else {
     throw Error(path + ": expected a spectral EXR (.exr), an ENVI cube (.hdr or a data file "
-                       "with its .hdr beside it) or a TIFF (.tif), found neither");
+                       "with its .hdr beside it), a TIFF (.tif) or a directory of per-band PNGs, "
+                       "found neither");
   }
   for (size_t i = 1; i < c.wavelengthNm.size(); ++i)
     if (!(c.wavelengthNm[i] > c.wavelengthNm[i - 1]))

@@ -1,6 +1,7 @@
 #pragma once
 // Spectral cubes from the files a lab has: this project's spectral EXR, ENVI cubes and
-// multi-band TIFFs (both read with GDAL), for comparing a render with a capture.
+// multi-band TIFFs (both read with GDAL) and stacks of per-band PNGs, for comparing a render
+// with a capture.
 
 #include <cstdint>
 #include <string>
@@ -31,7 +32,9 @@ struct CubeReadOptions {
 /// Reads a spectral EXR (by its .exr extension), an ENVI cube (named by its .hdr header or by
 /// its data file; BSQ, BIL or BIP; byte, int16, uint16, int32, uint32, float32, float64; either
 /// byte order; `wavelength` and `fwhm` from the header, in nm or micrometres) or a multi-band
-/// TIFF (wavelengths from the bands' `wavelength` metadata or from `options`). Throws
+/// TIFF (wavelengths from the bands' `wavelength` metadata or from `options`), or a directory
+/// of per-band 8- or 16-bit grey PNGs in natural name order (the CAVE layout; raw values,
+/// wavelengths from `options`). Throws
 /// nx::Error naming the file and what is wrong: no wavelength list, a data file shorter than
 /// its header says, a header without a data file, an unknown format.
 SpectralCube readSpectralCube(const std::string& path, const CubeReadOptions& options = {});

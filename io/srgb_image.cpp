@@ -58,6 +58,44 @@ std::string decodeFailure(const std::string& path) {
 
 } // namespace
 
+namespace {
+
+// Size and depth of the image in `bytes`, checked: a PNG or JPEG that stb_image can size and
+// whose buffers (`bytesPerTexel` each) fit in memory.
+struct ImageHeader {
+  int width = 0, height = 0, channels = 0;
+  bool sixteen = false;
+};
+
+ImageHeader checkedHeader(const std::string& bytes, const std::string& path, double bytesPerTexel) {
+  if (bytes.size() > static_cast<size_t>(INT_MAX))
+    throw Error(path + ": expected an image file below 2 GiB, found " +
+                std::to_string(bytes.size()) + " bytes");
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int size = static_cast<int>(bytes.size());
+  ImageHeader h;
+  if (!stbi_info_from_memory(data, size, &h.width, &h.height, &h.channels)) {
+    if (bytes.empty()) throw Error(path + ": expected a PNG or JPEG image, found an empty file");
+    unsigned long pw = 0, ph = 0;
+    int samples = 1;
+    if (pngHeaderSize(bytes, pw, ph, samples) &&
+        static_cast<double>(pw) * static_cast<double>(ph) * samples > 1073741824.0)
+      throw Error(path + ": expected a PNG of at most 2^30 samples (stb_image's limit), found " +
+                  std::to_string(pw) + " x " + std::to_string(ph) + " pixels");
+    throw Error(path + ": expected a PNG or JPEG image, found data stb_image cannot read (" +
+                std::string(stbi_failure_reason()) + ")");
+  }
+  if (h.width <= 0 || h.height <= 0)
+    throw Error(path + ": expected an image of at least 1 x 1 pixels, found " +
+                std::to_string(h.width) + " x " + std::to_string(h.height));
+  h.sixteen = stbi_is_16_bit_from_memory(data, size) != 0;
+  requireMemory(static_cast<double>(h.width) * h.height * bytesPerTexel, path, "an image",
+                std::to_string(h.width) + " x " + std::to_string(h.height) + " pixels");
+  return h;
+}
+
+} // namespace
+
 LinearSrgbImage decodeSrgbImage(const std::string& bytes, const std::string& path) {
   if (bytes.size() > static_cast<size_t>(INT_MAX))
     throw Error(path + ": expected an image file below 2 GiB, found " +
@@ -105,6 +143,31 @@ LinearSrgbImage decodeSrgbImage(const std::string& bytes, const std::string& pat
     std::array<float, 256> decode{};
     for (int v = 0; v < 256; ++v) decode[v] = static_cast<float>(srgbDecode(v / 255.0));
     for (size_t i = 0; i < count; ++i) img.rgb[i] = decode[px.get()[i]];
+  }
+  return img;
+}
+
+GreyImage decodeGreyImage(const std::string& bytes, const std::string& path) {
+  const ImageHeader header = checkedHeader(bytes, path, 2.0 + 4.0);
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int size = static_cast<int>(bytes.size());
+  GreyImage img;
+  img.width = header.width;
+  img.height = header.height;
+  img.bitsPerChannel = header.sixteen ? 16 : 8;
+  const size_t count = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
+  img.value.resize(count);
+  int gotW = 0, gotH = 0, gotChannels = 0;
+  if (header.sixteen) {
+    std::unique_ptr<stbi_us, void (*)(void*)> px(
+        stbi_load_16_from_memory(data, size, &gotW, &gotH, &gotChannels, 1), stbi_image_free);
+    if (!px || gotW != img.width || gotH != img.height) throw Error(decodeFailure(path));
+    for (size_t i = 0; i < count; ++i) img.value[i] = px.get()[i];
+  } else {
+    std::unique_ptr<stbi_uc, void (*)(void*)> px(
+        stbi_load_from_memory(data, size, &gotW, &gotH, &gotChannels, 1), stbi_image_free);
+    if (!px || gotW != img.width || gotH != img.height) throw Error(decodeFailure(path));
+    for (size_t i = 0; i < count; ++i) img.value[i] = px.get()[i];
   }
   return img;
 }

@@ -1,5 +1,6 @@
 #pragma once
-// Colour images (PNG, JPEG) decoded to linear sRGB, for reflectance textures.
+// Images decoded with stb_image: colour images (PNG, JPEG) to linear sRGB for reflectance
+// textures, and grey images to their raw values for per-band capture stacks.
 
 #include <string>
 #include <vector>
@@ -20,5 +21,16 @@ struct LinearSrgbImage {
 /// profiles are not applied). Throws nx::Error naming `path` if the bytes are not such an
 /// image or its buffers would not fit in memory.
 LinearSrgbImage decodeSrgbImage(const std::string& bytes, const std::string& path);
+
+/// A grey image's raw values: value[row * width + column], row 0 at the top.
+struct GreyImage {
+  int width = 0, height = 0;
+  int bitsPerChannel = 8; ///< 8 or 16
+  std::vector<float> value; ///< the stored integers (0-255 or 0-65535), not linearised
+};
+
+/// Decodes an 8- or 16-bit PNG to its raw values (a colour PNG is reduced to one channel by
+/// stb_image's luminance weights). Throws nx::Error naming `path` as decodeSrgbImage does.
+GreyImage decodeGreyImage(const std::string& bytes, const std::string& path);
 
 } // namespace nx

@@ -1,8 +1,9 @@
 // Spectral cubes: ENVI in every interleave, data type and byte order (files written here byte
-// by byte), TIFF with band wavelengths, spectral EXR, and the errors of malformed cubes.
+// by byte), TIFF with band wavelengths, per-band PNG stacks, spectral EXR, and the errors of malformed cubes.
 
 #include <gdal.h>
 #include <gdal_frmts.h>
+#include <stb/stb_image_write.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -221,6 +222,39 @@ TEST(SpectralCube, SpectralExrKeepsBandsVarianceAndIds) {
   EXPECT_EQ(c.values, img.radiance);
   EXPECT_EQ(c.variance, img.bandVariance);
   EXPECT_EQ(c.objectId, img.objectId);
+}
+
+// A CAVE-style stack: one grey PNG per band, named so that only a natural sort gets the
+// order right (s_1, s_2, s_3, s_10).
+TEST(SpectralCube, PngStackInNaturalOrder) {
+  const std::string stack = dir() + "/stack";
+  std::filesystem::create_directories(stack);
+  const int numbers[B] = {1, 2, 3, 10};
+  for (int b = 0; b < B; ++b) {
+    std::vector<unsigned char> px;
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) px.push_back(static_cast<unsigned char>(value(x, y, b)));
+    const std::string name = stack + "/s_" + std::to_string(numbers[b]) + ".png";
+    ASSERT_TRUE(stbi_write_png(name.c_str(), W, H, 1, px.data(), W));
+  }
+  CubeReadOptions o;
+  o.wavelengthNm = {400, 410, 420, 430};
+  const SpectralCube c = readSpectralCube(stack, o);
+  expectTestValues(c);
+  EXPECT_EQ(c.format, "PNG stack (4 8-bit files)");
+  EXPECT_NE(test::errorMessage([&] { readSpectralCube(stack); })
+                .find("stack: expected --capture-wavelengths for a stack of 4 per-band PNGs"),
+            std::string::npos);
+  o.wavelengthNm = {400, 410};
+  EXPECT_NE(test::errorMessage([&] { readSpectralCube(stack, o); })
+                .find("expected 4 wavelengths (one per PNG file), found 2"),
+            std::string::npos);
+  const std::vector<unsigned char> small(4, 0);
+  ASSERT_TRUE(stbi_write_png((stack + "/s_11.png").c_str(), 2, 2, 1, small.data(), 2));
+  o.wavelengthNm = {400, 410, 420, 430, 440};
+  EXPECT_NE(test::errorMessage([&] { readSpectralCube(stack, o); })
+                .find("s_11.png: expected 3 x 2 pixels like s_1.png, found 2 x 2"),
+            std::string::npos);
 }
 
 } // namespace
