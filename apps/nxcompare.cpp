@@ -2,7 +2,8 @@
 //
 //   nxcompare RENDER CAPTURE [--srf FILE.csv] [--capture-wavelengths L] [--capture-fwhm F]
 //             [--rect X,Y,W,H]... [--mask MASK.png] [--labels] [--scale none|global|band]
-//             [--crop X,Y,W,H] [--offset DX,DY] [--csv OUT.csv] [--region-csv OUT.csv]
+//             [--crop X,Y,W,H] [--offset DX,DY] [--exclude-above V] [--skip-nonfinite]
+//             [--csv OUT.csv] [--region-csv OUT.csv]
 //             [--plot FIG.png] [--colour radiance|reflectance] [--illuminant NAME]
 //             [--max-sam DEG] [--max-relative-rmse R]
 //
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -102,7 +104,8 @@ int main(int argc, char** argv) {
                                                                      offset, csv, regionCsv;
   std::string plot, colourMode = "radiance", illuminantName = "D65";
   std::vector<std::string> rects;
-  bool labels = false;
+  bool labels = false, skipNonFinite = false;
+  double excludeAbove = std::numeric_limits<double>::infinity();
   double maxSam = -1, maxRelRmse = -1;
   app.add_option("render", renderPath, "The render (spectral EXR, ENVI cube or TIFF)")->required();
   app.add_option("capture", capturePath, "The capture (ENVI cube, TIFF or spectral EXR)")
@@ -126,6 +129,11 @@ int main(int argc, char** argv) {
                  "DX,DY: render pixel (x, y) is capture pixel (x + DX, y + DY)");
   app.add_option("--csv", csv, "Per-band figures as CSV");
   app.add_option("--region-csv", regionCsv, "Per-region mean spectra as CSV");
+  app.add_option("--exclude-above", excludeAbove,
+                 "Leave out pixels where a capture band reaches this value (saturation, e.g. the "
+                 "full well in DN)");
+  app.add_flag("--skip-nonfinite", skipNonFinite,
+               "Leave out pixels with a NaN or infinite value instead of refusing them");
   app.add_option("--plot", plot,
                  "A PNG figure: per-band error, region spectra, spectral-angle map");
   app.add_option(
@@ -236,7 +244,23 @@ int main(int argc, char** argv) {
               capture.values[cp * static_cast<size_t>(nb) + static_cast<size_t>(b)];
       }
 
+    // Pixels left out: saturated capture values, and non-finite values when asked.
+    std::vector<uint8_t> excluded(np, 0);
+    long saturated = 0, nonFinite = 0;
+    for (size_t p = 0; p < np; ++p)
+      for (int b = 0; b < nb; ++b) {
+        const size_t i = p * static_cast<size_t>(nb) + static_cast<size_t>(b);
+        if (skipNonFinite && (!std::isfinite(c[i]) || !std::isfinite(r[i]))) {
+          nonFinite += excluded[p] ? 0 : 1;
+          excluded[p] = 1;
+        } else if (c[i] >= excludeAbove) {
+          saturated += excluded[p] ? 0 : 1;
+          excluded[p] = 1;
+        }
+      }
+
     nx::ComparisonInputs in;
+    in.excluded = excluded;
     in.width = static_cast<int>(cw);
     in.height = static_cast<int>(ch);
     in.bands = nb;
@@ -318,6 +342,10 @@ int main(int argc, char** argv) {
     std::printf(
         "bands: %s; %ld pixels compared%s\n", matching.c_str(), rep.pixels,
         in.regions.empty() ? "" : (" (" + std::to_string(in.regions.size()) + " regions)").c_str());
+    if (saturated + nonFinite > 0)
+      std::printf("left out: %ld pixels with a capture value at or above %s, %ld with non-finite "
+                  "values (%ld of them in the compared regions)\n",
+                  saturated, general(excludeAbove).c_str(), nonFinite, rep.excludedPixels);
     if (fit == nx::ScaleFit::Global)
       std::printf("scale (least squares, global): %.6g\n", rep.bands[0].scale);
     std::printf("\n%10s %10s %12s %12s %12s %12s %10s %8s %8s\n", "nm", "scale", "render",
@@ -344,8 +372,9 @@ int main(int argc, char** argv) {
                   ("render L*a*b* (" + colourMode + ", " + illuminantName + ")").c_str(),
                   "capture L*a*b*", "dE2000");
     for (const nx::RegionFigures& g : rep.regions) {
-      auto lab = [](const nx::Lab& l) {
-        return fixed(l.l, 2) + " " + fixed(l.a, 2) + " " + fixed(l.b, 2);
+      auto lab = [&g](const nx::Lab& l) {
+        return g.pixels == 0 ? std::string("-")
+                             : fixed(l.l, 2) + " " + fixed(l.a, 2) + " " + fixed(l.b, 2);
       };
       std::printf("%-24s %8ld %10s %26s %26s %8s\n", g.name.c_str(), g.pixels,
                   fixed(g.samMeanDeg, 4).c_str(), lab(g.renderLab).c_str(),

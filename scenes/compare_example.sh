@@ -19,6 +19,7 @@ mkdir -p "$out"
   --dark-current 0 --offset 0 --gain 0.2 --bits 12 --seed 1
 
 # 3. The comparison: per-band scale (the camera counts photons, so its per-band sensitivity
-#    rises with wavelength; a lab's radiometric calibration does the same), per-object regions.
-"$build/apps/nxcompare" "$out/render.exr" "$out/capture.hdr" --scale band --labels \
+#    rises with wavelength; a lab's radiometric calibration does the same), per-object regions,
+#    pixels at the full well (20,000 e- x 0.2 DN/e- = 4000 DN, less the read noise) left out.
+"$build/apps/nxcompare" "$out/render.exr" "$out/capture.hdr" --scale band --labels --exclude-above 3980 \
   --csv "$out/bands.csv" --region-csv "$out/regions.csv" --plot "$out/figure.png"

@@ -33,6 +33,9 @@ ComparisonReport compareCubes(const ComparisonInputs& in, ScaleFit fit) {
       if (r.mask[p]) used[p] = 1;
   ComparisonReport rep;
   rep.fit = fit;
+  if (!in.excluded.empty())
+    for (size_t p = 0; p < np; ++p)
+      if (in.excluded[p] && used[p]) used[p] = 0, ++rep.excludedPixels;
   for (size_t p = 0; p < np; ++p) rep.pixels += used[p];
   if (rep.pixels == 0)
     throw Error("expected at least one pixel to compare, found none in the regions");
@@ -147,7 +150,7 @@ ComparisonReport compareCubes(const ComparisonInputs& in, ScaleFit fit) {
     double samSum = 0;
     long samCount = 0;
     for (size_t p = 0; p < np; ++p) {
-      if (!reg.mask[p]) continue;
+      if (!reg.mask[p] || !used[p]) continue;
       ++f.pixels;
       for (size_t b = 0; b < nb; ++b) {
         f.renderMean[b] += scale[b] * in.render[p * nb + b];

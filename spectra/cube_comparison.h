@@ -34,6 +34,7 @@ struct ComparisonInputs {
   const float* capture = nullptr;        ///< the capture's values
   const float* renderVariance = nullptr; ///< variance of each render value, or null
   std::vector<ComparisonRegion> regions; ///< the regions; none: every pixel
+  std::vector<uint8_t> excluded;         ///< [pixel] != 0: left out everywhere (or empty)
 };
 
 /// One band's figures over the compared pixels (the union of the regions).
@@ -76,6 +77,7 @@ struct SamFigures {
 struct ComparisonReport {
   ScaleFit fit = ScaleFit::None;
   long pixels = 0;                ///< compared pixels
+  long excludedPixels = 0;        ///< pixels of the regions left out (ComparisonInputs::excluded)
   std::vector<BandFigures> bands; ///< one per band
   SamFigures sam;
   std::vector<float> samMapDeg; ///< [pixel] angle in degrees; NaN where not compared

@@ -61,6 +61,10 @@ expect_error "m.png: expected a PNG or JPEG image" "$d/r.exr" "$d/r.hdr" --mask 
   fail "camera capture: exit $?"
 test -s "$d/fig.png" || fail "no figure"
 grep -q "dE2000" "$d/out" || fail "no colour differences"
+# Saturated capture pixels left out and counted.
+"$nxcompare" "$d/r.exr" "$d/cap.hdr" --scale band --exclude-above 50 >"$d/out" || fail "exclude: exit $?"
+grep -q "left out: [1-9][0-9]* pixels with a capture value at or above 50, 0 with non-finite" "$d/out" ||
+  fail "exclude message: $(cat "$d/out")"
 if "$nxcamera" "$d/r.exr" -o "$d/bad.exr" --qe 1.5 2>"$d/err"; then fail "qe 1.5 accepted"; fi
 grep -q "expected quantum efficiencies in \[0, 1\], found 1.5" "$d/err" || fail "qe message: $(cat "$d/err")"
 test ! -e "$d/bad.exr" || fail "bad.exr written"

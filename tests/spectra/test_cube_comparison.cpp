@@ -156,6 +156,14 @@ TEST(CubeComparison, NonFiniteValuesAndEmptyRegionsAreErrors) {
         << e.what();
   }
   ComparisonInputs in = c.inputs();
+  // Left out, the pixel no longer matters; it is counted.
+  in.excluded.assign(24, 0);
+  in.excluded[7] = 1;
+  const ComparisonReport r = compareCubes(in, ScaleFit::None);
+  EXPECT_EQ(r.pixels, 23);
+  EXPECT_EQ(r.excludedPixels, 1);
+  EXPECT_NEAR(r.bands[2].rmse, 0, 1e-12);
+  in.excluded.clear();
   in.regions = {{"none", std::vector<uint8_t>(24, 0)}};
   EXPECT_THROW(compareCubes(in, ScaleFit::None), Error);
 }
