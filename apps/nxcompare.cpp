@@ -3,7 +3,7 @@
 //   nxcompare RENDER CAPTURE [--srf FILE.csv] [--capture-wavelengths L] [--capture-fwhm F]
 //             [--rect X,Y,W,H]... [--mask MASK.png] [--labels] [--scale none|global|band]
 //             [--crop X,Y,W,H] [--offset DX,DY] [--exclude-above V] [--skip-nonfinite]
-//             [--csv OUT.csv] [--region-csv OUT.csv]
+//             [--csv OUT.csv] [--region-csv OUT.csv] [--sam-map MAP.tif]
 //             [--plot FIG.png] [--colour radiance|reflectance] [--illuminant NAME]
 //             [--max-sam DEG] [--max-relative-rmse R]
 //
@@ -28,6 +28,7 @@
 #include "core/file_text.h"
 #include "core/text_table.h"
 #include "io/atomic_file.h"
+#include "io/float_tiff.h"
 #include "io/preview_image.h"
 #include "io/spectral_cube.h"
 #include "io/srgb_image.h"
@@ -102,7 +103,7 @@ int main(int argc, char** argv) {
   CLI::App app{"nxcompare: compares a render with a capture band by band"};
   std::string renderPath, capturePath, srf, wavelengths, fwhm, mask, scaleName = "none", crop,
                                                                      offset, csv, regionCsv;
-  std::string plot, colourMode = "radiance", illuminantName = "D65";
+  std::string samMap, plot, colourMode = "radiance", illuminantName = "D65";
   std::vector<std::string> rects;
   bool labels = false, skipNonFinite = false;
   double excludeAbove = std::numeric_limits<double>::infinity();
@@ -134,6 +135,8 @@ int main(int argc, char** argv) {
                  "full well in DN)");
   app.add_flag("--skip-nonfinite", skipNonFinite,
                "Leave out pixels with a NaN or infinite value instead of refusing them");
+  app.add_option("--sam-map", samMap,
+                 "The per-pixel spectral angle (degrees; NaN where none) as a float TIFF");
   app.add_option("--plot", plot,
                  "A PNG figure: per-band error, region spectra, spectral-angle map");
   app.add_option(
@@ -158,7 +161,7 @@ int main(int argc, char** argv) {
                   illuminantName + "'");
     if (!plot.empty() && !nx::isPreviewPath(plot))
       throw Error("--plot: expected a .png or .bmp file name, found '" + plot + "'");
-    for (const std::string& out : {csv, regionCsv, plot})
+    for (const std::string& out : {csv, regionCsv, plot, samMap})
       if (!out.empty()) nx::checkWritable(out);
     nx::CubeReadOptions captureOptions;
     if (!wavelengths.empty())
@@ -409,6 +412,9 @@ int main(int argc, char** argv) {
       writeText(regionCsv, out.str());
     }
     if (!plot.empty()) nx::writeComparisonFigure(plot, rep, in.width, in.height);
+    if (!samMap.empty())
+      nx::writeFloatTiff(samMap, in.width, in.height, rep.samMapDeg,
+                         "spectral angle (degrees) between " + renderPath + " and " + capturePath);
     bool pass = true;
     if (maxSam >= 0 && !(rep.sam.meanDeg <= maxSam)) {
       std::printf("FAIL: mean spectral angle %s exceeds %s degrees\n",

@@ -51,6 +51,8 @@ expect_error "expected the compared window (20 x 10 pixels at -1,0 in the captur
   "$d/r.exr" "$d/r.hdr" --crop 0,0,20,10 --offset -1,0
 expect_error "--crop: expected a window inside the render's" "$d/r.exr" "$d/r.hdr" --crop 0,0,100000,10
 expect_error "cannot open the file (it does not exist)" "$d/r.exr" "$d/absent.hdr"
+expect_error "rgb16.png: expected a mask of the render's 560 x 160 pixels, found 2 x 1" "$d/r.exr" \
+  "$d/r.hdr" --mask "$(dirname "$0")/../data/textures/rgb16.png"
 printf 'P' >"$d/m.png"
 expect_error "m.png: expected a PNG or JPEG image" "$d/r.exr" "$d/r.hdr" --mask "$d/m.png"
 # The simulated camera: its ENVI capture compared with a per-band scale agrees in colour; the
@@ -60,6 +62,10 @@ expect_error "m.png: expected a PNG or JPEG image" "$d/r.exr" "$d/r.hdr" --mask 
 "$nxcompare" "$d/r.exr" "$d/cap.hdr" --scale band --labels --plot "$d/fig.png" >"$d/out" ||
   fail "camera capture: exit $?"
 test -s "$d/fig.png" || fail "no figure"
+# The preview PNG is a mask of the right size (its black pixels left out); the angle map.
+"$nxcompare" "$d/r.exr" "$d/cap.hdr" --mask "$d/r.png" --sam-map "$d/sam.tif" >"$d/out" || fail "mask: exit $?"
+grep -q "^mask .*r.png" "$d/out" || fail "mask region: $(cat "$d/out")"
+test -s "$d/sam.tif" || fail "no angle map"
 grep -q "dE2000" "$d/out" || fail "no colour differences"
 # Saturated capture pixels left out and counted.
 "$nxcompare" "$d/r.exr" "$d/cap.hdr" --scale band --exclude-above 50 >"$d/out" || fail "exclude: exit $?"

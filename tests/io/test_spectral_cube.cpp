@@ -1,16 +1,19 @@
 // Spectral cubes: ENVI in every interleave, data type and byte order (files written here byte
-// by byte), TIFF with band wavelengths, per-band PNG stacks, spectral EXR, and the errors of malformed cubes.
+// by byte), TIFF with band wavelengths, per-band PNG stacks, spectral EXR, and the errors of
+// malformed cubes.
 
 #include <gdal.h>
 #include <gdal_frmts.h>
-#include <stb/stb_image_write.h>
 #include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
+#include "io/float_tiff.h"
 #include "io/spectral_cube.h"
 #include "io/spectral_exr.h"
 #include "support/errors.h"
@@ -242,19 +245,41 @@ TEST(SpectralCube, PngStackInNaturalOrder) {
   const SpectralCube c = readSpectralCube(stack, o);
   expectTestValues(c);
   EXPECT_EQ(c.format, "PNG stack (4 8-bit files)");
-  EXPECT_NE(test::errorMessage([&] { readSpectralCube(stack); })
-                .find("stack: expected --capture-wavelengths for a stack of 4 per-band PNGs"),
+  EXPECT_NE(test::errorMessage([&] {
+              readSpectralCube(stack);
+            }).find("stack: expected --capture-wavelengths for a stack of 4 per-band PNGs"),
             std::string::npos);
   o.wavelengthNm = {400, 410};
-  EXPECT_NE(test::errorMessage([&] { readSpectralCube(stack, o); })
-                .find("expected 4 wavelengths (one per PNG file), found 2"),
+  EXPECT_NE(test::errorMessage([&] {
+              readSpectralCube(stack, o);
+            }).find("expected 4 wavelengths (one per PNG file), found 2"),
             std::string::npos);
   const std::vector<unsigned char> small(4, 0);
   ASSERT_TRUE(stbi_write_png((stack + "/s_11.png").c_str(), 2, 2, 1, small.data(), 2));
   o.wavelengthNm = {400, 410, 420, 430, 440};
-  EXPECT_NE(test::errorMessage([&] { readSpectralCube(stack, o); })
-                .find("s_11.png: expected 3 x 2 pixels like s_1.png, found 2 x 2"),
+  EXPECT_NE(test::errorMessage([&] {
+              readSpectralCube(stack, o);
+            }).find("s_11.png: expected 3 x 2 pixels like s_1.png, found 2 x 2"),
             std::string::npos);
+}
+
+// A map written as a float TIFF reads back through GDAL with its values and NaN no-data.
+TEST(FloatTiff, MapReadsBack) {
+  const std::string path = dir() + "/map.tif";
+  writeFloatTiff(path, 3, 2, {0.5f, 1.5f, NAN, 3, 4, 5}, "angles");
+  GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+  ASSERT_TRUE(ds);
+  float v[6];
+  ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Read, 0, 0, 3, 2, v, 3, 2, GDT_Float32, 0, 0),
+            CE_None);
+  int hasNoData = 0;
+  EXPECT_TRUE(std::isnan(GDALGetRasterNoDataValue(GDALGetRasterBand(ds, 1), &hasNoData)));
+  EXPECT_TRUE(hasNoData);
+  GDALClose(ds);
+  EXPECT_EQ(v[1], 1.5f);
+  EXPECT_TRUE(std::isnan(v[2]));
+  EXPECT_EQ(v[5], 5.0f);
+  EXPECT_THROW(writeFloatTiff(path, 3, 3, {1, 2}, "short"), Error);
 }
 
 } // namespace
