@@ -231,6 +231,7 @@ TEST(SpectralCube, SpectralExrKeepsBandsVarianceAndIds) {
 // order right (s_1, s_2, s_3, s_10).
 TEST(SpectralCube, PngStackInNaturalOrder) {
   const std::string stack = dir() + "/stack";
+  std::filesystem::remove_all(stack); // a fresh stack on every run
   std::filesystem::create_directories(stack);
   const int numbers[B] = {1, 2, 3, 10};
   for (int b = 0; b < B; ++b) {
