@@ -97,31 +97,12 @@ ImageHeader checkedHeader(const std::string& bytes, const std::string& path, dou
 } // namespace
 
 LinearSrgbImage decodeSrgbImage(const std::string& bytes, const std::string& path) {
-  if (bytes.size() > static_cast<size_t>(INT_MAX))
-    throw Error(path + ": expected an image file below 2 GiB, found " +
-                std::to_string(bytes.size()) + " bytes");
+  // Decoded samples (at most 6 bytes), the linear floats and a texture's three coefficients.
+  const ImageHeader header = checkedHeader(bytes, path, 6.0 + 12.0 + 12.0);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
-  int w = 0, h = 0, channels = 0;
-  if (!stbi_info_from_memory(data, size, &w, &h, &channels)) {
-    if (bytes.empty()) throw Error(path + ": expected a PNG or JPEG image, found an empty file");
-    unsigned long pw = 0, ph = 0;
-    int samples = 1;
-    if (pngHeaderSize(bytes, pw, ph, samples) &&
-        static_cast<double>(pw) * static_cast<double>(ph) * samples > 1073741824.0)
-      throw Error(path + ": expected a PNG of at most 2^30 samples (stb_image's limit), found " +
-                  std::to_string(pw) + " x " + std::to_string(ph) + " pixels");
-    throw Error(path + ": expected a PNG or JPEG image, found data stb_image cannot read (" +
-                std::string(stbi_failure_reason()) + ")");
-  }
-  if (w <= 0 || h <= 0)
-    throw Error(path + ": expected an image of at least 1 x 1 pixels, found " + std::to_string(w) +
-                " x " + std::to_string(h));
-  const bool sixteen = stbi_is_16_bit_from_memory(data, size) != 0;
-  const double texels = static_cast<double>(w) * h;
-  // Decoded samples, the linear floats and the texture's three coefficients per texel.
-  requireMemory(texels * (3.0 * (sixteen ? 2 : 1) + 12.0 + 12.0), path, "a texture",
-                std::to_string(w) + " x " + std::to_string(h) + " pixels");
+  const int w = header.width, h = header.height, channels = header.channels;
+  const bool sixteen = header.sixteen;
   LinearSrgbImage img;
   img.width = w;
   img.height = h;
