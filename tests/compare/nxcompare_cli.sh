@@ -21,6 +21,11 @@ head -1 "$d/b.csv" | grep -q '^wavelength_nm,rmse,relative_rmse,bias,' || fail "
 [ "$(wc -l <"$d/b.csv")" = 32 ] || fail "csv rows: $(wc -l <"$d/b.csv")"
 grep -q '^"object 1",' "$d/g.csv" || fail "region csv"
 
+# A window of the render against the same window of the capture.
+"$nxcompare" "$d/r.exr" "$d/r.hdr" --crop 100,20,200,100 --offset 0,0 --max-sam 0.0001 >"$d/out" ||
+  fail "crop: exit $?"
+grep -q "20000 pixels compared" "$d/out" || fail "crop pixels: $(cat "$d/out")"
+
 # Two renders with different seeds differ by noise only: the z-scores say so; a threshold of 0
 # on the angle fails with exit 1.
 set +e

@@ -193,6 +193,25 @@ TEST(BandResampling, LinearSpectrumThroughGaussiansGivesCentreValues) {
   }
 }
 
+// Measured responses (--srf): symmetric triangles also average a linear spectrum to its value
+// at their centre.
+TEST(BandResampling, MeasuredTriangleResponsesGiveCentreValues) {
+  const Sensor capture = Sensor::fromCsv(
+      "nm,a,b\n460,0,0\n470,0,0\n480,1,0\n490,0,0\n600,0,0\n620,0,1\n640,0,0\n650,0,0\n",
+      "srf.csv");
+  std::vector<double> centroids;
+  std::vector<float> values;
+  for (double nm = 400; nm <= 700; nm += 5) {
+    centroids.push_back(nm);
+    values.push_back(static_cast<float>(2.0 - 0.002 * (nm - 400)));
+  }
+  const BandResampling r = BandResampling::through(centroids, capture, "srf.csv");
+  float out[2];
+  r.apply(values.data(), out);
+  EXPECT_NEAR(out[0], 2.0 - 0.002 * 80, 1e-4);
+  EXPECT_NEAR(out[1], 2.0 - 0.002 * 220, 1e-4);
+}
+
 TEST(BandResampling, BandsBeyondTheRenderAreRefused) {
   const Sensor capture = Sensor::gaussian({450, 690}, {20.0}, "test");
   EXPECT_THROW(BandResampling::through({400, 450, 500, 550, 600, 650, 700}, capture, "c.hdr"),
