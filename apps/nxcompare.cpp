@@ -51,7 +51,10 @@ std::vector<double> numberList(const std::string& text, const std::string& optio
     if (p.size() != 3 || !(p[2] > 0) || !(p[1] >= p[0]))
       throw Error(option + ": expected START:END:STEP with END >= START and STEP > 0, found '" +
                   text + "'");
-    for (double x = p[0]; x <= p[1] + 1e-9 * p[2]; x += p[2]) out.push_back(x);
+    const double count = std::floor((p[1] - p[0]) / p[2] + 1e-9);
+    if (count > 100000) throw Error(option + ": expected at most 100001 values, found " + text);
+    const long n = std::lround(count);
+    for (long i = 0; i <= n; ++i) out.push_back(p[0] + static_cast<double>(i) * p[2]);
     return out;
   }
   std::stringstream ss(text);
