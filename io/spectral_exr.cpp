@@ -15,6 +15,8 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/fichet_channels.h"
+#include "spectra/band_colour.h"
 
 namespace nx {
 
@@ -163,25 +165,48 @@ SpectralImage readSpectralExr(const std::string& path) {
         img.attributes[it.name()] = s->value();
     img.attributes.erase("spectralLayoutVersion");
     img.attributes.erase("emissiveUnits");
+    // This project's files name their bands (a sensor's responses) in nxrender.bands; other
+    // files of the layout are read by their channel names.
+    std::vector<std::string> bandChannels;
     const auto bandsAttr = img.attributes.find("nxrender.bands");
-    if (bandsAttr == img.attributes.end())
-      throw Error(path + ": expected an nxrender.bands attribute, found none");
-    img.bands = Sensor::parse(bandsAttr->second, path + ": nxrender.bands");
+    if (bandsAttr != img.attributes.end()) {
+      img.bands = Sensor::parse(bandsAttr->second, path + ": nxrender.bands");
+      for (int b = 0; b < img.bands.count(); ++b)
+        bandChannels.push_back(spectralChannelName(img.bands.centroid(b)));
+    } else {
+      std::vector<std::string> names;
+      for (auto it = h.channels().begin(); it != h.channels().end(); ++it)
+        names.push_back(it.name());
+      std::string kind;
+      const std::vector<FichetChannel> found = fichetSpectralChannels(names, kind);
+      if (found.empty())
+        throw Error(path + ": expected spectral channels named S0.<wavelength><unit> or "
+                           "T.<wavelength><unit> (Fichet et al. 2021), found none");
+      std::vector<double> nm;
+      for (const FichetChannel& c : found) {
+        nm.push_back(c.nm);
+        bandChannels.push_back(c.name);
+      }
+      img.bands = sensorAtWavelengths(nm, path);
+      img.attributes["nxrender.spectralChannels"] = kind;
+    }
     const int nb = img.bands.count();
     for (int b = 0; b < nb; ++b)
-      if (!h.channels().findChannel(spectralChannelName(img.bands.centroid(b))))
-        throw Error(path + ": expected a channel " + spectralChannelName(img.bands.centroid(b)) +
+      if (!h.channels().findChannel(bandChannels[static_cast<size_t>(b)]))
+        throw Error(path + ": expected a channel " + bandChannels[static_cast<size_t>(b)] +
                     ", found none");
     const size_t pixels = static_cast<size_t>(img.width) * img.height;
     img.radiance.assign(pixels * nb, 0.0f);
     img.rgb.assign(pixels * 3, 0.0f);
     Imf::FrameBuffer fb;
     for (int b = 0; b < nb; ++b)
-      fb.insert(spectralChannelName(img.bands.centroid(b)),
+      fb.insert(bandChannels[static_cast<size_t>(b)],
                 Imf::Slice::Make(Imf::FLOAT, img.radiance.data() + b, dw, sizeof(float) * nb,
                                  sizeof(float) * nb * img.width));
     const char* rgbNames[3] = {"R", "G", "B"};
-    for (int c = 0; c < 3; ++c)
+    const bool haveRgb = h.channels().findChannel("R") && h.channels().findChannel("G") &&
+                         h.channels().findChannel("B");
+    for (int c = 0; c < 3 && haveRgb; ++c)
       fb.insert(rgbNames[c], Imf::Slice::Make(Imf::FLOAT, img.rgb.data() + c, dw, sizeof(float) * 3,
                                               sizeof(float) * 3 * img.width));
     const char* xyzNames[3] = {"X", "Y", "Z"};
@@ -233,6 +258,13 @@ SpectralImage readSpectralExr(const std::string& path) {
     readUint(kMaterialIdChannel, "material ids", img.materialId);
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
+    if (!haveRgb) {
+      // A file without an RGB preview: colour from its bands.
+      std::vector<double> nm;
+      for (int b = 0; b < nb; ++b) nm.push_back(img.bands.centroid(b));
+      std::vector<float> xyz;
+      BandColour(nm).fill(img.radiance, xyz, img.rgb);
+    }
     return img;
   } catch (const Error&) {
     throw;
