@@ -16,17 +16,15 @@
 #include <sstream>
 #include <string>
 
+#include "apps/render_job.h"
 #include "core/error.h"
-#include "core/hash.h"
 #include "core/memory.h"
 #include "core/text_table.h"
 #include "integrators/renderer.h"
 #include "io/atomic_file.h"
-#include "io/camera_attributes.h"
 #include "io/envi_export.h"
 #include "io/preview_image.h"
 #include "io/spectral_exr.h"
-#include "spectra/colour.h"
 
 namespace {
 
@@ -41,16 +39,6 @@ extern "C" void onSignal(int sig) {
 
 std::string replaceExtension(const std::string& path, const std::string& ext) {
   return std::filesystem::path(path).replace_extension(ext).string();
-}
-
-const char* modeName(nx::RenderMode m) {
-  return m == nx::RenderMode::Rt ? "rt" : m == nx::RenderMode::Mcpt ? "mcpt" : "spectral_mcpt";
-}
-
-std::string hex(uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
 }
 
 std::vector<long long> integers(const std::string& text, char sep, size_t count,
@@ -123,16 +111,6 @@ private:
   bool ended_ = false;
 };
 
-// --sensor: a description (gaussian:..., boxes:..., START:END:STEP) or a CSV file of responses.
-nx::Sensor sensorFromOption(const std::string& text) {
-  for (const char* prefix : {"gaussian:", "boxes:", "table:"})
-    if (text.rfind(prefix, 0) == 0) return nx::Sensor::parse(text, "--sensor");
-  std::error_code ec;
-  if (!std::filesystem::exists(text, ec) && text.find(':') != std::string::npos)
-    return nx::Sensor::parse(text, "--sensor");
-  return nx::Sensor::readCsv(text);
-}
-
 // The items of a comma list (empty items skipped).
 std::vector<std::string> splitList(const std::string& text) {
   std::vector<std::string> out;
@@ -144,22 +122,6 @@ std::vector<std::string> splitList(const std::string& text) {
     start = comma + 1;
   }
   return out;
-}
-
-// --error-of: luminance, bands, or bands:LO-HI.
-nx::ErrorMeasure errorMeasureFromOption(const std::string& text) {
-  nx::ErrorMeasure m;
-  if (text == "luminance") return m;
-  m.bands = true;
-  if (text == "bands") return m;
-  const auto dash = text.find('-', 7);
-  if (text.rfind("bands:", 0) != 0 || dash == std::string::npos)
-    throw nx::Error("--error-of: expected luminance, bands or bands:LO-HI (nm), found '" + text +
-                    "'");
-  m.loNm = nx::parseNumber(text.substr(6, dash - 6), "--error-of", "a wavelength in nm");
-  m.hiNm = nx::parseNumber(text.substr(dash + 1), "--error-of", "a wavelength in nm");
-  if (!(m.hiNm >= m.loNm)) throw nx::Error("--error-of: expected LO <= HI, found '" + text + "'");
-  return m;
 }
 
 int run(int argc, char** argv) {
@@ -251,35 +213,30 @@ int run(int argc, char** argv) {
 
   nx::SceneDesc desc = nx::loadScene(scenePath);
   for (const auto& w : desc.warnings) std::fprintf(stderr, "%s\n", w.c_str());
-  if (noFluorescence)
-    for (auto& o : desc.objects) o.fluorescence.reset();
+  if (noFluorescence) nx::removeFluorescence(desc);
   const nx::RenderScene scene = nx::buildRenderScene(desc);
   const int width = scene.settings.width, height = scene.settings.height;
 
-  nx::RenderOptions options;
-  options.samples = spp;
-  if (seed >= 0) options.seed = static_cast<uint32_t>(seed);
+  nx::RenderChoices choices;
+  choices.samples = spp;
+  if (seed >= 0) choices.seed = static_cast<uint32_t>(seed);
   if (!bandsText.empty() && !sensorText.empty())
     throw nx::Error("expected one of --bands and --sensor, found both");
-  if (!bandsText.empty()) options.bands = nx::Sensor(nx::SpectralBands::parse(bandsText));
-  if (!sensorText.empty()) options.bands = sensorFromOption(sensorText);
-  options.lightSampling = lightSampling == "bsdf"  ? nx::LightSampling::BsdfOnly
-                          : lightSampling == "nee" ? nx::LightSampling::NeeOnly
-                                                   : nx::LightSampling::Mis;
-  options.lightSelection = lightSelection == "power"     ? nx::LightSelection::Power
-                           : lightSelection == "uniform" ? nx::LightSelection::Uniform
-                                                         : nx::LightSelection::Local;
-  options.sampler =
-      sampler == "independent" ? nx::SamplerKind::Independent : nx::SamplerKind::SobolOwen;
-  options.wavelengthDensity =
-      density == "visible" ? nx::WavelengthDensity::Visible : nx::WavelengthDensity::Sensor;
+  if (!bandsText.empty()) choices.bands = nx::Sensor(nx::SpectralBands::parse(bandsText));
+  if (!sensorText.empty()) choices.bands = nx::sensorFromOption(sensorText, "--sensor");
+  choices.sampler = sampler;
+  choices.lightSampling = lightSampling;
+  choices.lightSelection = lightSelection;
+  choices.density = density;
+  choices.noFluorescence = noFluorescence;
   if (!rangeText.empty()) {
     if (spp > 0) throw nx::Error("--spp-range and --spp: give one of them");
     const auto r = integers(rangeText, ':', 2, "--spp-range");
     if (r[0] < 0 || r[1] <= r[0] || r[1] > (1LL << 30))
       throw nx::Error("--spp-range: expected 0 <= A < B <= 2^30, found " + rangeText);
-    options.firstSample = static_cast<int>(r[0]);
-    options.samples = static_cast<int>(r[1] - r[0]);
+    choices.firstSample = static_cast<int>(r[0]);
+    choices.samples = static_cast<int>(r[1] - r[0]);
+    choices.sampleRange = true;
   }
   if (!cropText.empty() && tileOfArray)
     throw nx::Error("--crop and --tile-of-array: give one of them");
@@ -288,7 +245,7 @@ int run(int argc, char** argv) {
     if (c[0] < 0 || c[1] < 0 || c[2] > width || c[3] > height || c[2] <= c[0] || c[3] <= c[1])
       throw nx::Error("--crop: expected 0 <= X0 < X1 <= " + std::to_string(width) +
                       " and 0 <= Y0 < Y1 <= " + std::to_string(height) + ", found " + cropText);
-    options.crop = nx::PixelRect{static_cast<int>(c[0]), static_cast<int>(c[1]),
+    choices.crop = nx::PixelRect{static_cast<int>(c[0]), static_cast<int>(c[1]),
                                  static_cast<int>(c[2]), static_cast<int>(c[3])};
   }
   std::string arrayTask;
@@ -303,10 +260,25 @@ int run(int argc, char** argv) {
       throw nx::Error("--tile-of-array: task " + std::to_string(id) + " of " +
                       std::to_string(count) + " does not fit an image of " +
                       std::to_string(height) + " rows");
-    options.crop = nx::PixelRect{0, static_cast<int>(height * id / count), width,
+    choices.crop = nx::PixelRect{0, static_cast<int>(height * id / count), width,
                                  static_cast<int>(height * (id + 1) / count)};
     arrayTask = std::to_string(id);
   }
+  for (const std::string& aov : splitList(aovText)) {
+    if (aov == "white")
+      choices.aovWhite = true;
+    else if (aov == "ids")
+      choices.aovIds = true;
+    else if (aov == "depth")
+      choices.aovDepth = true;
+    else
+      throw nx::Error("--aov: expected a comma list of white, ids and depth, found '" + aov + "'");
+  }
+  choices.targetError = targetError;
+  choices.errorOf = errorOf;
+  choices.timeLimit = timeLimit;
+  nx::RenderJob job(scene, scenePath, choices);
+  nx::RenderOptions& options = job.options();
 
   std::string exrPath, previewPath;
   if (!output.empty()) {
@@ -335,9 +307,9 @@ int run(int argc, char** argv) {
   {
     // Upper bound of the EXR (uncompressed float channels: bands and their variances, RGB,
     // XYZ, a variance and a count) plus the preview.
-    const nx::PixelRect r = options.crop ? *options.crop : nx::PixelRect{0, 0, width, height};
+    const nx::PixelRect r = job.rect();
     const double pixels = static_cast<double>(r.width()) * r.height();
-    const int nb = (options.bands ? *options.bands : scene.settings.bands).count();
+    const int nb = job.bands().count();
     // The scene file's own bands were checked when loading; --bands may ask for more, and a
     // resume holds a second film.
     nx::requireMemory(nx::renderBufferBytes(r.width(), r.height(), nb) *
@@ -349,32 +321,10 @@ int run(int argc, char** argv) {
                        pixels * (2.0 * nb + 8) * 4 + (wholeImage ? pixels * 3 : 0) + (1 << 20));
   }
 
-  // Identifies what the image is an estimate of: the resolved scene content (its text and every
-  // file it refers to), the options that change the image, the lanes and the version.
-  const std::string renderKey = hex(nx::fnv1a64(
-      std::string(NX_VERSION) + "|" + sampler + "|" + lightSampling + "|" + lightSelection + "|" +
-          density + "|" + (options.whiteReference ? "white|" : "") +
-          (noFluorescence ? "nofl" : "fl") + "|" + std::to_string(nx::kLanes),
-      scene.contentDigest));
-  const nx::Xyz white = nx::spectrumToXyz(scene.previewWhite);
-  const int firstSample = options.firstSample;
-  int sppTotal = options.samples > 0 ? options.samples : scene.settings.samples;
-  options.targetRelativeError = targetError;
-  options.errorMeasure = errorMeasureFromOption(errorOf);
-  bool aovIds = false, aovDepth = false;
-  for (const std::string& aov : splitList(aovText)) {
-    if (aov == "white")
-      options.whiteReference = true;
-    else if (aov == "ids")
-      aovIds = true;
-    else if (aov == "depth")
-      aovDepth = true;
-    else
-      throw nx::Error("--aov: expected a comma list of white, ids and depth, found '" + aov + "'");
-  }
-  options.timeLimitSeconds = timeLimit;
-  const uint32_t seedUsed = options.seed ? *options.seed : scene.settings.seed;
-  const nx::Sensor bands = options.bands ? *options.bands : scene.settings.bands;
+  const int firstSample = job.firstSample();
+  const int sppTotal = job.samples();
+  const uint32_t seedUsed = job.seed();
+  const nx::Sensor& bands = job.bands();
   for (const auto& w :
        nx::extrapolationWarnings(scene, nx::Film::tracedMinNm(bands), nx::Film::tracedMaxNm(bands)))
     std::fprintf(stderr, "%s\n", w.c_str());
@@ -386,8 +336,8 @@ int run(int argc, char** argv) {
       const auto it = prev.attributes.find(k);
       return it == prev.attributes.end() ? std::string() : it->second;
     };
-    const nx::PixelRect want = options.crop ? *options.crop : nx::PixelRect{0, 0, width, height};
-    if (attr("nxrender.renderKey") != renderKey)
+    const nx::PixelRect want = job.rect();
+    if (attr("nxrender.renderKey") != job.renderKey())
       throw nx::Error(resumePath +
                       ": was rendered from another scene, other data files (CSV spectra, "
                       "matrices), other options or another nxrender version");
@@ -410,35 +360,7 @@ int run(int argc, char** argv) {
     }
     options.resumeFrom = &*resumeFilm;
   }
-
-  auto imageOf = [&](const nx::Film& film, double seconds) {
-    nx::SpectralImage image = nx::toSpectralImage(film);
-    image.attributes["nxrender.version"] = NX_VERSION;
-    image.attributes["nxrender.scene"] = scenePath;
-    image.attributes["nxrender.renderKey"] = renderKey;
-    image.attributes["nxrender.mode"] = modeName(scene.settings.mode);
-    image.attributes["nxrender.sampleRange"] =
-        std::to_string(firstSample) + ":" + std::to_string(firstSample + sppTotal);
-    image.attributes["nxrender.seed"] = std::to_string(seedUsed);
-    image.attributes["nxrender.bands"] = film.bands().toString();
-    image.attributes["nxrender.sampler"] = sampler;
-    image.attributes["nxrender.lightSampling"] = lightSampling;
-    image.attributes["nxrender.lightSelection"] = lightSelection;
-    image.attributes["nxrender.fluorescence"] = scene.hasFluorescence ? "on" : "off";
-    image.attributes["nxrender.previewWhite"] = std::to_string(white.x / white.y) + "," +
-                                                std::to_string(1.0) + "," +
-                                                std::to_string(white.z / white.y);
-    image.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
-    image.attributes["nxrender.estimatedRelativeError"] = std::to_string(film.relativeRmsError());
-    for (const auto& [key, value] : nx::cameraAttributes(scene.camera))
-      image.attributes[key] = value;
-    if (aovIds || aovDepth) {
-      nx::addGeometryAovs(scene, image);
-      if (!aovIds) image.objectId.clear(), image.materialId.clear();
-      if (!aovDepth) image.depth.clear();
-    }
-    return image;
-  };
+  auto imageOf = [&](const nx::Film& film, double seconds) { return job.image(film, seconds); };
 
   const int nThreads = threads > 0 ? threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
@@ -476,7 +398,7 @@ int run(int argc, char** argv) {
         stderr, "nxrender: %s after %d samples per pixel (estimated relative RMS error %.4g)\n",
         result.stats.reachedTarget ? "reached the target error" : "stopped at the time limit",
         result.stats.samplesReached, result.stats.relativeError);
-    sppTotal = result.stats.samplesReached; // the image holds exactly this sample range
+    job.setSamplesReached(result.stats.samplesReached); // the image holds exactly this range
   }
 
   nx::requireSomeFiniteSamples(result.stats, scenePath); // else nothing is written
@@ -504,7 +426,8 @@ int run(int argc, char** argv) {
   std::fprintf(stderr,
                "nxrender: %dx%d, %d spp, %s, %d threads: %.2f s, %.3g samples/s, %.3g rays/s; "
                "wrote %s%s%s%s%s\n",
-               image.width, image.height, sppTotal, modeName(scene.settings.mode), nThreads, s,
+               image.width, image.height, job.samples(),
+               image.attributes.at("nxrender.mode").c_str(), nThreads, s,
                static_cast<double>(result.stats.samples) / s,
                static_cast<double>(result.stats.rays) / s, exrPath.c_str(),
                wholeImage ? " and " : "", wholeImage ? previewPath.c_str() : "",

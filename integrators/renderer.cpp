@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "core/float_mode.h"
 #include "core/matrix3.h"
 #include "integrators/sampling.h"
 #include "spectra/colour.h"
@@ -25,6 +26,11 @@ uint32_t oddSamplesIn(int64_t first, int64_t n) {
 
 RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  // Every tile task runs in the same floating-point mode, whatever thread started the render:
+  // the context captures the mode set here and TBB applies it to the workers' tasks.
+  const FlushDenormalsScope floatMode;
+  tbb::task_group_context tileContext;
+  tileContext.capture_fp_settings();
   const RenderSettings& settings = scene.settings;
   const Sensor bands = options.bands ? *options.bands : settings.bands;
   const PixelRect rect =
@@ -84,68 +90,73 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
     // within one sample wherever the render is; each pixel keeps the samples it finished (its
     // count stays true, and a resume continues after them).
     auto stopping = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
-    tbb::parallel_for(0, tiles, [&](int tile) {
-      if (stopping()) return;
-      const int x0 = rect.x0 + (tile % tilesX) * ts, y0 = rect.y0 + (tile / tilesX) * ts;
-      const int x1 = std::min(x0 + ts, rect.x1), y1 = std::min(y0 + ts, rect.y1);
-      TraceCounters counters;
-      uint64_t dropped = 0, taken = 0;
-      Film::Pixel pixel = out.film.newPixel();
-      bool halted = false;
-      for (int y = y0; y < y1 && !halted; ++y) {
-        for (int x = x0; x < x1 && !halted; ++x) {
-          Film::resetPixel(pixel);
-          const uint32_t pixelIndex =
-              static_cast<uint32_t>(y) * static_cast<uint32_t>(settings.width) +
-              static_cast<uint32_t>(x);
-          // Two independently scrambled replicates, interleaved: even sample numbers use the
-          // seed, odd ones a derived seed; each is one sequence of its own (index s / 2), and
-          // the difference of their means estimates the error (randomized QMC).
-          const PixelSequence replicates[2] = {
-              PixelSequence(options.sampler, pixelIndex, seed),
-              PixelSequence(options.sampler, pixelIndex, seed ^ kOddReplicateSalt)};
-          const PixelSequence whiteSequences[2] = {
-              PixelSequence(options.sampler, pixelIndex, seed ^ kWhiteSalt),
-              PixelSequence(options.sampler, pixelIndex, seed ^ kWhiteSalt ^ kOddReplicateSalt)};
-          // Each pixel continues after the samples it already has (a resumed film may hold
-          // more in some pixels than in others).
-          for (int s = begin + static_cast<int>(out.film.samples(x, y)); s < passEnd; ++s) {
-            if (stopping()) {
-              halted = true;
-              break;
-            }
-            const bool odd = (s & 1) != 0;
-            PixelSampleStream rng(replicates[odd], static_cast<uint32_t>(s) >> 1);
-            const SampledWavelengths lambda = wavelengths.sample(rng.next1D());
-            const Sample2 jitter = rng.next2D();
-            float lensX = 0, lensY = 0; // a point of the aperture, for a thin lens only
-            if (scene.camera.hasLens()) sampleConcentricDisk(rng.next2D(), lensX, lensY);
-            const Ray ray = scene.camera.generateRay(
-                static_cast<double>(x) + jitter.u, static_cast<double>(y) + jitter.v, lensX, lensY);
-            const SampledSpectrum L = whitted ? traceWhitted(ctx, ray, lambda, rng, counters)
-                                              : tracePath(ctx, ray, lambda, rng, counters);
-            if (!out.film.addSample(pixel, lambda, L, odd)) ++dropped;
-            if (out.film.hasWhite()) {
-              // Its own random numbers (a salted seed): the same for every thread count.
-              PixelSampleStream whiteRng(whiteSequences[odd], static_cast<uint32_t>(s) >> 1);
-              out.film.addWhiteSample(pixel, lambda,
-                                      traceWhiteReference(ctx, ray, lambda, whiteRng, counters));
+    tbb::parallel_for(
+        0, tiles,
+        [&](int tile) {
+          if (stopping()) return;
+          const int x0 = rect.x0 + (tile % tilesX) * ts, y0 = rect.y0 + (tile / tilesX) * ts;
+          const int x1 = std::min(x0 + ts, rect.x1), y1 = std::min(y0 + ts, rect.y1);
+          TraceCounters counters;
+          uint64_t dropped = 0, taken = 0;
+          Film::Pixel pixel = out.film.newPixel();
+          bool halted = false;
+          for (int y = y0; y < y1 && !halted; ++y) {
+            for (int x = x0; x < x1 && !halted; ++x) {
+              Film::resetPixel(pixel);
+              const uint32_t pixelIndex =
+                  static_cast<uint32_t>(y) * static_cast<uint32_t>(settings.width) +
+                  static_cast<uint32_t>(x);
+              // Two independently scrambled replicates, interleaved: even sample numbers use the
+              // seed, odd ones a derived seed; each is one sequence of its own (index s / 2), and
+              // the difference of their means estimates the error (randomized QMC).
+              const PixelSequence replicates[2] = {
+                  PixelSequence(options.sampler, pixelIndex, seed),
+                  PixelSequence(options.sampler, pixelIndex, seed ^ kOddReplicateSalt)};
+              const PixelSequence whiteSequences[2] = {
+                  PixelSequence(options.sampler, pixelIndex, seed ^ kWhiteSalt),
+                  PixelSequence(options.sampler, pixelIndex,
+                                seed ^ kWhiteSalt ^ kOddReplicateSalt)};
+              // Each pixel continues after the samples it already has (a resumed film may hold
+              // more in some pixels than in others).
+              for (int s = begin + static_cast<int>(out.film.samples(x, y)); s < passEnd; ++s) {
+                if (stopping()) {
+                  halted = true;
+                  break;
+                }
+                const bool odd = (s & 1) != 0;
+                PixelSampleStream rng(replicates[odd], static_cast<uint32_t>(s) >> 1);
+                const SampledWavelengths lambda = wavelengths.sample(rng.next1D());
+                const Sample2 jitter = rng.next2D();
+                float lensX = 0, lensY = 0; // a point of the aperture, for a thin lens only
+                if (scene.camera.hasLens()) sampleConcentricDisk(rng.next2D(), lensX, lensY);
+                const Ray ray =
+                    scene.camera.generateRay(static_cast<double>(x) + jitter.u,
+                                             static_cast<double>(y) + jitter.v, lensX, lensY);
+                const SampledSpectrum L = whitted ? traceWhitted(ctx, ray, lambda, rng, counters)
+                                                  : tracePath(ctx, ray, lambda, rng, counters);
+                if (!out.film.addSample(pixel, lambda, L, odd)) ++dropped;
+                if (out.film.hasWhite()) {
+                  // Its own random numbers (a salted seed): the same for every thread count.
+                  PixelSampleStream whiteRng(whiteSequences[odd], static_cast<uint32_t>(s) >> 1);
+                  out.film.addWhiteSample(
+                      pixel, lambda, traceWhiteReference(ctx, ray, lambda, whiteRng, counters));
+                }
+              }
+              taken += Film::samplesIn(pixel);
+              out.film.add(x, y, pixel);
             }
           }
-          taken += Film::samplesIn(pixel);
-          out.film.add(x, y, pixel);
-        }
-      }
-      rays += counters.rays;
-      truncated += counters.truncated;
-      nonFinite += dropped;
-      samples += taken;
-      const int64_t done = ++finished;
-      if (options.progress) {
-        std::lock_guard<std::mutex> lock(progressMutex);
-        options.progress(done, static_cast<int64_t>(tiles) * passes);
-      }
-    });
+          rays += counters.rays;
+          truncated += counters.truncated;
+          nonFinite += dropped;
+          samples += taken;
+          const int64_t done = ++finished;
+          if (options.progress) {
+            std::lock_guard<std::mutex> lock(progressMutex);
+            options.progress(done, static_cast<int64_t>(tiles) * passes);
+          }
+        },
+        tileContext);
     if (options.stop && options.stop->load()) out.stats.stopped = true;
     if (!out.stats.stopped) out.stats.samplesReached = passEnd - begin;
     lastPassSeconds = now() - clockStart - elapsed;
@@ -174,6 +185,7 @@ void requireSomeFiniteSamples(const RenderStats& stats, const std::string& what)
 }
 
 SpectralImage toSpectralImage(const Film& film) {
+  const FlushDenormalsScope floatMode; // the same float conversions on every caller's thread
   SpectralImage img;
   const PixelRect& r = film.rect();
   img.width = r.width();

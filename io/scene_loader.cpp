@@ -20,12 +20,12 @@
 #include "core/memory.h"
 #include "core/text_table.h"
 #include "io/scene_desc.h"
+#include "io/scene_limits.h"
 
 namespace nx {
 namespace {
 
-constexpr double kMaxCoordinate = 1e12; // far below Embree's 1.8e18 limit, far above any scene
-constexpr int kMaxResolution = 65536;
+constexpr double kMaxCoordinate = kMaxSceneCoordinate;
 
 std::string shownText(const std::string& s) {
   std::string shown = s.size() > 60 ? s.substr(0, 57) + "..." : s;
@@ -288,6 +288,10 @@ private:
       fail(n, range.str(), shownText(t));
     }
     return v;
+  }
+
+  double number(const pugi::xml_node& n, const ParameterRange& r) const {
+    return number(n, r.what, r.lo, r.hi, r.openLow);
   }
 
   int integer(const pugi::xml_node& n, const std::string& what, long lo, long hi) const {
@@ -564,8 +568,7 @@ private:
     }
     if (c.count("intrinsics") && c.count("fov"))
       fail(c.at("fov"), "either <intrinsics> or <fov> in <camera>", "both");
-    if (c.count("fov"))
-      cam.fovDegrees = number(c.at("fov"), "a horizontal field of view in degrees", 0, 179, true);
+    if (c.count("fov")) cam.fovDegrees = number(c.at("fov"), kFovRange);
     if (c.count("intrinsics")) {
       const pugi::xml_node k = c.at("intrinsics");
       const auto v = numbers(k, 4, 4, "fx, fy, cx, cy in pixels");
@@ -672,7 +675,7 @@ private:
     if (c.count("color")) m.color = colour(c.at("color"), true);
     if (c.count("reflectance")) m.reflectance = reflectance(c.at("reflectance"));
     if (c.count("roughness")) {
-      m.roughness = number(c.at("roughness"), "a roughness", 0, 1);
+      m.roughness = number(c.at("roughness"), kRoughnessRange);
       m.roughnessLoc = loc(c.at("roughness"));
     }
     if (c.count("ior")) m.ior = ior(c.at("ior"));
@@ -803,7 +806,7 @@ private:
     if (tag == "sphere") {
       o.shape = ShapeType::Sphere;
       o.center = vec3(required(c, n, "center"), "a sphere centre x, y, z");
-      o.radius = number(required(c, n, "radius"), "a radius", 0, kMaxCoordinate, true);
+      o.radius = number(required(c, n, "radius"), kRadiusRange);
     } else if (tag == "plane") {
       o.shape = ShapeType::Plane;
       const pugi::xml_node nn = required(c, n, "normal");
@@ -885,7 +888,7 @@ private:
     if (std::isdigit(static_cast<unsigned char>(first)) || first == '.' || first == '-' ||
         first == '+') {
       d.kind = IorDesc::Kind::Number;
-      d.value = number(n, "an index of refraction", 1, 10);
+      d.value = number(n, kIorRange);
       return d;
     }
     if (t != "bk7" && t != "diamond" && t != "fused_silica")
@@ -915,16 +918,16 @@ private:
     const std::string a = text(abs);
     if (!a.empty() &&
         (std::isdigit(static_cast<unsigned char>(a[0])) || a[0] == '.' || a[0] == '-'))
-      f.absorptionNm = number(abs, "an absorption peak in nm", 200, 1000);
+      f.absorptionNm = number(abs, kAbsorptionRange);
     else if (!a.empty())
       f.absorptionName = a;
     else
       fail(abs, "an absorption colour name or peak wavelength", "nothing");
-    f.stokesNm = number(required(c, n, "stokes"), "a Stokes shift in nm", 0, 1000);
-    if (c.count("width")) f.widthNm = number(c.at("width"), "a width in nm", 0, 500, true);
-    if (c.count("skew")) f.skew = number(c.at("skew"), "a skew magnitude", 0, 1000);
-    if (c.count("yield")) f.quantumYield = number(c.at("yield"), "a quantum yield", 0, 1);
-    if (c.count("peak")) f.peakAbsorptance = number(c.at("peak"), "a peak absorptance", 0, 1);
+    f.stokesNm = number(required(c, n, "stokes"), kStokesRange);
+    if (c.count("width")) f.widthNm = number(c.at("width"), kWidthRange);
+    if (c.count("skew")) f.skew = number(c.at("skew"), kSkewRange);
+    if (c.count("yield")) f.quantumYield = number(c.at("yield"), kYieldRange);
+    if (c.count("peak")) f.peakAbsorptance = number(c.at("peak"), kPeakRange);
     return f;
   }
 

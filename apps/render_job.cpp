@@ -1,0 +1,157 @@
+// One render as the command line and the Python module run it.
+
+#include "apps/render_job.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/hash.h"
+#include "core/text_table.h"
+#include "io/camera_attributes.h"
+#include "spectra/colour.h"
+
+namespace nx {
+namespace {
+
+const char* modeName(RenderMode m) {
+  return m == RenderMode::Rt ? "rt" : m == RenderMode::Mcpt ? "mcpt" : "spectral_mcpt";
+}
+
+std::string hex(uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+// One of `names`, else nx::Error "option: expected a, b or c, found 'x'".
+void requireOneOf(const std::string& value, std::initializer_list<const char*> names,
+                  const char* option) {
+  std::string list;
+  size_t i = 0;
+  for (const char* n : names) {
+    if (value == n) return;
+    list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::string(n);
+    ++i;
+  }
+  throw Error(std::string(option) + ": expected " + list + ", found '" + value + "'");
+}
+
+// --error-of: luminance, bands, or bands:LO-HI.
+ErrorMeasure errorMeasureFrom(const std::string& text) {
+  ErrorMeasure m;
+  if (text == "luminance") return m;
+  m.bands = true;
+  if (text == "bands") return m;
+  const auto dash = text.find('-', 7);
+  if (text.rfind("bands:", 0) != 0 || dash == std::string::npos)
+    throw Error("--error-of: expected luminance, bands or bands:LO-HI (nm), found '" + text + "'");
+  m.loNm = parseNumber(text.substr(6, dash - 6), "--error-of", "a wavelength in nm");
+  m.hiNm = parseNumber(text.substr(dash + 1), "--error-of", "a wavelength in nm");
+  if (!(m.hiNm >= m.loNm)) throw Error("--error-of: expected LO <= HI, found '" + text + "'");
+  return m;
+}
+
+} // namespace
+
+Sensor sensorFromOption(const std::string& text, const std::string& option) {
+  for (const char* prefix : {"gaussian:", "boxes:", "table:"})
+    if (text.rfind(prefix, 0) == 0) return Sensor::parse(text, option);
+  std::error_code ec;
+  if (!std::filesystem::exists(text, ec) && text.find(':') != std::string::npos)
+    return Sensor::parse(text, option);
+  return Sensor::readCsv(text);
+}
+
+void removeFluorescence(SceneDesc& desc) {
+  for (auto& o : desc.objects) o.fluorescence.reset();
+  for (auto& m : desc.materials) m.material.fluorescence.reset();
+}
+
+RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const RenderChoices& choices)
+    : scene_(scene), scenePath_(std::move(scenePath)), choices_(choices) {
+  const int width = scene.settings.width, height = scene.settings.height;
+  requireOneOf(choices.sampler, {"sobol", "independent"}, "--sampler");
+  requireOneOf(choices.lightSampling, {"mis", "bsdf", "nee"}, "--light-sampling");
+  requireOneOf(choices.lightSelection, {"local", "power", "uniform"}, "--light-selection");
+  requireOneOf(choices.density, {"sensor", "visible"}, "--wavelength-density");
+  if (choices.samples < 0 || choices.samples > (1 << 30) || choices.firstSample < 0 ||
+      static_cast<long long>(choices.firstSample) + choices.samples > (1LL << 30))
+    throw Error("--spp-range: expected 0 <= A < B <= 2^30, found " +
+                std::to_string(choices.firstSample) + ":" +
+                std::to_string(static_cast<long long>(choices.firstSample) + choices.samples));
+  if (choices.crop) {
+    const PixelRect& c = *choices.crop;
+    if (c.x0 < 0 || c.y0 < 0 || c.x1 > width || c.y1 > height || c.x1 <= c.x0 || c.y1 <= c.y0)
+      throw Error("--crop: expected 0 <= X0 < X1 <= " + std::to_string(width) +
+                  " and 0 <= Y0 < Y1 <= " + std::to_string(height) + ", found " +
+                  std::to_string(c.x0) + "," + std::to_string(c.y0) + "," + std::to_string(c.x1) +
+                  "," + std::to_string(c.y1));
+  }
+  options_.samples = choices.samples;
+  options_.firstSample = choices.firstSample;
+  options_.crop = choices.crop;
+  options_.seed = choices.seed;
+  options_.bands = choices.bands;
+  options_.lightSampling = choices.lightSampling == "bsdf"  ? LightSampling::BsdfOnly
+                           : choices.lightSampling == "nee" ? LightSampling::NeeOnly
+                                                            : LightSampling::Mis;
+  options_.lightSelection = choices.lightSelection == "power"     ? LightSelection::Power
+                            : choices.lightSelection == "uniform" ? LightSelection::Uniform
+                                                                  : LightSelection::Local;
+  options_.sampler =
+      choices.sampler == "independent" ? SamplerKind::Independent : SamplerKind::SobolOwen;
+  options_.wavelengthDensity =
+      choices.density == "visible" ? WavelengthDensity::Visible : WavelengthDensity::Sensor;
+  options_.whiteReference = choices.aovWhite;
+  options_.targetRelativeError = choices.targetError;
+  options_.errorMeasure = errorMeasureFrom(choices.errorOf);
+  options_.timeLimitSeconds = choices.timeLimit;
+
+  renderKey_ =
+      hex(fnv1a64(std::string(NX_VERSION) + "|" + choices.sampler + "|" + choices.lightSampling +
+                      "|" + choices.lightSelection + "|" + choices.density + "|" +
+                      (choices.aovWhite ? "white|" : "") +
+                      (choices.noFluorescence ? "nofl" : "fl") + "|" + std::to_string(kLanes),
+                  scene.contentDigest));
+  seed_ = choices.seed ? *choices.seed : scene.settings.seed;
+  bands_ = choices.bands ? *choices.bands : scene.settings.bands;
+  firstSample_ = choices.firstSample;
+  samples_ = choices.samples > 0 ? choices.samples : scene.settings.samples;
+}
+
+PixelRect RenderJob::rect() const {
+  return choices_.crop ? *choices_.crop
+                       : PixelRect{0, 0, scene_.settings.width, scene_.settings.height};
+}
+
+SpectralImage RenderJob::image(const Film& film, double seconds) const {
+  SpectralImage image = toSpectralImage(film);
+  const Xyz white = spectrumToXyz(scene_.previewWhite);
+  image.attributes["nxrender.version"] = NX_VERSION;
+  image.attributes["nxrender.scene"] = scenePath_;
+  image.attributes["nxrender.renderKey"] = renderKey_;
+  image.attributes["nxrender.mode"] = modeName(scene_.settings.mode);
+  image.attributes["nxrender.sampleRange"] =
+      std::to_string(firstSample_) + ":" + std::to_string(firstSample_ + samples_);
+  image.attributes["nxrender.seed"] = std::to_string(seed_);
+  image.attributes["nxrender.bands"] = film.bands().toString();
+  image.attributes["nxrender.sampler"] = choices_.sampler;
+  image.attributes["nxrender.lightSampling"] = choices_.lightSampling;
+  image.attributes["nxrender.lightSelection"] = choices_.lightSelection;
+  image.attributes["nxrender.fluorescence"] = scene_.hasFluorescence ? "on" : "off";
+  image.attributes["nxrender.previewWhite"] = std::to_string(white.x / white.y) + "," +
+                                              std::to_string(1.0) + "," +
+                                              std::to_string(white.z / white.y);
+  image.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
+  image.attributes["nxrender.estimatedRelativeError"] = std::to_string(film.relativeRmsError());
+  for (const auto& [key, value] : cameraAttributes(scene_.camera)) image.attributes[key] = value;
+  if (choices_.aovIds || choices_.aovDepth) {
+    addGeometryAovs(scene_, image);
+    if (!choices_.aovIds) image.objectId.clear(), image.materialId.clear();
+    if (!choices_.aovDepth) image.depth.clear();
+  }
+  return image;
+}
+
+} // namespace nx

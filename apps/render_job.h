@@ -1,0 +1,78 @@
+#pragma once
+// One render as the command line and the Python module run it: the choices beyond the scene
+// turned into RenderOptions, the render key that identifies what the image estimates, and the
+// spectral image of a film with its provenance attributes. Both front ends go through this
+// code, so the same scene, seed and samples give the same image bit for bit.
+
+#include <optional>
+#include <string>
+
+#include "integrators/renderer.h"
+#include "io/scene_desc.h"
+
+namespace nx {
+
+/// What a render does beyond its scene: the command line's options, by their names there.
+struct RenderChoices {
+  int samples = 0;                      ///< samples per pixel; 0 = the scene's <sampl>
+  int firstSample = 0;                  ///< first sample of each pixel's sequence (--spp-range A:B)
+  std::optional<uint32_t> seed;         ///< default: the scene's <seed>
+  std::optional<Sensor> bands;          ///< default: the scene's <bands>/<sensor>
+  std::optional<PixelRect> crop;        ///< default: the whole image
+  bool sampleRange = false;             ///< firstSample/samples came from a sample range
+  std::string sampler = "sobol";        ///< sobol or independent
+  std::string lightSampling = "mis";    ///< mis, bsdf or nee
+  std::string lightSelection = "local"; ///< local, power or uniform
+  std::string density = "sensor";       ///< sensor or visible
+  bool noFluorescence = false;          ///< fluorescent materials as their plain reflectance
+  bool aovWhite = false, aovIds = false, aovDepth = false; ///< extra channels
+  double targetError = 0;            ///< stop at this relative RMS error; 0 = off
+  std::string errorOf = "luminance"; ///< luminance, bands or bands:LO-HI
+  double timeLimit = 0;              ///< seconds; 0 = off
+};
+
+/// A sensor from an option's text: a description (gaussian:..., boxes:..., table:...,
+/// START:END:STEP) or the name of a CSV file of measured responses. `option` names it in errors.
+Sensor sensorFromOption(const std::string& text, const std::string& option);
+
+/// Removes the fluorescence of every object and named material (--no-fluorescence).
+void removeFluorescence(SceneDesc& desc);
+
+/// A render of one built scene with one set of choices.
+class RenderJob {
+public:
+  /// Checks the choices against the scene (crop inside the image, sample range, names of
+  /// samplers and strategies); throws nx::Error naming the option. `scenePath` is recorded in
+  /// the image's attributes.
+  RenderJob(const RenderScene& scene, std::string scenePath, const RenderChoices& choices);
+
+  /// The options for nx::render (hooks such as stop and progress are the caller's to set).
+  RenderOptions& options() { return options_; }
+  /// What the image estimates: scene content (text and files), options that change the image,
+  /// lanes and version (hex).
+  const std::string& renderKey() const { return renderKey_; }
+  uint32_t seed() const { return seed_; }
+  /// The bands rendered.
+  const Sensor& bands() const { return bands_; }
+  int firstSample() const { return firstSample_; }
+  /// Samples per pixel of the image (after a target error or time limit: those reached).
+  int samples() const { return samples_; }
+  /// The pixels rendered.
+  PixelRect rect() const;
+  /// Records a render that ended early at `reached` samples per pixel.
+  void setSamplesReached(int reached) { samples_ = reached; }
+  /// The spectral image of a film of this render with its provenance attributes.
+  SpectralImage image(const Film& film, double seconds) const;
+
+private:
+  const RenderScene& scene_;
+  std::string scenePath_;
+  RenderChoices choices_;
+  RenderOptions options_;
+  std::string renderKey_;
+  uint32_t seed_ = 0;
+  Sensor bands_;
+  int firstSample_ = 0, samples_ = 0;
+};
+
+} // namespace nx

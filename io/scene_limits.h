@@ -1,0 +1,30 @@
+#pragma once
+// The ranges of a scene's numeric parameters, shared by the scene-file reader and the Python
+// module's scene editing, so a value refused in one is refused in the other.
+
+namespace nx {
+
+/// An allowed range [lo, hi] (or (lo, hi] when openLow) and what the value is.
+struct ParameterRange {
+  double lo, hi;
+  bool openLow;
+  const char* what;
+  /// True when v lies in the range.
+  bool contains(double v) const { return v >= lo && v <= hi && !(openLow && v == lo); }
+};
+
+inline constexpr double kMaxSceneCoordinate = 1e12; ///< far below Embree's limit of 1.8e18
+inline constexpr int kMaxResolution = 65536;        ///< pixels per side
+
+inline constexpr ParameterRange kFovRange{0, 179, true, "a horizontal field of view in degrees"};
+inline constexpr ParameterRange kRoughnessRange{0, 1, false, "a roughness"};
+inline constexpr ParameterRange kRadiusRange{0, kMaxSceneCoordinate, true, "a radius"};
+inline constexpr ParameterRange kIorRange{1, 10, false, "an index of refraction"};
+inline constexpr ParameterRange kAbsorptionRange{200, 1000, false, "an absorption peak in nm"};
+inline constexpr ParameterRange kStokesRange{0, 1000, false, "a Stokes shift in nm"};
+inline constexpr ParameterRange kWidthRange{0, 500, true, "a width in nm"};
+inline constexpr ParameterRange kSkewRange{0, 1000, false, "a skew magnitude"};
+inline constexpr ParameterRange kYieldRange{0, 1, false, "a quantum yield"};
+inline constexpr ParameterRange kPeakRange{0, 1, false, "a peak absorptance"};
+
+} // namespace nx
