@@ -264,16 +264,9 @@ int run(int argc, char** argv) {
                                  static_cast<int>(height * (id + 1) / count)};
     arrayTask = std::to_string(id);
   }
-  for (const std::string& aov : splitList(aovText)) {
-    if (aov == "white")
-      choices.aovWhite = true;
-    else if (aov == "ids")
-      choices.aovIds = true;
-    else if (aov == "depth")
-      choices.aovDepth = true;
-    else
+  for (const std::string& aov : splitList(aovText))
+    if (!nx::addAov(choices, aov))
       throw nx::Error("--aov: expected a comma list of white, ids and depth, found '" + aov + "'");
-  }
   choices.targetError = targetError;
   choices.errorOf = errorOf;
   choices.timeLimit = timeLimit;

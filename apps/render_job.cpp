@@ -63,6 +63,15 @@ Sensor sensorFromOption(const std::string& text, const std::string& option) {
   return Sensor::readCsv(text);
 }
 
+bool addAov(RenderChoices& choices, const std::string& name) {
+  bool* flag = name == "white"   ? &choices.aovWhite
+               : name == "ids"   ? &choices.aovIds
+               : name == "depth" ? &choices.aovDepth
+                                 : nullptr;
+  if (flag) *flag = true;
+  return flag != nullptr;
+}
+
 void removeFluorescence(SceneDesc& desc) {
   for (auto& o : desc.objects) o.fluorescence.reset();
   for (auto& m : desc.materials) m.material.fluorescence.reset();

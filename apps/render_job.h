@@ -35,6 +35,9 @@ struct RenderChoices {
 /// START:END:STEP) or the name of a CSV file of measured responses. `option` names it in errors.
 Sensor sensorFromOption(const std::string& text, const std::string& option);
 
+/// Asks for the AOV named white, ids or depth; false for any other name.
+bool addAov(RenderChoices& choices, const std::string& name);
+
 /// Removes the fluorescence of every object and named material (--no-fluorescence).
 void removeFluorescence(SceneDesc& desc);
 

@@ -1,0 +1,20 @@
+// The Python module nxrender: render scenes and read/write spectral images from numpy.
+
+#include <pybind11/pybind11.h>
+
+#include <filesystem>
+
+#include "apps/python/py_image.h"
+#include "apps/python/py_render.h"
+#include "apps/python/py_scene.h"
+#include "core/error.h"
+
+PYBIND11_MODULE(nxrender, m) {
+  m.doc() = "nxrender: spectral path tracing for fluorescence research (docs/python.md)";
+  m.attr("__version__") = NX_VERSION;
+  // Errors of scene files, data files and images: the command line's messages (file:line).
+  pybind11::register_exception<nx::Error>(m, "Error", PyExc_ValueError);
+  nxpy::bindImage(m);
+  nxpy::bindScene(m);
+  nxpy::bindRender(m);
+}

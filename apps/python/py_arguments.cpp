@@ -1,0 +1,117 @@
+// Python arguments to C++ values with errors naming the parameter.
+
+#include "apps/python/py_arguments.h"
+
+#include <cmath>
+
+namespace nxpy {
+
+std::string typeName(const py::handle& value) {
+  return py::str(py::type::handle_of(value).attr("__name__"));
+}
+
+std::string pathArgument(const py::handle& value, const char* param) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__fspath__")) {
+    const py::object p = value.attr("__fspath__")();
+    if (py::isinstance<py::str>(p)) return p.cast<std::string>();
+  }
+  throw py::type_error(std::string(param) + ": expected a file name (str or os.PathLike), found " +
+                       typeName(value));
+}
+
+std::string stringArgument(const py::handle& value, const char* param) {
+  if (!py::isinstance<py::str>(value))
+    throw py::type_error(std::string(param) + ": expected a str, found " + typeName(value));
+  return value.cast<std::string>();
+}
+
+long long integerArgument(const py::handle& value, const char* param, long long lo, long long hi) {
+  // int, or anything with __index__ (numpy integers), but not bool
+  if (py::isinstance<py::bool_>(value) || !py::hasattr(value, "__index__"))
+    throw py::type_error(std::string(param) + ": expected an int, found " + typeName(value));
+  long long v = 0;
+  try {
+    v = value.attr("__index__")().cast<long long>();
+  } catch (const py::cast_error&) {
+    throw py::value_error(std::string(param) + ": expected an int in [" + std::to_string(lo) +
+                          ", " + std::to_string(hi) + "], found " +
+                          py::str(value).cast<std::string>());
+  }
+  if (v < lo || v > hi)
+    throw py::value_error(std::string(param) + ": expected an int in [" + std::to_string(lo) +
+                          ", " + std::to_string(hi) + "], found " + std::to_string(v));
+  return v;
+}
+
+namespace {
+double realNumber(const py::handle& value, const std::string& param) {
+  if (py::isinstance<py::bool_>(value) ||
+      !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
+        py::hasattr(value, "__float__")))
+    throw py::type_error(param + ": expected a number, found " + typeName(value));
+  const double v = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+  if (!std::isfinite(v))
+    throw py::value_error(param + ": expected a finite number, found " +
+                          py::str(value).cast<std::string>());
+  return v;
+}
+} // namespace
+
+double numberArgument(const py::handle& value, const char* param, double lo, double hi) {
+  const double v = realNumber(value, param);
+  if (v < lo || v > hi)
+    throw py::value_error(std::string(param) + ": expected a number in [" +
+                          py::str(py::float_(lo)).cast<std::string>() + ", " +
+                          py::str(py::float_(hi)).cast<std::string>() + "], found " +
+                          py::str(py::float_(v)).cast<std::string>());
+  return v;
+}
+
+std::vector<double> numberListArgument(const py::handle& value, const char* param,
+                                       size_t minCount) {
+  if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value)) {
+    // numpy arrays are sequences too; anything else is not a list of numbers
+    if (!py::hasattr(value, "__len__") || !py::hasattr(value, "__getitem__"))
+      throw py::type_error(std::string(param) + ": expected a sequence of numbers, found " +
+                           typeName(value));
+  }
+  std::vector<double> out;
+  const size_t n = py::len(value);
+  for (size_t i = 0; i < n; ++i)
+    out.push_back(
+        realNumber(value[py::int_(i)], std::string(param) + "[" + std::to_string(i) + "]"));
+  if (out.size() < minCount)
+    throw py::value_error(std::string(param) + ": expected at least " + std::to_string(minCount) +
+                          " numbers, found " + std::to_string(out.size()));
+  return out;
+}
+
+std::vector<double> numbersArgument(const py::handle& value, const char* param, size_t n) {
+  const std::vector<double> v = numberListArgument(value, param, 0);
+  if (v.size() != n)
+    throw py::value_error(std::string(param) + ": expected " + std::to_string(n) +
+                          " numbers, found " + std::to_string(v.size()));
+  return v;
+}
+
+std::vector<long long> integersArgument(const py::handle& value, const char* param, size_t n) {
+  if (py::isinstance<py::str>(value) || !py::hasattr(value, "__len__"))
+    throw py::type_error(std::string(param) + ": expected a sequence of " + std::to_string(n) +
+                         " ints, found " + typeName(value));
+  if (py::len(value) != n)
+    throw py::value_error(std::string(param) + ": expected " + std::to_string(n) + " ints, found " +
+                          std::to_string(py::len(value)));
+  std::vector<long long> out;
+  for (size_t i = 0; i < n; ++i) {
+    const py::object item = value[py::int_(i)];
+    // numpy integers are not int subclasses; accept anything with __index__
+    if (py::isinstance<py::bool_>(item) || !py::hasattr(item, "__index__"))
+      throw py::type_error(std::string(param) + "[" + std::to_string(i) +
+                           "]: expected an int, found " + typeName(item));
+    out.push_back(item.attr("__index__")().cast<long long>());
+  }
+  return out;
+}
+
+} // namespace nxpy

@@ -1,0 +1,310 @@
+// nxrender.Image, read_exr, write_exr, write_envi.
+
+#include "apps/python/py_image.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <filesystem>
+
+#include "apps/python/py_arguments.h"
+#include "io/envi_export.h"
+#include "io/spectral_cube.h"
+#include "spectra/band_colour.h"
+
+namespace nxpy {
+namespace {
+
+// A numpy view (H, W, depth) of a pixel-interleaved vector owned by the image `owner`; None
+// when the vector is empty (the image does not hold that channel).
+template <typename T>
+py::object view(const py::object& owner, std::vector<T>& data, int depth) {
+  PyImage& im = owner.cast<PyImage&>();
+  if (data.empty()) return py::none();
+  const auto h = static_cast<py::ssize_t>(im.image.height),
+             w = static_cast<py::ssize_t>(im.image.width), d = static_cast<py::ssize_t>(depth);
+  const auto s = static_cast<py::ssize_t>(sizeof(T));
+  if (depth == 1)
+    return py::array_t<T>(std::vector<py::ssize_t>{h, w}, std::vector<py::ssize_t>{w * s, s},
+                          data.data(), owner);
+  return py::array_t<T>(std::vector<py::ssize_t>{h, w, d},
+                        std::vector<py::ssize_t>{w * d * s, d * s, s}, data.data(), owner);
+}
+
+// Copies a numpy-convertible array of shape (H, W, depth) (or (H, W) when depth is 0) into a
+// pixel-interleaved vector.
+template <typename T>
+std::vector<T> pixelsArgument(const py::handle& value, const char* param, py::ssize_t h,
+                              py::ssize_t w, py::ssize_t depth) {
+  py::array_t<T, py::array::c_style | py::array::forcecast> a;
+  try {
+    a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(value);
+  } catch (const py::error_already_set&) {
+  }
+  if (!a) {
+    PyErr_Clear();
+    throw py::type_error(std::string(param) + ": expected an array of numbers, found " +
+                         typeName(value));
+  }
+  const bool shapeOk =
+      depth == 0 ? a.ndim() == 2 && a.shape(0) == h && a.shape(1) == w
+                 : a.ndim() == 3 && a.shape(0) == h && a.shape(1) == w && a.shape(2) == depth;
+  if (!shapeOk) {
+    std::string found = "(";
+    for (py::ssize_t i = 0; i < a.ndim(); ++i)
+      found += (i ? ", " : "") + std::to_string(a.shape(i));
+    found += a.ndim() == 1 ? ",)" : ")";
+    throw py::value_error(
+        std::string(param) + ": expected shape (" + std::to_string(h) + ", " + std::to_string(w) +
+        (depth ? ", " + std::to_string(depth) : std::string()) + "), found " + found);
+  }
+  return std::vector<T>(a.data(), a.data() + a.size());
+}
+
+std::vector<double> centroids(const nx::Sensor& s) {
+  std::vector<double> v;
+  for (int b = 0; b < s.count(); ++b) v.push_back(s.centroid(b));
+  return v;
+}
+
+PyImage makeImage(const py::object& radiance, const py::object& wavelengths,
+                  const py::object& bands, const py::object& variance,
+                  const py::object& sampleCount, const py::object& attributes) {
+  py::array_t<float, py::array::c_style | py::array::forcecast> probe;
+  try {
+    probe = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(radiance);
+  } catch (const py::error_already_set&) {
+  }
+  if (!probe) {
+    PyErr_Clear();
+    throw py::type_error("radiance: expected an array of numbers (height, width, bands), found " +
+                         typeName(radiance));
+  }
+  if (probe.ndim() != 3 || probe.shape(0) < 1 || probe.shape(1) < 1 || probe.shape(2) < 1)
+    throw py::value_error("radiance: expected a non-empty array of shape (height, width, "
+                          "bands), found " +
+                          std::to_string(probe.ndim()) + " dimensions");
+  PyImage out;
+  nx::SpectralImage& im = out.image;
+  im.height = static_cast<int>(probe.shape(0));
+  im.width = static_cast<int>(probe.shape(1));
+  const py::ssize_t nb = probe.shape(2);
+  if (wavelengths.is_none() == bands.is_none())
+    throw py::value_error("wavelengths, bands: expected one of them (band centres in nm, or a "
+                          "description such as '400:700:10')");
+  if (!bands.is_none()) {
+    im.bands = nx::Sensor::parse(stringArgument(bands, "bands"), "bands");
+  } else {
+    im.bands =
+        nx::sensorAtWavelengths(numberListArgument(wavelengths, "wavelengths", 1), "wavelengths");
+  }
+  if (im.bands.count() != nb)
+    throw py::value_error("radiance: expected " + std::to_string(im.bands.count()) +
+                          " bands (one per wavelength), found " + std::to_string(nb));
+  im.radiance = pixelsArgument<float>(radiance, "radiance", im.height, im.width, nb);
+  if (!variance.is_none())
+    im.bandVariance = pixelsArgument<float>(variance, "variance", im.height, im.width, nb);
+  if (!sampleCount.is_none())
+    im.sampleCount = pixelsArgument<uint32_t>(sampleCount, "sample_count", im.height, im.width, 0);
+  nx::BandColour(centroids(im.bands)).fill(im.radiance, im.xyz, im.rgb);
+  if (!attributes.is_none()) {
+    if (!py::isinstance<py::dict>(attributes))
+      throw py::type_error("attributes: expected a dict of str to str, found " +
+                           typeName(attributes));
+    for (auto [k, v] : attributes.cast<py::dict>())
+      im.attributes[stringArgument(k, "attributes (key)")] = stringArgument(v, "attributes");
+  }
+  im.attributes["nxrender.bands"] = im.bands.toString();
+  return out;
+}
+
+} // namespace
+
+void bindImage(py::module_& m) {
+  py::class_<PyImage>(m, "Image",
+                      "A spectral image: band radiances with their error estimates, colour, "
+                      "sample counts and provenance. Array properties are numpy views of the "
+                      "image (writable; they live as long as the image).")
+      .def(py::init(&makeImage), py::arg("radiance"), py::arg("wavelengths") = py::none(),
+           py::arg("bands") = py::none(), py::arg("variance") = py::none(),
+           py::arg("sample_count") = py::none(), py::arg("attributes") = py::none(),
+           "An image from arrays: radiance (H, W, bands) with the bands' centre wavelengths "
+           "(nm; evenly spaced -> uniform boxes, else Gaussians as wide as the spacing) or a "
+           "band description ('400:700:10', 'gaussian:...'); optional variance (H, W, bands), "
+           "sample_count (H, W) and str attributes. XYZ and RGB are computed from the bands.")
+      .def_property_readonly(
+          "radiance",
+          [](py::object self) {
+            auto& i = self.cast<PyImage&>().image;
+            return view(self, i.radiance, i.bands.count());
+          },
+          "(H, W, bands) float32: radiance averaged over each band (W m^-2 sr^-1 nm^-1)")
+      .def_property_readonly(
+          "variance",
+          [](py::object self) {
+            auto& i = self.cast<PyImage&>().image;
+            return view(self, i.bandVariance, i.bands.count());
+          },
+          "(H, W, bands) float32: variance of each band mean (Monte Carlo error), or None")
+      .def_property_readonly(
+          "y_variance",
+          [](py::object self) {
+            auto& i = self.cast<PyImage&>().image;
+            return view(self, i.yVariance, 1);
+          },
+          "(H, W) float32: variance of the mean luminance Y, or None")
+      .def_property_readonly(
+          "xyz", [](py::object self) { return view(self, self.cast<PyImage&>().image.xyz, 3); },
+          "(H, W, 3) float32: CIE 1931 XYZ, or None")
+      .def_property_readonly(
+          "rgb", [](py::object self) { return view(self, self.cast<PyImage&>().image.rgb, 3); },
+          "(H, W, 3) float32: linear sRGB (D65), negatives clamped to 0")
+      .def_property_readonly(
+          "sample_count",
+          [](py::object self) { return view(self, self.cast<PyImage&>().image.sampleCount, 1); },
+          "(H, W) uint32: samples behind each pixel, or None")
+      .def_property_readonly(
+          "white",
+          [](py::object self) {
+            auto& i = self.cast<PyImage&>().image;
+            return view(self, i.white, i.bands.count());
+          },
+          "(H, W, bands) float32: white reference (aovs=['white']), or None")
+      .def_property_readonly(
+          "object_id",
+          [](py::object self) { return view(self, self.cast<PyImage&>().image.objectId, 1); },
+          "(H, W) uint32: object at each pixel centre, 0 for none (aovs=['ids']), or None")
+      .def_property_readonly(
+          "material_id",
+          [](py::object self) { return view(self, self.cast<PyImage&>().image.materialId, 1); },
+          "(H, W) uint32: its material (aovs=['ids']), or None")
+      .def_property_readonly(
+          "depth", [](py::object self) { return view(self, self.cast<PyImage&>().image.depth, 1); },
+          "(H, W) float32: camera-space depth at each pixel centre (aovs=['depth']), or None")
+      .def_property_readonly(
+          "wavelengths",
+          [](const PyImage& p) { return py::array_t<double>(py::cast(centroids(p.image.bands))); },
+          "(bands,) float64: each band's centroid in nm (its channel name)")
+      .def_property_readonly(
+          "fwhm",
+          [](const PyImage& p) {
+            std::vector<double> v;
+            for (int b = 0; b < p.image.bands.count(); ++b) v.push_back(p.image.bands.fwhm(b));
+            return py::array_t<double>(py::cast(v));
+          },
+          "(bands,) float64: each band's full width at half maximum in nm")
+      .def_property_readonly(
+          "bands", [](const PyImage& p) { return p.image.bands.toString(); },
+          "The bands as nxrender describes them ('400:700:10', 'gaussian:...', 'table:...')")
+      .def_property(
+          "attributes", [](const PyImage& p) { return p.image.attributes; },
+          [](PyImage& p, const py::dict& d) {
+            std::map<std::string, std::string> a;
+            for (auto [k, v] : d)
+              a[stringArgument(k, "attributes (key)")] = stringArgument(v, "attributes");
+            p.image.attributes = std::move(a);
+          },
+          "Provenance as a dict of str (a copy; assign a dict to replace it)")
+      .def_property_readonly("width", [](const PyImage& p) { return p.image.width; })
+      .def_property_readonly("height", [](const PyImage& p) { return p.image.height; })
+      .def_property_readonly(
+          "origin",
+          [](const PyImage& p) { return py::make_tuple(p.image.originX, p.image.originY); },
+          "(x, y) of the stored region's top-left pixel in the full image (crops)")
+      .def_property_readonly(
+          "full_size",
+          [](const PyImage& p) {
+            return py::make_tuple(p.image.displayWidth(), p.image.displayHeight());
+          },
+          "(width, height) of the full image")
+      .def("__repr__", [](const PyImage& p) {
+        return "<nxrender.Image " + std::to_string(p.image.width) + "x" +
+               std::to_string(p.image.height) + ", " + p.image.bands.summary() + ">";
+      });
+
+  m.def(
+      "read_exr",
+      [](const py::object& path) {
+        const std::string p = pathArgument(path, "path");
+        std::error_code ec;
+        if (!std::filesystem::exists(p, ec)) {
+          PyErr_SetString(PyExc_FileNotFoundError, (p + ": no such file").c_str());
+          throw py::error_already_set();
+        }
+        PyImage out;
+        {
+          py::gil_scoped_release release;
+          out.image = nx::readSpectralExr(p);
+        }
+        return out;
+      },
+      py::arg("path"),
+      "Reads a spectral OpenEXR: nxrender's own, or any file of the Fichet et al. 2021 layout "
+      "(S0 or T channels in any unit).");
+  m.def(
+      "read_cube",
+      [](const py::object& path, const py::object& wavelengths, const py::object& fwhm) {
+        const std::string p = pathArgument(path, "path");
+        std::error_code ec;
+        if (!std::filesystem::exists(p, ec)) {
+          PyErr_SetString(PyExc_FileNotFoundError, (p + ": no such file").c_str());
+          throw py::error_already_set();
+        }
+        nx::CubeReadOptions options;
+        if (!wavelengths.is_none())
+          options.wavelengthNm = numberListArgument(wavelengths, "wavelengths", 1);
+        if (!fwhm.is_none())
+          options.fwhmNm = py::isinstance<py::float_>(fwhm) || py::isinstance<py::int_>(fwhm)
+                               ? std::vector<double>{numberArgument(fwhm, "fwhm", 1e-9, 1e9)}
+                               : numberListArgument(fwhm, "fwhm", 1);
+        nx::SpectralCube cube;
+        {
+          py::gil_scoped_release release;
+          cube = nx::readSpectralCube(p, options);
+        }
+        PyImage out;
+        nx::SpectralImage& im = out.image;
+        im.width = cube.width;
+        im.height = cube.height;
+        im.bands = cube.fwhmNm.empty() ? nx::sensorAtWavelengths(cube.wavelengthNm, p)
+                                       : nx::Sensor::gaussian(cube.wavelengthNm, cube.fwhmNm, p);
+        im.radiance = std::move(cube.values);
+        im.bandVariance = std::move(cube.variance);
+        im.objectId = std::move(cube.objectId);
+        nx::BandColour(centroids(im.bands)).fill(im.radiance, im.xyz, im.rgb);
+        im.attributes["nxrender.cubeFormat"] = cube.format;
+        im.attributes["nxrender.bands"] = im.bands.toString();
+        return out;
+      },
+      py::arg("path"), py::arg("wavelengths") = py::none(), py::arg("fwhm") = py::none(),
+      "Reads a capture as nxcompare does: an ENVI cube (.hdr or its data file), a multi-band "
+      "TIFF, a directory of per-band PNGs, or a spectral EXR; `wavelengths` (nm) and `fwhm` "
+      "(one value or one per band) for files that do not give them. Bands with a FWHM are "
+      "Gaussians; values as stored (no scaling).");
+  m.def(
+      "write_exr",
+      [](const py::object& path, const PyImage& image, bool half) {
+        const std::string p = pathArgument(path, "path");
+        py::gil_scoped_release release;
+        if (half)
+          nx::writeSpectralExrHalf(p, image.image);
+        else
+          nx::writeSpectralExr(p, image.image);
+      },
+      py::arg("path"), py::arg("image"), py::arg("half") = false,
+      "Writes an Image as a spectral OpenEXR (Fichet et al. 2021 layout; the file appears "
+      "complete or not at all). half=True stores half floats (error if a value does not fit).");
+  m.def(
+      "write_envi",
+      [](const py::object& path, const PyImage& image) {
+        const std::string p = pathArgument(path, "path");
+        py::gil_scoped_release release;
+        nx::writeEnvi(p, image.image);
+        return nx::enviHeaderPath(p);
+      },
+      py::arg("path"), py::arg("image"),
+      "Writes the bands as an ENVI cube: the data file `path` (BSQ float32) and its .hdr "
+      "(wavelength, fwhm); returns the header's path.");
+}
+
+} // namespace nxpy

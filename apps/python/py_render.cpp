@@ -1,0 +1,285 @@
+// nxrender.render.
+
+#include "apps/python/py_render.h"
+
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "apps/python/py_arguments.h"
+#include "apps/python/py_image.h"
+#include "apps/python/py_scene.h"
+#include "apps/render_job.h"
+#include "core/error.h"
+#include "core/memory.h"
+
+namespace nxpy {
+namespace {
+
+// The scene argument: an nxrender.Scene, a scene file's name, or scene text.
+struct SceneSource {
+  nx::SceneDesc desc;
+  std::string name;  ///< recorded as nxrender.scene
+  std::string edits; ///< Scene edits, or ""
+};
+
+SceneSource sceneArgument(const py::handle& scene) {
+  SceneSource src;
+  if (py::isinstance<PyScene>(scene)) {
+    const SceneState& st = *scene.cast<const PyScene&>().state;
+    src.desc = sceneForRendering(st);
+    src.name = st.desc.file;
+    src.edits = editsText(st);
+    return src;
+  }
+  if (py::isinstance<py::str>(scene)) {
+    const std::string text = scene.cast<std::string>();
+    const size_t first = text.find_first_not_of(" \t\r\n");
+    if (first != std::string::npos && text[first] == '<') {
+      src.name = "<string>";
+      src.desc = nx::parseScene(text, src.name);
+      return src;
+    }
+  } else if (!py::hasattr(scene, "__fspath__")) {
+    throw py::type_error("scene: expected an nxrender.Scene, a scene file name or scene text "
+                         "(XML), found " +
+                         typeName(scene));
+  }
+  src.name = pathArgument(scene, "scene");
+  std::error_code ec;
+  if (!std::filesystem::exists(src.name, ec)) {
+    PyErr_SetString(PyExc_FileNotFoundError, (src.name + ": no such scene file").c_str());
+    throw py::error_already_set();
+  }
+  py::gil_scoped_release release;
+  src.desc = nx::loadScene(src.name);
+  return src;
+}
+
+std::string optionString(const py::object& value, const char* param) {
+  return stringArgument(value, param);
+}
+
+py::object render(const py::object& sceneArg, const py::object& spp, const py::object& seed,
+                  const py::object& threads, const py::object& bands, const py::object& sensor,
+                  const py::object& crop, const py::object& sppRange, const py::object& progress,
+                  const py::object& sampler, const py::object& lightSampling,
+                  const py::object& lightSelection, const py::object& density, bool fluorescence,
+                  const py::object& aovs, const py::object& targetError, const py::object& errorOf,
+                  const py::object& timeLimit) {
+  // Every argument is checked before the (possibly long) scene build.
+  nx::RenderChoices choices;
+  if (!spp.is_none() && !sppRange.is_none())
+    throw py::value_error("spp, spp_range: give one of them");
+  if (!spp.is_none()) choices.samples = static_cast<int>(integerArgument(spp, "spp", 1, 1 << 30));
+  if (!sppRange.is_none()) {
+    const auto r = integersArgument(sppRange, "spp_range", 2);
+    if (r[0] < 0 || r[1] <= r[0] || r[1] > (1LL << 30))
+      throw py::value_error("spp_range: expected (a, b) with 0 <= a < b <= 2**30, found (" +
+                            std::to_string(r[0]) + ", " + std::to_string(r[1]) + ")");
+    choices.firstSample = static_cast<int>(r[0]);
+    choices.samples = static_cast<int>(r[1] - r[0]);
+    choices.sampleRange = true;
+  }
+  if (!seed.is_none())
+    choices.seed = static_cast<uint32_t>(integerArgument(seed, "seed", 0, 2147483647));
+  const int nThreads = threads.is_none()
+                           ? tbb::info::default_concurrency()
+                           : static_cast<int>(integerArgument(threads, "threads", 1, 4096));
+  if (!bands.is_none() && !sensor.is_none())
+    throw py::value_error("bands, sensor: give one of them");
+  if (!bands.is_none()) {
+    if (py::isinstance<py::str>(bands)) {
+      choices.bands = nx::Sensor(nx::SpectralBands::parse(bands.cast<std::string>()));
+    } else {
+      const auto v = numbersArgument(bands, "bands", 3);
+      nx::SpectralBands b{v[0], v[1], v[2]};
+      choices.bands = nx::Sensor(nx::SpectralBands::parse(b.toString()));
+    }
+  }
+  if (!sensor.is_none())
+    choices.bands = nx::sensorFromOption(pathArgument(sensor, "sensor"), "sensor");
+  std::optional<std::vector<long long>> cropBox;
+  if (!crop.is_none()) cropBox = integersArgument(crop, "crop", 4);
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+    throw py::type_error("progress: expected a callable progress(done, total), found " +
+                         typeName(progress));
+  choices.sampler = optionString(sampler, "sampler");
+  choices.lightSampling = optionString(lightSampling, "light_sampling");
+  choices.lightSelection = optionString(lightSelection, "light_selection");
+  choices.density = optionString(density, "wavelength_density");
+  choices.noFluorescence = !fluorescence;
+  if (py::isinstance<py::str>(aovs) || !py::hasattr(aovs, "__iter__"))
+    throw py::type_error("aovs: expected a list of 'white', 'ids', 'depth', found " +
+                         typeName(aovs));
+  for (const py::handle a : aovs) {
+    const std::string name = stringArgument(a, "aovs");
+    if (!nx::addAov(choices, name))
+      throw py::value_error("aovs: expected 'white', 'ids' or 'depth', found '" + name + "'");
+  }
+  if (!targetError.is_none())
+    choices.targetError = numberArgument(targetError, "target_error", 1e-9, 1e9);
+  choices.errorOf = optionString(errorOf, "error_of");
+  if (!timeLimit.is_none()) choices.timeLimit = numberArgument(timeLimit, "time_limit", 1e-3, 1e12);
+  // Names of strategies: the same checks as the command line's, with Python's names.
+  const std::pair<const std::string*, std::pair<const char*, std::vector<const char*>>> names[] = {
+      {&choices.sampler, {"sampler", {"sobol", "independent"}}},
+      {&choices.lightSampling, {"light_sampling", {"mis", "bsdf", "nee"}}},
+      {&choices.lightSelection, {"light_selection", {"local", "power", "uniform"}}},
+      {&choices.density, {"wavelength_density", {"sensor", "visible"}}}};
+  for (const auto& [value, spec] : names) {
+    bool ok = false;
+    std::string list;
+    for (const char* n : spec.second) {
+      ok = ok || *value == n;
+      list += (list.empty() ? "'" : ", '") + std::string(n) + "'";
+    }
+    if (!ok)
+      throw py::value_error(std::string(spec.first) + ": expected one of " + list + ", found '" +
+                            *value + "'");
+  }
+
+  SceneSource src = sceneArgument(sceneArg);
+  if (!src.desc.warnings.empty()) {
+    const py::object warn = py::module_::import("warnings").attr("warn");
+    for (const auto& w : src.desc.warnings) warn(w);
+  }
+  if (!fluorescence) nx::removeFluorescence(src.desc);
+  std::optional<nx::RenderScene> scene;
+  {
+    py::gil_scoped_release release;
+    scene.emplace(nx::buildRenderScene(src.desc));
+  }
+  const int width = scene->settings.width, height = scene->settings.height;
+  if (cropBox) {
+    const auto& c = *cropBox;
+    if (c[0] < 0 || c[1] < 0 || c[2] > width || c[3] > height || c[2] <= c[0] || c[3] <= c[1])
+      throw py::value_error(
+          "crop: expected (x0, y0, x1, y1) with 0 <= x0 < x1 <= " + std::to_string(width) +
+          " and 0 <= y0 < y1 <= " + std::to_string(height) + ", found (" + std::to_string(c[0]) +
+          ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) + ", " + std::to_string(c[3]) +
+          ")");
+    choices.crop = nx::PixelRect{static_cast<int>(c[0]), static_cast<int>(c[1]),
+                                 static_cast<int>(c[2]), static_cast<int>(c[3])};
+  }
+  std::optional<nx::RenderJob> jobHolder;
+  try {
+    jobHolder.emplace(*scene, src.name, choices);
+  } catch (const nx::Error& e) {
+    // The job's checks name the command line's options (--error-of); say Python's (error_of).
+    std::string message = e.what();
+    const size_t colon = message.find(':');
+    if (message.rfind("--", 0) == 0 && colon != std::string::npos) {
+      std::string name = message.substr(2, colon - 2);
+      std::replace(name.begin(), name.end(), '-', '_');
+      message = name + message.substr(colon);
+    }
+    throw py::value_error(message);
+  }
+  nx::RenderJob& job = *jobHolder;
+  const nx::PixelRect r = job.rect();
+  nx::requireMemory(nx::renderBufferBytes(r.width(), r.height(), job.bands().count()), src.name,
+                    "a render",
+                    std::to_string(r.width()) + "x" + std::to_string(r.height()) + " with " +
+                        std::to_string(job.bands().count()) + " bands");
+  // The render runs on a worker thread in its own arena; this thread waits with the GIL
+  // released, and every 50 ms takes it to run Python's signal handlers (Ctrl-C) and the
+  // progress callback, so both run on the caller's thread and never inside a TBB task.
+  nx::RenderOptions& options = job.options();
+  std::atomic<bool> stop{false};
+  std::atomic<int64_t> done{0}, total{0};
+  options.stop = &stop;
+  options.progress = [&](int64_t d, int64_t t) {
+    total.store(t);
+    done.store(d);
+  };
+  std::mutex mutex;
+  std::condition_variable finishedCv;
+  bool finished = false;
+  std::optional<nx::RenderOutput> result;
+  std::exception_ptr renderError;
+  std::thread worker([&] {
+    try {
+      tbb::task_arena arena(nThreads);
+      arena.execute([&] { result.emplace(nx::render(*scene, options)); });
+    } catch (...) {
+      renderError = std::current_exception();
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    finished = true;
+    finishedCv.notify_all();
+  });
+  std::optional<py::error_already_set> pythonError;
+  int64_t reported = -1;
+  for (bool end = false; !end;) {
+    {
+      py::gil_scoped_release release;
+      std::unique_lock<std::mutex> lock(mutex);
+      finishedCv.wait_for(lock, std::chrono::milliseconds(50), [&] { return finished; });
+      end = finished;
+    }
+    if (pythonError) continue;
+    if (PyErr_CheckSignals() != 0) {
+      pythonError.emplace();
+      stop.store(true);
+      continue;
+    }
+    const int64_t d = done.load();
+    if (!progress.is_none() && d != reported && total.load() > 0) {
+      reported = d;
+      try {
+        progress(d, total.load());
+      } catch (py::error_already_set& e) {
+        pythonError.emplace(std::move(e));
+        stop.store(true);
+      }
+    }
+  }
+  {
+    py::gil_scoped_release release;
+    worker.join();
+  }
+  if (pythonError) throw std::move(*pythonError);
+  if (renderError) std::rethrow_exception(renderError);
+
+  if (result->stats.reachedTarget || result->stats.reachedTimeLimit)
+    job.setSamplesReached(result->stats.samplesReached);
+  nx::requireSomeFiniteSamples(result->stats, src.name);
+  PyImage out;
+  out.image = job.image(result->film, result->stats.seconds);
+  if (!src.edits.empty()) out.image.attributes["nxrender.sceneEdits"] = src.edits;
+  if (result->stats.nonFinite > 0)
+    py::module_::import("warnings")
+        .attr("warn")(std::to_string(result->stats.nonFinite) +
+                      " samples with a NaN or infinite value were counted as zero (black)");
+  return py::cast(std::move(out));
+}
+
+} // namespace
+
+void bindRender(py::module_& m) {
+  m.def("render", &render, py::arg("scene"), py::arg("spp") = py::none(),
+        py::arg("seed") = py::none(), py::arg("threads") = py::none(),
+        py::arg("bands") = py::none(), py::arg("sensor") = py::none(), py::arg("crop") = py::none(),
+        py::arg("spp_range") = py::none(), py::arg("progress") = py::none(),
+        py::arg("sampler") = "sobol", py::arg("light_sampling") = "mis",
+        py::arg("light_selection") = "local", py::arg("wavelength_density") = "sensor",
+        py::arg("fluorescence") = true, py::arg("aovs") = py::tuple(),
+        py::arg("target_error") = py::none(), py::arg("error_of") = "luminance",
+        py::arg("time_limit") = py::none(),
+        "Renders a scene (an nxrender.Scene, a scene file name, or scene XML text) and returns "
+        "an nxrender.Image, the same bit for bit as nxrender's EXR for the same scene, seed and "
+        "samples. The GIL is released while rendering; Ctrl-C raises KeyboardInterrupt after "
+        "the worker threads stopped; progress(done, total) is called on the calling thread as "
+        "tiles finish. Options as nxrender's (docs/python.md).");
+}
+
+} // namespace nxpy

@@ -1,0 +1,612 @@
+// nxrender.Scene and its views (camera, objects, materials, fluorescence, lights).
+
+#include "apps/python/py_scene.h"
+
+#include <pybind11/stl.h>
+
+#include <filesystem>
+
+#include "apps/python/py_arguments.h"
+#include "core/error.h"
+#include "core/hash.h"
+#include "io/scene_limits.h"
+
+namespace nxpy {
+namespace {
+
+using StatePtr = std::shared_ptr<SceneState>;
+
+void record(SceneState& s, const std::string& what, const py::handle& value) {
+  s.edits.push_back(what + " = " + py::repr(value).cast<std::string>());
+}
+
+double rangedArgument(const py::handle& value, const std::string& param,
+                      const nx::ParameterRange& r) {
+  const double v = numberArgument(value, param.c_str(), -1e300, 1e300);
+  if (!r.contains(v))
+    throw py::value_error(param + ": expected " + r.what + " in " + (r.openLow ? "(" : "[") +
+                          py::str(py::float_(r.lo)).cast<std::string>() + ", " +
+                          py::str(py::float_(r.hi)).cast<std::string>() + "], found " +
+                          py::str(py::float_(v)).cast<std::string>());
+  return v;
+}
+
+nx::Vec3d pointArgument(const py::handle& value, const std::string& param) {
+  const std::vector<double> v = numbersArgument(value, param.c_str(), 3);
+  for (double x : v)
+    if (std::abs(x) > nx::kMaxSceneCoordinate)
+      throw py::value_error(param + ": expected coordinates within 1e12, found " +
+                            py::str(py::float_(x)).cast<std::string>());
+  return {v[0], v[1], v[2]};
+}
+
+py::tuple tupleOf(const nx::Vec3d& v) {
+  return py::make_tuple(v.x, v.y, v.z);
+}
+
+// ---- spectra as Python values ----
+
+py::object spectrumValue(const std::optional<nx::SpectrumDesc>& s) {
+  if (!s) return py::none();
+  switch (s->kind) {
+  case nx::SpectrumDesc::Kind::Number:
+    return py::float_(s->number);
+  case nx::SpectrumDesc::Kind::Name:
+    return py::str(s->name);
+  case nx::SpectrumDesc::Kind::Pairs:
+    return py::make_tuple(py::cast(s->nm), py::cast(s->value));
+  case nx::SpectrumDesc::Kind::CsvFile:
+    return py::str("csv:" + s->path);
+  case nx::SpectrumDesc::Kind::Texture:
+    return py::str("texture:" + s->texture);
+  }
+  return py::none();
+}
+
+// A reflectance from Python: a number >= 0, a spectrum name, or (wavelengths, values).
+nx::SpectrumDesc spectrumArgument(const py::handle& value, const std::string& param,
+                                  const nx::SourceLocation& loc) {
+  nx::SpectrumDesc s;
+  s.loc = loc;
+  if (py::isinstance<py::str>(value)) {
+    s.kind = nx::SpectrumDesc::Kind::Name;
+    s.name = value.cast<std::string>();
+    if (s.name.empty()) throw py::value_error(param + ": expected a spectrum name, found ''");
+    return s;
+  }
+  if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
+    if (py::len(value) != 2)
+      throw py::value_error(param + ": expected (wavelengths_nm, values), found a sequence of " +
+                            std::to_string(py::len(value)));
+    s.kind = nx::SpectrumDesc::Kind::Pairs;
+    s.nm = numberListArgument(value[py::int_(0)], (param + "[0] (wavelengths)").c_str(), 2);
+    s.value = numberListArgument(value[py::int_(1)], (param + "[1] (values)").c_str(), 2);
+    if (s.nm.size() != s.value.size())
+      throw py::value_error(param + ": expected as many values as wavelengths, found " +
+                            std::to_string(s.value.size()) + " and " + std::to_string(s.nm.size()));
+    for (size_t i = 1; i < s.nm.size(); ++i)
+      if (!(s.nm[i] > s.nm[i - 1]))
+        throw py::value_error(param + ": expected increasing wavelengths");
+    return s;
+  }
+  s.kind = nx::SpectrumDesc::Kind::Number;
+  s.number = numberArgument(value, param.c_str(), 0, 1e300);
+  return s;
+}
+
+// ---- views ----
+
+struct CameraView {
+  StatePtr s;
+};
+
+struct LightView {
+  StatePtr s;
+  size_t i;
+  nx::PointLightDesc& get() const { return s->desc.lights.at(i); }
+  std::string label() const { return "lights[" + std::to_string(i) + "]"; }
+};
+
+struct MaterialView {
+  StatePtr s;
+  bool named;
+  size_t i;
+  nx::MaterialDesc& get() const {
+    return named ? s->desc.materials.at(i).material
+                 : static_cast<nx::MaterialDesc&>(s->desc.objects.at(i));
+  }
+  std::string label() const {
+    return named ? "materials['" + s->desc.materials.at(i).id + "']"
+                 : "objects[" + std::to_string(i) + "]";
+  }
+  nx::SourceLocation loc() const {
+    return named ? s->desc.materials.at(i).loc : s->desc.objects.at(i).loc;
+  }
+  // An object using a <material id> has no parameters of its own.
+  nx::MaterialDesc& editable() const {
+    if (!named && !s->desc.objects.at(i).materialRef.empty())
+      throw py::value_error(label() + ": uses the material '" + s->desc.objects.at(i).materialRef +
+                            "'; change scene.materials['" + s->desc.objects.at(i).materialRef +
+                            "'] instead");
+    return get();
+  }
+};
+
+struct FluorescenceView {
+  MaterialView m;
+  nx::FluorescenceDesc& get() const {
+    auto& f = m.get().fluorescence;
+    if (!f) throw py::value_error(m.label() + ": has no fluorescence any more");
+    return *f;
+  }
+  nx::FluorescenceDesc& editable(const char* field) const {
+    nx::FluorescenceDesc& f = get();
+    (void)m.editable();
+    if (f.matrixCsv)
+      throw py::value_error(m.label() + ".fluorescence." + field +
+                            ": the fluorescence is a measured matrix (" + *f.matrixCsv +
+                            "); set a model with set_fluorescence(...) first");
+    return f;
+  }
+};
+
+struct ObjectView {
+  StatePtr s;
+  size_t i;
+  nx::ObjectDesc& get() const { return s->desc.objects.at(i); }
+  std::string label() const { return "objects[" + std::to_string(i) + "]"; }
+  MaterialView material() const {
+    const nx::ObjectDesc& o = get();
+    if (!o.materialRef.empty())
+      for (size_t k = 0; k < s->desc.materials.size(); ++k)
+        if (s->desc.materials[k].id == o.materialRef) return {s, true, k};
+    return {s, false, i};
+  }
+};
+
+const char* shapeName(nx::ShapeType t) {
+  switch (t) {
+  case nx::ShapeType::Sphere:
+    return "sphere";
+  case nx::ShapeType::Plane:
+    return "plane";
+  case nx::ShapeType::Triangle:
+    return "triangle";
+  case nx::ShapeType::Quad:
+    return "quad";
+  case nx::ShapeType::Mesh:
+    return "mesh";
+  }
+  return "?";
+}
+
+// A optional<double> field of the fluorescence model, with its range.
+void bindFluorescenceField(py::class_<FluorescenceView>& c, const char* name,
+                           std::optional<double> nx::FluorescenceDesc::*field,
+                           const nx::ParameterRange& range, const char* doc) {
+  c.def_property(
+      name,
+      [field](const FluorescenceView& f) -> py::object {
+        const auto& v = f.get().*field;
+        return v ? py::object(py::float_(*v)) : py::object(py::none());
+      },
+      [field, name, range](const FluorescenceView& f, const py::object& value) {
+        nx::FluorescenceDesc& d = f.editable(name);
+        const std::string param = f.m.label() + ".fluorescence." + name;
+        if (value.is_none())
+          d.*field = std::nullopt;
+        else
+          d.*field = rangedArgument(value, param, range);
+        record(*f.m.s, param, value);
+      },
+      doc);
+}
+
+SceneState loadState(const std::string& text, const std::string& name) {
+  SceneState st;
+  st.desc = nx::parseScene(text, name);
+  return st;
+}
+
+} // namespace
+
+nx::SceneDesc sceneForRendering(const SceneState& state) {
+  nx::SceneDesc d = state.desc;
+  if (!state.edits.empty()) d.textDigest = nx::fnv1a64(editsText(state), d.textDigest);
+  return d;
+}
+
+std::string editsText(const SceneState& state) {
+  std::string out;
+  for (const std::string& e : state.edits) out += (out.empty() ? "" : "; ") + e;
+  return out;
+}
+
+void bindScene(py::module_& m) {
+  py::class_<FluorescenceView> fl(m, "Fluorescence",
+                                  "The fluorescence of a material (the re-radiation matrix's "
+                                  "parameters; docs/fluorescence.md)");
+  fl.def_property(
+      "absorption_nm",
+      [](const FluorescenceView& f) -> py::object {
+        const auto& d = f.get();
+        return d.absorptionNm ? py::object(py::float_(*d.absorptionNm)) : py::object(py::none());
+      },
+      [](const FluorescenceView& f, const py::object& value) {
+        nx::FluorescenceDesc& d = f.editable("absorption_nm");
+        const std::string param = f.m.label() + ".fluorescence.absorption_nm";
+        d.absorptionNm = rangedArgument(value, param, nx::kAbsorptionRange);
+        d.absorptionName.reset();
+        record(*f.m.s, param, value);
+      },
+      "Absorption peak in nm (None when given by a colour name)");
+  fl.def_property_readonly(
+      "absorption",
+      [](const FluorescenceView& f) -> py::object {
+        const auto& d = f.get();
+        return d.absorptionName ? py::object(py::str(*d.absorptionName)) : py::object(py::none());
+      },
+      "Absorption colour name, if the scene gave one");
+  bindFluorescenceField(fl, "stokes_nm", &nx::FluorescenceDesc::stokesNm, nx::kStokesRange,
+                        "Stokes shift in nm (emission peak minus absorption peak)");
+  bindFluorescenceField(fl, "width_nm", &nx::FluorescenceDesc::widthNm, nx::kWidthRange,
+                        "Width of the absorption and emission bands in nm (None: default)");
+  bindFluorescenceField(fl, "skew", &nx::FluorescenceDesc::skew, nx::kSkewRange,
+                        "Skew magnitude of the bands (None: default)");
+  bindFluorescenceField(fl, "quantum_yield", &nx::FluorescenceDesc::quantumYield, nx::kYieldRange,
+                        "Quantum yield in [0, 1] (None: default)");
+  bindFluorescenceField(fl, "peak_absorptance", &nx::FluorescenceDesc::peakAbsorptance,
+                        nx::kPeakRange, "Absorptance at the absorption peak (None: default)");
+  fl.def_property_readonly(
+      "matrix",
+      [](const FluorescenceView& f) -> py::object {
+        const auto& d = f.get();
+        return d.matrixCsv ? py::object(py::str(*d.matrixCsv)) : py::object(py::none());
+      },
+      "The measured matrix's CSV file, if the fluorescence is measured");
+  fl.def("__repr__", [](const FluorescenceView& f) {
+    const auto& d = f.get();
+    if (d.matrixCsv) return "<nxrender.Fluorescence matrix=" + *d.matrixCsv + ">";
+    return "<nxrender.Fluorescence absorption=" +
+           (d.absorptionNm ? std::to_string(*d.absorptionNm) + " nm" : *d.absorptionName) +
+           ", stokes=" + std::to_string(d.stokesNm.value_or(0)) + " nm>";
+  });
+
+  py::class_<MaterialView>(m, "Material", "A material's parameters (an object's or a named one)")
+      .def_property_readonly(
+          "kind", [](const MaterialView& v) { return v.get().material; },
+          "matte, metal, plastic, mirror, glass, ...")
+      .def_property(
+          "reflectance", [](const MaterialView& v) { return spectrumValue(v.get().reflectance); },
+          [](const MaterialView& v, const py::object& value) {
+            nx::MaterialDesc& d = v.editable();
+            d.reflectance = spectrumArgument(value, v.label() + ".reflectance", v.loc());
+            record(*v.s, v.label() + ".reflectance", value);
+          },
+          "A number (flat), a spectrum name, or (wavelengths_nm, values) linear between them")
+      .def_property(
+          "roughness",
+          [](const MaterialView& v) -> py::object {
+            const auto& r = v.get().roughness;
+            return r ? py::object(py::float_(*r)) : py::object(py::none());
+          },
+          [](const MaterialView& v, const py::object& value) {
+            nx::MaterialDesc& d = v.editable();
+            d.roughness = rangedArgument(value, v.label() + ".roughness", nx::kRoughnessRange);
+            d.roughnessLoc = v.loc();
+            record(*v.s, v.label() + ".roughness", value);
+          },
+          "Roughness in [0, 1] (None: the kind's default)")
+      .def_property(
+          "ior",
+          [](const MaterialView& v) -> py::object {
+            const auto& i = v.get().ior;
+            if (!i) return py::none();
+            if (i->kind == nx::IorDesc::Kind::Number) return py::float_(i->value);
+            if (i->kind == nx::IorDesc::Kind::Named) return py::str(i->name);
+            return py::str(i->kind == nx::IorDesc::Kind::Cauchy ? "cauchy" : "sellmeier");
+          },
+          [](const MaterialView& v, const py::object& value) {
+            nx::MaterialDesc& d = v.editable();
+            nx::IorDesc ior;
+            ior.loc = v.loc();
+            ior.value = rangedArgument(value, v.label() + ".ior", nx::kIorRange);
+            d.ior = ior;
+            record(*v.s, v.label() + ".ior", value);
+          },
+          "Index of refraction: a number (set), a named glass or a dispersion formula (get)")
+      .def_property(
+          "fluorescence",
+          [](const MaterialView& v) -> py::object {
+            if (!v.get().fluorescence) return py::none();
+            return py::cast(FluorescenceView{v});
+          },
+          [](const MaterialView& v, const py::object& value) {
+            if (!value.is_none())
+              throw py::type_error(v.label() +
+                                   ".fluorescence: expected None (to remove it); give a model "
+                                   "with set_fluorescence(...)");
+            v.editable().fluorescence.reset();
+            record(*v.s, v.label() + ".fluorescence", value);
+          },
+          "The fluorescence (None: none); assign None to remove it")
+      .def(
+          "set_fluorescence",
+          [](const MaterialView& v, const py::object& absorptionNm, const py::object& stokesNm,
+             const py::object& widthNm, const py::object& skew, const py::object& quantumYield,
+             const py::object& peakAbsorptance) {
+            nx::MaterialDesc& d = v.editable();
+            const std::string p = v.label() + ".set_fluorescence: ";
+            nx::FluorescenceDesc f;
+            f.loc = v.loc();
+            f.absorptionNm =
+                rangedArgument(absorptionNm, p + "absorption_nm", nx::kAbsorptionRange);
+            f.stokesNm = rangedArgument(stokesNm, p + "stokes_nm", nx::kStokesRange);
+            if (!widthNm.is_none())
+              f.widthNm = rangedArgument(widthNm, p + "width_nm", nx::kWidthRange);
+            if (!skew.is_none()) f.skew = rangedArgument(skew, p + "skew", nx::kSkewRange);
+            if (!quantumYield.is_none())
+              f.quantumYield = rangedArgument(quantumYield, p + "quantum_yield", nx::kYieldRange);
+            if (!peakAbsorptance.is_none())
+              f.peakAbsorptance =
+                  rangedArgument(peakAbsorptance, p + "peak_absorptance", nx::kPeakRange);
+            d.fluorescence = f;
+            v.s->edits.push_back(v.label() + ".set_fluorescence(" +
+                                 py::repr(py::make_tuple(absorptionNm, stokesNm, widthNm, skew,
+                                                         quantumYield, peakAbsorptance))
+                                     .cast<std::string>() +
+                                 ")");
+            return FluorescenceView{v};
+          },
+          py::arg("absorption_nm"), py::arg("stokes_nm"), py::arg("width_nm") = py::none(),
+          py::arg("skew") = py::none(), py::arg("quantum_yield") = py::none(),
+          py::arg("peak_absorptance") = py::none(),
+          "Gives the material a fluorescence model (replacing any); returns it")
+      .def("__repr__", [](const MaterialView& v) {
+        return "<nxrender.Material " + v.label() + " " + v.get().material + ">";
+      });
+
+  py::class_<ObjectView>(m, "Object", "One object of the scene (sphere, plane, triangle, ...)")
+      .def_property_readonly("shape", [](const ObjectView& o) { return shapeName(o.get().shape); })
+      .def_property_readonly(
+          "line", [](const ObjectView& o) { return o.get().loc.line; },
+          "Its line in the scene file")
+      .def_property_readonly("material", &ObjectView::material,
+                             "Its material (its own, or the named one it refers to)")
+      .def_property_readonly(
+          "material_id",
+          [](const ObjectView& o) -> py::object {
+            return o.get().materialRef.empty() ? py::object(py::none())
+                                               : py::object(py::str(o.get().materialRef));
+          },
+          "The id of the named material it uses, or None")
+      .def_property(
+          "center",
+          [](const ObjectView& o) -> py::object {
+            return o.get().shape == nx::ShapeType::Sphere ? py::object(tupleOf(o.get().center))
+                                                          : py::object(py::none());
+          },
+          [](const ObjectView& o, const py::object& value) {
+            if (o.get().shape != nx::ShapeType::Sphere)
+              throw py::value_error(o.label() + ".center: only spheres have a centre");
+            o.get().center = pointArgument(value, o.label() + ".center");
+            record(*o.s, o.label() + ".center", value);
+          },
+          "A sphere's centre (x, y, z)")
+      .def_property(
+          "radius",
+          [](const ObjectView& o) -> py::object {
+            return o.get().shape == nx::ShapeType::Sphere ? py::object(py::float_(o.get().radius))
+                                                          : py::object(py::none());
+          },
+          [](const ObjectView& o, const py::object& value) {
+            if (o.get().shape != nx::ShapeType::Sphere)
+              throw py::value_error(o.label() + ".radius: only spheres have a radius");
+            o.get().radius = rangedArgument(value, o.label() + ".radius", nx::kRadiusRange);
+            record(*o.s, o.label() + ".radius", value);
+          },
+          "A sphere's radius")
+      .def_property_readonly(
+          "emission", [](const ObjectView& o) { return spectrumValue(o.get().emission); },
+          "Its emission spectrum (an area light), or None")
+      .def_property(
+          "emission_scale", [](const ObjectView& o) { return o.get().emissionScale; },
+          [](const ObjectView& o, const py::object& value) {
+            if (!o.get().emission)
+              throw py::value_error(o.label() + ".emission_scale: the object emits no light");
+            o.get().emissionScale =
+                numberArgument(value, (o.label() + ".emission_scale").c_str(), 1e-300, 1e300);
+            record(*o.s, o.label() + ".emission_scale", value);
+          },
+          "The factor on its emission (> 0)")
+      .def("__repr__", [](const ObjectView& o) {
+        return "<nxrender.Object " + o.label() + " " + shapeName(o.get().shape) + " (line " +
+               std::to_string(o.get().loc.line) + ")>";
+      });
+
+  py::class_<LightView>(m, "Light", "A point light")
+      .def_property(
+          "position", [](const LightView& l) { return tupleOf(l.get().position); },
+          [](const LightView& l, const py::object& value) {
+            l.get().position = pointArgument(value, l.label() + ".position");
+            record(*l.s, l.label() + ".position", value);
+          })
+      .def_property(
+          "emission_scale", [](const LightView& l) { return l.get().emissionScale; },
+          [](const LightView& l, const py::object& value) {
+            l.get().emissionScale =
+                numberArgument(value, (l.label() + ".emission_scale").c_str(), 1e-300, 1e300);
+            record(*l.s, l.label() + ".emission_scale", value);
+          },
+          "The factor on its emission (> 0)");
+
+  py::class_<CameraView>(m, "Camera", "The scene's camera")
+      .def_property(
+          "position", [](const CameraView& c) { return tupleOf(c.s->desc.camera.position); },
+          [](const CameraView& c, const py::object& value) {
+            if (c.s->desc.camera.extrinsics)
+              throw py::value_error("camera.position: the camera is placed by <extrinsics>");
+            c.s->desc.camera.position = pointArgument(value, "camera.position");
+            record(*c.s, "camera.position", value);
+          })
+      .def_property(
+          "look_at", [](const CameraView& c) { return tupleOf(c.s->desc.camera.lookAt); },
+          [](const CameraView& c, const py::object& value) {
+            if (c.s->desc.camera.extrinsics)
+              throw py::value_error("camera.look_at: the camera is placed by <extrinsics>");
+            c.s->desc.camera.lookAt = pointArgument(value, "camera.look_at");
+            record(*c.s, "camera.look_at", value);
+          })
+      .def_property(
+          "up", [](const CameraView& c) { return tupleOf(c.s->desc.camera.up); },
+          [](const CameraView& c, const py::object& value) {
+            c.s->desc.camera.up = pointArgument(value, "camera.up");
+            record(*c.s, "camera.up", value);
+          })
+      .def_property(
+          "fov",
+          [](const CameraView& c) -> py::object {
+            return c.s->desc.camera.intrinsics
+                       ? py::object(py::none())
+                       : py::object(py::float_(c.s->desc.camera.fovDegrees));
+          },
+          [](const CameraView& c, const py::object& value) {
+            c.s->desc.camera.fovDegrees = rangedArgument(value, "camera.fov", nx::kFovRange);
+            c.s->desc.camera.intrinsics.reset();
+            record(*c.s, "camera.fov", value);
+          },
+          "Horizontal field of view in degrees (None when intrinsics are given; setting it "
+          "removes them)")
+      .def_property(
+          "intrinsics",
+          [](const CameraView& c) -> py::object {
+            const auto& k = c.s->desc.camera.intrinsics;
+            return k ? py::object(py::make_tuple((*k)[0], (*k)[1], (*k)[2], (*k)[3]))
+                     : py::object(py::none());
+          },
+          [](const CameraView& c, const py::object& value) {
+            const std::vector<double> v = numbersArgument(value, "camera.intrinsics", 4);
+            if (!(v[0] > 0 && v[1] > 0))
+              throw py::value_error("camera.intrinsics: expected fx > 0 and fy > 0 (pixels)");
+            c.s->desc.camera.intrinsics = std::array<double, 4>{v[0], v[1], v[2], v[3]};
+            record(*c.s, "camera.intrinsics", value);
+          },
+          "OpenCV intrinsics (fx, fy, cx, cy) in pixels, or None");
+
+  py::class_<PyScene>(m, "Scene",
+                      "A scene file read once and edited from Python; render it with "
+                      "nxrender.render(scene). Edits are checked like the file's values and "
+                      "recorded in the image's nxrender.sceneEdits attribute.")
+      .def(py::init([](const py::object& path) {
+             const std::string p = pathArgument(path, "path");
+             PyScene s;
+             s.state = std::make_shared<SceneState>();
+             py::gil_scoped_release release;
+             s.state->desc = nx::loadScene(p);
+             return s;
+           }),
+           py::arg("path"), "Reads a scene file (errors: nxrender.Error with file:line)")
+      .def_static(
+          "from_text",
+          [](const std::string& text, const std::string& name) {
+            PyScene s;
+            s.state = std::make_shared<SceneState>(loadState(text, name));
+            return s;
+          },
+          py::arg("text"), py::arg("name") = "<string>",
+          "A scene from its XML text; `name` names it in errors and anchors relative paths "
+          "(its directory)")
+      .def_property_readonly("file", [](const PyScene& s) { return s.state->desc.file; })
+      .def_property_readonly("warnings", [](const PyScene& s) { return s.state->desc.warnings; })
+      .def_property_readonly(
+          "edits", [](const PyScene& s) { return s.state->edits; },
+          "The edits made so far, in order")
+      .def_property(
+          "resolution",
+          [](const PyScene& s) {
+            return py::make_tuple(s.state->desc.settings.width, s.state->desc.settings.height);
+          },
+          [](const PyScene& s, const py::object& value) {
+            const auto v = integersArgument(value, "resolution", 2);
+            for (long long x : v)
+              if (x < 1 || x > nx::kMaxResolution)
+                throw py::value_error("resolution: expected sizes in [1, 65536], found " +
+                                      std::to_string(x));
+            s.state->desc.settings.width = static_cast<int>(v[0]);
+            s.state->desc.settings.height = static_cast<int>(v[1]);
+            record(*s.state, "resolution", value);
+          },
+          "(width, height) in pixels")
+      .def_property(
+          "spp", [](const PyScene& s) { return s.state->desc.settings.samples; },
+          [](const PyScene& s, const py::object& value) {
+            s.state->desc.settings.samples =
+                static_cast<int>(integerArgument(value, "spp", 1, 1 << 30));
+            record(*s.state, "spp", value);
+          },
+          "Samples per pixel (<sampl>)")
+      .def_property(
+          "seed", [](const PyScene& s) { return s.state->desc.settings.seed; },
+          [](const PyScene& s, const py::object& value) {
+            s.state->desc.settings.seed =
+                static_cast<uint32_t>(integerArgument(value, "seed", 0, 2147483647));
+            record(*s.state, "seed", value);
+          })
+      .def_property(
+          "depth", [](const PyScene& s) { return s.state->desc.settings.depth; },
+          [](const PyScene& s, const py::object& value) {
+            s.state->desc.settings.depth =
+                static_cast<int>(integerArgument(value, "depth", 0, 100000));
+            record(*s.state, "depth", value);
+          },
+          "Bounce count")
+      .def_property(
+          "bands", [](const PyScene& s) { return s.state->desc.settings.bands.toString(); },
+          [](const PyScene& s, const py::object& value) {
+            s.state->desc.settings.bands =
+                nx::Sensor::parse(stringArgument(value, "bands"), "bands");
+            record(*s.state, "bands", value);
+          },
+          "The output bands ('400:700:10', 'gaussian:...', 'boxes:...')")
+      .def_property_readonly("camera", [](const PyScene& s) { return CameraView{s.state}; })
+      .def_property_readonly(
+          "objects",
+          [](const PyScene& s) {
+            std::vector<ObjectView> v;
+            for (size_t i = 0; i < s.state->desc.objects.size(); ++i) v.push_back({s.state, i});
+            return v;
+          },
+          "The objects in file order")
+      .def_property_readonly(
+          "lights",
+          [](const PyScene& s) {
+            std::vector<LightView> v;
+            for (size_t i = 0; i < s.state->desc.lights.size(); ++i) v.push_back({s.state, i});
+            return v;
+          },
+          "The point lights in file order")
+      .def_property_readonly(
+          "materials",
+          [](const PyScene& s) {
+            py::dict d;
+            for (size_t i = 0; i < s.state->desc.materials.size(); ++i)
+              d[py::str(s.state->desc.materials[i].id)] = MaterialView{s.state, true, i};
+            return d;
+          },
+          "The named materials (<material id=...>) by id")
+      .def(
+          "copy",
+          [](const PyScene& s) {
+            PyScene c;
+            c.state = std::make_shared<SceneState>(*s.state);
+            return c;
+          },
+          "An independent copy (edits to one do not change the other)")
+      .def("__repr__", [](const PyScene& s) {
+        return "<nxrender.Scene " + s.state->desc.file + ": " +
+               std::to_string(s.state->desc.objects.size()) + " objects, " +
+               std::to_string(s.state->edits.size()) + " edits>";
+      });
+}
+
+} // namespace nxpy

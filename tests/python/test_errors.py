@@ -1,0 +1,149 @@
+"""Bad input gives Python exceptions: the command line's file:line messages for scenes,
+TypeError / ValueError naming the parameter for wrong arguments; never a crash."""
+
+import re
+
+import numpy as np
+import pytest
+
+import nxrender
+
+BAD_SCENES = [
+    "<scene>\n  <settings>\n    <xres>abc</xres>\n  </settings>\n</scene>\n",
+    "<scene>\n<settings><xres>4</xres><yres>4</yres></settings>\n<camera><position>0,0,0</position>"
+    "<look_at>0,0,1</look_at></camera>\n<sphere><center>0,0,5</center><radius>-1</radius>"
+    "<material>matte</material></sphere>\n</scene>\n",
+    "<scene>\n<settings><xres>4</xres><yres>4</yres></settings>\n<unknown/>\n</scene>\n",
+    "<scene><settings>",
+]
+
+
+@pytest.mark.parametrize("text", BAD_SCENES)
+def test_bad_scene_same_message_as_command_line(run_cli, tmp_path, text):
+    path = tmp_path / "bad.scn"
+    path.write_text(text)
+    code, err = run_cli(path)
+    assert code == 1
+    cli_message = re.search(r"nxrender: error: (.*)", err).group(1)
+    with pytest.raises(nxrender.Error) as info:
+        nxrender.render(str(path))
+    assert str(info.value) == cli_message
+    assert re.match(r".*bad\.scn:\d+: ", str(info.value))
+    with pytest.raises(nxrender.Error) as info:
+        nxrender.Scene(path)
+    assert str(info.value) == cli_message
+
+
+def test_scene_text_errors_name_the_string():
+    with pytest.raises(nxrender.Error, match=r"^<string>:3: "):
+        nxrender.render(BAD_SCENES[0])
+    with pytest.raises(nxrender.Error, match=r"^lab\.scn:3: "):
+        nxrender.Scene.from_text(BAD_SCENES[0], "lab.scn")
+
+
+def test_error_is_a_value_error():
+    assert issubclass(nxrender.Error, ValueError)
+
+
+def test_missing_files(tmp_path):
+    with pytest.raises(FileNotFoundError, match="nope.scn"):
+        nxrender.render(str(tmp_path / "nope.scn"))
+    with pytest.raises(FileNotFoundError, match="nope.exr"):
+        nxrender.read_exr(tmp_path / "nope.exr")
+    (tmp_path / "junk.exr").write_bytes(b"not an exr at all")
+    with pytest.raises(nxrender.Error, match="junk.exr"):
+        nxrender.read_exr(tmp_path / "junk.exr")
+
+
+@pytest.mark.parametrize("kwargs, error, pattern", [
+    (dict(spp="8"), TypeError, "^spp: expected an int"),
+    (dict(spp=8.0), TypeError, "^spp: expected an int"),
+    (dict(spp=True), TypeError, "^spp: expected an int"),
+    (dict(spp=0), ValueError, r"^spp: expected an int in \[1, "),
+    (dict(seed=-1), ValueError, "^seed: "),
+    (dict(threads=0), ValueError, "^threads: "),
+    (dict(crop=(0, 0, 10)), ValueError, "^crop: expected 4 ints"),
+    (dict(crop="0,0,4,4"), TypeError, "^crop: "),
+    (dict(crop=(0, 0, 1000, 10)), ValueError, r"^crop: expected \(x0, y0, x1, y1\)"),
+    (dict(spp_range=(5, 5)), ValueError, "^spp_range: "),
+    (dict(spp=2, spp_range=(0, 2)), ValueError, "^spp, spp_range: "),
+    (dict(bands="400:300:10"), nxrender.Error, ""),
+    (dict(bands=(400, 700)), ValueError, "^bands: expected 3 numbers"),
+    (dict(bands="400:700:10", sensor="gaussian:500@10"), ValueError, "^bands, sensor"),
+    (dict(sampler="halton"), ValueError, "^sampler: expected one of 'sobol', 'independent'"),
+    (dict(light_sampling=3), TypeError, "^light_sampling: expected a str"),
+    (dict(aovs="ids"), TypeError, "^aovs: "),
+    (dict(aovs=["normals"]), ValueError, "^aovs: "),
+    (dict(progress=5), TypeError, "^progress: expected a callable"),
+    (dict(target_error=float("nan")), ValueError, "^target_error: "),
+    (dict(error_of="chroma"), ValueError, "^error_of: expected luminance, bands or bands:LO-HI"),
+    (dict(error_of="bands:700-400"), ValueError, "^error_of: expected LO <= HI"),
+])
+def test_bad_arguments(scenes, kwargs, error, pattern):
+    with pytest.raises(error, match=pattern):
+        nxrender.render(scenes / "white_floor.scn", **kwargs)
+
+
+def test_bad_scene_argument():
+    with pytest.raises(TypeError, match="^scene: expected"):
+        nxrender.render(42)
+
+
+def test_bad_edits(scenes):
+    scene = nxrender.Scene(scenes / "blacklight.scn")
+    f = scene.objects[1].material.fluorescence
+    with pytest.raises(ValueError, match=r"^objects\[1\]\.fluorescence\.stokes_nm: expected a "
+                                         r"Stokes shift in nm in \[0.0, 1000.0\], found -5.0"):
+        f.stokes_nm = -5
+    with pytest.raises(TypeError, match=r"^objects\[1\]\.fluorescence\.quantum_yield: expected a "
+                                        "number, found str"):
+        f.quantum_yield = "high"
+    with pytest.raises(ValueError, match=r"^objects\[0\]\.roughness: "):
+        scene.objects[0].material.roughness = 2
+    with pytest.raises(ValueError, match=r"^objects\[0\]\.radius: only spheres"):
+        scene.objects[0].radius = 1
+    with pytest.raises(ValueError, match=r"^objects\[2\]\.radius: expected a radius in \(0.0"):
+        scene.objects[2].radius = 0
+    with pytest.raises(ValueError, match=r"^objects\[2\]\.center: expected 3 numbers"):
+        scene.objects[2].center = (1, 2)
+    with pytest.raises(ValueError, match=r"^objects\[2\]\.reflectance: expected increasing"):
+        scene.objects[2].material.reflectance = ([500, 400], [0.1, 0.2])
+    with pytest.raises(ValueError, match=r"^objects\[2\]\.emission_scale: the object emits"):
+        scene.objects[2].emission_scale = 2
+    with pytest.raises(ValueError, match=r"^camera\.fov: "):
+        scene.camera.fov = 180
+    with pytest.raises(ValueError, match=r"^resolution: "):
+        scene.resolution = (0, 10)
+    with pytest.raises(nxrender.Error, match="^bands"):
+        scene.bands = "700:400:10"
+    with pytest.raises(TypeError, match=r"fluorescence: expected None"):
+        scene.objects[1].material.fluorescence = 3
+    assert scene.edits == []  # refused edits change nothing
+
+
+def test_unknown_spectrum_name_fails_at_render(scenes):
+    scene = nxrender.Scene(scenes / "blacklight.scn")
+    scene.objects[2].material.reflectance = "no_such_spectrum"
+    with pytest.raises(nxrender.Error, match=r"blacklight\.scn:\d+: .*no_such_spectrum"):
+        nxrender.render(scene, spp=1)
+
+
+def test_bad_image_arrays():
+    with pytest.raises(TypeError, match="^radiance: expected an array of numbers"):
+        nxrender.Image("pixels", wavelengths=[500])
+    with pytest.raises(ValueError, match=r"^radiance: expected a non-empty array of shape"):
+        nxrender.Image(np.zeros((4, 4)), wavelengths=[500])
+    with pytest.raises(ValueError, match="^radiance: expected 2 bands"):
+        nxrender.Image(np.zeros((2, 2, 3)), wavelengths=[500, 600])
+    with pytest.raises(ValueError, match=r"^variance: expected shape \(2, 2, 2\), found \(2, 2\)"):
+        nxrender.Image(np.zeros((2, 2, 2)), wavelengths=[500, 600], variance=np.zeros((2, 2)))
+    with pytest.raises(ValueError, match="^wavelengths, bands: expected one of them"):
+        nxrender.Image(np.zeros((2, 2, 2)))
+    with pytest.raises(nxrender.Error, match="increasing"):
+        nxrender.Image(np.zeros((2, 2, 2)), wavelengths=[600, 500])
+    with pytest.raises(TypeError, match="^attributes: "):
+        nxrender.Image(np.zeros((1, 1, 1)), wavelengths=[500], attributes=["a"])
+    with pytest.raises(TypeError, match="^path: expected a file name"):
+        nxrender.write_exr(3, nxrender.Image(np.zeros((1, 1, 1)), wavelengths=[500]))
+    with pytest.raises(TypeError):
+        nxrender.write_exr("x.exr", "not an image")

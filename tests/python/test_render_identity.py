@@ -1,0 +1,127 @@
+"""nxrender.render gives the command line's image bit for bit, for every option that changes
+which samples are taken or what is recorded."""
+
+import numpy as np
+import pytest
+
+import nxrender
+
+
+def assert_same_pixels(a, b):
+    """Every stored channel identical (not close: the same float bits)."""
+    assert a.radiance.shape == b.radiance.shape
+    np.testing.assert_array_equal(a.wavelengths, b.wavelengths)
+    for name in ("radiance", "variance", "y_variance", "xyz", "rgb", "sample_count", "white",
+                 "object_id", "material_id", "depth"):
+        x, y = getattr(a, name), getattr(b, name)
+        assert (x is None) == (y is None), name
+        if x is not None:
+            assert x.dtype == y.dtype, name
+            assert np.array_equal(x.view(np.uint8), y.view(np.uint8)), name
+    assert a.origin == b.origin and a.full_size == b.full_size
+
+
+@pytest.mark.parametrize("cli_args, py_args", [
+    (["--spp", "8", "--seed", "5"], dict(spp=8, seed=5)),
+    (["--spp-range", "3:9", "--crop", "40,10,130,70"], dict(spp_range=(3, 9), crop=(40, 10, 130, 70))),
+    (["--spp", "4", "--bands", "420:680:20", "--aov", "ids,depth,white"],
+     dict(spp=4, bands="420:680:20", aovs=["ids", "depth", "white"])),
+    (["--spp", "4", "--sensor", "gaussian:450,530,610@25", "--sampler", "independent",
+      "--light-sampling", "nee", "--light-selection", "power"],
+     dict(spp=4, sensor="gaussian:450,530,610@25", sampler="independent",
+          light_sampling="nee", light_selection="power")),
+    (["--spp", "4", "--no-fluorescence", "--wavelength-density", "visible"],
+     dict(spp=4, fluorescence=False, wavelength_density="visible")),
+])
+def test_render_matches_command_line(run_cli, scenes, tmp_path, cli_args, py_args):
+    scene = scenes / "blacklight.scn"
+    code, err = run_cli("--threads", "2", *cli_args, "-o", tmp_path / "cli.exr", scene)
+    assert code == 0, err
+    cli = nxrender.read_exr(tmp_path / "cli.exr")
+    # another thread count than the command line's: the image must not depend on it
+    image = nxrender.render(str(scene), threads=1, **py_args)
+    assert_same_pixels(image, cli)
+    for key in ("nxrender.renderKey", "nxrender.seed", "nxrender.bands", "nxrender.sampleRange",
+                "nxrender.sampler", "nxrender.lightSampling", "nxrender.fluorescence"):
+        assert image.attributes[key] == cli.attributes[key], key
+
+
+def test_written_file_matches_command_line_file(run_cli, scenes, tmp_path):
+    """write_exr of a render stores the same channels and values as the command line's EXR,
+    read by an independent reader (OpenImageIO)."""
+    import OpenImageIO as oiio
+    scene = scenes / "white_floor.scn"
+    assert run_cli("--spp", "4", "-o", tmp_path / "cli.exr", scene)[0] == 0
+    nxrender.write_exr(tmp_path / "py.exr", nxrender.render(scene, spp=4))
+    a, b = oiio.ImageBuf(str(tmp_path / "cli.exr")), oiio.ImageBuf(str(tmp_path / "py.exr"))
+    assert a.spec().channelnames == b.spec().channelnames
+    # (read once as floats: OpenImageIO 2.4 crashes reading mixed float/uint files in their
+    # native types; the counts are small integers, exact as floats)
+    pa, pb = a.get_pixels(oiio.FLOAT), b.get_pixels(oiio.FLOAT)
+    assert pa.shape == pb.shape
+    for i, name in enumerate(a.spec().channelnames):
+        assert np.array_equal(pa[..., i], pb[..., i]), name
+
+
+def test_scene_object_without_edits_matches_file(scenes):
+    path = scenes / "thesis.scn"
+    a = nxrender.render(nxrender.Scene(path), spp=2, seed=1)
+    b = nxrender.render(path, spp=2, seed=1)
+    assert_same_pixels(a, b)
+    assert a.attributes["nxrender.renderKey"] == b.attributes["nxrender.renderKey"]
+    assert "nxrender.sceneEdits" not in a.attributes
+
+
+def test_scene_text_matches_file(scenes):
+    path = scenes / "blacklight.scn"
+    a = nxrender.render(path.read_text(), spp=2)
+    b = nxrender.render(path, spp=2)
+    assert_same_pixels(a, b)
+
+
+def test_edits_equal_the_edited_file(scenes):
+    """Changing parameters from Python renders what the same change in the file renders."""
+    path = scenes / "blacklight.scn"
+    text = path.read_text()
+    edited = (text.replace("<stokes>150</stokes>", "<stokes>95.5</stokes>")
+                  .replace("<reflectance>0.9</reflectance>", "<reflectance>0.4</reflectance>")
+                  .replace("<position>0, 2, -7</position>", "<position>0.5, 2, -6</position>")
+                  .replace("<fov>55</fov>", "<fov>48</fov>")
+                  .replace('<emission scale="4">', '<emission scale="2.5">'))
+    assert edited.count("95.5") == 1
+    reference = nxrender.render(nxrender.Scene.from_text(edited, str(path)), spp=4)
+
+    scene = nxrender.Scene(path)
+    scene.objects[1].material.fluorescence.stokes_nm = 95.5
+    scene.objects[3].material.reflectance = 0.4
+    scene.camera.position = (0.5, 2, -6)
+    scene.camera.fov = 48
+    scene.objects[4].emission_scale = 2.5
+    image = nxrender.render(scene, spp=4)
+    assert_same_pixels(image, reference)
+    assert "stokes_nm = 95.5" in image.attributes["nxrender.sceneEdits"]
+    # the edits change the render key: a resume or a merge cannot mix the two scenes
+    plain = nxrender.render(path, spp=1)
+    assert image.attributes["nxrender.renderKey"] != plain.attributes["nxrender.renderKey"]
+
+
+def test_set_fluorescence_equals_file(scenes):
+    path = scenes / "blacklight.scn"
+    text = path.read_text().replace(
+        "<reflectance>0.9</reflectance>",
+        "<reflectance>0.9</reflectance><fluorescence><absorption>380</absorption>"
+        "<stokes>120</stokes><yield>0.5</yield></fluorescence>")
+    reference = nxrender.render(nxrender.Scene.from_text(text, str(path)), spp=4)
+    scene = nxrender.Scene(path)
+    scene.objects[3].material.set_fluorescence(absorption_nm=380, stokes_nm=120, quantum_yield=0.5)
+    assert_same_pixels(nxrender.render(scene, spp=4), reference)
+    scene.objects[3].material.fluorescence = None
+    assert scene.objects[3].material.fluorescence is None
+
+
+def test_copy_is_independent(scenes):
+    a = nxrender.Scene(scenes / "blacklight.scn")
+    b = a.copy()
+    b.objects[1].material.fluorescence.stokes_nm = 40
+    assert a.objects[1].material.fluorescence.stokes_nm == 150
+    assert a.edits == [] and len(b.edits) == 1
