@@ -5,10 +5,27 @@
 #include "integrators/integrator.h"
 #include "integrators/lights/direct_lighting.h"
 #include "integrators/materials/bsdf.h"
+#include "integrators/media/free_flight.h"
+#include "integrators/media/henyey_greenstein.h"
+#include "integrators/media/transmittance.h"
 #include "integrators/sampling.h"
 
 namespace nx {
 namespace {
+
+// A path at a sphere's surface, arriving from wo (pointing back along the path) and leaving
+// along wi: when it transmits (wo and wi on opposite sides), it enters or leaves the medium the
+// sphere holds.
+void crossSphere(const SurfaceHit& hit, const ShapeAppearance& app, const Vec3& wo, const Vec3& wi,
+                 MediumStack& media) {
+  if (hit.kind != ShapeKind::Sphere) return;
+  const float a = dot(wo, hit.ng), b = dot(wi, hit.ng);
+  if ((a < 0) == (b < 0)) return; // reflected: same side
+  if (b < 0)
+    media.enter(app.medium);
+  else
+    media.leave();
+}
 
 // The white reference's surface: a Lambertian reflector of reflectance 1.
 const Material& whiteLambertian() {
@@ -24,9 +41,11 @@ const Material& whiteLambertian() {
 
 // kFluorescence: compiled in only for scenes with fluorescent materials, so that other
 // scenes run exactly the code they would without the feature.
+// kMedia: likewise for scenes with media or interface surfaces: the path tracks the media it
+// is in, samples free flights through them and sees through interfaces in its shadow rays.
 // kWhite: the first surface hit is replaced by a white Lambertian reflector that does not emit
 // (the white-reference AOV); later bounces see the scene as it is.
-template <bool kFluorescence, bool kWhite>
+template <bool kFluorescence, bool kMedia, bool kWhite>
 SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
                               const SampledWavelengths& lambda, PixelSampleStream& rng,
                               TraceCounters& counters) {
@@ -44,6 +63,19 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
   bool specular = true;         // the previous bounce was specular (or the camera)
   float prevPdf = 0;
   Vec3 prevP = ray.o;
+  [[maybe_unused]] MediumStack media;
+  // Spectral MIS through media: p_lane / p_hero of the path so far (free_flight.h); every
+  // contribution is divided by their mean (1 while no medium event happened).
+  [[maybe_unused]] SampledSpectrum misRatios = SampledSpectrum::filled(1.0f);
+  if constexpr (kMedia) media = scene.cameraMedia;
+  // beta for contributions: with media, divided by the spectral MIS divisor
+  auto weighted = [&]() {
+    if constexpr (kMedia) return beta * (1.0f / spectralMisDivisor(misRatios, heroAlone));
+    else return beta;
+  };
+  // Scattering vertices so far (surfaces and media; interfaces do not count): Russian roulette
+  // starts after <depth> of them.
+  int scatterings = 0;
 
   for (int bounce = 0;; ++bounce) {
     SurfaceHit hit;
@@ -54,18 +86,74 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       if (specular || ctx.lightSampling == LightSampling::BsdfOnly || !(lightPdf > 0)) return 1.0f;
       return ctx.lightSampling == LightSampling::NeeOnly ? 0.0f : powerHeuristic(prevPdf, lightPdf);
     };
-    if (!scene.geometry->intersect(ray, hit)) {
+    const bool found = scene.geometry->intersect(ray, hit);
+    if constexpr (kMedia) {
+      if (const int m = media.current(); m >= 0) {
+        const HomogeneousMedium& medium = scene.media[static_cast<size_t>(m)];
+        const FreeFlight flight = sampleFreeFlight(medium, current, found ? hit.t : INFINITY,
+                                                   rng.next1D(), beta, misRatios);
+        if (flight.scattered) {
+          if (bounce >= kMaxPathBounces) break;
+          const Vec3 p = ray.at(flight.t);
+          if (ctx.lightSampling != LightSampling::BsdfOnly && ctx.lights->count() > 0) {
+            const float uChoice = rng.next1D();
+            const Sample2 uLight = rng.next2D();
+            LightSample ls;
+            if (ctx.lights->sample(p, uChoice, uLight, current, ls)) {
+              const float phase = henyeyGreenstein(dot(ray.d, ls.wi), medium.g);
+              const SampledSpectrum Tr = shadowTransmittance(
+                  scene, shadowRayTo(p, Vec3(), Vec3(), ls), media, current, counters);
+              const bool mis = ctx.lightSampling != LightSampling::NeeOnly && !ls.delta;
+              const float w = mis ? powerHeuristic(ls.pdf, phase) : 1.0f;
+              if (!Tr.isBlack()) L += weighted() * Tr * ls.radiance * (phase * w / ls.pdf);
+            }
+          }
+          const Vec3 wi = sampleHenyeyGreenstein(ray.d, medium.g, rng.next2D());
+          specular = false;
+          prevPdf = henyeyGreenstein(dot(ray.d, wi), medium.g);
+          prevP = p;
+          ++scatterings;
+          if (scatterings >= rouletteStart) {
+            const float q = std::min(1.0f, weighted().maxValue() * rrScale);
+            const float u = rng.next1D();
+            if (!(q > 0) || u >= q) break;
+            beta *= 1.0f / q;
+          }
+          if (beta.isBlack()) break;
+          ray.o = p;
+          ray.d = wi;
+          ray.tMin = 0;
+          ray.tMax = INFINITY;
+          continue;
+        }
+        if (beta.isBlack()) break;
+      }
+    }
+    if (!found) {
       if (scene.background)
-        L += beta * evaluate(*scene.background, current) *
+        L += weighted() * evaluate(*scene.background, current) *
              (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP)));
       break;
     }
     const ShapeAppearance& app = scene.appearance(hit);
-    const bool whiteHere = kWhite && bounce == 0;
+    if constexpr (kMedia) {
+      // An interface: the path goes straight on into (or out of) the medium it bounds; the
+      // previous vertex stays the one MIS weights refer to (next-event estimation sees
+      // through interfaces too).
+      if (scene.materials[app.material].kind == MaterialKind::Interface) {
+        if (bounce >= kMaxPathBounces) break;
+        crossSphere(hit, app, -ray.d, ray.d, media);
+        ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ray.d);
+        ray.tMin = 0;
+        ray.tMax = INFINITY;
+        continue;
+      }
+    }
+    const bool whiteHere = kWhite && scatterings == 0;
     if (app.emission >= 0 && !whiteHere) {
       const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d));
       if (w > 0)
-        L += beta * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) * w;
+        L += weighted() * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) * w;
     }
     if (bounce >= kMaxPathBounces) break;
 
@@ -96,8 +184,16 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
           return fluorescent ? shift.albedo * bsdf.diffuseFactor(wi) : bsdf.f(wi);
         };
         auto pdf = [&](const Vec3& wi) { return bsdf.pdf(wi); };
-        L += beta * directLight(scene, hit, ray.d, ls, f, pdf,
-                                ctx.lightSampling != LightSampling::NeeOnly, counters);
+        if constexpr (kMedia) {
+          const auto visible = [&](const Ray& r) {
+            return shadowTransmittance(scene, r, media, lit, counters);
+          };
+          L += weighted() * directLightThrough(hit, ray.d, ls, f, pdf,
+                                         ctx.lightSampling != LightSampling::NeeOnly, visible);
+        } else {
+          L += beta * directLight(scene, hit, ray.d, ls, f, pdf,
+                                  ctx.lightSampling != LightSampling::NeeOnly, counters);
+        }
       }
     }
 
@@ -111,6 +207,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
         current = shift.excited;
       }
     }
+    if constexpr (kMedia) crossSphere(hit, app, wo, bs.wi, media);
     beta *= bs.weight;
     rrScale *= bs.eta * bs.eta;
     if (bs.terminateSecondary && !heroAlone) {
@@ -124,8 +221,8 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     prevP = hit.p;
 
     // Russian roulette after <depth> bounces, re-weighted by 1/q: unbiased.
-    if (bounce + 1 >= rouletteStart) {
-      const float q = std::min(1.0f, beta.maxValue() * rrScale);
+    if (++scatterings >= rouletteStart) {
+      const float q = std::min(1.0f, weighted().maxValue() * rrScale);
       const float u = rng.next1D();
       if (!(q > 0) || u >= q) break;
       beta *= 1.0f / q;
@@ -141,17 +238,29 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
 
 } // namespace
 
+namespace {
+template <bool kWhite>
+SampledSpectrum traceVariant(const IntegratorContext& ctx, const Ray& ray,
+                             const SampledWavelengths& lambda, PixelSampleStream& rng,
+                             TraceCounters& counters) {
+  const bool media = ctx.scene->hasMedia;
+  if (ctx.fluorescence)
+    return media ? tracePathImpl<true, true, kWhite>(ctx, ray, lambda, rng, counters)
+                 : tracePathImpl<true, false, kWhite>(ctx, ray, lambda, rng, counters);
+  return media ? tracePathImpl<false, true, kWhite>(ctx, ray, lambda, rng, counters)
+               : tracePathImpl<false, false, kWhite>(ctx, ray, lambda, rng, counters);
+}
+} // namespace
+
 SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
                           PixelSampleStream& rng, TraceCounters& counters) {
-  return ctx.fluorescence ? tracePathImpl<true, false>(ctx, ray, lambda, rng, counters)
-                          : tracePathImpl<false, false>(ctx, ray, lambda, rng, counters);
+  return traceVariant<false>(ctx, ray, lambda, rng, counters);
 }
 
 SampledSpectrum traceWhiteReference(const IntegratorContext& ctx, Ray ray,
                                     const SampledWavelengths& lambda, PixelSampleStream& rng,
                                     TraceCounters& counters) {
-  return ctx.fluorescence ? tracePathImpl<true, true>(ctx, ray, lambda, rng, counters)
-                          : tracePathImpl<false, true>(ctx, ray, lambda, rng, counters);
+  return traceVariant<true>(ctx, ray, lambda, rng, counters);
 }
 
 } // namespace nx

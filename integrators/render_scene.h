@@ -10,6 +10,8 @@
 #include "core/camera.h"
 #include "integrators/ior_model.h"
 #include "integrators/materials/reflectance_texture.h"
+#include "integrators/media/homogeneous_medium.h"
+#include "integrators/media/medium_stack.h"
 #include "io/scene_desc.h"
 #include "spectra/reradiation_matrix.h"
 #include "spectra/sensor.h"
@@ -21,6 +23,8 @@ namespace nx {
 enum class MaterialKind : uint8_t {
   Mixture,    ///< (1 - r) rho * ideal mirror + r rho / pi (matte r = 1, mirror r = 0)
   Dielectric, ///< smooth dielectric: exact Fresnel, refraction, total internal reflection
+  Interface,  ///< the boundary of a medium with the same index on both sides: light passes
+              ///< unchanged (no reflection, no refraction)
 };
 
 /// A material: a kind with its parameters and spectra.
@@ -42,6 +46,10 @@ struct Material {
 /// single precision (an emission of 1e21 made every Variance channel infinite; 1e39 every sample).
 inline constexpr double kMaxEmission = 1e12;
 
+/// Largest absorption or scattering coefficient of a medium (per scene unit of length): a
+/// mean free path of 1e-9 units, far below any scene's scale.
+inline constexpr double kMaxMediumCoefficient = 1e9;
+
 /// Largest spectral EXR a reflectance texture may be read from (bytes).
 inline constexpr std::uintmax_t kMaxTextureFileBytes = 4ull << 30;
 
@@ -57,6 +65,7 @@ struct ShapeAppearance {
   int32_t emission = -1;   ///< index into RenderScene::emission, or -1
   uint32_t objectId = 0;   ///< 1 + the object's position among the scene file's objects
   uint32_t materialId = 0; ///< 1 + the index of the first object with the same material
+  int32_t medium = -1;     ///< index into RenderScene::media of what fills the shape, or -1
 };
 
 /// The appearance of a mesh: one for the whole mesh (a mesh file), or one per triangle (the
@@ -103,6 +112,10 @@ struct RenderScene {
   Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
   size_t meshBytes = 0;               ///< bytes the meshes' buffers take
   bool hasFluorescence = false; ///< some material re-radiates (the fluorescent path tracer runs)
+  std::vector<HomogeneousMedium> media; ///< the media filling spheres
+  /// The path tracer with media runs: some shape holds a medium or is an interface.
+  bool hasMedia = false;
+  MediumStack cameraMedia; ///< the media the camera is inside (its spheres, outermost first)
   /// Digest of everything the scene was resolved from: its text and the bytes of every file
   /// it refers to (CSV spectra, matrices). Part of the render key of resume and merge.
   uint64_t contentDigest = 0;

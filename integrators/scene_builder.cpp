@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "core/error.h"
 #include "core/file_text.h"
@@ -94,6 +95,12 @@ public:
         materialByText.emplace(text, app.material);
       }
       app.materialId = materialIdOf[app.material];
+      if (scene.materials[app.material].kind == MaterialKind::Interface) scene.hasMedia = true;
+      if (o.medium) {
+        app.medium = static_cast<int32_t>(scene.media.size());
+        scene.media.push_back(medium(*o.medium));
+        scene.hasMedia = true;
+      }
       if (auto e = emission(o, spectral)) {
         app.emission = static_cast<int32_t>(scene.emission.size());
         scene.emission.push_back(forRendering(*e));
@@ -141,6 +148,11 @@ public:
       meshes.push_back(TriangleMesh::fromTriangles(triangles));
       scene.meshes.push_back(std::move(inlineTriangles));
     }
+    if (scene.hasMedia && s.mode == RenderMode::Rt)
+      throw Error(s.modeLoc.str() +
+                  ": expected <mode> spectral_mcpt or mcpt for a scene with media or interface "
+                  "surfaces (rt traces surfaces only), found rt");
+    scene.cameraMedia = cameraMedia(scene.camera.position(), spheres, scene.spheres);
     scene.meshBytes = 0;
     for (const TriangleMesh& m : meshes) scene.meshBytes += m.bytes();
     scene.contentDigest = digest_;
@@ -420,10 +432,55 @@ private:
     }
   }
 
+  // A <medium>: its coefficients resolved and checked over the traced range.
+  HomogeneousMedium medium(const MediumDesc& d) const {
+    HomogeneousMedium m;
+    m.sigmaA = forRendering(resolve(d.sigmaA, SpectrumRole::Reflectance));
+    m.sigmaS = forRendering(resolve(d.sigmaS, SpectrumRole::Reflectance));
+    for (const auto& [sp, desc, what] : {std::tuple{&m.sigmaA, &d.sigmaA, "sigma_a"},
+                                         std::tuple{&m.sigmaS, &d.sigmaS, "sigma_s"}}) {
+      const SpectrumExtremes e = spectrumExtremes(*sp, kTraceMinNm, kTraceMaxNm);
+      if (!(e.min >= 0 && e.max <= kMaxMediumCoefficient))
+        throw Error(desc->loc.str() + ": expected " + what + " within [0, " +
+                    numberText(kMaxMediumCoefficient) +
+                    "] per unit length at every wavelength of " + tracedRange() + ", found " +
+                    (std::isnan(e.min) ? std::string("a non-finite value")
+                                       : numberText(e.min < 0 ? e.min : e.max) + " at " +
+                                             numberText(e.min < 0 ? e.minNm : e.maxNm) + " nm"));
+    }
+    m.g = static_cast<float>(d.g);
+    return m;
+  }
+
+  // The media of the spheres containing the camera, outermost (largest) first.
+  static MediumStack cameraMedia(const Vec3d& eye, const std::vector<SphereShape>& spheres,
+                                 const std::vector<ShapeAppearance>& apps) {
+    std::vector<size_t> inside;
+    for (size_t i = 0; i < spheres.size(); ++i) {
+      const Vec3d d = eye - spheres[i].center;
+      if (std::sqrt(dot(d, d)) < spheres[i].radius) inside.push_back(i);
+    }
+    std::sort(inside.begin(), inside.end(),
+              [&](size_t a, size_t b) { return spheres[a].radius > spheres[b].radius; });
+    MediumStack stack;
+    for (size_t i : inside) stack.enter(apps[i].medium);
+    return stack;
+  }
+
   Material material(const MaterialDesc& o, const SourceLocation& objectLoc, bool emitter,
                     bool spectral) const {
     Material m;
     const std::string& name = o.material;
+    if (name == "interface") {
+      // Only bounds a medium: nothing of its own to scatter with.
+      if (o.color || o.reflectance || o.roughness || o.ior || o.fluorescence || emitter)
+        throw Error(objectLoc.str() +
+                    ": expected no <color>, <reflectance>, <roughness>, <ior>, <fluorescence> "
+                    "or <emission> on an interface (it only bounds a medium), found some");
+      m.kind = MaterialKind::Interface;
+      m.reflectance = Spectrum(ConstantSpectrum{1.0});
+      return m;
+    }
     const bool dielectric =
         name == "glass" || name == "diamond" || name == "translucent" || name == "transparent";
     if (dielectric) {

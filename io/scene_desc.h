@@ -70,6 +70,14 @@ struct FluorescenceDesc {
   SourceLocation loc;
 };
 
+/// <medium> inside a closed object: a homogeneous participating medium filling it.
+struct MediumDesc {
+  SpectrumDesc sigmaA; ///< absorption coefficient per scene unit of length
+  SpectrumDesc sigmaS; ///< scattering coefficient per scene unit of length
+  double g = 0;        ///< Henyey-Greenstein mean cosine, in (-1, 1)
+  SourceLocation loc;
+};
+
 /// The shapes a scene can hold.
 enum class ShapeType { Sphere, Plane, Triangle, Quad, Mesh };
 
@@ -114,6 +122,7 @@ struct ObjectDesc : MaterialDesc {
   std::string materialRef;              ///< the id of a <material id> (then no inline material)
   std::optional<SpectrumDesc> emission; ///< absent, 0 or empty: not a light
   double emissionScale = 1;             ///< <emission scale="...">
+  std::optional<MediumDesc> medium;     ///< the medium filling a sphere, if any
 };
 
 /// A point light.

@@ -26,5 +26,8 @@ inline constexpr ParameterRange kWidthRange{0, 500, true, "a width in nm"};
 inline constexpr ParameterRange kSkewRange{0, 1000, false, "a skew magnitude"};
 inline constexpr ParameterRange kYieldRange{0, 1, false, "a quantum yield"};
 inline constexpr ParameterRange kPeakRange{0, 1, false, "a peak absorptance"};
+/// Henyey-Greenstein g: |g| = 1 would be a delta lobe (excluded by a margin).
+inline constexpr ParameterRange kPhaseGRange{-0.999, 0.999, false,
+                                             "a Henyey-Greenstein g (mean cosine)"};
 
 } // namespace nx

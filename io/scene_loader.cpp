@@ -661,13 +661,14 @@ private:
 
   // The built-in material kinds.
   static const std::set<std::string>& materialKinds() {
-    static const std::set<std::string> kinds{"matte",   "metal",  "plastic",     "mirror",
-                                             "diamond", "glass",  "translucent", "transparent",
-                                             "default", "diffuse"};
+    static const std::set<std::string> kinds{"matte",   "metal",   "plastic",     "mirror",
+                                             "diamond", "glass",   "translucent", "transparent",
+                                             "default", "diffuse", "interface"};
     return kinds;
   }
   static constexpr const char* kMaterialKindList =
-      "matte, metal, plastic, mirror, glass, diamond, translucent, transparent, default or diffuse";
+      "matte, metal, plastic, mirror, glass, diamond, translucent, transparent, default, "
+      "diffuse or interface";
 
   // The parameters of a material from an element's children (an object's, or a <material id>'s).
   void parseMaterialParameters(const std::map<std::string, pugi::xml_node>& c,
@@ -795,7 +796,7 @@ private:
                     tag == "mesh" ? std::vector<std::string>{"file"} : std::vector<std::string>{});
     std::vector<std::string> allowed{"material",     "color",     "reflectance", "emission",
                                      "fluorescence", "roughness", "ior"};
-    if (tag == "sphere") allowed.insert(allowed.end(), {"center", "radius"});
+    if (tag == "sphere") allowed.insert(allowed.end(), {"center", "radius", "medium"});
     if (tag == "plane") allowed.insert(allowed.end(), {"normal", "distance"});
     if (tag == "triangle") allowed.insert(allowed.end(), {"vA", "vB", "vC"});
     if (tag == "quad") allowed.insert(allowed.end(), {"origin", "edge_u", "edge_v"});
@@ -853,7 +854,20 @@ private:
       o.emission = spectrum(e, true, {"scale"});
       o.emissionScale = emissionScale(e);
     }
+    if (c.count("medium")) o.medium = medium(c.at("medium"));
     return o;
+  }
+
+  // <medium> with <sigma_a>, <sigma_s> (spectra per unit length) and an optional <g>.
+  MediumDesc medium(const pugi::xml_node& n) const {
+    checkAttributes(n, {});
+    const auto c = uniqueChildren(n, {"sigma_a", "sigma_s", "g"});
+    MediumDesc m;
+    m.loc = loc(n);
+    m.sigmaA = *spectrum(required(c, n, "sigma_a"), false);
+    m.sigmaS = *spectrum(required(c, n, "sigma_s"), false);
+    if (c.count("g")) m.g = number(c.at("g"), kPhaseGRange);
+    return m;
   }
 
   IorDesc ior(const pugi::xml_node& n) const {

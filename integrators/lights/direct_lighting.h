@@ -26,4 +26,18 @@ SampledSpectrum directLight(const RenderScene& scene, const SurfaceHit& hit, con
   return fv * ls.radiance * (w / ls.pdf);
 }
 
+/// The same through media: `visible(shadowRay)` gives the transmittance per lane (0 where
+/// blocked), e.g. shadowTransmittance with the path's media (which counts its rays).
+template <class Eval, class BsdfPdf, class Visible>
+SampledSpectrum directLightThrough(const SurfaceHit& hit, const Vec3& rayDir, const LightSample& ls,
+                                   Eval&& f, BsdfPdf&& bsdfPdf, bool mis, Visible&& visible) {
+  if (lightsItsOwnSurface(hit, ls, rayDir)) return {};
+  const SampledSpectrum fv = f(ls.wi);
+  if (fv.isBlack()) return {};
+  const SampledSpectrum T = visible(shadowRayTo(hit.p, hit.pError, hit.ng, ls));
+  if (T.isBlack()) return {};
+  const float w = (ls.delta || !mis) ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf(ls.wi));
+  return fv * T * ls.radiance * (w / ls.pdf);
+}
+
 } // namespace nx

@@ -19,6 +19,7 @@ SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
 }
 
 uint8_t SurfaceBsdf::lobes() const {
+  if (material_->kind == MaterialKind::Interface) return kSpecularTransmission;
   if (material_->kind == MaterialKind::Dielectric)
     return kSpecularReflection | kSpecularTransmission;
   const float r = material_->roughness;
@@ -39,8 +40,22 @@ float SurfaceBsdf::pdf(const Vec3& wi) const {
 }
 
 bool SurfaceBsdf::sample(float uLobe, Sample2 u, BsdfSample& out) const {
-  return material_->kind == MaterialKind::Mixture ? sampleMixture(uLobe, u, out)
-                                                  : sampleDielectric(uLobe, out);
+  switch (material_->kind) {
+  case MaterialKind::Mixture:
+    return sampleMixture(uLobe, u, out);
+  case MaterialKind::Dielectric:
+    return sampleDielectric(uLobe, out);
+  case MaterialKind::Interface:
+    // Index-matched: the path continues straight on, every lane unchanged.
+    out.wi = -wo_;
+    out.weight = SampledSpectrum::filled(1.0f);
+    out.pdf = 0;
+    out.specular = true;
+    out.terminateSecondary = false;
+    out.eta = 1;
+    return true;
+  }
+  return false;
 }
 
 // (1 - r) rho * mirror + r rho / pi, lobe chosen with probabilities 1 - r and r: either way

@@ -132,7 +132,7 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
       {"unknown child", scene("<sphere><centre>0,0,0</centre></sphere>\n"),
        "t.scn:4: expected one of <material>, <color>, <reflectance>, <emission>, <fluorescence>, "
        "<roughness>, <ior>, "
-       "<center>, <radius> inside <sphere>, found <centre>"},
+       "<center>, <radius>, <medium> inside <sphere>, found <centre>"},
       {"repeated tag", scene("<sphere><radius>1</radius><radius>2</radius></sphere>\n"),
        "t.scn:4: expected one <radius>, found a second <radius>"},
       {"unknown attribute", scene("<sphere colour=\"red\"></sphere>\n"),
@@ -188,7 +188,8 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
        scene("<sphere><center>0,0,0</center><radius>1</radius><material>velvet</material></"
              "sphere>\n"),
        "t.scn:4: expected a material matte, metal, plastic, mirror, glass, diamond, translucent, "
-       "transparent, default or diffuse or the id of a <material id=\"...\"> of the scene, found "
+       "transparent, default, diffuse or interface or the id of a <material id=\"...\"> of the "
+       "scene, found "
        "'velvet'"},
       {"colour count",
        scene("<sphere><center>0,0,0</center><radius>1</radius><material>matte</material><color>1, "

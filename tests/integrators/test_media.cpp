@@ -1,0 +1,169 @@
+// Participating media against closed forms: Beer-Lambert through index-matched and glass
+// spheres (camera outside and inside), a scattering furnace, nesting, and scene errors.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrators/renderer.h"
+#include "spectra/bands.h"
+#include "support/errors.h"
+#include "support/render_checks.h"
+
+namespace nx {
+namespace {
+
+const std::string kBackground =
+    "<xres>8</xres><yres>8</yres><mode>spectral_mcpt</mode><depth>3</depth><sampl>1024</sampl>"
+    "<background>1</background>";
+// Far away with a tiny field of view: every pixel looks along a diameter (to 4e-8 in length).
+const std::string kFarCamera = "<position>0,0,-100</position><look_at>0,0,0</look_at>"
+                               "<fov>0.02</fov>";
+const std::string kCentreCamera = "<position>0,0,0</position><look_at>0,0,1</look_at><fov>60</fov>";
+const std::string kSigmaA = "400:0.2, 700:1.5"; // per unit length, linear in between
+
+// (held constant beyond 400-700 nm: extrapolate="hold")
+double sigmaA(double nm) {
+  return 0.2 + 1.3 * (std::clamp(nm, 400.0, 700.0) - 400) / 300;
+}
+
+// The band averages of f(sigma_a(nm)) over the bands of a film.
+std::function<double(int)> bandsOf(const Film& film, const std::function<double(double)>& f) {
+  std::vector<double> nm, v;
+  for (double l = 380; l <= 720; l += 0.05) nm.push_back(l), v.push_back(f(sigmaA(l)));
+  const Spectrum s(TabulatedSpectrum{nm, v});
+  return [s, &film](int b) { return bandAverage(s, film.bands(), b); };
+}
+
+std::string absorbingSphere(const std::string& material, double radius) {
+  return "<sphere><center>0,0,0</center><radius>" + std::to_string(radius) + "</radius><material>" +
+         material + "</material><medium><sigma_a extrapolate=\"hold\">" + kSigmaA +
+         "</sigma_a><sigma_s>0</sigma_s></medium></sphere>";
+}
+
+// Beer-Lambert: through the diameter of an index-matched absorbing sphere of radius R the
+// background of 1 arrives as exp(-2 R sigma_a); from its centre, exp(-R sigma_a).
+TEST(Media, BeerLambertThroughIndexMatchedSphere) {
+  const RenderOutput through =
+      renderText(sceneText(kBackground, kFarCamera, absorbingSphere("interface", 1.0)));
+  expectBands(through.film, bandsOf(through.film, [](double s) { return std::exp(-2 * s); }), 0.01,
+              {}, "through");
+  const RenderOutput inside =
+      renderText(sceneText(kBackground, kCentreCamera, absorbingSphere("interface", 1.0)));
+  expectBands(inside.film, bandsOf(inside.film, [](double s) { return std::exp(-s); }), 0.01, {},
+              "inside");
+}
+
+// A glass sphere filled with the absorber, at normal incidence: reflected F, or entered
+// (1 - F), attenuated T = exp(-2 R sigma_a) per crossing and reflected F inside at each wall:
+// L = F + (1 - F)^2 T / (1 - F T) with F = ((n - 1) / (n + 1))^2. The same with the liquid
+// in an index-matched sphere of radius 0.9 nested in a clear glass sphere (T over 1.8).
+TEST(Media, AbsorberInsideGlassAtNormalIncidence) {
+  const double F = 0.04; // n = 1.5
+  auto expected = [F](double length) {
+    return [F, length](double s) {
+      const double T = std::exp(-length * s);
+      return F + (1 - F) * (1 - F) * T / (1 - F * T);
+    };
+  };
+  std::string settings = kBackground;
+  settings.replace(settings.find("<sampl>1024"), 11, "<sampl>2048");
+  const RenderOutput filled =
+      renderText(sceneText(settings, kFarCamera, absorbingSphere("glass", 1.0)));
+  expectBands(filled.film, bandsOf(filled.film, expected(2.0)), 0.01, {}, "filled glass");
+  const RenderOutput nested = renderText(sceneText(
+      settings, kFarCamera,
+      "<sphere><center>0,0,0</center><radius>1</radius><material>glass</material></sphere>" +
+          absorbingSphere("interface", 0.9)));
+  expectBands(nested.film, bandsOf(nested.film, expected(1.8)), 0.01, {}, "nested");
+}
+
+// A scattering furnace: a non-absorbing medium (albedo 1) under a uniform background of 1
+// keeps the radiance 1 everywhere, for the camera outside (pixels through and beside the
+// sphere) and inside, isotropic and forward scattering, next-event estimation through the
+// interface and phase sampling combined by MIS.
+TEST(Media, ScatteringFurnaceReadsTheBackground) {
+  const std::string settings =
+      "<xres>16</xres><yres>16</yres><mode>spectral_mcpt</mode><depth>2</depth><sampl>256</sampl>"
+      "<background>1</background>";
+  for (const char* g : {"0", "0.7", "-0.4"})
+    for (const std::string& camera :
+         {std::string("<position>0,0,-4</position><look_at>0,0,0</look_at><fov>40</fov>"),
+          kCentreCamera}) {
+      const RenderOutput out = renderText(sceneText(
+          settings, camera,
+          std::string("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
+                      "</material><medium><sigma_a>0</sigma_a><sigma_s>400:1, 700:4</sigma_s><g>") +
+              g + "</g></medium></sphere>"));
+      expectBands(
+          out.film, [](int) { return 1.0; }, 0.015, {}, std::string("g ") + g);
+      EXPECT_EQ(out.stats.nonFinite, 0u);
+    }
+}
+
+// Scenes without media run the path tracer without the media code.
+TEST(Media, OnlyScenesWithMediaOrInterfacesHaveThem) {
+  auto build = [](const std::string& body) {
+    return resolveRenderScene(parseScene(sceneText(kBackground, kFarCamera, body), "t.scn"));
+  };
+  EXPECT_FALSE(build("<sphere><center>0,0,0</center><radius>1</radius><material>glass"
+                     "</material></sphere>")
+                   .hasMedia);
+  EXPECT_TRUE(build(absorbingSphere("glass", 1)).hasMedia);
+  EXPECT_TRUE(build("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
+                    "</material></sphere>")
+                  .hasMedia);
+}
+
+TEST(Media, CameraMediaAreTheSpheresAroundIt) {
+  const RenderScene scene = resolveRenderScene(parseScene(
+      sceneText(kBackground, kCentreCamera,
+                "<sphere><center>0,0,0</center><radius>3</radius><material>glass</material>"
+                "</sphere>" +
+                    absorbingSphere("interface", 2.0) +
+                    "<sphere><center>5,0,0</center><radius>1</radius><material>interface"
+                    "</material></sphere>"),
+      "t.scn"));
+  EXPECT_EQ(scene.cameraMedia.depth(), 2);
+  EXPECT_EQ(scene.cameraMedia.current(), 0);
+}
+
+TEST(Media, SceneErrors) {
+  auto error = [](const std::string& body, const std::string& settings = kBackground) {
+    return test::errorMessage([&] {
+      (void)resolveRenderScene(parseScene(sceneText(settings, kFarCamera, body), "t.scn"));
+    });
+  };
+  EXPECT_EQ(error("<plane><normal>0,1,0</normal><distance>0</distance><material>interface"
+                  "</material><medium><sigma_a>1</sigma_a><sigma_s>0</sigma_s></medium></plane>"),
+            "t.scn:1: expected one of <material>, <color>, <reflectance>, <emission>, "
+            "<fluorescence>, <roughness>, <ior>, <normal>, <distance> inside <plane>, found "
+            "<medium>");
+  EXPECT_EQ(error("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
+                  "</material><reflectance>0.5</reflectance></sphere>"),
+            "t.scn:1: expected no <color>, <reflectance>, <roughness>, <ior>, <fluorescence> or "
+            "<emission> on an interface (it only bounds a medium), found some");
+  EXPECT_EQ(error("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
+                  "</material><medium><sigma_a>400:1, 700:-1</sigma_a><sigma_s>0</sigma_s>"
+                  "</medium></sphere>")
+                .substr(0, 40),
+            "t.scn:1: expected sigma_a within [0, 1e+");
+  EXPECT_NE(error("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
+                  "</material><medium><sigma_a>0</sigma_a><sigma_s>0</sigma_s><g>1</g></medium>"
+                  "</sphere>")
+                .find("expected a Henyey-Greenstein g (mean cosine) in [-0.999, 0.999]"),
+            std::string::npos);
+  EXPECT_NE(error("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
+                  "</material><medium><sigma_s>0</sigma_s></medium></sphere>")
+                .find("expected <sigma_a> inside <medium>"),
+            std::string::npos);
+  std::string rt = kBackground;
+  rt.replace(rt.find("spectral_mcpt"), 13, "rt");
+  EXPECT_NE(error(absorbingSphere("interface", 1), rt)
+                .find("expected <mode> spectral_mcpt or mcpt for a scene with media"),
+            std::string::npos);
+}
+
+} // namespace
+} // namespace nx

@@ -1,0 +1,53 @@
+#pragma once
+// Rendering scene text in tests and comparing band means with expected values statistically.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "integrators/renderer.h"
+#include "support/statistics.h"
+
+namespace nx {
+
+/// A scene file's text from its settings, camera and objects.
+inline std::string sceneText(const std::string& settings, const std::string& camera,
+                             const std::string& body) {
+  return "<scene><settings>" + settings + "</settings><camera>" + camera + "</camera>" + body +
+         "</scene>";
+}
+
+/// Renders scene text (named t.scn in errors).
+inline RenderOutput renderText(const std::string& text, const RenderOptions& options = {}) {
+  const RenderScene scene = buildRenderScene(parseScene(text, "t.scn"));
+  return render(scene, options);
+}
+
+/// Mean and standard error over pixels of band b (pixels are independent estimates).
+inline test::RunningStats bandStats(const Film& film, int b,
+                                    const std::function<bool(int, int)>& use = {}) {
+  test::RunningStats s;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x)
+      if (!use || use(x, y)) s.add(film.bandMean(x, y, b));
+  return s;
+}
+
+/// Every band's pixel mean equals expected(band) within 5 standard errors, and the test has
+/// power: the standard error is below `precision` of the expected value.
+inline void expectBands(const Film& film, const std::function<double(int)>& expected,
+                        double precision, const std::function<bool(int, int)>& use = {},
+                        const std::string& what = "") {
+  for (int b = 0; b < film.bands().count(); ++b) {
+    const test::RunningStats s = bandStats(film, b, use);
+    const double e = expected(b);
+    EXPECT_LT(std::abs(s.mean - e), 5 * s.standardError() + 1e-6 * e)
+        << what << " band " << film.bands().centroid(b) << ": mean " << s.mean << " expected " << e
+        << " se " << s.standardError();
+    EXPECT_LT(s.standardError(), precision * e) << what << " band " << film.bands().centroid(b);
+  }
+}
+
+} // namespace nx
