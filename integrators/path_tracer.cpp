@@ -70,8 +70,10 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
   if constexpr (kMedia) media = scene.cameraMedia;
   // beta for contributions: with media, divided by the spectral MIS divisor
   auto weighted = [&]() {
-    if constexpr (kMedia) return beta * (1.0f / spectralMisDivisor(misRatios, heroAlone));
-    else return beta;
+    if constexpr (kMedia)
+      return beta * (1.0f / spectralMisDivisor(misRatios, heroAlone));
+    else
+      return beta;
   };
   // Scattering vertices so far (surfaces and media; interfaces do not count): Russian roulette
   // starts after <depth> of them.
@@ -90,27 +92,43 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     if constexpr (kMedia) {
       if (const int m = media.current(); m >= 0) {
         const HomogeneousMedium& medium = scene.media[static_cast<size_t>(m)];
+        const float uDistance = rng.next1D(), uEvent = rng.next1D();
         const FreeFlight flight = sampleFreeFlight(medium, current, found ? hit.t : INFINITY,
-                                                   rng.next1D(), beta, misRatios);
-        if (flight.scattered) {
+                                                   uDistance, uEvent, beta, misRatios);
+        if (flight.event != MediumEvent::None) {
           if (bounce >= kMaxPathBounces) break;
           const Vec3 p = ray.at(flight.t);
+          // A re-emission: every lane's excitation wavelength is chosen once (as at a
+          // fluorescent surface), for next-event estimation and the continuation; the light
+          // leaves isotropically. Its strength per lane is already in beta (sigma_fl).
+          const bool reemitted = flight.event == MediumEvent::Fluoresce;
+          const SampledWavelengths lit =
+              reemitted
+                  ? sampleFluorescentShift(*medium.dye, current, SampledSpectrum(), rng).excited
+                  : current;
+          auto phaseTo = [&](const Vec3& wi) {
+            return reemitted ? static_cast<float>(1 / (4 * kPi))
+                             : henyeyGreenstein(dot(ray.d, wi), medium.g);
+          };
           if (ctx.lightSampling != LightSampling::BsdfOnly && ctx.lights->count() > 0) {
             const float uChoice = rng.next1D();
             const Sample2 uLight = rng.next2D();
             LightSample ls;
-            if (ctx.lights->sample(p, uChoice, uLight, current, ls)) {
-              const float phase = henyeyGreenstein(dot(ray.d, ls.wi), medium.g);
+            if (ctx.lights->sample(p, uChoice, uLight, lit, ls)) {
+              const float phase = phaseTo(ls.wi);
               const SampledSpectrum Tr = shadowTransmittance(
-                  scene, shadowRayTo(p, Vec3(), Vec3(), ls), media, current, counters);
+                  scene, shadowRayTo(p, Vec3(), Vec3(), ls), media, lit, counters);
               const bool mis = ctx.lightSampling != LightSampling::NeeOnly && !ls.delta;
               const float w = mis ? powerHeuristic(ls.pdf, phase) : 1.0f;
               if (!Tr.isBlack()) L += weighted() * Tr * ls.radiance * (phase * w / ls.pdf);
             }
           }
-          const Vec3 wi = sampleHenyeyGreenstein(ray.d, medium.g, rng.next2D());
+          const Sample2 uDir = rng.next2D();
+          const Vec3 wi =
+              reemitted ? sampleUniformSphere(uDir) : sampleHenyeyGreenstein(ray.d, medium.g, uDir);
+          current = lit;
           specular = false;
-          prevPdf = henyeyGreenstein(dot(ray.d, wi), medium.g);
+          prevPdf = phaseTo(wi);
           prevP = p;
           ++scatterings;
           if (scatterings >= rouletteStart) {
@@ -188,8 +206,9 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
           const auto visible = [&](const Ray& r) {
             return shadowTransmittance(scene, r, media, lit, counters);
           };
-          L += weighted() * directLightThrough(hit, ray.d, ls, f, pdf,
-                                         ctx.lightSampling != LightSampling::NeeOnly, visible);
+          L +=
+              weighted() * directLightThrough(hit, ray.d, ls, f, pdf,
+                                              ctx.lightSampling != LightSampling::NeeOnly, visible);
         } else {
           L += beta * directLight(scene, hit, ray.d, ls, f, pdf,
                                   ctx.lightSampling != LightSampling::NeeOnly, counters);

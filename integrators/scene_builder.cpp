@@ -100,6 +100,7 @@ public:
         app.medium = static_cast<int32_t>(scene.media.size());
         scene.media.push_back(medium(*o.medium));
         scene.hasMedia = true;
+        if (scene.media.back().dye) scene.hasFluorescence = true;
       }
       if (auto e = emission(o, spectral)) {
         app.emission = static_cast<int32_t>(scene.emission.size());
@@ -449,6 +450,12 @@ private:
                                              numberText(e.min < 0 ? e.minNm : e.maxNm) + " nm"));
     }
     m.g = static_cast<float>(d.g);
+    if (d.fluorescence) {
+      FluorescenceModel model = fluorescence(*d.fluorescence);
+      m.dyePeak = static_cast<float>(model.peakAbsorptance); // the coefficient, per unit length
+      model.peakAbsorptance = 1;
+      m.dye = std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromModel(model));
+    }
     return m;
   }
 

@@ -75,6 +75,9 @@ struct MediumDesc {
   SpectrumDesc sigmaA; ///< absorption coefficient per scene unit of length
   SpectrumDesc sigmaS; ///< scattering coefficient per scene unit of length
   double g = 0;        ///< Henyey-Greenstein mean cosine, in (-1, 1)
+  /// A fluorescent dye dissolved in it: the parametric model, its <peak> being the dye's peak
+  /// absorption coefficient per unit length (added to sigma_a's absorption)
+  std::optional<FluorescenceDesc> fluorescence;
   SourceLocation loc;
 };
 

@@ -26,6 +26,9 @@ inline constexpr ParameterRange kWidthRange{0, 500, true, "a width in nm"};
 inline constexpr ParameterRange kSkewRange{0, 1000, false, "a skew magnitude"};
 inline constexpr ParameterRange kYieldRange{0, 1, false, "a quantum yield"};
 inline constexpr ParameterRange kPeakRange{0, 1, false, "a peak absorptance"};
+/// A dye's peak absorption coefficient in a medium (per scene unit of length).
+inline constexpr ParameterRange kPeakCoefficientRange{
+    0, 1e9, true, "a peak absorption coefficient per unit length"};
 /// Henyey-Greenstein g: |g| = 1 would be a delta lobe (excluded by a margin).
 inline constexpr ParameterRange kPhaseGRange{-0.999, 0.999, false,
                                              "a Henyey-Greenstein g (mean cosine)"};

@@ -861,12 +861,13 @@ private:
   // <medium> with <sigma_a>, <sigma_s> (spectra per unit length) and an optional <g>.
   MediumDesc medium(const pugi::xml_node& n) const {
     checkAttributes(n, {});
-    const auto c = uniqueChildren(n, {"sigma_a", "sigma_s", "g"});
+    const auto c = uniqueChildren(n, {"sigma_a", "sigma_s", "g", "fluorescence"});
     MediumDesc m;
     m.loc = loc(n);
     m.sigmaA = *spectrum(required(c, n, "sigma_a"), false);
     m.sigmaS = *spectrum(required(c, n, "sigma_s"), false);
     if (c.count("g")) m.g = number(c.at("g"), kPhaseGRange);
+    if (c.count("fluorescence")) m.fluorescence = fluorescence(c.at("fluorescence"), true);
     return m;
   }
 
@@ -912,12 +913,24 @@ private:
     return d;
   }
 
-  FluorescenceDesc fluorescence(const pugi::xml_node& n) const {
+  // <fluorescence> of a surface, or of a medium (inMedium: no measured matrix, and <peak> is
+  // the dye's peak absorption coefficient per unit length, required).
+  FluorescenceDesc fluorescence(const pugi::xml_node& n, bool inMedium = false) const {
     checkAttributes(n, {});
     const auto c =
         uniqueChildren(n, {"absorption", "stokes", "width", "skew", "yield", "peak", "matrix"});
     FluorescenceDesc f;
     f.loc = loc(n);
+    if (inMedium && c.count("matrix"))
+      fail(c.at("matrix"),
+           "the parametric model in a medium's <fluorescence> (<absorption>, <stokes>, <peak>, "
+           "...; measured matrices describe surfaces)",
+           "<matrix>");
+    if (inMedium && !c.count("peak"))
+      fail(n,
+           "a <peak> (the dye's peak absorption coefficient per unit length) in a medium's "
+           "<fluorescence>",
+           "none");
     if (c.count("matrix")) {
       for (const char* tag : {"absorption", "stokes", "width", "skew", "yield", "peak"})
         if (c.count(tag))
@@ -941,7 +954,8 @@ private:
     if (c.count("width")) f.widthNm = number(c.at("width"), kWidthRange);
     if (c.count("skew")) f.skew = number(c.at("skew"), kSkewRange);
     if (c.count("yield")) f.quantumYield = number(c.at("yield"), kYieldRange);
-    if (c.count("peak")) f.peakAbsorptance = number(c.at("peak"), kPeakRange);
+    if (c.count("peak"))
+      f.peakAbsorptance = number(c.at("peak"), inMedium ? kPeakCoefficientRange : kPeakRange);
     return f;
   }
 

@@ -1,12 +1,14 @@
 #pragma once
 // Free-flight sampling in a homogeneous medium for all lanes of a hero-wavelength path.
 //
-// The distance is drawn from the hero lane's scattering coefficient, sigma_s(hero)
-// exp(-sigma_s(hero) t), and absorption is a weight: the radiance along a segment towards a
-// surface at tSurface is T(tSurface) L_surface + integral_0^tSurface T(t) sigma_s L_s(t) dt
-// with T(t) = exp(-sigma_t t), so drawing t with the scattering rate alone leaves bounded
-// weights exp(-sigma_a t) (a pure absorber attenuates exactly; no path is lost to a sampled
-// absorption).
+// The distance is drawn from the hero lane's in-scattering coefficient sigma_in = sigma_s +
+// sigma_fl (elastic scattering and a dye's re-emission), sigma_in exp(-sigma_in t), and
+// absorption is a weight: the radiance along a segment towards a surface at tSurface is
+// T(tSurface) L_surface + integral_0^tSurface T(t) (sigma_s L_s + sigma_fl L_fl)(t) dt with
+// T(t) = exp(-sigma_t t), so drawing t with the in-scattering rate alone leaves bounded
+// weights exp(-(sigma_t - sigma_in) t) (a pure absorber attenuates exactly; no path is lost
+// to a sampled absorption). The event is then elastic with the hero's probability
+// sigma_s / sigma_in, else a re-emission.
 //
 // Chromatic media make the lanes' densities differ, so the lanes are combined by spectral MIS
 // over whole paths (Wilkie et al. 2014, "Hero Wavelength Spectral Sampling"; Miller, Georgiev
@@ -18,35 +20,48 @@
 // secondary lanes are terminated (dispersion), the hero's own density alone counts.
 
 #include <cmath>
+#include <cstdint>
 
 #include "integrators/media/homogeneous_medium.h"
 
 namespace nx {
 
+/// What ends a flight through a medium.
+enum class MediumEvent : uint8_t {
+  None,      ///< nothing before the surface
+  Scatter,   ///< elastic scattering (Henyey-Greenstein)
+  Fluoresce, ///< absorption by the dye and isotropic re-emission at a longer wavelength
+};
+
 /// Where a path's flight through a medium ends.
 struct FreeFlight {
-  bool scattered = false; ///< a scattering event before the surface
-  float t = 0;            ///< its distance along the (unit) direction
+  MediumEvent event = MediumEvent::None;
+  float t = 0; ///< the event's distance along the (unit) direction
 };
 
 /// Draws the flight from a point towards a surface at distance tSurface (infinity: none) with
-/// the 1D sample u; multiplies `beta` by f_i / p_hero and `ratios` by p_j / p_hero (see above).
+/// 1D samples u (distance) and uEvent (kind); multiplies `beta` by f_i / p_hero and `ratios` by
+/// p_j / p_hero (see above).
 inline FreeFlight sampleFreeFlight(const HomogeneousMedium& medium,
                                    const SampledWavelengths& lambda, float tSurface, float u,
-                                   SampledSpectrum& beta, SampledSpectrum& ratios) {
-  SampledSpectrum sa, ss;
-  medium.coefficients(lambda, sa, ss);
-  const float hero = ss[0];
+                                   float uEvent, SampledSpectrum& beta, SampledSpectrum& ratios) {
+  SampledSpectrum sa, ss, sfl;
+  medium.coefficients(lambda, sa, ss, sfl);
+  const SampledSpectrum sin = ss + sfl;
   FreeFlight f;
-  f.t = hero > 0 ? -std::log1p(-u) / hero : INFINITY;
-  f.scattered = f.t < tSurface;
-  const float t = f.scattered ? f.t : tSurface;
+  f.t = sin[0] > 0 ? -std::log1p(-u) / sin[0] : INFINITY;
+  if (f.t < tSurface)
+    f.event = uEvent * sin[0] < ss[0] ? MediumEvent::Scatter : MediumEvent::Fluoresce;
+  const float t = f.event == MediumEvent::None ? tSurface : f.t;
   // exp(-c t) for a coefficient c, with exp(-0 * inf) = 1
   auto decay = [t](float c) { return c > 0 ? (std::isinf(t) ? 0.0f : std::exp(-c * t)) : 1.0f; };
   SampledSpectrum p, fv;
   for (int i = 0; i < kLanes; ++i) {
-    p[i] = (f.scattered ? ss[i] : 1.0f) * decay(ss[i]);
-    fv[i] = (f.scattered ? ss[i] : 1.0f) * decay(sa[i] + ss[i]);
+    const float rate = f.event == MediumEvent::None      ? 1.0f
+                       : f.event == MediumEvent::Scatter ? ss[i]
+                                                         : sfl[i];
+    p[i] = rate * decay(sin[i]);
+    fv[i] = rate * decay(sa[i] + ss[i]);
   }
   if (!(p[0] > 0)) { // underflow far along a path: nothing left to estimate
     beta = SampledSpectrum();

@@ -13,8 +13,8 @@ SampledSpectrum mediumTransmittance(const RenderScene& scene, int medium,
                                     const SampledWavelengths& lambda, float length) {
   SampledSpectrum T = SampledSpectrum::filled(1.0f);
   if (medium < 0) return T;
-  SampledSpectrum a, s;
-  scene.media[static_cast<size_t>(medium)].coefficients(lambda, a, s);
+  SampledSpectrum a, s, fl;
+  scene.media[static_cast<size_t>(medium)].coefficients(lambda, a, s, fl);
   for (int i = 0; i < kLanes; ++i) {
     const float st = a[i] + s[i];
     T[i] = st > 0 ? (std::isinf(length) ? 0.0f : std::exp(-st * length)) : 1.0f;
