@@ -226,7 +226,19 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
         current = shift.excited;
       }
     }
-    if constexpr (kMedia) crossSphere(hit, app, wo, bs.wi, media);
+    if constexpr (kMedia) {
+      crossSphere(hit, app, wo, bs.wi, media);
+      if (bs.straight) {
+        // Straight through a thin wall: like an interface, the MIS state stays the previous
+        // vertex's (next-event estimation sees through the wall).
+        beta *= bs.weight;
+        if (beta.isBlack()) break;
+        ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, bs.wi);
+        ray.tMin = 0;
+        ray.tMax = INFINITY;
+        continue;
+      }
+    }
     beta *= bs.weight;
     rrScale *= bs.eta * bs.eta;
     if (bs.terminateSecondary && !heroAlone) {

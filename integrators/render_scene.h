@@ -25,6 +25,8 @@ enum class MaterialKind : uint8_t {
   Dielectric, ///< smooth dielectric: exact Fresnel, refraction, total internal reflection
   Interface,  ///< the boundary of a medium with the same index on both sides: light passes
               ///< unchanged (no reflection, no refraction)
+  ThinDielectric, ///< a thin glass wall (parallel faces): Fresnel reflection with the
+                  ///< internal reflections summed, and straight transmission
 };
 
 /// A material: a kind with its parameters and spectra.

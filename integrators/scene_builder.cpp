@@ -95,7 +95,10 @@ public:
         materialByText.emplace(text, app.material);
       }
       app.materialId = materialIdOf[app.material];
-      if (scene.materials[app.material].kind == MaterialKind::Interface) scene.hasMedia = true;
+      // Surfaces light passes straight through need the path tracer that sees through them.
+      if (scene.materials[app.material].kind == MaterialKind::Interface ||
+          scene.materials[app.material].kind == MaterialKind::ThinDielectric)
+        scene.hasMedia = true;
       if (o.medium) {
         app.medium = static_cast<int32_t>(scene.media.size());
         scene.media.push_back(medium(*o.medium));
@@ -151,8 +154,8 @@ public:
     }
     if (scene.hasMedia && s.mode == RenderMode::Rt)
       throw Error(s.modeLoc.str() +
-                  ": expected <mode> spectral_mcpt or mcpt for a scene with media or interface "
-                  "surfaces (rt traces surfaces only), found rt");
+                  ": expected <mode> spectral_mcpt or mcpt for a scene with media, interface or "
+                  "thin_glass surfaces (rt traces neither), found rt");
     scene.cameraMedia = cameraMedia(scene.camera.position(), spheres, scene.spheres);
     scene.meshBytes = 0;
     for (const TriangleMesh& m : meshes) scene.meshBytes += m.bytes();
@@ -488,11 +491,12 @@ private:
       m.reflectance = Spectrum(ConstantSpectrum{1.0});
       return m;
     }
-    const bool dielectric =
-        name == "glass" || name == "diamond" || name == "translucent" || name == "transparent";
+    const bool thin = name == "thin_glass";
+    const bool dielectric = name == "glass" || name == "diamond" || name == "translucent" ||
+                            name == "transparent" || thin;
     if (dielectric) {
-      m.kind = MaterialKind::Dielectric;
-      m.ior = IorModel::constant(name == "glass" ? 1.5 : name == "diamond" ? 2.418 : 1.02);
+      m.kind = thin ? MaterialKind::ThinDielectric : MaterialKind::Dielectric;
+      m.ior = IorModel::constant(name == "glass" || thin ? 1.5 : name == "diamond" ? 2.418 : 1.02);
       if (o.roughness)
         throw Error(o.roughnessLoc.str() + ": expected no <roughness> on a smooth dielectric (" +
                     name + "), found one");

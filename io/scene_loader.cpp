@@ -663,12 +663,12 @@ private:
   static const std::set<std::string>& materialKinds() {
     static const std::set<std::string> kinds{"matte",   "metal",   "plastic",     "mirror",
                                              "diamond", "glass",   "translucent", "transparent",
-                                             "default", "diffuse", "interface"};
+                                             "default", "diffuse", "interface",   "thin_glass"};
     return kinds;
   }
   static constexpr const char* kMaterialKindList =
       "matte, metal, plastic, mirror, glass, diamond, translucent, transparent, default, "
-      "diffuse or interface";
+      "diffuse, interface or thin_glass";
 
   // The parameters of a material from an element's children (an object's, or a <material id>'s).
   void parseMaterialParameters(const std::map<std::string, pugi::xml_node>& c,

@@ -20,6 +20,8 @@ SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
 
 uint8_t SurfaceBsdf::lobes() const {
   if (material_->kind == MaterialKind::Interface) return kSpecularTransmission;
+  if (material_->kind == MaterialKind::ThinDielectric)
+    return kSpecularReflection | kSpecularTransmission;
   if (material_->kind == MaterialKind::Dielectric)
     return kSpecularReflection | kSpecularTransmission;
   const float r = material_->roughness;
@@ -53,9 +55,34 @@ bool SurfaceBsdf::sample(float uLobe, Sample2 u, BsdfSample& out) const {
     out.specular = true;
     out.terminateSecondary = false;
     out.eta = 1;
+    out.straight = true;
     return true;
+  case MaterialKind::ThinDielectric:
+    return sampleThinDielectric(uLobe, out);
   }
   return false;
+}
+
+// A thin glass wall: reflect with probability R(hero) (thinSlabReflectance), else pass straight
+// through; lane i's weight is rho_i R_i / R_hero or rho_i (1 - R_i) / (1 - R_hero). The
+// direction never depends on the wavelength, so dispersion needs no lane termination.
+bool SurfaceBsdf::sampleThinDielectric(float uLobe, BsdfSample& out) const {
+  const float c = std::abs(dot(wo_, n_));
+  SampledSpectrum r;
+  for (int i = 0; i < kLanes; ++i)
+    r[i] = thinSlabReflectance(c, static_cast<float>(material_->ior.at((*lambda_).lambda[i])));
+  out.pdf = 0;
+  out.specular = true;
+  out.terminateSecondary = false;
+  out.eta = 1;
+  const float rHero = r[0];
+  const bool reflected = uLobe < rHero;
+  out.straight = !reflected;
+  out.wi = reflected ? reflect(wo_, dot(wo_, n_) > 0 ? n_ : -n_) : -wo_;
+  const float p = reflected ? rHero : 1 - rHero;
+  if (!(p > 0)) return false;
+  for (int i = 0; i < kLanes; ++i) out.weight[i] = rho_[i] * (reflected ? r[i] : 1 - r[i]) / p;
+  return true;
 }
 
 // (1 - r) rho * mirror + r rho / pi, lobe chosen with probabilities 1 - r and r: either way

@@ -19,6 +19,9 @@ struct BsdfSample {
   /// Relative index n_transmitted / n_incident of the hero lane for a refraction, else 1: the
   /// radiance scaling 1 / eta^2 inside `weight` that Russian roulette must not see.
   float eta = 1;
+  /// The direction continues straight on (an interface, a thin wall's transmission): the path
+  /// keeps its previous vertex for MIS, since next-event estimation sees through such surfaces.
+  bool straight = false;
 };
 
 /// The kinds of scattering a BSDF has (bit flags): integrators ask for what they need (can a
@@ -77,6 +80,7 @@ public:
 private:
   bool sampleMixture(float uLobe, Sample2 u, BsdfSample& out) const;
   bool sampleDielectric(float uLobe, BsdfSample& out) const;
+  bool sampleThinDielectric(float uLobe, BsdfSample& out) const;
 
   const Material* material_;
   const SampledWavelengths* lambda_;

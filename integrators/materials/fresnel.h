@@ -21,6 +21,14 @@ inline float fresnelDielectric(float cosI, float eta) {
   return 0.5f * (rs * rs + rp * rp);
 }
 
+/// Reflectance of a thin slab with parallel faces (a glass wall) for light arriving with
+/// cosine cosI, its internal reflections summed: R = F + (1 - F)^2 F / (1 - F^2) = 2F / (1 + F)
+/// with F the single-interface reflectance (absorption in the wall neglected).
+inline float thinSlabReflectance(float cosI, float eta) {
+  const float f = fresnelDielectric(cosI, eta);
+  return f < 1 ? 2 * f / (1 + f) : 1.0f;
+}
+
 /// Refracts wi (pointing away from the surface, on the side of n, dot(wi, n) > 0) through an
 /// interface with relative index eta = n_transmitted / n_incident. Returns false under total
 /// internal reflection. Snell: sin(theta_t) = sin(theta_i) / eta.

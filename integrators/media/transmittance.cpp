@@ -6,6 +6,7 @@
 
 #include "core/ray_offset.h"
 #include "integrators/lights/light_sample.h"
+#include "integrators/materials/fresnel.h"
 
 namespace nx {
 
@@ -35,7 +36,19 @@ SampledSpectrum shadowTransmittance(const RenderScene& scene, const Ray& ray, Me
     const float t = found ? hit.t : r.tMax;
     T *= mediumTransmittance(scene, media.current(), lambda, std::isinf(t) ? t : t * length(r.d));
     if (!found || T.isBlack()) return T;
-    if (scene.materials[scene.appearance(hit).material].kind != MaterialKind::Interface) return {};
+    const Material& material = scene.materials[scene.appearance(hit).material];
+    if (material.kind == MaterialKind::ThinDielectric) {
+      // A thin wall lets 1 - R through, tinted by its transmission colour.
+      SampledSpectrum tint;
+      material.reflectance.evaluate(lambda, tint);
+      const float c = std::abs(dot(r.d, hit.ng)) / length(r.d);
+      for (int i = 0; i < kLanes; ++i)
+        T[i] *= tint[i] *
+                (1 - thinSlabReflectance(c, static_cast<float>(material.ior.at(lambda.lambda[i]))));
+      if (T.isBlack()) return T;
+    } else if (material.kind != MaterialKind::Interface) {
+      return {};
+    }
     if (hit.kind == ShapeKind::Sphere) {
       if (dot(r.d, hit.ng) < 0)
         media.enter(scene.appearance(hit).medium);

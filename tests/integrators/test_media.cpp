@@ -79,6 +79,29 @@ TEST(Media, AbsorberInsideGlassAtNormalIncidence) {
   expectBands(nested.film, bandsOf(nested.film, expected(1.8)), 0.01, {}, "nested");
 }
 
+// A thin glass wall (thin_glass: reflectance R = 2F / (1 + F) with its internal reflections,
+// straight transmission) holding the absorber: at normal incidence the same series as above
+// with R for F, L = R + (1 - R)^2 T / (1 - R T); next-event estimation sees through the wall.
+// A clear, empty thin_glass sphere in the same background reads 1 everywhere.
+TEST(Media, AbsorberInsideThinGlass) {
+  const double F = 0.04, R = 2 * F / (1 + F);
+  const RenderOutput out =
+      renderText(sceneText(kBackground, kFarCamera, absorbingSphere("thin_glass", 1.0)));
+  expectBands(out.film,
+              bandsOf(out.film,
+                      [R](double s) {
+                        const double T = std::exp(-2 * s);
+                        return R + (1 - R) * (1 - R) * T / (1 - R * T);
+                      }),
+              0.015, {}, "thin glass");
+  const RenderOutput clear = renderText(
+      sceneText(kBackground, "<position>0,0,-4</position><look_at>0,0,0</look_at><fov>40</fov>",
+                "<sphere><center>0,0,0</center><radius>1</radius><material>thin_glass"
+                "</material></sphere>"));
+  expectBands(
+      clear.film, [](int) { return 1.0; }, 0.01, {}, "clear thin glass");
+}
+
 // A scattering furnace: a non-absorbing medium (albedo 1) under a uniform background of 1
 // keeps the radiance 1 everywhere, for the camera outside (pixels through and beside the
 // sphere) and inside, isotropic and forward scattering, next-event estimation through the

@@ -188,7 +188,8 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
        scene("<sphere><center>0,0,0</center><radius>1</radius><material>velvet</material></"
              "sphere>\n"),
        "t.scn:4: expected a material matte, metal, plastic, mirror, glass, diamond, translucent, "
-       "transparent, default, diffuse or interface or the id of a <material id=\"...\"> of the "
+       "transparent, default, diffuse, interface or thin_glass or the id of a <material "
+       "id=\"...\"> of the "
        "scene, found "
        "'velvet'"},
       {"colour count",
