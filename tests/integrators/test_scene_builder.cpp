@@ -28,9 +28,9 @@ std::string errorOf(const std::string& text) {
 }
 
 TEST(SceneBuilder, EveryExampleSceneBuilds) {
-  for (const char* name :
-       {"thesis", "materials", "dispersion", "rgb_mcpt", "rt_whitted", "extensions", "blacklight",
-        "measured", "glass", "white_floor", "snapshot16", "linescan204"}) {
+  for (const char* name : {"thesis", "materials", "dispersion", "rgb_mcpt", "rt_whitted",
+                           "extensions", "blacklight", "measured", "glass", "white_floor",
+                           "snapshot16", "linescan204", "lab_bench", "tonic_water"}) {
     const std::string path = std::string(NX_SOURCE_DIR "/scenes/") + name + ".scn";
     EXPECT_NO_THROW(buildRenderScene(loadScene(path))) << path;
   }
