@@ -13,13 +13,14 @@
 namespace nx {
 namespace {
 
-// A path at a sphere's surface, arriving from wo (pointing back along the path) and leaving
-// along wi: when it transmits (wo and wi on opposite sides), it enters or leaves the medium the
-// sphere holds.
-void crossSphere(const SurfaceHit& hit, const ShapeAppearance& app, const Vec3& wo, const Vec3& wi,
-                 MediumStack& media) {
-  if (hit.kind != ShapeKind::Sphere) return;
-  const float a = dot(wo, hit.ng), b = dot(wi, hit.ng);
+// A path at the surface of a closed shape (a sphere, a closed mesh in a media scene),
+// arriving from wo (pointing back along the path) and leaving along wi: when it transmits
+// (wo and wi on opposite sides), it enters or leaves the medium the shape holds.
+void crossBoundary(const SurfaceHit& hit, const ShapeAppearance& app, const Vec3& wo,
+                   const Vec3& wi, MediumStack& media) {
+  if (app.boundary == 0) return;
+  const Vec3 outward = app.boundary > 0 ? hit.ng : -hit.ng;
+  const float a = dot(wo, outward), b = dot(wi, outward);
   if ((a < 0) == (b < 0)) return; // reflected: same side
   if (b < 0)
     media.enter(app.medium);
@@ -160,7 +161,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       // through interfaces too).
       if (scene.materials[app.material].kind == MaterialKind::Interface) {
         if (bounce >= kMaxPathBounces) break;
-        crossSphere(hit, app, -ray.d, ray.d, media);
+        crossBoundary(hit, app, -ray.d, ray.d, media);
         ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ray.d);
         ray.tMin = 0;
         ray.tMax = INFINITY;
@@ -227,7 +228,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       }
     }
     if constexpr (kMedia) {
-      crossSphere(hit, app, wo, bs.wi, media);
+      crossBoundary(hit, app, wo, bs.wi, media);
       if (bs.straight) {
         // Straight through a thin wall: like an interface, the MIS state stays the previous
         // vertex's (next-event estimation sees through the wall).

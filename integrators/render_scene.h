@@ -68,6 +68,9 @@ struct ShapeAppearance {
   uint32_t objectId = 0;   ///< 1 + the object's position among the scene file's objects
   uint32_t materialId = 0; ///< 1 + the index of the first object with the same material
   int32_t medium = -1;     ///< index into RenderScene::media of what fills the shape, or -1
+  /// The shape bounds a volume (media scenes): +1 with its geometric normal pointing out (every
+  /// sphere, closed meshes wound that way), -1 pointing in, 0 not closed.
+  int8_t boundary = 0;
 };
 
 /// The appearance of a mesh: one for the whole mesh (a mesh file), or one per triangle (the

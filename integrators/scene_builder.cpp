@@ -10,6 +10,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "accel/closed_mesh.h"
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/hash.h"
@@ -68,7 +69,8 @@ public:
     // MaterialId: materials with the same content (compared every 5 nm) share the id of the
     // first object that uses one of them.
     std::vector<std::pair<std::vector<double>, uint32_t>> idByContent;
-    std::vector<uint32_t> materialIdOf; // per material index
+    std::vector<uint32_t> materialIdOf;                 // per material index
+    std::vector<std::pair<size_t, size_t>> meshObjects; // (mesh, object) of mesh files
     for (size_t objectIndex = 0; objectIndex < desc_.objects.size(); ++objectIndex) {
       const ObjectDesc& o = desc_.objects[objectIndex];
       ShapeAppearance app;
@@ -112,6 +114,7 @@ public:
       switch (o.shape) {
       case ShapeType::Sphere:
         spheres.push_back({o.center, o.radius});
+        app.boundary = 1;
         scene.spheres.push_back(app);
         break;
       case ShapeType::Plane:
@@ -129,6 +132,7 @@ public:
       case ShapeType::Mesh:
         meshes.push_back(meshFromFile(o));
         scene.meshes.push_back({app, {}});
+        meshObjects.emplace_back(meshes.size() - 1, objectIndex);
         break;
       }
     }
@@ -152,11 +156,27 @@ public:
       meshes.push_back(TriangleMesh::fromTriangles(triangles));
       scene.meshes.push_back(std::move(inlineTriangles));
     }
+    // In scenes with media, closed meshes are boundaries the paths' medium stacks follow.
+    std::vector<std::pair<double, size_t>> closedMeshes; // (volume, mesh)
+    for (const auto& [meshIndex, objectIndex] : meshObjects) {
+      const ObjectDesc& o = desc_.objects[objectIndex];
+      if (!scene.hasMedia) break;
+      const MeshClosure c = meshClosure(meshes[meshIndex]);
+      if (!c.closed && o.medium)
+        throw Error(o.medium->loc.str() +
+                    ": expected a closed mesh around a <medium> (every "
+                    "edge shared by two triangles wound alike), found " +
+                    c.problem + " in " + o.meshPath);
+      if (!c.closed) continue;
+      scene.meshes[meshIndex].whole.boundary = c.volume > 0 ? 1 : -1;
+      closedMeshes.emplace_back(std::abs(c.volume), meshIndex);
+    }
     if (scene.hasMedia && s.mode == RenderMode::Rt)
       throw Error(s.modeLoc.str() +
                   ": expected <mode> spectral_mcpt or mcpt for a scene with media, interface or "
                   "thin_glass surfaces (rt traces neither), found rt");
-    scene.cameraMedia = cameraMedia(scene.camera.position(), spheres, scene.spheres);
+    scene.cameraMedia = cameraMedia(scene.camera.position(), spheres, scene.spheres, closedMeshes,
+                                    meshes, scene.meshes);
     scene.meshBytes = 0;
     for (const TriangleMesh& m : meshes) scene.meshBytes += m.bytes();
     scene.contentDigest = digest_;
@@ -462,18 +482,27 @@ private:
     return m;
   }
 
-  // The media of the spheres containing the camera, outermost (largest) first.
+  // The media of the spheres and closed meshes containing the camera, outermost (largest)
+  // first.
   static MediumStack cameraMedia(const Vec3d& eye, const std::vector<SphereShape>& spheres,
-                                 const std::vector<ShapeAppearance>& apps) {
-    std::vector<size_t> inside;
+                                 const std::vector<ShapeAppearance>& sphereApps,
+                                 const std::vector<std::pair<double, size_t>>& closedMeshes,
+                                 const std::vector<TriangleMesh>& meshes,
+                                 const std::vector<MeshAppearance>& meshApps) {
+    std::vector<std::pair<double, int32_t>> around; // (volume, medium)
     for (size_t i = 0; i < spheres.size(); ++i) {
       const Vec3d d = eye - spheres[i].center;
-      if (std::sqrt(dot(d, d)) < spheres[i].radius) inside.push_back(i);
+      const double r = spheres[i].radius;
+      if (std::sqrt(dot(d, d)) < r)
+        around.emplace_back(4.18879020478639 * r * r * r, sphereApps[i].medium);
     }
-    std::sort(inside.begin(), inside.end(),
-              [&](size_t a, size_t b) { return spheres[a].radius > spheres[b].radius; });
+    for (const auto& [volume, mesh] : closedMeshes)
+      if (insideClosedMesh(meshes[mesh], eye))
+        around.emplace_back(volume, meshApps[mesh].whole.medium);
+    std::sort(around.begin(), around.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
     MediumStack stack;
-    for (size_t i : inside) stack.enter(apps[i].medium);
+    for (const auto& entry : around) stack.enter(entry.second);
     return stack;
   }
 

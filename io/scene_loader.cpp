@@ -800,7 +800,7 @@ private:
     if (tag == "plane") allowed.insert(allowed.end(), {"normal", "distance"});
     if (tag == "triangle") allowed.insert(allowed.end(), {"vA", "vB", "vC"});
     if (tag == "quad") allowed.insert(allowed.end(), {"origin", "edge_u", "edge_v"});
-    if (tag == "mesh") allowed.insert(allowed.end(), {"transform"});
+    if (tag == "mesh") allowed.insert(allowed.end(), {"transform", "medium"});
     const auto c = uniqueChildren(n, allowed);
     ObjectDesc o;
     o.loc = loc(n);

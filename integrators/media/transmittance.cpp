@@ -49,9 +49,9 @@ SampledSpectrum shadowTransmittance(const RenderScene& scene, const Ray& ray, Me
     } else if (material.kind != MaterialKind::Interface) {
       return {};
     }
-    if (hit.kind == ShapeKind::Sphere) {
-      if (dot(r.d, hit.ng) < 0)
-        media.enter(scene.appearance(hit).medium);
+    if (const ShapeAppearance& app = scene.appearance(hit); app.boundary != 0) {
+      if (dot(r.d, hit.ng) * static_cast<float>(app.boundary) < 0)
+        media.enter(app.medium);
       else
         media.leave();
     }

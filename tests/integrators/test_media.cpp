@@ -300,3 +300,40 @@ TEST(Media, FluorescentSphereMatchesTheFirstOrderIntegral) {
 
 } // namespace
 } // namespace nx
+
+namespace nx {
+namespace {
+
+std::string cube(const char* file, const std::string& material) {
+  return std::string("<mesh file=\"") + NX_TEST_DATA_DIR + "/media/" + file + "\"><material>" +
+         material + "</material><medium><sigma_a extrapolate=\"hold\">" + kSigmaA +
+         "</sigma_a><sigma_s>0</sigma_s></medium></mesh>";
+}
+
+// Media in closed meshes: a cube [-1, 1]^3 of the absorber seen face-on reads exp(-2 sigma_a)
+// whichever way its triangles are wound, exp(-sigma_a) from its centre; an open box is
+// refused.
+TEST(Media, BeerLambertThroughClosedMeshes) {
+  for (const char* file : {"cube.obj", "cube_inward.obj"}) {
+    const RenderOutput out =
+        renderText(sceneText(kBackground, kFarCamera, cube(file, "interface")));
+    expectBands(out.film, bandsOf(out.film, [](double s) { return std::exp(-2 * s); }), 0.01, {},
+                file);
+  }
+  const RenderOutput inside =
+      renderText(sceneText(kBackground,
+                           "<position>0,0,0</position><look_at>0,0,1</look_at>"
+                           "<fov>1</fov>",
+                           cube("cube_inward.obj", "interface")));
+  expectBands(inside.film, bandsOf(inside.film, [](double s) { return std::exp(-s); }), 0.01, {},
+              "inside");
+  const std::string error = test::errorMessage(
+      [&] { renderText(sceneText(kBackground, kFarCamera, cube("open_box.obj", "interface"))); });
+  EXPECT_NE(error.find("expected a closed mesh around a <medium> (every edge shared by two "
+                       "triangles wound alike), found an edge used by one triangle only (a hole)"),
+            std::string::npos)
+      << error;
+}
+
+} // namespace
+} // namespace nx
