@@ -21,10 +21,10 @@ namespace nx {
 
 /// How a surface scatters light.
 enum class MaterialKind : uint8_t {
-  Mixture,    ///< (1 - r) rho * ideal mirror + r rho / pi (matte r = 1, mirror r = 0)
-  Dielectric, ///< smooth dielectric: exact Fresnel, refraction, total internal reflection
-  Interface,  ///< the boundary of a medium with the same index on both sides: light passes
-              ///< unchanged (no reflection, no refraction)
+  Mixture,        ///< (1 - r) rho * ideal mirror + r rho / pi (matte r = 1, mirror r = 0)
+  Dielectric,     ///< smooth dielectric: exact Fresnel, refraction, total internal reflection
+  Interface,      ///< the boundary of a medium with the same index on both sides: light passes
+                  ///< unchanged (no reflection, no refraction)
   ThinDielectric, ///< a thin glass wall (parallel faces): Fresnel reflection with the
                   ///< internal reflections summed, and straight transmission
 };
