@@ -79,6 +79,17 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
   // Scattering vertices so far (surfaces and media; interfaces do not count): Russian roulette
   // starts after <depth> of them.
   int scatterings = 0;
+  // Counts a scattering vertex and plays Russian roulette after <depth> of them, re-weighting
+  // survivors by 1/q (unbiased); false: the path ends (terminated, or nothing left to carry).
+  auto survivesRoulette = [&]() {
+    if (++scatterings >= rouletteStart) {
+      const float q = std::min(1.0f, weighted().maxValue() * rrScale);
+      const float u = rng.next1D();
+      if (!(q > 0) || u >= q) return false;
+      beta *= 1.0f / q;
+    }
+    return !beta.isBlack();
+  };
 
   for (int bounce = 0;; ++bounce) {
     SurfaceHit hit;
@@ -94,8 +105,23 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       if (const int m = media.current(); m >= 0) {
         const HomogeneousMedium& medium = scene.media[static_cast<size_t>(m)];
         const float uDistance = rng.next1D(), uEvent = rng.next1D();
-        const FreeFlight flight = sampleFreeFlight(medium, current, found ? hit.t : INFINITY,
-                                                   uDistance, uEvent, beta, misRatios);
+        // An emitting medium: the emission along the flight, weighted by the path before it.
+        const SampledSpectrum before = medium.emission ? weighted() : SampledSpectrum();
+        SampledSpectrum glow;
+        const FreeFlight flight =
+            sampleFreeFlight(medium, current, found ? hit.t : INFINITY, uDistance, uEvent, beta,
+                             misRatios, medium.emission ? &glow : nullptr);
+        if (medium.emission) L += before * glow;
+        // beta_i / mean(ratios) is all that counts, so both are divided by the mean after each
+        // flight: the products stay near 1 on long chromatic paths (ratios' mean 1; the hero's
+        // own ratio, once 1, becomes 1 / (the product of these means)).
+        if (!heroAlone) {
+          const float mean = spectralMisDivisor(misRatios, false);
+          if (mean > 0) {
+            misRatios *= 1.0f / mean;
+            beta *= 1.0f / mean;
+          }
+        }
         if (flight.event != MediumEvent::None) {
           if (bounce >= kMaxPathBounces) break;
           const Vec3 p = ray.at(flight.t);
@@ -131,14 +157,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
           specular = false;
           prevPdf = phaseTo(wi);
           prevP = p;
-          ++scatterings;
-          if (scatterings >= rouletteStart) {
-            const float q = std::min(1.0f, weighted().maxValue() * rrScale);
-            const float u = rng.next1D();
-            if (!(q > 0) || u >= q) break;
-            beta *= 1.0f / q;
-          }
-          if (beta.isBlack()) break;
+          if (!survivesRoulette()) break;
           ray.o = p;
           ray.d = wi;
           ray.tMin = 0;
@@ -244,7 +263,10 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     rrScale *= bs.eta * bs.eta;
     if (bs.terminateSecondary && !heroAlone) {
       // From here on the hero's estimator stands alone; what L holds keeps its lane weights.
+      // Its weight is f_hero / p_hero: beta's hero lane over the hero's ratio (1 unless
+      // media rescaled both).
       beta = heroOnly(beta);
+      if constexpr (kMedia) beta *= misRatios[0] > 0 ? 1.0f / misRatios[0] : 0.0f;
       rrScale *= 1.0f / static_cast<float>(kLanes);
       heroAlone = true;
     }
@@ -252,14 +274,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     prevPdf = bs.pdf;
     prevP = hit.p;
 
-    // Russian roulette after <depth> bounces, re-weighted by 1/q: unbiased.
-    if (++scatterings >= rouletteStart) {
-      const float q = std::min(1.0f, weighted().maxValue() * rrScale);
-      const float u = rng.next1D();
-      if (!(q > 0) || u >= q) break;
-      beta *= 1.0f / q;
-    }
-    if (beta.isBlack()) break;
+    if (!survivesRoulette()) break;
     ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, bs.wi);
     ray.d = bs.wi;
     ray.tMin = 0;

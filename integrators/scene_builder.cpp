@@ -26,12 +26,15 @@
 #include "spectra/rgb_upsampling.h"
 #include "spectra/sigmoid_table.h"
 #include "spectra/spectrum_bounds.h"
+#include "spectra/water.h"
 
 namespace nx {
 namespace {
 
 // Which built-in names a spectrum reference may use.
-enum class SpectrumRole { Reflectance, Emission };
+// What a spectrum reference stands for: its names and checks differ (a medium's coefficient
+// takes the medium tables' names and the reflectance names).
+enum class SpectrumRole { Reflectance, Emission, Coefficient };
 
 class Builder {
 public:
@@ -298,12 +301,12 @@ private:
   Spectrum extrapolated(Spectrum r, SpectrumDesc::Extrapolation mode, const SourceLocation& loc,
                         const std::string& what) const {
     if (const auto* t = std::get_if<TabulatedSpectrum>(&r.kind())) {
-      if (mode == SpectrumDesc::Extrapolation::Hold) {
-        TabulatedSpectrum held = *t;
-        held.holdEnds = true;
-        return Spectrum(std::move(held), r.scale());
+      if (mode != SpectrumDesc::Extrapolation::Unset) {
+        TabulatedSpectrum chosen = *t;
+        chosen.holdEnds = mode == SpectrumDesc::Extrapolation::Hold;
+        return Spectrum(std::move(chosen), r.scale());
       }
-      if (mode == SpectrumDesc::Extrapolation::Unset)
+      if (!t->holdEnds) // built-in tables that hold their ends need no warning
         tables_.push_back({loc.str(), what, t->nm.front(), t->nm.back()});
     }
     return r;
@@ -340,10 +343,15 @@ private:
                     s.name + "'");
       return resolveUnchecked(it->second->spectrum, role, depth + 1, mode);
     }
-    if (role == SpectrumRole::Reflectance) {
+    if (role == SpectrumRole::Coefficient)
+      if (auto c = namedMediumCoefficient(s.name)) return extrapolated(*c, mode, s.loc, s.name);
+    if (role != SpectrumRole::Emission) {
       if (auto r = namedReflectance(s.name)) return extrapolated(*r, mode, s.loc, s.name);
-      throw Error(s.loc.str() +
-                  ": expected a reflectance name (red, orange, yellow, green, blue, purple, uv, "
+      throw Error(s.loc.str() + ": expected " +
+                  (role == SpectrumRole::Coefficient
+                       ? "water:absorption, water:scattering (per metre), "
+                       : "") +
+                  "a reflectance name (red, orange, yellow, green, blue, purple, uv, "
                   "gray, const, null, colorchecker:<patch> (dark_skin, ..., black_2), or a "
                   "<spectrum> of the scene), found '" +
                   s.name + "'");
@@ -459,8 +467,8 @@ private:
   // A <medium>: its coefficients resolved and checked over the traced range.
   HomogeneousMedium medium(const MediumDesc& d) const {
     HomogeneousMedium m;
-    m.sigmaA = forRendering(resolve(d.sigmaA, SpectrumRole::Reflectance));
-    m.sigmaS = forRendering(resolve(d.sigmaS, SpectrumRole::Reflectance));
+    m.sigmaA = forRendering(resolve(d.sigmaA, SpectrumRole::Coefficient).scaled(d.sigmaAScale));
+    m.sigmaS = forRendering(resolve(d.sigmaS, SpectrumRole::Coefficient).scaled(d.sigmaSScale));
     for (const auto& [sp, desc, what] : {std::tuple{&m.sigmaA, &d.sigmaA, "sigma_a"},
                                          std::tuple{&m.sigmaS, &d.sigmaS, "sigma_s"}}) {
       const SpectrumExtremes e = spectrumExtremes(*sp, kTraceMinNm, kTraceMaxNm);
@@ -473,6 +481,17 @@ private:
                                              numberText(e.min < 0 ? e.minNm : e.maxNm) + " nm"));
     }
     m.g = static_cast<float>(d.g);
+    if (d.emission) {
+      // The source is sigma_a Le: a medium that absorbs nothing cannot emit (Kirchhoff).
+      if (!(spectrumExtremes(m.sigmaA, kTraceMinNm, kTraceMaxNm).max > 0))
+        throw Error(d.emission->loc.str() +
+                    ": expected a medium that absorbs (sigma_a > 0 somewhere in " + tracedRange() +
+                    ") for an <emission>: the medium emits sigma_a Le per unit length, found "
+                    "sigma_a = 0 everywhere");
+      const Spectrum le = resolve(*d.emission, SpectrumRole::Emission).scaled(d.emissionScale);
+      checkEmission(le, d.emission->loc);
+      m.emission = forRendering(le);
+    }
     if (d.fluorescence) {
       FluorescenceModel model = fluorescence(*d.fluorescence);
       m.dyePeak = static_cast<float>(model.peakAbsorptance); // the coefficient, per unit length

@@ -72,9 +72,13 @@ struct FluorescenceDesc {
 
 /// <medium> inside a closed object: a homogeneous participating medium filling it.
 struct MediumDesc {
-  SpectrumDesc sigmaA; ///< absorption coefficient per scene unit of length
-  SpectrumDesc sigmaS; ///< scattering coefficient per scene unit of length
-  double g = 0;        ///< Henyey-Greenstein mean cosine, in (-1, 1)
+  SpectrumDesc sigmaA;                     ///< absorption coefficient per scene unit of length
+  SpectrumDesc sigmaS;                     ///< scattering coefficient per scene unit of length
+  double sigmaAScale = 1, sigmaSScale = 1; ///< their scale="..." factors (unit conversions)
+  double g = 0;                            ///< Henyey-Greenstein mean cosine, in (-1, 1)
+  /// Emitted radiance Le (source sigma_a Le), with its scale="..."
+  std::optional<SpectrumDesc> emission;
+  double emissionScale = 1; ///< <emission scale="..."> of the medium
   /// A fluorescent dye dissolved in it: the parametric model, its <peak> being the dye's peak
   /// absorption coefficient per unit length (added to sigma_a's absorption)
   std::optional<FluorescenceDesc> fluorescence;

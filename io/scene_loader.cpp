@@ -633,18 +633,20 @@ private:
     l.color = colour(required(c, n, "color"), false);
     if (c.count("emission")) {
       l.emission = spectrum(c.at("emission"), true, {"scale"});
-      l.emissionScale = emissionScale(c.at("emission"));
+      l.emissionScale = scaleAttribute(c.at("emission"), "an emission scale");
     }
     return l;
   }
 
-  // The optional scale="..." of an <emission>: a positive number, 1 if absent.
-  double emissionScale(const pugi::xml_node& e) const {
+  // The optional scale="..." of an element (an <emission>, a medium's coefficient): a positive
+  // finite number, 1 if absent; `what` names it in errors ("an emission scale").
+  double scaleAttribute(const pugi::xml_node& e, const std::string& what) const {
     const pugi::xml_attribute sc = e.attribute("scale");
     if (!sc) return 1.0;
     const std::string text = decoded(sc.value(), e);
-    const double v = parseNumber(text, loc(e).str(), "an emission scale in scale=\"...\"");
-    if (!(v > 0)) fail(e, "a positive emission scale", shownText(text));
+    const double v = parseNumber(text, loc(e).str(), what + " in scale=\"...\"");
+    if (!(v > 0) || !std::isfinite(v))
+      fail(e, "a positive " + what.substr(what.find(' ') + 1), shownText(text));
     return v;
   }
 
@@ -852,7 +854,7 @@ private:
     if (c.count("emission")) {
       const pugi::xml_node e = c.at("emission");
       o.emission = spectrum(e, true, {"scale"});
-      o.emissionScale = emissionScale(e);
+      o.emissionScale = scaleAttribute(e, "an emission scale");
     }
     if (c.count("medium")) o.medium = medium(c.at("medium"));
     return o;
@@ -861,13 +863,19 @@ private:
   // <medium> with <sigma_a>, <sigma_s> (spectra per unit length) and an optional <g>.
   MediumDesc medium(const pugi::xml_node& n) const {
     checkAttributes(n, {});
-    const auto c = uniqueChildren(n, {"sigma_a", "sigma_s", "g", "fluorescence"});
+    const auto c = uniqueChildren(n, {"sigma_a", "sigma_s", "g", "fluorescence", "emission"});
     MediumDesc m;
     m.loc = loc(n);
-    m.sigmaA = *spectrum(required(c, n, "sigma_a"), false);
-    m.sigmaS = *spectrum(required(c, n, "sigma_s"), false);
+    m.sigmaA = *spectrum(required(c, n, "sigma_a"), false, {"scale"});
+    m.sigmaAScale = scaleAttribute(c.at("sigma_a"), "a coefficient scale");
+    m.sigmaS = *spectrum(required(c, n, "sigma_s"), false, {"scale"});
+    m.sigmaSScale = scaleAttribute(c.at("sigma_s"), "a coefficient scale");
     if (c.count("g")) m.g = number(c.at("g"), kPhaseGRange);
     if (c.count("fluorescence")) m.fluorescence = fluorescence(c.at("fluorescence"), true);
+    if (c.count("emission")) {
+      m.emission = spectrum(c.at("emission"), false, {"scale"});
+      m.emissionScale = scaleAttribute(c.at("emission"), "an emission scale");
+    }
     return m;
   }
 

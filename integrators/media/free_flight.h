@@ -18,6 +18,12 @@
 // techniques, the hero being a uniformly chosen lane of the rotated set. (Balancing each event
 // separately, with one hero for the whole path, is biased: a furnace read 1.2 to 600.) Once the
 // secondary lanes are terminated (dispersion), the hero's own density alone counts.
+//
+// An emitting medium (source sigma_a Le per unit length and solid angle) adds, per flight, the
+// track-length estimate of the emission along the segment the flight covers, [0, t_end]:
+// a point at s is covered with the hero's probability exp(-sigma_in s), so lane i gets
+// integral_0^t_end exp(-(sigma_t,i - sigma_in) s) ds sigma_a,i Le_i, unbiased for any hero,
+// weighted by the path before the flight (its beta and spectral MIS divisor).
 
 #include <cmath>
 #include <cstdint>
@@ -39,12 +45,21 @@ struct FreeFlight {
   float t = 0; ///< the event's distance along the (unit) direction
 };
 
+/// integral_0^t exp(-c s) ds for a rate c of any sign (t may be infinite when c > 0).
+inline float decayIntegral(float c, float t) {
+  if (std::isinf(t)) return c > 0 ? 1.0f / c : 0.0f; // c <= 0 over an endless flight: no source
+  const float x = c * t;
+  return std::abs(x) < 1e-4f ? t * (1 - 0.5f * x) : -std::expm1(-x) / c;
+}
+
 /// Draws the flight from a point towards a surface at distance tSurface (infinity: none) with
 /// 1D samples u (distance) and uEvent (kind); multiplies `beta` by f_i / p_hero and `ratios` by
-/// p_j / p_hero (see above).
+/// p_j / p_hero (see above). For an emitting medium, `glow` (if given) receives the emission
+/// collected along the flight per unit of the path's weight before it.
 inline FreeFlight sampleFreeFlight(const HomogeneousMedium& medium,
                                    const SampledWavelengths& lambda, float tSurface, float u,
-                                   float uEvent, SampledSpectrum& beta, SampledSpectrum& ratios) {
+                                   float uEvent, SampledSpectrum& beta, SampledSpectrum& ratios,
+                                   SampledSpectrum* glow = nullptr) {
   SampledSpectrum sa, ss, sfl;
   medium.coefficients(lambda, sa, ss, sfl);
   const SampledSpectrum sin = ss + sfl;
@@ -53,6 +68,11 @@ inline FreeFlight sampleFreeFlight(const HomogeneousMedium& medium,
   if (f.t < tSurface)
     f.event = uEvent * sin[0] < ss[0] ? MediumEvent::Scatter : MediumEvent::Fluoresce;
   const float t = f.event == MediumEvent::None ? tSurface : f.t;
+  if (glow) {
+    const SampledSpectrum source = medium.emissionSource(lambda);
+    for (int i = 0; i < kLanes; ++i)
+      (*glow)[i] = source[i] > 0 ? source[i] * decayIntegral(sa[i] + ss[i] - sin[0], t) : 0.0f;
+  }
   // exp(-c t) for a coefficient c, with exp(-0 * inf) = 1
   auto decay = [t](float c) { return c > 0 ? (std::isinf(t) ? 0.0f : std::exp(-c * t)) : 1.0f; };
   SampledSpectrum p, fv;

@@ -4,6 +4,7 @@
 // everywhere inside its shape.
 
 #include <memory>
+#include <optional>
 
 #include "spectra/reradiation_matrix.h"
 #include "spectra/sampled_wavelengths.h"
@@ -25,6 +26,17 @@ struct HomogeneousMedium {
   float g = 0;                                  ///< Henyey-Greenstein mean cosine
   std::shared_ptr<const ReradiationMatrix> dye; ///< the dye's matrix (peak absorptance 1), or null
   float dyePeak = 0; ///< the dye's peak absorption coefficient per unit length
+  /// Emitted radiance Le: the medium is a source sigma_a Le per unit length and solid angle
+  /// (Kirchhoff: deep inside, the radiance tends to Le), or null
+  std::optional<Spectrum> emission;
+
+  /// The emission source sigma_a Le of the lanes (sigma_a without the dye's absorption).
+  SampledSpectrum emissionSource(const SampledWavelengths& lambda) const {
+    SampledSpectrum a, le;
+    sigmaA.evaluate(lambda, a);
+    emission->evaluate(lambda, le);
+    return a * le;
+  }
 
   /// The lanes' coefficients: sigma_a + sigma_f (all absorption), sigma_s, and the dye's
   /// in-scattering sigma_fl (zero without a dye).
