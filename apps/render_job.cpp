@@ -25,7 +25,7 @@ std::string hex(uint64_t v) {
 }
 
 // One of `names`, else nx::Error "option: expected a, b or c, found 'x'".
-void requireOneOf(const std::string& value, std::initializer_list<const char*> names,
+void requireOneOf(const std::string& value, const std::vector<const char*>& names,
                   const char* option) {
   std::string list;
   size_t i = 0;
@@ -54,6 +54,15 @@ ErrorMeasure errorMeasureFrom(const std::string& text) {
 
 } // namespace
 
+const std::vector<StrategyOption>& strategyOptions() {
+  static const std::vector<StrategyOption> options{
+      {&RenderChoices::sampler, "--sampler", {"sobol", "independent"}},
+      {&RenderChoices::lightSampling, "--light-sampling", {"mis", "bsdf", "nee"}},
+      {&RenderChoices::lightSelection, "--light-selection", {"local", "power", "uniform"}},
+      {&RenderChoices::density, "--wavelength-density", {"sensor", "visible"}}};
+  return options;
+}
+
 Sensor sensorFromOption(const std::string& text, const std::string& option) {
   for (const char* prefix : {"gaussian:", "boxes:", "table:"})
     if (text.rfind(prefix, 0) == 0) return Sensor::parse(text, option);
@@ -80,10 +89,8 @@ void removeFluorescence(SceneDesc& desc) {
 RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const RenderChoices& choices)
     : scene_(scene), scenePath_(std::move(scenePath)), choices_(choices) {
   const int width = scene.settings.width, height = scene.settings.height;
-  requireOneOf(choices.sampler, {"sobol", "independent"}, "--sampler");
-  requireOneOf(choices.lightSampling, {"mis", "bsdf", "nee"}, "--light-sampling");
-  requireOneOf(choices.lightSelection, {"local", "power", "uniform"}, "--light-selection");
-  requireOneOf(choices.density, {"sensor", "visible"}, "--wavelength-density");
+  for (const StrategyOption& o : strategyOptions())
+    requireOneOf(choices.*o.field, o.values, o.option);
   if (choices.samples < 0 || choices.samples > (1 << 30) || choices.firstSample < 0 ||
       static_cast<long long>(choices.firstSample) + choices.samples > (1LL << 30))
     throw Error("--spp-range: expected 0 <= A < B <= 2^30, found " +

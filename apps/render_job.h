@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "integrators/renderer.h"
 #include "io/scene_desc.h"
@@ -37,6 +38,17 @@ Sensor sensorFromOption(const std::string& text, const std::string& option);
 
 /// Asks for the AOV named white, ids or depth; false for any other name.
 bool addAov(RenderChoices& choices, const std::string& name);
+
+/// A strategy option of RenderChoices (sampler, light sampling, light selection, wavelength
+/// density): its field, its command-line name and the values it takes.
+struct StrategyOption {
+  std::string RenderChoices::*field; ///< the choice
+  const char* option;                ///< "--light-sampling"
+  std::vector<const char*> values;   ///< {"mis", "bsdf", "nee"}
+};
+
+/// The strategy options, checked by RenderJob (the Python module names them after them).
+const std::vector<StrategyOption>& strategyOptions();
 
 /// Removes the fluorescence of every object and named material (--no-fluorescence).
 void removeFluorescence(SceneDesc& desc);

@@ -142,12 +142,14 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
             const Sample2 uLight = rng.next2D();
             LightSample ls;
             if (ctx.lights->sample(p, uChoice, uLight, lit, ls)) {
-              const float phase = phaseTo(ls.wi);
-              const SampledSpectrum Tr = shadowTransmittance(
-                  scene, shadowRayTo(p, Vec3(), Vec3(), ls), media, lit, counters);
-              const bool mis = ctx.lightSampling != LightSampling::NeeOnly && !ls.delta;
-              const float w = mis ? powerHeuristic(ls.pdf, phase) : 1.0f;
-              if (!Tr.isBlack()) L += weighted() * Tr * ls.radiance * (phase * w / ls.pdf);
+              const auto visible = [&](const Ray& r) {
+                return shadowTransmittance(scene, r, media, lit, counters);
+              };
+              L += weighted() *
+                   directLightAt(
+                       p, Vec3(), Vec3(), ls,
+                       [&](const Vec3& wi) { return SampledSpectrum::filled(phaseTo(wi)); },
+                       phaseTo, ctx.lightSampling != LightSampling::NeeOnly, visible);
             }
           }
           const Sample2 uDir = rng.next2D();

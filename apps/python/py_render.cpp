@@ -24,6 +24,13 @@
 namespace nxpy {
 namespace {
 
+// A command-line option's Python parameter name: "--light-sampling" -> "light_sampling".
+std::string pythonName(const std::string& option) {
+  std::string name = option.rfind("--", 0) == 0 ? option.substr(2) : option;
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
 // The scene argument: an nxrender.Scene, a scene file's name, or scene text.
 struct SceneSource {
   nx::SceneDesc desc;
@@ -129,22 +136,18 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
     choices.targetError = numberArgument(targetError, "target_error", 1e-9, 1e9);
   choices.errorOf = optionString(errorOf, "error_of");
   if (!timeLimit.is_none()) choices.timeLimit = numberArgument(timeLimit, "time_limit", 1e-3, 1e12);
-  // Names of strategies: the same checks as the command line's, with Python's names.
-  const std::pair<const std::string*, std::pair<const char*, std::vector<const char*>>> names[] = {
-      {&choices.sampler, {"sampler", {"sobol", "independent"}}},
-      {&choices.lightSampling, {"light_sampling", {"mis", "bsdf", "nee"}}},
-      {&choices.lightSelection, {"light_selection", {"local", "power", "uniform"}}},
-      {&choices.density, {"wavelength_density", {"sensor", "visible"}}}};
-  for (const auto& [value, spec] : names) {
-    bool ok = false;
+  // Names of strategies: the command line's checks, with Python's parameter names.
+  for (const nx::StrategyOption& o : nx::strategyOptions()) {
+    const std::string& value = choices.*o.field;
     std::string list;
-    for (const char* n : spec.second) {
-      ok = ok || *value == n;
+    bool ok = false;
+    for (const char* n : o.values) {
+      ok = ok || value == n;
       list += (list.empty() ? "'" : ", '") + std::string(n) + "'";
     }
     if (!ok)
-      throw py::value_error(std::string(spec.first) + ": expected one of " + list + ", found '" +
-                            *value + "'");
+      throw py::value_error(pythonName(o.option) + ": expected one of " + list + ", found '" +
+                            value + "'");
   }
 
   SceneSource src = sceneArgument(sceneArg);
@@ -177,11 +180,8 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
     // The job's checks name the command line's options (--error-of); say Python's (error_of).
     std::string message = e.what();
     const size_t colon = message.find(':');
-    if (message.rfind("--", 0) == 0 && colon != std::string::npos) {
-      std::string name = message.substr(2, colon - 2);
-      std::replace(name.begin(), name.end(), '-', '_');
-      message = name + message.substr(colon);
-    }
+    if (message.rfind("--", 0) == 0 && colon != std::string::npos)
+      message = pythonName(message.substr(0, colon)) + message.substr(colon);
     throw py::value_error(message);
   }
   nx::RenderJob& job = *jobHolder;

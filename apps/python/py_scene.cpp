@@ -164,6 +164,41 @@ struct ObjectView {
   }
 };
 
+struct MediumView {
+  ObjectView o;
+  nx::MediumDesc& get() const {
+    auto& m = o.get().medium;
+    if (!m) throw py::value_error(o.label() + ": has no medium any more");
+    return *m;
+  }
+  std::string label() const { return o.label() + ".medium"; }
+};
+
+// A spectrum field of the medium (sigma_a, sigma_s): a number >= 0, a name or (nm, values).
+void bindMediumSpectrum(py::class_<MediumView>& c, const char* name,
+                        nx::SpectrumDesc nx::MediumDesc::*field, double nx::MediumDesc::*scale,
+                        const char* doc) {
+  c.def_property(
+      name, [field](const MediumView& v) { return spectrumValue(v.get().*field); },
+      [field, scale, name](const MediumView& v, const py::object& value) {
+        const std::string param = v.label() + "." + name;
+        v.get().*field = spectrumArgument(value, param, v.o.get().loc);
+        v.get().*scale = 1; // a new value stands alone
+        record(*v.o.s, param, value);
+      },
+      doc);
+  const std::string scaleName = std::string(name) + "_scale";
+  c.def_property(
+      scaleName.c_str(), [scale](const MediumView& v) { return v.get().*scale; },
+      [scale, scaleName](const MediumView& v, const py::object& value) {
+        const std::string param = v.label() + "." + scaleName;
+        v.get().*scale = numberArgument(value, param.c_str(), 1e-300, 1e300);
+        record(*v.o.s, param, value);
+      },
+      "The factor on it (> 0; e.g. 0.01 for a per-metre table in a scene in centimetres); "
+      "assigning the coefficient resets it to 1");
+}
+
 const char* shapeName(nx::ShapeType t) {
   switch (t) {
   case nx::ShapeType::Sphere:
@@ -366,7 +401,131 @@ void bindScene(py::module_& m) {
         return "<nxrender.Material " + v.label() + " " + v.get().material + ">";
       });
 
+  py::class_<MediumView> med(m, "Medium",
+                             "The participating medium inside a sphere or closed mesh "
+                             "(docs/media.md); coefficients per scene unit of length");
+  bindMediumSpectrum(med, "sigma_a", &nx::MediumDesc::sigmaA, &nx::MediumDesc::sigmaAScale,
+                     "Absorption coefficient: a number, a name (water:absorption, ...) or "
+                     "(wavelengths_nm, values)");
+  bindMediumSpectrum(med, "sigma_s", &nx::MediumDesc::sigmaS, &nx::MediumDesc::sigmaSScale,
+                     "Scattering coefficient, in the same forms as sigma_a");
+  med.def_property(
+         "g", [](const MediumView& v) { return v.get().g; },
+         [](const MediumView& v, const py::object& value) {
+           v.get().g = rangedArgument(value, v.label() + ".g", nx::kPhaseGRange);
+           record(*v.o.s, v.label() + ".g", value);
+         },
+         "Henyey-Greenstein mean cosine in [-0.999, 0.999]")
+      .def_property(
+          "emission", [](const MediumView& v) { return spectrumValue(v.get().emission); },
+          [](const MediumView& v, const py::object& value) {
+            const std::string param = v.label() + ".emission";
+            if (value.is_none())
+              v.get().emission.reset();
+            else
+              v.get().emission = spectrumArgument(value, param, v.o.get().loc);
+            v.get().emissionScale = 1; // a new value stands alone
+            record(*v.o.s, param, value);
+          },
+          "Emitted radiance Le (the medium emits sigma_a Le), or None; assigning it resets "
+          "emission_scale to 1")
+      .def_property(
+          "emission_scale", [](const MediumView& v) { return v.get().emissionScale; },
+          [](const MediumView& v, const py::object& value) {
+            const std::string param = v.label() + ".emission_scale";
+            v.get().emissionScale = numberArgument(value, param.c_str(), 1e-300, 1e300);
+            record(*v.o.s, param, value);
+          },
+          "The factor on its emission (> 0)")
+      .def_property(
+          "dye_peak",
+          [](const MediumView& v) -> py::object {
+            const auto& f = v.get().fluorescence;
+            return f && f->peakAbsorptance ? py::object(py::float_(*f->peakAbsorptance))
+                                           : py::object(py::none());
+          },
+          [](const MediumView& v, const py::object& value) {
+            auto& f = v.get().fluorescence;
+            const std::string param = v.label() + ".dye_peak";
+            if (!f) throw py::value_error(param + ": the medium has no dye; use set_dye(...)");
+            f->peakAbsorptance = rangedArgument(value, param, nx::kPeakCoefficientRange);
+            record(*v.o.s, param, value);
+          },
+          "The dye's peak absorption coefficient per unit length (None: no dye)")
+      .def(
+          "set_dye",
+          [](const MediumView& v, const py::object& absorptionNm, const py::object& stokesNm,
+             const py::object& peak, const py::object& widthNm, const py::object& skew,
+             const py::object& quantumYield) {
+            const std::string p = v.label() + ".set_dye: ";
+            nx::FluorescenceDesc f;
+            f.loc = v.o.get().loc;
+            f.absorptionNm =
+                rangedArgument(absorptionNm, p + "absorption_nm", nx::kAbsorptionRange);
+            f.stokesNm = rangedArgument(stokesNm, p + "stokes_nm", nx::kStokesRange);
+            f.peakAbsorptance = rangedArgument(peak, p + "peak", nx::kPeakCoefficientRange);
+            if (!widthNm.is_none())
+              f.widthNm = rangedArgument(widthNm, p + "width_nm", nx::kWidthRange);
+            if (!skew.is_none()) f.skew = rangedArgument(skew, p + "skew", nx::kSkewRange);
+            if (!quantumYield.is_none())
+              f.quantumYield = rangedArgument(quantumYield, p + "quantum_yield", nx::kYieldRange);
+            v.get().fluorescence = f;
+            v.o.s->edits.push_back(
+                v.label() + ".set_dye(" +
+                py::repr(py::make_tuple(absorptionNm, stokesNm, peak, widthNm, skew, quantumYield))
+                    .cast<std::string>() +
+                ")");
+          },
+          py::arg("absorption_nm"), py::arg("stokes_nm"), py::arg("peak"),
+          py::arg("width_nm") = py::none(), py::arg("skew") = py::none(),
+          py::arg("quantum_yield") = py::none(),
+          "Dissolves a fluorescent dye (the parametric model; peak: its peak absorption "
+          "coefficient per unit length), replacing any")
+      .def("remove_dye",
+           [](const MediumView& v) {
+             v.get().fluorescence.reset();
+             v.o.s->edits.push_back(v.label() + ".remove_dye()");
+           })
+      .def("__repr__", [](const MediumView& v) { return "<nxrender.Medium " + v.label() + ">"; });
+
   py::class_<ObjectView>(m, "Object", "One object of the scene (sphere, plane, triangle, ...)")
+      .def_property(
+          "medium",
+          [](const ObjectView& o) -> py::object {
+            return o.get().medium ? py::cast(MediumView{o}) : py::object(py::none());
+          },
+          [](const ObjectView& o, const py::object& value) {
+            if (!value.is_none())
+              throw py::type_error(o.label() +
+                                   ".medium: expected None (to remove it); fill the object "
+                                   "with set_medium(...)");
+            o.get().medium.reset();
+            record(*o.s, o.label() + ".medium", value);
+          },
+          "The medium inside a sphere or closed mesh (None: none); assign None to remove it")
+      .def(
+          "set_medium",
+          [](const ObjectView& o, const py::object& sigmaA, const py::object& sigmaS,
+             const py::object& g) {
+            const nx::ShapeType t = o.get().shape;
+            if (t != nx::ShapeType::Sphere && t != nx::ShapeType::Mesh)
+              throw py::value_error(o.label() +
+                                    ".set_medium: expected a sphere or a closed mesh, "
+                                    "found a " +
+                                    shapeName(t));
+            nx::MediumDesc d;
+            d.loc = o.get().loc;
+            d.sigmaA = spectrumArgument(sigmaA, o.label() + ".set_medium: sigma_a", d.loc);
+            d.sigmaS = spectrumArgument(sigmaS, o.label() + ".set_medium: sigma_s", d.loc);
+            d.g = rangedArgument(g, o.label() + ".set_medium: g", nx::kPhaseGRange);
+            o.get().medium = d;
+            o.s->edits.push_back(o.label() + ".set_medium(" +
+                                 py::repr(py::make_tuple(sigmaA, sigmaS, g)).cast<std::string>() +
+                                 ")");
+            return MediumView{o};
+          },
+          py::arg("sigma_a"), py::arg("sigma_s"), py::arg("g") = 0.0,
+          "Fills a sphere or closed mesh with a homogeneous medium (replacing any); returns it")
       .def_property_readonly("shape", [](const ObjectView& o) { return shapeName(o.get().shape); })
       .def_property_readonly(
           "line", [](const ObjectView& o) { return o.get().loc.line; },

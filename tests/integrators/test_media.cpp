@@ -125,6 +125,23 @@ TEST(Media, ScatteringFurnaceReadsTheBackground) {
     }
 }
 
+// Long chromatic paths: sigma_s from 2 to 25 per unit length across the spectrum, seen from
+// the sphere's centre: hundreds of scatterings (about (sigma_s R)^2 to escape) whose lanes'
+// path densities differ by many orders of magnitude. The furnace still reads 1 and nothing
+// overflows (the spectral MIS ratios are renormalised after each flight).
+TEST(Media, LongChromaticPathsKeepTheFurnace) {
+  const RenderOutput out = renderText(sceneText(
+      "<xres>8</xres><yres>8</yres><mode>spectral_mcpt</mode><depth>2</depth><sampl>256</sampl>"
+      "<background>1</background>",
+      kCentreCamera,
+      "<sphere><center>0,0,0</center><radius>1</radius><material>interface</material><medium>"
+      "<sigma_a>0</sigma_a><sigma_s extrapolate=\"hold\">400:2, 700:25</sigma_s></medium>"
+      "</sphere>"));
+  EXPECT_EQ(out.stats.nonFinite, 0u);
+  expectBands(
+      out.film, [](int) { return 1.0; }, 0.04, {}, "chromatic furnace");
+}
+
 // Scenes without media run the path tracer without the media code.
 TEST(Media, OnlyScenesWithMediaOrInterfacesHaveThem) {
   auto build = [](const std::string& body) {

@@ -119,6 +119,52 @@ def test_set_fluorescence_equals_file(scenes):
     assert scene.objects[3].material.fluorescence is None
 
 
+def test_medium_edits_equal_the_edited_file(scenes):
+    """Media edited from Python render what the same media written in the file render."""
+    path = scenes / "tonic_water.scn"
+    water = ('<medium><sigma_a scale="0.01">water:absorption</sigma_a>'
+             '<sigma_s scale="0.01">water:scattering</sigma_s></medium>')
+    text = path.read_text()
+    assert text.count(water) == 1
+    edited = (text.replace(water, '<medium><sigma_a scale="0.02">water:absorption</sigma_a>'
+                                  '<sigma_s>400:0.05, 700:0.01</sigma_s><g>0.5</g>'
+                                  '<emission>0.3</emission></medium>')
+                  .replace("<peak>3.4</peak>", "<peak>2</peak>")
+                  .replace('<material>matte</material><reflectance>0.9</reflectance></sphere>',
+                           '<material>matte</material><reflectance>0.9</reflectance><medium>'
+                           '<sigma_a>0.1</sigma_a><sigma_s>0.2</sigma_s><g>0.1</g></medium>'
+                           '</sphere>'))
+    reference = nxrender.render(nxrender.Scene.from_text(edited, str(path)), spp=2,
+                                crop=(100, 60, 140, 100))
+
+    scene = nxrender.Scene(path)
+    liquid = scene.objects[3].medium
+    assert liquid.sigma_a == "water:absorption" and liquid.sigma_a_scale == 0.01
+    liquid.sigma_a_scale = 0.02
+    liquid.sigma_s = ([400, 700], [0.05, 0.01])
+    assert liquid.sigma_s_scale == 1  # a new coefficient stands alone
+    liquid.g = 0.5
+    liquid.emission = 0.3
+    scene.objects[2].medium.dye_peak = 2
+    scene.objects[4].set_medium(0.1, 0.2, g=0.1)
+    image = nxrender.render(scene, spp=2, crop=(100, 60, 140, 100))
+    assert_same_pixels(image, reference)
+    assert "medium.g = 0.5" in image.attributes["nxrender.sceneEdits"]
+
+    with pytest.raises(ValueError, match=r"objects\[3\].medium.g: expected"):
+        liquid.g = 1
+    with pytest.raises(ValueError, match="set_medium: expected a sphere or a closed mesh"):
+        scene.objects[0].set_medium(0.1, 0.1)
+    with pytest.raises(ValueError, match="has no dye"):
+        liquid.dye_peak = 1
+    liquid.set_dye(absorption_nm=420, stokes_nm=60, peak=1.5)
+    assert liquid.dye_peak == 1.5
+    liquid.remove_dye()
+    assert liquid.dye_peak is None
+    scene.objects[3].medium = None
+    assert scene.objects[3].medium is None
+
+
 def test_copy_is_independent(scenes):
     a = nxrender.Scene(scenes / "blacklight.scn")
     b = a.copy()
