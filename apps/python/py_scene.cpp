@@ -237,6 +237,23 @@ void bindFluorescenceField(py::class_<FluorescenceView>& c, const char* name,
       doc);
 }
 
+// The parametric fluorescence model's arguments (set_fluorescence, set_dye), checked; `p`
+// prefixes the parameter names in errors.
+nx::FluorescenceDesc fluorescenceModel(const std::string& p, const nx::SourceLocation& loc,
+                                       const py::object& absorptionNm, const py::object& stokesNm,
+                                       const py::object& widthNm, const py::object& skew,
+                                       const py::object& quantumYield) {
+  nx::FluorescenceDesc f;
+  f.loc = loc;
+  f.absorptionNm = rangedArgument(absorptionNm, p + "absorption_nm", nx::kAbsorptionRange);
+  f.stokesNm = rangedArgument(stokesNm, p + "stokes_nm", nx::kStokesRange);
+  if (!widthNm.is_none()) f.widthNm = rangedArgument(widthNm, p + "width_nm", nx::kWidthRange);
+  if (!skew.is_none()) f.skew = rangedArgument(skew, p + "skew", nx::kSkewRange);
+  if (!quantumYield.is_none())
+    f.quantumYield = rangedArgument(quantumYield, p + "quantum_yield", nx::kYieldRange);
+  return f;
+}
+
 SceneState loadState(const std::string& text, const std::string& name) {
   SceneState st;
   st.desc = nx::parseScene(text, name);
@@ -372,16 +389,8 @@ void bindScene(py::module_& m) {
              const py::object& peakAbsorptance) {
             nx::MaterialDesc& d = v.editable();
             const std::string p = v.label() + ".set_fluorescence: ";
-            nx::FluorescenceDesc f;
-            f.loc = v.loc();
-            f.absorptionNm =
-                rangedArgument(absorptionNm, p + "absorption_nm", nx::kAbsorptionRange);
-            f.stokesNm = rangedArgument(stokesNm, p + "stokes_nm", nx::kStokesRange);
-            if (!widthNm.is_none())
-              f.widthNm = rangedArgument(widthNm, p + "width_nm", nx::kWidthRange);
-            if (!skew.is_none()) f.skew = rangedArgument(skew, p + "skew", nx::kSkewRange);
-            if (!quantumYield.is_none())
-              f.quantumYield = rangedArgument(quantumYield, p + "quantum_yield", nx::kYieldRange);
+            nx::FluorescenceDesc f =
+                fluorescenceModel(p, v.loc(), absorptionNm, stokesNm, widthNm, skew, quantumYield);
             if (!peakAbsorptance.is_none())
               f.peakAbsorptance =
                   rangedArgument(peakAbsorptance, p + "peak_absorptance", nx::kPeakRange);
@@ -458,17 +467,9 @@ void bindScene(py::module_& m) {
              const py::object& peak, const py::object& widthNm, const py::object& skew,
              const py::object& quantumYield) {
             const std::string p = v.label() + ".set_dye: ";
-            nx::FluorescenceDesc f;
-            f.loc = v.o.get().loc;
-            f.absorptionNm =
-                rangedArgument(absorptionNm, p + "absorption_nm", nx::kAbsorptionRange);
-            f.stokesNm = rangedArgument(stokesNm, p + "stokes_nm", nx::kStokesRange);
+            nx::FluorescenceDesc f = fluorescenceModel(p, v.o.get().loc, absorptionNm, stokesNm,
+                                                       widthNm, skew, quantumYield);
             f.peakAbsorptance = rangedArgument(peak, p + "peak", nx::kPeakCoefficientRange);
-            if (!widthNm.is_none())
-              f.widthNm = rangedArgument(widthNm, p + "width_nm", nx::kWidthRange);
-            if (!skew.is_none()) f.skew = rangedArgument(skew, p + "skew", nx::kSkewRange);
-            if (!quantumYield.is_none())
-              f.quantumYield = rangedArgument(quantumYield, p + "quantum_yield", nx::kYieldRange);
             v.get().fluorescence = f;
             v.o.s->edits.push_back(
                 v.label() + ".set_dye(" +
