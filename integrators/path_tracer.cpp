@@ -30,13 +30,13 @@ void crossBoundary(const SurfaceHit& hit, const ShapeAppearance& app, const Vec3
 
 // The white reference's surface: a Lambertian reflector of reflectance 1.
 const Material& whiteLambertian() {
-  static const Material white{MaterialKind::Mixture,
-                              1.0f,
-                              IorModel::constant(1.5),
-                              Spectrum(ConstantSpectrum{1.0}),
-                              std::nullopt,
-                              nullptr,
-                              nullptr};
+  static const Material white = [] {
+    Material m;
+    m.kind = MaterialKind::Mixture;
+    m.roughness = 1.0f;
+    m.reflectance = Spectrum(ConstantSpectrum{1.0});
+    return m;
+  }();
   return white;
 }
 
@@ -200,7 +200,8 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     const Material& material = whiteHere ? whiteLambertian() : scene.materials[app.material];
     const Vec3 wo = -ray.d;
     const SampledSpectrum rho = scene.reflectanceAt(material, hit, current);
-    const SurfaceBsdf bsdf(material, current, rho, hit.ng, hit.ns, wo);
+    SurfaceBsdf bsdf(material, current, rho, hit.ng, hit.ns, wo);
+    bsdf.orient(hit.dpdu);
 
     // A fluorescent diffuse lobe: every lane's excitation wavelength is chosen once, for both
     // next-event estimation and the continuation through the diffuse lobe.

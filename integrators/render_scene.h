@@ -27,14 +27,18 @@ enum class MaterialKind : uint8_t {
                   ///< unchanged (no reflection, no refraction)
   ThinDielectric, ///< a thin glass wall (parallel faces): Fresnel reflection with the
                   ///< internal reflections summed, and straight transmission
+  Conductor,      ///< a metal: GGX microfacets (smooth when alpha is 0) with the exact Fresnel
+                  ///< reflectance of its complex index
 };
 
 /// A material: a kind with its parameters and spectra.
 struct Material {
   MaterialKind kind = MaterialKind::Mixture;
-  float roughness = 1;  ///< Mixture: probability weight r of the diffuse lobe
-  IorModel ior;         ///< Dielectric
-  Spectrum reflectance; ///< rho(lambda): albedo, or transmission tint for dielectrics
+  float roughness = 1;               ///< Mixture: probability weight r of the diffuse lobe
+  IorModel ior;                      ///< Dielectric
+  Spectrum conductorEta, conductorK; ///< Conductor: complex index eta + i k
+  float alphaU = 0, alphaV = 0;      ///< Conductor: GGX roughness along dpdu and across it
+  Spectrum reflectance;              ///< rho(lambda): albedo, or transmission tint for dielectrics
   std::optional<FluorescenceModel> fluorescenceModel; ///< the parameters, if not measured
   std::shared_ptr<const ReradiationMatrix>
       reradiation; ///< fluorescence of the diffuse lobe, or null

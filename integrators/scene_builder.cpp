@@ -22,6 +22,7 @@
 #include "io/srgb_image.h"
 #include "spectra/colour.h"
 #include "spectra/illuminants.h"
+#include "spectra/metals.h"
 #include "spectra/named_spectra.h"
 #include "spectra/rgb_upsampling.h"
 #include "spectra/sigmoid_table.h"
@@ -268,11 +269,13 @@ private:
   // What makes two materials the same for the MaterialId channel: kind, roughness, the index
   // of refraction and the reflectance every 5 nm over the traced range, the fluorescence.
   static std::vector<double> materialKey(const Material& m) {
-    std::vector<double> key = {static_cast<double>(m.kind), m.roughness,
+    std::vector<double> key = {static_cast<double>(m.kind), m.roughness, m.alphaU, m.alphaV,
                                static_cast<double>(reinterpret_cast<uintptr_t>(m.texture.get()))};
     for (double nm = kTraceMinNm; nm <= kTraceMaxNm; nm += 5) {
       key.push_back(m.reflectance(nm));
       key.push_back(m.kind == MaterialKind::Dielectric ? m.ior.at(nm) : 0.0);
+      if (m.kind == MaterialKind::Conductor)
+        key.insert(key.end(), {m.conductorEta(nm), m.conductorK(nm)});
     }
     if (m.reradiation) // the matrix's content (each object builds its own copy)
       for (int o = 0; o < ReradiationMatrix::kBins; ++o)
@@ -525,6 +528,53 @@ private:
     return stack;
   }
 
+  // <material>conductor</material>: a built-in metal or an explicit eta and k, and a GGX
+  // roughness (0: smooth); it takes no reflectance, roughness, ior or fluorescence.
+  Material conductor(const MaterialDesc& o, const SourceLocation& objectLoc) const {
+    if (o.color || o.reflectance || o.roughness || o.ior || o.fluorescence)
+      throw Error(objectLoc.str() +
+                  ": expected no <color>, <reflectance>, <roughness>, <ior> or <fluorescence> on "
+                  "a conductor (its colour is its <metal> or <eta> and <k>; its roughness "
+                  "<alpha>), found some");
+    Material m;
+    m.kind = MaterialKind::Conductor;
+    m.reflectance = Spectrum(ConstantSpectrum{1.0});
+    std::string names;
+    for (const std::string& n : metalNames()) names += (names.empty() ? "" : ", ") + n;
+    if (o.metal) {
+      if (o.eta || o.k)
+        throw Error(o.metalLoc.str() + ": expected either <metal> or <eta> and <k>, found both");
+      const std::optional<MetalIndex> metal = namedMetal(*o.metal);
+      if (!metal)
+        throw Error(o.metalLoc.str() + ": expected a metal name (" + names + "), found '" +
+                    *o.metal + "'");
+      m.conductorEta = metal->eta;
+      m.conductorK = metal->k;
+    } else {
+      if (!o.eta || !o.k)
+        throw Error(objectLoc.str() + ": expected <metal> (" + names +
+                    ") or both <eta> and <k> on a conductor, found " +
+                    (o.eta ? "<eta> alone"
+                     : o.k ? "<k> alone"
+                           : "neither"));
+      m.conductorEta = forRendering(resolve(*o.eta, SpectrumRole::Coefficient));
+      m.conductorK = forRendering(resolve(*o.k, SpectrumRole::Coefficient));
+      for (const auto& [sp, desc, what, lo] : {std::tuple{&m.conductorEta, &*o.eta, "eta", 1e-3},
+                                               std::tuple{&m.conductorK, &*o.k, "k", 0.0}}) {
+        const SpectrumExtremes e = spectrumExtremes(*sp, kTraceMinNm, kTraceMaxNm);
+        if (!(e.min >= lo && e.max <= 1e3))
+          throw Error(desc->loc.str() + ": expected " + what + " within [" + numberText(lo) +
+                      ", 1000] at every wavelength of " + tracedRange() + ", found " +
+                      (std::isnan(e.min) ? std::string("a non-finite value")
+                                         : numberText(e.min < lo ? e.min : e.max) + " at " +
+                                               numberText(e.min < lo ? e.minNm : e.maxNm) + " nm"));
+      }
+    }
+    m.alphaU = static_cast<float>(o.alpha ? *o.alpha : o.alphaU.value_or(0.0));
+    m.alphaV = static_cast<float>(o.alpha ? *o.alpha : o.alphaV.value_or(0.0));
+    return m;
+  }
+
   Material material(const MaterialDesc& o, const SourceLocation& objectLoc, bool emitter,
                     bool spectral) const {
     Material m;
@@ -539,6 +589,15 @@ private:
       m.reflectance = Spectrum(ConstantSpectrum{1.0});
       return m;
     }
+    if (name == "conductor") return conductor(o, objectLoc);
+    if (o.eta || o.k || o.metal || o.alpha || o.alphaU)
+      throw Error((o.metal ? o.metalLoc
+                   : o.eta ? o.eta->loc
+                   : o.k   ? o.k->loc
+                           : o.alphaLoc)
+                      .str() +
+                  ": expected <eta>, <k>, <metal> and <alpha> only on a conductor, found them on " +
+                  name);
     const bool thin = name == "thin_glass";
     const bool dielectric = name == "glass" || name == "diamond" || name == "translucent" ||
                             name == "transparent" || thin;

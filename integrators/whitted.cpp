@@ -42,7 +42,8 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
   const Material& material = scene.materials[app.material];
   const Vec3 wo = -ray.d;
   const SampledSpectrum rho = scene.reflectanceAt(material, hit, lambda);
-  const SurfaceBsdf bsdf(material, lambda, rho, hit.ng, hit.ns, wo);
+  SurfaceBsdf bsdf(material, lambda, rho, hit.ng, hit.ns, wo);
+  bsdf.orient(hit.dpdu);
 
   // Direct light on the diffuse lobe, from every light (one sample each). A fluorescent lobe
   // sees the lights at its lanes' excitation wavelengths.
@@ -51,7 +52,9 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
     const FluorescentShift shift =
         fluorescent ? sampleFluorescentShift(*material.reradiation, lambda, rho, rng)
                     : FluorescentShift{lambda, rho};
-    auto f = [&](const Vec3& wi) { return shift.albedo * bsdf.diffuseFactor(wi); };
+    auto f = [&](const Vec3& wi) {
+      return fluorescent ? shift.albedo * bsdf.diffuseFactor(wi) : bsdf.f(wi);
+    };
     auto noPdf = [](const Vec3&) { return 0.0f; };
     for (int k = 0; k < ctx.lights->count(); ++k) {
       const float uTriangle = rng.next1D();
@@ -73,6 +76,14 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
     stack.push_back(next);
   };
 
+  if (material.kind == MaterialKind::Conductor) {
+    // A smooth conductor's mirror ray, weighted by the lanes' Fresnel reflectance; a rough one
+    // has only its direct light (above), like the diffuse lobe.
+    BsdfSample bs;
+    if ((bsdf.lobes() & kSpecularReflection) && bsdf.sample(0, {}, bs))
+      spawn(bs.wi, bs.weight, false);
+    return;
+  }
   if (material.kind == MaterialKind::Mixture) {
     if (material.roughness < 1 && dot(wo, bsdf.normal()) > 0)
       spawn(reflect(wo, bsdf.normal()), rho * (1 - material.roughness), false);

@@ -99,6 +99,13 @@ struct MaterialDesc {
   SourceLocation roughnessLoc;
   std::optional<IorDesc> ior;
   std::optional<FluorescenceDesc> fluorescence;
+  /// Conductor: complex index eta + i k (spectra), or a built-in metal by name
+  std::optional<SpectrumDesc> eta, k;
+  std::optional<std::string> metal;
+  SourceLocation metalLoc;
+  /// Conductor: GGX roughness, isotropic (<alpha>) or along / across the tangent
+  std::optional<double> alpha, alphaU, alphaV;
+  SourceLocation alphaLoc;
 };
 
 /// <material id="..." type="...">: a material defined once and used by objects by its id.

@@ -29,6 +29,8 @@ inline constexpr ParameterRange kPeakRange{0, 1, false, "a peak absorptance"};
 /// A dye's peak absorption coefficient in a medium (per scene unit of length).
 inline constexpr ParameterRange kPeakCoefficientRange{
     0, 1e9, true, "a peak absorption coefficient per unit length"};
+/// GGX roughness alpha of a conductor (0: smooth; 1 is already a very rough surface).
+inline constexpr ParameterRange kAlphaRange{0, 1, false, "a GGX roughness alpha"};
 /// Henyey-Greenstein g: |g| = 1 would be a delta lobe (excluded by a margin).
 inline constexpr ParameterRange kPhaseGRange{-0.999, 0.999, false,
                                              "a Henyey-Greenstein g (mean cosine)"};

@@ -663,14 +663,14 @@ private:
 
   // The built-in material kinds.
   static const std::set<std::string>& materialKinds() {
-    static const std::set<std::string> kinds{"matte",   "metal",   "plastic",     "mirror",
-                                             "diamond", "glass",   "translucent", "transparent",
-                                             "default", "diffuse", "interface",   "thin_glass"};
+    static const std::set<std::string> kinds{
+        "matte",       "metal",   "plastic", "mirror",    "diamond",    "glass",    "translucent",
+        "transparent", "default", "diffuse", "interface", "thin_glass", "conductor"};
     return kinds;
   }
   static constexpr const char* kMaterialKindList =
       "matte, metal, plastic, mirror, glass, diamond, translucent, transparent, default, "
-      "diffuse, interface or thin_glass";
+      "diffuse, interface, thin_glass or conductor";
 
   // The parameters of a material from an element's children (an object's, or a <material id>'s).
   void parseMaterialParameters(const std::map<std::string, pugi::xml_node>& c,
@@ -683,6 +683,24 @@ private:
     }
     if (c.count("ior")) m.ior = ior(c.at("ior"));
     if (c.count("fluorescence")) m.fluorescence = fluorescence(c.at("fluorescence"));
+    if (c.count("eta")) m.eta = spectrum(c.at("eta"), false);
+    if (c.count("k")) m.k = spectrum(c.at("k"), false);
+    if (c.count("metal")) {
+      m.metal = text(c.at("metal"));
+      m.metalLoc = loc(c.at("metal"));
+    }
+    for (const auto& [tag, field] :
+         {std::pair{"alpha", &MaterialDesc::alpha}, std::pair{"alpha_u", &MaterialDesc::alphaU},
+          std::pair{"alpha_v", &MaterialDesc::alphaV}})
+      if (c.count(tag)) {
+        m.*field = number(c.at(tag), kAlphaRange);
+        m.alphaLoc = loc(c.at(tag));
+      }
+    if (m.alpha && (m.alphaU || m.alphaV))
+      fail(c.at("alpha"), "either <alpha> or <alpha_u> and <alpha_v>", "both");
+    if (m.alphaU.has_value() != m.alphaV.has_value())
+      fail(c.at(m.alphaU ? "alpha_u" : "alpha_v"), "<alpha_u> and <alpha_v> together",
+           "only one of them");
   }
 
   // <material id="name" type="kind"> with the material's parameters as children.
@@ -701,7 +719,8 @@ private:
     d.material.materialLoc = d.loc;
     if (!materialKinds().count(d.material.material))
       fail(n, "a material type " + std::string(kMaterialKindList), shownText(d.material.material));
-    const auto c = uniqueChildren(n, {"color", "reflectance", "roughness", "ior", "fluorescence"});
+    const auto c = uniqueChildren(n, {"color", "reflectance", "roughness", "ior", "fluorescence",
+                                      "eta", "k", "metal", "alpha", "alpha_u", "alpha_v"});
     parseMaterialParameters(c, d.material);
     return d;
   }
@@ -796,8 +815,9 @@ private:
     const std::string tag = n.name();
     checkAttributes(n,
                     tag == "mesh" ? std::vector<std::string>{"file"} : std::vector<std::string>{});
-    std::vector<std::string> allowed{"material",     "color",     "reflectance", "emission",
-                                     "fluorescence", "roughness", "ior"};
+    std::vector<std::string> allowed{
+        "material", "color", "reflectance", "emission", "fluorescence", "roughness", "ior",
+        "eta",      "k",     "metal",       "alpha",    "alpha_u",      "alpha_v"};
     if (tag == "sphere") allowed.insert(allowed.end(), {"center", "radius", "medium"});
     if (tag == "plane") allowed.insert(allowed.end(), {"normal", "distance"});
     if (tag == "triangle") allowed.insert(allowed.end(), {"vA", "vB", "vC"});

@@ -13,13 +13,83 @@ SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
     : material_(&m), lambda_(&lambda), rho_(rho), wo_(wo), mode_(mode) {
   // Opaque surfaces scatter on the side they are seen from (decided by the geometric normal);
   // dielectrics keep the outward normal to know whether the path enters or leaves.
-  const bool flip = m.kind == MaterialKind::Mixture && dot(wo, ng) < 0;
+  const bool opaque = m.kind == MaterialKind::Mixture || m.kind == MaterialKind::Conductor;
+  const bool flip = opaque && dot(wo, ng) < 0;
   ng_ = flip ? -ng : ng;
   n_ = flip ? -ns : ns;
+  if (m.kind == MaterialKind::Conductor) {
+    m.conductorEta.evaluate(lambda, eta_);
+    m.conductorK.evaluate(lambda, k_);
+    // Rougher than 1e-4 is a microfacet surface (clamped there), else a smooth one.
+    if (std::max(m.alphaU, m.alphaV) >= 1e-4f)
+      alpha_ = {std::max(m.alphaU, 1e-4f), std::max(m.alphaV, 1e-4f)};
+    frame_ = Frame::fromNormal(n_);
+  }
+}
+
+void SurfaceBsdf::orient(const Vec3& dpdu) {
+  if (material_->kind != MaterialKind::Conductor || alpha_.ax == alpha_.ay) return;
+  const Vec3 t = dpdu - n_ * dot(dpdu, n_);
+  const float len = length(t);
+  if (!(len > 1e-12f) || !std::isfinite(len)) return;
+  frame_.s = t * (1.0f / len);
+  frame_.t = cross(n_, frame_.s);
+}
+
+// The lanes' Fresnel reflectance at a micro-surface seen with cosine cosI.
+SampledSpectrum SurfaceBsdf::conductorFresnel(float cosI) const {
+  SampledSpectrum f;
+  for (int i = 0; i < kLanes; ++i) f[i] = fresnelConductor(cosI, eta_[i], k_[i]);
+  return f;
+}
+
+// Torrance-Sparrow with GGX: f cos(wi) = D(h) G2(wo, wi) F(wo.h) / (4 cos(wo)), h the half
+// vector (Walter et al. 2007, eq. 20); zero below the surface (either normal).
+SampledSpectrum SurfaceBsdf::conductorF(const Vec3& wi) const {
+  if (smoothConductor() || dot(wi, ng_) <= 0) return {};
+  const Vec3 o = frame_.toLocal(wo_), i = frame_.toLocal(wi);
+  if (o.z <= 0 || i.z <= 0) return {};
+  const Vec3 h = normalize(o + i);
+  const float d = alpha_.d(h);
+  if (!(d > 0)) return {};
+  return conductorFresnel(dot(o, h)) * (d * alpha_.g2(o, i) / (4 * o.z));
+}
+
+// Visible-normal sampling: h from D_wo, wi = reflect(wo, h); the weight f cos / pdf is
+// F G2 / G1(wo) with pdf = G1(wo) D(h) / (4 cos(wo)) (Heitz 2018, sec. 2). A reflection below
+// the surface is lost (the single-scattering model's energy loss, docs/materials.md).
+bool SurfaceBsdf::sampleConductor(Sample2 u, BsdfSample& out) const {
+  const float cosO = dot(wo_, n_);
+  if (cosO <= 0) return false;
+  out.terminateSecondary = false;
+  out.eta = 1;
+  if (smoothConductor()) {
+    out.wi = reflect(wo_, n_);
+    if (dot(out.wi, ng_) <= 0) return false;
+    out.weight = conductorFresnel(cosO);
+    out.pdf = 0;
+    out.specular = true;
+    return true;
+  }
+  const Vec3 o = frame_.toLocal(wo_);
+  const Vec3 h = alpha_.sampleVisibleNormal(o, u);
+  const float oh = dot(o, h);
+  if (!(oh > 0)) return false;
+  const Vec3 i = h * (2 * oh) - o;
+  if (i.z <= 0) return false;
+  out.wi = frame_.toWorld(i);
+  if (dot(out.wi, ng_) <= 0) return false;
+  out.pdf = alpha_.g1(o) * alpha_.d(h) / (4 * o.z);
+  if (!(out.pdf > 0)) return false;
+  out.weight = conductorFresnel(oh) * (alpha_.g2(o, i) / alpha_.g1(o));
+  out.specular = false;
+  return true;
 }
 
 uint8_t SurfaceBsdf::lobes() const {
   if (material_->kind == MaterialKind::Interface) return kSpecularTransmission;
+  if (material_->kind == MaterialKind::Conductor)
+    return smoothConductor() ? kSpecularReflection : kGlossyReflection;
   if (material_->kind == MaterialKind::ThinDielectric)
     return kSpecularReflection | kSpecularTransmission;
   if (material_->kind == MaterialKind::Dielectric)
@@ -36,6 +106,13 @@ float SurfaceBsdf::diffuseFactor(const Vec3& wi) const {
 }
 
 float SurfaceBsdf::pdf(const Vec3& wi) const {
+  if (material_->kind == MaterialKind::Conductor) {
+    if (smoothConductor() || dot(wi, ng_) <= 0) return 0;
+    const Vec3 o = frame_.toLocal(wo_), i = frame_.toLocal(wi);
+    if (o.z <= 0 || i.z <= 0) return 0;
+    const Vec3 h = normalize(o + i);
+    return alpha_.g1(o) * alpha_.d(h) / (4 * o.z);
+  }
   if (material_->kind != MaterialKind::Mixture || !(material_->roughness > 0) || dot(wo_, n_) <= 0)
     return 0;
   return material_->roughness * cosineHemispherePdf(dot(wi, n_));
@@ -59,6 +136,8 @@ bool SurfaceBsdf::sample(float uLobe, Sample2 u, BsdfSample& out) const {
     return true;
   case MaterialKind::ThinDielectric:
     return sampleThinDielectric(uLobe, out);
+  case MaterialKind::Conductor:
+    return sampleConductor(u, out);
   }
   return false;
 }

@@ -2,8 +2,11 @@
 // Scattering at a surface point for all wavelengths of a path at once, dispatched statically
 // over the fixed set of material kinds (no virtual call, nothing per wavelength but arithmetic).
 
+#include <algorithm>
+
 #include "core/frame.h"
 #include "core/sampler.h"
+#include "integrators/materials/microfacet.h"
 #include "integrators/render_scene.h"
 #include "spectra/sampled_wavelengths.h"
 
@@ -63,8 +66,14 @@ public:
   /// True if some of the scattering is non-specular (light sampling can help).
   bool hasNonSpecular() const { return (lobes() & kNonSpecular) != 0; }
 
+  /// Orients anisotropic roughness: alpha_u runs along the surface tangent dpdu (projected
+  /// onto the tangent plane; a degenerate tangent keeps an arbitrary orientation).
+  void orient(const Vec3& dpdu);
+
   /// f(wo, wi) |cos(wi)| of the non-specular lobes, per lane (zero below the surface).
-  SampledSpectrum f(const Vec3& wi) const { return rho_ * diffuseFactor(wi); }
+  SampledSpectrum f(const Vec3& wi) const {
+    return material_->kind == MaterialKind::Conductor ? conductorF(wi) : rho_ * diffuseFactor(wi);
+  }
   /// r |cos(wi)| / pi: the diffuse lobe without its albedo (fluorescent lobes supply their own).
   float diffuseFactor(const Vec3& wi) const;
   /// Density with which sample() returns wi through its non-specular lobes.
@@ -79,6 +88,10 @@ public:
 
 private:
   bool sampleMixture(float uLobe, Sample2 u, BsdfSample& out) const;
+  bool sampleConductor(Sample2 u, BsdfSample& out) const;
+  SampledSpectrum conductorF(const Vec3& wi) const;
+  SampledSpectrum conductorFresnel(float cosI) const;
+  bool smoothConductor() const { return !(std::max(alpha_.ax, alpha_.ay) > 0); }
   bool sampleDielectric(float uLobe, BsdfSample& out) const;
   bool sampleThinDielectric(float uLobe, BsdfSample& out) const;
 
@@ -87,6 +100,10 @@ private:
   SampledSpectrum rho_;
   Vec3 n_, ng_, wo_; ///< shading normal, geometric normal (both on wo's side for Mixture)
   TransportMode mode_;
+  // Conductors: the lanes' complex index, the roughness, and the microfacet frame (n_ as z).
+  SampledSpectrum eta_, k_;
+  GgxDistribution alpha_;
+  Frame frame_;
 };
 
 } // namespace nx

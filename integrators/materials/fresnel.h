@@ -1,8 +1,10 @@
 #pragma once
-// Fresnel reflectance of a smooth dielectric interface and the refraction direction.
+// Fresnel reflectance of smooth dielectric and conductor interfaces, and the refraction
+// direction.
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "core/vec3.h"
 
@@ -19,6 +21,21 @@ inline float fresnelDielectric(float cosI, float eta) {
   const float rs = (cosI - eta * cosT) / (cosI + eta * cosT);
   const float rp = (eta * cosI - cosT) / (eta * cosI + cosT);
   return 0.5f * (rs * rs + rp * rp);
+}
+
+/// Unpolarised Fresnel reflectance of a conductor with complex index eta + i k (relative to
+/// the outside medium) for light arriving with cosine cosI: the exact average of |r_s|^2 and
+/// |r_p|^2 with the complex cosine of the transmitted angle, cos_t = sqrt(1 - sin^2 / n^2)
+/// (Born & Wolf, sec. 14.2). k = 0 gives fresnelDielectric for eta >= 1.
+inline float fresnelConductor(float cosI, float eta, float k) {
+  using C = std::complex<float>;
+  cosI = std::clamp(cosI, 0.0f, 1.0f);
+  if (!(cosI > 0)) return 1.0f; // grazing (the formula's 0 / 0 for eta = 1, k = 0)
+  const C n(eta, k);
+  const C cosT = std::sqrt(C(1.0f) - (1 - cosI * cosI) / (n * n));
+  const C rs = (cosI - n * cosT) / (cosI + n * cosT);
+  const C rp = (n * cosI - cosT) / (n * cosI + cosT);
+  return 0.5f * (std::norm(rs) + std::norm(rp));
 }
 
 /// Reflectance of a thin slab with parallel faces (a glass wall) for light arriving with

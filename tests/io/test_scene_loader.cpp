@@ -131,7 +131,7 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
        "<quad>, <mesh>, <material>, <spectrum>, found <shpere>"},
       {"unknown child", scene("<sphere><centre>0,0,0</centre></sphere>\n"),
        "t.scn:4: expected one of <material>, <color>, <reflectance>, <emission>, <fluorescence>, "
-       "<roughness>, <ior>, "
+       "<roughness>, <ior>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, "
        "<center>, <radius>, <medium> inside <sphere>, found <centre>"},
       {"repeated tag", scene("<sphere><radius>1</radius><radius>2</radius></sphere>\n"),
        "t.scn:4: expected one <radius>, found a second <radius>"},
@@ -188,7 +188,7 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
        scene("<sphere><center>0,0,0</center><radius>1</radius><material>velvet</material></"
              "sphere>\n"),
        "t.scn:4: expected a material matte, metal, plastic, mirror, glass, diamond, translucent, "
-       "transparent, default, diffuse, interface or thin_glass or the id of a <material "
+       "transparent, default, diffuse, interface, thin_glass or conductor or the id of a <material "
        "id=\"...\"> of the "
        "scene, found "
        "'velvet'"},

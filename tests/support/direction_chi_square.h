@@ -21,7 +21,8 @@ inline Sample2 uniform2(uint32_t i) {
 }
 
 /// Chi-square of sampled directions against a density over the sphere, in (cos theta, phi)
-/// cells of equal area; the expected count per cell integrates the pdf numerically.
+/// cells of equal area; the expected count per cell integrates the pdf numerically. A sample
+/// may fail (return the zero vector: absorbed); the density then integrates to less than 1.
 inline void expectDirectionsFollowPdf(const std::function<Vec3(Sample2)>& sample,
                                       const std::function<double(const Vec3&)>& pdf,
                                       int n = 200000) {
@@ -29,6 +30,7 @@ inline void expectDirectionsFollowPdf(const std::function<Vec3(Sample2)>& sample
   std::vector<double> obs(nz * nphi, 0), exp(nz * nphi, 0);
   for (int i = 0; i < n; ++i) {
     const Vec3 w = sample(uniform2(static_cast<uint32_t>(i)));
+    if (w.x == 0 && w.y == 0 && w.z == 0) continue;
     ASSERT_NEAR(length(w), 1.0f, 1e-5f);
     const int iz = std::min(nz - 1, static_cast<int>((w.z + 1) / 2 * nz));
     double phi = std::atan2(w.y, w.x);
