@@ -38,6 +38,8 @@ struct Material {
   IorModel ior;                      ///< Dielectric
   Spectrum conductorEta, conductorK; ///< Conductor: complex index eta + i k
   float alphaU = 0, alphaV = 0;      ///< Conductor: GGX roughness along dpdu and across it
+  float coatingNm = 0;               ///< a thin-film coating's thickness in nm (0: none)
+  IorModel coatingIor;               ///< the coating's index of refraction
   Spectrum reflectance;              ///< rho(lambda): albedo, or transmission tint for dielectrics
   std::optional<FluorescenceModel> fluorescenceModel; ///< the parameters, if not measured
   std::shared_ptr<const ReradiationMatrix>

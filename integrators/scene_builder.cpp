@@ -269,7 +269,12 @@ private:
   // What makes two materials the same for the MaterialId channel: kind, roughness, the index
   // of refraction and the reflectance every 5 nm over the traced range, the fluorescence.
   static std::vector<double> materialKey(const Material& m) {
-    std::vector<double> key = {static_cast<double>(m.kind), m.roughness, m.alphaU, m.alphaV,
+    std::vector<double> key = {static_cast<double>(m.kind),
+                               m.roughness,
+                               m.alphaU,
+                               m.alphaV,
+                               m.coatingNm,
+                               m.coatingNm > 0 ? m.coatingIor.at(550) : 0.0,
                                static_cast<double>(reinterpret_cast<uintptr_t>(m.texture.get()))};
     for (double nm = kTraceMinNm; nm <= kTraceMaxNm; nm += 5) {
       key.push_back(m.reflectance(nm));
@@ -577,6 +582,23 @@ private:
 
   Material material(const MaterialDesc& o, const SourceLocation& objectLoc, bool emitter,
                     bool spectral) const {
+    Material m = uncoatedMaterial(o, objectLoc, emitter, spectral);
+    if (o.coating) {
+      // A thin film needs a smooth interface or microfacets to lie on: conductors and
+      // (smooth) dielectrics.
+      if (m.kind != MaterialKind::Conductor && m.kind != MaterialKind::Dielectric)
+        throw Error(o.coating->loc.str() +
+                    ": expected a <coating> only on a conductor or on glass, diamond, "
+                    "translucent or transparent, found it on " +
+                    o.material);
+      m.coatingNm = static_cast<float>(o.coating->thicknessNm);
+      m.coatingIor = iorModel(o.coating->ior);
+    }
+    return m;
+  }
+
+  Material uncoatedMaterial(const MaterialDesc& o, const SourceLocation& objectLoc, bool emitter,
+                            bool spectral) const {
     Material m;
     const std::string& name = o.material;
     if (name == "interface") {

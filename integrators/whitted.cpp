@@ -100,7 +100,8 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
     const float ior = static_cast<float>(material.ior.at(lambda.lambda[i]));
     const float eta = entering ? ior : 1.0f / ior;
     if (i == 0) etaHero = eta;
-    fr[i] = fresnelDielectric(std::abs(cosO), eta);
+    fr[i] = dielectricReflectance(material, std::abs(cosO), entering ? 1.0f : ior,
+                                  entering ? ior : 1.0f, lambda.lambda[i]);
     tr[i] = (1 - fr[i]) / (eta * eta);
   }
   Vec3 wt;

@@ -106,6 +106,13 @@ struct MaterialDesc {
   /// Conductor: GGX roughness, isotropic (<alpha>) or along / across the tangent
   std::optional<double> alpha, alphaU, alphaV;
   SourceLocation alphaLoc;
+  /// A thin-film coating: thickness in nm and index of refraction
+  struct Coating {
+    double thicknessNm = 0;
+    IorDesc ior;
+    SourceLocation loc;
+  };
+  std::optional<Coating> coating;
 };
 
 /// <material id="..." type="...">: a material defined once and used by objects by its id.

@@ -696,6 +696,16 @@ private:
         m.*field = number(c.at(tag), kAlphaRange);
         m.alphaLoc = loc(c.at(tag));
       }
+    if (c.count("coating")) {
+      const pugi::xml_node n = c.at("coating");
+      checkAttributes(n, {});
+      const auto cc = uniqueChildren(n, {"thickness", "ior"});
+      MaterialDesc::Coating coat;
+      coat.loc = loc(n);
+      coat.thicknessNm = number(required(cc, n, "thickness"), kCoatingThicknessRange);
+      coat.ior = ior(required(cc, n, "ior"));
+      m.coating = coat;
+    }
     if (m.alpha && (m.alphaU || m.alphaV))
       fail(c.at("alpha"), "either <alpha> or <alpha_u> and <alpha_v>", "both");
     if (m.alphaU.has_value() != m.alphaV.has_value())
@@ -719,8 +729,9 @@ private:
     d.material.materialLoc = d.loc;
     if (!materialKinds().count(d.material.material))
       fail(n, "a material type " + std::string(kMaterialKindList), shownText(d.material.material));
-    const auto c = uniqueChildren(n, {"color", "reflectance", "roughness", "ior", "fluorescence",
-                                      "eta", "k", "metal", "alpha", "alpha_u", "alpha_v"});
+    const auto c =
+        uniqueChildren(n, {"color", "reflectance", "roughness", "ior", "fluorescence", "eta", "k",
+                           "metal", "alpha", "alpha_u", "alpha_v", "coating"});
     parseMaterialParameters(c, d.material);
     return d;
   }
@@ -817,7 +828,7 @@ private:
                     tag == "mesh" ? std::vector<std::string>{"file"} : std::vector<std::string>{});
     std::vector<std::string> allowed{
         "material", "color", "reflectance", "emission", "fluorescence", "roughness", "ior",
-        "eta",      "k",     "metal",       "alpha",    "alpha_u",      "alpha_v"};
+        "eta",      "k",     "metal",       "alpha",    "alpha_u",      "alpha_v",   "coating"};
     if (tag == "sphere") allowed.insert(allowed.end(), {"center", "radius", "medium"});
     if (tag == "plane") allowed.insert(allowed.end(), {"normal", "distance"});
     if (tag == "triangle") allowed.insert(allowed.end(), {"vA", "vB", "vC"});

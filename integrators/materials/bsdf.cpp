@@ -36,11 +36,28 @@ void SurfaceBsdf::orient(const Vec3& dpdu) {
   frame_.t = cross(n_, frame_.s);
 }
 
-// The lanes' Fresnel reflectance at a micro-surface seen with cosine cosI.
+// The lanes' Fresnel reflectance at a micro-surface seen with cosine cosI (through the
+// coating: a thin film on each microfacet).
 SampledSpectrum SurfaceBsdf::conductorFresnel(float cosI) const {
   SampledSpectrum f;
+  const Material& m = *material_;
+  if (m.coatingNm > 0) {
+    for (int i = 0; i < kLanes; ++i) {
+      const float nm = lambda_->lambda[i];
+      f[i] = thinFilmReflectance(cosI, 1.0f, static_cast<float>(m.coatingIor.at(nm)), eta_[i],
+                                 k_[i], m.coatingNm, nm);
+    }
+    return f;
+  }
   for (int i = 0; i < kLanes; ++i) f[i] = fresnelConductor(cosI, eta_[i], k_[i]);
   return f;
+}
+
+float dielectricReflectance(const Material& m, float cosI, float nIncident, float nTransmitted,
+                            float lambdaNm) {
+  if (!(m.coatingNm > 0)) return fresnelDielectric(cosI, nTransmitted / nIncident);
+  return thinFilmReflectance(cosI, nIncident, static_cast<float>(m.coatingIor.at(lambdaNm)),
+                             nTransmitted, 0.0f, m.coatingNm, lambdaNm);
 }
 
 // Torrance-Sparrow with GGX: f cos(wi) = D(h) G2(wo, wi) F(wo.h) / (4 cos(wo)), h the half
@@ -204,12 +221,15 @@ bool SurfaceBsdf::sampleDielectric(float uLobe, BsdfSample& out) const {
   const Vec3 n = entering ? n_ : -n_;
   const float c = std::abs(cosO);
   const bool dispersive = material_->ior.dispersive();
+  const bool coated = material_->coatingNm > 0; // reflectance varies with the wavelength
   SampledSpectrum eta, fresnel;
   for (int i = 0; i < kLanes; ++i) {
     const float ior = static_cast<float>(material_->ior.at((*lambda_).lambda[i]));
     eta[i] = entering ? ior : 1.0f / ior; // n_transmitted / n_incident
-    fresnel[i] = fresnelDielectric(c, eta[i]);
-    if (!dispersive) {
+    fresnel[i] = coated ? dielectricReflectance(*material_, c, entering ? 1.0f : ior,
+                                                entering ? ior : 1.0f, (*lambda_).lambda[i])
+                        : fresnelDielectric(c, eta[i]);
+    if (!dispersive && !coated) {
       for (int k = 1; k < kLanes; ++k) eta[k] = eta[0], fresnel[k] = fresnel[0];
       break;
     }

@@ -44,6 +44,12 @@ enum BsdfLobe : uint8_t {
 /// (energy, used to check conservation).
 enum class TransportMode : uint8_t { Radiance, Energy };
 
+/// Reflectance of a smooth dielectric interface for light arriving with cosine cosI from the
+/// side of index nIncident towards nTransmitted (absolute indices), through the material's
+/// thin-film coating if it has one (on the outside of the surface), at wavelength lambdaNm.
+float dielectricReflectance(const Material& m, float cosI, float nIncident, float nTransmitted,
+                            float lambdaNm);
+
 /// The BSDF of one surface point, seen from direction wo.
 class SurfaceBsdf {
 public:

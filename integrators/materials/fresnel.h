@@ -6,6 +6,7 @@
 #include <cmath>
 #include <complex>
 
+#include "core/math_util.h"
 #include "core/vec3.h"
 
 namespace nx {
@@ -36,6 +37,33 @@ inline float fresnelConductor(float cosI, float eta, float k) {
   const C rs = (cosI - n * cosT) / (cosI + n * cosT);
   const C rp = (n * cosI - cosT) / (n * cosI + cosT);
   return 0.5f * (std::norm(rs) + std::norm(rp));
+}
+
+/// Unpolarised reflectance of a thin film (thickness d_nm, real index n1) between an incident
+/// medium of real index n0 and a substrate of complex index n2 = eta2 + i k2, for light of
+/// wavelength lambda_nm arriving with cosine cos0: Airy's sum of the multiply reflected waves,
+/// r = (r01 + r12 e^{i delta}) / (1 + r01 r12 e^{i delta}), delta = (4 pi / lambda) d q1, per
+/// polarisation, with q_j = n_j cos(theta_j) = sqrt(n_j^2 - n0^2 sin^2(theta_0)) (principal root:
+/// evanescent and absorbed waves decay), r_s = (q_i - q_j) / (q_i + q_j) and
+/// r_p = (n_j^2 q_i - n_i^2 q_j) / (n_j^2 q_i + n_i^2 q_j) (Born & Wolf, sec. 1.6.4 and 14.4).
+/// d_nm = 0 gives the substrate's Fresnel reflectance.
+inline float thinFilmReflectance(float cos0, float n0, float n1, float eta2, float k2, float dNm,
+                                 float lambdaNm) {
+  using C = std::complex<double>;
+  const double c = std::clamp(static_cast<double>(cos0), 0.0, 1.0);
+  if (!(c > 0)) return 1.0f;
+  const double s2 = static_cast<double>(n0) * n0 * (1 - c * c); // (n0 sin theta_0)^2
+  const C e0(static_cast<double>(n0) * n0), e1(static_cast<double>(n1) * n1),
+      e2 = C(eta2, k2) * C(eta2, k2); // n_j^2
+  const C q0(n0 * c), q1 = std::sqrt(e1 - s2), q2 = std::sqrt(e2 - s2);
+  const C phase = std::exp(C(0, 4 * kPi * dNm / lambdaNm) * q1);
+  auto airy = [&](const C& r01, const C& r12) {
+    return std::norm((r01 + r12 * phase) / (1.0 + r01 * r12 * phase));
+  };
+  const double rs = airy((q0 - q1) / (q0 + q1), (q1 - q2) / (q1 + q2));
+  const double rp =
+      airy((e1 * q0 - e0 * q1) / (e1 * q0 + e0 * q1), (e2 * q1 - e1 * q2) / (e2 * q1 + e1 * q2));
+  return static_cast<float>(std::min(1.0, 0.5 * (rs + rp)));
 }
 
 /// Reflectance of a thin slab with parallel faces (a glass wall) for light arriving with

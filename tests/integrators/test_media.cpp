@@ -179,7 +179,7 @@ TEST(Media, SceneErrors) {
                   "</material><medium><sigma_a>1</sigma_a><sigma_s>0</sigma_s></medium></plane>"),
             "t.scn:1: expected one of <material>, <color>, <reflectance>, <emission>, "
             "<fluorescence>, <roughness>, <ior>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, "
-            "<alpha_v>, <normal>, <distance> inside <plane>, found "
+            "<alpha_v>, <coating>, <normal>, <distance> inside <plane>, found "
             "<medium>");
   EXPECT_EQ(error("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
                   "</material><reflectance>0.5</reflectance></sphere>"),

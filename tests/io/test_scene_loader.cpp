@@ -131,7 +131,7 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
        "<quad>, <mesh>, <material>, <spectrum>, found <shpere>"},
       {"unknown child", scene("<sphere><centre>0,0,0</centre></sphere>\n"),
        "t.scn:4: expected one of <material>, <color>, <reflectance>, <emission>, <fluorescence>, "
-       "<roughness>, <ior>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, "
+       "<roughness>, <ior>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, <coating>, "
        "<center>, <radius>, <medium> inside <sphere>, found <centre>"},
       {"repeated tag", scene("<sphere><radius>1</radius><radius>2</radius></sphere>\n"),
        "t.scn:4: expected one <radius>, found a second <radius>"},
