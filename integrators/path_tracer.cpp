@@ -202,6 +202,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     const SampledSpectrum rho = scene.reflectanceAt(material, hit, current);
     SurfaceBsdf bsdf(material, current, rho, hit.ng, hit.ns, wo);
     bsdf.orient(hit.dpdu);
+    bsdf.setHeroAlone(heroAlone);
 
     // A fluorescent diffuse lobe: every lane's excitation wavelength is chosen once, for both
     // next-event estimation and the continuation through the diffuse lobe.

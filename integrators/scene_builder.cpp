@@ -591,6 +591,10 @@ private:
                     ": expected a <coating> only on a conductor or on glass, diamond, "
                     "translucent or transparent, found it on " +
                     o.material);
+      if (m.kind == MaterialKind::Dielectric && std::max(m.alphaU, m.alphaV) > 0)
+        throw Error(o.coating->loc.str() +
+                    ": expected a <coating> on a smooth dielectric, found it on a rough one "
+                    "(<alpha>)");
       m.coatingNm = static_cast<float>(o.coating->thicknessNm);
       m.coatingIor = iorModel(o.coating->ior);
     }
@@ -612,14 +616,12 @@ private:
       return m;
     }
     if (name == "conductor") return conductor(o, objectLoc);
-    if (o.eta || o.k || o.metal || o.alpha || o.alphaU)
+    if (o.eta || o.k || o.metal)
       throw Error((o.metal ? o.metalLoc
                    : o.eta ? o.eta->loc
-                   : o.k   ? o.k->loc
-                           : o.alphaLoc)
+                           : o.k->loc)
                       .str() +
-                  ": expected <eta>, <k>, <metal> and <alpha> only on a conductor, found them on " +
-                  name);
+                  ": expected <eta>, <k> and <metal> only on a conductor, found them on " + name);
     const bool thin = name == "thin_glass";
     const bool dielectric = name == "glass" || name == "diamond" || name == "translucent" ||
                             name == "transparent" || thin;
@@ -630,6 +632,12 @@ private:
         throw Error(o.roughnessLoc.str() + ": expected no <roughness> on a smooth dielectric (" +
                     name + "), found one");
       if (o.ior) m.ior = iorModel(*o.ior);
+      // <alpha>: a rough (frosted) dielectric; a thin wall stays smooth.
+      if (thin && (o.alpha || o.alphaU))
+        throw Error(o.alphaLoc.str() + ": expected no <alpha> on thin_glass (a smooth wall), "
+                                       "found one");
+      m.alphaU = static_cast<float>(o.alpha ? *o.alpha : o.alphaU.value_or(0.0));
+      m.alphaV = static_cast<float>(o.alpha ? *o.alpha : o.alphaV.value_or(0.0));
     } else {
       m.kind = MaterialKind::Mixture;
       m.roughness = name == "metal"     ? 0.3f
@@ -637,6 +645,11 @@ private:
                     : name == "mirror"  ? 0.0f
                                         : 1.0f;
       if (o.roughness) m.roughness = static_cast<float>(*o.roughness);
+      if (o.alpha || o.alphaU)
+        throw Error(o.alphaLoc.str() +
+                    ": expected <alpha> only on a conductor or a dielectric (glass, diamond, "
+                    "translucent, transparent), found it on " +
+                    name);
       if (o.ior)
         throw Error(
             o.ior->loc.str() +

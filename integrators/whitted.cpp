@@ -44,6 +44,7 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
   const SampledSpectrum rho = scene.reflectanceAt(material, hit, lambda);
   SurfaceBsdf bsdf(material, lambda, rho, hit.ng, hit.ns, wo);
   bsdf.orient(hit.dpdu);
+  bsdf.setHeroAlone(node.heroOnlyPath);
 
   // Direct light on the diffuse lobe, from every light (one sample each). A fluorescent lobe
   // sees the lights at its lanes' excitation wavelengths.
@@ -84,6 +85,7 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
       spawn(bs.wi, bs.weight, false);
     return;
   }
+  if (bsdf.lobes() & (kGlossyReflection | kGlossyTransmission)) return; // rough: direct light only
   if (material.kind == MaterialKind::Mixture) {
     if (material.roughness < 1 && dot(wo, bsdf.normal()) > 0)
       spawn(reflect(wo, bsdf.normal()), rho * (1 - material.roughness), false);

@@ -25,10 +25,19 @@ SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
       alpha_ = {std::max(m.alphaU, 1e-4f), std::max(m.alphaV, 1e-4f)};
     frame_ = Frame::fromNormal(n_);
   }
+  if (m.kind == MaterialKind::Dielectric && std::max(m.alphaU, m.alphaV) >= 1e-4f) {
+    alpha_ = {std::max(m.alphaU, 1e-4f), std::max(m.alphaV, 1e-4f)};
+    frame_ = Frame::fromNormal(n_);
+    const bool entering = dot(wo, n_) > 0;
+    for (int i = 0; i < kLanes; ++i) {
+      const float ior = static_cast<float>(m.ior.at(lambda.lambda[i]));
+      eta_[i] = entering ? ior : 1.0f / ior;
+    }
+  }
 }
 
 void SurfaceBsdf::orient(const Vec3& dpdu) {
-  if (material_->kind != MaterialKind::Conductor || alpha_.ax == alpha_.ay) return;
+  if (alpha_.ax == alpha_.ay) return; // isotropic (or smooth, or not a microfacet surface)
   const Vec3 t = dpdu - n_ * dot(dpdu, n_);
   const float len = length(t);
   if (!(len > 1e-12f) || !std::isfinite(len)) return;
@@ -110,7 +119,8 @@ uint8_t SurfaceBsdf::lobes() const {
   if (material_->kind == MaterialKind::ThinDielectric)
     return kSpecularReflection | kSpecularTransmission;
   if (material_->kind == MaterialKind::Dielectric)
-    return kSpecularReflection | kSpecularTransmission;
+    return roughDielectric() ? kGlossyReflection | kGlossyTransmission
+                             : kSpecularReflection | kSpecularTransmission;
   const float r = material_->roughness;
   return static_cast<uint8_t>((r > 0 ? kDiffuseReflection : 0) | (r < 1 ? kSpecularReflection : 0));
 }
@@ -123,6 +133,7 @@ float SurfaceBsdf::diffuseFactor(const Vec3& wi) const {
 }
 
 float SurfaceBsdf::pdf(const Vec3& wi) const {
+  if (material_->kind == MaterialKind::Dielectric) return roughDielectricPdf(wi);
   if (material_->kind == MaterialKind::Conductor) {
     if (smoothConductor() || dot(wi, ng_) <= 0) return 0;
     const Vec3 o = frame_.toLocal(wo_), i = frame_.toLocal(wi);
@@ -140,7 +151,7 @@ bool SurfaceBsdf::sample(float uLobe, Sample2 u, BsdfSample& out) const {
   case MaterialKind::Mixture:
     return sampleMixture(uLobe, u, out);
   case MaterialKind::Dielectric:
-    return sampleDielectric(uLobe, out);
+    return roughDielectric() ? sampleRoughDielectric(uLobe, u, out) : sampleDielectric(uLobe, out);
   case MaterialKind::Interface:
     // Index-matched: the path continues straight on, every lane unchanged.
     out.wi = -wo_;

@@ -72,13 +72,19 @@ public:
   /// True if some of the scattering is non-specular (light sampling can help).
   bool hasNonSpecular() const { return (lobes() & kNonSpecular) != 0; }
 
+  /// Tells the BSDF that the path carries the hero lane alone (after dispersion): a dispersive
+  /// rough dielectric's transmission in f() is then not scaled by kLanes again.
+  void setHeroAlone(bool heroAlone) { heroAlone_ = heroAlone; }
+
   /// Orients anisotropic roughness: alpha_u runs along the surface tangent dpdu (projected
   /// onto the tangent plane; a degenerate tangent keeps an arbitrary orientation).
   void orient(const Vec3& dpdu);
 
   /// f(wo, wi) |cos(wi)| of the non-specular lobes, per lane (zero below the surface).
   SampledSpectrum f(const Vec3& wi) const {
-    return material_->kind == MaterialKind::Conductor ? conductorF(wi) : rho_ * diffuseFactor(wi);
+    if (material_->kind == MaterialKind::Conductor) return conductorF(wi);
+    if (material_->kind == MaterialKind::Dielectric) return roughDielectricF(wi);
+    return rho_ * diffuseFactor(wi);
   }
   /// r |cos(wi)| / pi: the diffuse lobe without its albedo (fluorescent lobes supply their own).
   float diffuseFactor(const Vec3& wi) const;
@@ -98,6 +104,13 @@ private:
   SampledSpectrum conductorF(const Vec3& wi) const;
   SampledSpectrum conductorFresnel(float cosI) const;
   bool smoothConductor() const { return !(std::max(alpha_.ax, alpha_.ay) > 0); }
+  // Rough dielectrics (bsdf_rough_dielectric.cpp): wo's side as +z, the lanes' Fresnel.
+  bool roughDielectric() const {
+    return material_->kind == MaterialKind::Dielectric && std::max(alpha_.ax, alpha_.ay) > 0;
+  }
+  bool sampleRoughDielectric(float uLobe, Sample2 u, BsdfSample& out) const;
+  SampledSpectrum roughDielectricF(const Vec3& wi) const;
+  float roughDielectricPdf(const Vec3& wi) const;
   bool sampleDielectric(float uLobe, BsdfSample& out) const;
   bool sampleThinDielectric(float uLobe, BsdfSample& out) const;
 
@@ -106,10 +119,12 @@ private:
   SampledSpectrum rho_;
   Vec3 n_, ng_, wo_; ///< shading normal, geometric normal (both on wo's side for Mixture)
   TransportMode mode_;
-  // Conductors: the lanes' complex index, the roughness, and the microfacet frame (n_ as z).
+  // Conductors: the lanes' complex index; rough dielectrics: eta_ the lanes' relative index
+  // n_other / n_wo-side; both: the roughness and the microfacet frame (n_ as z).
   SampledSpectrum eta_, k_;
   GgxDistribution alpha_;
   Frame frame_;
+  bool heroAlone_ = false;
 };
 
 } // namespace nx

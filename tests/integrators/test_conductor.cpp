@@ -276,7 +276,7 @@ TEST(Conductor, SceneErrors) {
                 .find("<alpha_u> and <alpha_v> together"),
             std::string::npos);
   EXPECT_NE(error("<material>matte</material><reflectance>0.5</reflectance><alpha>0.1</alpha>")
-                .find("only on a conductor, found them on matte"),
+                .find("expected <alpha> only on a conductor or a dielectric"),
             std::string::npos);
 }
 
