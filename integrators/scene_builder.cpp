@@ -435,6 +435,16 @@ private:
       opt(f->quantumYield), opt(f->peakAbsorptance);
       t << (f->matrixCsv ? *f->matrixCsv : "");
     }
+    t << ';';
+    spectrumText(m.eta);
+    spectrumText(m.k);
+    t << (m.metal ? *m.metal : "-") << ';';
+    for (const auto& a : {m.alpha, m.alphaU, m.alphaV}) t << (a ? *a : -1.0) << ',';
+    if (m.coating) {
+      t << ';' << m.coating->thicknessNm << ',' << static_cast<int>(m.coating->ior.kind) << ','
+        << m.coating->ior.value << ',' << m.coating->ior.name;
+      for (double c : m.coating->ior.coefficients) t << ',' << c;
+    }
     return t.str();
   }
 

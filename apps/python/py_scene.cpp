@@ -406,6 +406,106 @@ void bindScene(py::module_& m) {
           py::arg("skew") = py::none(), py::arg("quantum_yield") = py::none(),
           py::arg("peak_absorptance") = py::none(),
           "Gives the material a fluorescence model (replacing any); returns it")
+      .def_property(
+          "metal",
+          [](const MaterialView& v) -> py::object {
+            const auto& m = v.get().metal;
+            return m ? py::object(py::str(*m)) : py::object(py::none());
+          },
+          [](const MaterialView& v, const py::object& value) {
+            nx::MaterialDesc& d = v.editable();
+            d.metal = stringArgument(value, (v.label() + ".metal").c_str());
+            d.metalLoc = v.loc();
+            d.eta.reset();
+            d.k.reset();
+            record(*v.s, v.label() + ".metal", value);
+          },
+          "A conductor's built-in metal (gold, silver, copper, aluminium); setting it replaces "
+          "eta and k")
+      .def_property(
+          "eta", [](const MaterialView& v) { return spectrumValue(v.get().eta); },
+          [](const MaterialView& v, const py::object& value) {
+            nx::MaterialDesc& d = v.editable();
+            d.eta = spectrumArgument(value, v.label() + ".eta", v.loc());
+            d.metal.reset();
+            record(*v.s, v.label() + ".eta", value);
+          },
+          "A conductor's refractive index (real part), in the forms of reflectance; setting it "
+          "replaces the metal")
+      .def_property(
+          "k", [](const MaterialView& v) { return spectrumValue(v.get().k); },
+          [](const MaterialView& v, const py::object& value) {
+            nx::MaterialDesc& d = v.editable();
+            d.k = spectrumArgument(value, v.label() + ".k", v.loc());
+            d.metal.reset();
+            record(*v.s, v.label() + ".k", value);
+          },
+          "A conductor's extinction coefficient; setting it replaces the metal")
+      .def_property(
+          "alpha",
+          [](const MaterialView& v) -> py::object {
+            const auto& d = v.get();
+            return d.alpha ? py::object(py::float_(*d.alpha)) : py::object(py::none());
+          },
+          [](const MaterialView& v, const py::object& value) {
+            nx::MaterialDesc& d = v.editable();
+            d.alpha = rangedArgument(value, v.label() + ".alpha", nx::kAlphaRange);
+            d.alphaU.reset();
+            d.alphaV.reset();
+            d.alphaLoc = v.loc();
+            record(*v.s, v.label() + ".alpha", value);
+          },
+          "Isotropic GGX roughness of a conductor or dielectric (None when anisotropic or "
+          "smooth)")
+      .def_property(
+          "alpha_uv",
+          [](const MaterialView& v) -> py::object {
+            const auto& d = v.get();
+            if (!d.alphaU) return py::none();
+            return py::make_tuple(*d.alphaU, *d.alphaV);
+          },
+          [](const MaterialView& v, const py::object& value) {
+            nx::MaterialDesc& d = v.editable();
+            const std::vector<double> uv =
+                numbersArgument(value, (v.label() + ".alpha_uv").c_str(), 2);
+            for (double a : uv)
+              (void)rangedArgument(py::float_(a), v.label() + ".alpha_uv", nx::kAlphaRange);
+            d.alphaU = uv[0];
+            d.alphaV = uv[1];
+            d.alpha.reset();
+            d.alphaLoc = v.loc();
+            record(*v.s, v.label() + ".alpha_uv", value);
+          },
+          "Anisotropic GGX roughness (along dpdu, across it), or None")
+      .def_property(
+          "coating",
+          [](const MaterialView& v) -> py::object {
+            const auto& c = v.get().coating;
+            if (!c) return py::none();
+            return py::make_tuple(c->thicknessNm, c->ior.kind == nx::IorDesc::Kind::Number
+                                                      ? py::object(py::float_(c->ior.value))
+                                                      : py::object(py::str(c->ior.name)));
+          },
+          [](const MaterialView& v, const py::object& value) {
+            nx::MaterialDesc& d = v.editable();
+            if (value.is_none()) {
+              d.coating.reset();
+            } else {
+              const std::vector<double> c =
+                  numbersArgument(value, (v.label() + ".coating").c_str(), 2);
+              nx::MaterialDesc::Coating coat;
+              coat.loc = v.loc();
+              coat.thicknessNm = rangedArgument(py::float_(c[0]), v.label() + ".coating[0]",
+                                                nx::kCoatingThicknessRange);
+              coat.ior.loc = v.loc();
+              coat.ior.kind = nx::IorDesc::Kind::Number;
+              coat.ior.value =
+                  rangedArgument(py::float_(c[1]), v.label() + ".coating[1]", nx::kIorRange);
+              d.coating = coat;
+            }
+            record(*v.s, v.label() + ".coating", value);
+          },
+          "A thin-film coating (thickness_nm, ior), or None")
       .def("__repr__", [](const MaterialView& v) {
         return "<nxrender.Material " + v.label() + " " + v.get().material + ">";
       });

@@ -246,6 +246,28 @@ TEST(Conductor, SmoothGoldAtNormalIncidence) {
       out.film, [&](int b) { return bandAverage(r, out.film.bands(), b); }, 0.01, {}, "gold");
 }
 
+// Objects differing only in their conductor parameters (metal, eta/k, alpha, coating) get
+// materials of their own (inline materials written alike are shared).
+TEST(Conductor, DistinctParametersAreDistinctMaterials) {
+  const std::string s = "<sphere><center>0,0,0</center><radius>1</radius><material>conductor"
+                        "</material>";
+  const RenderScene scene = resolveRenderScene(parseScene(
+      sceneText("<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>",
+                "<position>0,0,-5</position><look_at>0,0,0</look_at>",
+                s + "<metal>gold</metal></sphere>" + s + "<metal>silver</metal></sphere>" + s +
+                    "<metal>gold</metal><alpha>0.2</alpha></sphere>" + s +
+                    "<metal>gold</metal><alpha_u>0.2</alpha_u><alpha_v>0.1</alpha_v></sphere>" +
+                    s + "<eta>1</eta><k>2</k></sphere>" + s + "<eta>1</eta><k>3</k></sphere>" + s +
+                    "<metal>gold</metal><coating><thickness>100</thickness><ior>1.4</ior>"
+                    "</coating></sphere>" +
+                    s + "<metal>gold</metal><coating><thickness>120</thickness><ior>1.4</ior>"
+                        "</coating></sphere>" +
+                    s + "<metal>gold</metal></sphere>"),
+      "t.scn"));
+  EXPECT_EQ(scene.materials.size(), 8u); // the last sphere shares the first's
+  EXPECT_NE(scene.materials[0].conductorK(500), scene.materials[1].conductorK(500));
+}
+
 TEST(Conductor, SceneErrors) {
   auto error = [](const std::string& body) {
     return test::errorMessage([&] {

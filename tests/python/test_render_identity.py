@@ -165,6 +165,51 @@ def test_medium_edits_equal_the_edited_file(scenes):
     assert scene.objects[3].medium is None
 
 
+def test_material_edits_equal_the_edited_file(scenes):
+    """Conductor, rough-glass and coating edits render what the same edits in the file render."""
+    path = scenes / "metals.scn"
+    text = path.read_text()
+    replacements = [
+        ("<metal>gold</metal><alpha>0.15</alpha>", "<metal>gold</metal><alpha>0.3</alpha>"),
+        ("<alpha_u>0.03</alpha_u><alpha_v>0.35</alpha_v>",
+         "<alpha_u>0.2</alpha_u><alpha_v>0.05</alpha_v>"),
+        ("<metal>copper</metal>", "<eta>300:1.2, 1100:0.3</eta><k>3.5</k>"),
+        ("<thickness>150</thickness><ior>2.3</ior>", "<thickness>90</thickness><ior>2.1</ior>"),
+        ("<ior>bk7</ior><alpha>0.25</alpha>", "<ior>bk7</ior><alpha>0.4</alpha>"),
+    ]
+    edited = text
+    for old, new in replacements:
+        assert edited.count(old) == 1, old
+        edited = edited.replace(old, new)
+    reference = nxrender.render(nxrender.Scene.from_text(edited, str(path)), spp=2,
+                                crop=(0, 40, 480, 120))
+
+    scene = nxrender.Scene(path)
+    gold, aluminium, copper, titanium, frosted = (scene.objects[i].material for i in range(2, 7))
+    assert gold.metal == "gold" and gold.alpha == 0.15
+    gold.alpha = 0.3
+    assert aluminium.alpha_uv == (0.03, 0.35)
+    aluminium.alpha_uv = (0.2, 0.05)
+    copper.eta = ([300, 1100], [1.2, 0.3])
+    copper.k = 3.5
+    assert copper.metal is None
+    assert titanium.coating == (150, 2.3)
+    titanium.coating = (90, 2.1)
+    frosted.alpha = 0.4
+    image = nxrender.render(scene, spp=2, crop=(0, 40, 480, 120))
+    assert_same_pixels(image, reference)
+
+    with pytest.raises(ValueError, match=r"alpha: expected a GGX roughness alpha"):
+        gold.alpha = 2
+    with pytest.raises(ValueError, match=r"coating\[0\]: expected a coating thickness"):
+        titanium.coating = (-1, 1.5)
+    titanium.coating = None
+    assert titanium.coating is None
+    gold.metal = "platinum"  # checked when the scene is built
+    with pytest.raises(nxrender.Error, match="expected a metal name"):
+        nxrender.render(scene, spp=1)
+
+
 def test_copy_is_independent(scenes):
     a = nxrender.Scene(scenes / "blacklight.scn")
     b = a.copy()
