@@ -223,7 +223,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       const SampledWavelengths& lit = fluorescent ? shift.excited : current;
       if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls)) {
         auto f = [&](const Vec3& wi) {
-          return fluorescent ? shift.albedo * bsdf.diffuseFactor(wi) : bsdf.f(wi);
+          return fluorescent ? shift.albedo * bsdf.diffuseLobe(wi) : bsdf.f(wi);
         };
         auto pdf = [&](const Vec3& wi) { return bsdf.pdf(wi); };
         if constexpr (kMedia) {
@@ -246,7 +246,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     if (!bsdf.sample(uLobe, uDir, bs)) break;
     if constexpr (kFluorescence) {
       if (fluorescent && !bs.specular) { // the diffuse lobe re-radiates; the mirror lobe does not
-        bs.weight = shift.albedo;
+        bs.weight = shift.albedo * bs.diffuseScale;
         current = shift.excited;
       }
     }

@@ -29,6 +29,8 @@ enum class MaterialKind : uint8_t {
                   ///< internal reflections summed, and straight transmission
   Conductor,      ///< a metal: GGX microfacets (smooth when alpha is 0) with the exact Fresnel
                   ///< reflectance of its complex index
+  CoatedDiffuse,  ///< a Lambertian base (possibly fluorescent) under a smooth clear coat, the
+                  ///< internal reflections between them summed
 };
 
 /// A material: a kind with its parameters and spectra.
@@ -38,9 +40,11 @@ struct Material {
   IorModel ior;                      ///< Dielectric
   Spectrum conductorEta, conductorK; ///< Conductor: complex index eta + i k
   float alphaU = 0, alphaV = 0;      ///< Conductor: GGX roughness along dpdu and across it
-  float coatingNm = 0;               ///< a thin-film coating's thickness in nm (0: none)
-  IorModel coatingIor;               ///< the coating's index of refraction
-  Spectrum reflectance;              ///< rho(lambda): albedo, or transmission tint for dielectrics
+  /// CoatedDiffuse: the coat's hemispherical (cosine-weighted) internal Fresnel reflectance
+  float coatInternalReflectance = 0;
+  float coatingNm = 0;  ///< a thin-film coating's thickness in nm (0: none)
+  IorModel coatingIor;  ///< the coating's index of refraction
+  Spectrum reflectance; ///< rho(lambda): albedo, or transmission tint for dielectrics
   std::optional<FluorescenceModel> fluorescenceModel; ///< the parameters, if not measured
   std::shared_ptr<const ReradiationMatrix>
       reradiation; ///< fluorescence of the diffuse lobe, or null

@@ -16,6 +16,7 @@
 #include "core/hash.h"
 #include "core/math_util.h"
 #include "core/text_table.h"
+#include "integrators/materials/fresnel.h"
 #include "integrators/render_scene.h"
 #include "io/mesh_reader.h"
 #include "io/spectral_exr.h"
@@ -278,7 +279,9 @@ private:
                                static_cast<double>(reinterpret_cast<uintptr_t>(m.texture.get()))};
     for (double nm = kTraceMinNm; nm <= kTraceMaxNm; nm += 5) {
       key.push_back(m.reflectance(nm));
-      key.push_back(m.kind == MaterialKind::Dielectric ? m.ior.at(nm) : 0.0);
+      key.push_back(m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::CoatedDiffuse
+                        ? m.ior.at(nm)
+                        : 0.0);
       if (m.kind == MaterialKind::Conductor)
         key.insert(key.end(), {m.conductorEta(nm), m.conductorK(nm)});
     }
@@ -543,6 +546,19 @@ private:
     return stack;
   }
 
+  // The hemispherical (cosine-weighted) reflectance of a smooth interface of relative index n
+  // for diffuse light from inside: Fi = 1 - (1 - Fe) / n^2 with Fe = 2 integral_0^1 F(mu) mu dmu
+  // from outside (energy through the interface is the same both ways; radiance scales by n^2).
+  static double internalDiffuseReflectance(double n) {
+    double fe = 0;
+    const int steps = 4000;
+    for (int i = 0; i < steps; ++i) {
+      const double mu = (i + 0.5) / steps;
+      fe += 2 * fresnelDielectric(static_cast<float>(mu), static_cast<float>(n)) * mu / steps;
+    }
+    return 1 - (1 - fe) / (n * n);
+  }
+
   // <material>conductor</material>: a built-in metal or an explicit eta and k, and a GGX
   // roughness (0: smooth); it takes no reflectance, roughness, ior or fluorescence.
   Material conductor(const MaterialDesc& o, const SourceLocation& objectLoc) const {
@@ -626,6 +642,7 @@ private:
       return m;
     }
     if (name == "conductor") return conductor(o, objectLoc);
+    const bool coated = name == "coated";
     if (o.eta || o.k || o.metal)
       throw Error((o.metal ? o.metalLoc
                    : o.eta ? o.eta->loc
@@ -648,6 +665,21 @@ private:
                                        "found one");
       m.alphaU = static_cast<float>(o.alpha ? *o.alpha : o.alphaU.value_or(0.0));
       m.alphaV = static_cast<float>(o.alpha ? *o.alpha : o.alphaV.value_or(0.0));
+    } else if (coated) {
+      // A clear coat of a constant index (default 1.5) over a Lambertian base.
+      m.kind = MaterialKind::CoatedDiffuse;
+      if (o.roughness)
+        throw Error(o.roughnessLoc.str() +
+                    ": expected no <roughness> on a coated surface (a Lambertian base under a "
+                    "smooth coat), found one");
+      if (o.alpha || o.alphaU)
+        throw Error(o.alphaLoc.str() + ": expected no <alpha> on a coated surface (its coat is "
+                                       "smooth), found one");
+      m.ior = o.ior ? iorModel(*o.ior) : IorModel::constant(1.5);
+      if (m.ior.dispersive())
+        throw Error(o.ior->loc.str() + ": expected a constant <ior> for a coat (a number), found "
+                                       "a dispersive one");
+      m.coatInternalReflectance = static_cast<float>(internalDiffuseReflectance(m.ior.at(550)));
     } else {
       m.kind = MaterialKind::Mixture;
       m.roughness = name == "metal"     ? 0.3f
@@ -694,7 +726,7 @@ private:
     if (o.fluorescence) {
       if (dielectric)
         throw Error(o.fluorescence->loc.str() +
-                    ": expected fluorescence only on matte, metal, plastic or mirror "
+                    ": expected fluorescence only on matte, metal, plastic, mirror or coated "
                     "surfaces (fluorescent dielectrics need media), found it on " +
                     name);
       if (o.fluorescence->matrixCsv) {

@@ -54,7 +54,7 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
         fluorescent ? sampleFluorescentShift(*material.reradiation, lambda, rho, rng)
                     : FluorescentShift{lambda, rho};
     auto f = [&](const Vec3& wi) {
-      return fluorescent ? shift.albedo * bsdf.diffuseFactor(wi) : bsdf.f(wi);
+      return fluorescent ? shift.albedo * bsdf.diffuseLobe(wi) : bsdf.f(wi);
     };
     auto noPdf = [](const Vec3&) { return 0.0f; };
     for (int k = 0; k < ctx.lights->count(); ++k) {
@@ -86,6 +86,16 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
     return;
   }
   if (bsdf.lobes() & (kGlossyReflection | kGlossyTransmission)) return; // rough: direct light only
+  if (material.kind == MaterialKind::CoatedDiffuse) {
+    // the clear coat's mirror ray, weighted by its Fresnel reflectance
+    const float c = dot(wo, bsdf.normal());
+    if (c > 0)
+      spawn(reflect(wo, bsdf.normal()),
+            SampledSpectrum::filled(
+                fresnelDielectric(c, static_cast<float>(material.ior.at(lambda.lambda[0])))),
+            false);
+    return;
+  }
   if (material.kind == MaterialKind::Mixture) {
     if (material.roughness < 1 && dot(wo, bsdf.normal()) > 0)
       spawn(reflect(wo, bsdf.normal()), rho * (1 - material.roughness), false);

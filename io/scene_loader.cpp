@@ -664,13 +664,13 @@ private:
   // The built-in material kinds.
   static const std::set<std::string>& materialKinds() {
     static const std::set<std::string> kinds{
-        "matte",       "metal",   "plastic", "mirror",    "diamond",    "glass",    "translucent",
-        "transparent", "default", "diffuse", "interface", "thin_glass", "conductor"};
+        "matte",       "metal",   "plastic", "mirror",    "diamond",    "glass",     "translucent",
+        "transparent", "default", "diffuse", "interface", "thin_glass", "conductor", "coated"};
     return kinds;
   }
   static constexpr const char* kMaterialKindList =
       "matte, metal, plastic, mirror, glass, diamond, translucent, transparent, default, "
-      "diffuse, interface, thin_glass or conductor";
+      "diffuse, interface, thin_glass, conductor or coated";
 
   // The parameters of a material from an element's children (an object's, or a <material id>'s).
   void parseMaterialParameters(const std::map<std::string, pugi::xml_node>& c,

@@ -13,7 +13,8 @@ SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
     : material_(&m), lambda_(&lambda), rho_(rho), wo_(wo), mode_(mode) {
   // Opaque surfaces scatter on the side they are seen from (decided by the geometric normal);
   // dielectrics keep the outward normal to know whether the path enters or leaves.
-  const bool opaque = m.kind == MaterialKind::Mixture || m.kind == MaterialKind::Conductor;
+  const bool opaque = m.kind == MaterialKind::Mixture || m.kind == MaterialKind::Conductor ||
+                      m.kind == MaterialKind::CoatedDiffuse;
   const bool flip = opaque && dot(wo, ng) < 0;
   ng_ = flip ? -ng : ng;
   n_ = flip ? -ns : ns;
@@ -116,6 +117,8 @@ uint8_t SurfaceBsdf::lobes() const {
   if (material_->kind == MaterialKind::Interface) return kSpecularTransmission;
   if (material_->kind == MaterialKind::Conductor)
     return smoothConductor() ? kSpecularReflection : kGlossyReflection;
+  if (material_->kind == MaterialKind::CoatedDiffuse)
+    return kSpecularReflection | kDiffuseReflection;
   if (material_->kind == MaterialKind::ThinDielectric)
     return kSpecularReflection | kSpecularTransmission;
   if (material_->kind == MaterialKind::Dielectric)
@@ -132,8 +135,28 @@ float SurfaceBsdf::diffuseFactor(const Vec3& wi) const {
   return material_->roughness * static_cast<float>(kInvPi) * c;
 }
 
+SampledSpectrum SurfaceBsdf::diffuseLobe(const Vec3& wi) const {
+  if (material_->kind != MaterialKind::CoatedDiffuse)
+    return SampledSpectrum::filled(diffuseFactor(wi));
+  const float ci = dot(wi, n_), co = dot(wo_, n_);
+  if (ci <= 0 || co <= 0 || dot(wi, ng_) <= 0) return {};
+  // (1 - F(i)) (1 - F(o)) |cos i| / (pi n^2 (1 - rho Fi)): transmitted in, scattered by the
+  // base, reflected between base and coat (Fi the coat's internal diffuse reflectance), out.
+  const float n = static_cast<float>(material_->ior.at(lambda_->lambda[0]));
+  const float t = (1 - coatReflectance(ci)) * (1 - coatReflectance(co)) * ci *
+                  static_cast<float>(kInvPi) / (n * n);
+  SampledSpectrum f;
+  for (int i = 0; i < kLanes; ++i) f[i] = t / (1 - rho_[i] * material_->coatInternalReflectance);
+  return f;
+}
+
 float SurfaceBsdf::pdf(const Vec3& wi) const {
   if (material_->kind == MaterialKind::Dielectric) return roughDielectricPdf(wi);
+  if (material_->kind == MaterialKind::CoatedDiffuse) {
+    const float co = dot(wo_, n_);
+    if (co <= 0) return 0;
+    return (1 - coatReflectance(co)) * cosineHemispherePdf(dot(wi, n_));
+  }
   if (material_->kind == MaterialKind::Conductor) {
     if (smoothConductor() || dot(wi, ng_) <= 0) return 0;
     const Vec3 o = frame_.toLocal(wo_), i = frame_.toLocal(wi);
@@ -166,6 +189,8 @@ bool SurfaceBsdf::sample(float uLobe, Sample2 u, BsdfSample& out) const {
     return sampleThinDielectric(uLobe, out);
   case MaterialKind::Conductor:
     return sampleConductor(u, out);
+  case MaterialKind::CoatedDiffuse:
+    return sampleCoatedDiffuse(uLobe, u, out);
   }
   return false;
 }

@@ -22,6 +22,10 @@ struct BsdfSample {
   /// Relative index n_transmitted / n_incident of the hero lane for a refraction, else 1: the
   /// radiance scaling 1 / eta^2 inside `weight` that Russian roulette must not see.
   float eta = 1;
+  /// For a diffuse-lobe sample: the weight per unit albedo (1 for a plain Lambertian lobe; the
+  /// coat's transmission and internal reflections for CoatedDiffuse), so a fluorescent lobe's
+  /// weight is its re-radiation albedo times this.
+  SampledSpectrum diffuseScale = SampledSpectrum::filled(1.0f);
   /// The direction continues straight on (an interface, a thin wall's transmission): the path
   /// keeps its previous vertex for MIS, since next-event estimation sees through such surfaces.
   bool straight = false;
@@ -84,10 +88,14 @@ public:
   SampledSpectrum f(const Vec3& wi) const {
     if (material_->kind == MaterialKind::Conductor) return conductorF(wi);
     if (material_->kind == MaterialKind::Dielectric) return roughDielectricF(wi);
+    if (material_->kind == MaterialKind::CoatedDiffuse) return rho_ * diffuseLobe(wi);
     return rho_ * diffuseFactor(wi);
   }
   /// r |cos(wi)| / pi: the diffuse lobe without its albedo (fluorescent lobes supply their own).
   float diffuseFactor(const Vec3& wi) const;
+  /// The diffuse lobe per unit albedo, per lane: diffuseFactor for the mixture; for a coated
+  /// diffuse surface with the coat's transmissions and internal reflections.
+  SampledSpectrum diffuseLobe(const Vec3& wi) const;
   /// Density with which sample() returns wi through its non-specular lobes.
   float pdf(const Vec3& wi) const;
 
@@ -101,6 +109,8 @@ public:
 private:
   bool sampleMixture(float uLobe, Sample2 u, BsdfSample& out) const;
   bool sampleConductor(Sample2 u, BsdfSample& out) const;
+  bool sampleCoatedDiffuse(float uLobe, Sample2 u, BsdfSample& out) const;
+  float coatReflectance(float cosI) const; // the clear coat's Fresnel reflectance from outside
   SampledSpectrum conductorF(const Vec3& wi) const;
   SampledSpectrum conductorFresnel(float cosI) const;
   bool smoothConductor() const { return !(std::max(alpha_.ax, alpha_.ay) > 0); }

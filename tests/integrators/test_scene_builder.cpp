@@ -168,7 +168,7 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
            sphere +
            "<material>glass</material><fluorescence><absorption>uv</absorption><stokes>100</stokes>"
            "</fluorescence></sphere>\n"),
-       "t.scn:4: expected fluorescence only on matte, metal, plastic or mirror surfaces"},
+       "t.scn:4: expected fluorescence only on matte, metal, plastic, mirror or coated surfaces"},
       {scene(sphere + "<material>matte</material></sphere>\n"),
        "t.scn:4: expected <reflectance> or <color> on a non-emitting matte object, found neither"},
       {scene(sphere + "<material>matte</material></sphere>\n", "mcpt"),

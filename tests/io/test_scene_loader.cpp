@@ -188,7 +188,8 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
        scene("<sphere><center>0,0,0</center><radius>1</radius><material>velvet</material></"
              "sphere>\n"),
        "t.scn:4: expected a material matte, metal, plastic, mirror, glass, diamond, translucent, "
-       "transparent, default, diffuse, interface, thin_glass or conductor or the id of a <material "
+       "transparent, default, diffuse, interface, thin_glass, conductor or coated or the id of a "
+       "<material "
        "id=\"...\"> of the "
        "scene, found "
        "'velvet'"},

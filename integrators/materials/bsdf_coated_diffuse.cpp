@@ -1,0 +1,55 @@
+// A Lambertian base under a smooth, clear, non-dispersive coat (a plastic, a varnished or
+// laminated sample): specular reflection F(o) at the coat, and light transmitted (1 - F(i))
+// to the base, scattered with albedo rho, reflected back and forth between base and coat
+// (the coat reflects the base's diffuse light with its internal hemispherical reflectance
+// Fi = 1 - (1 - Fe) / n^2, Fe the external one), and transmitted out (1 - F(o)) / n^2:
+//   f = F(o) delta + (1 - F(i)) (1 - F(o)) rho / (pi n^2 (1 - rho Fi))
+// (the plastic model of Weidlich & Wilkie 2007 and Mitsuba's "plastic", derived in
+// docs/materials.md). With rho = 1 it conserves energy exactly. A fluorescent base replaces
+// rho by its re-radiation albedo; the internal reflections then use the base's elastic
+// reflectance at the emitted wavelength.
+
+#include <cmath>
+
+#include "integrators/materials/bsdf.h"
+#include "integrators/materials/fresnel.h"
+#include "integrators/sampling.h"
+
+namespace nx {
+
+float SurfaceBsdf::coatReflectance(float cosI) const {
+  return fresnelDielectric(cosI, static_cast<float>(material_->ior.at(lambda_->lambda[0])));
+}
+
+// Specular with probability F(o), else a cosine-distributed diffuse direction: weights 1 and
+// rho (1 - F(i)) / (n^2 (1 - rho Fi)) (f |cos| / pdf with pdf = (1 - F(o)) |cos| / pi).
+bool SurfaceBsdf::sampleCoatedDiffuse(float uLobe, Sample2 u, BsdfSample& out) const {
+  const float co = dot(wo_, n_);
+  if (co <= 0) return false;
+  const float fo = coatReflectance(co);
+  out.terminateSecondary = false;
+  out.eta = 1;
+  if (uLobe < fo) {
+    out.wi = reflect(wo_, n_);
+    if (dot(out.wi, ng_) <= 0) return false;
+    out.weight = SampledSpectrum::filled(1.0f);
+    out.pdf = 0;
+    out.specular = true;
+    return true;
+  }
+  const Frame frame = Frame::fromNormal(n_);
+  const Vec3 local = sampleCosineHemisphere(u);
+  if (local.z <= 0) return false;
+  out.wi = frame.toWorld(local);
+  if (dot(out.wi, ng_) <= 0) return false;
+  out.pdf = (1 - fo) * cosineHemispherePdf(local.z);
+  out.specular = false;
+  const float n = static_cast<float>(material_->ior.at(lambda_->lambda[0]));
+  const float t = (1 - coatReflectance(local.z)) / (n * n);
+  for (int i = 0; i < kLanes; ++i)
+    out.diffuseScale[i] = t / (1 - rho_[i] * material_->coatInternalReflectance);
+  out.weight = rho_ * out.diffuseScale;
+  return true;
+}
+
+} // namespace nx
