@@ -12,6 +12,7 @@
 #include "spectra/bands.h"
 #include "support/direction_chi_square.h"
 #include "support/errors.h"
+#include "support/material_checks.h"
 #include "support/render_checks.h"
 
 namespace nx {
@@ -46,16 +47,10 @@ Material coated(double n) {
   return m;
 }
 
-SampledWavelengths someWavelengths() {
-  SampledWavelengths l;
-  for (int i = 0; i < kLanes; ++i) l.lambda[i] = 450.0f + 30.0f * static_cast<float>(i);
-  return l;
-}
-
 // The mean sample weight is the albedo of the closed form (1 for a white base: the coat and the
 // internal reflections lose nothing), and quadrature of f |cos| gives its diffuse part.
 TEST(CoatedDiffuse, AlbedoMatchesTheClosedForm) {
-  const SampledWavelengths l = someWavelengths();
+  const SampledWavelengths l = test::laneWavelengths();
   for (double n : {1.33, 1.5, 2.0})
     for (double rho : {1.0, 0.5, 0.1})
       for (double cosO : {1.0, 0.5, 0.1}) {
@@ -88,7 +83,7 @@ TEST(CoatedDiffuse, AlbedoMatchesTheClosedForm) {
 }
 
 TEST(CoatedDiffuse, DiffuseSamplingFollowsItsPdf) {
-  const SampledWavelengths l = someWavelengths();
+  const SampledWavelengths l = test::laneWavelengths();
   const Material m = coated(1.5);
   for (const Vec3& wo : {normalize(Vec3(0.2f, 0.1f, 0.9f)), normalize(Vec3(-0.9f, 0.2f, 0.2f))}) {
     const SurfaceBsdf bsdf(m, l, SampledSpectrum::filled(0.6f), Vec3(0, 0, 1), wo);
@@ -103,7 +98,7 @@ TEST(CoatedDiffuse, DiffuseSamplingFollowsItsPdf) {
 }
 
 TEST(CoatedDiffuse, Reciprocity) {
-  const SampledWavelengths l = someWavelengths();
+  const SampledWavelengths l = test::laneWavelengths();
   const Material m = coated(1.5);
   for (uint32_t i = 0; i < 100; ++i) {
     auto dir = [](Sample2 u) {
@@ -180,15 +175,7 @@ TEST(CoatedDiffuse, FluorescentBaseUnderACoat) {
 }
 
 TEST(CoatedDiffuse, SceneErrors) {
-  auto error = [](const std::string& body) {
-    return test::errorMessage([&] {
-      (void)resolveRenderScene(parseScene(
-          sceneText("<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>",
-                    "<position>0,0,-5</position><look_at>0,0,0</look_at>",
-                    "<sphere><center>0,0,0</center><radius>1</radius>" + body + "</sphere>"),
-          "t.scn"));
-    });
-  };
+  const auto error = test::sphereSceneError;
   EXPECT_NE(error("<material>coated</material><reflectance>0.5</reflectance><ior>bk7</ior>")
                 .find("expected a constant <ior> for a coat"),
             std::string::npos);

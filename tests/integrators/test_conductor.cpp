@@ -13,6 +13,7 @@
 #include "spectra/metals.h"
 #include "support/direction_chi_square.h"
 #include "support/errors.h"
+#include "support/material_checks.h"
 #include "support/render_checks.h"
 
 namespace nx {
@@ -83,16 +84,10 @@ Material conductorMaterial(float ax, float ay, double eta, double k) {
   return m;
 }
 
-SampledWavelengths someWavelengths() {
-  SampledWavelengths l;
-  for (int i = 0; i < kLanes; ++i) l.lambda[i] = 450.0f + 30.0f * static_cast<float>(i);
-  return l;
-}
-
 // Sampled directions follow pdf(wi) (chi-square over the sphere; samples lost below the
 // surface are the density's missing mass), isotropic and anisotropic, oriented by a tangent.
 TEST(Conductor, SamplingFollowsItsPdf) {
-  const SampledWavelengths l = someWavelengths();
+  const SampledWavelengths l = test::laneWavelengths();
   const Vec3 ng(0, 0, 1);
   for (const auto& [ax, ay] :
        {std::pair{0.3f, 0.3f}, std::pair{0.6f, 0.6f}, std::pair{0.15f, 0.6f}})
@@ -139,7 +134,7 @@ double ggxAlbedoQuadrature(double a, double cosO) {
 // The white furnace: with F = 1 (k = 1000) the mean sample weight is the albedo, equal to the
 // quadrature of f cos; what is missing from 1 is the energy single scattering loses (printed).
 TEST(Conductor, WhiteFurnaceAlbedoMatchesQuadrature) {
-  const SampledWavelengths l = someWavelengths();
+  const SampledWavelengths l = test::laneWavelengths();
   for (float a : {0.1f, 0.5f, 1.0f})
     for (double cosO : {1.0, 0.5, 0.15}) {
       const Vec3 wo(static_cast<float>(std::sqrt(1 - cosO * cosO)), 0, static_cast<float>(cosO));
@@ -161,7 +156,7 @@ TEST(Conductor, WhiteFurnaceAlbedoMatchesQuadrature) {
 
 // f(wo, wi) = f(wi, wo): f cos(wi) / cos(wi) is symmetric.
 TEST(Conductor, Reciprocity) {
-  const SampledWavelengths l = someWavelengths();
+  const SampledWavelengths l = test::laneWavelengths();
   const Material m = conductorMaterial(0.2f, 0.5f, 0.3, 2.5);
   const Vec3 ng(0, 0, 1), tangent(1, 0.4f, 0);
   for (uint32_t i = 0; i < 200; ++i) {
@@ -184,7 +179,7 @@ TEST(Conductor, Reciprocity) {
 // Anisotropy follows the tangent: swapping alpha_u and alpha_v equals turning the tangent by 90
 // degrees; an isotropic lobe ignores the tangent.
 TEST(Conductor, AnisotropyFollowsTheTangent) {
-  const SampledWavelengths l = someWavelengths();
+  const SampledWavelengths l = test::laneWavelengths();
   const Vec3 ng(0, 0, 1), wo = normalize(Vec3(0.4f, 0.3f, 0.8f)),
                           wi = normalize(Vec3(-0.2f, -0.6f, 0.7f));
   const Material uv = conductorMaterial(0.1f, 0.6f, 0.3, 2.5),
@@ -256,12 +251,13 @@ TEST(Conductor, DistinctParametersAreDistinctMaterials) {
                 "<position>0,0,-5</position><look_at>0,0,0</look_at>",
                 s + "<metal>gold</metal></sphere>" + s + "<metal>silver</metal></sphere>" + s +
                     "<metal>gold</metal><alpha>0.2</alpha></sphere>" + s +
-                    "<metal>gold</metal><alpha_u>0.2</alpha_u><alpha_v>0.1</alpha_v></sphere>" +
-                    s + "<eta>1</eta><k>2</k></sphere>" + s + "<eta>1</eta><k>3</k></sphere>" + s +
+                    "<metal>gold</metal><alpha_u>0.2</alpha_u><alpha_v>0.1</alpha_v></sphere>" + s +
+                    "<eta>1</eta><k>2</k></sphere>" + s + "<eta>1</eta><k>3</k></sphere>" + s +
                     "<metal>gold</metal><coating><thickness>100</thickness><ior>1.4</ior>"
                     "</coating></sphere>" +
-                    s + "<metal>gold</metal><coating><thickness>120</thickness><ior>1.4</ior>"
-                        "</coating></sphere>" +
+                    s +
+                    "<metal>gold</metal><coating><thickness>120</thickness><ior>1.4</ior>"
+                    "</coating></sphere>" +
                     s + "<metal>gold</metal></sphere>"),
       "t.scn"));
   EXPECT_EQ(scene.materials.size(), 8u); // the last sphere shares the first's
@@ -269,15 +265,7 @@ TEST(Conductor, DistinctParametersAreDistinctMaterials) {
 }
 
 TEST(Conductor, SceneErrors) {
-  auto error = [](const std::string& body) {
-    return test::errorMessage([&] {
-      (void)resolveRenderScene(parseScene(
-          sceneText("<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>",
-                    "<position>0,0,-5</position><look_at>0,0,0</look_at>",
-                    "<sphere><center>0,0,0</center><radius>1</radius>" + body + "</sphere>"),
-          "t.scn"));
-    });
-  };
+  const auto error = test::sphereSceneError;
   EXPECT_NE(error("<material>conductor</material><metal>tin</metal>")
                 .find("expected a metal name (gold, silver, copper, aluminium), found 'tin'"),
             std::string::npos);

@@ -11,6 +11,7 @@
 #include "spectra/bands.h"
 #include "support/direction_chi_square.h"
 #include "support/errors.h"
+#include "support/material_checks.h"
 #include "support/render_checks.h"
 
 namespace nx {
@@ -26,16 +27,10 @@ Material roughGlass(float ax, float ay, double ior) {
   return m;
 }
 
-SampledWavelengths someWavelengths() {
-  SampledWavelengths l;
-  for (int i = 0; i < kLanes; ++i) l.lambda[i] = 450.0f + 30.0f * static_cast<float>(i);
-  return l;
-}
-
 // Reflected and refracted directions together follow pdf(wi), from outside and from inside
 // (where total internal reflection takes part), isotropic and anisotropic.
 TEST(RoughDielectric, SamplingFollowsItsPdf) {
-  const SampledWavelengths l = someWavelengths();
+  const SampledWavelengths l = test::laneWavelengths();
   const Vec3 ng(0, 0, 1);
   for (const auto& [ax, ay] : {std::pair{0.3f, 0.3f}, std::pair{0.6f, 0.6f}, std::pair{0.2f, 0.5f}})
     for (const Vec3& wo :
@@ -59,7 +54,7 @@ TEST(RoughDielectric, SamplingFollowsItsPdf) {
 // (the weights are f |cos| / pdf), is at most 1, and tends to 1 (a smooth interface loses
 // nothing) as the roughness vanishes.
 TEST(RoughDielectric, EnergyAgainstQuadratureAndTheSmoothLimit) {
-  const SampledWavelengths l = someWavelengths();
+  const SampledWavelengths l = test::laneWavelengths();
   for (float a : {0.02f, 0.3f, 0.8f})
     for (float side : {1.0f, -1.0f}) {
       const Vec3 wo = normalize(Vec3(0.5f, 0.2f, 0.7f * side));
@@ -95,7 +90,7 @@ TEST(RoughDielectric, EnergyAgainstQuadratureAndTheSmoothLimit) {
 // Energy-transport BSDFs obey f(wo, wi) / n(wi's side)^2 = f(wi, wo) / n(wo's side)^2 (Veach
 // 1997, eq. 5.14); reflection is symmetric.
 TEST(RoughDielectric, GeneralisedReciprocity) {
-  const SampledWavelengths l = someWavelengths();
+  const SampledWavelengths l = test::laneWavelengths();
   const Material m = roughGlass(0.25f, 0.4f, 1.5);
   const Vec3 ng(0, 0, 1);
   int checked = 0;
@@ -150,15 +145,7 @@ TEST(RoughDielectric, DispersionMatchesPerBandIndices) {
 }
 
 TEST(RoughDielectric, SceneErrors) {
-  auto error = [](const std::string& body) {
-    return test::errorMessage([&] {
-      (void)resolveRenderScene(parseScene(
-          sceneText("<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>",
-                    "<position>0,0,-5</position><look_at>0,0,0</look_at>",
-                    "<sphere><center>0,0,0</center><radius>1</radius>" + body + "</sphere>"),
-          "t.scn"));
-    });
-  };
+  const auto error = test::sphereSceneError;
   EXPECT_NE(error("<material>thin_glass</material><alpha>0.2</alpha>")
                 .find("expected no <alpha> on thin_glass"),
             std::string::npos);

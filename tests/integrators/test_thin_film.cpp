@@ -11,6 +11,7 @@
 #include "integrators/renderer.h"
 #include "spectra/bands.h"
 #include "support/errors.h"
+#include "support/material_checks.h"
 #include "support/render_checks.h"
 
 namespace nx {
@@ -124,15 +125,7 @@ TEST(ThinFilm, CoatedGlassReflectance) {
 }
 
 TEST(ThinFilm, SceneErrors) {
-  auto error = [](const std::string& body) {
-    return test::errorMessage([&] {
-      (void)resolveRenderScene(parseScene(
-          sceneText("<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>",
-                    "<position>0,0,-5</position><look_at>0,0,0</look_at>",
-                    "<sphere><center>0,0,0</center><radius>1</radius>" + body + "</sphere>"),
-          "t.scn"));
-    });
-  };
+  const auto error = test::sphereSceneError;
   EXPECT_NE(error("<material>matte</material><reflectance>0.5</reflectance><coating><thickness>100"
                   "</thickness><ior>1.4</ior></coating>")
                 .find("expected a <coating> only on a conductor or on glass"),
