@@ -598,7 +598,11 @@ private:
                       ", 1000] at every wavelength of " + tracedRange() + ", found " +
                       (std::isnan(e.min) ? std::string("a non-finite value")
                                          : numberText(e.min < lo ? e.min : e.max) + " at " +
-                                               numberText(e.min < lo ? e.minNm : e.maxNm) + " nm"));
+                                               numberText(e.min < lo ? e.minNm : e.maxNm) + " nm") +
+                      (e.min == 0 && lo > 0
+                           ? " (a table is 0 beyond its rows; extrapolate=\"hold\" "
+                             "keeps its end values)"
+                           : ""));
       }
     }
     m.alphaU = static_cast<float>(o.alpha ? *o.alpha : o.alphaU.value_or(0.0));

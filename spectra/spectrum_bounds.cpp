@@ -17,17 +17,18 @@ struct Extremes {
   }
 };
 
-// Piecewise-linear data between knots (nm[i], value(i)) and zero outside [nm.front(),
-// nm.back()]: the extremes lie at knots inside the interval or at its ends.
+// Piecewise-linear data between knots (nm[i], value(i)) and, outside [nm.front(), nm.back()],
+// zero or (holdEnds) the end values: the extremes lie at knots inside the interval or at its
+// ends.
 template <typename Knots, typename Value, typename At>
 void addPiecewiseLinear(Extremes& x, const Knots& nm, const Value& value, double lo, double hi,
-                        const At& at) {
+                        const At& at, bool holdEnds) {
   x.add(lo, at(lo));
   x.add(hi, at(hi));
   const auto first = std::lower_bound(nm.begin(), nm.end(), lo);
   for (auto it = first; it != nm.end() && *it <= hi; ++it)
     x.add(*it, value(static_cast<size_t>(it - nm.begin())));
-  if (lo < nm.front() || hi > nm.back()) x.add(lo < nm.front() ? lo : hi, 0.0);
+  if (!holdEnds && (lo < nm.front() || hi > nm.back())) x.add(lo < nm.front() ? lo : hi, 0.0);
 }
 
 // Maximum of a smooth function by sampling every `step` nm, refined by golden-section search
@@ -65,13 +66,14 @@ SpectrumExtremes spectrumExtremes(const Spectrum& s, double lo, double hi) {
           x.add(lo, k.value);
         } else if constexpr (std::is_same_v<K, TabulatedSpectrum>) {
           addPiecewiseLinear(
-              x, k.nm, [&](size_t i) { return k.value[i]; }, lo, hi, k);
+              x, k.nm, [&](size_t i) { return k.value[i]; }, lo, hi, k, k.holdEnds);
         } else if constexpr (std::is_same_v<K, DenseSpectrum>) {
           std::vector<double> knots(k.value.size());
           for (size_t i = 0; i < knots.size(); ++i)
             knots[i] = K::startNm + K::stepNm * static_cast<double>(i);
           addPiecewiseLinear(
-              x, knots, [&](size_t i) { return static_cast<double>(k.value[i]); }, lo, hi, k);
+              x, knots, [&](size_t i) { return static_cast<double>(k.value[i]); }, lo, hi, k,
+              false);
         } else if constexpr (std::is_same_v<K, GaussianSpectrum>) {
           // Unimodal around the mean; never below its ends' values.
           x.add(lo, k(lo));

@@ -157,6 +157,12 @@ TEST(SpectrumExtremes, MatchBruteForceForEveryKind) {
   const SpectrumExtremes inner = spectrumExtremes(cases[2].second, 300, 1000);
   EXPECT_EQ(inner.min, 0.0);
   EXPECT_EQ(inner.max, 0.6);
+  // A table holding its ends is never 0 beyond them (a conductor's eta given from 400 nm).
+  TabulatedSpectrum held{{400, 800}, {0.2, 0.3}};
+  held.holdEnds = true;
+  const SpectrumExtremes h = spectrumExtremes(Spectrum(held), 300, 1000);
+  EXPECT_EQ(h.min, 0.2);
+  EXPECT_EQ(h.max, 0.3);
 }
 
 } // namespace
