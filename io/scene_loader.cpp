@@ -633,20 +633,20 @@ private:
     l.color = colour(required(c, n, "color"), false);
     if (c.count("emission")) {
       l.emission = spectrum(c.at("emission"), true, {"scale"});
-      l.emissionScale = scaleAttribute(c.at("emission"), "an emission scale");
+      l.emissionScale = scaleAttribute(c.at("emission"), "an", "emission scale");
     }
     return l;
   }
 
   // The optional scale="..." of an element (an <emission>, a medium's coefficient): a positive
-  // finite number, 1 if absent; `what` names it in errors ("an emission scale").
-  double scaleAttribute(const pugi::xml_node& e, const std::string& what) const {
+  // finite number, 1 if absent; errors name it "<article> <noun>" ("an", "emission scale").
+  double scaleAttribute(const pugi::xml_node& e, const std::string& article,
+                        const std::string& noun) const {
     const pugi::xml_attribute sc = e.attribute("scale");
     if (!sc) return 1.0;
     const std::string text = decoded(sc.value(), e);
-    const double v = parseNumber(text, loc(e).str(), what + " in scale=\"...\"");
-    if (!(v > 0) || !std::isfinite(v))
-      fail(e, "a positive " + what.substr(what.find(' ') + 1), shownText(text));
+    const double v = parseNumber(text, loc(e).str(), article + " " + noun + " in scale=\"...\"");
+    if (!(v > 0) || !std::isfinite(v)) fail(e, "a positive " + noun, shownText(text));
     return v;
   }
 
@@ -885,7 +885,7 @@ private:
     if (c.count("emission")) {
       const pugi::xml_node e = c.at("emission");
       o.emission = spectrum(e, true, {"scale"});
-      o.emissionScale = scaleAttribute(e, "an emission scale");
+      o.emissionScale = scaleAttribute(e, "an", "emission scale");
     }
     if (c.count("medium")) o.medium = medium(c.at("medium"));
     return o;
@@ -898,14 +898,14 @@ private:
     MediumDesc m;
     m.loc = loc(n);
     m.sigmaA = *spectrum(required(c, n, "sigma_a"), false, {"scale"});
-    m.sigmaAScale = scaleAttribute(c.at("sigma_a"), "a coefficient scale");
+    m.sigmaAScale = scaleAttribute(c.at("sigma_a"), "a", "coefficient scale");
     m.sigmaS = *spectrum(required(c, n, "sigma_s"), false, {"scale"});
-    m.sigmaSScale = scaleAttribute(c.at("sigma_s"), "a coefficient scale");
+    m.sigmaSScale = scaleAttribute(c.at("sigma_s"), "a", "coefficient scale");
     if (c.count("g")) m.g = number(c.at("g"), kPhaseGRange);
     if (c.count("fluorescence")) m.fluorescence = fluorescence(c.at("fluorescence"), true);
     if (c.count("emission")) {
       m.emission = spectrum(c.at("emission"), false, {"scale"});
-      m.emissionScale = scaleAttribute(c.at("emission"), "an emission scale");
+      m.emissionScale = scaleAttribute(c.at("emission"), "an", "emission scale");
     }
     return m;
   }

@@ -119,6 +119,7 @@ private:
     return material_->kind == MaterialKind::Dielectric && std::max(alpha_.ax, alpha_.ay) > 0;
   }
   bool sampleRoughDielectric(float uLobe, Sample2 u, BsdfSample& out) const;
+  bool roughDielectricPair(const Vec3& wi, Vec3& o, Vec3& i) const;
   SampledSpectrum roughDielectricF(const Vec3& wi) const;
   float roughDielectricPdf(const Vec3& wi) const;
   bool sampleDielectric(float uLobe, BsdfSample& out) const;

@@ -27,13 +27,21 @@ Vec3 refractionHalfVector(const Vec3& o, const Vec3& i, float eta) {
 
 } // namespace
 
-SampledSpectrum SurfaceBsdf::roughDielectricF(const Vec3& wi) const {
-  if (!roughDielectric()) return {};
+// wo and wi in the microfacet frame with wo's side as +z; false when there is no such pair:
+// not a rough dielectric, wi in the surface, or the geometric normal disagreeing (reflection
+// must stay on wo's side, transmission must cross).
+bool SurfaceBsdf::roughDielectricPair(const Vec3& wi, Vec3& o, Vec3& i) const {
+  if (!roughDielectric()) return false;
   const float side = dot(wo_, n_) > 0 ? 1.0f : -1.0f;
-  const Vec3 o = frame_.toLocal(wo_) * side, i = frame_.toLocal(wi) * side;
-  if (o.z <= 0 || i.z == 0) return {};
-  // the geometric normal must agree: reflection on wo's side, transmission across
-  if (((dot(wi, ng_) > 0) == (dot(wo_, ng_) > 0)) != (i.z > 0)) return {};
+  o = frame_.toLocal(wo_) * side;
+  i = frame_.toLocal(wi) * side;
+  if (o.z <= 0 || i.z == 0) return false;
+  return ((dot(wi, ng_) > 0) == (dot(wo_, ng_) > 0)) == (i.z > 0);
+}
+
+SampledSpectrum SurfaceBsdf::roughDielectricF(const Vec3& wi) const {
+  Vec3 o, i;
+  if (!roughDielectricPair(wi, o, i)) return {};
   SampledSpectrum f;
   if (i.z > 0) { // reflection: f |cos i| = D G2 F / (4 cos o)
     const Vec3 h = normalize(o + i);
@@ -64,11 +72,8 @@ SampledSpectrum SurfaceBsdf::roughDielectricF(const Vec3& wi) const {
 }
 
 float SurfaceBsdf::roughDielectricPdf(const Vec3& wi) const {
-  if (!roughDielectric()) return 0;
-  const float side = dot(wo_, n_) > 0 ? 1.0f : -1.0f;
-  const Vec3 o = frame_.toLocal(wo_) * side, i = frame_.toLocal(wi) * side;
-  if (o.z <= 0 || i.z == 0) return 0;
-  if (((dot(wi, ng_) > 0) == (dot(wo_, ng_) > 0)) != (i.z > 0)) return 0;
+  Vec3 o, i;
+  if (!roughDielectricPair(wi, o, i)) return 0;
   const float eta = eta_[0];
   if (i.z > 0) {
     const Vec3 h = normalize(o + i);
