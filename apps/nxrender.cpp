@@ -15,6 +15,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "apps/render_job.h"
 #include "core/error.h"
@@ -124,6 +126,30 @@ std::vector<std::string> splitList(const std::string& text) {
   return out;
 }
 
+// Seconds spent in each step of the process, from the start of main (for --timings).
+class PhaseClock {
+public:
+  /// Ends the current step under `name`.
+  void mark(const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    steps_.emplace_back(name, std::chrono::duration<double>(now - last_).count());
+    last_ = now;
+  }
+  /// Prints the steps and their total on stderr.
+  void print() const {
+    double total = 0;
+    for (const auto& [name, s] : steps_) {
+      std::fprintf(stderr, "nxrender: timing: %-30s %8.3f s\n", name.c_str(), s);
+      total += s;
+    }
+    std::fprintf(stderr, "nxrender: timing: %-30s %8.3f s\n", "total after start-up", total);
+  }
+
+private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  std::vector<std::pair<std::string, double>> steps_;
+};
+
 int run(int argc, char** argv) {
   CLI::App app{
       "nxrender: spectral path tracer for fluorescence research\n"
@@ -134,9 +160,9 @@ int run(int argc, char** argv) {
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
   std::string output, bandsText, sensorText,
       density = "sensor", errorOf = "luminance", aovText, lightSampling = "mis",
-      lightSelection = "local", sampler = "sobol", scenePath, cropText, rangeText, resumePath;
+      lightSelection = "local", sampler = "sobol", compression, scenePath, cropText, rangeText, resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false,
-       envi = false;
+       envi = false, timings = false;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   app.add_option("--spp", spp, "Samples per pixel (default: the scene's <sampl>)")
@@ -183,6 +209,10 @@ int run(int argc, char** argv) {
   app.add_flag("--half", halfFloat,
                "Store the EXR's channels as half floats (16 bits, ~3 digits, up to 65504; "
                "falls back to floats with a warning when a value does not fit)");
+  app.add_option("--compression", compression,
+                 "EXR compression: none (default for floats: a render's noise does not "
+                 "compress), piz (default with --half), zip, zips, rle (all lossless), or the "
+                 "lossy pxr24, b44, b44a, dwaa, dwab (docs/output.md)");
   app.add_option("--crop", cropText,
                  "Render only pixels X0,Y0,X1,Y1 (half-open) of the full image");
   app.add_option("--spp-range", rangeText, "Render samples A..B-1 of each pixel's sequence (A:B)");
@@ -204,6 +234,9 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(1e-3, 1e12));
   app.add_option("--resume", resumePath,
                  "Continue the render stored in this EXR (written by an interrupted run)");
+  app.add_flag("--timings", timings,
+               "Print the seconds of each step of the whole process (load, build, render, "
+               "image, EXR, preview) on stderr");
   app.add_option("scene", scenePath, "Scene file (.scn)")->required();
   try {
     app.parse(argc, argv);
@@ -211,10 +244,13 @@ int run(int argc, char** argv) {
     return app.exit(e);
   }
 
+  PhaseClock clock;
   nx::SceneDesc desc = nx::loadScene(scenePath);
+  clock.mark("load scene file");
   for (const auto& w : desc.warnings) std::fprintf(stderr, "%s\n", w.c_str());
   if (noFluorescence) nx::removeFluorescence(desc);
   const nx::RenderScene scene = nx::buildRenderScene(desc);
+  clock.mark("build scene (spectra, BVH)");
   const int width = scene.settings.width, height = scene.settings.height;
 
   nx::RenderChoices choices;
@@ -364,15 +400,19 @@ int run(int argc, char** argv) {
   Progress progress;
   options.progress = [&](int64_t done, int64_t total) { progress.update(done, total); };
   // The EXR as asked: without the Variance channels, in half floats where every value fits.
+  nx::ExrEncoding encoding;
+  if (!compression.empty())
+    encoding.compression = nx::parseExrCompression(compression, "--compression");
   auto writeImage = [&](nx::SpectralImage image) {
     if (noVariance) image.bandVariance.clear(), image.yVariance.clear();
-    if (halfFloat && nx::fitsInHalf(image)) return nx::writeSpectralExrHalf(exrPath, image);
+    if (halfFloat && nx::fitsInHalf(image))
+      return nx::writeSpectralExrHalf(exrPath, image, encoding);
     if (halfFloat)
       std::fprintf(stderr,
                    "nxrender: warning: values beyond the half-float range (65504); "
                    "%s is written in floats\n",
                    exrPath.c_str());
-    nx::writeSpectralExr(exrPath, image);
+    nx::writeSpectralExr(exrPath, image, encoding);
   };
   auto lastCheckpoint = std::chrono::steady_clock::now();
   const auto start = lastCheckpoint;
@@ -384,7 +424,9 @@ int run(int argc, char** argv) {
       writeImage(imageOf(film, std::chrono::duration<double>(now - start).count()));
       lastCheckpoint = now;
     };
+  clock.mark("set up the render");
   const nx::RenderOutput result = nx::render(scene, options);
+  clock.mark("render");
   progress.finish();
   if (result.stats.reachedTarget || result.stats.reachedTimeLimit) {
     std::fprintf(
@@ -396,16 +438,21 @@ int run(int argc, char** argv) {
 
   nx::requireSomeFiniteSamples(result.stats, scenePath); // else nothing is written
   const nx::SpectralImage image = imageOf(result.film, result.stats.seconds);
+  clock.mark("spectral image from the film");
   {
     // The EXR and its preview as one pair (another process writing the same output waits),
     // the preview also for a stopped render (an older one would sit beside the new EXR).
     const nx::OutputLock lock(exrPath);
     writeImage(image);
+    clock.mark("write the EXR");
     if (wholeImage)
       nx::writePreview(previewPath, image.width, image.height,
                        nx::previewPixels(result.film, scene.previewWhite));
+    clock.mark("write the preview");
     if (envi) nx::writeEnvi(enviPath, image);
+    clock.mark("write the ENVI cube");
   }
+  if (timings) clock.print();
   if (result.stats.stopped) {
     std::fprintf(stderr,
                  "nxrender: stopped by signal %d; wrote the %llu samples finished so far to %s "

@@ -197,31 +197,36 @@ SpectralImage toSpectralImage(const Film& film) {
   img.bands = film.bands();
   const int nb = film.bands().count();
   const size_t pixels = static_cast<size_t>(img.width) * img.height;
-  img.radiance.reserve(pixels * nb);
-  img.rgb.reserve(pixels * 3);
-  img.xyz.reserve(pixels * 3);
-  img.sampleCount.reserve(pixels);
-  img.bandVariance.reserve(pixels * nb);
-  img.yVariance.reserve(pixels);
-  for (int y = r.y0; y < r.y1; ++y)
+  img.radiance.resize(pixels * nb);
+  img.rgb.resize(pixels * 3);
+  img.xyz.resize(pixels * 3);
+  img.sampleCount.resize(pixels);
+  img.bandVariance.resize(pixels * nb);
+  img.yVariance.resize(pixels);
+  if (film.hasWhite()) img.white.resize(pixels * nb);
+  // Rows in parallel (each value is computed the same way on any thread).
+  tbb::parallel_for(0, img.height, [&](int row) {
+    const FlushDenormalsScope rowMode;
+    const int y = r.y0 + row;
     for (int x = r.x0; x < r.x1; ++x) {
+      const size_t i = static_cast<size_t>(row) * img.width + static_cast<size_t>(x - r.x0);
       for (int b = 0; b < nb; ++b) {
-        img.radiance.push_back(static_cast<float>(film.bandMean(x, y, b)));
-        img.bandVariance.push_back(static_cast<float>(film.bandVariance(x, y, b)));
+        img.radiance[i * nb + b] = static_cast<float>(film.bandMean(x, y, b));
+        img.bandVariance[i * nb + b] = static_cast<float>(film.bandVariance(x, y, b));
+        if (film.hasWhite()) img.white[i * nb + b] = static_cast<float>(film.whiteMean(x, y, b));
       }
-      img.yVariance.push_back(static_cast<float>(film.yVariance(x, y)));
+      img.yVariance[i] = static_cast<float>(film.yVariance(x, y));
       const Xyz xyz = film.xyzMean(x, y);
       const Rgb c = xyzToLinearSrgb(xyz);
-      img.rgb.push_back(static_cast<float>(std::max(c.r, 0.0)));
-      img.rgb.push_back(static_cast<float>(std::max(c.g, 0.0)));
-      img.rgb.push_back(static_cast<float>(std::max(c.b, 0.0)));
-      img.xyz.push_back(static_cast<float>(xyz.x));
-      img.xyz.push_back(static_cast<float>(xyz.y));
-      img.xyz.push_back(static_cast<float>(xyz.z));
-      img.sampleCount.push_back(film.samples(x, y));
-      for (int b = 0; b < nb && film.hasWhite(); ++b)
-        img.white.push_back(static_cast<float>(film.whiteMean(x, y, b)));
+      img.rgb[i * 3] = static_cast<float>(std::max(c.r, 0.0));
+      img.rgb[i * 3 + 1] = static_cast<float>(std::max(c.g, 0.0));
+      img.rgb[i * 3 + 2] = static_cast<float>(std::max(c.b, 0.0));
+      img.xyz[i * 3] = static_cast<float>(xyz.x);
+      img.xyz[i * 3 + 1] = static_cast<float>(xyz.y);
+      img.xyz[i * 3 + 2] = static_cast<float>(xyz.z);
+      img.sampleCount[i] = film.samples(x, y);
     }
+  });
   return img;
 }
 

@@ -28,19 +28,27 @@ std::string spectralChannelName(double nm) {
   return name;
 }
 
+static_assert(static_cast<int>(ExrCompression::Zip) == Imf::ZIP_COMPRESSION &&
+                  static_cast<int>(ExrCompression::Dwab) == Imf::DWAB_COMPRESSION &&
+                  static_cast<int>(ExrCompression::None) == Imf::NO_COMPRESSION,
+              "ExrCompression follows OpenEXR's order");
+
 namespace {
-void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored);
+void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored,
+              const ExrEncoding& encoding);
 } // namespace
 
-void writeSpectralExr(const std::string& path, const SpectralImage& image) {
-  writeExr(path, image, Imf::FLOAT);
+void writeSpectralExr(const std::string& path, const SpectralImage& image,
+                      const ExrEncoding& encoding) {
+  writeExr(path, image, Imf::FLOAT, encoding);
 }
 
-void writeSpectralExrHalf(const std::string& path, const SpectralImage& image) {
+void writeSpectralExrHalf(const std::string& path, const SpectralImage& image,
+                          const ExrEncoding& encoding) {
   if (!fitsInHalf(image))
     throw Error(path + ": expected values within the half-float range (65504) for half output, "
                        "found larger ones");
-  writeExr(path, image, Imf::HALF);
+  writeExr(path, image, Imf::HALF, encoding);
 }
 
 bool fitsInHalf(const SpectralImage& image) {
@@ -54,7 +62,8 @@ bool fitsInHalf(const SpectralImage& image) {
 namespace {
 // Float channels are stored as `stored` (FLOAT or HALF; OpenEXR converts from the float
 // buffers); SampleCount always as UINT.
-void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored) {
+void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored,
+              const ExrEncoding& encoding) {
   const int nBands = image.bands.count();
   const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
   if (image.width <= 0 || image.height <= 0 || image.radiance.size() != pixels * nBands ||
@@ -76,7 +85,13 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
     const Imath::Box2i data({image.originX, image.originY},
                             {image.originX + image.width - 1, image.originY + image.height - 1});
     Imf::Header header(display, data);
-    header.compression() = Imf::ZIP_COMPRESSION;
+    // ExrCompression lists OpenEXR's methods in the file format's order.
+    header.compression() = static_cast<Imf::Compression>(
+        encoding.compression.value_or(defaultExrCompression(stored == Imf::HALF)));
+    if (encoding.zipLevel < 1 || encoding.zipLevel > 9)
+      throw Error(path + ": expected a zip level from 1 to 9, found " +
+                  std::to_string(encoding.zipLevel));
+    header.zipCompressionLevel() = encoding.zipLevel;
     header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
     header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
     for (const auto& [key, value] : image.attributes)

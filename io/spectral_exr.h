@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "io/exr_compression.h"
+
 #include "spectra/sensor.h"
 
 namespace nx {
@@ -57,13 +59,16 @@ std::string spectralChannelName(double nm);
 /// SampleCount (none of these names is a spectral one), the data
 /// window of the region inside the display window of the full image, the attributes
 /// spectralLayoutVersion = "1.0" and emissiveUnits = "W.m^-2.sr^-1", and every provenance
-/// attribute. The file appears atomically (temporary name, then rename).
-void writeSpectralExr(const std::string& path, const SpectralImage& image);
+/// attribute. The file appears atomically (temporary name, then rename). `encoding`: the
+/// compression (default: none for floats, piz for half floats; see defaultExrCompression).
+void writeSpectralExr(const std::string& path, const SpectralImage& image,
+                      const ExrEncoding& encoding = {});
 
 /// The same with every float channel stored as a half float (16 bits: about 3 significant
 /// digits, values up to 65504; SampleCount stays a 32-bit integer), half the size. Throws
 /// nx::Error, writing nothing, when a value would not fit (see fitsInHalf).
-void writeSpectralExrHalf(const std::string& path, const SpectralImage& image);
+void writeSpectralExrHalf(const std::string& path, const SpectralImage& image,
+                          const ExrEncoding& encoding = {});
 
 /// True when every value of the image's float channels is finite and at most 65504 in size
 /// (the largest half float), so writeSpectralExrHalf keeps it.

@@ -158,6 +158,50 @@ TEST(SpectralExr, HalfFloatOutput) {
   EXPECT_FALSE(std::filesystem::exists(big));
 }
 
+// Every compression method writes a file OpenEXR reads back with the method in its header;
+// the lossless ones return the bands bit for bit; the defaults are none for floats and piz
+// for halves; unknown names and zip levels are errors that write nothing.
+TEST(SpectralExr, CompressionMethods) {
+  SpectralImage img = testImage();
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  img.radiance[2] = 0.1234567f; // a value that a 24-bit or half float would change
+  for (ExrCompression c : allExrCompressions()) {
+    const std::string path =
+        ::testing::TempDir() + "compression_" + exrCompressionName(c) + ".exr";
+    writeSpectralExr(path, img, ExrEncoding{c, 9});
+    Imf::InputFile in(path.c_str());
+    EXPECT_EQ(static_cast<int>(in.header().compression()), static_cast<int>(c))
+        << exrCompressionName(c);
+    const SpectralImage back = readSpectralExr(path);
+    ASSERT_EQ(back.radiance.size(), img.radiance.size());
+    bool exact = true;
+    for (size_t i = 0; i < img.radiance.size(); ++i) {
+      exact = exact && back.radiance[i] == img.radiance[i];
+      EXPECT_NEAR(back.radiance[i], img.radiance[i], 1e-4 * std::abs(img.radiance[i]))
+          << exrCompressionName(c) << " value " << i;
+    }
+    if (keepsFloatsExactly(c)) EXPECT_TRUE(exact) << exrCompressionName(c);
+    EXPECT_EQ(parseExrCompression(exrCompressionName(c), "--compression"), c);
+  }
+  EXPECT_EQ(defaultExrCompression(false), ExrCompression::None);
+  EXPECT_EQ(defaultExrCompression(true), ExrCompression::Piz);
+  const std::string plain = ::testing::TempDir() + "compression_default.exr";
+  writeSpectralExr(plain, img);
+  EXPECT_EQ(Imf::InputFile(plain.c_str()).header().compression(), Imf::NO_COMPRESSION);
+  writeSpectralExrHalf(plain, img);
+  EXPECT_EQ(Imf::InputFile(plain.c_str()).header().compression(), Imf::PIZ_COMPRESSION);
+  EXPECT_NE(test::errorMessage([] { parseExrCompression("zip2", "--compression"); })
+                .find("--compression: expected one of none, rle, zips, zip, piz"),
+            std::string::npos);
+  const std::string bad = ::testing::TempDir() + "compression_level.exr";
+  std::filesystem::remove(bad);
+  EXPECT_NE(test::errorMessage([&] {
+              writeSpectralExr(bad, img, ExrEncoding{ExrCompression::Zip, 10});
+            }).find("expected a zip level from 1 to 9, found 10"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(bad));
+}
+
 // An EXR made by another tool whose data window is not inside its display window (nxmerge
 // read out of bounds on one), or whose sample counts are floats (a resume silently restarted
 // from zero), is refused by the reader with what it found.
