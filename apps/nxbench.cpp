@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "apps/bench_errors.h"
 #include "apps/log_plot.h"
 #include "core/error.h"
 #include "core/hash.h"
@@ -32,40 +33,6 @@
 namespace {
 
 using namespace nx;
-
-struct Errors {
-  double rmseY = 0, relY = 0, meanBandRel = 0, maxBandRel = 0;
-  std::vector<double> bandRmse;
-};
-
-Errors compare(const Film& f, const SpectralImage& ref) {
-  Errors e;
-  const int nb = ref.bands.count();
-  const double n = static_cast<double>(ref.width) * ref.height;
-  double se = 0, meanY = 0;
-  std::vector<double> bandSe(static_cast<size_t>(nb), 0.0), bandMean(static_cast<size_t>(nb), 0.0);
-  for (int y = 0; y < ref.height; ++y)
-    for (int x = 0; x < ref.width; ++x) {
-      const size_t i = static_cast<size_t>(y) * ref.width + x;
-      const double d = f.xyzMean(x, y).y - ref.xyz[i * 3 + 1];
-      se += d * d;
-      meanY += ref.xyz[i * 3 + 1];
-      for (int b = 0; b < nb; ++b) {
-        const double db = f.bandMean(x, y, b) - ref.radiance[i * nb + b];
-        bandSe[b] += db * db;
-        bandMean[b] += ref.radiance[i * nb + b];
-      }
-    }
-  e.rmseY = std::sqrt(se / n);
-  e.relY = e.rmseY / (meanY / n);
-  for (int b = 0; b < nb; ++b) {
-    e.bandRmse.push_back(std::sqrt(bandSe[b] / n));
-    const double rel = bandMean[b] > 0 ? e.bandRmse.back() / (bandMean[b] / n) : 0.0;
-    e.meanBandRel += rel / nb;
-    e.maxBandRel = std::max(e.maxBandRel, rel);
-  }
-  return e;
-}
 
 // Closest-hit rays per second through the scene's geometry: origins uniform in the bounding
 // box of its spheres, triangles and camera, directions uniform. The rays are made before the
@@ -160,7 +127,7 @@ int main(int argc, char** argv) {
       o.samples = spp;
       o.sampler = kind;
       const RenderOutput out = render(scene, o);
-      const Errors e = compare(out.film, ref);
+      const bench::ImageErrors e = bench::compareWithReference(out.film, ref);
       const double sps = static_cast<double>(out.stats.samples) / out.stats.seconds;
       lastRaysPerSecond = static_cast<double>(out.stats.rays) / out.stats.seconds;
       std::printf("%6d %9.3f %12.4g %12.4g %11.5g %11.5g %13.5g %13.5g\n", spp, out.stats.seconds,

@@ -160,9 +160,10 @@ int run(int argc, char** argv) {
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
   std::string output, bandsText, sensorText,
       density = "sensor", errorOf = "luminance", aovText, lightSampling = "mis",
-      lightSelection = "local", sampler = "sobol", compression, scenePath, cropText, rangeText, resumePath;
+      lightSelection = "local", sampler = "sobol", compression, adaptiveFrom, scenePath, cropText, rangeText, resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false,
-       envi = false, timings = false;
+       envi = false, timings = false, adaptive = false;
+  int adaptiveMinSpp = 16;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   app.add_option("--spp", spp, "Samples per pixel (default: the scene's <sampl>)")
@@ -230,6 +231,15 @@ int run(int argc, char** argv) {
                  "The error --target-error aims at: luminance (default; Y, CIE 1931 over 360-830 "
                  "nm, whatever the bands), bands (the worst band's relative RMS error), or "
                  "bands:LO-HI (the worst among the bands whose centroid lies in LO-HI nm)");
+  app.add_flag("--adaptive", adaptive,
+               "Adaptive sampling: spend the samples where the error is, in 8x8-pixel blocks, "
+               "until --target-error is met (--spp: the most a pixel may take)");
+  app.add_option("--adaptive-min-spp", adaptiveMinSpp,
+                 "The uniform pilot of --adaptive, samples per pixel (default 16)")
+      ->check(CLI::Range(2, 1 << 30));
+  app.add_option("--adaptive-from", adaptiveFrom,
+                 "One adaptive round planned from this whole-image EXR of the same render (a "
+                 "farm round: every --crop part plans alike; docs/farm.md)");
   app.add_option("--time-limit", timeLimit, "Stop before a pass that would end after SECONDS")
       ->check(CLI::Range(1e-3, 1e12));
   app.add_option("--resume", resumePath,
@@ -306,6 +316,11 @@ int run(int argc, char** argv) {
   choices.targetError = targetError;
   choices.errorOf = errorOf;
   choices.timeLimit = timeLimit;
+  choices.adaptive = adaptive || !adaptiveFrom.empty();
+  choices.adaptiveMinSamples = adaptiveMinSpp;
+  if (!adaptiveFrom.empty() && !resumePath.empty())
+    throw nx::Error("--adaptive-from and --resume: give one of them (a round continues the image "
+                    "it is planned from)");
   nx::RenderJob job(scene, scenePath, choices);
   nx::RenderOptions& options = job.options();
 
@@ -389,6 +404,43 @@ int run(int argc, char** argv) {
     }
     options.resumeFrom = &*resumeFilm;
   }
+  std::optional<nx::Film> planFilm;
+  std::optional<nx::AdaptivePlan> plan;
+  if (!adaptiveFrom.empty()) {
+    const nx::SpectralImage from = nx::readSpectralExr(adaptiveFrom);
+    auto attr = [&](const char* k) {
+      const auto it = from.attributes.find(k);
+      return it == from.attributes.end() ? std::string() : it->second;
+    };
+    if (attr("nxrender.renderKey") != job.renderKey())
+      throw nx::Error(adaptiveFrom +
+                      ": was rendered from another scene, other data files, other options or "
+                      "another nxrender version");
+    const std::string range = attr("nxrender.sampleRange");
+    if (attr("nxrender.seed") != std::to_string(seedUsed) ||
+        attr("nxrender.bands") != bands.toString() ||
+        range.rfind(std::to_string(firstSample) + ":", 0) != 0)
+      throw nx::Error(adaptiveFrom + ": has another seed, bands or first sample (" +
+                      attr("nxrender.seed") + ", " + from.bands.summary() + ", " + range +
+                      ") than this render (" + std::to_string(seedUsed) + ", " + bands.summary() +
+                      ", " + std::to_string(firstSample) + ":...)");
+    if (from.displayWidth() != width || from.displayHeight() != height || from.originX != 0 ||
+        from.originY != 0 || from.width != width || from.height != height)
+      throw nx::Error(adaptiveFrom + ": expected the whole " + std::to_string(width) + "x" +
+                      std::to_string(height) +
+                      " image to plan from (merge the parts first), found a " +
+                      std::to_string(from.width) + "x" + std::to_string(from.height) + " part");
+    try {
+      planFilm = nx::filmFromImage(from, firstSample, sppTotal);
+      plan = nx::planAdaptiveSamples(*planFilm, options.errorMeasure, options.targetRelativeError,
+                                     static_cast<uint32_t>(sppTotal));
+    } catch (const nx::Error& e) {
+      throw nx::Error(adaptiveFrom + ": " + e.what());
+    }
+    resumeFilm = planFilm->cropped(job.rect());
+    options.resumeFrom = &*resumeFilm;
+    options.adaptivePlan = &*plan;
+  }
   auto imageOf = [&](const nx::Film& film, double seconds) { return job.image(film, seconds); };
 
   const int nThreads = threads > 0 ? threads : tbb::info::default_concurrency();
@@ -428,7 +480,20 @@ int run(int argc, char** argv) {
   const nx::RenderOutput result = nx::render(scene, options);
   clock.mark("render");
   progress.finish();
-  if (result.stats.reachedTarget || result.stats.reachedTimeLimit) {
+  if (options.adaptive) {
+    // Counts differ per pixel (SampleCount); the range stays the most a pixel may hold.
+    std::fprintf(stderr,
+                 "nxrender: adaptive: %s after %d round%s; this run took %.1f samples per pixel on "
+                 "average, a pixel holds at most %d (estimated relative RMS error %.4g)\n",
+                 result.stats.reachedTarget ? "reached the target error"
+                 : result.stats.reachedTimeLimit
+                     ? "stopped at the time limit"
+                     : (options.adaptivePlan ? "rendered the planned round" : "stopped at --spp"),
+                 result.stats.adaptiveRounds, result.stats.adaptiveRounds == 1 ? "" : "s",
+                 static_cast<double>(result.stats.samples) / (static_cast<double>(job.rect().width()) *
+                                                              job.rect().height()),
+                 result.stats.samplesReached, result.stats.relativeError);
+  } else if (result.stats.reachedTarget || result.stats.reachedTimeLimit) {
     std::fprintf(
         stderr, "nxrender: %s after %d samples per pixel (estimated relative RMS error %.4g)\n",
         result.stats.reachedTarget ? "reached the target error" : "stopped at the time limit",

@@ -123,6 +123,18 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
   options_.targetRelativeError = choices.targetError;
   options_.errorMeasure = errorMeasureFrom(choices.errorOf);
   options_.timeLimitSeconds = choices.timeLimit;
+  if (choices.adaptive) {
+    if (!(choices.targetError > 0))
+      throw Error("--adaptive: expected a --target-error to aim at, found none");
+    if (choices.sampleRange)
+      throw Error("--adaptive with --spp-range: an adaptive render splits by crops only (each "
+                  "pixel's count depends on the samples before it); see docs/farm.md");
+    if (choices.adaptiveMinSamples < 2)
+      throw Error("--adaptive-min-spp: expected at least 2 (one sample per replicate), found " +
+                  std::to_string(choices.adaptiveMinSamples));
+  }
+  options_.adaptive = choices.adaptive;
+  options_.adaptiveMinSamples = choices.adaptiveMinSamples;
 
   renderKey_ =
       hex(fnv1a64(std::string(NX_VERSION) + "|" + choices.sampler + "|" + choices.lightSampling +
@@ -161,6 +173,11 @@ SpectralImage RenderJob::image(const Film& film, double seconds) const {
                                               std::to_string(white.z / white.y);
   image.attributes["nxrender.renderSeconds"] = std::to_string(seconds);
   image.attributes["nxrender.estimatedRelativeError"] = std::to_string(film.relativeRmsError());
+  // Adaptive images hold different counts in different pixels (SampleCount), all within the
+  // sample range; the merge accepts such parts of the same target as crops.
+  if (choices_.adaptive)
+    image.attributes["nxrender.adaptive"] =
+        "target " + numberText(choices_.targetError) + " of " + choices_.errorOf;
   for (const auto& [key, value] : cameraAttributes(scene_.camera)) image.attributes[key] = value;
   if (choices_.aovIds || choices_.aovDepth) {
     addGeometryAovs(scene_, image);

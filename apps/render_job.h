@@ -30,6 +30,8 @@ struct RenderChoices {
   double targetError = 0;            ///< stop at this relative RMS error; 0 = off
   std::string errorOf = "luminance"; ///< luminance, bands or bands:LO-HI
   double timeLimit = 0;              ///< seconds; 0 = off
+  bool adaptive = false;             ///< adaptive sampling towards targetError
+  int adaptiveMinSamples = 16;       ///< its uniform pilot, samples per pixel
 };
 
 /// A sensor from an option's text: a description (gaussian:..., boxes:..., table:...,

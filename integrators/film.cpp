@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.h"
+
 namespace nx {
 
 Film::Film(int width, int height, const PixelRect& rect, const Sensor& bands, bool whiteReference)
@@ -131,6 +133,26 @@ void Film::setFromMeans(int x, int y, const float* bandMeans, const float* bandV
   yOddSums_[i] = (xyzMean[1] - std::sqrt(std::max(0.0, yVariance))) * nOdd;
   counts_[i] = samples;
   oddCounts_[i] = oddSamples;
+}
+
+Film Film::cropped(const PixelRect& r) const {
+  if (r.x0 < rect_.x0 || r.y0 < rect_.y0 || r.x1 > rect_.x1 || r.y1 > rect_.y1 || r.x1 <= r.x0 ||
+      r.y1 <= r.y0)
+    throw Error("internal error: a film crop outside the film");
+  Film out(width_, height_, r, bands_, hasWhite());
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) {
+      const size_t i = index(x, y), o = out.index(x, y);
+      const size_t nb = static_cast<size_t>(nBands_);
+      std::copy_n(&bandSums_[i * nb], nb, &out.bandSums_[o * nb]);
+      std::copy_n(&bandOddSums_[i * nb], nb, &out.bandOddSums_[o * nb]);
+      if (hasWhite()) std::copy_n(&whiteSums_[i * nb], nb, &out.whiteSums_[o * nb]);
+      std::copy_n(&xyzSums_[i * 3], 3, &out.xyzSums_[o * 3]);
+      out.yOddSums_[o] = yOddSums_[i];
+      out.oddCounts_[o] = oddCounts_[i];
+      out.counts_[o] = counts_[i];
+    }
+  return out;
 }
 
 double Film::bandVariance(int x, int y, int b) const {

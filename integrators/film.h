@@ -98,6 +98,9 @@ public:
                     const double xyzMean[3], double yVariance, uint32_t samples,
                     uint32_t oddSamples, const float* whiteMeans = nullptr);
 
+  /// The part of this film over `r` (inside its rectangle), with the same sums.
+  Film cropped(const PixelRect& r) const;
+
   /// Mean band radiance of pixel (x, y), band b.
   double bandMean(int x, int y, int b) const;
   /// Mean white-reference radiance of pixel (x, y), band b (0 without the white reference).

@@ -63,13 +63,19 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                                          out.film.tracedMaxNm());
   const bool whitted = settings.mode == RenderMode::Rt;
 
-  const int ts = std::max(1, options.tileSize);
+  // Adaptive renders use tiles of one plan block: late rounds add samples to few blocks, and
+  // small tasks keep every thread busy (the image does not depend on the tiles).
+  const int ts = options.adaptive ? std::min(std::max(1, options.tileSize), kAdaptiveBlock)
+                                  : std::max(1, options.tileSize);
   const int tilesX = (rect.width() + ts - 1) / ts, tilesY = (rect.height() + ts - 1) / ts;
   const int tiles = tilesX * tilesY;
   const int passSize = std::max(1, options.passSamples);
   const int passes = (out.samplesPerPixel + passSize - 1) / passSize;
   std::atomic<uint64_t> rays{0}, nonFinite{0}, samples{0}, truncated{0};
   std::atomic<int64_t> finished{0};
+  // Progress counts tiles of passes; an adaptive render's passes are not known in advance
+  // (its count is capped at the uniform render's).
+  const int64_t progressTotal = static_cast<int64_t>(tiles) * passes;
   std::mutex progressMutex;
 
   double lastPassSeconds = 0;
@@ -78,18 +84,27 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
         .count();
   };
   const double clockStart = now();
-  for (int pass = 0; pass < passes && !out.stats.stopped; ++pass) {
-    const int passEnd = std::min(end, begin + (pass + 1) * passSize);
-    const double elapsed = now() - clockStart;
-    if (options.timeLimitSeconds > 0 && pass > 0 &&
-        elapsed + lastPassSeconds > options.timeLimitSeconds) {
+  double passStart = clockStart;
+  bool anyPass = false;
+  // Whether another pass may start: not after a stop, nor when it would end after the time
+  // limit (judged by the last pass; the first pass always runs).
+  auto mayStartPass = [&] {
+    if (out.stats.stopped) return false;
+    passStart = now();
+    if (options.timeLimitSeconds > 0 && anyPass &&
+        passStart - clockStart + lastPassSeconds > options.timeLimitSeconds) {
       out.stats.reachedTimeLimit = true;
-      break;
+      return false;
     }
-    // The stop flag is looked at before every sample (a relaxed load), so a stop takes effect
-    // within one sample wherever the render is; each pixel keeps the samples it finished (its
-    // count stays true, and a resume continues after them).
-    auto stopping = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
+    return true;
+  };
+  // The stop flag is looked at before every sample (a relaxed load), so a stop takes effect
+  // within one sample wherever the render is; each pixel keeps the samples it finished (its
+  // count stays true, and a resume continues after them).
+  auto stopping = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
+  // One pass: every pixel continues after the samples it holds up to `uniformEnd` (a sample
+  // number), or with a plan up to min(planned, held + passSize) samples.
+  auto runPass = [&](int uniformEnd, const AdaptivePlan* plan) {
     tbb::parallel_for(
         0, tiles,
         [&](int tile) {
@@ -102,6 +117,13 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           bool halted = false;
           for (int y = y0; y < y1 && !halted; ++y) {
             for (int x = x0; x < x1 && !halted; ++x) {
+              const int held = static_cast<int>(out.film.samples(x, y));
+              // A planned pass adds passSize samples, or half what the pixel holds once that
+              // is more (fewer passes, fewer waits at their ends; still several per round).
+              const int sEnd = plan ? begin + std::min(static_cast<int>(plan->samplesAt(x, y)),
+                                                       held + std::max(passSize, held / 2))
+                                    : uniformEnd;
+              if (begin + held >= sEnd) continue;
               Film::resetPixel(pixel);
               const uint32_t pixelIndex =
                   static_cast<uint32_t>(y) * static_cast<uint32_t>(settings.width) +
@@ -116,9 +138,9 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                   PixelSequence(options.sampler, pixelIndex, seed ^ kWhiteSalt),
                   PixelSequence(options.sampler, pixelIndex,
                                 seed ^ kWhiteSalt ^ kOddReplicateSalt)};
-              // Each pixel continues after the samples it already has (a resumed film may hold
-              // more in some pixels than in others).
-              for (int s = begin + static_cast<int>(out.film.samples(x, y)); s < passEnd; ++s) {
+              // Each pixel continues after the samples it already has (a resumed film or an
+              // adaptive plan may hold more in some pixels than in others).
+              for (int s = begin + held; s < sEnd; ++s) {
                 if (stopping()) {
                   halted = true;
                   break;
@@ -153,19 +175,72 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           const int64_t done = ++finished;
           if (options.progress) {
             std::lock_guard<std::mutex> lock(progressMutex);
-            options.progress(done, static_cast<int64_t>(tiles) * passes);
+            options.progress(std::min(done, progressTotal), progressTotal);
           }
         },
         tileContext);
     if (options.stop && options.stop->load()) out.stats.stopped = true;
-    if (!out.stats.stopped) out.stats.samplesReached = passEnd - begin;
-    lastPassSeconds = now() - clockStart - elapsed;
+    lastPassSeconds = now() - passStart;
+    anyPass = true;
     if (options.afterPass) options.afterPass(out.film);
-    if (!out.stats.stopped && options.targetRelativeError > 0 && passEnd < end &&
-        options.errorMeasure.of(out.film) <= options.targetRelativeError) {
-      out.stats.reachedTarget = true;
-      break;
+  };
+
+  if (!options.adaptive) {
+    for (int pass = 0; pass < passes && mayStartPass(); ++pass) {
+      const int passEnd = std::min(end, begin + (pass + 1) * passSize);
+      runPass(passEnd, nullptr);
+      if (!out.stats.stopped) out.stats.samplesReached = passEnd - begin;
+      if (!out.stats.stopped && options.targetRelativeError > 0 && passEnd < end &&
+          options.errorMeasure.of(out.film) <= options.targetRelativeError) {
+        out.stats.reachedTarget = true;
+        break;
+      }
     }
+  } else {
+    if (!(options.targetRelativeError > 0))
+      throw Error("adaptive sampling needs a target error (--target-error)");
+    const auto maxSamples = static_cast<uint32_t>(out.samplesPerPixel);
+    if (!options.adaptivePlan) {
+      // The uniform pilot: every pixel gets the same first samples (an even number, so both
+      // replicates are alike), enough to estimate each block's noise.
+      int pilot = std::clamp(options.adaptiveMinSamples, 2, out.samplesPerPixel);
+      pilot -= pilot & 1;
+      pilot = std::max(pilot, 2);
+      for (int k = 0; begin + k * passSize < begin + pilot && mayStartPass(); ++k)
+        runPass(std::min(begin + pilot, begin + (k + 1) * passSize), nullptr);
+    }
+    // Rounds: plan from the film, render the plan in passes, measure; a given plan is one
+    // round. The error is judged at the end of a round only, so a round is the same work
+    // whether one machine renders it or a farm renders its crops.
+    constexpr int kMaxRounds = 40; // rounds at most double: 2^40 is beyond any count
+    for (int round = 0; round < kMaxRounds && !out.stats.stopped && !out.stats.reachedTimeLimit;
+         ++round) {
+      if (!options.adaptivePlan &&
+          options.errorMeasure.of(out.film) <= options.targetRelativeError) {
+        out.stats.reachedTarget = true;
+        break;
+      }
+      if (options.adaptivePlan) {
+        const PixelRect& pr = options.adaptivePlan->region;
+        if (rect.x0 < pr.x0 || rect.y0 < pr.y0 || rect.x1 > pr.x1 || rect.y1 > pr.y1)
+          throw Error("internal error: an adaptive plan that does not cover the render's pixels");
+      }
+      const AdaptivePlan plan =
+          options.adaptivePlan ? *options.adaptivePlan
+                               : planAdaptiveSamples(out.film, options.errorMeasure,
+                                                     options.targetRelativeError, maxSamples);
+      if (!plan.addsSamplesTo(out.film)) break;
+      while (plan.addsSamplesTo(out.film) && mayStartPass()) runPass(0, &plan);
+      ++out.stats.adaptiveRounds;
+      if (options.adaptivePlan) break;
+    }
+    if (!options.adaptivePlan && !out.stats.stopped && !out.stats.reachedTarget &&
+        options.errorMeasure.of(out.film) <= options.targetRelativeError)
+      out.stats.reachedTarget = true;
+    uint32_t most = 0;
+    for (int y = rect.y0; y < rect.y1; ++y)
+      for (int x = rect.x0; x < rect.x1; ++x) most = std::max(most, out.film.samples(x, y));
+    out.stats.samplesReached = static_cast<int>(most);
   }
   out.stats.relativeError = options.errorMeasure.of(out.film);
 

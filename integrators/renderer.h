@@ -7,6 +7,8 @@
 #include <functional>
 #include <optional>
 
+#include "integrators/adaptive_plan.h"
+#include "integrators/error_measure.h"
 #include "integrators/film.h"
 #include "integrators/integrator.h"
 #include "integrators/render_scene.h"
@@ -16,17 +18,6 @@ namespace nx {
 
 /// The density wavelengths are drawn from (see WavelengthSampler).
 enum class WavelengthDensity { Sensor, Visible };
-
-/// An image error: the luminance's (Film::relativeRmsError), or the worst band's among the
-/// bands whose centroid lies in [loNm, hiNm] (Film::worstBandRelativeRmsError).
-struct ErrorMeasure {
-  bool bands = false;
-  double loNm = 0, hiNm = 1e9;
-  /// The error of a film.
-  double of(const Film& film) const {
-    return bands ? film.worstBandRelativeRmsError(loNm, hiNm) : film.relativeRmsError();
-  }
-};
 
 /// What to render beyond the scene itself.
 struct RenderOptions {
@@ -50,6 +41,15 @@ struct RenderOptions {
   double targetRelativeError = 0;
   /// Which error targetRelativeError and RenderStats::relativeError mean.
   ErrorMeasure errorMeasure;
+  /// Adaptive sampling (needs targetRelativeError): after a uniform pilot of
+  /// adaptiveMinSamples, rounds of planAdaptiveSamples, each rendered to its plan in passes of
+  /// passSamples, until the estimated error meets the target or no block may take more;
+  /// `samples` is then the most any pixel takes.
+  bool adaptive = false;
+  int adaptiveMinSamples = 16; ///< the uniform pilot of adaptive sampling (at least 2)
+  /// One adaptive round from a given plan instead (a farm round: every part renders its crop
+  /// of the plan made from the whole image, continuing resumeFrom); no pilot.
+  const AdaptivePlan* adaptivePlan = nullptr;
   /// Do not start a pass that would end after this many seconds (judged by the last pass's
   /// duration; the first pass always runs); 0: off.
   double timeLimitSeconds = 0;
@@ -82,6 +82,7 @@ struct RenderStats {
   bool reachedTarget = false;    ///< ended because the error target was met
   bool reachedTimeLimit = false; ///< ended because the next pass would pass the time limit
   int samplesReached = 0;        ///< samples per pixel after the last completed pass
+  int adaptiveRounds = 0;        ///< planned rounds rendered (adaptive sampling)
   double relativeError = 0;      ///< estimated relative RMS error at the end
 };
 

@@ -1,10 +1,5 @@
 #include "io/envi_export.h"
 
-#include <cpl_conv.h>
-#include <cpl_error.h>
-#include <cpl_string.h>
-#include <gdal.h>
-#include <gdal_frmts.h>
 
 #include <unistd.h>
 
@@ -15,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/gdal_library.h"
 
 namespace nx {
 namespace {
@@ -27,7 +23,7 @@ std::string enviList(int n, const std::function<std::string(int)>& item) {
 }
 
 std::string lastGdalError() {
-  const char* m = CPLGetLastErrorMsg();
+  const char* m = gdal().CPLGetLastErrorMsg();
   return m && *m ? m : "unknown GDAL error";
 }
 
@@ -39,7 +35,7 @@ std::string enviHeaderPath(const std::string& dataPath) {
 
 void writeEnvi(const std::string& dataPath, const SpectralImage& image) {
   static std::once_flag registered;
-  std::call_once(registered, [] { GDALRegister_ENVI(); });
+  std::call_once(registered, [] { gdal().GDALRegister_ENVI(); });
   const Sensor& sensor = image.bands;
   const int nb = sensor.count(), w = image.width, h = image.height;
   const std::string hdrPath = enviHeaderPath(dataPath);
@@ -61,11 +57,11 @@ void writeEnvi(const std::string& dataPath, const SpectralImage& image) {
     std::remove(tempHdr.c_str());
     std::remove((tempData + ".aux.xml").c_str());
   };
-  GDALDriverH driver = GDALGetDriverByName("ENVI");
+  GDALDriverH driver = gdal().GDALGetDriverByName("ENVI");
   if (!driver) throw Error(dataPath + ": GDAL has no ENVI driver");
-  char** options = CSLSetNameValue(nullptr, "INTERLEAVE", "BSQ");
-  GDALDatasetH ds = GDALCreate(driver, tempData.c_str(), w, h, nb, GDT_Float32, options);
-  CSLDestroy(options);
+  char** options = gdal().CSLSetNameValue(nullptr, "INTERLEAVE", "BSQ");
+  GDALDatasetH ds = gdal().GDALCreate(driver, tempData.c_str(), w, h, nb, GDT_Float32, options);
+  gdal().CSLDestroy(options);
   if (!ds) {
     cleanUp();
     throw Error(dataPath + ": cannot create the ENVI cube: " + lastGdalError());
@@ -75,28 +71,28 @@ void writeEnvi(const std::string& dataPath, const SpectralImage& image) {
   for (int b = 0; b < nb && ok; ++b) {
     for (size_t i = 0; i < plane.size(); ++i)
       plane[i] = image.radiance[i * static_cast<size_t>(nb) + static_cast<size_t>(b)];
-    GDALRasterBandH band = GDALGetRasterBand(ds, b + 1);
+    GDALRasterBandH band = gdal().GDALGetRasterBand(ds, b + 1);
     char desc[64];
     std::snprintf(desc, sizeof desc, "%.6f nm", sensor.centroid(b));
-    GDALSetDescription(band, desc);
-    ok = GDALRasterIO(band, GF_Write, 0, 0, w, h, plane.data(), w, h, GDT_Float32, 0, 0) == CE_None;
+    gdal().GDALSetDescription(band, desc);
+    ok = gdal().GDALRasterIO(band, GF_Write, 0, 0, w, h, plane.data(), w, h, GDT_Float32, 0, 0) == CE_None;
   }
   const auto number = [](double v) { return exactNumberText(v); };
-  GDALSetMetadataItem(ds, "wavelength units", "Nanometers", "ENVI");
-  GDALSetMetadataItem(ds, "wavelength",
+  gdal().GDALSetMetadataItem(ds, "wavelength units", "Nanometers", "ENVI");
+  gdal().GDALSetMetadataItem(ds, "wavelength",
                       enviList(nb, [&](int b) { return number(sensor.centroid(b)); }).c_str(),
                       "ENVI");
-  GDALSetMetadataItem(ds, "fwhm",
+  gdal().GDALSetMetadataItem(ds, "fwhm",
                       enviList(nb, [&](int b) { return number(sensor.fwhm(b)); }).c_str(), "ENVI");
   // The ENVI driver writes the dataset's description (by default its file name, here a
   // temporary one) as the header's "description".
-  GDALSetDescription(ds, ("nxrender render: spectral radiance (W m^-2 sr^-1 nm^-1) averaged "
+  gdal().GDALSetDescription(ds, ("nxrender render: spectral radiance (W m^-2 sr^-1 nm^-1) averaged "
                           "over each band's response; " +
                           sensor.summary())
                              .c_str());
-  CPLErrorReset();
-  GDALClose(ds); // void in GDAL 3.6: a failed flush shows in the last error
-  if (!ok || CPLGetLastErrorType() >= CE_Failure) {
+  gdal().CPLErrorReset();
+  gdal().GDALClose(ds); // void in GDAL 3.6: a failed flush shows in the last error
+  if (!ok || gdal().CPLGetLastErrorType() >= CE_Failure) {
     const std::string why = lastGdalError();
     cleanUp();
     throw Error(dataPath + ": cannot write the ENVI cube: " + why);

@@ -19,6 +19,12 @@ std::string attribute(const ImagePart& p, const std::string& key) {
   return it->second;
 }
 
+// The adaptive-sampling target of a part ("" for a uniform render).
+std::string adaptiveTarget(const ImagePart& p) {
+  const auto it = p.image.attributes.find("nxrender.adaptive");
+  return it == p.image.attributes.end() ? std::string() : it->second;
+}
+
 std::pair<long long, long long> sampleRange(const ImagePart& p) {
   const std::string r = attribute(p, "nxrender.sampleRange");
   const auto colon = r.find(':');
@@ -74,6 +80,10 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
                          ? " (another scene, other data files, other render options or another "
                            "nxrender version)"
                          : ""));
+    if (adaptiveTarget(p) != adaptiveTarget(first))
+      throw Error(p.name + ": does not belong with " + first.name + ": its adaptive sampling is '" +
+                  (adaptiveTarget(p).empty() ? "off" : adaptiveTarget(p)) + "', not '" +
+                  (adaptiveTarget(first).empty() ? "off" : adaptiveTarget(first)) + "'");
     if (p.image.displayWidth() != width || p.image.displayHeight() != height)
       throw Error(p.name + ": does not belong with " + first.name + ": its image is " +
                   std::to_string(p.image.displayWidth()) + "x" +
@@ -83,8 +93,10 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
       throw Error(p.name + ": expected SampleCount and X, Y, Z channels, found none");
     ranges.push_back(sampleRange(p));
     const long long want = ranges.back().second - ranges.back().first;
+    // An adaptive part holds up to its range in each pixel (its SampleCount says how many).
+    const bool adaptive = !adaptiveTarget(p).empty();
     for (uint32_t c : p.image.sampleCount)
-      if (c != want)
+      if (adaptive ? c > want || c == 0 : c != want)
         throw Error(p.name + ": holds " + std::to_string(c) +
                     " samples in some pixels instead of the " + std::to_string(want) +
                     " of its range " + attribute(p, "nxrender.sampleRange") +
@@ -164,21 +176,27 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
         owner[dst] = static_cast<int>(k);
       }
   }
-  // Missing regions: pixels with fewer samples than the best-covered pixel.
+  // Missing regions: pixels with fewer samples than the best-covered pixel (adaptive parts,
+  // whose counts differ by design: pixels no part covers).
+  const bool adaptive = !adaptiveTarget(first).empty();
   const uint64_t full = *std::max_element(count.begin(), count.end());
   int mx0 = width, my0 = height, mx1 = -1, my1 = -1;
   size_t missing = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
-      if (count[static_cast<size_t>(y) * width + x] < full) {
+      if (adaptive ? covering[static_cast<size_t>(y) * width + x] == 0
+                   : count[static_cast<size_t>(y) * width + x] < full) {
         ++missing;
         mx0 = std::min(mx0, x), my0 = std::min(my0, y), mx1 = std::max(mx1, x + 1),
         my1 = std::max(my1, y + 1);
       }
   if (missing > 0)
     throw Error("missing region: " + std::to_string(missing) + " pixels within " +
-                rectText(mx0, my0, mx1, my1) + " have fewer than the " + std::to_string(full) +
-                " samples of the others (a part is missing)");
+                rectText(mx0, my0, mx1, my1) +
+                (adaptive ? std::string(" are covered by no part")
+                          : " have fewer than the " + std::to_string(full) +
+                                " samples of the others") +
+                " (a part is missing)");
 
   // The sample ranges each pixel holds, as text (for the message below).
   auto rangesAt = [&](size_t i) {

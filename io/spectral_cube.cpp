@@ -1,9 +1,5 @@
 #include "io/spectral_cube.h"
 
-#include <cpl_conv.h>
-#include <cpl_error.h>
-#include <gdal.h>
-#include <gdal_frmts.h>
 
 #include <algorithm>
 #include <cctype>
@@ -13,6 +9,7 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "io/gdal_library.h"
 #include "core/file_text.h"
 #include "core/memory.h"
 #include "core/text_table.h"
@@ -35,22 +32,22 @@ std::string extensionOf(const std::string& path) {
 
 // GDAL's messages go to our errors, not to stderr.
 struct QuietGdal {
-  QuietGdal() { CPLPushErrorHandler(CPLQuietErrorHandler); }
-  ~QuietGdal() { CPLPopErrorHandler(); }
+  QuietGdal() { gdal().CPLPushErrorHandler(gdal().CPLQuietErrorHandler); }
+  ~QuietGdal() { gdal().CPLPopErrorHandler(); }
   QuietGdal(const QuietGdal&) = delete;
   QuietGdal& operator=(const QuietGdal&) = delete;
 };
 
 std::string gdalMessage() {
-  const char* m = CPLGetLastErrorMsg();
+  const char* m = gdal().CPLGetLastErrorMsg();
   return m && *m ? m : "unknown GDAL error";
 }
 
 void registerDrivers() {
   static std::once_flag once;
   std::call_once(once, [] {
-    GDALRegister_ENVI();
-    GDALRegister_GTiff();
+    gdal().GDALRegister_ENVI();
+    gdal().GDALRegister_GTiff();
   });
 }
 
@@ -107,7 +104,7 @@ std::vector<double> toNanometres(std::vector<double> v, const std::string& units
 }
 
 const char* typeName(GDALDataType t) {
-  return GDALGetDataTypeName(t);
+  return gdal().GDALGetDataTypeName(t);
 }
 
 SpectralCube fromExr(const std::string& path) {
@@ -133,27 +130,27 @@ SpectralCube fromGdal(const std::string& path, const std::string& shownPath, boo
   QuietGdal quiet;
   const char* drivers[] = {envi ? "ENVI" : "GTiff", nullptr};
   std::unique_ptr<void, void (*)(void*)> ds(
-      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers, nullptr, nullptr),
+      gdal().GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers, nullptr, nullptr),
       [](void* d) {
-        if (d) GDALClose(d);
+        if (d) gdal().GDALClose(d);
       });
   if (!ds)
     throw Error(shownPath + ": cannot read it as " + (envi ? "an ENVI cube" : "a TIFF") + ": " +
                 gdalMessage());
-  const int w = GDALGetRasterXSize(ds.get()), h = GDALGetRasterYSize(ds.get()),
-            nb = GDALGetRasterCount(ds.get());
+  const int w = gdal().GDALGetRasterXSize(ds.get()), h = gdal().GDALGetRasterYSize(ds.get()),
+            nb = gdal().GDALGetRasterCount(ds.get());
   if (w <= 0 || h <= 0 || nb <= 0)
     throw Error(shownPath + ": expected at least one band of at least 1 x 1 pixels, found " +
                 std::to_string(w) + " x " + std::to_string(h) + " x " + std::to_string(nb));
-  const GDALDataType type = GDALGetRasterDataType(GDALGetRasterBand(ds.get(), 1));
-  if (GDALDataTypeIsComplex(type))
+  const GDALDataType type = gdal().GDALGetRasterDataType(gdal().GDALGetRasterBand(ds.get(), 1));
+  if (gdal().GDALDataTypeIsComplex(type))
     throw Error(shownPath + ": expected real-valued bands, found " + typeName(type));
   SpectralCube c;
   c.path = shownPath;
   c.width = w;
   c.height = h;
   std::string interleave = "";
-  if (const char* il = GDALGetMetadataItem(ds.get(), "INTERLEAVE", "IMAGE_STRUCTURE"))
+  if (const char* il = gdal().GDALGetMetadataItem(ds.get(), "INTERLEAVE", "IMAGE_STRUCTURE"))
     interleave = il;
   c.format = std::string(envi ? "ENVI" : "TIFF") + " (" +
              (interleave == "BAND"    ? "BSQ"
@@ -165,9 +162,9 @@ SpectralCube fromGdal(const std::string& path, const std::string& shownPath, boo
   // The data must be all there: GDAL would read a short file's missing part as zeros.
   if (envi) {
     double offset = 0;
-    if (const char* o = GDALGetMetadataItem(ds.get(), "header_offset", "ENVI"))
+    if (const char* o = gdal().GDALGetMetadataItem(ds.get(), "header_offset", "ENVI"))
       offset = parseNumber(o, shownPath, "a header offset");
-    const double need = offset + static_cast<double>(w) * h * nb * GDALGetDataTypeSizeBytes(type);
+    const double need = offset + static_cast<double>(w) * h * nb * gdal().GDALGetDataTypeSizeBytes(type);
     std::error_code ec;
     const double have = static_cast<double>(fs::file_size(path, ec));
     if (!ec && have < need)
@@ -181,23 +178,23 @@ SpectralCube fromGdal(const std::string& path, const std::string& shownPath, boo
   std::string units;
   std::vector<double> wl, fwhm;
   if (envi) {
-    if (const char* s = GDALGetMetadataItem(ds.get(), "wavelength", "ENVI"))
+    if (const char* s = gdal().GDALGetMetadataItem(ds.get(), "wavelength", "ENVI"))
       wl = parseEnviNumberList(s, shownPath, "the header's wavelength list");
-    if (const char* s = GDALGetMetadataItem(ds.get(), "fwhm", "ENVI"))
+    if (const char* s = gdal().GDALGetMetadataItem(ds.get(), "fwhm", "ENVI"))
       fwhm = parseEnviNumberList(s, shownPath, "the header's fwhm list");
-    if (const char* s = GDALGetMetadataItem(ds.get(), "wavelength_units", "ENVI")) units = s;
+    if (const char* s = gdal().GDALGetMetadataItem(ds.get(), "wavelength_units", "ENVI")) units = s;
   } else {
     for (int b = 1; b <= nb; ++b) {
-      GDALRasterBandH band = GDALGetRasterBand(ds.get(), b);
-      const char* s = GDALGetMetadataItem(band, "wavelength", nullptr);
+      GDALRasterBandH band = gdal().GDALGetRasterBand(ds.get(), b);
+      const char* s = gdal().GDALGetMetadataItem(band, "wavelength", nullptr);
       if (!s) {
         wl.clear();
         break;
       }
       wl.push_back(parseNumber(s, shownPath + " band " + std::to_string(b), "a wavelength"));
-      if (const char* f = GDALGetMetadataItem(band, "fwhm", nullptr))
+      if (const char* f = gdal().GDALGetMetadataItem(band, "fwhm", nullptr))
         fwhm.push_back(parseNumber(f, shownPath + " band " + std::to_string(b), "an fwhm"));
-      if (const char* u = GDALGetMetadataItem(band, "wavelength_units", nullptr)) units = u;
+      if (const char* u = gdal().GDALGetMetadataItem(band, "wavelength_units", nullptr)) units = u;
     }
     if (fwhm.size() != wl.size()) fwhm.clear();
   }
@@ -238,7 +235,7 @@ SpectralCube fromGdal(const std::string& path, const std::string& shownPath, boo
   c.values.resize(static_cast<size_t>(pixels) * static_cast<size_t>(nb));
   std::vector<float> plane(static_cast<size_t>(pixels));
   for (int b = 0; b < nb; ++b) {
-    if (GDALRasterIO(GDALGetRasterBand(ds.get(), b + 1), GF_Read, 0, 0, w, h, plane.data(), w, h,
+    if (gdal().GDALRasterIO(gdal().GDALGetRasterBand(ds.get(), b + 1), GF_Read, 0, 0, w, h, plane.data(), w, h,
                      GDT_Float32, 0, 0) != CE_None)
       throw Error(shownPath + ": cannot read band " + std::to_string(b + 1) + ": " + gdalMessage());
     for (size_t p = 0; p < plane.size(); ++p)

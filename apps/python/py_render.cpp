@@ -81,7 +81,7 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
                   const py::object& sampler, const py::object& lightSampling,
                   const py::object& lightSelection, const py::object& density, bool fluorescence,
                   const py::object& aovs, const py::object& targetError, const py::object& errorOf,
-                  const py::object& timeLimit) {
+                  const py::object& timeLimit, bool adaptive) {
   // Every argument is checked before the (possibly long) scene build.
   nx::RenderChoices choices;
   if (!spp.is_none() && !sppRange.is_none())
@@ -136,6 +136,9 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
     choices.targetError = numberArgument(targetError, "target_error", 1e-9, 1e9);
   choices.errorOf = optionString(errorOf, "error_of");
   if (!timeLimit.is_none()) choices.timeLimit = numberArgument(timeLimit, "time_limit", 1e-3, 1e12);
+  choices.adaptive = adaptive;
+  if (adaptive && targetError.is_none())
+    throw py::value_error("adaptive: expected a target_error to aim at, found none");
   // Names of strategies: the command line's checks, with Python's parameter names.
   for (const nx::StrategyOption& o : nx::strategyOptions()) {
     const std::string& value = choices.*o.field;
@@ -250,7 +253,8 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   if (pythonError) throw std::move(*pythonError);
   if (renderError) std::rethrow_exception(renderError);
 
-  if (result->stats.reachedTarget || result->stats.reachedTimeLimit)
+  // An adaptive image keeps its range (counts differ per pixel: sample_count).
+  if (!adaptive && (result->stats.reachedTarget || result->stats.reachedTimeLimit))
     job.setSamplesReached(result->stats.samplesReached);
   nx::requireSomeFiniteSamples(result->stats, src.name);
   PyImage out;
@@ -274,7 +278,7 @@ void bindRender(py::module_& m) {
         py::arg("light_selection") = "local", py::arg("wavelength_density") = "sensor",
         py::arg("fluorescence") = true, py::arg("aovs") = py::tuple(),
         py::arg("target_error") = py::none(), py::arg("error_of") = "luminance",
-        py::arg("time_limit") = py::none(),
+        py::arg("time_limit") = py::none(), py::arg("adaptive") = false,
         "Renders a scene (an nxrender.Scene, a scene file name, or scene XML text) and returns "
         "an nxrender.Image, the same bit for bit as nxrender's EXR for the same scene, seed and "
         "samples. The GIL is released while rendering; Ctrl-C raises KeyboardInterrupt after "

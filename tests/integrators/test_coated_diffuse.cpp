@@ -66,7 +66,9 @@ TEST(CoatedDiffuse, AlbedoMatchesTheClosedForm) {
         const double expected = albedo(cosO, n, rho);
         EXPECT_NEAR(s.mean, expected, 5 * s.standardError() + 1e-4)
             << "n " << n << " rho " << rho << " cos " << cosO;
-        if (rho == 1.0) EXPECT_NEAR(s.mean, 1.0, 5 * s.standardError() + 1e-4);
+        if (rho == 1.0) {
+          EXPECT_NEAR(s.mean, 1.0, 5 * s.standardError() + 1e-4);
+        }
         double diffuse = 0;
         const int nt = 400, np = 200;
         for (int i = 0; i < nt; ++i)

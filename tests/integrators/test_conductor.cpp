@@ -33,8 +33,8 @@ double fresnelReference(double c, double n, double k) {
 }
 
 TEST(Conductor, FresnelAgainstClosedForms) {
-  for (double n : {0.2, 0.47, 1.0, 1.5, 2.9})
-    for (double k : {0.0, 0.5, 3.0, 8.0}) {
+  for (float n : {0.2f, 0.47f, 1.0f, 1.5f, 2.9f})
+    for (float k : {0.0f, 0.5f, 3.0f, 8.0f}) {
       // normal incidence: ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2)
       EXPECT_NEAR(fresnelConductor(1.0f, n, k),
                   ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k), 2e-6);
@@ -45,7 +45,7 @@ TEST(Conductor, FresnelAgainstClosedForms) {
             << "n " << n << " k " << k << " cos " << c;
     }
   // k = 0 is a dielectric interface
-  for (double c : {0.1, 0.4, 0.9})
+  for (float c : {0.1f, 0.4f, 0.9f})
     EXPECT_NEAR(fresnelConductor(c, 1.5f, 0), fresnelDielectric(c, 1.5f), 1e-6);
 }
 

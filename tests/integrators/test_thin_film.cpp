@@ -56,7 +56,7 @@ TEST(ThinFilm, AiryAgreesWithTheCharacteristicMatrix) {
               << n2 << " d " << d << " cos " << cos0 << " lambda " << lambda;
         }
   // No film: the substrate's Fresnel reflectance.
-  for (double cos0 : {1.0, 0.6, 0.1})
+  for (float cos0 : {1.0f, 0.6f, 0.1f})
     EXPECT_NEAR(thinFilmReflectance(cos0, 1, 1.38f, 0.2f, 3.0f, 0, 500),
                 fresnelConductor(cos0, 0.2f, 3.0f), 1e-5);
   // A quarter-wave layer of index sqrt(1.5) on glass cancels the reflection at normal

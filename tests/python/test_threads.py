@@ -95,6 +95,25 @@ def test_concurrent_renders_equal_sequential(scenes):
     assert not np.array_equal(alone[0], alone[1])
 
 
+def test_adaptive_sampling_as_the_command_line(scenes, tmp_path, run_cli):
+    image = nxrender.render(scenes / "glass.scn", spp=512, target_error=0.8, adaptive=True,
+                            threads=2)
+    assert image.attributes["nxrender.sampleRange"] == "0:512"
+    assert image.attributes["nxrender.adaptive"] == "target 0.8 of luminance"
+    counts = image.sample_count
+    assert counts.min() >= 16 and counts.max() > counts.min()
+    out = tmp_path / "a.exr"
+    code, err = run_cli("--threads", "1", "--spp", "512", "--adaptive", "--target-error", "0.8",
+                        "-o", out, scenes / "glass.scn")
+    assert code == 0, err
+    assert "adaptive: reached the target error" in err
+    cli = nxrender.read_exr(out)
+    assert np.array_equal(cli.sample_count, counts)
+    assert np.array_equal(cli.radiance, image.radiance)
+    with pytest.raises(ValueError, match="^adaptive: expected a target_error"):
+        nxrender.render(scenes / "glass.scn", spp=16, adaptive=True)
+
+
 def test_target_error_stops_early(scenes):
     image = nxrender.render(scenes / "white_floor.scn", spp=4096, target_error=0.05)
     reached = int(image.attributes["nxrender.sampleRange"].split(":")[1])
