@@ -65,7 +65,31 @@ int run(int argc, char** argv) {
   app.add_option("--threads", threads, "Threads (default 2)")->check(CLI::Range(1, 4096));
   app.add_option("--csv", csvPath, "CSV output");
   app.add_option("--plot", plotPath, "Error-against-time plot, PNG");
+  std::string replot;
+  app.add_option("--replot", replot, "Only draw the plot again from this CSV of an earlier run");
   CLI11_PARSE(app, argc, argv);
+  const std::string title = std::filesystem::path(scenePath).filename().string();
+  if (!replot.empty()) {
+    std::ifstream in(replot);
+    if (!in) throw Error(replot + ": cannot read");
+    PlotSeries series[2] = {{"uniform", {}, {}, 200, 40, 40, false},
+                            {"adaptive", {}, {}, 30, 110, 200, false}};
+    std::string line;
+    std::getline(in, line); // the header
+    while (std::getline(in, line)) {
+      std::vector<std::string> f;
+      std::stringstream row(line);
+      for (std::string item; std::getline(row, item, ',');) f.push_back(item);
+      if (f.size() != 6) throw Error(replot + ": expected 6 columns, found '" + line + "'");
+      PlotSeries& p = series[f[0] == "adaptive" ? 1 : 0];
+      p.x.push_back(parseNumber(f[3], replot, "seconds"));
+      p.y.push_back(parseNumber(f[5], replot, "an error"));
+    }
+    writePreview(plotPath, 720, 480,
+                 renderLogLogPlot({series[0], series[1]}, "render time (s)",
+                                  "relative RMSE of luminance", title, 720, 480));
+    return 0;
+  }
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<size_t>(threads));
   const RenderScene scene = buildRenderScene(loadScene(scenePath));
@@ -77,7 +101,8 @@ int run(int argc, char** argv) {
   double refRel = 0;
   if (!ref.yVariance.empty()) {
     double v = 0, m = 0;
-    for (size_t i = 0; i < ref.yVariance.size(); ++i) v += ref.yVariance[i], m += ref.xyz[i * 3 + 1];
+    for (size_t i = 0; i < ref.yVariance.size(); ++i)
+      v += ref.yVariance[i], m += ref.xyz[i * 3 + 1];
     refRel = std::sqrt(v / static_cast<double>(ref.yVariance.size())) /
              (m / static_cast<double>(ref.yVariance.size()));
   }
@@ -168,8 +193,7 @@ int run(int argc, char** argv) {
   }
   writePreview(plotPath, 720, 480,
                renderLogLogPlot({uniform, adaptive}, "render time (s)",
-                                "relative RMSE of luminance (true, against the reference)",
-                                std::filesystem::path(scenePath).filename().string(), 720, 480));
+                                "relative RMSE of luminance", title, 720, 480));
   std::fprintf(stderr, "nxbench-adaptive: wrote %s and %s\n", csvPath.c_str(), plotPath.c_str());
   return 0;
 }

@@ -126,6 +126,12 @@ std::vector<std::string> splitList(const std::string& text) {
   return out;
 }
 
+// An image's provenance attribute, "" when it has none.
+std::string attributeOf(const nx::SpectralImage& image, const char* key) {
+  const auto it = image.attributes.find(key);
+  return it == image.attributes.end() ? std::string() : it->second;
+}
+
 // Seconds spent in each step of the process, from the start of main (for --timings).
 class PhaseClock {
 public:
@@ -160,7 +166,8 @@ int run(int argc, char** argv) {
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
   std::string output, bandsText, sensorText,
       density = "sensor", errorOf = "luminance", aovText, lightSampling = "mis",
-      lightSelection = "local", sampler = "sobol", compression, adaptiveFrom, scenePath, cropText, rangeText, resumePath;
+      lightSelection = "local", sampler = "sobol", compression, adaptiveFrom, scenePath, cropText,
+      rangeText, resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false,
        envi = false, timings = false, adaptive = false;
   int adaptiveMinSpp = 16;
@@ -376,10 +383,7 @@ int run(int argc, char** argv) {
   std::optional<nx::Film> resumeFilm;
   if (!resumePath.empty()) {
     const nx::SpectralImage prev = nx::readSpectralExr(resumePath);
-    auto attr = [&](const char* k) {
-      const auto it = prev.attributes.find(k);
-      return it == prev.attributes.end() ? std::string() : it->second;
-    };
+    auto attr = [&](const char* k) { return attributeOf(prev, k); };
     const nx::PixelRect want = job.rect();
     if (attr("nxrender.renderKey") != job.renderKey())
       throw nx::Error(resumePath +
@@ -408,10 +412,7 @@ int run(int argc, char** argv) {
   std::optional<nx::AdaptivePlan> plan;
   if (!adaptiveFrom.empty()) {
     const nx::SpectralImage from = nx::readSpectralExr(adaptiveFrom);
-    auto attr = [&](const char* k) {
-      const auto it = from.attributes.find(k);
-      return it == from.attributes.end() ? std::string() : it->second;
-    };
+    auto attr = [&](const char* k) { return attributeOf(from, k); };
     if (attr("nxrender.renderKey") != job.renderKey())
       throw nx::Error(adaptiveFrom +
                       ": was rendered from another scene, other data files, other options or "
@@ -490,8 +491,8 @@ int run(int argc, char** argv) {
                      ? "stopped at the time limit"
                      : (options.adaptivePlan ? "rendered the planned round" : "stopped at --spp"),
                  result.stats.adaptiveRounds, result.stats.adaptiveRounds == 1 ? "" : "s",
-                 static_cast<double>(result.stats.samples) / (static_cast<double>(job.rect().width()) *
-                                                              job.rect().height()),
+                 static_cast<double>(result.stats.samples) /
+                     (static_cast<double>(job.rect().width()) * job.rect().height()),
                  result.stats.samplesReached, result.stats.relativeError);
   } else if (result.stats.reachedTarget || result.stats.reachedTimeLimit) {
     std::fprintf(

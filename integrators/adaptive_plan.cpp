@@ -47,8 +47,8 @@ std::vector<double> normalisedSampleVariances(const Film& film, const ErrorMeasu
     if (!(mean > 0)) continue; // a black band has no relative error (skipped by the measure too)
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x)
-        v[at(x, y)] = std::max(v[at(x, y)],
-                               film.bandVariance(x, y, b) * film.samples(x, y) / (mean * mean));
+        v[at(x, y)] =
+            std::max(v[at(x, y)], film.bandVariance(x, y, b) * film.samples(x, y) / (mean * mean));
   }
   return v;
 }
@@ -104,7 +104,7 @@ AdaptivePlan planAdaptiveSamples(const Film& film, const ErrorMeasure& measure, 
           n += 1;
         }
       const size_t b = static_cast<size_t>(j) * plan.blocksX + i;
-      raised[b] = std::max(sigma[b], s / n);
+      raised[b] = std::max(sigma[b], 0.5 * s / n);
     }
 
   // Samples n_b = clamp(sigma_b / lambda, held_b, max): the summed variance

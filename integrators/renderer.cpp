@@ -225,10 +225,10 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
         if (rect.x0 < pr.x0 || rect.y0 < pr.y0 || rect.x1 > pr.x1 || rect.y1 > pr.y1)
           throw Error("internal error: an adaptive plan that does not cover the render's pixels");
       }
-      const AdaptivePlan plan =
-          options.adaptivePlan ? *options.adaptivePlan
-                               : planAdaptiveSamples(out.film, options.errorMeasure,
-                                                     options.targetRelativeError, maxSamples);
+      const AdaptivePlan plan = options.adaptivePlan
+                                    ? *options.adaptivePlan
+                                    : planAdaptiveSamples(out.film, options.errorMeasure,
+                                                          options.targetRelativeError, maxSamples);
       if (!plan.addsSamplesTo(out.film)) break;
       while (plan.addsSamplesTo(out.film) && mayStartPass()) runPass(0, &plan);
       ++out.stats.adaptiveRounds;

@@ -1,6 +1,5 @@
 #include "io/envi_export.h"
 
-
 #include <unistd.h>
 
 #include <cstdio>
@@ -75,21 +74,22 @@ void writeEnvi(const std::string& dataPath, const SpectralImage& image) {
     char desc[64];
     std::snprintf(desc, sizeof desc, "%.6f nm", sensor.centroid(b));
     gdal().GDALSetDescription(band, desc);
-    ok = gdal().GDALRasterIO(band, GF_Write, 0, 0, w, h, plane.data(), w, h, GDT_Float32, 0, 0) == CE_None;
+    ok = gdal().GDALRasterIO(band, GF_Write, 0, 0, w, h, plane.data(), w, h, GDT_Float32, 0, 0) ==
+         CE_None;
   }
   const auto number = [](double v) { return exactNumberText(v); };
   gdal().GDALSetMetadataItem(ds, "wavelength units", "Nanometers", "ENVI");
-  gdal().GDALSetMetadataItem(ds, "wavelength",
-                      enviList(nb, [&](int b) { return number(sensor.centroid(b)); }).c_str(),
-                      "ENVI");
-  gdal().GDALSetMetadataItem(ds, "fwhm",
-                      enviList(nb, [&](int b) { return number(sensor.fwhm(b)); }).c_str(), "ENVI");
+  gdal().GDALSetMetadataItem(
+      ds, "wavelength", enviList(nb, [&](int b) { return number(sensor.centroid(b)); }).c_str(),
+      "ENVI");
+  gdal().GDALSetMetadataItem(
+      ds, "fwhm", enviList(nb, [&](int b) { return number(sensor.fwhm(b)); }).c_str(), "ENVI");
   // The ENVI driver writes the dataset's description (by default its file name, here a
   // temporary one) as the header's "description".
   gdal().GDALSetDescription(ds, ("nxrender render: spectral radiance (W m^-2 sr^-1 nm^-1) averaged "
-                          "over each band's response; " +
-                          sensor.summary())
-                             .c_str());
+                                 "over each band's response; " +
+                                 sensor.summary())
+                                    .c_str());
   gdal().CPLErrorReset();
   gdal().GDALClose(ds); // void in GDAL 3.6: a failed flush shows in the last error
   if (!ok || gdal().CPLGetLastErrorType() >= CE_Failure) {

@@ -6,24 +6,34 @@ namespace nx {
 
 const char* exrCompressionName(ExrCompression c) {
   switch (c) {
-  case ExrCompression::None: return "none";
-  case ExrCompression::Rle: return "rle";
-  case ExrCompression::Zips: return "zips";
-  case ExrCompression::Zip: return "zip";
-  case ExrCompression::Piz: return "piz";
-  case ExrCompression::Pxr24: return "pxr24";
-  case ExrCompression::B44: return "b44";
-  case ExrCompression::B44a: return "b44a";
-  case ExrCompression::Dwaa: return "dwaa";
-  case ExrCompression::Dwab: return "dwab";
+  case ExrCompression::None:
+    return "none";
+  case ExrCompression::Rle:
+    return "rle";
+  case ExrCompression::Zips:
+    return "zips";
+  case ExrCompression::Zip:
+    return "zip";
+  case ExrCompression::Piz:
+    return "piz";
+  case ExrCompression::Pxr24:
+    return "pxr24";
+  case ExrCompression::B44:
+    return "b44";
+  case ExrCompression::B44a:
+    return "b44a";
+  case ExrCompression::Dwaa:
+    return "dwaa";
+  case ExrCompression::Dwab:
+    return "dwab";
   }
   return "?";
 }
 
 std::vector<ExrCompression> allExrCompressions() {
-  return {ExrCompression::None,  ExrCompression::Rle, ExrCompression::Zips, ExrCompression::Zip,
-          ExrCompression::Piz,   ExrCompression::Pxr24, ExrCompression::B44,
-          ExrCompression::B44a,  ExrCompression::Dwaa, ExrCompression::Dwab};
+  return {ExrCompression::None, ExrCompression::Rle,   ExrCompression::Zips, ExrCompression::Zip,
+          ExrCompression::Piz,  ExrCompression::Pxr24, ExrCompression::B44,  ExrCompression::B44a,
+          ExrCompression::Dwaa, ExrCompression::Dwab};
 }
 
 ExrCompression defaultExrCompression(bool halfFloats) {
@@ -38,8 +48,10 @@ bool keepsFloatsExactly(ExrCompression c) {
   case ExrCompression::Zip:
   case ExrCompression::Piz:
   case ExrCompression::B44: // compresses half channels only; floats are stored as they are
-  case ExrCompression::B44a: return true;
-  default: return false;
+  case ExrCompression::B44a:
+    return true;
+  default:
+    return false;
   }
 }
 

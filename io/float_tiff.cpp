@@ -1,12 +1,11 @@
 #include "io/float_tiff.h"
 
-
 #include <cmath>
 #include <mutex>
 
 #include "core/error.h"
-#include "io/gdal_library.h"
 #include "io/atomic_file.h"
+#include "io/gdal_library.h"
 
 namespace nx {
 
@@ -19,15 +18,15 @@ void writeFloatTiff(const std::string& path, int width, int height,
   std::call_once(registered, [] { gdal().GDALRegister_GTiff(); });
   writeAtomically(path, [&](const std::string& tmp) {
     gdal().CPLErrorReset();
-    GDALDatasetH ds = gdal().GDALCreate(gdal().GDALGetDriverByName("GTiff"), tmp.c_str(), width, height, 1,
-                                 GDT_Float32, nullptr);
+    GDALDatasetH ds = gdal().GDALCreate(gdal().GDALGetDriverByName("GTiff"), tmp.c_str(), width,
+                                        height, 1, GDT_Float32, nullptr);
     if (!ds) throw Error(tmp + ": cannot create the TIFF: " + gdal().CPLGetLastErrorMsg());
     GDALRasterBandH band = gdal().GDALGetRasterBand(ds, 1);
     gdal().GDALSetDescription(band, description.c_str());
     gdal().GDALSetRasterNoDataValue(band, std::nan(""));
     const CPLErr err =
-        gdal().GDALRasterIO(band, GF_Write, 0, 0, width, height, const_cast<float*>(values.data()), width,
-                     height, GDT_Float32, 0, 0);
+        gdal().GDALRasterIO(band, GF_Write, 0, 0, width, height, const_cast<float*>(values.data()),
+                            width, height, GDT_Float32, 0, 0);
     gdal().GDALClose(ds);
     if (err != CE_None || gdal().CPLGetLastErrorType() >= CE_Failure)
       throw Error(tmp + ": cannot write the TIFF: " + gdal().CPLGetLastErrorMsg());

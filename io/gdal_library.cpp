@@ -3,8 +3,8 @@
 #include <dlfcn.h>
 
 #include <mutex>
-#include <type_traits>
 #include <string>
+#include <type_traits>
 
 #include "core/error.h"
 
@@ -25,8 +25,7 @@ GdalLibrary load() {
   GdalLibrary lib{};
   auto resolve = [&](auto& member, const char* name) {
     void* p = dlsym(handle, name);
-    if (!p)
-      throw Error(std::string("the GDAL library " NX_GDAL_SONAME " has no function ") + name);
+    if (!p) throw Error(std::string("the GDAL library " NX_GDAL_SONAME " has no function ") + name);
     member = reinterpret_cast<std::remove_reference_t<decltype(member)>>(p);
   };
 #define NX_GDAL_RESOLVE(f) resolve(lib.f, #f)

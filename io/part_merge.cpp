@@ -193,9 +193,9 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
   if (missing > 0)
     throw Error("missing region: " + std::to_string(missing) + " pixels within " +
                 rectText(mx0, my0, mx1, my1) +
-                (adaptive ? std::string(" are covered by no part")
-                          : " have fewer than the " + std::to_string(full) +
-                                " samples of the others") +
+                (adaptive
+                     ? std::string(" are covered by no part")
+                     : " have fewer than the " + std::to_string(full) + " samples of the others") +
                 " (a part is missing)");
 
   // The sample ranges each pixel holds, as text (for the message below).

@@ -1,6 +1,5 @@
 #include "io/spectral_cube.h"
 
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -9,10 +8,10 @@
 #include <mutex>
 
 #include "core/error.h"
-#include "io/gdal_library.h"
 #include "core/file_text.h"
 #include "core/memory.h"
 #include "core/text_table.h"
+#include "io/gdal_library.h"
 #include "io/spectral_exr.h"
 #include "io/srgb_image.h"
 
@@ -164,7 +163,8 @@ SpectralCube fromGdal(const std::string& path, const std::string& shownPath, boo
     double offset = 0;
     if (const char* o = gdal().GDALGetMetadataItem(ds.get(), "header_offset", "ENVI"))
       offset = parseNumber(o, shownPath, "a header offset");
-    const double need = offset + static_cast<double>(w) * h * nb * gdal().GDALGetDataTypeSizeBytes(type);
+    const double need =
+        offset + static_cast<double>(w) * h * nb * gdal().GDALGetDataTypeSizeBytes(type);
     std::error_code ec;
     const double have = static_cast<double>(fs::file_size(path, ec));
     if (!ec && have < need)
@@ -235,8 +235,8 @@ SpectralCube fromGdal(const std::string& path, const std::string& shownPath, boo
   c.values.resize(static_cast<size_t>(pixels) * static_cast<size_t>(nb));
   std::vector<float> plane(static_cast<size_t>(pixels));
   for (int b = 0; b < nb; ++b) {
-    if (gdal().GDALRasterIO(gdal().GDALGetRasterBand(ds.get(), b + 1), GF_Read, 0, 0, w, h, plane.data(), w, h,
-                     GDT_Float32, 0, 0) != CE_None)
+    if (gdal().GDALRasterIO(gdal().GDALGetRasterBand(ds.get(), b + 1), GF_Read, 0, 0, w, h,
+                            plane.data(), w, h, GDT_Float32, 0, 0) != CE_None)
       throw Error(shownPath + ": cannot read band " + std::to_string(b + 1) + ": " + gdalMessage());
     for (size_t p = 0; p < plane.size(); ++p)
       c.values[p * static_cast<size_t>(nb) + static_cast<size_t>(b)] = plane[p];

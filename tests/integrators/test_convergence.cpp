@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "integrators/renderer.h"
+#include "support/render_checks.h"
 
 namespace nx {
 namespace {
@@ -25,19 +26,6 @@ const RenderScene& scene() {
   return s;
 }
 
-// Measured relative RMS error of luminance against a reference.
-double measuredError(const Film& film, const Film& ref) {
-  double se = 0, mean = 0;
-  for (int y = 0; y < film.height(); ++y)
-    for (int x = 0; x < film.width(); ++x) {
-      const double d = film.xyzMean(x, y).y - ref.xyzMean(x, y).y;
-      se += d * d;
-      mean += ref.xyzMean(x, y).y;
-    }
-  const double n = film.width() * film.height();
-  return std::sqrt(se / n) / (mean / n);
-}
-
 // The per-pixel variance estimate predicts the actual error: --target-error stops at a sample
 // count whose error against an independent reference is within a factor 1.5 of the target.
 TEST(Convergence, TargetErrorStopsNearTheTarget) {
@@ -52,7 +40,7 @@ TEST(Convergence, TargetErrorStopsNearTheTarget) {
     const RenderOutput out = render(scene(), o);
     ASSERT_TRUE(out.stats.reachedTarget) << target;
     EXPECT_LE(out.stats.relativeError, target);
-    const double measured = measuredError(out.film, ref.film);
+    const double measured = relativeLuminanceError(out.film, ref.film);
     EXPECT_GT(measured, target / 1.5)
         << "target " << target << " at " << out.stats.samplesReached << " spp";
     EXPECT_LT(measured, target * 1.5)

@@ -166,8 +166,7 @@ TEST(SpectralExr, CompressionMethods) {
   img.attributes["nxrender.bands"] = img.bands.toString();
   img.radiance[2] = 0.1234567f; // a value that a 24-bit or half float would change
   for (ExrCompression c : allExrCompressions()) {
-    const std::string path =
-        ::testing::TempDir() + "compression_" + exrCompressionName(c) + ".exr";
+    const std::string path = ::testing::TempDir() + "compression_" + exrCompressionName(c) + ".exr";
     writeSpectralExr(path, img, ExrEncoding{c, 9});
     Imf::InputFile in(path.c_str());
     EXPECT_EQ(static_cast<int>(in.header().compression()), static_cast<int>(c))
@@ -180,7 +179,9 @@ TEST(SpectralExr, CompressionMethods) {
       EXPECT_NEAR(back.radiance[i], img.radiance[i], 1e-4 * std::abs(img.radiance[i]))
           << exrCompressionName(c) << " value " << i;
     }
-    if (keepsFloatsExactly(c)) EXPECT_TRUE(exact) << exrCompressionName(c);
+    if (keepsFloatsExactly(c)) {
+      EXPECT_TRUE(exact) << exrCompressionName(c);
+    }
     EXPECT_EQ(parseExrCompression(exrCompressionName(c), "--compression"), c);
   }
   EXPECT_EQ(defaultExrCompression(false), ExrCompression::None);
@@ -190,8 +191,9 @@ TEST(SpectralExr, CompressionMethods) {
   EXPECT_EQ(Imf::InputFile(plain.c_str()).header().compression(), Imf::NO_COMPRESSION);
   writeSpectralExrHalf(plain, img);
   EXPECT_EQ(Imf::InputFile(plain.c_str()).header().compression(), Imf::PIZ_COMPRESSION);
-  EXPECT_NE(test::errorMessage([] { parseExrCompression("zip2", "--compression"); })
-                .find("--compression: expected one of none, rle, zips, zip, piz"),
+  EXPECT_NE(test::errorMessage([] {
+              parseExrCompression("zip2", "--compression");
+            }).find("--compression: expected one of none, rle, zips, zip, piz"),
             std::string::npos);
   const std::string bad = ::testing::TempDir() + "compression_level.exr";
   std::filesystem::remove(bad);

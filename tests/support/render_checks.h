@@ -50,4 +50,17 @@ inline void expectBands(const Film& film, const std::function<double(int)>& expe
   }
 }
 
+/// Relative RMS error of a film's luminance against a reference film of the same image.
+inline double relativeLuminanceError(const Film& film, const Film& ref) {
+  double se = 0, mean = 0;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x) {
+      const double d = film.xyzMean(x, y).y - ref.xyzMean(x, y).y;
+      se += d * d;
+      mean += ref.xyzMean(x, y).y;
+    }
+  const double n = static_cast<double>(film.width()) * film.height();
+  return std::sqrt(se / n) / (mean / n);
+}
+
 } // namespace nx
