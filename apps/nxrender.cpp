@@ -324,6 +324,9 @@ int run(int argc, char** argv) {
   choices.errorOf = errorOf;
   choices.timeLimit = timeLimit;
   choices.adaptive = adaptive || !adaptiveFrom.empty();
+  if (app.count("--adaptive-min-spp") > 0 && !adaptive)
+    throw nx::Error("--adaptive-min-spp: only with --adaptive (the uniform pilot of an adaptive "
+                    "render)");
   choices.adaptiveMinSamples = adaptiveMinSpp;
   if (!adaptiveFrom.empty() && !resumePath.empty())
     throw nx::Error("--adaptive-from and --resume: give one of them (a round continues the image "

@@ -146,6 +146,9 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
   bands_ = choices.bands ? *choices.bands : scene.settings.bands;
   firstSample_ = choices.firstSample;
   samples_ = choices.samples > 0 ? choices.samples : scene.settings.samples;
+  if (choices.adaptive && samples_ < 2)
+    throw Error("--adaptive: expected at least 2 samples per pixel (one per replicate), found " +
+                std::to_string(samples_));
 }
 
 PixelRect RenderJob::rect() const {

@@ -199,13 +199,16 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   } else {
     if (!(options.targetRelativeError > 0))
       throw Error("adaptive sampling needs a target error (--target-error)");
+    if (out.samplesPerPixel < 2)
+      throw Error("adaptive sampling needs at least 2 samples per pixel (one per replicate), "
+                  "found " +
+                  std::to_string(out.samplesPerPixel));
     const auto maxSamples = static_cast<uint32_t>(out.samplesPerPixel);
     if (!options.adaptivePlan) {
       // The uniform pilot: every pixel gets the same first samples (an even number, so both
       // replicates are alike), enough to estimate each block's noise.
-      int pilot = std::clamp(options.adaptiveMinSamples, 2, out.samplesPerPixel);
-      pilot -= pilot & 1;
-      pilot = std::max(pilot, 2);
+      int pilot = std::min(std::max(options.adaptiveMinSamples, 2), out.samplesPerPixel);
+      pilot = std::max(pilot - (pilot & 1), 2);
       for (int k = 0; begin + k * passSize < begin + pilot && mayStartPass(); ++k)
         runPass(std::min(begin + pilot, begin + (k + 1) * passSize), nullptr);
     }

@@ -33,6 +33,10 @@ expect_error "an adaptive render splits by crops only" \
   "$bin/nxrender" --spp-range 0:64 --adaptive --target-error 0.5 -o "$d/x.exr" "$scene"
 expect_error "expected a --target-error to aim at" \
   "$bin/nxrender" --spp 64 --adaptive -o "$d/x.exr" "$scene"
+expect_error "expected at least 2 samples per pixel" \
+  "$bin/nxrender" --spp 1 --adaptive --target-error 0.5 -o "$d/x.exr" "$scene"
+expect_error "only with --adaptive" \
+  "$bin/nxrender" --spp 16 --adaptive-min-spp 4 -o "$d/x.exr" "$scene"
 r --spp 16 --crop 157,0,320,77 -o "$d/u.exr" "$scene"
 expect_error "its adaptive sampling is 'off'" \
   "$bin/nxmerge" -o "$d/x.exr" "$d/a.exr" "$d/u.exr" "$d/c.exr"

@@ -182,13 +182,22 @@ TEST(Adaptive, PlanAllocatesByStandardDeviation) {
             std::string::npos);
 }
 
-// An adaptive render needs a target.
-TEST(Adaptive, NeedsATarget) {
+// An adaptive render needs a target and two samples per pixel.
+TEST(Adaptive, NeedsATargetAndTwoSamples) {
   RenderOptions o;
   o.samples = 16;
   o.adaptive = true;
   EXPECT_NE(test::errorMessage([&] { render(scene(), o); }).find("needs a target error"),
             std::string::npos);
+  o.targetRelativeError = 0.1;
+  o.samples = 1;
+  EXPECT_NE(test::errorMessage([&] { render(scene(), o); }).find("at least 2 samples per pixel"),
+            std::string::npos);
+  // Two samples: the pilot is the whole render.
+  o.samples = 2;
+  const RenderOutput two = render(scene(), o);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 48; ++x) ASSERT_EQ(two.film.samples(x, y), 2u);
 }
 
 } // namespace
