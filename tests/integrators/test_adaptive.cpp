@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "integrators/adaptive_plan.h"
 #include "integrators/renderer.h"
@@ -128,17 +129,17 @@ TEST(Adaptive, FarmCropsOfARoundEqualTheWholeRound) {
 // round, never more than the most allowed.
 TEST(Adaptive, PlanAllocatesByStandardDeviation) {
   const Sensor bands(SpectralBands::parse("500:600:50"));
+  const size_t nb = static_cast<size_t>(bands.count());
   // 32x8 pixels: four blocks; per-sample standard deviations 1, 1.3, 1.6, 0 (no noise).
   auto filmWith = [&](uint32_t n) {
     Film f(32, 8, bands);
-    const float means[2] = {1, 1};
+    const std::vector<float> means(nb, 1.0f);
     for (int y = 0; y < 8; ++y)
       for (int x = 0; x < 32; ++x) {
         const double sigma = x < 8 ? 1 : x < 16 ? 1.3 : x < 24 ? 1.6 : 0;
-        const float vars[2] = {static_cast<float>(sigma * sigma / n),
-                               static_cast<float>(sigma * sigma / n)};
+        const std::vector<float> vars(nb, static_cast<float>(sigma * sigma / n));
         const double xyz[3] = {1, 1, 1};
-        f.setFromMeans(x, y, means, vars, xyz, sigma * sigma / n, n, n / 2);
+        f.setFromMeans(x, y, means.data(), vars.data(), xyz, sigma * sigma / n, n, n / 2);
       }
     return f;
   };
@@ -169,10 +170,10 @@ TEST(Adaptive, PlanAllocatesByStandardDeviation) {
   for (uint32_t s : capped.samples) EXPECT_EQ(s, 100u);
   // A black image plans nothing more.
   Film black(16, 8, bands);
-  const float zero[2] = {0, 0};
+  const std::vector<float> zero(nb, 0.0f);
   const double xyz0[3] = {0, 0, 0};
   for (int y = 0; y < 8; ++y)
-    for (int x = 0; x < 16; ++x) black.setFromMeans(x, y, zero, zero, xyz0, 0, 4, 2);
+    for (int x = 0; x < 16; ++x) black.setFromMeans(x, y, zero.data(), zero.data(), xyz0, 0, 4, 2);
   EXPECT_FALSE(planAdaptiveSamples(black, ErrorMeasure{}, 0.1, 64).addsSamplesTo(black));
   // A pixel with fewer than two samples cannot be planned.
   Film thin(8, 8, bands);
