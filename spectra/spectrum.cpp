@@ -33,9 +33,20 @@ double TabulatedSpectrum::operator()(double x) const {
   if (nm.empty()) return 0.0;
   if (x < nm.front()) return holdEnds ? value.front() : 0.0;
   if (x > nm.back()) return holdEnds ? value.back() : 0.0;
-  const auto it = std::upper_bound(nm.begin(), nm.end(), x);
-  if (it == nm.end()) return value.back();
-  const size_t i = static_cast<size_t>(it - nm.begin()) - 1;
+  size_t i;
+  if (invStep > 0 && !std::isnan(x)) {
+    // The interval nm[i] <= x < nm[i + 1] that the search below finds: the grid's guess is
+    // within one interval of it (indexUniformGrid), and one step each way settles it.
+    const size_t last = nm.size() - 1;
+    i = std::min(static_cast<size_t>((x - nm.front()) * invStep), last);
+    if (i > 0 && x < nm[i]) --i;
+    if (i < last && x >= nm[i + 1]) ++i;
+    if (i == last) return value.back();
+  } else {
+    const auto it = std::upper_bound(nm.begin(), nm.end(), x);
+    if (it == nm.end()) return value.back();
+    i = static_cast<size_t>(it - nm.begin()) - 1;
+  }
   const double t = (x - nm[i]) / (nm[i + 1] - nm[i]);
   return lerp(value[i], value[i + 1], t);
 }
@@ -47,9 +58,22 @@ double SigmoidPolynomialSpectrum::operator()(double nm) const {
   return 0.5 + p / (2.0 * std::sqrt(1.0 + p * p));
 }
 
+void TabulatedSpectrum::indexUniformGrid() {
+  invStep = 0;
+  if (nm.size() < 3) return; // a single interval: the search is one comparison
+  const double step = (nm.back() - nm.front()) / static_cast<double>(nm.size() - 1);
+  for (size_t i = 0; i < nm.size(); ++i)
+    if (!(std::fabs(nm[i] - (nm.front() + step * static_cast<double>(i))) <= 0.5 * step)) return;
+  invStep = 1.0 / step;
+}
+
 Spectrum forRendering(const Spectrum& s) {
+  if (const auto* t = std::get_if<TabulatedSpectrum>(&s.kind())) {
+    TabulatedSpectrum indexed = *t;
+    indexed.indexUniformGrid();
+    return Spectrum(std::move(indexed), s.scale());
+  }
   if (std::holds_alternative<ConstantSpectrum>(s.kind()) ||
-      std::holds_alternative<TabulatedSpectrum>(s.kind()) ||
       std::holds_alternative<DenseSpectrum>(s.kind()))
     return s;
   DenseSpectrum d;

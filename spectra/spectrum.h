@@ -47,7 +47,12 @@ struct TabulatedSpectrum {
   std::vector<double> nm;    ///< strictly increasing wavelengths
   std::vector<double> value; ///< one value per wavelength
   bool holdEnds = false;     ///< beyond the table: the end values instead of zero
+  /// 1 / the step of a (nearly) uniform grid, found by indexUniformGrid(); 0: binary search.
+  double invStep = 0;
   double operator()(double nm) const;
+  /// Lets operator() find the interval by arithmetic when the wavelengths are evenly spaced
+  /// (each within half a step of the grid): the same interval and value as the search.
+  void indexUniformGrid();
 };
 
 /// The sigmoid polynomial's wavelength variable is x = (nm - kSigmoidStartNm) / kSigmoidSpanNm.

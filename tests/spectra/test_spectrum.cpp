@@ -55,6 +55,54 @@ TEST(Spectrum, TabulatedInterpolatesAndIsZeroOutside) {
   EXPECT_DOUBLE_EQ(t.scaled(2)(450), 4);
 }
 
+// The grid index of evenly spaced tables finds the interval the binary search finds: the same
+// value bit for bit at knots, next to knots, between them, at and beyond the ends, for exact
+// and jittered grids, with and without held ends; uneven tables keep the search.
+TEST(Spectrum, UniformGridIndexEqualsTheSearch) {
+  uint32_t state = 12345;
+  auto rnd = [&] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<double>(state >> 8) / static_cast<double>(1u << 24);
+  };
+  int indexed = 0;
+  for (int table = 0; table < 40; ++table) {
+    const double step = table % 4 == 0 ? 1.0 : table % 4 == 1 ? 5.0 : 0.1 + 20 * rnd();
+    const double jitter = table % 3 == 0 ? 0.0 : 0.2 * step; // within the half-step bound
+    const size_t n = 3 + static_cast<size_t>(rnd() * 400);
+    TabulatedSpectrum t;
+    for (size_t i = 0; i < n; ++i) {
+      t.nm.push_back(350 + step * static_cast<double>(i) + (i > 0 ? jitter * (2 * rnd() - 1) : 0));
+      t.value.push_back(rnd());
+    }
+    t.holdEnds = table % 2 == 0;
+    TabulatedSpectrum fast = t;
+    fast.indexUniformGrid();
+    ASSERT_GT(fast.invStep, 0) << "table " << table;
+    ++indexed;
+    std::vector<double> xs{t.nm.front() - 1, t.nm.back() + 1, t.nm.front(), t.nm.back(), NAN};
+    for (double k : t.nm)
+      for (double x : {k, std::nextafter(k, 0.0), std::nextafter(k, 1e9)}) xs.push_back(x);
+    for (int i = 0; i < 2000; ++i)
+      xs.push_back(t.nm.front() - step + (t.nm.back() - t.nm.front() + 2 * step) * rnd());
+    for (double x : xs) {
+      const double a = t(x), b = fast(x);
+      if (std::isnan(x))
+        EXPECT_EQ(std::isnan(a), std::isnan(b));
+      else
+        ASSERT_EQ(a, b) << "table " << table << " at " << x;
+    }
+  }
+  EXPECT_EQ(indexed, 40);
+  // A table whose spacing varies more than half a step keeps the binary search.
+  TabulatedSpectrum uneven{{400, 401, 410, 411}, {1, 2, 3, 4}};
+  uneven.indexUniformGrid();
+  EXPECT_EQ(uneven.invStep, 0);
+  // And the renderer's copy of a tabulated spectrum is indexed.
+  const Spectrum r = forRendering(Spectrum(TabulatedSpectrum{{400, 410, 420}, {1, 2, 3}}, 2));
+  EXPECT_GT(std::get<TabulatedSpectrum>(r.kind()).invStep, 0);
+  EXPECT_DOUBLE_EQ(r(415), 5.0);
+}
+
 TEST(Spectrum, TabulatedRejectsBadPairs) {
   EXPECT_THROW(makeTabulated({400}, {1}, "x"), Error);
   EXPECT_THROW(makeTabulated({400, 400}, {1, 2}, "x"), Error);
