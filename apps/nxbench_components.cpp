@@ -130,6 +130,27 @@ int main(int argc, char** argv) {
     row("per vertex: light sample", nsPerCall(n, [&](size_t i) {
           lit[i] = lights.sample(in[i].hit.p, u2(i).v, u2(i), in[i].lambda, ls[i]);
         }));
+    // Each light alone (its own sampling, without the choice among lights), the first few of
+    // each kind: what a vertex pays for aiming at a point light, a sphere, a mesh of n triangles
+    // (a binary search over their areas) or the background.
+    {
+      static const char* kKindNames[] = {"point", "sphere", "mesh", "background"};
+      int shownOfKind[4] = {0, 0, 0, 0};
+      LightSample one;
+      for (int k = 0; k < lights.count(); ++k) {
+        const int kind = static_cast<int>(lights.kind(k));
+        if (shownOfKind[kind]++ >= 2) continue;
+        char name[96];
+        std::snprintf(name, sizeof name, "per vertex: light %d alone (%s%s)", k, kKindNames[kind],
+                      kind == static_cast<int>(LightKind::Mesh)
+                          ? (", " + std::to_string(lights.triangleCount(k)) + " triangles").c_str()
+                          : "");
+        row(name, nsPerCall(n, [&](size_t i) {
+              keep(lights.sampleLight(k, in[i].hit.p, u2(i).v, u2(i), in[i].lambda, one) ? one.pdf
+                                                                                         : 0.0f);
+            }));
+      }
+    }
     row("per ray: shadow ray", nsPerCall(n, [&](size_t i) {
           if (!lit[i]) return;
           keep(scene.geometry->occluded(

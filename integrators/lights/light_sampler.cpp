@@ -222,6 +222,12 @@ bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const Sampled
   return true;
 }
 
+size_t LightSampler::triangleCount(int k) const {
+  const Light& l = lights_[static_cast<size_t>(k)];
+  if (l.kind != LightKind::Mesh || l.triangle >= 0) return 1;
+  return scene_->geometry->meshes()[l.shape].triangleCount();
+}
+
 bool LightSampler::sampleLight(int k, const Vec3& p, float uChoice, Sample2 u,
                                const SampledWavelengths& lambda, LightSample& out) const {
   const Light& l = lights_[static_cast<size_t>(k)];

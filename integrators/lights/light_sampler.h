@@ -39,6 +39,8 @@ public:
   float probability(int k, const Vec3& p) const;
   /// The kind of light k.
   LightKind kind(int k) const { return lights_[static_cast<size_t>(k)].kind; }
+  /// Triangles light k samples among (1 for points, spheres and the background).
+  size_t triangleCount(int k) const;
   /// Emitted power of light k over the traced range (W; the selection's weights).
   double power(int k) const { return lights_[static_cast<size_t>(k)].power; }
 
