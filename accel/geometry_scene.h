@@ -84,6 +84,9 @@ public:
   const std::vector<TriangleMesh>& meshes() const { return meshes_; }
   /// Bounds of the spheres and meshes (planes are unbounded).
   BoundingBox bounds() const;
+  /// The Embree scene of the spheres and meshes (not the planes), for benchmarks that query it
+  /// directly.
+  RTCScene embreeScene() const { return scene_; }
   /// Bytes Embree's BVH and buffers take beyond the meshes' own (from its memory monitor).
   size_t embreeBytes() const { return embreeBytes_; }
 

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "apps/heightfield_scene.h"
 #include "integrators/renderer.h"
 #include "io/mesh_reader.h"
 
@@ -31,32 +32,6 @@ double peakResidentMb() {
   return static_cast<double>(u.ru_maxrss) / 1024.0; // ru_maxrss is in KiB on Linux
 }
 
-// A (n+1) x (n+1) vertex grid over [-1, 1]^2, heights 0.1 sin(8x) cos(8z), 2 n^2 triangles.
-void writeHeightfield(const std::string& path, int n) {
-  std::ofstream f(path, std::ios::binary);
-  const long long verts = static_cast<long long>(n + 1) * (n + 1), faces = 2LL * n * n;
-  f << "ply\nformat binary_little_endian 1.0\nelement vertex " << verts
-    << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << faces
-    << "\nproperty list uchar int vertex_indices\nend_header\n";
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const float x = static_cast<float>(-1 + 2.0 * i / n),
-                  z = static_cast<float>(-1 + 2.0 * j / n);
-      const float p[3] = {x, 0.1f * std::sin(8 * x) * std::cos(8 * z), z};
-      f.write(reinterpret_cast<const char*>(p), sizeof p);
-    }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
-      const int tris[2][3] = {{a, b, c}, {a, c, d}};
-      for (const auto& t : tris) {
-        const unsigned char three = 3;
-        f.write(reinterpret_cast<const char*>(&three), 1);
-        f.write(reinterpret_cast<const char*>(t), sizeof t);
-      }
-    }
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -68,16 +43,11 @@ int main(int argc, char** argv) {
   app.add_option("--dir", dir, "Where the PLY and the scene are written (default /tmp)");
   CLI11_PARSE(app, argc, argv);
   try {
-    const int n =
-        std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(triangles) / 2.0))));
+    const int n = nx::bench::heightfieldGridFor(triangles);
     const std::string ply = dir + "/nxbench-mesh.ply", scn = dir + "/nxbench-mesh.scn";
     auto t0 = std::chrono::steady_clock::now();
-    writeHeightfield(ply, n);
-    std::ofstream(scn) << "<scene><settings><xres>64</xres><yres>36</yres><mode>spectral_mcpt"
-                          "</mode><sampl>1</sampl></settings><camera><position>0,1.5,-2.5"
-                          "</position><look_at>0,0,0</look_at></camera><mesh file=\"nxbench-mesh"
-                          ".ply\"><material>matte</material><reflectance>0.5</reflectance></mesh>"
-                          "<light><position>0,3,0</position><color>5,5,5</color></light></scene>";
+    nx::bench::writeHeightfieldPly(ply, n);
+    std::ofstream(scn) << nx::bench::heightfieldSceneXml("nxbench-mesh.ply", 64, 36, 1);
     const double writeS = seconds(t0);
 
     t0 = std::chrono::steady_clock::now();
