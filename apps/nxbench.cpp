@@ -1,14 +1,16 @@
 // nxbench: speed against error for one scene.
 //
 //   nxbench scene.scn [--reference REF.exr | --reference-spp N] [--max-spp N] [--threads N]
-//                     [--sampler sobol|independent] [--csv OUT.csv] [--plot OUT.png]
+//                     [--sampler sobol|independent] [--bands START:END:STEP]
+//                     [--wavelength-density sensor|visible] [--csv OUT.csv] [--plot OUT.png]
 //
 // Renders (or reads) a high-spp reference, then renders at 1, 2, 4, ... spp and prints, per
 // run: seconds, samples/s, rays/s, RMSE and relative RMSE of the preview luminance and of the
 // spectral bands (mean and worst band) against the reference, and the fitted convergence
 // slope of the relative RMSE (an unbiased renderer gives -0.5 or steeper). It also measures
 // raw Embree ray throughput on the scene's geometry and the path tracer's ratio to it.
-// The CSV holds every band's RMSE; the plot shows relative RMSE against time, log-log.
+// The CSV holds every band's RMSE; the plot shows relative RMSE against time, log-log, of the
+// luminance, the mean band and the worst band.
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
@@ -77,7 +79,7 @@ double rawRaysPerSecond(const RenderScene& scene) {
 int main(int argc, char** argv) {
   CLI::App app{"nxbench: speed against error for one scene"};
   std::string scenePath, referencePath, csvPath = "nxbench.csv", plotPath = "nxbench.png",
-                                        sampler = "sobol";
+                                        sampler = "sobol", bandsText, density = "sensor";
   int referenceSpp = 1024, maxSpp = 64, threads = 2;
   app.add_option("scene", scenePath, "Scene file")->required();
   app.add_option("--reference", referencePath, "Reference EXR (else rendered)");
@@ -89,6 +91,9 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Threads (default 2)")->check(CLI::Range(1, 4096));
   app.add_option("--sampler", sampler, "sobol or independent")
       ->check(CLI::IsMember({"sobol", "independent"}));
+  app.add_option("--bands", bandsText, "Bands START:END:STEP in nm (default: the scene's)");
+  app.add_option("--wavelength-density", density, "sensor (default) or visible")
+      ->check(CLI::IsMember({"sensor", "visible"}));
   app.add_option("--csv", csvPath, "CSV output (default nxbench.csv)");
   app.add_option("--plot", plotPath, "Error-against-time plot, PNG (default nxbench.png)");
   CLI11_PARSE(app, argc, argv);
@@ -98,17 +103,29 @@ int main(int argc, char** argv) {
     const RenderScene scene = buildRenderScene(loadScene(scenePath));
     const SamplerKind kind =
         sampler == "independent" ? SamplerKind::Independent : SamplerKind::SobolOwen;
+    const Sensor bands =
+        bandsText.empty() ? scene.settings.bands : Sensor(SpectralBands::parse(bandsText));
+    // Every render of this run: the bands, the density and the sampler.
+    auto options = [&](int spp, std::optional<uint32_t> seed) {
+      RenderOptions o;
+      o.samples = spp;
+      o.seed = seed;
+      o.sampler = kind;
+      o.bands = bands;
+      o.wavelengthDensity =
+          density == "visible" ? WavelengthDensity::Visible : WavelengthDensity::Sensor;
+      return o;
+    };
     SpectralImage ref;
     if (!referencePath.empty()) {
       ref = readSpectralExr(referencePath);
       if (ref.width != scene.settings.width || ref.height != scene.settings.height ||
-          ref.xyz.empty() || ref.bands.toString() != scene.settings.bands.toString())
+          ref.xyz.empty() || ref.bands.toString() != bands.toString())
         throw nx::Error(referencePath +
                         ": does not match the scene's size and bands (or has no XYZ channels)");
     } else {
-      RenderOptions o;
-      o.samples = referenceSpp;
-      o.seed = 0x5eed; // independent of the measured renders (seed 0)
+      // Seed 0x5eed: independent of the measured renders (the scene's seed).
+      const RenderOptions o = options(referenceSpp, 0x5eed);
       std::fprintf(stderr, "nxbench: rendering the %d-spp reference...\n", referenceSpp);
       ref = toSpectralImage(render(scene, o).film);
     }
@@ -116,17 +133,15 @@ int main(int argc, char** argv) {
                 "RMSE(Y)", "relRMSE(Y)", "mean band rel", "max band rel");
     std::ofstream csv(csvPath);
     csv << "spp,seconds,samples_per_s,rays_per_s,rmse_Y,rel_rmse_Y";
-    for (int b = 0; b < scene.settings.bands.count(); ++b)
-      csv << ",rmse_" << scene.settings.bands.centroid(b) << "nm";
+    for (int b = 0; b < bands.count(); ++b) csv << ",rmse_" << bands.centroid(b) << "nm";
     csv << "\n";
-    PlotSeries measured{"nxrender (" + sampler + ")", {}, {}, 200, 40, 40, false};
+    PlotSeries measured{"luminance (" + sampler + ")", {}, {}, 200, 40, 40, false};
+    PlotSeries meanBand{"mean band", {}, {}, 40, 140, 40, false};
+    PlotSeries worstBand{"worst band", {}, {}, 40, 60, 200, false};
     std::vector<double> logSpp, logErr;
     double lastRaysPerSecond = 0;
     for (int spp = 1; spp <= maxSpp; spp *= 2) {
-      RenderOptions o;
-      o.samples = spp;
-      o.sampler = kind;
-      const RenderOutput out = render(scene, o);
+      const RenderOutput out = render(scene, options(spp, std::nullopt));
       const bench::ImageErrors e = bench::compareWithReference(out.film, ref);
       const double sps = static_cast<double>(out.stats.samples) / out.stats.seconds;
       lastRaysPerSecond = static_cast<double>(out.stats.rays) / out.stats.seconds;
@@ -138,6 +153,10 @@ int main(int argc, char** argv) {
       csv << "\n";
       measured.x.push_back(out.stats.seconds);
       measured.y.push_back(e.relY);
+      meanBand.x.push_back(out.stats.seconds);
+      meanBand.y.push_back(e.meanBandRel);
+      worstBand.x.push_back(out.stats.seconds);
+      worstBand.y.push_back(e.maxBandRel);
       logSpp.push_back(std::log(spp));
       logErr.push_back(std::log(e.relY));
     }
@@ -162,8 +181,8 @@ int main(int argc, char** argv) {
                      measured.y.front() * std::sqrt(measured.x.front() / measured.x.back())};
     }
     writePreview(plotPath, 720, 480,
-                 renderLogLogPlot({measured, slopeLine}, "render time (s)",
-                                  "relative RMSE of luminance",
+                 renderLogLogPlot({measured, meanBand, worstBand, slopeLine}, "render time (s)",
+                                  "relative RMSE",
                                   std::filesystem::path(scenePath).filename().string(), 720, 480));
     std::fprintf(stderr, "nxbench: wrote %s and %s\n", csvPath.c_str(), plotPath.c_str());
   } catch (const std::exception& e) {
