@@ -183,7 +183,9 @@ int main(int argc, char** argv) {
     writePreview(plotPath, 720, 480,
                  renderLogLogPlot({measured, meanBand, worstBand, slopeLine}, "render time (s)",
                                   "relative RMSE",
-                                  std::filesystem::path(scenePath).filename().string(), 720, 480));
+                                  std::filesystem::path(scenePath).filename().string() + ", " +
+                                      density + " density",
+                                  720, 480));
     std::fprintf(stderr, "nxbench: wrote %s and %s\n", csvPath.c_str(), plotPath.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nxbench: error: %s\n", e.what());
