@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <mutex>
+#include <optional>
 
 #include "core/error.h"
 #include "core/float_mode.h"
@@ -204,7 +205,11 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                   "found " +
                   std::to_string(out.samplesPerPixel));
     const auto maxSamples = static_cast<uint32_t>(out.samplesPerPixel);
-    if (!options.adaptivePlan) {
+    if (options.adaptivePlan) {
+      const PixelRect& pr = options.adaptivePlan->region;
+      if (rect.x0 < pr.x0 || rect.y0 < pr.y0 || rect.x1 > pr.x1 || rect.y1 > pr.y1)
+        throw Error("internal error: an adaptive plan that does not cover the render's pixels");
+    } else {
       // The uniform pilot: every pixel gets the same first samples (an even number, so both
       // replicates are alike), enough to estimate each block's noise.
       int pilot = std::min(std::max(options.adaptiveMinSamples, 2), out.samplesPerPixel);
@@ -223,15 +228,12 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
         out.stats.reachedTarget = true;
         break;
       }
-      if (options.adaptivePlan) {
-        const PixelRect& pr = options.adaptivePlan->region;
-        if (rect.x0 < pr.x0 || rect.y0 < pr.y0 || rect.x1 > pr.x1 || rect.y1 > pr.y1)
-          throw Error("internal error: an adaptive plan that does not cover the render's pixels");
-      }
-      const AdaptivePlan plan = options.adaptivePlan
-                                    ? *options.adaptivePlan
-                                    : planAdaptiveSamples(out.film, options.errorMeasure,
-                                                          options.targetRelativeError, maxSamples);
+      // A given plan is used in place; a planned one lives for this round.
+      std::optional<AdaptivePlan> planned;
+      if (!options.adaptivePlan)
+        planned = planAdaptiveSamples(out.film, options.errorMeasure, options.targetRelativeError,
+                                      maxSamples);
+      const AdaptivePlan& plan = options.adaptivePlan ? *options.adaptivePlan : *planned;
       if (!plan.addsSamplesTo(out.film)) break;
       while (plan.addsSamplesTo(out.film) && mayStartPass()) runPass(0, &plan);
       ++out.stats.adaptiveRounds;
