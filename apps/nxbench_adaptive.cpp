@@ -24,6 +24,7 @@
 
 #include "apps/bench_errors.h"
 #include "apps/log_plot.h"
+#include "apps/program_main.h"
 #include "core/error.h"
 #include "core/text_table.h"
 #include "integrators/renderer.h"
@@ -201,10 +202,5 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "nxbench-adaptive: error: %s\n", e.what());
-    return 1;
-  }
+  return nx::mainReportingErrors("nxbench-adaptive", run, argc, argv);
 }

@@ -17,6 +17,7 @@
 #include <filesystem>
 
 #include "apps/bench_util.h"
+#include "apps/program_main.h"
 #include "core/error.h"
 #include "io/spectral_exr.h"
 
@@ -112,10 +113,5 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "nxbench-exr: error: %s\n", e.what());
-    return 1;
-  }
+  return nx::mainReportingErrors("nxbench-exr", run, argc, argv);
 }

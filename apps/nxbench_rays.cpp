@@ -67,8 +67,8 @@ std::vector<RaySet> makeRaySets(const RenderScene& scene, size_t count) {
   const size_t pixels = static_cast<size_t>(w) * static_cast<size_t>(h);
   const uint32_t spp = static_cast<uint32_t>((count + pixels - 1) / pixels);
   const LightSampler lights(scene);
-  const Film film(w, h, scene.settings.bands);
-  const WavelengthSampler wavelengths(film.tracedMinNm(), film.tracedMaxNm());
+  const WavelengthSampler wavelengths(Film::tracedMinNm(scene.settings.bands),
+                                      Film::tracedMaxNm(scene.settings.bands));
   RaySet camera{"camera", false, {}}, bounce{"bounce", false, {}}, shadow{"shadow", true, {}};
   // Fewer rays than pixels: a centred window of the image's shape.
   const int ww =

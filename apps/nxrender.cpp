@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "apps/program_main.h"
 #include "apps/render_job.h"
 #include "core/error.h"
 #include "core/memory.h"
@@ -558,10 +559,5 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "nxrender: error: %s\n", e.what());
-    return 1;
-  }
+  return nx::mainReportingErrors("nxrender", run, argc, argv);
 }

@@ -1,39 +1,51 @@
 #include "io/exr_compression.h"
 
+#include <cstddef>
+#include <iterator>
+
 #include "core/error.h"
 
 namespace nx {
 
+namespace {
+
+// Each method's name and whether it stores float channels bit for bit, in the enum's order.
+struct MethodInfo {
+  ExrCompression method;
+  const char* name;
+  bool keepsFloats;
+};
+constexpr MethodInfo kMethods[] = {
+    {ExrCompression::None, "none", true},  {ExrCompression::Rle, "rle", true},
+    {ExrCompression::Zips, "zips", true},  {ExrCompression::Zip, "zip", true},
+    {ExrCompression::Piz, "piz", true},    {ExrCompression::Pxr24, "pxr24", false},
+    {ExrCompression::B44, "b44", true}, // compresses half channels only; floats stay as they are
+    {ExrCompression::B44a, "b44a", true},  {ExrCompression::Dwaa, "dwaa", false},
+    {ExrCompression::Dwab, "dwab", false},
+};
+
+static_assert(
+    [] {
+      for (size_t i = 0; i < std::size(kMethods); ++i)
+        if (static_cast<size_t>(kMethods[i].method) != i) return false;
+      return true;
+    }(),
+    "kMethods lists the methods in the enum's order");
+
+const MethodInfo& info(ExrCompression c) {
+  return kMethods[static_cast<size_t>(c)];
+}
+
+} // namespace
+
 const char* exrCompressionName(ExrCompression c) {
-  switch (c) {
-  case ExrCompression::None:
-    return "none";
-  case ExrCompression::Rle:
-    return "rle";
-  case ExrCompression::Zips:
-    return "zips";
-  case ExrCompression::Zip:
-    return "zip";
-  case ExrCompression::Piz:
-    return "piz";
-  case ExrCompression::Pxr24:
-    return "pxr24";
-  case ExrCompression::B44:
-    return "b44";
-  case ExrCompression::B44a:
-    return "b44a";
-  case ExrCompression::Dwaa:
-    return "dwaa";
-  case ExrCompression::Dwab:
-    return "dwab";
-  }
-  return "?";
+  return info(c).name;
 }
 
 std::vector<ExrCompression> allExrCompressions() {
-  return {ExrCompression::None, ExrCompression::Rle,   ExrCompression::Zips, ExrCompression::Zip,
-          ExrCompression::Piz,  ExrCompression::Pxr24, ExrCompression::B44,  ExrCompression::B44a,
-          ExrCompression::Dwaa, ExrCompression::Dwab};
+  std::vector<ExrCompression> all;
+  for (const MethodInfo& m : kMethods) all.push_back(m.method);
+  return all;
 }
 
 ExrCompression defaultExrCompression(bool halfFloats) {
@@ -41,18 +53,7 @@ ExrCompression defaultExrCompression(bool halfFloats) {
 }
 
 bool keepsFloatsExactly(ExrCompression c) {
-  switch (c) {
-  case ExrCompression::None:
-  case ExrCompression::Rle:
-  case ExrCompression::Zips:
-  case ExrCompression::Zip:
-  case ExrCompression::Piz:
-  case ExrCompression::B44: // compresses half channels only; floats are stored as they are
-  case ExrCompression::B44a:
-    return true;
-  default:
-    return false;
-  }
+  return info(c).keepsFloats;
 }
 
 ExrCompression parseExrCompression(const std::string& text, const std::string& what) {
