@@ -6,6 +6,11 @@
 
 namespace nx {
 
+/// Checks, without opening it, that `path` is a regular file of at most maxBytes bytes: the
+/// same refusals as readRegularFile (missing, directory, FIFO, socket, device, too large). For
+/// inputs that a library opens itself (EXR, TIFF, ENVI): a FIFO never reaches the library.
+void requireRegularFile(const std::string& path, std::uintmax_t maxBytes, const std::string& what);
+
 /// The content of the regular file at `path`, of at most maxBytes bytes. `what` names the
 /// kind of file in errors ("scene file", "table"). Refused with an nx::Error naming the file:
 /// a missing or unreadable file ("cannot open the <what>"), a directory, FIFO, socket or

@@ -85,6 +85,12 @@ uint64_t readUnsigned(const unsigned char* p, int size, bool bigEndian) {
   return v;
 }
 
+// The two's-complement value of a `size`-byte integer read as unsigned.
+int64_t signExtend(uint64_t raw, int size) {
+  const int shift = 64 - 8 * size;
+  return static_cast<int64_t>(raw << shift) >> shift;
+}
+
 } // namespace
 
 MeshFileCounts checkPlyFile(const std::string& bytes, const std::string& path) {
@@ -204,24 +210,48 @@ MeshFileCounts checkPlyFile(const std::string& bytes, const std::string& path) {
   uint64_t pos = lines.position();
   const uint64_t size = bytes.size();
   for (const auto& e : elements) {
+    const auto truncated = [&](uint64_t item) {
+      return Error(path + ": expected " + std::to_string(e.count) + " " + e.name +
+                   " items in the binary body, found the file ending " +
+                   (pos == size ? "before" : "within") + " item " + std::to_string(item) +
+                   " (truncated at byte " + std::to_string(size) + ")");
+    };
+    // The smallest size of an item (lists empty): a body too short for the declared count is
+    // refused before walking it, so 4e9 declared items in a few bytes fail at once.
+    uint64_t minItem = 0;
+    for (const auto& p : e.properties)
+      minItem += static_cast<uint64_t>(plyTypeSize(p.countType.empty() ? p.type : p.countType));
+    if (minItem > 0 && e.count > (size - std::min(size, pos)) / minItem) throw truncated(0);
     for (uint64_t item = 0; item < e.count; ++item) {
+      if (pos >= size) throw truncated(item);
       for (const auto& p : e.properties) {
         if (p.countType.empty()) {
           pos += static_cast<uint64_t>(plyTypeSize(p.type));
           continue;
         }
         const int cs = plyTypeSize(p.countType);
-        if (pos + static_cast<uint64_t>(cs) > size) break;
+        if (pos + static_cast<uint64_t>(cs) > size) throw truncated(item);
         const uint64_t n = readUnsigned(data + pos, cs, big);
-        if (&e == face && n < 3)
+        pos += static_cast<uint64_t>(cs);
+        const bool indices = &e == face && (p.name == "vertex_indices" || p.name == "vertex_index");
+        if (indices && n < 3)
           throw Error(path + ": expected faces of at least 3 vertices, found face " +
                       std::to_string(item) + " with " + std::to_string(n));
-        pos += static_cast<uint64_t>(cs) + n * static_cast<uint64_t>(plyTypeSize(p.type));
+        const int ts = plyTypeSize(p.type);
+        if (n > (size - std::min(size, pos)) / static_cast<uint64_t>(ts)) throw truncated(item);
+        if (indices && plyIntegerType(p.type))
+          for (uint64_t k = 0; k < n; ++k) {
+            const uint64_t raw = readUnsigned(data + pos + k * static_cast<uint64_t>(ts), ts, big);
+            const bool isSigned = p.type[0] != 'u';
+            const int64_t index = isSigned ? signExtend(raw, ts) : static_cast<int64_t>(raw);
+            if (index < 0 || static_cast<uint64_t>(index) >= vertex->count)
+              throw Error(path + ": expected vertex indices within [0, " +
+                          std::to_string(vertex->count) + "), found " + std::to_string(index) +
+                          " in face " + std::to_string(item));
+          }
+        pos += n * static_cast<uint64_t>(ts);
       }
-      if (pos > size)
-        throw Error(path + ": expected " + std::to_string(e.count) + " " + e.name +
-                    " items in the binary body, found the file ending within item " +
-                    std::to_string(item) + " (truncated at byte " + std::to_string(size) + ")");
+      if (pos > size) throw truncated(item);
     }
   }
   return {vertex->count, face->count};

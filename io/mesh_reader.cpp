@@ -1,5 +1,6 @@
 #include "io/mesh_reader.h"
 
+#include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -35,19 +36,35 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
   for (unsigned i = 0; i < node.mNumChildren; ++i) collect(scene, *node.mChildren[i], m, out);
 }
 
-} // namespace
+// The file system the mesh library sees besides the mesh itself (given from memory): none. An
+// OBJ's mtllib names materials nxrender does not use (a scene assigns materials), so no other
+// file is ever opened: no FIFO, directory or huge file can reach the library by that route.
+class NoOtherFiles : public Assimp::IOSystem {
+public:
+  bool Exists(const char*) const override { return false; }
+  char getOsSeparator() const override { return '/'; }
+  Assimp::IOStream* Open(const char*, const char*) override { return nullptr; }
+  void Close(Assimp::IOStream*) override {}
+};
 
-MeshFile readMeshFile(const std::string& path) {
+MeshFile readMeshFileUnguarded(const std::string& path) {
   const std::string ext = lowerExtension(path);
   if (ext != "ply" && ext != "obj")
     throw Error("expected a mesh file ending in .ply or .obj, found '" + path + "'");
   MeshFile out;
   out.bytes = readRegularFile(path, kMaxMeshFileBytes, "mesh file");
-  if (ext == "ply")
-    checkPlyFile(out.bytes, path);
-  else
-    checkObjFile(out.bytes, path);
+  const MeshFileCounts counts =
+      ext == "ply" ? checkPlyFile(out.bytes, path) : checkObjFile(out.bytes, path);
+  // What the mesh library and the mesh need at their peak, from the declared counts (measured
+  // with a 1M-face PLY: see kMeshBytesPerFace), checked before the library allocates any of it.
+  requireMemory(static_cast<double>(counts.faces) * kMeshBytesPerFace +
+                    static_cast<double>(counts.vertices) * kMeshBytesPerVertex +
+                    static_cast<double>(out.bytes.size()),
+                path, "a mesh",
+                std::to_string(counts.vertices) + " vertices and " + std::to_string(counts.faces) +
+                    " faces");
   Assimp::Importer importer;
+  importer.SetIOHandler(new NoOtherFiles); // owned by the importer
   // Points and lines are dropped, not turned into degenerate triangles.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
@@ -100,6 +117,18 @@ MeshFile readMeshFile(const std::string& path) {
   if (const std::string problem = out.mesh.validate(); !problem.empty())
     throw Error("cannot use mesh '" + path + "': " + problem);
   return out;
+}
+
+} // namespace
+
+MeshFile readMeshFile(const std::string& path) {
+  try {
+    return readMeshFileUnguarded(path);
+  } catch (const std::bad_alloc&) {
+    throw Error(path + ": cannot read the mesh: out of memory (" +
+                std::to_string(static_cast<long long>(memoryBudget().bytes / (1 << 20))) +
+                " MiB usable: " + memoryBudget().limit + ")");
+  }
 }
 
 } // namespace nx

@@ -10,6 +10,12 @@ namespace nx {
 /// Largest mesh file read (bytes): a 1M-triangle binary PLY with normals and uv is about 50 MB.
 inline constexpr std::uintmax_t kMaxMeshFileBytes = 4ull << 30;
 
+/// Peak memory of reading a mesh per declared face and per vertex (bytes): the mesh library's
+/// structures, its triangulation and vertex joining, and the mesh built from them (measured:
+/// docs/reliability.md, round 3). Checked against the memory budget before reading.
+inline constexpr double kMeshBytesPerFace = 400;
+inline constexpr double kMeshBytesPerVertex = 100;
+
 /// A mesh file's triangles and the bytes it was read from (for the scene's content digest).
 struct MeshFile {
   TriangleMesh mesh;
@@ -20,9 +26,10 @@ struct MeshFile {
 /// polygons are triangulated, points and lines dropped, the vertex normals and first uv channel
 /// kept when the file has them (for every part, or they are dropped), all parts of the file
 /// (OBJ groups and objects) merged with their node transforms applied. Materials in the file
-/// are ignored (the scene gives the material). Throws nx::Error naming the file and the
-/// parser's complaint for unreadable, malformed or empty files, indices out of range and
-/// non-finite values.
+/// are ignored (the scene gives the material) and no other file is opened (an OBJ's mtllib is
+/// not read). Meshes whose declared size exceeds the memory budget are refused with figures. Throws
+/// nx::Error naming the file and the parser's complaint for unreadable, malformed or empty files,
+/// indices out of range and non-finite values.
 MeshFile readMeshFile(const std::string& path);
 
 } // namespace nx

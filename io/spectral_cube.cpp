@@ -11,6 +11,7 @@
 #include "core/file_text.h"
 #include "core/memory.h"
 #include "core/text_table.h"
+#include "io/envi_header.h"
 #include "io/gdal_library.h"
 #include "io/spectral_exr.h"
 #include "io/srgb_image.h"
@@ -58,7 +59,7 @@ std::string enviDataFor(const std::string& header) {
     fs::path p = stem;
     p += ext;
     std::error_code ec;
-    if (fs::is_regular_file(p, ec)) return p.string();
+    if (fs::exists(p, ec) && !fs::is_directory(p, ec)) return p.string(); // a FIFO: refused later
     tried.push_back(p.filename().string());
   }
   std::string list;
@@ -67,11 +68,18 @@ std::string enviDataFor(const std::string& header) {
               "), found none");
 }
 
-// The header of an ENVI data file: GDAL's convention (extension replaced, or .hdr appended).
-bool hasEnviHeader(const std::string& data) {
+// The header of an ENVI data file by GDAL's convention (extension replaced, or .hdr appended);
+// empty when there is none.
+std::string enviHeaderFor(const std::string& data) {
   std::error_code ec;
-  return fs::is_regular_file(fs::path(data).replace_extension(".hdr"), ec) ||
-         fs::is_regular_file(data + ".hdr", ec);
+  const std::string replaced = fs::path(data).replace_extension(".hdr").string();
+  if (fs::exists(replaced, ec)) return replaced;
+  if (fs::exists(data + ".hdr", ec)) return data + ".hdr";
+  return "";
+}
+
+bool hasEnviHeader(const std::string& data) {
+  return !enviHeaderFor(data).empty();
 }
 
 // Wavelengths in nm from values in `units` (an ENVI or TIFF unit name, or empty).
@@ -125,6 +133,13 @@ SpectralCube fromExr(const std::string& path) {
 
 SpectralCube fromGdal(const std::string& path, const std::string& shownPath, bool envi,
                       const CubeReadOptions& options) {
+  // GDAL opens the files itself: only regular files reach it (a FIFO would block it), and an
+  // ENVI header's layout fields are checked first (GDAL defaults values it does not know).
+  requireRegularFile(path, kMaxExrFileBytes, envi ? "ENVI data file" : "TIFF file");
+  if (envi) {
+    std::error_code ec;
+    checkEnviHeader(enviHeaderFor(path), static_cast<double>(fs::file_size(path, ec)));
+  }
   registerDrivers();
   QuietGdal quiet;
   const char* drivers[] = {envi ? "ENVI" : "GTiff", nullptr};
@@ -167,11 +182,14 @@ SpectralCube fromGdal(const std::string& path, const std::string& shownPath, boo
         offset + static_cast<double>(w) * h * nb * gdal().GDALGetDataTypeSizeBytes(type);
     std::error_code ec;
     const double have = static_cast<double>(fs::file_size(path, ec));
+    const auto bytesText = [](double v) {
+      return v < 9e15 ? std::to_string(static_cast<long long>(v)) : numberText(v);
+    };
     if (!ec && have < need)
-      throw Error(path + ": expected " + std::to_string(static_cast<long long>(need)) +
-                  " bytes (header offset + " + std::to_string(w) + " x " + std::to_string(h) +
-                  " x " + std::to_string(nb) + " " + typeName(type) + " values), found " +
-                  std::to_string(static_cast<long long>(have)) + ": the data file is cut short");
+      throw Error(path + ": expected " + bytesText(need) + " bytes (header offset + " +
+                  std::to_string(w) + " x " + std::to_string(h) + " x " + std::to_string(nb) + " " +
+                  typeName(type) + " values), found " + bytesText(have) +
+                  ": the data file is cut short");
   }
 
   // Wavelengths and widths: the options, else the ENVI header, else the TIFF's band metadata.

@@ -14,6 +14,8 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/file_text.h"
+#include "core/memory.h"
 #include "io/atomic_file.h"
 #include "io/fichet_channels.h"
 #include "spectra/band_colour.h"
@@ -154,6 +156,7 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
 } // namespace
 
 SpectralImage readSpectralExr(const std::string& path) {
+  requireRegularFile(path, kMaxExrFileBytes, "EXR file");
   try {
     Imf::InputFile file(path.c_str());
     const Imf::Header& h = file.header();
@@ -211,6 +214,14 @@ SpectralImage readSpectralExr(const std::string& path) {
         throw Error(path + ": expected a channel " + bandChannels[static_cast<size_t>(b)] +
                     ", found none");
     const size_t pixels = static_cast<size_t>(img.width) * img.height;
+    // Every channel is read as 4 bytes, plus the RGB computed for a file without one: checked
+    // before allocating, so a small file declaring a huge image is refused with figures.
+    size_t channelCount = 3;
+    for (auto it = h.channels().begin(); it != h.channels().end(); ++it) ++channelCount;
+    requireMemory(static_cast<double>(pixels) * static_cast<double>(channelCount) * 4.0, path,
+                  "an EXR",
+                  std::to_string(img.width) + " x " + std::to_string(img.height) + " pixels of " +
+                      std::to_string(channelCount - 3) + " channels");
     img.radiance.assign(pixels * nb, 0.0f);
     img.rgb.assign(pixels * 3, 0.0f);
     Imf::FrameBuffer fb;
@@ -289,6 +300,7 @@ SpectralImage readSpectralExr(const std::string& path) {
 }
 
 ExrFootprint spectralExrFootprint(const std::string& path) {
+  requireRegularFile(path, kMaxExrFileBytes, "EXR file");
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i dw = file.header().dataWindow(), disp = file.header().displayWindow();

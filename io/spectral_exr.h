@@ -74,12 +74,16 @@ void writeSpectralExrHalf(const std::string& path, const SpectralImage& image,
 /// (the largest half float), so writeSpectralExrHalf keeps it.
 bool fitsInHalf(const SpectralImage& image);
 
+/// Largest EXR file read (bytes); only regular files are opened (a FIFO is refused unread).
+inline constexpr std::uintmax_t kMaxExrFileBytes = 1ull << 40;
+
 /// Reads a spectral EXR: one written by writeSpectralExr (bands from the nxrender.bands
 /// attribute), or any file of the Fichet et al. layout (bands from the channel names: S0, else
 /// T channels, in any SI unit of length or frequency; evenly spaced wavelengths become uniform
 /// boxes, others Gaussians as wide as the spacing; a missing RGB is computed from the bands,
 /// the attribute nxrender.spectralChannels says S0 or T). Errors name the file and what is
-/// wrong.
+/// wrong; a file whose pixels would not fit in memory is refused with figures before
+/// any is read.
 SpectralImage readSpectralExr(const std::string& path);
 
 /// The size of an EXR's contents from its header alone (memory checks before reading).

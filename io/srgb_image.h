@@ -25,7 +25,7 @@ LinearSrgbImage decodeSrgbImage(const std::string& bytes, const std::string& pat
 /// A grey image's raw values: value[row * width + column], row 0 at the top.
 struct GreyImage {
   int width = 0, height = 0;
-  int bitsPerChannel = 8; ///< 8 or 16
+  int bitsPerChannel = 8;   ///< 8 or 16
   std::vector<float> value; ///< the stored integers (0-255 or 0-65535), not linearised
 };
 

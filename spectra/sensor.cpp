@@ -1,6 +1,7 @@
 #include "spectra/sensor.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -224,6 +225,23 @@ void Sensor::finish(const std::string& where) {
   if (n > kMaxChannels)
     throw Error(where + ": expected at most " + std::to_string(kMaxChannels) + " bands, found " +
                 std::to_string(n));
+  // Measured responses are relative: each is divided by its peak, so any finite scale (counts,
+  // 1e-300 or 1e300) gives the same channel, and no integral below can overflow or underflow.
+  for (SensorChannel& c : channels_) {
+    if (c.shape != ResponseShape::Table) continue;
+    double peak = 0;
+    for (double r : c.response) {
+      if (!(r >= 0 && r <= DBL_MAX))
+        throw Error(where + ": expected finite, non-negative responses for band '" + c.name +
+                    "', found " + numberText(r));
+      peak = std::max(peak, r);
+    }
+    if (!(peak >= DBL_MIN))
+      throw Error(where + ": expected band '" + c.name + "' to peak at a normal number (at least " +
+                  numberText(DBL_MIN) + "; responses are relative, any scale above that is " +
+                  "normalised), found a peak of " + numberText(peak));
+    for (double& r : c.response) r /= peak;
+  }
   minNm_ = INFINITY;
   maxNm_ = -INFINITY;
   double cell = kMaxCellNm;
@@ -296,6 +314,10 @@ void Sensor::finish(const std::string& where) {
         fwhm_[i] = hi - lo;
       }
     }
+    if (!(std::isfinite(centroid_[i]) && std::isfinite(fwhm_[i]) && std::isfinite(integral_[i])))
+      throw Error(where + ": expected band '" + c.name +
+                  "' to have a finite centroid, width and area, found " + numberText(centroid_[i]) +
+                  " nm, " + numberText(fwhm_[i]) + " nm, " + numberText(integral_[i]) + " nm");
     char name[64];
     std::snprintf(name, sizeof name, "%.6f", centroid_[i]);
     if (!layerNames.insert(name).second)

@@ -110,7 +110,12 @@ WavelengthSampler WavelengthSampler::forSensor(const Sensor& sensor, double minN
     return sum;
   };
   double levelLo = 0, levelHi = 1;
-  while (weightsAt(levelHi, nullptr) < 1) levelHi *= 2;
+  // Bounded: a level reaching DBL_MAX means no band has a usable response (every q_c 0).
+  for (int i = 0; i < 1100 && !(weightsAt(levelHi, nullptr) >= 1); ++i) levelHi *= 2;
+  if (!(weightsAt(levelHi, nullptr) >= 1 && std::isfinite(weightsAt(levelHi, nullptr))))
+    throw Error("sensor '" + sensor.summary() +
+                "': expected band responses the wavelength sampler can weight, found none with "
+                "a finite, non-zero tabulated response");
   for (int it = 0; it < 100; ++it) {
     const double mid = 0.5 * (levelLo + levelHi);
     (weightsAt(mid, nullptr) < 1 ? levelLo : levelHi) = mid;

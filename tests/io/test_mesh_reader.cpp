@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+
+#include <sys/stat.h>
 
 #include "core/error.h"
 #include "io/mesh_reader.h"
@@ -183,6 +186,53 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
     const std::string message = test::errorMessage([&] { readMeshFile(path); });
     EXPECT_NE(message.find(expected[i]), std::string::npos) << cases[i].first << ": " << message;
   }
+}
+
+// A binary PLY cut exactly at an item boundary is truncated too (it passed the check, then
+// spun through 4e9 declared faces or reached the library's "mIndices[0] is out of range");
+// binary indices are checked like ASCII ones.
+TEST(MeshReader, BinaryPlyCutAtAnItemBoundaryIsTruncated) {
+  const std::string whole = binaryPly(false);
+  const size_t oneFace = 1 + 3 * 4;
+  const std::string cut = writeFile("cutface.ply", whole.substr(0, whole.size() - oneFace));
+  EXPECT_EQ(test::errorMessage([&] { readMeshFile(cut); }),
+            cut +
+                ": expected 2 face items in the binary body, found the file ending before item "
+                "1 (truncated at byte " +
+                std::to_string(whole.size() - oneFace) + ")");
+  std::string huge = whole;
+  huge.replace(huge.find("element face 2"), 14, "element face 4000000000");
+  const std::string many = writeFile("manyfaces.ply", huge);
+  EXPECT_NE(test::errorMessage([&] {
+              readMeshFile(many);
+            }).find("expected 4000000000 face items in the binary body, found the file ending"),
+            std::string::npos);
+  std::string bad = whole;
+  const int32_t outside = 7, negative = -2;
+  std::memcpy(&bad[bad.size() - 4], &outside, 4);
+  EXPECT_EQ(test::errorMessage([&] { readMeshFile(writeFile("binindex.ply", bad)); }),
+            ::testing::TempDir() +
+                "/binindex.ply: expected vertex indices within [0, 4), found 7 in face 1");
+  std::memcpy(&bad[bad.size() - 4], &negative, 4);
+  EXPECT_EQ(test::errorMessage([&] { readMeshFile(writeFile("binneg.ply", bad)); }),
+            ::testing::TempDir() +
+                "/binneg.ply: expected vertex indices within [0, 4), found -2 in face 1");
+}
+
+// An OBJ's mtllib is never opened (the library opened it relative to the working directory:
+// a FIFO there blocked forever, a directory gave "File read error").
+TEST(MeshReader, ObjMaterialLibrariesAreNotOpened) {
+  const std::string dir = ::testing::TempDir() + "/mtl";
+  std::filesystem::create_directories(dir + "/lib.mtl.d");
+  const std::string fifo = dir + "/fifo.mtl";
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+  for (const std::string lib : {fifo, std::string("fifo.mtl"), dir + "/lib.mtl.d"}) {
+    std::ofstream(dir + "/m.obj") << "mtllib " << lib << "\n" << body;
+    EXPECT_EQ(readMeshFile(dir + "/m.obj").mesh.triangleCount(), 1u) << lib;
+  }
+  std::filesystem::remove(fifo);
 }
 
 } // namespace

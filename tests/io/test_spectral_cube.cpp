@@ -6,6 +6,7 @@
 #include <gdal_frmts.h>
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstring>
@@ -183,6 +184,65 @@ TEST(SpectralCube, MalformedEnviCubesNameTheFileAndTheProblem) {
               readSpectralCube(dir() + "/notes.txt");
             }).find("expected a spectral EXR (.exr), an ENVI cube"),
             std::string::npos);
+}
+
+// ENVI layout fields GDAL does not know were read as its defaults (interleave xyz as BSQ, byte
+// order 7 as big-endian); an absurd header offset overflowed the size message.
+TEST(SpectralCube, EnviLayoutFieldsAreCheckedBeforeGdal) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"interleave = xyz\n", ":13: expected 'interleave' bsq, bil or bip, found 'xyz'"},
+      {"byte order = 7\n",
+       ":13: expected 'byte order' 0 (little-endian) or 1 (big-endian), found '7'"},
+      {"data type = 6\n", ":13: expected a real 'data type' (1 byte, 2 int16, 3 int32, 4 float32, "
+                          "5 float64, 12 uint16, 13 uint32, 14 int64, 15 uint64), found '6'"},
+      {"header offset = 1e300\n",
+       ":13: expected 'header offset' as a whole number from 0 to 96 (the data file's size in "
+       "bytes), found 1e300"},
+      {"samples = 2.5\n", ":13: expected 'samples' as a whole number from 1 to 2147483647, "
+                          "found 2.5"},
+      {"interleave = {bsq\n", ":13: expected the closing brace of 'interleave', found the end of "
+                              "the header"},
+  };
+  int i = 0;
+  for (const auto& [extra, message] : cases) {
+    const std::string base =
+        enviCube("layout" + std::to_string(i++), "bsq", 4, false, kWavelengths + extra);
+    EXPECT_EQ(test::errorMessage([&] { readSpectralCube(base + ".hdr"); }),
+              base + ".hdr" + message);
+  }
+}
+
+// Inputs a library opens itself reach it only as regular files: a FIFO blocked GDAL and
+// OpenEXR forever.
+TEST(SpectralCube, FifosAreRefusedUnread) {
+  const std::string fifoExr = dir() + "/fifo.exr", fifoTif = dir() + "/fifo.tif";
+  for (const std::string& f : {fifoExr, fifoTif}) {
+    std::filesystem::remove(f);
+    ASSERT_EQ(mkfifo(f.c_str(), 0600), 0);
+  }
+  EXPECT_EQ(test::errorMessage([&] { readSpectralCube(fifoExr); }),
+            fifoExr + ": expected an EXR file (a regular file), found a FIFO, socket or device");
+  EXPECT_EQ(test::errorMessage([&] { readSpectralExr(fifoExr); }),
+            fifoExr + ": expected an EXR file (a regular file), found a FIFO, socket or device");
+  EXPECT_EQ(test::errorMessage([&] { spectralExrFootprint(fifoExr); }),
+            fifoExr + ": expected an EXR file (a regular file), found a FIFO, socket or device");
+  EXPECT_EQ(test::errorMessage([&] { readSpectralCube(fifoTif); }),
+            fifoTif + ": expected a TIFF file (a regular file), found a FIFO, socket or device");
+  // An ENVI cube whose data file or header is a FIFO.
+  const std::string base = enviCube("fifodata", "bsq", 4, false, kWavelengths);
+  std::filesystem::remove(base + ".img");
+  ASSERT_EQ(mkfifo((base + ".img").c_str(), 0600), 0);
+  EXPECT_EQ(test::errorMessage([&] { readSpectralCube(base + ".hdr"); }),
+            base + ".img: expected an ENVI data file (a regular file), found a FIFO, socket or "
+                   "device");
+  const std::string base2 = enviCube("fifohdr", "bsq", 4, false, kWavelengths);
+  std::filesystem::remove(base2 + ".hdr");
+  ASSERT_EQ(mkfifo((base2 + ".hdr").c_str(), 0600), 0);
+  EXPECT_EQ(test::errorMessage([&] { readSpectralCube(base2 + ".img"); }),
+            base2 +
+                ".hdr: expected an ENVI header (a regular file), found a FIFO, socket or device");
+  for (const std::string& f : {fifoExr, fifoTif, base + ".img", base2 + ".hdr"})
+    std::filesystem::remove(f);
 }
 
 TEST(SpectralCube, MultiBandTiffWithBandWavelengths) {

@@ -275,5 +275,59 @@ TEST(CameraAttributes, ExactAndConsistent) {
   EXPECT_EQ(values("nxrender.camera.thinLens"), (std::vector<double>{0.025, 3.5}));
 }
 
+// An EXR declaring far more pixels than it holds (a 20 KB file declaring 40000 x 40000) is
+// refused with the memory figures before any buffer is allocated (it ended in bad_alloc).
+TEST(SpectralExr, HugeDeclaredImageIsRefusedBeforeAllocating) {
+  const std::string path = ::testing::TempDir() + "huge_window.exr";
+  {
+    const Imath::Box2i window({0, 0}, {39999, 39999});
+    Imf::Header h(window, window);
+    h.compression() = Imf::ZIP_COMPRESSION;
+    h.insert("nxrender.bands", Imf::StringAttribute("500:600:100"));
+    for (const std::string& c : {spectralChannelName(500), spectralChannelName(600),
+                                 std::string("R"), std::string("G"), std::string("B")})
+      h.channels().insert(c, Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile f(path.c_str(), h); // the header and an empty offset table, no pixels
+  }
+  ASSERT_LT(std::filesystem::file_size(path), 1u << 20);
+  const std::string message = test::errorMessage([&] { readSpectralExr(path); });
+  EXPECT_EQ(message.rfind(path + ": expected an EXR whose buffers fit in memory, found 40000 x "
+                                 "40000 pixels of 5 channels (needs 47.7 GiB; ",
+                          0),
+            0u)
+      << message;
+}
+
+// A file whose bands attribute holds responses of 1e308 (the integrals overflowed: a NaN
+// centroid named the channels, and every reader crashed on it) reads as the sensor it is.
+TEST(SpectralExr, BandsOfAnyResponseScaleReadBackOrAreRefused) {
+  SpectralImage img = testImage();
+  img.bands = Sensor::parse("table:nm,a,b\n480,0,0\n500,1e308,0\n510,5e307,1e308\n520,0,0\n");
+  const int nb = img.bands.count();
+  img.radiance.assign(static_cast<size_t>(15 * nb), 1.0f);
+  const std::string path = ::testing::TempDir() + "huge_responses.exr";
+  writeSpectralExr(path, img);
+  const SpectralImage back = readSpectralExr(path);
+  ASSERT_EQ(back.bands.count(), 2);
+  for (int b = 0; b < 2; ++b) EXPECT_NEAR(back.bands.centroid(b), img.bands.centroid(b), 1e-9);
+  // A bands attribute that no sensor can be made of is an error naming the file.
+  {
+    const Imath::Box2i window({0, 0}, {0, 0});
+    Imf::Header h(window, window);
+    h.insert("nxrender.bands", Imf::StringAttribute("table:nm,a\n500,0\n510,nan\n520,0\n"));
+    h.channels().insert("S0.510nm", Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile f((::testing::TempDir() + "nan_bands.exr").c_str(), h);
+    float v = 0;
+    Imf::FrameBuffer fb;
+    fb.insert("S0.510nm", Imf::Slice::Make(Imf::FLOAT, &v, window, sizeof(float), sizeof(float)));
+    f.setFrameBuffer(fb);
+    f.writePixels(1);
+  }
+  EXPECT_NE(test::errorMessage([&] {
+              readSpectralExr(::testing::TempDir() + "nan_bands.exr");
+            }).find("nan_bands.exr: nxrender.bands"),
+            std::string::npos);
+}
+
 } // namespace
 } // namespace nx

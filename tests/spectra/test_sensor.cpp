@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "spectra/sensor.h"
+#include "spectra/wavelength_sampler.h"
 #include "support/errors.h"
 
 namespace nx {
@@ -167,6 +168,44 @@ TEST(Sensor, BadResponsesAreRefusedWithTheirPlace) {
   };
   for (const auto& [spec, message] : specs)
     EXPECT_EQ(test::errorMessage([&] { Sensor::parse(spec); }), message) << spec;
+}
+
+} // namespace
+} // namespace nx
+
+namespace nx {
+namespace {
+
+// Responses are relative: a measured sensor in any finite scale (counts, 1e308, 1e-300) is the
+// same sensor, with finite centroids and a wavelength sampler that returns (at 1e308 the
+// integrals overflowed to a NaN centroid; at 1e-310 the sampler's weighting never ended).
+TEST(Sensor, MeasuredResponsesInAnyScaleAreTheSameSensor) {
+  const auto text = [](double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return std::string(buf);
+  };
+  const auto scaled = [&](double s) {
+    return Sensor::fromCsv("nm,a,b\n480,0,0\n500," + text(s) + ",0\n510," + text(0.5 * s) + "," +
+                               text(s) + "\n520,0,0\n",
+                           "srf.csv");
+  };
+  const Sensor one = scaled(1);
+  for (double s : {1e308, 1.7e308, 1e-300, 3e-308}) {
+    const Sensor x = scaled(s);
+    for (int b = 0; b < 2; ++b) {
+      EXPECT_TRUE(std::isfinite(x.centroid(b))) << s;
+      EXPECT_NEAR(x.centroid(b), one.centroid(b), 1e-9) << s;
+      EXPECT_NEAR(x.fwhm(b), one.fwhm(b), 1e-9) << s;
+    }
+    const WavelengthSampler sampler = WavelengthSampler::forSensor(x, 300, 1100);
+    EXPECT_TRUE(std::isfinite(sampler.wavelength(0.5))) << s;
+  }
+  // Below the normal range the shape is not representable: refused, not guessed.
+  EXPECT_EQ(test::errorMessage([&] { scaled(1e-310); }),
+            "srf.csv: expected band 'a' to peak at a normal number (at least 2.225074e-308; "
+            "responses are relative, any scale above that is normalised), found a peak of "
+            "1e-310");
 }
 
 } // namespace
