@@ -24,6 +24,7 @@
 #include <fstream>
 
 #include "apps/bench_errors.h"
+#include "apps/command_line.h"
 #include "apps/log_plot.h"
 #include "core/error.h"
 #include "core/hash.h"
@@ -85,10 +86,10 @@ int main(int argc, char** argv) {
   app.add_option("--reference", referencePath, "Reference EXR (else rendered)");
   app.add_option("--reference-spp", referenceSpp,
                  "Samples per pixel of the rendered reference (default 1024)")
-      ->check(CLI::Range(1, 1 << 24));
+      ->check(nx::numberIn(1, 1 << 24));
   app.add_option("--max-spp", maxSpp, "Largest spp of the doubling series (default 64)")
-      ->check(CLI::Range(1, 1 << 20));
-  app.add_option("--threads", threads, "Threads (default 2)")->check(CLI::Range(1, 4096));
+      ->check(nx::numberIn(1, 1 << 20));
+  app.add_option("--threads", threads, "Threads (default 2)")->check(nx::numberIn(1, 4096));
   app.add_option("--sampler", sampler, "sobol or independent")
       ->check(CLI::IsMember({"sobol", "independent"}));
   app.add_option("--bands", bandsText, "Bands START:END:STEP in nm (default: the scene's)");
@@ -96,7 +97,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"sensor", "visible"}));
   app.add_option("--csv", csvPath, "CSV output (default nxbench.csv)");
   app.add_option("--plot", plotPath, "Error-against-time plot, PNG (default nxbench.png)");
-  CLI11_PARSE(app, argc, argv);
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench"); status >= 0)
+    return status;
   try {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                               static_cast<size_t>(threads));

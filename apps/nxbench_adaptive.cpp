@@ -23,6 +23,7 @@
 #include <sstream>
 
 #include "apps/bench_errors.h"
+#include "apps/command_line.h"
 #include "apps/log_plot.h"
 #include "apps/program_main.h"
 #include "core/error.h"
@@ -59,16 +60,17 @@ int run(int argc, char** argv) {
   app.add_option("scene", scenePath, "Scene file")->required();
   app.add_option("--reference", referencePath, "Reference EXR of the scene")->required();
   app.add_option("--max-spp", maxSpp, "Largest spp of the uniform series (default 256)")
-      ->check(CLI::Range(16, 1 << 20));
+      ->check(nx::numberIn(16, 1 << 20));
   app.add_option("--targets", targetsText, "Adaptive target errors, a comma list");
   app.add_option("--bias-seeds", biasSeeds, "Renders of the first target for the bias (0: none)")
-      ->check(CLI::Range(0, 1000));
-  app.add_option("--threads", threads, "Threads (default 2)")->check(CLI::Range(1, 4096));
+      ->check(nx::numberIn(0, 1000));
+  app.add_option("--threads", threads, "Threads (default 2)")->check(nx::numberIn(1, 4096));
   app.add_option("--csv", csvPath, "CSV output");
   app.add_option("--plot", plotPath, "Error-against-time plot, PNG");
   std::string replot;
   app.add_option("--replot", replot, "Only draw the plot again from this CSV of an earlier run");
-  CLI11_PARSE(app, argc, argv);
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench-adaptive"); status >= 0)
+    return status;
   const std::string title = std::filesystem::path(scenePath).filename().string();
   if (!replot.empty()) {
     std::ifstream in(replot);

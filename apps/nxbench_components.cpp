@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "apps/bench_util.h"
+#include "apps/command_line.h"
 #include "core/error.h"
 #include "core/ray_offset.h"
 #include "integrators/film.h"
@@ -53,8 +54,9 @@ int main(int argc, char** argv) {
   int records = 200000;
   app.add_option("scene", scenePath, "Scene file (default: the thesis scene)");
   app.add_option("--records", records, "Surface points to time over (default 200000)")
-      ->check(CLI::Range(1000, 10000000));
-  CLI11_PARSE(app, argc, argv);
+      ->check(nx::numberIn(1000, 10000000));
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench-components"); status >= 0)
+    return status;
   try {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     const RenderScene scene = buildRenderScene(loadScene(scenePath));

@@ -17,6 +17,7 @@
 #include <filesystem>
 
 #include "apps/bench_util.h"
+#include "apps/command_line.h"
 #include "apps/program_main.h"
 #include "core/error.h"
 #include "io/spectral_exr.h"
@@ -44,11 +45,12 @@ int run(int argc, char** argv) {
   int threads = 2, repeats = 3;
   app.add_option("image", input, "A spectral EXR written by nxrender")->required();
   app.add_option("--threads", threads, "Threads compressing line blocks")
-      ->check(CLI::Range(1, 256));
+      ->check(nx::numberIn(1, 256));
   app.add_option("--repeats", repeats, "Writes per encoding (the fastest counts)")
-      ->check(CLI::Range(1, 100));
+      ->check(nx::numberIn(1, 100));
   app.add_option("--dir", dir, "Where the test files go (removed afterwards)");
-  CLI11_PARSE(app, argc, argv);
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench-exr"); status >= 0)
+    return status;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<size_t>(threads));
 

@@ -13,6 +13,7 @@
 #include <cstdio>
 
 #include "apps/bench_util.h"
+#include "apps/command_line.h"
 #include "integrators/renderer.h"
 
 namespace {
@@ -30,9 +31,10 @@ double nsPerSample(const nx::RenderScene& scene, int spp, bool force) {
 int main(int argc, char** argv) {
   CLI::App app{"Time per sample with and without fluorescence"};
   int threads = 2, spp = 16;
-  app.add_option("--threads", threads, "Worker threads (default 2)")->check(CLI::Range(1, 4096));
-  app.add_option("--spp", spp, "Samples per pixel (default 16)")->check(CLI::Range(1, 1 << 20));
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--threads", threads, "Worker threads (default 2)")->check(nx::numberIn(1, 4096));
+  app.add_option("--spp", spp, "Samples per pixel (default 16)")->check(nx::numberIn(1, 1 << 20));
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench-fluorescence"); status >= 0)
+    return status;
   try {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                               static_cast<size_t>(threads));

@@ -16,6 +16,7 @@
 #include <cstdio>
 
 #include "accel/geometry_scene.h"
+#include "apps/command_line.h"
 #include "core/hash.h"
 #include "core/math_util.h"
 #include "integrators/sampling.h"
@@ -72,8 +73,9 @@ int main(int argc, char** argv) {
   CLI::App app{"Embree ray throughput on nxrender's sphere and plane geometry"};
   uint64_t rays = 2000000;
   app.add_option("--rays", rays, "Rays per measurement (default 2e6)")
-      ->check(CLI::Range(1000, 1000000000));
-  CLI11_PARSE(app, argc, argv);
+      ->check(nx::numberIn(1000, 1000000000));
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench-geometry"); status >= 0)
+    return status;
   try {
     EmbreeDevice device;
     std::printf("%-10s %-7s %-8s %16s %16s\n", "spheres", "planes", "threads", "closest Mrays/s",

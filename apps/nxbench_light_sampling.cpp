@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "apps/command_line.h"
 #include "integrators/renderer.h"
 
 namespace {
@@ -33,10 +34,12 @@ int main(int argc, char** argv) {
   CLI::App app{"RMSE of NEE+MIS, BSDF-only and NEE-only at equal samples per pixel"};
   int spp = 16, refSpp = 4096;
   app.add_option("--spp", spp, "Samples per pixel of each strategy (default 16)")
-      ->check(CLI::Range(1, 1 << 20));
+      ->check(nx::numberIn(1, 1 << 20));
   app.add_option("--reference-spp", refSpp, "Samples per pixel of the reference (default 4096)")
-      ->check(CLI::Range(1, 1 << 24));
-  CLI11_PARSE(app, argc, argv);
+      ->check(nx::numberIn(1, 1 << 24));
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench-light-sampling");
+      status >= 0)
+    return status;
   try {
     const nx::RenderScene scene = nx::buildRenderScene(nx::parseScene(kScene, "light-sampling"));
     nx::RenderOptions ro;

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "apps/command_line.h"
 #include "apps/heightfield_scene.h"
 #include "integrators/renderer.h"
 #include "io/mesh_reader.h"
@@ -39,9 +40,10 @@ int main(int argc, char** argv) {
   long long triangles = 1000000;
   std::string dir = "/tmp";
   app.add_option("--triangles", triangles, "About how many triangles (default 1,000,000)")
-      ->check(CLI::Range(2LL, 200000000LL));
+      ->check(nx::numberIn(2LL, 200000000LL));
   app.add_option("--dir", dir, "Where the PLY and the scene are written (default /tmp)");
-  CLI11_PARSE(app, argc, argv);
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench-mesh"); status >= 0)
+    return status;
   try {
     const int n = nx::bench::heightfieldGridFor(triangles);
     const std::string ply = dir + "/nxbench-mesh.ply", scn = dir + "/nxbench-mesh.scn";

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "apps/bench_util.h"
+#include "apps/command_line.h"
 #include "apps/heightfield_scene.h"
 #include "core/error.h"
 #include "core/frame.h"
@@ -274,18 +275,19 @@ int main(int argc, char** argv) {
   int threads = 2, spp = 8;
   app.add_option("scene", scenePath, "Scene file (default: a generated heightfield mesh)");
   app.add_option("--triangles", triangles, "Triangles of the generated mesh (default 1,000,000)")
-      ->check(CLI::Range(2LL, 200000000LL));
+      ->check(nx::numberIn(2LL, 200000000LL));
   app.add_option("--dir", dir, "Where the generated mesh and scene go (default /tmp)");
   app.add_option("--rays", rayCount, "Camera rays made (default 1,000,000)")
-      ->check(CLI::Range(size_t(1000), size_t(100000000)));
+      ->check(nx::numberIn(size_t(1000), size_t(100000000)));
   app.add_option("--batch", batch, "Rays per batch (default 65536)")
-      ->check(CLI::Range(size_t(16), size_t(1) << 30));
+      ->check(nx::numberIn(size_t(16), size_t(1) << 30));
   app.add_option("--state-bytes", stateBytes, "Path state per ray of the wavefront estimate")
-      ->check(CLI::Range(size_t(16), size_t(4096)));
+      ->check(nx::numberIn(size_t(16), size_t(4096)));
   app.add_option("--spp", spp, "Samples per pixel of the path tracer's render (default 8)")
-      ->check(CLI::Range(1, 1 << 16));
-  app.add_option("--threads", threads, "Threads (default 2)")->check(CLI::Range(1, 4096));
-  CLI11_PARSE(app, argc, argv);
+      ->check(nx::numberIn(1, 1 << 16));
+  app.add_option("--threads", threads, "Threads (default 2)")->check(nx::numberIn(1, 4096));
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench-rays"); status >= 0)
+    return status;
   try {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                               static_cast<size_t>(threads));

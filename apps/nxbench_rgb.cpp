@@ -15,6 +15,7 @@
 #include <random>
 #include <sstream>
 
+#include "apps/command_line.h"
 #include "core/error.h"
 #include "integrators/renderer.h"
 #include "spectra/sigmoid_table.h"
@@ -32,13 +33,14 @@ int main(int argc, char** argv) {
   int colours = 20000, triangles = 4000, textureSize = 2048;
   std::string dir = "/tmp";
   app.add_option("--colours", colours, "random colours for the accuracy figures")
-      ->check(CLI::Range(100, 10000000));
+      ->check(nx::numberIn(100, 10000000));
   app.add_option("--triangles", triangles, "distinct RGB-coloured triangles in the scene")
-      ->check(CLI::Range(1, 1000000));
+      ->check(nx::numberIn(1, 1000000));
   app.add_option("--texture", textureSize, "texture width and height, texels")
-      ->check(CLI::Range(1, 16384));
+      ->check(nx::numberIn(1, 16384));
   app.add_option("--dir", dir, "where the scene and texture are written");
-  CLI11_PARSE(app, argc, argv);
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench-rgb"); status >= 0)
+    return status;
   try {
     using namespace nx;
     std::mt19937 rng(7);

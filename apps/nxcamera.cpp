@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "apps/command_line.h"
 #include "core/error.h"
 #include "core/text_table.h"
 #include "io/envi_export.h"
@@ -42,11 +43,8 @@ int main(int argc, char** argv) {
   app.add_option("--offset", cam.offsetDn, "Black level (DN)");
   app.add_option("--bits", cam.bitDepth, "ADC bit depth");
   app.add_option("--seed", cam.seed, "Seed of the noise");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxcamera"); status >= 0)
+    return status;
   try {
     cam.quantumEfficiency.clear();
     std::stringstream ss(qe);

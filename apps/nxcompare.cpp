@@ -23,6 +23,7 @@
 #include <optional>
 #include <sstream>
 
+#include "apps/command_line.h"
 #include "apps/compare_figure.h"
 #include "core/error.h"
 #include "core/file_text.h"
@@ -149,14 +150,11 @@ int main(int argc, char** argv) {
   app.add_option("--illuminant", illuminantName,
                  "The white of the region colours (an illuminant name; default D65)");
   app.add_option("--max-sam", maxSam, "Exit 1 when the mean spectral angle exceeds DEG")
-      ->check(CLI::Range(0.0, 180.0));
+      ->check(nx::numberIn(0.0, 180.0));
   app.add_option("--max-relative-rmse", maxRelRmse, "Exit 1 when a band's relative RMSE exceeds R")
-      ->check(CLI::Range(0.0, 1e9));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+      ->check(nx::numberIn(0.0, 1e9));
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxcompare", 2); status >= 0)
+    return status;
   try {
     const std::optional<nx::Spectrum> illuminant = nx::namedEmission(illuminantName);
     if (!illuminant)

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "apps/command_line.h"
 #include "io/spectral_exr.h"
 
 int main(int argc, char** argv) {
@@ -27,8 +28,9 @@ int main(int argc, char** argv) {
   app.add_option("a", a, "First EXR")->required();
   app.add_option("b", b, "Second EXR")->required();
   app.add_option("--max-relative", maxRelative, "Largest relative difference accepted (default 0)")
-      ->check(CLI::Range(0.0, 1e9));
-  CLI11_PARSE(app, argc, argv);
+      ->check(nx::numberIn(0.0, 1e9));
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxdiff"); status >= 0)
+    return status;
   try {
     const nx::SpectralImage x = nx::readSpectralExr(a), y = nx::readSpectralExr(b);
     // Say which of size, position and bands differ, with both values.

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "apps/command_line.h"
 #include "core/error.h"
 #include "core/memory.h"
 #include "integrators/renderer.h"
@@ -34,7 +35,8 @@ int main(int argc, char** argv) {
                  "Parts written by nxrender (--crop, --spp-range, --tile-of-array, or disjoint "
                  "--bands/--sensor ranges of the same scene, seed and samples)")
       ->required();
-  CLI11_PARSE(app, argc, argv);
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxmerge"); status >= 0)
+    return status;
   try {
     if (std::filesystem::path(output).extension() != ".exr")
       throw nx::Error(output + ": expected an output file name ending in .exr");

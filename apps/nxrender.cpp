@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "apps/command_line.h"
 #include "apps/program_main.h"
 #include "apps/render_job.h"
 #include "core/error.h"
@@ -173,9 +174,9 @@ int run(int argc, char** argv) {
        envi = false, timings = false, adaptive = false;
   int adaptiveMinSpp = 16;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 4096));
+      ->check(nx::numberIn(1, 4096));
   app.add_option("--spp", spp, "Samples per pixel (default: the scene's <sampl>)")
-      ->check(CLI::Range(1, 1 << 30));
+      ->check(nx::numberIn(1, 1 << 30));
   app.add_option("-o,--output", output,
                  "Spectral EXR to write; the preview goes beside it as .png "
                  "(default: the preview at the scene's <path>, the EXR beside it)");
@@ -192,7 +193,7 @@ int run(int argc, char** argv) {
                  "alone, as earlier versions)")
       ->check(CLI::IsMember({"sensor", "visible"}));
   app.add_option("--seed", seed, "Random seed (default: the scene's <seed>, else 0)")
-      ->check(CLI::Range(0LL, 2147483647LL));
+      ->check(nx::numberIn(0LL, 2147483647LL));
   app.add_option("--light-sampling", lightSampling,
                  "mis (default), bsdf or nee: how diffuse surfaces find lights")
       ->check(CLI::IsMember({"mis", "bsdf", "nee"}));
@@ -230,11 +231,11 @@ int run(int argc, char** argv) {
                "OUT.part<ID>.exr");
   app.add_option("--checkpoint", checkpointSeconds,
                  "Also write the EXR every SECONDS while rendering")
-      ->check(CLI::Range(1.0, 1e9));
+      ->check(nx::numberIn(1.0, 1e9));
   app.add_option("--target-error", targetError,
                  "Stop once the estimated relative RMS error named by --error-of is at most E "
                  "(checked after each pass)")
-      ->check(CLI::Range(1e-9, 1e9));
+      ->check(nx::numberIn(1e-9, 1e9));
   app.add_option("--error-of", errorOf,
                  "The error --target-error aims at: luminance (default; Y, CIE 1931 over 360-830 "
                  "nm, whatever the bands), bands (the worst band's relative RMS error), or "
@@ -244,23 +245,20 @@ int run(int argc, char** argv) {
                "until --target-error is met (--spp: the most a pixel may take)");
   app.add_option("--adaptive-min-spp", adaptiveMinSpp,
                  "The uniform pilot of --adaptive, samples per pixel (default 16)")
-      ->check(CLI::Range(2, 1 << 30));
+      ->check(nx::numberIn(2, 1 << 30));
   app.add_option("--adaptive-from", adaptiveFrom,
                  "One adaptive round planned from this whole-image EXR of the same render (a "
                  "farm round: every --crop part plans alike; docs/farm.md)");
   app.add_option("--time-limit", timeLimit, "Stop before a pass that would end after SECONDS")
-      ->check(CLI::Range(1e-3, 1e12));
+      ->check(nx::numberIn(1e-3, 1e12));
   app.add_option("--resume", resumePath,
                  "Continue the render stored in this EXR (written by an interrupted run)");
   app.add_flag("--timings", timings,
                "Print the seconds of each step of the whole process (load, build, render, "
                "image, EXR, preview) on stderr");
   app.add_option("scene", scenePath, "Scene file (.scn)")->required();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const int status = nx::parseCommandLine(app, argc, argv, "nxrender"); status >= 0)
+    return status;
 
   PhaseClock clock;
   nx::SceneDesc desc = nx::loadScene(scenePath);

@@ -18,6 +18,23 @@ bool AdaptivePlan::addsSamplesTo(const Film& film) const {
 namespace {
 
 // Each pixel's per-sample variance, normalised so that the target is a mean of target^2.
+// True when the measured quantity (luminance, or a band the measure names) is above 0 somewhere.
+bool measuredSignal(const Film& film, const ErrorMeasure& measure) {
+  const PixelRect& r = film.rect();
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) {
+      if (!measure.bands) {
+        if (film.xyzMean(x, y).y > 0) return true;
+        continue;
+      }
+      for (int b = 0; b < film.bands().count(); ++b) {
+        const double c = film.bands().centroid(b);
+        if (c >= measure.loNm && c <= measure.hiNm && film.bandMean(x, y, b) > 0) return true;
+      }
+    }
+  return false;
+}
+
 std::vector<double> normalisedSampleVariances(const Film& film, const ErrorMeasure& measure) {
   const PixelRect& r = film.rect();
   const size_t pixels = static_cast<size_t>(r.width()) * r.height();
@@ -79,8 +96,17 @@ AdaptivePlan planAdaptiveSamples(const Film& film, const ErrorMeasure& measure, 
         throw Error("adaptive sampling: pixel " + std::to_string(x) + "," + std::to_string(y) +
                     " holds fewer than the two samples (one per replicate) a plan needs");
 
+  measure.requireBandsIn(film.bands());
   // Per block: pixels, summed per-sample variance, the fewest samples a pixel holds.
   const std::vector<double> v = normalisedSampleVariances(film, measure);
+  // A lit image whose every variance estimate is 0 has had its variances removed or zeroed
+  // (no render of two replicates gives that): a plan from it would add no sample and call the
+  // error 0.
+  if (std::all_of(v.begin(), v.end(), [](double x) { return x == 0; }) &&
+      measuredSignal(film, measure))
+    throw Error("adaptive sampling: expected variance estimates to plan from, found 0 at every "
+                "pixel of an image that is not black (variances removed, e.g. --no-variance, "
+                "or zeroed)");
   std::vector<double> pixelsIn(blocks, 0.0), sum(blocks, 0.0);
   std::vector<uint32_t> held(blocks, maxSamples);
   for (int y = r.y0; y < r.y1; ++y)

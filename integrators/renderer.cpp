@@ -34,6 +34,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   tileContext.capture_fp_settings();
   const RenderSettings& settings = scene.settings;
   const Sensor bands = options.bands ? *options.bands : settings.bands;
+  if (options.targetRelativeError > 0) options.errorMeasure.requireBandsIn(bands);
   const PixelRect rect =
       options.crop ? *options.crop : PixelRect{0, 0, settings.width, settings.height};
   if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > settings.width || rect.y1 > settings.height ||

@@ -40,4 +40,14 @@ expect_error "only with --adaptive" \
 r --spp 16 --crop 157,0,320,77 -o "$d/u.exr" "$scene"
 expect_error "its adaptive sampling is 'off'" \
   "$bin/nxmerge" -o "$d/x.exr" "$d/a.exr" "$d/u.exr" "$d/c.exr"
+# A pilot without variances (--no-variance) or a band range naming no band of the render:
+# refused (the first planned no sample and recorded an error of 0, the second never stopped).
+r --spp 16 --no-variance -o "$d/novar.exr" "$scene"
+expect_error "expected variance estimates to plan from, found 0 at every pixel" \
+  "$bin/nxrender" --spp 512 --target-error 0.5 --adaptive-from "$d/novar.exr" -o "$d/x.exr" "$scene"
+expect_error "expected a range holding at least one band of the render" \
+  "$bin/nxrender" --spp 512 --target-error 0.5 --error-of bands:900-1000 --adaptive-from "$d/pilot.exr" -o "$d/x.exr" "$scene"
+expect_error "expected a range holding at least one band of the render" \
+  "$bin/nxrender" --spp 64 --target-error 0.5 --error-of bands:900-1000 -o "$d/x.exr" "$scene"
+[ ! -e "$d/x.exr" ] || { echo "a refused render wrote x.exr"; exit 1; }
 echo "adaptive round: crops merge into the whole round bit for bit; misuse refused"

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Option errors of every program: status 1 (nxcompare: its usage status 2), the message
+# "<program>: error: <option>: expected ..., found ..." on stderr, nothing written. NaN and
+# infinity in any numeric option are refused (CLI::Range let NaN through and switched checks
+# off), and bounds are printed as numbers, not "0.000000".
+# Usage: option_errors.sh BIN_DIR SCENE
+set -u
+bin=$1 scene=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+failures=0
+check() { # status expected-first-line program args...
+  local status=$1 expected=$2
+  shift 2
+  "$bin/$1" "${@:2}" >out.txt 2>err.txt
+  local got=$?
+  local first
+  first=$(head -n 1 err.txt)
+  if [ "$got" != "$status" ] || [ "$first" != "$expected" ]; then
+    echo "FAIL: $* -> status $got, '$first' (expected $status, '$expected')"
+    failures=$((failures + 1))
+  fi
+  if ls ./*.exr ./*.png >/dev/null 2>&1; then
+    echo "FAIL: $* wrote $(ls ./*.exr ./*.png)"
+    failures=$((failures + 1))
+    rm -f ./*.exr ./*.png
+  fi
+}
+check 1 "nxrender: error: --target-error: expected a number from 1e-09 to 1e+09, found 'nan'" \
+  nxrender --target-error nan -o x.exr "$scene"
+check 1 "nxrender: error: --time-limit: expected a number from 0.001 to 1e+12, found 'nan'" \
+  nxrender --time-limit nan -o x.exr "$scene"
+check 1 "nxrender: error: --checkpoint: expected a number from 1 to 1e+09, found 'inf'" \
+  nxrender --checkpoint inf -o x.exr "$scene"
+check 1 "nxrender: error: --target-error: expected a number from 1e-09 to 1e+09, found '1e-300'" \
+  nxrender --target-error 1e-300 -o x.exr "$scene"
+check 1 "nxrender: error: --threads: expected a number from 1 to 4096, found '0'" \
+  nxrender --threads 0 -o x.exr "$scene"
+check 1 "nxrender: error: The following argument was not expected: --no-such-option" \
+  nxrender --no-such-option -o x.exr "$scene"
+check 1 "nxdiff: error: --max-relative: expected a number from 0 to 1e+09, found 'nan'" \
+  nxdiff --max-relative nan a.exr b.exr
+check 2 "nxcompare: error: --max-sam: expected a number from 0 to 180, found 'nan'" \
+  nxcompare --max-sam nan a.exr b.exr
+check 2 "nxcompare: error: --max-relative-rmse: expected a number from 0 to 1e+09, found 'NaN'" \
+  nxcompare --max-relative-rmse NaN a.exr b.exr
+check 1 "nxcamera: error: --gain: expected a finite number, found 'nan'" \
+  nxcamera --gain nan -o c.exr a.exr
+check 1 "nxmerge: error: --output is required" nxmerge a.exr
+"$bin/nxrender" --help >/dev/null || { echo "FAIL: --help status $?"; failures=$((failures + 1)); }
+echo "$failures failures"
+[ "$failures" = 0 ]
