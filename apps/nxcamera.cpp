@@ -17,6 +17,7 @@
 #include "apps/command_line.h"
 #include "core/error.h"
 #include "core/text_table.h"
+#include "io/atomic_file.h"
 #include "io/envi_export.h"
 #include "io/spectral_exr.h"
 #include "spectra/camera_simulation.h"
@@ -51,6 +52,11 @@ int main(int argc, char** argv) {
     std::string cell;
     while (std::getline(ss, cell, ','))
       cam.quantumEfficiency.push_back(nx::parseNumber(cell, "--qe", "a quantum efficiency"));
+    // Every output is checked before any is written (the EXR was left behind when --envi
+    // was refused after it).
+    nx::checkExrOutputName(output);
+    nx::checkWritable(output);
+    if (!envi.empty()) nx::checkEnviOutputName(envi);
     nx::SpectralImage img = nx::readSpectralExr(input);
     const int nb = img.bands.count();
     nx::validateCameraModel(cam, nb, "nxcamera");

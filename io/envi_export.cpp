@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/atomic_file.h"
 #include "io/gdal_library.h"
 
 namespace nx {
@@ -32,17 +33,23 @@ std::string enviHeaderPath(const std::string& dataPath) {
   return std::filesystem::path(dataPath).replace_extension(".hdr").string();
 }
 
+void checkEnviOutputName(const std::string& dataPath) {
+  if (enviHeaderPath(dataPath) == dataPath)
+    throw Error(dataPath +
+                ": expected an ENVI data file name with an extension other than .hdr "
+                "(e.g. .img), found '" +
+                dataPath + "'");
+  checkWritable(dataPath);
+  checkWritable(enviHeaderPath(dataPath));
+}
+
 void writeEnvi(const std::string& dataPath, const SpectralImage& image) {
   static std::once_flag registered;
   std::call_once(registered, [] { gdal().GDALRegister_ENVI(); });
   const Sensor& sensor = image.bands;
   const int nb = sensor.count(), w = image.width, h = image.height;
+  checkEnviOutputName(dataPath);
   const std::string hdrPath = enviHeaderPath(dataPath);
-  if (hdrPath == dataPath)
-    throw Error(dataPath +
-                ": expected an ENVI data file name with an extension other than .hdr "
-                "(e.g. .img), found '" +
-                dataPath + "'");
   // Written under temporary names in the target's directory (with the data file's
   // extension, so that GDAL names the header alike), then renamed: header, then data.
   const std::filesystem::path target(dataPath);

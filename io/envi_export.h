@@ -15,6 +15,10 @@ namespace nx {
 /// ones only once complete. Throws nx::Error naming the path on failure.
 void writeEnvi(const std::string& dataPath, const SpectralImage& image);
 
+/// Throws nx::Error unless `dataPath` can be written as an ENVI cube: its name is not the
+/// header's (an extension other than .hdr), and both files can be written (checkWritable).
+void checkEnviOutputName(const std::string& dataPath);
+
 /// The header path GDAL gives the data file `dataPath` (its extension replaced by .hdr).
 std::string enviHeaderPath(const std::string& dataPath);
 

@@ -10,8 +10,11 @@
 #include <ImfThreading.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "core/error.h"
 #include "core/file_text.h"
@@ -36,9 +39,20 @@ static_assert(static_cast<int>(ExrCompression::Zip) == Imf::ZIP_COMPRESSION &&
               "ExrCompression follows OpenEXR's order");
 
 namespace {
+void checkFiniteValues(const std::string& path, const SpectralImage& image);
 void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored,
               const ExrEncoding& encoding);
 } // namespace
+
+void checkExrOutputName(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext != ".exr")
+    throw Error(path +
+                ": expected an output name ending in .exr (the file is an OpenEXR), found '" +
+                (ext.empty() ? std::string("no extension") : ext) + "'");
+}
 
 void writeSpectralExr(const std::string& path, const SpectralImage& image,
                       const ExrEncoding& encoding) {
@@ -47,6 +61,7 @@ void writeSpectralExr(const std::string& path, const SpectralImage& image,
 
 void writeSpectralExrHalf(const std::string& path, const SpectralImage& image,
                           const ExrEncoding& encoding) {
+  checkFiniteValues(path, image);
   if (!fitsInHalf(image))
     throw Error(path + ": expected values within the half-float range (65504) for half output, "
                        "found larger ones");
@@ -62,6 +77,30 @@ bool fitsInHalf(const SpectralImage& image) {
 }
 
 namespace {
+// No NaN or infinity is written (a render never holds one; an image built elsewhere, e.g. in
+// Python, may): the first one is named with its channel and pixel.
+void checkFiniteValues(const std::string& path, const SpectralImage& image) {
+  const auto check = [&](const std::vector<float>& v, size_t perPixel, const char* what) {
+    for (size_t k = 0; k < v.size(); ++k)
+      if (!std::isfinite(v[k])) {
+        const size_t p = k / perPixel;
+        throw Error(path + ": expected finite values in " + what + ", found " + numberText(v[k]) +
+                    " at pixel " +
+                    std::to_string(image.originX + static_cast<int>(p % image.width)) + "," +
+                    std::to_string(image.originY + static_cast<int>(p / image.width)) +
+                    " (nothing written)");
+      }
+  };
+  const size_t nb = static_cast<size_t>(image.bands.count());
+  check(image.radiance, nb, "the spectral channels");
+  check(image.rgb, 3, "R, G, B");
+  check(image.xyz, 3, "X, Y, Z");
+  check(image.bandVariance, nb, "the Variance channels");
+  check(image.yVariance, 1, "Variance.Y");
+  check(image.white, nb, "the white-reference channels");
+  check(image.depth, 1, "Depth");
+}
+
 // Float channels are stored as `stored` (FLOAT or HALF; OpenEXR converts from the float
 // buffers); SampleCount always as UINT.
 void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored,
@@ -81,6 +120,8 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
       image.originY < 0 || image.originX + image.width > image.displayWidth() ||
       image.originY + image.height > image.displayHeight())
     throw Error(path + ": internal error: image buffers do not match its size");
+  checkExrOutputName(path);
+  checkFiniteValues(path, image);
 
   writeAtomically(path, [&](const std::string& temp) {
     const Imath::Box2i display({0, 0}, {image.displayWidth() - 1, image.displayHeight() - 1});

@@ -54,6 +54,10 @@ inline constexpr const char* kDepthChannel = "Depth";
 /// (a comma as decimal separator, since a dot separates EXR layers).
 std::string spectralChannelName(double nm);
 
+/// Throws nx::Error unless `path` ends in .exr (any case): an EXR is never written under another
+/// format's name (x.png holding EXR data).
+void checkExrOutputName(const std::string& path);
+
 /// Writes the image as an OpenEXR with float channels S0.<band>nm, R, G, B and (when present)
 /// X, Y, Z, Variance.Y and Variance.S0.<band>nm (error estimates of the means), a uint channel
 /// SampleCount (none of these names is a spectral one), the data
@@ -61,6 +65,8 @@ std::string spectralChannelName(double nm);
 /// spectralLayoutVersion = "1.0" and emissiveUnits = "W.m^-2.sr^-1", and every provenance
 /// attribute. The file appears atomically (temporary name, then rename). `encoding`: the
 /// compression (default: none for floats, piz for half floats; see defaultExrCompression).
+/// Refused, writing nothing: a name not ending in .exr, a NaN or infinite value (named with its
+/// channel and pixel).
 void writeSpectralExr(const std::string& path, const SpectralImage& image,
                       const ExrEncoding& encoding = {});
 

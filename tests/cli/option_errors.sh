@@ -48,6 +48,16 @@ check 2 "nxcompare: error: --max-relative-rmse: expected a number from 0 to 1e+0
 check 1 "nxcamera: error: --gain: expected a finite number, found 'nan'" \
   nxcamera --gain nan -o c.exr a.exr
 check 1 "nxmerge: error: --output is required" nxmerge a.exr
+# nxcamera checks every output before writing any (the EXR was left when --envi was refused
+# after it), and an EXR is never written under another format's name.
+"$bin/nxrender" --spp 2 --crop 0,0,8,8 -o in.exr "$scene" >/dev/null 2>&1 || echo "FAIL: render"
+mkdir -p inputs && mv in.exr inputs/ && rm -f in.png
+check 1 "nxcamera: error: c.png: expected an output name ending in .exr (the file is an OpenEXR), found '.png'" \
+  nxcamera -o c.png inputs/in.exr
+check 1 "nxcamera: error: c.hdr: expected an ENVI data file name with an extension other than .hdr (e.g. .img), found 'c.hdr'" \
+  nxcamera -o c.exr --envi c.hdr inputs/in.exr
+check 1 "nxcamera: error: /nonexistent-dir/c.img: the output directory '/nonexistent-dir' does not exist" \
+  nxcamera -o c.exr --envi /nonexistent-dir/c.img inputs/in.exr
 "$bin/nxrender" --help >/dev/null || { echo "FAIL: --help status $?"; failures=$((failures + 1)); }
 echo "$failures failures"
 [ "$failures" = 0 ]
