@@ -18,8 +18,8 @@
 #include "core/text_table.h"
 #include "integrators/materials/fresnel.h"
 #include "integrators/render_scene.h"
+#include "io/camera_checks.h"
 #include "io/mesh_reader.h"
-#include "io/scene_limits.h"
 #include "io/spectral_exr.h"
 #include "io/srgb_image.h"
 #include "spectra/colour.h"
@@ -204,6 +204,7 @@ private:
   }
 
   static PinholeCamera pinhole(const CameraDesc& c, const SettingsDesc& s) {
+    checkCameraDesc(c, s.width, s.height); // also what Python edits made of it
     if (!c.intrinsics && !c.extrinsics && c.distortion == std::array<double, 5>{})
       return PinholeCamera(c.position, c.lookAt, c.up, c.fovDegrees, s.width, s.height);
     CameraCalibration cal =
@@ -213,18 +214,6 @@ private:
     if (c.intrinsics) {
       cal.fx = (*c.intrinsics)[0], cal.fy = (*c.intrinsics)[1];
       cal.cx = (*c.intrinsics)[2], cal.cy = (*c.intrinsics)[3];
-      // The focal lengths must give a field of view a pinhole can have, as <fov> must: fx of
-      // 1e-300 pixels spread the image over 180 degrees and rendered black.
-      const double fovX = 2 * std::atan(0.5 * s.width / cal.fx) * 180 / kPi,
-                   fovY = 2 * std::atan(0.5 * s.height / cal.fy) * 180 / kPi;
-      if (!(fovX <= kFovRange.hi && fovY <= kFovRange.hi))
-        throw Error(
-            c.loc.str() + ": expected focal lengths fx, fy giving fields of view of at " + "most " +
-            numberText(kFovRange.hi) + " degrees across the " + std::to_string(s.width) + " x " +
-            std::to_string(s.height) + " image (fx >= " +
-            numberText(0.5 * s.width / std::tan(0.5 * kFovRange.hi * kPi / 180)) +
-            ", fy >= " + numberText(0.5 * s.height / std::tan(0.5 * kFovRange.hi * kPi / 180)) +
-            " pixels), found fx " + numberText(cal.fx) + ", fy " + numberText(cal.fy));
     } else if (c.extrinsics) {
       cal.fx = cal.fy = 0.5 * s.width / std::tan(0.5 * c.fovDegrees * kPi / 180.0);
       cal.cx = 0.5 * s.width - 0.5, cal.cy = 0.5 * s.height - 0.5;

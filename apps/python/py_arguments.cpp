@@ -46,6 +46,9 @@ long long integerArgument(const py::handle& value, const char* param, long long 
 
 namespace {
 double realNumber(const py::handle& value, const std::string& param) {
+  // complex (Python's or numpy's) has a real part but is not a real number: refused, not cut
+  if (typeName(value).find("complex") != std::string::npos)
+    throw py::type_error(param + ": expected a real number, found " + typeName(value));
   if (py::isinstance<py::bool_>(value) ||
       !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
         py::hasattr(value, "__float__")))

@@ -5,9 +5,13 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cfloat>
+#include <cmath>
 #include <filesystem>
+#include <type_traits>
 
 #include "apps/python/py_arguments.h"
+#include "core/error.h"
 #include "io/envi_export.h"
 #include "io/spectral_cube.h"
 #include "spectra/band_colour.h"
@@ -32,13 +36,35 @@ py::object view(const py::object& owner, std::vector<T>& data, int depth) {
 }
 
 // Copies a numpy-convertible array of shape (H, W, depth) (or (H, W) when depth is 0) into a
-// pixel-interleaved vector.
+// pixel-interleaved vector. Every value must be a real number that T holds as it is: finite,
+// within [lo, hi], and whole for an integer T. Nothing is coerced (a complex array lost its
+// imaginary part, 1e300 became inf in float32, -1 became 4294967295 in uint32).
+// numpy.asarray(value), refused unless it holds real numbers (ints or floats).
+py::array realArray(const py::handle& value, const char* param) {
+  py::object asArray;
+  try {
+    asArray = py::module_::import("numpy").attr("asarray")(value);
+  } catch (const py::error_already_set&) {
+    throw py::type_error(std::string(param) + ": expected an array of numbers, found " +
+                         typeName(value));
+  }
+  const std::string kind = py::str(asArray.attr("dtype").attr("kind"));
+  if (kind == "c")
+    throw py::type_error(std::string(param) +
+                         ": expected an array of real numbers, found complex numbers");
+  if (kind != "f" && kind != "i" && kind != "u")
+    throw py::type_error(std::string(param) + ": expected an array of numbers, found " +
+                         typeName(value));
+  return asArray.cast<py::array>();
+}
+
 template <typename T>
 std::vector<T> pixelsArgument(const py::handle& value, const char* param, py::ssize_t h,
-                              py::ssize_t w, py::ssize_t depth) {
-  py::array_t<T, py::array::c_style | py::array::forcecast> a;
+                              py::ssize_t w, py::ssize_t depth, double lo, double hi) {
+  const py::array asArray = realArray(value, param);
+  py::array_t<double, py::array::c_style | py::array::forcecast> a;
   try {
-    a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(value);
+    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(asArray);
   } catch (const py::error_already_set&) {
   }
   if (!a) {
@@ -58,7 +84,23 @@ std::vector<T> pixelsArgument(const py::handle& value, const char* param, py::ss
         std::string(param) + ": expected shape (" + std::to_string(h) + ", " + std::to_string(w) +
         (depth ? ", " + std::to_string(depth) : std::string()) + "), found " + found);
   }
-  return std::vector<T>(a.data(), a.data() + a.size());
+  std::vector<T> out(static_cast<size_t>(a.size()));
+  const double* v = a.data();
+  for (size_t i = 0; i < out.size(); ++i) {
+    const bool whole = !std::is_integral_v<T> || v[i] == std::floor(v[i]);
+    if (!(std::isfinite(v[i]) && v[i] >= lo && v[i] <= hi && whole)) {
+      const size_t perPixel = depth ? static_cast<size_t>(depth) : 1;
+      const size_t p = i / perPixel;
+      throw py::value_error(std::string(param) + ": expected " +
+                            (std::is_integral_v<T> ? "whole numbers" : "finite numbers") + " in [" +
+                            nx::exactNumberText(lo) + ", " + nx::exactNumberText(hi) + "], found " +
+                            nx::numberText(v[i]) + " at row " +
+                            std::to_string(p / static_cast<size_t>(w)) + ", column " +
+                            std::to_string(p % static_cast<size_t>(w)));
+    }
+    out[i] = static_cast<T>(v[i]);
+  }
+  return out;
 }
 
 std::vector<double> centroids(const nx::Sensor& s) {
@@ -70,16 +112,7 @@ std::vector<double> centroids(const nx::Sensor& s) {
 PyImage makeImage(const py::object& radiance, const py::object& wavelengths,
                   const py::object& bands, const py::object& variance,
                   const py::object& sampleCount, const py::object& attributes) {
-  py::array_t<float, py::array::c_style | py::array::forcecast> probe;
-  try {
-    probe = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(radiance);
-  } catch (const py::error_already_set&) {
-  }
-  if (!probe) {
-    PyErr_Clear();
-    throw py::type_error("radiance: expected an array of numbers (height, width, bands), found " +
-                         typeName(radiance));
-  }
+  const py::array probe = realArray(radiance, "radiance");
   if (probe.ndim() != 3 || probe.shape(0) < 1 || probe.shape(1) < 1 || probe.shape(2) < 1)
     throw py::value_error("radiance: expected a non-empty array of shape (height, width, "
                           "bands), found " +
@@ -101,11 +134,14 @@ PyImage makeImage(const py::object& radiance, const py::object& wavelengths,
   if (im.bands.count() != nb)
     throw py::value_error("radiance: expected " + std::to_string(im.bands.count()) +
                           " bands (one per wavelength), found " + std::to_string(nb));
-  im.radiance = pixelsArgument<float>(radiance, "radiance", im.height, im.width, nb);
+  im.radiance =
+      pixelsArgument<float>(radiance, "radiance", im.height, im.width, nb, -FLT_MAX, FLT_MAX);
   if (!variance.is_none())
-    im.bandVariance = pixelsArgument<float>(variance, "variance", im.height, im.width, nb);
+    im.bandVariance =
+        pixelsArgument<float>(variance, "variance", im.height, im.width, nb, 0, FLT_MAX);
   if (!sampleCount.is_none())
-    im.sampleCount = pixelsArgument<uint32_t>(sampleCount, "sample_count", im.height, im.width, 0);
+    im.sampleCount = pixelsArgument<uint32_t>(sampleCount, "sample_count", im.height, im.width, 0,
+                                              0, 4294967295.0);
   nx::BandColour(centroids(im.bands)).fill(im.radiance, im.xyz, im.rgb);
   if (!attributes.is_none()) {
     if (!py::isinstance<py::dict>(attributes))

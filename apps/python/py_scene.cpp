@@ -9,6 +9,7 @@
 #include "apps/python/py_arguments.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "io/camera_checks.h"
 #include "io/scene_limits.h"
 
 namespace nxpy {
@@ -29,6 +30,22 @@ double rangedArgument(const py::handle& value, const std::string& param,
                           py::str(py::float_(r.hi)).cast<std::string>() + "], found " +
                           py::str(py::float_(v)).cast<std::string>());
   return v;
+}
+
+// Applies edit to a copy of the camera, checks the result as the scene build does (the same
+// function), and only then stores it and records the edit: a refused value leaves the scene
+// as it was.
+template <typename Edit>
+void editCamera(SceneState& s, const std::string& param, const py::handle& value, Edit edit) {
+  nx::CameraDesc copy = s.desc.camera;
+  edit(copy);
+  try {
+    nx::checkCameraDesc(copy, s.desc.settings.width, s.desc.settings.height);
+  } catch (const nx::Error& e) {
+    throw py::value_error(param + ": " + e.what());
+  }
+  s.desc.camera = copy;
+  record(s, param, value);
 }
 
 nx::Vec3d pointArgument(const py::handle& value, const std::string& param) {
@@ -706,22 +723,22 @@ void bindScene(py::module_& m) {
           [](const CameraView& c, const py::object& value) {
             if (c.s->desc.camera.extrinsics)
               throw py::value_error("camera.position: the camera is placed by <extrinsics>");
-            c.s->desc.camera.position = pointArgument(value, "camera.position");
-            record(*c.s, "camera.position", value);
+            const nx::Vec3d p = pointArgument(value, "camera.position");
+            editCamera(*c.s, "camera.position", value, [&](nx::CameraDesc& d) { d.position = p; });
           })
       .def_property(
           "look_at", [](const CameraView& c) { return tupleOf(c.s->desc.camera.lookAt); },
           [](const CameraView& c, const py::object& value) {
             if (c.s->desc.camera.extrinsics)
               throw py::value_error("camera.look_at: the camera is placed by <extrinsics>");
-            c.s->desc.camera.lookAt = pointArgument(value, "camera.look_at");
-            record(*c.s, "camera.look_at", value);
+            const nx::Vec3d p = pointArgument(value, "camera.look_at");
+            editCamera(*c.s, "camera.look_at", value, [&](nx::CameraDesc& d) { d.lookAt = p; });
           })
       .def_property(
           "up", [](const CameraView& c) { return tupleOf(c.s->desc.camera.up); },
           [](const CameraView& c, const py::object& value) {
-            c.s->desc.camera.up = pointArgument(value, "camera.up");
-            record(*c.s, "camera.up", value);
+            const nx::Vec3d u = pointArgument(value, "camera.up");
+            editCamera(*c.s, "camera.up", value, [&](nx::CameraDesc& d) { d.up = u; });
           })
       .def_property(
           "fov",
@@ -731,9 +748,11 @@ void bindScene(py::module_& m) {
                        : py::object(py::float_(c.s->desc.camera.fovDegrees));
           },
           [](const CameraView& c, const py::object& value) {
-            c.s->desc.camera.fovDegrees = rangedArgument(value, "camera.fov", nx::kFovRange);
-            c.s->desc.camera.intrinsics.reset();
-            record(*c.s, "camera.fov", value);
+            const double fov = rangedArgument(value, "camera.fov", nx::kFovRange);
+            editCamera(*c.s, "camera.fov", value, [&](nx::CameraDesc& d) {
+              d.fovDegrees = fov;
+              d.intrinsics.reset();
+            });
           },
           "Horizontal field of view in degrees (None when intrinsics are given; setting it "
           "removes them)")
@@ -746,10 +765,9 @@ void bindScene(py::module_& m) {
           },
           [](const CameraView& c, const py::object& value) {
             const std::vector<double> v = numbersArgument(value, "camera.intrinsics", 4);
-            if (!(v[0] > 0 && v[1] > 0))
-              throw py::value_error("camera.intrinsics: expected fx > 0 and fy > 0 (pixels)");
-            c.s->desc.camera.intrinsics = std::array<double, 4>{v[0], v[1], v[2], v[3]};
-            record(*c.s, "camera.intrinsics", value);
+            editCamera(*c.s, "camera.intrinsics", value, [&](nx::CameraDesc& d) {
+              d.intrinsics = std::array<double, 4>{v[0], v[1], v[2], v[3]};
+            });
           },
           "OpenCV intrinsics (fx, fy, cx, cy) in pixels, or None");
 

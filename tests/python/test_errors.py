@@ -147,3 +147,57 @@ def test_bad_image_arrays():
         nxrender.write_exr(3, nxrender.Image(np.zeros((1, 1, 1)), wavelengths=[500]))
     with pytest.raises(TypeError):
         nxrender.write_exr("x.exr", "not an image")
+
+
+def test_image_arrays_are_not_coerced(tmp_path):
+    """Values a float32 or uint32 cannot hold as they are are refused, not coerced (complex lost
+    its imaginary part, 1e300 became inf, -1 became 4294967295); NaN never reaches an EXR."""
+    ones = np.ones((2, 2, 1))
+    with pytest.raises(TypeError, match="^radiance: expected an array of real numbers, found complex"):
+        nxrender.Image(ones * (1 + 2j), wavelengths=[500])
+    with pytest.raises(ValueError, match=r"^radiance: expected finite numbers in .*found 1e\+300 at row 0, column 0"):
+        nxrender.Image(ones * 1e300, wavelengths=[500])
+    with pytest.raises(ValueError, match="^variance: expected finite numbers in"):
+        nxrender.Image(ones, wavelengths=[500], variance=-ones)
+    with pytest.raises(ValueError, match=r"^sample_count: expected whole numbers in \[0, 4294967295\], found -1"):
+        nxrender.Image(ones, wavelengths=[500], sample_count=-np.ones((2, 2), dtype=np.int64))
+    with pytest.raises(ValueError, match="^sample_count: expected whole numbers"):
+        nxrender.Image(ones, wavelengths=[500], sample_count=np.full((2, 2), 1.5))
+    nan = ones.copy()
+    nan[1, 0, 0] = np.nan
+    with pytest.raises(ValueError, match="found nan at row 1, column 0"):
+        nxrender.Image(nan, wavelengths=[500])
+    # A NaN written into an image's array view is refused by the writer, and nothing written.
+    image = nxrender.Image(np.ones((2, 2, 2)), wavelengths=[500, 600])
+    image.radiance[0, 1, 0] = np.nan
+    with pytest.raises(nxrender.Error, match="expected finite values in the spectral channels, found nan at pixel 1,0"):
+        nxrender.write_exr(str(tmp_path / "nan.exr"), image)
+    assert not (tmp_path / "nan.exr").exists()
+    # An EXR is never written under another format's name.
+    with pytest.raises(nxrender.Error, match="expected an output name ending in .exr"):
+        nxrender.write_exr(str(tmp_path / "x.png"), nxrender.Image(ones, wavelengths=[500]))
+    assert not (tmp_path / "x.png").exists()
+    with pytest.raises(TypeError, match="expected a real number, found complex"):
+        nxrender.Image(ones, wavelengths=[500 + 1j])
+
+
+def test_camera_edits_are_checked_like_the_file(scenes):
+    """The camera setters apply the scene build's camera checks (camera.up = (0, 0, 0) was
+    accepted although the scene reader refuses it); a refused edit changes nothing."""
+    scene = nxrender.Scene(scenes / "blacklight.scn")
+    up = scene.camera.up
+    with pytest.raises(ValueError, match=r"^camera.up: .*expected a non-zero up direction, found 0, 0, 0"):
+        scene.camera.up = (0, 0, 0)
+    assert scene.camera.up == up
+    position, look_at = scene.camera.position, scene.camera.look_at
+    view = tuple(b - a for a, b in zip(position, look_at))
+    with pytest.raises(ValueError, match="expected an up direction not parallel to the view direction"):
+        scene.camera.up = view
+    with pytest.raises(ValueError, match="expected a look_at point different from the camera position"):
+        scene.camera.look_at = position
+    with pytest.raises(ValueError, match="expected focal lengths fx, fy giving fields of view of at most 179"):
+        scene.camera.intrinsics = (1e-300, 1e-300, 10, 10)
+    with pytest.raises(ValueError, match=r"expected focal lengths fx, fy in \(0, 1e9\]"):
+        scene.camera.intrinsics = (-5, 5, 10, 10)
+    assert scene.camera.intrinsics is None
+    assert not any("camera" in e for e in scene.edits)

@@ -1,0 +1,67 @@
+#include "io/camera_checks.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "core/math_util.h"
+#include "io/scene_limits.h"
+
+namespace nx {
+namespace {
+
+std::string vectorText(const Vec3d& v) {
+  return numberText(v.x) + ", " + numberText(v.y) + ", " + numberText(v.z);
+}
+
+// The focal length in pixels that spans `pixels` with the widest field of view allowed.
+double shortestFocal(int pixels) {
+  return 0.5 * pixels / std::tan(0.5 * kFovRange.hi * kPi / 180);
+}
+
+} // namespace
+
+void checkCameraDesc(const CameraDesc& c, int width, int height) {
+  const std::string at = c.loc.str() + ": expected ";
+  if (!c.extrinsics) {
+    const Vec3d view = c.lookAt - c.position;
+    if (!(length(view) > 0))
+      throw Error(at + "a look_at point different from the camera position, found both at " +
+                  vectorText(c.position));
+    const double upLength = length(c.up);
+    if (!(upLength > 0) || !std::isfinite(upLength))
+      throw Error(at + "a non-zero up direction, found " + vectorText(c.up));
+    // sin of the angle between up and the view direction: 0 leaves the image's x axis undefined
+    if (!(length(cross(view, c.up)) > 1e-9 * length(view) * upLength))
+      throw Error(at + "an up direction not parallel to the view direction (look_at - position " +
+                  "= " + vectorText(view) + "), found " + vectorText(c.up));
+  }
+  if (!c.intrinsics && !kFovRange.contains(c.fovDegrees))
+    throw Error(at + kFovRange.what + " in (" + numberText(kFovRange.lo) + ", " +
+                numberText(kFovRange.hi) + "], found " + numberText(c.fovDegrees));
+  if (c.intrinsics) {
+    const auto& k = *c.intrinsics;
+    if (!(k[0] > 0 && k[1] > 0 && k[0] <= 1e9 && k[1] <= 1e9 && std::abs(k[2]) <= 1e7 &&
+          std::abs(k[3]) <= 1e7))
+      throw Error(at + "focal lengths fx, fy in (0, 1e9] and a principal point cx, cy within " +
+                  "1e7 pixels in <intrinsics>, found " + numberText(k[0]) + ", " +
+                  numberText(k[1]) + ", " + numberText(k[2]) + ", " + numberText(k[3]));
+    const double fovX = 2 * std::atan(0.5 * width / k[0]) * 180 / kPi,
+                 fovY = 2 * std::atan(0.5 * height / k[1]) * 180 / kPi;
+    if (!(fovX <= kFovRange.hi && fovY <= kFovRange.hi))
+      throw Error(at + "focal lengths fx, fy giving fields of view of at most " +
+                  numberText(kFovRange.hi) + " degrees across the " + std::to_string(width) +
+                  " x " + std::to_string(height) +
+                  " image (fx >= " + numberText(shortestFocal(width)) +
+                  ", fy >= " + numberText(shortestFocal(height)) + " pixels), found fx " +
+                  numberText(k[0]) + ", fy " + numberText(k[1]));
+  }
+  if (c.thinLens) {
+    const auto& l = *c.thinLens;
+    if (!(l[0] >= 0 && l[0] <= kMaxSceneCoordinate && l[1] > 0 && l[1] <= kMaxSceneCoordinate))
+      throw Error(at + "an aperture radius >= 0 and a focus distance > 0 (scene units) in " +
+                  "<thin_lens>, found " + numberText(l[0]) + ", " + numberText(l[1]));
+  }
+}
+
+} // namespace nx
