@@ -762,7 +762,10 @@ private:
           bytes, fnv1a64(std::string_view(d.texture.c_str(), d.texture.size() + 1), digest_));
       return isExrPath(d.texture) ? spectralTexture(d.texture) : srgbTexture(bytes, d.texture);
     } catch (const Error& e) {
-      throw Error(d.loc.str() + ": " + e.what());
+      // Every texture error names the texture, whichever reader raised it.
+      const std::string what = e.what();
+      throw Error(d.loc.str() + ": " + (what.rfind(d.texture, 0) == 0 ? "" : d.texture + ": ") +
+                  what);
     }
   }
 

@@ -259,11 +259,10 @@ MeshFileCounts checkPlyFile(const std::string& bytes, const std::string& path) {
 
 MeshFileCounts checkObjFile(const std::string& bytes, const std::string& path) {
   static const std::set<std::string> kIgnored{
-      "g",      "o",          "s",         "usemtl",   "mtllib",   "l",    "p",
-      "vp",     "cstype",     "deg",       "bmat",     "step",     "curv", "curv2",
-      "surf",   "parm",       "trim",      "hole",     "scrv",     "sp",   "end",
-      "con",    "mg",         "bevel",     "c_interp", "d_interp", "lod",  "maplib",
-      "usemap", "shadow_obj", "trace_obj", "ctech",    "stech"};
+      "g",    "o",      "s",      "usemtl",     "mtllib",    "vp",    "cstype",   "deg",
+      "bmat", "step",   "curv",   "curv2",      "surf",      "parm",  "trim",     "hole",
+      "scrv", "sp",     "end",    "con",        "mg",        "bevel", "c_interp", "d_interp",
+      "lod",  "maplib", "usemap", "shadow_obj", "trace_obj", "ctech", "stech"};
   LineReader lines(bytes);
   std::string line;
   auto fail = [&](const std::string& what) {
@@ -291,9 +290,15 @@ MeshFileCounts checkObjFile(const std::string& bytes, const std::string& path) {
     } else if (w[0] == "vn") {
       numbers(3, 3, "x y z");
       ++vn;
-    } else if (w[0] == "f") {
-      if (w.size() < 4)
-        fail("expected a face of at least 3 vertices, found " + std::to_string(w.size() - 1));
+    } else if (w[0] == "f" || w[0] == "l" || w[0] == "p") {
+      // Faces, and the lines and points the library reads (and drops) with the same references.
+      const size_t least = w[0] == "f" ? 3 : w[0] == "l" ? 2 : 1;
+      if (w.size() < least + 1)
+        fail(std::string("expected ") +
+             (w[0] == "f"   ? "a face of at least 3 vertices"
+              : w[0] == "l" ? "a line of at least 2 vertices"
+                            : "a point of at least 1 vertex") +
+             ", found " + std::to_string(w.size() - 1));
       for (size_t i = 1; i < w.size(); ++i) {
         // v, v/t, v//n or v/t/n, each index 1-based or negative (relative).
         const std::string& ref = w[i];
@@ -323,7 +328,7 @@ MeshFileCounts checkObjFile(const std::string& bytes, const std::string& path) {
           start = slash + 1;
         }
       }
-      ++faces;
+      if (w[0] == "f") ++faces;
     } else if (!kIgnored.count(w[0])) {
       fail("expected an OBJ statement (v, vt, vn, f, g, o, s, usemtl, mtllib, ...), found '" +
            w[0] + "'");

@@ -165,6 +165,8 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       {"inf.obj", "v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n"},
       {"empty.obj", ""},
       {"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"},
+      {"pointref.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\np 9\n"},
+      {"lineref.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 -4\n"},
   };
   const std::vector<std::string> expected = {
       "truncated.ply:20: expected more numbers on this face line, found 3",
@@ -180,6 +182,8 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       "inf.obj:2: expected a finite number, found 'inf'",
       "empty.obj: expected faces ('f' lines), found none",
       "flat.obj': every triangle has zero area",
+      "pointref.obj:5: expected references to the 3 vertices read so far, found '9'",
+      "lineref.obj:5: expected references to the 3 vertices read so far, found '-4'",
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     const std::string path = writeFile(cases[i].first, cases[i].second);

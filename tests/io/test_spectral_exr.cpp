@@ -7,6 +7,7 @@
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 
+#include <cmath>
 #include <filesystem>
 #include <regex>
 
@@ -327,6 +328,25 @@ TEST(SpectralExr, BandsOfAnyResponseScaleReadBackOrAreRefused) {
               readSpectralExr(::testing::TempDir() + "nan_bands.exr");
             }).find("nan_bands.exr: nxrender.bands"),
             std::string::npos);
+}
+
+
+// A NaN is named as a NaN, in float and half writes alike (the half writer said "found larger
+// ones"), and nothing is written; an EXR is never written under another format's name.
+TEST(SpectralExr, NonFiniteValuesAndForeignNamesAreRefused) {
+  SpectralImage img = testImage();
+  img.radiance[7] = std::nanf("");
+  const std::string path = ::testing::TempDir() + "nan_value.exr";
+  const std::string expected = path +
+                               ": expected finite values in the spectral channels, found nan at "
+                               "pixel 1,0 (nothing written)";
+  EXPECT_EQ(test::errorMessage([&] { writeSpectralExr(path, img); }), expected);
+  EXPECT_EQ(test::errorMessage([&] { writeSpectralExrHalf(path, img); }), expected);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  const std::string png = ::testing::TempDir() + "image.png";
+  EXPECT_EQ(test::errorMessage([&] { writeSpectralExr(png, testImage()); }),
+            png + ": expected an output name ending in .exr (the file is an OpenEXR), found '.png'");
+  EXPECT_FALSE(std::filesystem::exists(png));
 }
 
 } // namespace
