@@ -266,6 +266,7 @@ int run(int argc, char** argv) {
   for (const auto& w : desc.warnings) std::fprintf(stderr, "%s\n", w.c_str());
   if (noFluorescence) nx::removeFluorescence(desc);
   const nx::RenderScene scene = nx::buildRenderScene(desc);
+  for (const auto& w : scene.warnings) std::fprintf(stderr, "%s\n", w.c_str());
   clock.mark("build scene (spectra, BVH)");
   const int width = scene.settings.width, height = scene.settings.height;
 
@@ -540,17 +541,8 @@ int run(int argc, char** argv) {
                static_cast<double>(result.stats.rays) / s, exrPath.c_str(),
                wholeImage ? " and " : "", wholeImage ? previewPath.c_str() : "",
                envi ? " and the ENVI cube " : "", envi ? enviPath.c_str() : "");
-  if (result.stats.truncated > 0)
-    std::fprintf(stderr,
-                 "nxrender: warning: %llu rt samples reached the budget of %d rays per sample "
-                 "(a tree of reflections and refractions branching at every bounce) and kept "
-                 "what they had traced\n",
-                 static_cast<unsigned long long>(result.stats.truncated), nx::kWhittedRayBudget);
-  if (result.stats.nonFinite > 0)
-    std::fprintf(stderr,
-                 "nxrender: warning: %llu samples with a NaN or infinite value were counted as "
-                 "zero (black)\n",
-                 static_cast<unsigned long long>(result.stats.nonFinite));
+  for (const std::string& w : nx::warningsOf(result.stats))
+    std::fprintf(stderr, "nxrender: warning: %s\n", w.c_str());
   return 0;
 }
 

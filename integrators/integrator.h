@@ -46,7 +46,8 @@ inline constexpr int kWhittedRayBudget = 1 << 14;
 /// Per-task counters (summed after rendering).
 struct TraceCounters {
   uint64_t rays = 0;
-  uint64_t truncated = 0; ///< Whitted samples that reached kWhittedRayBudget
+  uint64_t truncated = 0;     ///< Whitted samples that reached kWhittedRayBudget
+  uint64_t bounceLimited = 0; ///< paths ended by kMaxPathBounces while still carrying light
 };
 
 /// Radiance arriving along `ray` at the lanes of `lambda` (spectral path tracing with

@@ -123,7 +123,10 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
           }
         }
         if (flight.event != MediumEvent::None) {
-          if (bounce >= kMaxPathBounces) break;
+          if (bounce >= kMaxPathBounces) {
+            ++counters.bounceLimited; // still carrying light: counted, reported
+            break;
+          }
           const Vec3 p = ray.at(flight.t);
           // A re-emission: every lane's excitation wavelength is chosen once (as at a
           // fluorescent surface), for next-event estimation and the continuation; the light
@@ -181,7 +184,10 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       // previous vertex stays the one MIS weights refer to (next-event estimation sees
       // through interfaces too).
       if (scene.materials[app.material].kind == MaterialKind::Interface) {
-        if (bounce >= kMaxPathBounces) break;
+        if (bounce >= kMaxPathBounces) {
+          ++counters.bounceLimited; // still carrying light: counted, reported
+          break;
+        }
         crossBoundary(hit, app, -ray.d, ray.d, media);
         ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ray.d);
         ray.tMin = 0;
@@ -195,7 +201,10 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       if (w > 0)
         L += weighted() * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) * w;
     }
-    if (bounce >= kMaxPathBounces) break;
+    if (bounce >= kMaxPathBounces) {
+      ++counters.bounceLimited; // still carrying light: counted, reported
+      break;
+    }
 
     const Material& material = whiteHere ? whiteLambertian() : scene.materials[app.material];
     const Vec3 wo = -ray.d;

@@ -115,6 +115,9 @@ struct TabulatedRange {
 /// Everything an integrator needs, immutable after building.
 struct RenderScene {
   RenderSettings settings;
+  /// "file:line: warning: ..." notes of the build (what the scene asks for that renders, but
+  /// not as asked: e.g. a medium too dense for float positions where it stands)
+  std::vector<std::string> warnings;
   PinholeCamera camera{{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 60, 1, 1};
   std::unique_ptr<EmbreeDevice> device;
   std::unique_ptr<GeometryScene> geometry;

@@ -73,7 +73,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const int tiles = tilesX * tilesY;
   const int passSize = std::max(1, options.passSamples);
   const int passes = (out.samplesPerPixel + passSize - 1) / passSize;
-  std::atomic<uint64_t> rays{0}, nonFinite{0}, samples{0}, truncated{0};
+  std::atomic<uint64_t> rays{0}, nonFinite{0}, samples{0}, truncated{0}, bounceLimited{0};
   std::atomic<int64_t> finished{0};
   // Progress counts tiles of passes; an adaptive render's passes are not known in advance
   // (its count is capped at the uniform render's).
@@ -172,6 +172,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           }
           rays += counters.rays;
           truncated += counters.truncated;
+          bounceLimited += counters.bounceLimited;
           nonFinite += dropped;
           samples += taken;
           const int64_t done = ++finished;
@@ -256,6 +257,33 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   out.stats.rays = rays;
   out.stats.nonFinite = nonFinite;
   out.stats.truncated = truncated;
+  out.stats.bounceLimited = bounceLimited;
+  return out;
+}
+
+std::vector<std::string> warningsOf(const RenderStats& stats) {
+  std::vector<std::string> out;
+  const auto count = [](uint64_t n) { return std::to_string(static_cast<unsigned long long>(n)); };
+  if (stats.truncated > 0)
+    out.push_back(count(stats.truncated) + " rt samples reached the budget of " +
+                  std::to_string(kWhittedRayBudget) +
+                  " rays per sample (a tree of reflections and refractions branching at every "
+                  "bounce) and kept what they had traced");
+  if (stats.bounceLimited > 0) {
+    char share[32];
+    std::snprintf(share, sizeof share, "%.3g%%",
+                  100.0 * static_cast<double>(stats.bounceLimited) /
+                      static_cast<double>(std::max<uint64_t>(stats.samples, 1)));
+    out.push_back(count(stats.bounceLimited) + " paths (" + share + " of the samples) reached " +
+                  "the limit of " + std::to_string(kMaxPathBounces) +
+                  " bounces still carrying light and were cut there: the image is darker than "
+                  "the converged answer where they ended (an optically very thick medium, or "
+                  "many dielectric interfaces); a thinner medium or a smaller scene in its units "
+                  "renders it fully");
+  }
+  if (stats.nonFinite > 0)
+    out.push_back(count(stats.nonFinite) +
+                  " samples with a NaN or infinite value were counted as zero (black)");
   return out;
 }
 

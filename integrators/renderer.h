@@ -78,6 +78,7 @@ struct RenderStats {
   uint64_t rays = 0;             ///< camera, scattered and shadow rays
   uint64_t nonFinite = 0;        ///< samples with a NaN or infinite value (counted as zero)
   uint64_t truncated = 0;        ///< rt samples that reached kWhittedRayBudget
+  uint64_t bounceLimited = 0;    ///< paths ended by kMaxPathBounces still carrying light
   bool stopped = false;          ///< ended early by the stop flag
   bool reachedTarget = false;    ///< ended because the error target was met
   bool reachedTimeLimit = false; ///< ended because the next pass would pass the time limit
@@ -93,6 +94,12 @@ struct RenderOutput {
   int firstSample = 0, samplesPerPixel = 0; ///< the requested sample range
   uint32_t seed = 0;
 };
+
+/// The warnings a finished render's counts call for, one sentence each (without a program
+/// prefix): rt samples cut at the ray budget, paths cut at kMaxPathBounces still carrying light
+/// (a dense medium or a deep stack of dielectrics renders darker than its converged answer),
+/// non-finite samples counted as black. Empty when there is nothing to say.
+std::vector<std::string> warningsOf(const RenderStats& stats);
 
 /// Throws nx::Error naming `what` when every sample of a render was non-finite: such an
 /// image holds nothing and must not be written as a black one.

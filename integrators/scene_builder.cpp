@@ -110,6 +110,12 @@ public:
       if (o.medium) {
         app.medium = static_cast<int32_t>(scene.media.size());
         scene.media.push_back(medium(*o.medium));
+        if (o.shape == ShapeType::Sphere)
+          warnIfBelowFloatPrecision(
+              scene.media.back(), o.medium->loc,
+              std::max({std::abs(o.center.x), std::abs(o.center.y), std::abs(o.center.z)}) +
+                  o.radius,
+              scene.warnings);
         scene.hasMedia = true;
         if (scene.media.back().dye) scene.hasFluorescence = true;
       }
@@ -137,6 +143,15 @@ public:
         break;
       case ShapeType::Mesh:
         meshes.push_back(meshFromFile(o));
+        if (o.medium) {
+          double extent = 0;
+          for (uint32_t v = 0; v < meshes.back().vertexCount(); ++v) {
+            const Vec3 p = meshes.back().position(v);
+            extent = std::max(
+                {extent, double(std::abs(p.x)), double(std::abs(p.y)), double(std::abs(p.z))});
+          }
+          warnIfBelowFloatPrecision(scene.media.back(), o.medium->loc, extent, scene.warnings);
+        }
         scene.meshes.push_back({app, {}});
         meshObjects.emplace_back(meshes.size() - 1, objectIndex);
         break;
@@ -488,6 +503,24 @@ private:
   }
 
   // A <medium>: its coefficients resolved and checked over the traced range.
+  // Positions are floats: where a medium stands `extent` from the origin they are resolved to
+  // about extent * 2^-23. A mean free path within 50 of those steps is walked with a relative
+  // error above 2% per flight (measured: a white sphere of mean free path 0.1 at 1e5 from the
+  // origin 1.5% dark, at 3e4 within noise; 1e-4 at 1e4, 33% dark), so the build says so.
+  static void warnIfBelowFloatPrecision(const HomogeneousMedium& m, const SourceLocation& loc,
+                                        double extent, std::vector<std::string>& warnings) {
+    const double sigmaT = spectrumExtremes(m.sigmaA, kTraceMinNm, kTraceMaxNm).max +
+                          spectrumExtremes(m.sigmaS, kTraceMinNm, kTraceMaxNm).max + m.dyePeak;
+    const double spacing = extent * std::ldexp(1.0, -23), meanFreePath = 1 / sigmaT;
+    if (sigmaT > 0 && spacing > 0.02 * meanFreePath)
+      warnings.push_back(loc.str() + ": warning: the medium's shortest mean free path (" +
+                         numberText(meanFreePath) + " units) is within 50 steps of the float " +
+                         "resolution of positions where it stands (" + numberText(spacing) +
+                         " units, " + numberText(extent) + " from the origin): its flights are " +
+                         "walked imprecisely and it renders darker; move the scene nearer the " +
+                         "origin or give it in larger units");
+  }
+
   HomogeneousMedium medium(const MediumDesc& d) const {
     HomogeneousMedium m;
     m.sigmaA = forRendering(resolve(d.sigmaA, SpectrumRole::Coefficient).scaled(d.sigmaAScale));

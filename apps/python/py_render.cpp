@@ -164,6 +164,7 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
     py::gil_scoped_release release;
     scene.emplace(nx::buildRenderScene(src.desc));
   }
+  for (const auto& w : scene->warnings) py::module_::import("warnings").attr("warn")(w);
   const int width = scene->settings.width, height = scene->settings.height;
   if (cropBox) {
     const auto& c = *cropBox;
@@ -260,10 +261,8 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   PyImage out;
   out.image = job.image(result->film, result->stats.seconds);
   if (!src.edits.empty()) out.image.attributes["nxrender.sceneEdits"] = src.edits;
-  if (result->stats.nonFinite > 0)
-    py::module_::import("warnings")
-        .attr("warn")(std::to_string(result->stats.nonFinite) +
-                      " samples with a NaN or infinite value were counted as zero (black)");
+  for (const std::string& w : nx::warningsOf(result->stats))
+    py::module_::import("warnings").attr("warn")(w);
   return py::cast(std::move(out));
 }
 

@@ -353,5 +353,47 @@ TEST(Media, BeerLambertThroughClosedMeshes) {
       << error;
 }
 
+// Media the renderer cannot walk as asked are reported, not left to darken silently: paths cut
+// at kMaxPathBounces are counted (a furnace of sigma_s 1e4 seen from its centre: almost every
+// path; a thin one: none), and a mean free path near the float resolution of positions where
+// the medium stands is a build warning (1e-4 at 1e4 from the origin; not 0.1 at the origin).
+TEST(Media, DenseMediaAreReportedNotSilentlyDark) {
+  const RenderOutput dense = renderText(sceneText(
+      "<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode><depth>2</depth><sampl>8</sampl>"
+      "<background>1</background>",
+      kCentreCamera,
+      "<sphere><center>0,0,0</center><radius>1</radius><material>interface</material><medium>"
+      "<sigma_a>0</sigma_a><sigma_s>1e4</sigma_s></medium></sphere>"));
+  EXPECT_GT(dense.stats.bounceLimited, dense.stats.samples * 9 / 10);
+  ASSERT_FALSE(warningsOf(dense.stats).empty());
+  EXPECT_NE(warningsOf(dense.stats).front().find("reached the limit of 1024 bounces"),
+            std::string::npos);
+  const RenderOutput thin = renderText(sceneText(
+      "<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode><depth>2</depth><sampl>8</sampl>"
+      "<background>1</background>",
+      kCentreCamera,
+      "<sphere><center>0,0,0</center><radius>1</radius><material>interface</material><medium>"
+      "<sigma_a>0</sigma_a><sigma_s>0.5</sigma_s></medium></sphere>"));
+  EXPECT_EQ(thin.stats.bounceLimited, 0u);
+  EXPECT_TRUE(warningsOf(thin.stats).empty());
+  const auto buildWarnings = [](const std::string& centre, const std::string& sigmaS) {
+    const std::string body = "<sphere><center>" + centre +
+                             "</center><radius>1</radius><material>interface</material>"
+                             "<medium><sigma_a>0</sigma_a><sigma_s>" +
+                             sigmaS + "</sigma_s></medium></sphere>";
+    return resolveRenderScene(parseScene(sceneText(kBackground, kFarCamera, body), "t.scn"))
+        .warnings;
+  };
+  const std::vector<std::string> far = buildWarnings("1e4,0,0", "1e4");
+  ASSERT_EQ(far.size(), 1u);
+  EXPECT_EQ(far[0].rfind("t.scn:", 0), 0u) << far[0];
+  EXPECT_NE(far[0].find("warning: the medium's shortest mean free path (0.0001 units) is within "
+                        "50 steps of the float resolution"),
+            std::string::npos)
+      << far[0];
+  EXPECT_TRUE(buildWarnings("0,0,0", "10").empty());
+  EXPECT_EQ(buildWarnings("0,0,0", "1e6").size(), 1u); // 1e-6 against steps of 1.2e-7
+}
+
 } // namespace
 } // namespace nx
