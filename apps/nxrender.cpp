@@ -511,12 +511,15 @@ int run(int argc, char** argv) {
   {
     // The EXR and its preview as one pair (another process writing the same output waits),
     // the preview also for a stopped render (an older one would sit beside the new EXR).
+    // Replaced as one group: a kill between the two renames is completed by the next run.
     const nx::OutputLock lock(exrPath);
+    nx::AtomicFileGroup pair;
     writeImage(image);
     clock.mark("write the EXR");
     if (wholeImage)
       nx::writePreview(previewPath, image.width, image.height,
                        nx::previewPixels(result.film, scene.previewWhite));
+    pair.commit();
     clock.mark("write the preview");
     if (envi) nx::writeEnvi(enviPath, image);
     clock.mark("write the ENVI cube");

@@ -6,6 +6,7 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -43,20 +44,74 @@ fs::path tempNameFor(const fs::path& target, long pid = ::getpid()) {
   return directoryOf(target) / (tempPrefix(target) + std::to_string(pid));
 }
 
-// Removes "<prefix><pid>" files of this target whose process no longer runs.
+bool processGone(long pid) {
+  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+// The pid in ".nxtmp-<16 hex digits>-<pid><suffix>" (a temporary of ours) and the suffix; 0
+// when the name is not one of ours.
+long pidOf(const std::string& name, std::string& suffix) {
+  const std::string head = ".nxtmp-";
+  if (name.size() < head.size() + 18 || name.rfind(head, 0) != 0 || name[head.size() + 16] != '-')
+    return 0;
+  for (size_t i = head.size(); i < head.size() + 16; ++i)
+    if (!std::isxdigit(static_cast<unsigned char>(name[i]))) return 0;
+  const char* start = name.c_str() + head.size() + 17;
+  char* end = nullptr;
+  const long pid = std::strtol(start, &end, 10);
+  if (end == start || pid <= 0 || *start == '-' || *start == '+') return 0;
+  suffix = end;
+  return pid;
+}
+
+constexpr const char* kJournalSuffix = ".group";
+
+// Completes the groups that processes which no longer run left half committed in `dir`: every
+// temporary a journal names that is still there is renamed onto its target.
+void completeInterruptedGroups(const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    std::string suffix;
+    const long pid = pidOf(name, suffix);
+    if (pid == 0 || suffix.size() < std::strlen(kJournalSuffix) ||
+        suffix.compare(suffix.size() - std::strlen(kJournalSuffix), std::string::npos,
+                       kJournalSuffix) != 0 ||
+        !processGone(pid))
+      continue;
+    std::FILE* f = std::fopen(entry.path().c_str(), "rb");
+    if (!f) continue;
+    std::string text;
+    char buf[4096];
+    for (size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
+    std::fclose(f);
+    size_t pos = 0;
+    while (pos < text.size()) {
+      const size_t end = text.find('\n', pos), tab = text.find('\t', pos);
+      if (end == std::string::npos || tab == std::string::npos || tab > end) break;
+      const std::string temp = text.substr(pos, tab - pos),
+                        target = text.substr(tab + 1, end - tab - 1);
+      if (fs::exists(temp, ec)) std::rename(temp.c_str(), target.c_str());
+      pos = end + 1;
+    }
+    fs::remove(entry.path(), ec);
+  }
+}
+
+// Removes "<prefix><pid>..." files of this target whose process no longer runs.
 void removeStaleTemporaries(const fs::path& target) {
+  completeInterruptedGroups(directoryOf(target));
   const std::string prefix = tempPrefix(target);
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(directoryOf(target), ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    const std::string pidText = name.substr(prefix.size());
-    char* end = nullptr;
-    const long pid = std::strtol(pidText.c_str(), &end, 10);
-    if (pidText.empty() || *end != '\0' || pid <= 0) continue;
-    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove(entry.path(), ec);
+    std::string suffix;
+    const long pid = name.rfind(prefix, 0) == 0 ? pidOf(name, suffix) : 0;
+    if (pid != 0 && processGone(pid)) fs::remove(entry.path(), ec);
   }
 }
+
+thread_local AtomicFileGroup* gOpenGroup = nullptr;
 
 } // namespace
 
@@ -69,6 +124,10 @@ void writeAtomically(const std::string& path,
   } catch (const std::exception& e) {
     std::remove(temp.c_str());
     throw Error(path + ": cannot write the file: " + e.what());
+  }
+  if (AtomicFileGroup* group = AtomicFileGroup::current()) {
+    group->defer(temp, target.string()); // renamed with the rest of the group
+    return;
   }
   if (std::rename(temp.c_str(), target.c_str()) != 0) {
     const std::string cause = std::strerror(errno);
@@ -112,6 +171,54 @@ void checkFreeSpace(const std::string& path, double bytes) {
     throw Error(path + ": needs about " + std::to_string(static_cast<long long>(bytes / 1e6)) +
                 " MB but only " + std::to_string(static_cast<long long>(available / 1e6)) +
                 " MB are free in '" + dir.string() + "'");
+}
+
+AtomicFileGroup::AtomicFileGroup() {
+  if (gOpenGroup) throw Error("internal error: a group of output files is open already");
+  gOpenGroup = this;
+}
+
+AtomicFileGroup::~AtomicFileGroup() {
+  gOpenGroup = nullptr;
+  if (!committed_)
+    for (const auto& [temp, target] : files_) std::remove(temp.c_str());
+}
+
+AtomicFileGroup* AtomicFileGroup::current() {
+  return gOpenGroup;
+}
+
+void AtomicFileGroup::defer(const std::string& temp, const std::string& target) {
+  files_.emplace_back(temp, target);
+}
+
+void AtomicFileGroup::commit() {
+  gOpenGroup = nullptr;
+  committed_ = true;
+  if (files_.empty()) return;
+  // The journal, itself put in place by a rename: from then on the group is complete on disk.
+  const fs::path first(files_.front().second);
+  const std::string journal = tempNameFor(first).string() + kJournalSuffix,
+                    journalTemp = journal + ".tmp";
+  std::string text;
+  for (const auto& [temp, target] : files_) text += temp + "\t" + target + "\n";
+  std::FILE* f = std::fopen(journalTemp.c_str(), "wb");
+  const bool written = f && std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (f && std::fclose(f) != 0) f = nullptr;
+  if (!written || !f || std::rename(journalTemp.c_str(), journal.c_str()) != 0) {
+    const std::string cause = std::strerror(errno);
+    std::remove(journalTemp.c_str());
+    for (const auto& [temp, target] : files_) std::remove(temp.c_str());
+    throw Error(first.string() + ": cannot write the outputs' journal (" + cause +
+                "); nothing was replaced");
+  }
+  std::string failed;
+  for (const auto& [temp, target] : files_)
+    if (std::rename(temp.c_str(), target.c_str()) != 0)
+      failed += (failed.empty() ? "" : "; ") + target + " (" + std::strerror(errno) +
+                "; it is kept as " + temp + ")";
+  std::remove(journal.c_str());
+  if (!failed.empty()) throw Error("cannot move the finished files into place: " + failed);
 }
 
 OutputLock::OutputLock(const std::string& path) {

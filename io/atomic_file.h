@@ -4,6 +4,8 @@
 
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace nx {
 
@@ -18,8 +20,36 @@ void writeAtomically(const std::string& path, const std::function<void(const std
 /// and accepts new files (a probe file is created and removed), and an existing target (or
 /// the file its symlink points to) can be replaced (not immutable or read-only). Also removes
 /// temporary files for this target left by processes that no longer run (SIGKILL during a
-/// write).
+/// write), after completing any AtomicFileGroup such a process left half committed in that
+/// directory.
 void checkWritable(const std::string& path);
+
+/// Several outputs replaced as one (an EXR and its preview). While a group is open on a thread,
+/// writeAtomically on that thread writes each file under its temporary name and leaves it
+/// there; commit() then puts a journal naming the files in place, renames every temporary onto
+/// its target and removes the journal. A process killed during the renames leaves the journal,
+/// and the next checkWritable of a target in that directory completes the renames: the outputs
+/// are the old set or the new one, never a mix (a SIGKILL between the EXR's and the preview's
+/// rename left the new EXR beside the old preview). A group destroyed without commit() removes
+/// its temporaries and leaves the targets as they were.
+class AtomicFileGroup {
+public:
+  /// Opens the group on this thread (one at a time).
+  AtomicFileGroup();
+  ~AtomicFileGroup();
+  AtomicFileGroup(const AtomicFileGroup&) = delete;
+  AtomicFileGroup& operator=(const AtomicFileGroup&) = delete;
+  /// Replaces the targets of the files written since the group opened, as one.
+  void commit();
+  /// The group open on this thread, or null (for writeAtomically).
+  static AtomicFileGroup* current();
+  /// A finished temporary file and the target it replaces (called by writeAtomically).
+  void defer(const std::string& temp, const std::string& target);
+
+private:
+  std::vector<std::pair<std::string, std::string>> files_; // (temporary, target)
+  bool committed_ = false;
+};
 
 /// The temporary name writeAtomically uses for `path` in process `pid` (for tests and tools).
 std::string atomicTempName(const std::string& path, long pid);

@@ -141,14 +141,26 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
   if (ids) out.objectId.assign(pixels, 0), out.materialId.assign(pixels, 0);
   if (depth) out.depth.assign(pixels, 0.0f);
   std::vector<uint64_t> count(pixels, 0);
-  // Which sample ranges cover each pixel, as an order-independent sum of the ranges' hashes:
-  // every pixel must end up with the same set (crops of different ranges merged into one
-  // image would record a range that no pixel has, and a later resume would repeat samples).
+  // Which samples cover each pixel: every pixel must end up with the same set (crops of
+  // different ranges merged into one image would record a range that no pixel has, and a later
+  // resume would repeat samples), however each pixel's set is split among parts (crop A with
+  // 0:16 beside crop B as 0:8 + 8:16). The ranges' endpoints cut the samples into elementary
+  // intervals; a part stands for the sum of the hashes of the elementary intervals it holds,
+  // so a pixel's sum names its set of samples (its parts' ranges are disjoint, checked above).
+  std::vector<long long> cuts;
+  for (const auto& r : ranges) cuts.push_back(r.first), cuts.push_back(r.second);
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  std::vector<uint64_t> rangeHash;
+  for (const auto& r : ranges) {
+    uint64_t h = 0;
+    for (size_t c = 0; c + 1 < cuts.size(); ++c)
+      if (cuts[c] >= r.first && cuts[c + 1] <= r.second)
+        h += fnv1a64(std::to_string(cuts[c]) + ":" + std::to_string(cuts[c + 1]));
+    rangeHash.push_back(h);
+  }
   std::vector<uint64_t> rangeSet(pixels, 0);
   std::vector<int> covering(pixels, 0), owner(pixels, -1);
-  std::vector<uint64_t> rangeHash;
-  for (const auto& r : ranges)
-    rangeHash.push_back(fnv1a64(std::to_string(r.first) + ":" + std::to_string(r.second)));
   for (size_t k = 0; k < parts.size(); ++k) {
     const SpectralImage& p = parts[k].image;
     for (int y = 0; y < p.height; ++y)

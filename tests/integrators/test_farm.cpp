@@ -93,6 +93,29 @@ TEST(Farm, SampleRangesMergeUpToRounding) {
   for (size_t i = 0; i < full.radiance.size(); ++i)
     EXPECT_NEAR(mixed.radiance[i], full.radiance[i],
                 4e-7 * std::max(1.0f, std::abs(full.radiance[i])));
+  // Each pixel's samples split differently: crop A whole (0:6) beside crop B as 0:2 + 2:6
+  // (refused before: the pixels' range sets differed although every pixel holds 0:6).
+  const SpectralImage split = mergeParts({part("A", PixelRect{0, 0, 40, 15}, 0, 6),
+                                          part("B1", PixelRect{0, 15, 40, 30}, 0, 2),
+                                          part("B2", PixelRect{0, 15, 40, 30}, 2, 4)});
+  EXPECT_EQ(split.attributes.at("nxrender.sampleRange"), "0:6");
+  for (size_t i = 0; i < full.radiance.size(); ++i)
+    EXPECT_NEAR(split.radiance[i], full.radiance[i],
+                4e-7 * std::max(1.0f, std::abs(full.radiance[i])));
+  // Holes in a pixel's set are still refused: 0:2 + 4:6 beside 0:6 (fewer samples), and
+  // 0:2 + 4:8 beside 0:6 (as many samples, other ones).
+  EXPECT_NE(test::errorMessage([] {
+              mergeParts({part("A", PixelRect{0, 0, 40, 15}, 0, 6),
+                          part("B1", PixelRect{0, 15, 40, 30}, 0, 2),
+                          part("B2", PixelRect{0, 15, 40, 30}, 4, 2)});
+            }).find("missing region"),
+            std::string::npos);
+  EXPECT_NE(test::errorMessage([] {
+              mergeParts({part("A", PixelRect{0, 0, 40, 15}, 0, 6),
+                          part("B1", PixelRect{0, 15, 40, 30}, 0, 2),
+                          part("B2", PixelRect{0, 15, 40, 30}, 4, 4)});
+            }).find("parts cover different sample ranges in different pixels"),
+            std::string::npos);
 }
 
 std::string mergeError(std::vector<ImagePart> parts) {

@@ -148,4 +148,68 @@ TEST(AtomicFile, SymlinkTargetIsReplacedNotTheLink) {
 }
 
 } // namespace
+
+namespace {
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+void writeText(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+} // namespace
+
+// An EXR and its preview are replaced as one group: both or neither.
+TEST(AtomicFile, GroupsReplaceTheirFilesTogether) {
+  const std::string exr = ::testing::TempDir() + "pair.exr",
+                    png = ::testing::TempDir() + "pair.png";
+  writeText(exr, "old exr");
+  writeText(png, "old png");
+  const auto writeBoth = [&](bool commit) {
+    AtomicFileGroup group;
+    writeAtomically(exr, [](const std::string& t) { writeText(t, "new exr"); });
+    writeAtomically(png, [](const std::string& t) { writeText(t, "new png"); });
+    EXPECT_EQ(slurp(exr), "old exr"); // nothing replaced before the commit
+    EXPECT_EQ(slurp(png), "old png");
+    if (commit) group.commit();
+  };
+  writeBoth(false); // e.g. an exception before the commit: the old pair stays, no temporaries
+  EXPECT_EQ(slurp(exr), "old exr");
+  EXPECT_EQ(slurp(png), "old png");
+  EXPECT_FALSE(std::filesystem::exists(atomicTempName(exr, ::getpid())));
+  writeBoth(true);
+  EXPECT_EQ(slurp(exr), "new exr");
+  EXPECT_EQ(slurp(png), "new png");
+  EXPECT_FALSE(std::filesystem::exists(atomicTempName(exr, ::getpid()) + ".group"));
+}
+
+// What a process killed between a group's two renames leaves (its journal, the EXR replaced,
+// the preview still under its temporary name) is completed by the next check of the output:
+// the new EXR is never left beside the old preview.
+TEST(AtomicFile, AGroupCutByAKillIsCompletedByTheNextCheck) {
+  const std::string exr = ::testing::TempDir() + "killed.exr",
+                    png = ::testing::TempDir() + "killed.png";
+  const long dead = 0x7ffffff0;
+  const std::string pngTemp = atomicTempName(png, dead), exrTemp = atomicTempName(exr, dead);
+  writeText(exr, "new exr"); // renamed before the kill
+  writeText(png, "old png");
+  writeText(pngTemp, "new png");
+  writeText(atomicTempName(exr, dead) + ".group",
+            exrTemp + "\t" + exr + "\n" + pngTemp + "\t" + png + "\n");
+  checkWritable(exr);
+  EXPECT_EQ(slurp(exr), "new exr");
+  EXPECT_EQ(slurp(png), "new png");
+  EXPECT_FALSE(std::filesystem::exists(pngTemp));
+  EXPECT_FALSE(std::filesystem::exists(atomicTempName(exr, dead) + ".group"));
+  // Killed before the journal: the temporaries are stale, the old pair stays.
+  writeText(exrTemp, "newer exr");
+  writeText(pngTemp, "newer png");
+  checkWritable(exr);
+  checkWritable(png);
+  EXPECT_EQ(slurp(exr), "new exr");
+  EXPECT_EQ(slurp(png), "new png");
+  EXPECT_FALSE(std::filesystem::exists(exrTemp));
+  EXPECT_FALSE(std::filesystem::exists(pngTemp));
+}
+
 } // namespace nx
