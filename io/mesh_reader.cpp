@@ -47,12 +47,12 @@ public:
   void Close(Assimp::IOStream*) override {}
 };
 
-MeshFile readMeshFileUnguarded(const std::string& path) {
+MeshFile meshFromBytesUnguarded(std::string bytes, const std::string& path) {
   const std::string ext = lowerExtension(path);
   if (ext != "ply" && ext != "obj")
     throw Error("expected a mesh file ending in .ply or .obj, found '" + path + "'");
   MeshFile out;
-  out.bytes = readRegularFile(path, kMaxMeshFileBytes, "mesh file");
+  out.bytes = std::move(bytes);
   const MeshFileCounts counts =
       ext == "ply" ? checkPlyFile(out.bytes, path) : checkObjFile(out.bytes, path);
   // What the mesh library and the mesh need at their peak, from the declared counts (measured
@@ -121,14 +121,20 @@ MeshFile readMeshFileUnguarded(const std::string& path) {
 
 } // namespace
 
-MeshFile readMeshFile(const std::string& path) {
+MeshFile meshFromBytes(std::string bytes, const std::string& path) {
   try {
-    return readMeshFileUnguarded(path);
+    return meshFromBytesUnguarded(std::move(bytes), path);
   } catch (const std::bad_alloc&) {
     throw Error(path + ": cannot read the mesh: out of memory (" +
                 std::to_string(static_cast<long long>(memoryBudget().bytes / (1 << 20))) +
                 " MiB usable: " + memoryBudget().limit + ")");
   }
+}
+
+MeshFile readMeshFile(const std::string& path) {
+  if (const std::string ext = lowerExtension(path); ext != "ply" && ext != "obj")
+    throw Error("expected a mesh file ending in .ply or .obj, found '" + path + "'");
+  return meshFromBytes(readRegularFile(path, kMaxMeshFileBytes, "mesh file"), path);
 }
 
 } // namespace nx

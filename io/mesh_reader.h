@@ -32,4 +32,8 @@ struct MeshFile {
 /// indices out of range and non-finite values.
 MeshFile readMeshFile(const std::string& path);
 
+/// The same from the file's bytes; `path` names it in errors and its extension (.ply, .obj)
+/// says which format the bytes are.
+MeshFile meshFromBytes(std::string bytes, const std::string& path);
+
 } // namespace nx
