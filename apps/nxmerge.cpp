@@ -71,8 +71,10 @@ int main(int argc, char** argv) {
       xyz.push_back({merged.xyz[i], merged.xyz[i + 1], merged.xyz[i + 2]});
     {
       const nx::OutputLock lock(output); // the EXR and its preview as one pair
+      nx::AtomicFileGroup pair;          // replaced together (see AtomicFileGroup)
       nx::writeSpectralExr(output, merged);
       nx::writePreview(preview, merged.width, merged.height, nx::previewPixels(xyz, white));
+      pair.commit();
       if (envi) nx::writeEnvi(enviPath, merged);
     }
     std::fprintf(stderr, "nxmerge: merged %zu parts into %s and %s (%dx%d, samples %s)\n",
