@@ -38,8 +38,7 @@ int main(int argc, char** argv) {
   if (const int status = nx::parseCommandLine(app, argc, argv, "nxmerge"); status >= 0)
     return status;
   try {
-    if (std::filesystem::path(output).extension() != ".exr")
-      throw nx::Error(output + ": expected an output file name ending in .exr");
+    nx::checkExrOutputName(output);
     const std::string preview = std::filesystem::path(output).replace_extension(".png").string();
     nx::checkWritable(output);
     nx::checkWritable(preview);

@@ -336,8 +336,7 @@ int run(int argc, char** argv) {
 
   std::string exrPath, previewPath;
   if (!output.empty()) {
-    if (std::filesystem::path(output).extension() != ".exr")
-      throw nx::Error(output + ": expected an output file name ending in .exr");
+    nx::checkExrOutputName(output);
     exrPath = tileOfArray ? replaceExtension(output, ".part" + arrayTask + ".exr") : output;
     previewPath = replaceExtension(output, ".png");
   } else {
