@@ -105,6 +105,13 @@ MeshFileCounts checkPlyFile(const std::string& bytes, const std::string& path) {
   bool ended = false;
   while (!ended && lines.next(line)) {
     if (lines.position() > (1u << 20)) fail("expected end_header within the first MB");
+    // The header is ASCII text (the format says so); a NUL or other control byte would make
+    // the library read a different header than this check (it did: a crash in its
+    // triangulation).
+    for (const char c : line)
+      if (!(c == '\t' || (c >= 0x20 && c <= 0x7e)))
+        fail("expected printable ASCII in the PLY header, found the byte " +
+             std::to_string(static_cast<unsigned char>(c)));
     const auto w = words(line);
     if (w.empty()) continue;
     if (w[0] == "comment" || w[0] == "obj_info") continue;
@@ -140,22 +147,40 @@ MeshFileCounts checkPlyFile(const std::string& bytes, const std::string& path) {
   }
   if (!ended) fail("expected end_header, found the end of the file");
   if (format.empty()) fail("expected a format line in the header, found none");
+  // What the mesh library reads must be unambiguous: one vertex and one face element, each
+  // property named once, positions as scalars and vertex indices as an integer list (a second
+  // vertex element, a list-valued x or float indices passed the check and reached the
+  // library, which corrupted memory on them).
   const PlyElement* vertex = nullptr;
   const PlyElement* face = nullptr;
   for (const auto& e : elements) {
+    if ((e.name == "vertex" && vertex) || (e.name == "face" && face))
+      fail("expected one '" + e.name + "' element in the header, found two");
     if (e.name == "vertex") vertex = &e;
     if (e.name == "face") face = &e;
+    std::set<std::string> seen;
+    for (const auto& p : e.properties)
+      if (!seen.insert(p.name).second)
+        fail("expected each property of element '" + e.name + "' named once, found '" + p.name +
+             "' twice");
   }
   if (!vertex) fail("expected a 'vertex' element in the header, found none");
   std::set<std::string> names;
-  for (const auto& p : vertex->properties) names.insert(p.name);
+  for (const auto& p : vertex->properties)
+    if (p.countType.empty()) names.insert(p.name);
   if (!names.count("x") || !names.count("y") || !names.count("z"))
-    fail("expected vertex properties x, y and z in the header");
+    fail("expected vertex properties x, y and z (scalars) in the header");
   if (!face) fail("expected a 'face' element in the header (the mesh has no faces)");
-  bool faceList = false;
+  int faceLists = 0;
   for (const auto& p : face->properties)
-    faceList |= !p.countType.empty() && (p.name == "vertex_indices" || p.name == "vertex_index");
-  if (!faceList) fail("expected a face property list vertex_indices (or vertex_index)");
+    if (p.name == "vertex_indices" || p.name == "vertex_index") {
+      if (p.countType.empty() || !plyIntegerType(p.type))
+        fail("expected the face property '" + p.name +
+             "' as a list of integers (property list <count type> <integer type> " + p.name + ")");
+      ++faceLists;
+    }
+  if (faceLists == 0) fail("expected a face property list vertex_indices (or vertex_index)");
+  if (faceLists > 1) fail("expected one face property list of vertex indices, found two");
 
   if (format == "ascii") {
     for (const auto& e : elements) {
@@ -282,7 +307,11 @@ MeshFileCounts checkObjFile(const std::string& bytes, const std::string& path) {
       }
     };
     if (w[0] == "v") {
-      numbers(3, 7, "x y z [w or r g b]");
+      // 5 or 7 numbers are neither x y z w nor x y z r g b; the library misreads them.
+      if (w.size() != 4 && w.size() != 5 && w.size() != 7)
+        fail("expected 3, 4 or 6 numbers after 'v' (x y z, x y z w or x y z r g b), found " +
+             std::to_string(w.size() - 1));
+      numbers(3, 6, "x y z [w or r g b]");
       ++v;
     } else if (w[0] == "vt") {
       numbers(1, 3, "u [v [w]]");

@@ -167,6 +167,17 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       {"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"},
       {"pointref.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\np 9\n"},
       {"lineref.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 -4\n"},
+      // Fuzzing findings: a vertex of 5 numbers made the library leak; a second vertex element,
+      // a list-valued x, float indices and a NUL in the header are refused before it.
+      {"fivev.obj", "v 0 1 1\nv 1 1 1\nv 1 1 0 1 1\nv 1 1 1\nf 3 2 1\n"},
+      {"twovert.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float "
+                      "y\nproperty float z\nelement vertex 1\nproperty float x\nproperty float "
+                      "y\nproperty float z\nelement face 1\nproperty list uchar int "
+                      "vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 0\n3 0 1 2\n"},
+      {"floatidx.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float "
+                       "y\nproperty float z\nelement face 1\nproperty list uchar float "
+                       "vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"nul.ply", std::string("ply\nformat ascii 1.0\nelement v\0rtex 3\n", 38)},
   };
   const std::vector<std::string> expected = {
       "truncated.ply:20: expected more numbers on this face line, found 3",
@@ -184,6 +195,10 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       "flat.obj': every triangle has zero area",
       "pointref.obj:5: expected references to the 3 vertices read so far, found '9'",
       "lineref.obj:5: expected references to the 3 vertices read so far, found '-4'",
+      "fivev.obj:3: expected 3, 4 or 6 numbers after 'v' (x y z, x y z w or x y z r g b), found 5",
+      "twovert.ply:13: expected one 'vertex' element in the header, found two",
+      "floatidx.ply:9: expected the face property 'vertex_indices' as a list of integers",
+      "nul.ply:3: expected printable ASCII in the PLY header, found the byte 0",
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     const std::string path = writeFile(cases[i].first, cases[i].second);
