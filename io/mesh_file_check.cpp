@@ -47,8 +47,34 @@ std::vector<std::string> words(const std::string& line) {
   return out;
 }
 
+// True for a number written as the mesh library reads it: an optional '-', digits with an
+// optional fraction, an optional exponent ("+3", "0x10", "3e" or ".5e+" are not: the library
+// reads them otherwise than strtod, e.g. a face count "+3" became a face it then asserted on).
+bool plainDecimal(const std::string& s) {
+  size_t i = 0;
+  const auto digits = [&] {
+    const size_t from = i;
+    while (i < s.size() && s[i] >= '0' && s[i] <= '9') ++i;
+    return i > from;
+  };
+  if (i < s.size() && s[i] == '-') ++i;
+  const bool whole = digits();
+  bool fraction = false;
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    fraction = digits();
+  }
+  if (!whole && !fraction) return false;
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    if (i < s.size() && (s[i] == '-' || s[i] == '+')) ++i;
+    if (!digits()) return false;
+  }
+  return i == s.size();
+}
+
 bool parseDouble(const std::string& s, double& v) {
-  if (s.empty()) return false;
+  if (s.empty() || !plainDecimal(s)) return false;
   errno = 0;
   char* end = nullptr;
   v = std::strtod(s.c_str(), &end);
@@ -197,7 +223,9 @@ MeshFileCounts checkPlyFile(const std::string& bytes, const std::string& path) {
           if (k >= w.size())
             fail("expected more numbers on this " + e.name + " line, found " +
                  std::to_string(w.size()));
-          if (!parseDouble(w[k], v) || (plyIntegerType(type) && v != std::floor(v)))
+          if (!parseDouble(w[k], v) ||
+              (plyIntegerType(type) &&
+               (v != std::floor(v) || w[k].find_first_of(".eE") != std::string::npos)))
             fail(std::string("expected ") + what + ", found '" + w[k] + "'");
           ++k;
           return v;

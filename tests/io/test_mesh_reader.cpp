@@ -177,6 +177,8 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       {"floatidx.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float "
                        "y\nproperty float z\nelement face 1\nproperty list uchar float "
                        "vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"plus.ply", ascii.substr(0, ascii.rfind("3 0 2 3")) + "+3 0 2 3\n"},
+      {"hex.obj", "v 0 0 0\nv 1 0 0\nv 0 0x1 0\nf 1 2 3\n"},
       {"nul.ply", std::string("ply\nformat ascii 1.0\nelement v\0rtex 3\n", 38)},
   };
   const std::vector<std::string> expected = {
@@ -198,6 +200,8 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       "fivev.obj:3: expected 3, 4 or 6 numbers after 'v' (x y z, x y z w or x y z r g b), found 5",
       "twovert.ply:13: expected one 'vertex' element in the header, found two",
       "floatidx.ply:9: expected the face property 'vertex_indices' as a list of integers",
+      "plus.ply:21: expected a whole list length, found '+3'",
+      "hex.obj:3: expected a finite number, found '0x1'",
       "nul.ply:3: expected printable ASCII in the PLY header, found the byte 0",
   };
   for (size_t i = 0; i < cases.size(); ++i) {
