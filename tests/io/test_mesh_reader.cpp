@@ -179,6 +179,7 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
                        "vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
       {"plus.ply", ascii.substr(0, ascii.rfind("3 0 2 3")) + "+3 0 2 3\n"},
       {"hex.obj", "v 0 0 0\nv 1 0 0\nv 0 0x1 0\nf 1 2 3\n"},
+      {"dot.obj", "v 0 1 1\nv 1 1 1\nv 1 .1 1\nv 7 1 1\nf 1 4 3\ng 5\nv 4 3 2\nf 5 2 1"},
       {"nul.ply", std::string("ply\nformat ascii 1.0\nelement v\0rtex 3\n", 38)},
   };
   const std::vector<std::string> expected = {
@@ -202,6 +203,7 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       "floatidx.ply:9: expected the face property 'vertex_indices' as a list of integers",
       "plus.ply:21: expected a whole list length, found '+3'",
       "hex.obj:3: expected a finite number, found '0x1'",
+      "dot.obj:3: expected a finite number, found '.1'",
       "nul.ply:3: expected printable ASCII in the PLY header, found the byte 0",
   };
   for (size_t i = 0; i < cases.size(); ++i) {
