@@ -322,6 +322,14 @@ MeshFileCounts checkObjFile(const std::string& bytes, const std::string& path) {
   int64_t v = 0, vt = 0, vn = 0, faces = 0;
   while (lines.next(line)) {
     const auto w = words(line);
+    // Control bytes (a NUL in a group name) make the library read other statements than
+    // this check (a leak, found by fuzzing); names may be UTF-8.
+    for (const char c : line)
+      if (static_cast<unsigned char>(c) < 0x20 && c != '\t')
+        fail("expected text without control bytes in an OBJ file, found the byte " +
+             std::to_string(static_cast<unsigned char>(c)));
+      else if (c == 0x7f)
+        fail("expected text without control bytes in an OBJ file, found the byte 127");
     if (w.empty() || w[0][0] == '#') continue;
     auto numbers = [&](size_t lo, size_t hi, const char* what) {
       if (w.size() - 1 < lo || w.size() - 1 > hi)

@@ -180,6 +180,7 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       {"plus.ply", ascii.substr(0, ascii.rfind("3 0 2 3")) + "+3 0 2 3\n"},
       {"hex.obj", "v 0 0 0\nv 1 0 0\nv 0 0x1 0\nf 1 2 3\n"},
       {"dot.obj", "v 0 1 1\nv 1 1 1\nv 1 .1 1\nv 7 1 1\nf 1 4 3\ng 5\nv 4 3 2\nf 5 2 1"},
+      {"nul.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\ng 5\0l 1\n", 40)},
       {"nul.ply", std::string("ply\nformat ascii 1.0\nelement v\0rtex 3\n", 38)},
   };
   const std::vector<std::string> expected = {
@@ -204,6 +205,7 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       "plus.ply:21: expected a whole list length, found '+3'",
       "hex.obj:3: expected a finite number, found '0x1'",
       "dot.obj:3: expected a finite number, found '.1'",
+      "nul.obj:5: expected text without control bytes in an OBJ file, found the byte 0",
       "nul.ply:3: expected printable ASCII in the PLY header, found the byte 0",
   };
   for (size_t i = 0; i < cases.size(); ++i) {
