@@ -181,6 +181,7 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       {"hex.obj", "v 0 0 0\nv 1 0 0\nv 0 0x1 0\nf 1 2 3\n"},
       {"dot.obj", "v 0 1 1\nv 1 1 1\nv 1 .1 1\nv 7 1 1\nf 1 4 3\ng 5\nv 4 3 2\nf 5 2 1"},
       {"nul.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\ng 5\0l 1\n", 40)},
+      {"indent.obj", "v 1 1 1\nv 1 1 1\nv 7 1 1\nf 1 3 3\ng 5\n v 1 1 1\nf 4 3 2"},
       {"nul.ply", std::string("ply\nformat ascii 1.0\nelement v\0rtex 3\n", 38)},
   };
   const std::vector<std::string> expected = {
@@ -206,6 +207,8 @@ TEST(MeshReader, MalformedFilesNameTheProblem) {
       "hex.obj:3: expected a finite number, found '0x1'",
       "dot.obj:3: expected a finite number, found '.1'",
       "nul.obj:5: expected text without control bytes in an OBJ file, found the byte 0",
+      "indent.obj:6: expected the statement 'v' at the start of its line (the mesh library "
+      "skips indented lines), found it indented",
       "nul.ply:3: expected printable ASCII in the PLY header, found the byte 0",
   };
   for (size_t i = 0; i < cases.size(); ++i) {
