@@ -20,6 +20,7 @@
 #include "core/file_text.h"
 #include "core/memory.h"
 #include "io/atomic_file.h"
+#include "io/exr_header_check.h"
 #include "io/fichet_channels.h"
 #include "spectra/band_colour.h"
 
@@ -198,6 +199,7 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
 
 SpectralImage readSpectralExr(const std::string& path) {
   requireRegularFile(path, kMaxExrFileBytes, "EXR file");
+  checkExrHeader(path);
   try {
     Imf::InputFile file(path.c_str());
     const Imf::Header& h = file.header();
@@ -342,6 +344,7 @@ SpectralImage readSpectralExr(const std::string& path) {
 
 ExrFootprint spectralExrFootprint(const std::string& path) {
   requireRegularFile(path, kMaxExrFileBytes, "EXR file");
+  checkExrHeader(path);
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i dw = file.header().dataWindow(), disp = file.header().displayWindow();

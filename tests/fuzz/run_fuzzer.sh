@@ -39,7 +39,8 @@ envi)
   printf 'ENVI\nsamples = 4\nlines = 3\nbands = 2\nheader offset = 0\nfile type = ENVI Standard\ndata type = 4\ninterleave = bsq\nbyte order = 0\nwavelength units = Nanometers\nwavelength = {500, 600}\nfwhm = {10, 10}\n' >"$work/corpus/cube.hdr"
   printf 'ENVI\nsamples = 2\nlines = 2\nbands = 3\ndata type = 12\ninterleave = bip\nbyte order = 1\nwavelength = {0.5, 0.6, 0.7}\nwavelength units = Micrometers\n' >"$work/corpus/bip.hdr" ;;
 exr)
-  python3 - "$work/corpus" <<'PY'
+  # Debian's interpreter, where python3-numpy and python3-openimageio are installed
+  "${PYTHON:-/usr/bin/python3}" - "$work/corpus" <<'PY'
 import sys, numpy as np, OpenImageIO as oiio
 d = sys.argv[1]
 for name, chans, comp in [("s0.exr", ["S0.500nm", "S0.600nm", "R", "G", "B"], "none"),

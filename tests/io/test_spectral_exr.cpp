@@ -8,7 +8,10 @@
 #include <ImfStringAttribute.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <regex>
 
 #include "core/error.h"
@@ -330,7 +333,6 @@ TEST(SpectralExr, BandsOfAnyResponseScaleReadBackOrAreRefused) {
             std::string::npos);
 }
 
-
 // A NaN is named as a NaN, in float and half writes alike (the half writer said "found larger
 // ones"), and nothing is written; an EXR is never written under another format's name.
 TEST(SpectralExr, NonFiniteValuesAndForeignNamesAreRefused) {
@@ -345,8 +347,38 @@ TEST(SpectralExr, NonFiniteValuesAndForeignNamesAreRefused) {
   EXPECT_FALSE(std::filesystem::exists(path));
   const std::string png = ::testing::TempDir() + "image.png";
   EXPECT_EQ(test::errorMessage([&] { writeSpectralExr(png, testImage()); }),
-            png + ": expected an output name ending in .exr (the file is an OpenEXR), found '.png'");
+            png +
+                ": expected an output name ending in .exr (the file is an OpenEXR), found '.png'");
   EXPECT_FALSE(std::filesystem::exists(png));
+}
+
+// An attribute declaring more bytes than the file holds (OpenEXR allocated the 2 GB it
+// declared, for 5 s) and a file that is not an EXR are refused before OpenEXR reads them.
+TEST(SpectralExr, HeaderAttributesMustFitInTheFile) {
+  const std::string path = ::testing::TempDir() + "attribute_size.exr";
+  writeSpectralExr(path, testImage());
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const size_t at = bytes.find("compression");
+  ASSERT_NE(at, std::string::npos);
+  const size_t sizeAt =
+      at + std::string("compression").size() + 1 + std::string("compression").size() + 1;
+  const int32_t huge = 0x7ffffff0;
+  std::memcpy(&bytes[sizeAt], &huge, 4);
+  std::ofstream(path, std::ios::binary) << bytes;
+  const std::string message = test::errorMessage([&] { readSpectralExr(path); });
+  EXPECT_EQ(message.rfind(path +
+                              ": expected header attribute 'compression' (compression) to fit in "
+                              "the file, found a size of 2147483632 bytes",
+                          0),
+            0u)
+      << message;
+  std::ofstream(path, std::ios::binary) << "not an exr at all";
+  EXPECT_EQ(test::errorMessage([&] { spectralExrFootprint(path); }),
+            path + ": expected an OpenEXR file (magic number 76 2f 31 01), found other bytes");
 }
 
 } // namespace
