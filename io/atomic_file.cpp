@@ -201,7 +201,10 @@ void AtomicFileGroup::commit() {
   const std::string journal = tempNameFor(first).string() + kJournalSuffix,
                     journalTemp = journal + ".tmp";
   std::string text;
-  for (const auto& [temp, target] : files_) text += temp + "\t" + target + "\n";
+  // Absolute names: the run that may complete the group can work in another directory.
+  std::error_code ec;
+  for (const auto& [temp, target] : files_)
+    text += fs::absolute(temp, ec).string() + "\t" + fs::absolute(target, ec).string() + "\n";
   std::FILE* f = std::fopen(journalTemp.c_str(), "wb");
   const bool written = f && std::fwrite(text.data(), 1, text.size(), f) == text.size();
   if (f && std::fclose(f) != 0) f = nullptr;
