@@ -1,6 +1,7 @@
 #include "io/exr_header_check.h"
 
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -20,6 +21,76 @@ bool readName(std::ifstream& in, size_t maxLength, std::string& out) {
     out += c;
   }
   return false;
+}
+
+// The size an attribute of a standard type must have (OpenEXR reads these by their type,
+// not by the size the file declares); -1 for types whose size is their own (string, opaque).
+int64_t fixedSize(const std::string& type) {
+  static const std::pair<const char*, int> kSizes[] = {{"box2i", 16},
+                                                       {"box2f", 16},
+                                                       {"compression", 1},
+                                                       {"envmap", 1},
+                                                       {"float", 4},
+                                                       {"double", 8},
+                                                       {"int", 4},
+                                                       {"lineOrder", 1},
+                                                       {"v2i", 8},
+                                                       {"v2f", 8},
+                                                       {"v2d", 16},
+                                                       {"v3i", 12},
+                                                       {"v3f", 12},
+                                                       {"v3d", 24},
+                                                       {"m33f", 36},
+                                                       {"m33d", 72},
+                                                       {"m44f", 64},
+                                                       {"m44d", 128},
+                                                       {"tiledesc", 9},
+                                                       {"rational", 8},
+                                                       {"timecode", 8},
+                                                       {"keycode", 28},
+                                                       {"chromaticities", 32},
+                                                       {"deepImageState", 1}};
+  for (const auto& [name, size] : kSizes)
+    if (type == name) return size;
+  return -1;
+}
+
+// True when `value` is a channel list that ends exactly at its end: channels of a name (NUL
+// terminated, 1-255 bytes) and 16 bytes of type, flags and sampling, then an empty name.
+// OpenEXR reads a chlist up to its empty name whatever the size says.
+bool wellFormedChannelList(const std::string& value) {
+  size_t p = 0;
+  for (;;) {
+    const size_t nul = value.find('\0', p);
+    if (nul == std::string::npos || nul - p > 255) return false;
+    if (nul == p) return nul + 1 == value.size();
+    p = nul + 1 + 16;
+    if (p > value.size()) return false;
+  }
+}
+
+// True when `value` is a string vector whose strings fill it exactly (int32 length, bytes).
+bool wellFormedStringVector(const std::string& value) {
+  size_t p = 0;
+  while (p < value.size()) {
+    if (value.size() - p < 4) return false;
+    int32_t n;
+    std::memcpy(&n, value.data() + p, 4);
+    p += 4;
+    if (n < 0 || static_cast<size_t>(n) > value.size() - p) return false;
+    p += static_cast<size_t>(n);
+  }
+  return true;
+}
+
+// True when `value` is a preview image: width and height (uint32), then 4 bytes per pixel,
+// exactly (OpenEXR allocates the pixels the two numbers say).
+bool wellFormedPreview(const std::string& value) {
+  if (value.size() < 8) return false;
+  uint32_t w, h;
+  std::memcpy(&w, value.data(), 4);
+  std::memcpy(&h, value.data() + 4, 4);
+  return 8 + 4 * static_cast<uint64_t>(w) * h == value.size();
 }
 
 } // namespace
@@ -59,6 +130,20 @@ void checkExrHeader(const std::string& path) {
       throw Error(path + ": expected header attribute '" + name + "' (" + type +
                   ") to fit in the file, found a size of " + std::to_string(size) +
                   " bytes at byte " + std::to_string(at) + " of " + std::to_string(fileSize));
+    const int64_t fixed = fixedSize(type);
+    if (fixed >= 0 && size != fixed)
+      throw Error(path + ": expected header attribute '" + name + "' (" + type + ") of " +
+                  std::to_string(fixed) + " bytes, found " + std::to_string(size));
+    if (type == "chlist" || type == "stringvector" || type == "preview") {
+      std::string value(static_cast<size_t>(size), '\0');
+      in.read(value.data(), size);
+      if (!in || !(type == "chlist"         ? wellFormedChannelList(value)
+                   : type == "stringvector" ? wellFormedStringVector(value)
+                                            : wellFormedPreview(value)))
+        throw Error(path + ": expected header attribute '" + name + "' (" + type +
+                    ") to fill its " + std::to_string(size) + " bytes exactly, found it malformed");
+      continue;
+    }
     in.seekg(size, std::ios::cur);
     if (++attributes > kMaxAttributes)
       throw Error(path + ": expected at most " + std::to_string(kMaxAttributes) +

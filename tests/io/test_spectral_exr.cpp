@@ -376,6 +376,22 @@ TEST(SpectralExr, HeaderAttributesMustFitInTheFile) {
                           0),
             0u)
       << message;
+  // A channel list declared shorter than it is (OpenEXR reads a chlist to its end whatever
+  // the size says, then read a 1.9 GB string out of the channels: fuzzing finding).
+  writeSpectralExr(path, testImage());
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const size_t chlist = bytes.find("channels") + std::string("channels").size() + 1 + 7;
+  int32_t chlistSize;
+  std::memcpy(&chlistSize, &bytes[chlist], 4);
+  const int32_t shorter = chlistSize - 18;
+  std::memcpy(&bytes[chlist], &shorter, 4);
+  std::ofstream(path, std::ios::binary) << bytes;
+  EXPECT_EQ(test::errorMessage([&] { readSpectralExr(path); }),
+            path + ": expected header attribute 'channels' (chlist) to fill its " +
+                std::to_string(shorter) + " bytes exactly, found it malformed");
   std::ofstream(path, std::ios::binary) << "not an exr at all";
   EXPECT_EQ(test::errorMessage([&] { spectralExrFootprint(path); }),
             path + ": expected an OpenEXR file (magic number 76 2f 31 01), found other bytes");
