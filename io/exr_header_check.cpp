@@ -1,9 +1,12 @@
 #include "io/exr_header_check.h"
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "core/error.h"
 
@@ -95,7 +98,7 @@ bool wellFormedPreview(const std::string& value) {
 
 } // namespace
 
-void checkExrHeader(const std::string& path) {
+ExrHeaderSummary checkExrHeader(const std::string& path) {
   std::error_code ec;
   const auto fileSize = static_cast<uint64_t>(std::filesystem::file_size(path, ec));
   std::ifstream in(path, std::ios::binary);
@@ -107,6 +110,30 @@ void checkExrHeader(const std::string& path) {
   if (head[4] != 2)
     throw Error(path + ": expected OpenEXR file version 2, found " + std::to_string(head[4]));
   const bool multiPart = (head[5] & 0x10) != 0; // bit 12 of the version field
+  ExrHeaderSummary summary;
+  bool firstHeader = true, haveData = false, haveDisplay = false;
+  std::vector<std::array<int32_t, 3>> channels; // type, x sampling, y sampling
+  // What OpenEXR sizes its buffers by, checked once the first header is read.
+  const auto finishFirstHeader = [&] {
+    if (!haveData || !haveDisplay || channels.empty())
+      throw Error(path +
+                  ": expected a dataWindow, a displayWindow and channels in the EXR "
+                  "header, found " +
+                  std::string(!haveData      ? "no dataWindow"
+                              : !haveDisplay ? "no displayWindow"
+                                             : "no channels"));
+    summary.channels = static_cast<int>(channels.size());
+    for (const auto& [t, xs, ys] : channels) {
+      if (t < 0 || t > 2 || xs < 1 || ys < 1)
+        throw Error(path +
+                    ": expected channels of type 0-2 (uint, half, float) with sampling "
+                    ">= 1, found type " +
+                    std::to_string(t) + " sampled " + std::to_string(xs) + " x " +
+                    std::to_string(ys));
+      summary.lineBytes +=
+          std::ceil(static_cast<double>(summary.dataWidth) / xs) * (t == 1 ? 2 : 4);
+    }
+  };
   std::string name, type;
   int attributes = 0;
   for (;;) {
@@ -114,8 +141,9 @@ void checkExrHeader(const std::string& path) {
       throw Error(path + ": expected header attribute names of at most 255 bytes ending in NUL, "
                          "found the header cut short or a longer name");
     if (name.empty()) { // the end of a header
-      if (!multiPart) return;
-      if (in.peek() == 0) return; // an empty header ends the list of parts
+      if (firstHeader) finishFirstHeader();
+      firstHeader = false;
+      if (!multiPart || in.peek() == 0) return summary; // an empty header ends the parts
       continue;
     }
     if (!readName(in, 255, type))
@@ -130,24 +158,59 @@ void checkExrHeader(const std::string& path) {
       throw Error(path + ": expected header attribute '" + name + "' (" + type +
                   ") to fit in the file, found a size of " + std::to_string(size) +
                   " bytes at byte " + std::to_string(at) + " of " + std::to_string(fileSize));
+    if (++attributes > kMaxAttributes)
+      throw Error(path + ": expected at most " + std::to_string(kMaxAttributes) +
+                  " header attributes, found more");
     const int64_t fixed = fixedSize(type);
     if (fixed >= 0 && size != fixed)
       throw Error(path + ": expected header attribute '" + name + "' (" + type + ") of " +
                   std::to_string(fixed) + " bytes, found " + std::to_string(size));
-    if (type == "chlist" || type == "stringvector" || type == "preview") {
-      std::string value(static_cast<size_t>(size), '\0');
-      in.read(value.data(), size);
-      if (!in || !(type == "chlist"         ? wellFormedChannelList(value)
-                   : type == "stringvector" ? wellFormedStringVector(value)
-                                            : wellFormedPreview(value)))
-        throw Error(path + ": expected header attribute '" + name + "' (" + type +
-                    ") to fill its " + std::to_string(size) + " bytes exactly, found it malformed");
+    const bool sizing = firstHeader && ((name == "dataWindow" && type == "box2i") ||
+                                        (name == "displayWindow" && type == "box2i") ||
+                                        (name == "compression" && type == "compression") ||
+                                        (name == "channels" && type == "chlist"));
+    if (!sizing && type != "chlist" && type != "stringvector" && type != "preview") {
+      in.seekg(size, std::ios::cur);
       continue;
     }
-    in.seekg(size, std::ios::cur);
-    if (++attributes > kMaxAttributes)
-      throw Error(path + ": expected at most " + std::to_string(kMaxAttributes) +
-                  " header attributes, found more");
+    std::string value(static_cast<size_t>(size), '\0');
+    in.read(value.data(), size);
+    if (!in || !(type == "chlist"         ? wellFormedChannelList(value)
+                 : type == "stringvector" ? wellFormedStringVector(value)
+                 : type == "preview"      ? wellFormedPreview(value)
+                                          : true))
+      throw Error(path + ": expected header attribute '" + name + "' (" + type + ") to fill its " +
+                  std::to_string(size) + " bytes exactly, found it malformed");
+    if (!sizing) continue;
+    if (type == "chlist") { // well formed: names, then 16 bytes each
+      channels.clear();
+      for (size_t p = 0; value[p] != '\0';) {
+        p = value.find('\0', p) + 1;
+        int32_t v[4]; // type, pLinear and reserved bytes, x sampling, y sampling
+        std::memcpy(v, value.data() + p, 16);
+        channels.push_back({v[0], v[2], v[3]});
+        p += 16;
+      }
+    } else if (type == "box2i") {
+      int32_t b[4]; // min x, min y, max x, max y
+      std::memcpy(b, value.data(), 16);
+      const int64_t w = static_cast<int64_t>(b[2]) - b[0] + 1,
+                    h = static_cast<int64_t>(b[3]) - b[1] + 1;
+      if (w < 1 || h < 1)
+        throw Error(path + ": expected a non-empty " + name + ", found " + std::to_string(b[0]) +
+                    "," + std::to_string(b[1]) + "-" + std::to_string(b[2]) + "," +
+                    std::to_string(b[3]));
+      const bool data = name == "dataWindow";
+      (data ? summary.dataWidth : summary.displayWidth) = w;
+      (data ? summary.dataHeight : summary.displayHeight) = h;
+      (data ? haveData : haveDisplay) = true;
+    } else { // compression
+      static const int kChunkLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+      const auto c = static_cast<unsigned char>(value[0]);
+      if (c > 9)
+        throw Error(path + ": expected a compression method 0-9, found " + std::to_string(c));
+      summary.chunkLines = kChunkLines[c];
+    }
   }
 }
 

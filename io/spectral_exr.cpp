@@ -199,7 +199,16 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
 
 SpectralImage readSpectralExr(const std::string& path) {
   requireRegularFile(path, kMaxExrFileBytes, "EXR file");
-  checkExrHeader(path);
+  // The header as declared, checked before OpenEXR allocates by it: the pixels read (every
+  // channel as 4 bytes, and the RGB computed for a file without one) and OpenEXR's own line
+  // buffers must fit in memory, so a small file declaring a huge image is refused with figures.
+  const ExrHeaderSummary declared = checkExrHeader(path);
+  requireMemory(static_cast<double>(declared.dataWidth) * static_cast<double>(declared.dataHeight) *
+                        (declared.channels + 3) * 4.0 +
+                    2 * declared.lineBytes * declared.chunkLines,
+                path, "an EXR",
+                std::to_string(declared.dataWidth) + " x " + std::to_string(declared.dataHeight) +
+                    " pixels of " + std::to_string(declared.channels) + " channels");
   try {
     Imf::InputFile file(path.c_str());
     const Imf::Header& h = file.header();
@@ -257,14 +266,6 @@ SpectralImage readSpectralExr(const std::string& path) {
         throw Error(path + ": expected a channel " + bandChannels[static_cast<size_t>(b)] +
                     ", found none");
     const size_t pixels = static_cast<size_t>(img.width) * img.height;
-    // Every channel is read as 4 bytes, plus the RGB computed for a file without one: checked
-    // before allocating, so a small file declaring a huge image is refused with figures.
-    size_t channelCount = 3;
-    for (auto it = h.channels().begin(); it != h.channels().end(); ++it) ++channelCount;
-    requireMemory(static_cast<double>(pixels) * static_cast<double>(channelCount) * 4.0, path,
-                  "an EXR",
-                  std::to_string(img.width) + " x " + std::to_string(img.height) + " pixels of " +
-                      std::to_string(channelCount - 3) + " channels");
     img.radiance.assign(pixels * nb, 0.0f);
     img.rgb.assign(pixels * 3, 0.0f);
     Imf::FrameBuffer fb;
@@ -344,21 +345,12 @@ SpectralImage readSpectralExr(const std::string& path) {
 
 ExrFootprint spectralExrFootprint(const std::string& path) {
   requireRegularFile(path, kMaxExrFileBytes, "EXR file");
-  checkExrHeader(path);
-  try {
-    Imf::InputFile file(path.c_str());
-    const Imath::Box2i dw = file.header().dataWindow(), disp = file.header().displayWindow();
-    ExrFootprint f;
-    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
-      ++f.channels;
-    f.displayPixels = (static_cast<double>(disp.max.x) - disp.min.x + 1) *
-                      (static_cast<double>(disp.max.y) - disp.min.y + 1);
-    f.dataPixels = (static_cast<double>(dw.max.x) - dw.min.x + 1) *
-                   (static_cast<double>(dw.max.y) - dw.min.y + 1);
-    return f;
-  } catch (const std::exception& e) {
-    throw Error(path + ": cannot read the EXR file: " + e.what());
-  }
+  const ExrHeaderSummary h = checkExrHeader(path); // the header alone, without OpenEXR
+  ExrFootprint f;
+  f.channels = h.channels;
+  f.displayPixels = static_cast<double>(h.displayWidth) * static_cast<double>(h.displayHeight);
+  f.dataPixels = static_cast<double>(h.dataWidth) * static_cast<double>(h.dataHeight);
+  return f;
 }
 
 } // namespace nx
