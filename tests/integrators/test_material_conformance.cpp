@@ -1,0 +1,108 @@
+// Every material kind, made as a scene file makes it, passes the same checks: albedo at most 1
+// over a grid of directions down to grazing (energy, no radiance scaling), and finite values
+// everywhere. The list of kinds is a switch over MaterialKind without a default, compiled with
+// -Werror=switch: a new kind does not compile here until it has a case.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "integrators/materials/bsdf.h"
+#include "integrators/sampling.h"
+#include "support/render_checks.h"
+#include "support/statistics.h"
+
+#pragma GCC diagnostic error "-Wswitch"
+
+namespace nx {
+namespace {
+
+// Sphere bodies that make `kind` through the scene format: every way the kind is reached
+// (smooth and rough, dispersive, fluorescent bases) that changes its BSDF.
+std::vector<std::string> bodiesOf(MaterialKind kind) {
+  switch (kind) {
+  case MaterialKind::Mixture:
+    return {"<material>matte</material><reflectance>0.9</reflectance>",
+            "<material>plastic</material><roughness>0.4</roughness><reflectance>1</reflectance>",
+            "<material>mirror</material><reflectance>1</reflectance>"};
+  case MaterialKind::Dielectric:
+    return {"<material>glass</material><ior>1.5</ior>", "<material>diamond</material>",
+            "<material>glass</material><ior>bk7</ior><alpha>0.3</alpha>",
+            "<material>glass</material><ior>2.4</ior><alpha>0.05</alpha>"};
+  case MaterialKind::Interface:
+    return {"<material>interface</material><medium><sigma_a>0.1</sigma_a><sigma_s>0</sigma_s>"
+            "</medium>"};
+  case MaterialKind::ThinDielectric:
+    return {"<material>thin_glass</material>"};
+  case MaterialKind::Conductor:
+    return {"<material>conductor</material><metal>gold</metal>",
+            "<material>conductor</material><metal>aluminium</metal><alpha>0.2</alpha>",
+            "<material>conductor</material><metal>silver</metal><alpha_u>0.05</alpha_u>"
+            "<alpha_v>0.4</alpha_v>"};
+  case MaterialKind::CoatedDiffuse:
+    return {"<material>coated</material><ior>1.5</ior><reflectance>1</reflectance>",
+            "<material>coated</material><ior>1.9</ior><reflectance>0.5</reflectance>"};
+  }
+  return {};
+}
+
+// Every kind once (bodiesOf's switch is the compile-time list; this is its iteration order).
+const MaterialKind kKinds[] = {MaterialKind::Mixture,   MaterialKind::Dielectric,
+                               MaterialKind::Interface, MaterialKind::ThinDielectric,
+                               MaterialKind::Conductor, MaterialKind::CoatedDiffuse};
+
+Vec3 direction(float cosTheta, float phi) {
+  const float s = std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta));
+  return {s * std::cos(phi), s * std::sin(phi), cosTheta};
+}
+
+TEST(MaterialConformance, EveryKindKeepsEnergyAndStaysFinite) {
+  SampledWavelengths lambda;
+  for (int i = 0; i < kLanes; ++i) {
+    lambda.lambda[i] = 420.0f + 70.0f * static_cast<float>(i);
+    lambda.pdf[i] = 1.0f / 300.0f;
+  }
+  for (const MaterialKind kind : kKinds) {
+    for (const std::string& body : bodiesOf(kind)) {
+      const std::string settings = "<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>";
+      const RenderScene scene = resolveRenderScene(parseScene(
+          sceneText(settings, "<position>0,0,-5</position><look_at>0,0,0</look_at>",
+                    "<sphere><center>0,0,0</center><radius>1</radius>" + body + "</sphere>"),
+          "t.scn"));
+      const Material& m = scene.materials[scene.spheres[0].material];
+      ASSERT_EQ(m.kind, kind) << body;
+      SampledSpectrum rho;
+      m.reflectance.evaluate(lambda.lambda, rho);
+      for (float cosTheta : {1.0f, 0.6f, 0.2f, 0.02f, -0.02f, -0.2f, -0.6f, -1.0f}) {
+        const Vec3 wo = direction(cosTheta, 0.7f), n(0, 0, 1);
+        const SurfaceBsdf bsdf(m, lambda, rho, n, wo, TransportMode::Energy);
+        const int count = 20000;
+        std::vector<double> sum(kLanes, 0), sumSq(kLanes, 0);
+        for (int i = 0; i < count; ++i) {
+          BsdfSample s;
+          if (!bsdf.sample(sampleValue(SamplerKind::Independent, i, 0, 2, 3),
+                           samplePair(SamplerKind::Independent, i, 0, 3, 5), s))
+            continue;
+          for (int k = 0; k < kLanes; ++k) {
+            ASSERT_TRUE(std::isfinite(s.weight[k])) << body << " cos " << cosTheta;
+            ASSERT_GE(s.weight[k], 0.0f) << body << " cos " << cosTheta;
+            sum[k] += s.weight[k], sumSq[k] += double(s.weight[k]) * s.weight[k];
+          }
+          for (int k = 0; k < kLanes; ++k) ASSERT_TRUE(std::isfinite(bsdf.f(s.wi)[k])) << body;
+        }
+        for (int k = 0; k < kLanes; ++k) {
+          const double mean = sum[k] / count,
+                       se = std::sqrt(std::max(0.0, sumSq[k] / count - mean * mean) / count);
+          // Albedo at most 1 within 5 standard errors (and float rounding).
+          EXPECT_LE(mean, 1.0 + 5 * se + 1e-5)
+              << body << " cos " << cosTheta << " lane " << lambda.lambda[k] << " nm";
+        }
+      }
+    }
+  }
+}
+
+} // namespace
+} // namespace nx
