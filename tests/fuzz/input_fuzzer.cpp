@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -41,8 +42,16 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     std::fprintf(stderr, "input_fuzzer: set NX_FUZZ_KIND to ply, obj, sensor, envi or exr\n");
     std::exit(2);
   }
-  gDir = "/tmp/nx-input-fuzz-" + std::to_string(::getpid());
-  std::system(("mkdir -p " + gDir).c_str());
+  if (gKind == "envi" || gKind == "exr") { // these are read from files: a directory of its own
+    gDir =
+        (std::filesystem::temp_directory_path() / ("nx-input-fuzz-" + std::to_string(::getpid())))
+            .string();
+    std::filesystem::create_directories(gDir);
+    std::atexit([] {
+      std::error_code ec;
+      std::filesystem::remove_all(gDir, ec);
+    });
+  }
   return 0;
 }
 
