@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     nx::checkWritable(preview);
     const std::string enviPath =
         envi ? std::filesystem::path(output).replace_extension(".img").string() : std::string();
-    if (envi) nx::checkWritable(enviPath), nx::checkWritable(nx::enviHeaderPath(enviPath));
+    if (envi) nx::checkEnviOutputName(enviPath);
     // Every part is held in memory with the merged image (floats) and its double-precision
     // sums: checked from the headers before anything is read (two 1080p parts took 2.7 GiB).
     double bytes = 0;

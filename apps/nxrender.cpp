@@ -353,10 +353,7 @@ int run(int argc, char** argv) {
   nx::checkWritable(exrPath);
   if (wholeImage) nx::checkWritable(previewPath);
   const std::string enviPath = envi ? replaceExtension(exrPath, ".img") : std::string();
-  if (envi) {
-    nx::checkWritable(enviPath);
-    nx::checkWritable(nx::enviHeaderPath(enviPath));
-  }
+  if (envi) nx::checkEnviOutputName(enviPath);
   {
     // Upper bound of the EXR (uncompressed float channels: bands and their variances, RGB,
     // XYZ, a variance and a count) plus the preview.
