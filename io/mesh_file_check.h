@@ -16,15 +16,18 @@ struct MeshFileCounts {
 };
 
 /// Throws nx::Error "<path>:<line>: ..." (ASCII) or "<path>: ..." (binary) unless `bytes` is a
-/// PLY file with a valid header (format, elements, properties), a vertex element with x, y, z, a
-/// face element with a vertex index list, and a body holding every element item: ASCII items
-/// with exactly their properties' numbers (finite, whole where integers), faces of at least 3
-/// vertices that exist; binary bodies at least as long as their items.
+/// PLY file with a valid header in printable ASCII (format, elements, properties named once), one
+/// vertex element with scalar x, y, z, one face element with one integer vertex index list, and
+/// a body holding every element item: ASCII items with exactly their properties' numbers
+/// (plain decimals, whole where integers), faces of at least 3 vertices that exist; binary
+/// bodies holding every declared item (a cut at an item boundary is a truncation), with vertex
+/// indices that exist.
 MeshFileCounts checkPlyFile(const std::string& bytes, const std::string& path);
 
-/// Throws nx::Error "<path>:<line>: ..." unless every statement of the OBJ text is known, with
-/// finite numbers (v: 3 to 7, vt: 1 to 3, vn: 3) and faces of at least 3 vertex references that
-/// exist (1-based, or negative: relative to the vertices read so far), and some face exists.
+/// Throws nx::Error "<path>:<line>: ..." unless every statement of the OBJ text is known, starts
+/// its line and holds no control byte, with plain decimal numbers (v: 3, 4 or 6; vt: 1 to 3;
+/// vn: 3), faces of at least 3, lines of 2 and points of 1 vertex references that exist
+/// (1-based, or negative: relative to the vertices read so far), and some face exists.
 MeshFileCounts checkObjFile(const std::string& bytes, const std::string& path);
 
 } // namespace nx
