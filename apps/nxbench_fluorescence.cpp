@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
                               static_cast<size_t>(threads));
     nx::SceneDesc thesis = nx::loadScene(NX_SOURCE_DIR "/scenes/thesis.scn");
     const nx::RenderScene withFl = nx::buildRenderScene(thesis);
-    for (auto& o : thesis.objects) o.fluorescence.reset();
+    for (auto& o : thesis.objects) o.params.erase("fluorescence");
     const nx::RenderScene withoutFl = nx::buildRenderScene(thesis);
     const nx::RenderScene plain =
         nx::buildRenderScene(nx::loadScene(NX_SOURCE_DIR "/scenes/materials.scn"));

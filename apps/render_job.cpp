@@ -82,8 +82,8 @@ bool addAov(RenderChoices& choices, const std::string& name) {
 }
 
 void removeFluorescence(SceneDesc& desc) {
-  for (auto& o : desc.objects) o.fluorescence.reset();
-  for (auto& m : desc.materials) m.material.fluorescence.reset();
+  for (auto& o : desc.objects) o.params.erase("fluorescence");
+  for (auto& m : desc.materials) m.material.params.erase("fluorescence");
 }
 
 RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const RenderChoices& choices)

@@ -8,8 +8,7 @@
 
 #include "accel/geometry_scene.h"
 #include "core/camera.h"
-#include "integrators/ior_model.h"
-#include "integrators/materials/reflectance_texture.h"
+#include "integrators/materials/material.h"
 #include "integrators/media/homogeneous_medium.h"
 #include "integrators/media/medium_stack.h"
 #include "io/scene_desc.h"
@@ -18,39 +17,6 @@
 #include "spectra/spectrum.h"
 
 namespace nx {
-
-/// How a surface scatters light.
-enum class MaterialKind : uint8_t {
-  Mixture,        ///< (1 - r) rho * ideal mirror + r rho / pi (matte r = 1, mirror r = 0)
-  Dielectric,     ///< smooth dielectric: exact Fresnel, refraction, total internal reflection
-  Interface,      ///< the boundary of a medium with the same index on both sides: light passes
-                  ///< unchanged (no reflection, no refraction)
-  ThinDielectric, ///< a thin glass wall (parallel faces): Fresnel reflection with the
-                  ///< internal reflections summed, and straight transmission
-  Conductor,      ///< a metal: GGX microfacets (smooth when alpha is 0) with the exact Fresnel
-                  ///< reflectance of its complex index
-  CoatedDiffuse,  ///< a Lambertian base (possibly fluorescent) under a smooth clear coat, the
-                  ///< internal reflections between them summed
-};
-
-/// A material: a kind with its parameters and spectra.
-struct Material {
-  MaterialKind kind = MaterialKind::Mixture;
-  float roughness = 1;               ///< Mixture: probability weight r of the diffuse lobe
-  IorModel ior;                      ///< Dielectric
-  Spectrum conductorEta, conductorK; ///< Conductor: complex index eta + i k
-  float alphaU = 0, alphaV = 0;      ///< Conductor: GGX roughness along dpdu and across it
-  /// CoatedDiffuse: the coat's hemispherical (cosine-weighted) internal Fresnel reflectance
-  float coatInternalReflectance = 0;
-  float coatingNm = 0;  ///< a thin-film coating's thickness in nm (0: none)
-  IorModel coatingIor;  ///< the coating's index of refraction
-  Spectrum reflectance; ///< rho(lambda): albedo, or transmission tint for dielectrics
-  std::optional<FluorescenceModel> fluorescenceModel; ///< the parameters, if not measured
-  std::shared_ptr<const ReradiationMatrix>
-      reradiation; ///< fluorescence of the diffuse lobe, or null
-  /// A reflectance varying over the surface (by the hit's uv), replacing `reflectance`; or null
-  std::shared_ptr<const ReflectanceTexture> texture;
-};
 
 /// Largest emitted radiance (W m^-2 sr^-1 nm^-1) or point-light intensity (W sr^-1 nm^-1) a
 /// scene may hold: the Sun's spectral radiance is about 2.6e4, so this leaves seven orders of

@@ -16,7 +16,7 @@
 #include "core/hash.h"
 #include "core/math_util.h"
 #include "core/text_table.h"
-#include "integrators/materials/fresnel.h"
+#include "integrators/materials/material_kind.h"
 #include "integrators/render_scene.h"
 #include "io/camera_checks.h"
 #include "io/mesh_reader.h"
@@ -33,11 +33,6 @@
 
 namespace nx {
 namespace {
-
-// Which built-in names a spectrum reference may use.
-// What a spectrum reference stands for: its names and checks differ (a medium's coefficient
-// takes the medium tables' names and the reflectance names).
-enum class SpectrumRole { Reflectance, Emission, Coefficient };
 
 class Builder {
 public:
@@ -68,13 +63,11 @@ public:
     std::vector<TriangleShape> triangles; // the inline triangles, gathered into one mesh
     MeshAppearance inlineTriangles;
     std::vector<TriangleMesh> meshes;
-    // Materials are stored once per distinct description (a <material id>, or inline
-    // parameters written identically), so 16,000 triangles of one colour share one material and
-    // one upsampling fit.
+    // Materials are stored once per distinct description: the kind and the canonical text of
+    // its parameters (a <material id>'s, or inline ones written alike), so 16,000 triangles of
+    // one colour share one material and one upsampling fit. MaterialId: the first object using
+    // that description.
     std::map<std::string, uint32_t> materialByText;
-    // MaterialId: materials with the same content (compared every 5 nm) share the id of the
-    // first object that uses one of them.
-    std::vector<std::pair<std::vector<double>, uint32_t>> idByContent;
     std::vector<uint32_t> materialIdOf;                 // per material index
     std::vector<std::pair<size_t, size_t>> meshObjects; // (mesh, object) of mesh files
     for (size_t objectIndex = 0; objectIndex < desc_.objects.size(); ++objectIndex) {
@@ -82,22 +75,17 @@ public:
       ShapeAppearance app;
       app.objectId = static_cast<uint32_t>(objectIndex + 1);
       const bool emitter = o.emission.has_value();
-      const std::string text = o.materialRef.empty()
-                                   ? materialText(o, emitter)
-                                   : "id:" + o.materialRef + (emitter ? ":emitter" : "");
+      const MaterialDesc& md = o.materialRef.empty() ? static_cast<const MaterialDesc&>(o)
+                                                     : namedMaterial(o.materialRef);
+      const std::string text = identityText(md, emitter);
       if (auto it = materialByText.find(text); it != materialByText.end()) {
         app.material = it->second;
       } else {
-        const MaterialDesc& md = o.materialRef.empty() ? static_cast<const MaterialDesc&>(o)
-                                                       : namedMaterial(o.materialRef);
-        Material m = material(md, o.loc, emitter, spectral);
+        Material m = material(md, o.materialRef.empty() ? o.loc : namedMaterialLoc(o.materialRef),
+                              emitter, spectral);
         m.reflectance = forRendering(m.reflectance);
         if (m.reradiation) scene.hasFluorescence = true;
-        std::vector<double> key = materialKey(m);
-        const auto same = std::find_if(idByContent.begin(), idByContent.end(),
-                                       [&](const auto& c) { return c.first == key; });
-        materialIdOf.push_back(same != idByContent.end() ? same->second : app.objectId);
-        if (same == idByContent.end()) idByContent.emplace_back(std::move(key), app.objectId);
+        materialIdOf.push_back(app.objectId);
         app.material = static_cast<uint32_t>(scene.materials.size());
         scene.materials.push_back(std::move(m));
         materialByText.emplace(text, app.material);
@@ -284,31 +272,6 @@ private:
       }
   }
 
-  // What makes two materials the same for the MaterialId channel: kind, roughness, the index
-  // of refraction and the reflectance every 5 nm over the traced range, the fluorescence.
-  static std::vector<double> materialKey(const Material& m) {
-    std::vector<double> key = {static_cast<double>(m.kind),
-                               m.roughness,
-                               m.alphaU,
-                               m.alphaV,
-                               m.coatingNm,
-                               m.coatingNm > 0 ? m.coatingIor.at(550) : 0.0,
-                               static_cast<double>(reinterpret_cast<uintptr_t>(m.texture.get()))};
-    for (double nm = kTraceMinNm; nm <= kTraceMaxNm; nm += 5) {
-      key.push_back(m.reflectance(nm));
-      key.push_back(m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::CoatedDiffuse
-                        ? m.ior.at(nm)
-                        : 0.0);
-      if (m.kind == MaterialKind::Conductor)
-        key.insert(key.end(), {m.conductorEta(nm), m.conductorK(nm)});
-    }
-    if (m.reradiation) // the matrix's content (each object builds its own copy)
-      for (int o = 0; o < ReradiationMatrix::kBins; ++o)
-        key.insert(key.end(), {m.reradiation->columnSum(o), m.reradiation->absorptance(o),
-                               m.reradiation->elastic(o, 1.0)});
-    return key;
-  }
-
   // The bytes of a file the scene refers to (a table), folded into the content digest with its
   // path, so that renders made with different data do not resume or merge together.
   std::string readReferencedFile(const std::string& path) const {
@@ -399,21 +362,6 @@ private:
         s.name + "'");
   }
 
-  // "300-1100 nm": the traced range, where every spectrum is checked.
-  static std::string tracedRange() {
-    return numberText(kTraceMinNm) + "-" + numberText(kTraceMaxNm) + " nm";
-  }
-
-  // At every wavelength that can be traced (exactly, between whole nanometres too).
-  static void checkUnitRange(const Spectrum& s, const SourceLocation& loc, const char* what) {
-    const SpectrumExtremes e = spectrumExtremes(s, kTraceMinNm, kTraceMaxNm);
-    if (e.min >= 0 && e.max <= 1) return;
-    const bool low = !(e.min >= 0);
-    throw Error(loc.str() + ": expected a " + what + " within [0, 1] at every wavelength of " +
-                tracedRange() + ", found " + numberText(low ? e.min : e.max) + " at " +
-                numberText(low ? e.minNm : e.maxNm) + " nm");
-  }
-
   // Emission (radiance, or a point light's intensity) within [0, kMaxEmission] everywhere.
   static void checkEmission(const Spectrum& s, const SourceLocation& loc) {
     const SpectrumExtremes e = spectrumExtremes(s, kTraceMinNm, kTraceMaxNm);
@@ -427,51 +375,22 @@ private:
                                          numberText(low ? e.minNm : e.maxNm) + " nm"));
   }
 
-  // Every parameter of an inline material as text: equal texts are the same material.
-  static std::string materialText(const MaterialDesc& m, bool emitter) {
-    std::ostringstream t;
-    t.precision(17);
-    auto spectrumText = [&](const std::optional<SpectrumDesc>& s) {
-      if (!s) return t << "-;", void();
-      t << static_cast<int>(s->kind) << ',' << static_cast<int>(s->extrapolate) << ',' << s->name
-        << ',' << s->number << ',' << s->path << ',' << s->column << ',' << s->texture << ',';
-      for (size_t i = 0; i < s->nm.size(); ++i) t << s->nm[i] << ':' << s->value[i] << ' ';
-      t << ';';
-    };
-    t << m.material << ';' << emitter << ';';
-    if (m.color) t << (*m.color)[0] << ',' << (*m.color)[1] << ',' << (*m.color)[2];
-    t << ';';
-    spectrumText(m.reflectance);
-    t << (m.roughness ? *m.roughness : -1.0) << ';';
-    if (m.ior) {
-      t << static_cast<int>(m.ior->kind) << ',' << m.ior->value << ',' << m.ior->name;
-      for (double c : m.ior->coefficients) t << ',' << c;
-    }
-    t << ';';
-    if (const auto& f = m.fluorescence) {
-      auto opt = [&](const std::optional<double>& v) { t << (v ? *v : -1e300) << ','; };
-      t << (f->absorptionName ? *f->absorptionName : "") << ',';
-      opt(f->absorptionNm), opt(f->stokesNm), opt(f->widthNm), opt(f->skew);
-      opt(f->quantumYield), opt(f->peakAbsorptance);
-      t << (f->matrixCsv ? *f->matrixCsv : "");
-    }
-    t << ';';
-    spectrumText(m.eta);
-    spectrumText(m.k);
-    t << (m.metal ? *m.metal : "-") << ';';
-    for (const auto& a : {m.alpha, m.alphaU, m.alphaV}) t << (a ? *a : -1.0) << ',';
-    if (m.coating) {
-      t << ';' << m.coating->thicknessNm << ',' << static_cast<int>(m.coating->ior.kind) << ','
-        << m.coating->ior.value << ',' << m.coating->ior.name;
-      for (double c : m.coating->ior.coefficients) t << ',' << c;
-    }
-    return t.str();
+  // What makes two materials the same (shared, one MaterialId): the kind, whether the object
+  // emits (an emitter without a reflectance is black), and the canonical text of the
+  // parameters (one serialisation: io/parameter_set.h).
+  static std::string identityText(const MaterialDesc& m, bool emitter) {
+    return m.material + (emitter ? ";emitter;" : ";;") + m.params.canonicalText();
   }
 
   // The definition of a <material id> (the loader checked that it exists).
   const MaterialDesc& namedMaterial(const std::string& id) const {
     for (const NamedMaterialDesc& m : desc_.materials)
       if (m.id == id) return m.material;
+    throw Error("no material '" + id + "'"); // unreachable after loading
+  }
+  const SourceLocation& namedMaterialLoc(const std::string& id) const {
+    for (const NamedMaterialDesc& m : desc_.materials)
+      if (m.id == id) return m.loc;
     throw Error("no material '" + id + "'"); // unreachable after loading
   }
 
@@ -581,208 +500,56 @@ private:
     return stack;
   }
 
-  // The hemispherical (cosine-weighted) reflectance of a smooth interface of relative index n
-  // for diffuse light from inside: Fi = 1 - (1 - Fe) / n^2 with Fe = 2 integral_0^1 F(mu) mu dmu
-  // from outside (energy through the interface is the same both ways; radiance scales by n^2).
-  static double internalDiffuseReflectance(double n) {
-    double fe = 0;
-    const int steps = 4000;
-    for (int i = 0; i < steps; ++i) {
-      const double mu = (i + 0.5) / steps;
-      fe += 2 * fresnelDielectric(static_cast<float>(mu), static_cast<float>(n)) * mu / steps;
+  // What the kinds' builds ask of the scene (integrators/materials/material_kind.h).
+  class KindInputs : public MaterialInputs {
+  public:
+    explicit KindInputs(const Builder& b) : b_(b) {}
+    Spectrum spectrum(const SpectrumDesc& d, SpectrumRole role) const override {
+      return b_.resolve(d, role);
     }
-    return 1 - (1 - fe) / (n * n);
-  }
-
-  // <material>conductor</material>: a built-in metal or an explicit eta and k, and a GGX
-  // roughness (0: smooth); it takes no reflectance, roughness, ior or fluorescence.
-  Material conductor(const MaterialDesc& o, const SourceLocation& objectLoc) const {
-    if (o.color || o.reflectance || o.roughness || o.ior || o.fluorescence)
-      throw Error(objectLoc.str() +
-                  ": expected no <color>, <reflectance>, <roughness>, <ior> or <fluorescence> on "
-                  "a conductor (its colour is its <metal> or <eta> and <k>; its roughness "
-                  "<alpha>), found some");
-    Material m;
-    m.kind = MaterialKind::Conductor;
-    m.reflectance = Spectrum(ConstantSpectrum{1.0});
-    std::string names;
-    for (const std::string& n : metalNames()) names += (names.empty() ? "" : ", ") + n;
-    if (o.metal) {
-      if (o.eta || o.k)
-        throw Error(o.metalLoc.str() + ": expected either <metal> or <eta> and <k>, found both");
-      const std::optional<MetalIndex> metal = namedMetal(*o.metal);
-      if (!metal)
-        throw Error(o.metalLoc.str() + ": expected a metal name (" + names + "), found '" +
-                    *o.metal + "'");
-      m.conductorEta = metal->eta;
-      m.conductorK = metal->k;
-    } else {
-      if (!o.eta || !o.k)
-        throw Error(objectLoc.str() + ": expected <metal> (" + names +
-                    ") or both <eta> and <k> on a conductor, found " +
-                    (o.eta ? "<eta> alone"
-                     : o.k ? "<k> alone"
-                           : "neither"));
-      m.conductorEta = forRendering(resolve(*o.eta, SpectrumRole::Coefficient));
-      m.conductorK = forRendering(resolve(*o.k, SpectrumRole::Coefficient));
-      for (const auto& [sp, desc, what, lo] : {std::tuple{&m.conductorEta, &*o.eta, "eta", 1e-3},
-                                               std::tuple{&m.conductorK, &*o.k, "k", 0.0}}) {
-        const SpectrumExtremes e = spectrumExtremes(*sp, kTraceMinNm, kTraceMaxNm);
-        if (!(e.min >= lo && e.max <= 1e3))
-          throw Error(desc->loc.str() + ": expected " + what + " within [" + numberText(lo) +
-                      ", 1000] at every wavelength of " + tracedRange() + ", found " +
-                      (std::isnan(e.min) ? std::string("a non-finite value")
-                                         : numberText(e.min < lo ? e.min : e.max) + " at " +
-                                               numberText(e.min < lo ? e.minNm : e.maxNm) + " nm") +
-                      (e.min == 0 && lo > 0
-                           ? " (a table is 0 beyond its rows; extrapolate=\"hold\" "
-                             "keeps its end values)"
-                           : ""));
+    IorModel ior(const IorDesc& d) const override { return b_.iorModel(d); }
+    FluorescenceModel fluorescenceModel(const FluorescenceDesc& d) const override {
+      return b_.fluorescence(d);
+    }
+    std::shared_ptr<const ReradiationMatrix>
+    measuredMatrix(const FluorescenceDesc& d) const override {
+      try {
+        return std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromMeasured(
+            parseMeasuredMatrixCsv(b_.readReferencedFile(*d.matrixCsv), *d.matrixCsv)));
+      } catch (const Error& e) {
+        throw Error(d.loc.str() + ": " + e.what());
       }
     }
-    m.alphaU = static_cast<float>(o.alpha ? *o.alpha : o.alphaU.value_or(0.0));
-    m.alphaV = static_cast<float>(o.alpha ? *o.alpha : o.alphaV.value_or(0.0));
-    return m;
-  }
-
-  Material material(const MaterialDesc& o, const SourceLocation& objectLoc, bool emitter,
-                    bool spectral) const {
-    Material m = uncoatedMaterial(o, objectLoc, emitter, spectral);
-    if (o.coating) {
-      // A thin film needs a smooth interface or microfacets to lie on: conductors and
-      // (smooth) dielectrics.
-      if (m.kind != MaterialKind::Conductor && m.kind != MaterialKind::Dielectric)
-        throw Error(o.coating->loc.str() +
-                    ": expected a <coating> only on a conductor or on glass, diamond, "
-                    "translucent or transparent, found it on " +
-                    o.material);
-      if (m.kind == MaterialKind::Dielectric && std::max(m.alphaU, m.alphaV) > 0)
-        throw Error(o.coating->loc.str() +
-                    ": expected a <coating> on a smooth dielectric, found it on a rough one "
-                    "(<alpha>)");
-      m.coatingNm = static_cast<float>(o.coating->thicknessNm);
-      m.coatingIor = iorModel(o.coating->ior);
+    std::shared_ptr<const ReflectanceTexture> texture(const SpectrumDesc& d) const override {
+      return b_.texture(d);
     }
-    return m;
-  }
-
-  Material uncoatedMaterial(const MaterialDesc& o, const SourceLocation& objectLoc, bool emitter,
-                            bool spectral) const {
-    Material m;
-    const std::string& name = o.material;
-    if (name == "interface") {
-      // Only bounds a medium: nothing of its own to scatter with.
-      if (o.color || o.reflectance || o.roughness || o.ior || o.fluorescence || emitter)
-        throw Error(objectLoc.str() +
-                    ": expected no <color>, <reflectance>, <roughness>, <ior>, <fluorescence> "
-                    "or <emission> on an interface (it only bounds a medium), found some");
-      m.kind = MaterialKind::Interface;
-      m.reflectance = Spectrum(ConstantSpectrum{1.0});
-      return m;
-    }
-    if (name == "conductor") return conductor(o, objectLoc);
-    const bool coated = name == "coated";
-    if (o.eta || o.k || o.metal)
-      throw Error((o.metal ? o.metalLoc
-                   : o.eta ? o.eta->loc
-                           : o.k->loc)
-                      .str() +
-                  ": expected <eta>, <k> and <metal> only on a conductor, found them on " + name);
-    const bool thin = name == "thin_glass";
-    const bool dielectric = name == "glass" || name == "diamond" || name == "translucent" ||
-                            name == "transparent" || thin;
-    if (dielectric) {
-      m.kind = thin ? MaterialKind::ThinDielectric : MaterialKind::Dielectric;
-      m.ior = IorModel::constant(name == "glass" || thin ? 1.5 : name == "diamond" ? 2.418 : 1.02);
-      if (o.roughness)
-        throw Error(o.roughnessLoc.str() + ": expected no <roughness> on a smooth dielectric (" +
-                    name + "), found one");
-      if (o.ior) m.ior = iorModel(*o.ior);
-      // <alpha>: a rough (frosted) dielectric; a thin wall stays smooth.
-      if (thin && (o.alpha || o.alphaU))
-        throw Error(o.alphaLoc.str() + ": expected no <alpha> on thin_glass (a smooth wall), "
-                                       "found one");
-      m.alphaU = static_cast<float>(o.alpha ? *o.alpha : o.alphaU.value_or(0.0));
-      m.alphaV = static_cast<float>(o.alpha ? *o.alpha : o.alphaV.value_or(0.0));
-    } else if (coated) {
-      // A clear coat of a constant index (default 1.5) over a Lambertian base.
-      m.kind = MaterialKind::CoatedDiffuse;
-      if (o.roughness)
-        throw Error(o.roughnessLoc.str() +
-                    ": expected no <roughness> on a coated surface (a Lambertian base under a "
-                    "smooth coat), found one");
-      if (o.alpha || o.alphaU)
-        throw Error(o.alphaLoc.str() + ": expected no <alpha> on a coated surface (its coat is "
-                                       "smooth), found one");
-      m.ior = o.ior ? iorModel(*o.ior) : IorModel::constant(1.5);
-      if (m.ior.dispersive())
-        throw Error(o.ior->loc.str() + ": expected a constant <ior> for a coat (a number), found "
-                                       "a dispersive one");
-      m.coatInternalReflectance = static_cast<float>(internalDiffuseReflectance(m.ior.at(550)));
-    } else {
-      m.kind = MaterialKind::Mixture;
-      m.roughness = name == "metal"     ? 0.3f
-                    : name == "plastic" ? 0.7f
-                    : name == "mirror"  ? 0.0f
-                                        : 1.0f;
-      if (o.roughness) m.roughness = static_cast<float>(*o.roughness);
-      if (o.alpha || o.alphaU)
-        throw Error(o.alphaLoc.str() +
-                    ": expected <alpha> only on a conductor or a dielectric (glass, diamond, "
-                    "translucent, transparent), found it on " +
-                    name);
-      if (o.ior)
-        throw Error(
-            o.ior->loc.str() +
-            ": expected <ior> only on glass, diamond, translucent or transparent, found it on " +
-            name);
-    }
-
-    // Each mode prefers its own tag (<reflectance> in spectral_mcpt, <color> in rt and mcpt)
-    // and falls back on the other, so every scene renders in every mode.
-    const bool useSpectrum = o.reflectance && (spectral || !o.color);
-    if (useSpectrum && o.reflectance->kind == SpectrumDesc::Kind::Texture) {
-      m.texture = texture(*o.reflectance);
-      m.reflectance = Spectrum(ConstantSpectrum{0.5}); // unused: the texture replaces it
-    } else if (useSpectrum) {
-      m.reflectance = resolve(*o.reflectance, SpectrumRole::Reflectance);
-      checkUnitRange(m.reflectance, o.reflectance->loc,
-                     dielectric ? "transmission tint" : "reflectance");
-    } else if (o.color) {
+    Spectrum srgbReflectance(const std::array<double, 3>& rgb) const override {
       try {
-        m.reflectance = upsampleSrgbReflectance({(*o.color)[0], (*o.color)[1], (*o.color)[2]});
+        return upsampleSrgbReflectance({rgb[0], rgb[1], rgb[2]});
       } catch (const Error& e) {
         throw Error(objectLoc.str() + ": " + e.what());
       }
-    } else if (dielectric) {
-      m.reflectance = Spectrum(ConstantSpectrum{1.0}); // clear
-    } else if (emitter) {
-      m.reflectance = Spectrum(ConstantSpectrum{0.0}); // a black emitter
-    } else {
-      throw Error(objectLoc.str() + ": expected <reflectance> or <color> on a non-emitting " +
-                  name + " object, found neither");
     }
-    if (o.fluorescence) {
-      if (dielectric)
-        throw Error(o.fluorescence->loc.str() +
-                    ": expected fluorescence only on matte, metal, plastic, mirror or coated "
-                    "surfaces (fluorescent dielectrics need media), found it on " +
-                    name);
-      if (o.fluorescence->matrixCsv) {
-        try {
-          m.reradiation = std::make_shared<const ReradiationMatrix>(
-              ReradiationMatrix::fromMeasured(parseMeasuredMatrixCsv(
-                  readReferencedFile(*o.fluorescence->matrixCsv), *o.fluorescence->matrixCsv)));
-        } catch (const Error& e) {
-          throw Error(o.fluorescence->loc.str() + ": " + e.what());
-        }
-      } else {
-        m.fluorescenceModel = fluorescence(*o.fluorescence);
-        m.reradiation = std::make_shared<const ReradiationMatrix>(
-            ReradiationMatrix::fromModel(*m.fluorescenceModel));
-      }
-    }
-    return m;
+
+  private:
+    const Builder& b_;
+  };
+
+  // A material from its kind's build, its parameters checked against the kind's schema first
+  // (the loader did so for the file; Python edits are checked again here).
+  Material material(const MaterialDesc& o, const SourceLocation& objectLoc, bool emitter,
+                    bool spectral) const {
+    const MaterialKindSpec* kind = findMaterialKind(o.material);
+    if (!kind)
+      throw Error(o.materialLoc.str() + ": expected a material " + materialKindList() +
+                  ", found '" + o.material + "'");
+    checkMaterialParameters(*kind, o.params);
+    KindInputs in(*this);
+    in.emitter = emitter;
+    in.spectral = spectral;
+    in.objectLoc = objectLoc;
+    in.kindName = o.material;
+    return kind->build(*kind, o.params, in);
   }
 
   // A reflectance texture: the built-in chart, a spectral EXR checked to hold reflectances,
@@ -927,8 +694,8 @@ private:
       // rt and mcpt: a numeric <emission> is scaled by <color> (white if absent); a spectrum
       // is used as in spectral mode.
       const double k = o.emission->number * o.emissionScale;
-      const Rgb c =
-          o.color ? Rgb{(*o.color)[0] * k, (*o.color)[1] * k, (*o.color)[2] * k} : Rgb{k, k, k};
+      const auto* color = o.params.get<std::array<double, 4>>("color");
+      const Rgb c = color ? Rgb{(*color)[0] * k, (*color)[1] * k, (*color)[2] * k} : Rgb{k, k, k};
       try {
         e = upsampleSrgbIlluminant(c);
       } catch (const Error& err) {

@@ -10,63 +10,19 @@
 #include <vector>
 
 #include "core/vec3.h"
+#include "io/parameter_set.h"
+#include "io/scene_values.h"
 #include "spectra/sensor.h"
 
 namespace nx {
 
-/// Where an item was written: file name and 1-based line.
-struct SourceLocation {
-  std::string file;
-  int line = 0;
-  /// "file:line", the prefix of every error about this item.
-  std::string str() const { return file + ":" + std::to_string(line); }
-};
-
 /// The three rendering modes of Niixtracer scene files.
 enum class RenderMode { Rt, Mcpt, SpectralMcpt };
-
-/// A spectrum as a scene refers to it.
-struct SpectrumDesc {
-  enum class Kind { Name, Number, Pairs, CsvFile, Texture };
-  /// What a table does beyond its wavelengths (extrapolate="zero|hold"; unset: zero, with a
-  /// warning when the render traces beyond it).
-  enum class Extrapolation { Unset, Zero, Hold };
-  Kind kind = Kind::Number;
-  Extrapolation extrapolate = Extrapolation::Unset;
-  std::string name;          ///< Kind::Name: a built-in or scene-defined spectrum name
-  double number = 0;         ///< Kind::Number: a flat spectrum
-  std::vector<double> nm;    ///< Kind::Pairs: wavelengths
-  std::vector<double> value; ///< Kind::Pairs: values
-  std::string path;          ///< Kind::CsvFile: resolved relative to the scene file
-  std::string column;        ///< Kind::CsvFile: the header's name of the value column, or ""
-  std::string texture; ///< Kind::Texture: "colorchecker" or a spectral EXR (relative to the scene)
-  SourceLocation loc;
-};
 
 /// <spectrum name="...">: a spectrum defined once and used by name.
 struct NamedSpectrumDesc {
   std::string name;
   SpectrumDesc spectrum;
-  SourceLocation loc;
-};
-
-/// Index of refraction: a number, a built-in glass, or a dispersion formula.
-struct IorDesc {
-  enum class Kind { Number, Named, Cauchy, Sellmeier };
-  Kind kind = Kind::Number;
-  double value = 1.5;               ///< Kind::Number
-  std::string name;                 ///< Kind::Named (bk7, diamond, fused_silica)
-  std::vector<double> coefficients; ///< Cauchy: A, B[, C] (um); Sellmeier: B1 B2 B3 C1 C2 C3 (um^2)
-  SourceLocation loc;
-};
-
-/// <fluorescence>: the parameters of the re-radiation matrix, or a measured matrix.
-struct FluorescenceDesc {
-  std::optional<std::string> absorptionName; ///< a colour name (peak wavelength)
-  std::optional<double> absorptionNm;        ///< or the peak wavelength itself
-  std::optional<double> stokesNm;
-  std::optional<double> widthNm, skew, quantumYield, peakAbsorptance;
-  std::optional<std::string> matrixCsv; ///< measured Donaldson matrix
   SourceLocation loc;
 };
 
@@ -89,30 +45,12 @@ struct MediumDesc {
 enum class ShapeType { Sphere, Plane, Triangle, Quad, Mesh };
 
 /// How a surface scatters: a material kind with its parameters (inline on an object, or a
-/// top-level <material id="..." type="...">).
+/// top-level <material id="..." type="...">). Which parameters a kind takes, their defaults and
+/// meaning: its schema (integrators/materials/material_kind.h, docs/reference/materials.md).
 struct MaterialDesc {
-  std::string material; ///< the kind: matte, metal, plastic, mirror, glass, ...
+  std::string material; ///< the kind (matte, glass, ...), or the id of a <material id>
   SourceLocation materialLoc;
-  std::optional<std::array<double, 4>> color; ///< RGBA (rt, mcpt)
-  std::optional<SpectrumDesc> reflectance;    ///< spectral_mcpt
-  std::optional<double> roughness;
-  SourceLocation roughnessLoc;
-  std::optional<IorDesc> ior;
-  std::optional<FluorescenceDesc> fluorescence;
-  /// Conductor: complex index eta + i k (spectra), or a built-in metal by name
-  std::optional<SpectrumDesc> eta, k;
-  std::optional<std::string> metal;
-  SourceLocation metalLoc;
-  /// Conductor: GGX roughness, isotropic (<alpha>) or along / across the tangent
-  std::optional<double> alpha, alphaU, alphaV;
-  SourceLocation alphaLoc;
-  /// A thin-film coating: thickness in nm and index of refraction
-  struct Coating {
-    double thicknessNm = 0;
-    IorDesc ior;
-    SourceLocation loc;
-  };
-  std::optional<Coating> coating;
+  ParameterSet params; ///< <color>, <reflectance>, <roughness>, ... as written
 };
 
 /// <material id="..." type="...">: a material defined once and used by objects by its id.

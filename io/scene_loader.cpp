@@ -19,6 +19,8 @@
 #include "core/math_util.h"
 #include "core/memory.h"
 #include "core/text_table.h"
+#include "integrators/materials/material_kind.h"
+#include "io/material_parameters.h"
 #include "io/scene_desc.h"
 #include "io/scene_limits.h"
 
@@ -661,56 +663,55 @@ private:
     return rgba;
   }
 
-  // The built-in material kinds.
-  static const std::set<std::string>& materialKinds() {
-    static const std::set<std::string> kinds{
-        "matte",       "metal",   "plastic", "mirror",    "diamond",    "glass",     "translucent",
-        "transparent", "default", "diffuse", "interface", "thin_glass", "conductor", "coated"};
-    return kinds;
-  }
-  static constexpr const char* kMaterialKindList =
-      "matte, metal, plastic, mirror, glass, diamond, translucent, transparent, default, "
-      "diffuse, interface, thin_glass, conductor or coated";
-
-  // The parameters of a material from an element's children (an object's, or a <material id>'s).
+  // The material parameters among an element's children (an object's, or a <material id>'s),
+  // each read by its declared type (io/material_parameters.h).
   void parseMaterialParameters(const std::map<std::string, pugi::xml_node>& c,
                                MaterialDesc& m) const {
-    if (c.count("color")) m.color = colour(c.at("color"), true);
-    if (c.count("reflectance")) m.reflectance = reflectance(c.at("reflectance"));
-    if (c.count("roughness")) {
-      m.roughness = number(c.at("roughness"), kRoughnessRange);
-      m.roughnessLoc = loc(c.at("roughness"));
+    for (const ParamSpec& spec : materialParameters()) {
+      const auto it = c.find(spec.name);
+      if (it == c.end()) continue;
+      m.params.set({spec.name, parameterValue(spec, it->second), loc(it->second)});
     }
-    if (c.count("ior")) m.ior = ior(c.at("ior"));
-    if (c.count("fluorescence")) m.fluorescence = fluorescence(c.at("fluorescence"));
-    if (c.count("eta")) m.eta = spectrum(c.at("eta"), false);
-    if (c.count("k")) m.k = spectrum(c.at("k"), false);
-    if (c.count("metal")) {
-      m.metal = text(c.at("metal"));
-      m.metalLoc = loc(c.at("metal"));
-    }
-    for (const auto& [tag, field] :
-         {std::pair{"alpha", &MaterialDesc::alpha}, std::pair{"alpha_u", &MaterialDesc::alphaU},
-          std::pair{"alpha_v", &MaterialDesc::alphaV}})
-      if (c.count(tag)) {
-        m.*field = number(c.at(tag), kAlphaRange);
-        m.alphaLoc = loc(c.at(tag));
-      }
-    if (c.count("coating")) {
-      const pugi::xml_node n = c.at("coating");
+  }
+
+  // One parameter's value from its element, by type.
+  ParamValue parameterValue(const ParamSpec& spec, const pugi::xml_node& n) const {
+    switch (spec.type) {
+    case ParamType::Number:
+      return number(n, *spec.range);
+    case ParamType::Rgb:
+      return colour(n, true);
+    case ParamType::Spectrum:
+      return *spectrum(n, false);
+    case ParamType::Reflectance:
+      return *reflectance(n);
+    case ParamType::Ior:
+      return ior(n);
+    case ParamType::Fluorescence:
+      return fluorescence(n);
+    case ParamType::Coating: {
       checkAttributes(n, {});
       const auto cc = uniqueChildren(n, {"thickness", "ior"});
-      MaterialDesc::Coating coat;
+      CoatingDesc coat;
       coat.loc = loc(n);
-      coat.thicknessNm = number(required(cc, n, "thickness"), kCoatingThicknessRange);
+      coat.thicknessNm = number(required(cc, n, "thickness"), *spec.range);
       coat.ior = ior(required(cc, n, "ior"));
-      m.coating = coat;
+      return coat;
     }
-    if (m.alpha && (m.alphaU || m.alphaV))
-      fail(c.at("alpha"), "either <alpha> or <alpha_u> and <alpha_v>", "both");
-    if (m.alphaU.has_value() != m.alphaV.has_value())
-      fail(c.at(m.alphaU ? "alpha_u" : "alpha_v"), "<alpha_u> and <alpha_v> together",
-           "only one of them");
+    case ParamType::Name: {
+      const std::string t = text(n);
+      if (t.empty()) fail(n, "a name in <" + std::string(n.name()) + ">", "nothing");
+      return t;
+    }
+    }
+    fail(n, "a declared parameter type", "none"); // unreachable: the switch is exhaustive
+  }
+
+  // The material parameter names in the order they are listed.
+  static std::vector<std::string> materialParameterNames() {
+    std::vector<std::string> names;
+    for (const ParamSpec& spec : materialParameters()) names.push_back(spec.name);
+    return names;
   }
 
   // <material id="name" type="kind"> with the material's parameters as children.
@@ -720,24 +721,23 @@ private:
     d.loc = loc(n);
     if (!n.attribute("id")) fail(n, "an id=\"...\" on a top-level <material>", "none");
     if (!n.attribute("type"))
-      fail(n, "a type=\"...\" (" + std::string(kMaterialKindList) + ") on <material>", "none");
+      fail(n, "a type=\"...\" (" + materialKindList() + ") on <material>", "none");
     d.id = trim(decoded(n.attribute("id").value(), n));
     if (d.id.empty()) fail(n, "a non-empty material id", "id=\"\"");
-    if (materialKinds().count(d.id))
+    if (findMaterialKind(d.id))
       fail(n, "a material id that is not a built-in kind's name", shownText(d.id));
     d.material.material = trim(decoded(n.attribute("type").value(), n));
     d.material.materialLoc = d.loc;
-    if (!materialKinds().count(d.material.material))
-      fail(n, "a material type " + std::string(kMaterialKindList), shownText(d.material.material));
-    const auto c =
-        uniqueChildren(n, {"color", "reflectance", "roughness", "ior", "fluorescence", "eta", "k",
-                           "metal", "alpha", "alpha_u", "alpha_v", "coating"});
-    parseMaterialParameters(c, d.material);
+    const MaterialKindSpec* kind = findMaterialKind(d.material.material);
+    if (!kind) fail(n, "a material type " + materialKindList(), shownText(d.material.material));
+    parseMaterialParameters(uniqueChildren(n, materialParameterNames()), d.material);
+    checkMaterialParameters(*kind, d.material.params);
     return d;
   }
 
   // Objects whose <material> names a <material id>: checked to exist and to carry no material
-  // parameters of their own; ids defined twice are errors.
+  // parameters of their own; ids defined twice are errors. The others name a kind, whose
+  // schema their parameters are checked against.
   void resolveMaterialReferences(SceneDesc& scene) const {
     std::map<std::string, const NamedMaterialDesc*> byId;
     for (const NamedMaterialDesc& m : scene.materials)
@@ -745,19 +745,22 @@ private:
         throw Error(m.loc.str() + ": expected a new material id, found '" + m.id +
                     "' defined twice (first at " + byId.at(m.id)->loc.str() + ")");
     for (ObjectDesc& o : scene.objects) {
-      if (o.materialRef.empty()) continue;
-      const auto it = byId.find(o.materialRef);
-      if (it == byId.end())
-        throw Error(o.materialLoc.str() + ": expected a material " + kMaterialKindList +
-                    " or the id of a <material id=\"...\"> of the scene, found " +
-                    shownText(o.materialRef));
-      const bool ownParameters = o.color || o.reflectance || o.roughness || o.ior || o.fluorescence;
-      if (ownParameters)
-        throw Error(o.loc.str() +
-                    ": expected no <color>, <reflectance>, <roughness>, <ior> or "
-                    "<fluorescence> on an object whose material '" +
-                    o.materialRef + "' is defined at " + it->second->loc.str() +
-                    ", found some (define a second material instead)");
+      const auto it = byId.find(o.material);
+      if (it == byId.end()) {
+        const MaterialKindSpec* kind = findMaterialKind(o.material);
+        if (!kind)
+          throw Error(o.materialLoc.str() + ": expected a material " + materialKindList() +
+                      " or the id of a <material id=\"...\"> of the scene, found " +
+                      shownText(o.material));
+        checkMaterialParameters(*kind, o.params);
+        continue;
+      }
+      o.materialRef = o.material;
+      if (!o.params.empty())
+        throw Error(o.params.items().front().loc.str() +
+                    ": expected no material parameters on an object whose material '" +
+                    o.materialRef + "' is defined at " + it->second->loc.str() + ", found <" +
+                    o.params.items().front().name + "> (define a second material instead)");
     }
   }
 
@@ -826,9 +829,9 @@ private:
     const std::string tag = n.name();
     checkAttributes(n,
                     tag == "mesh" ? std::vector<std::string>{"file"} : std::vector<std::string>{});
-    std::vector<std::string> allowed{
-        "material", "color", "reflectance", "emission", "fluorescence", "roughness", "ior",
-        "eta",      "k",     "metal",       "alpha",    "alpha_u",      "alpha_v",   "coating"};
+    std::vector<std::string> allowed{"material"};
+    for (const std::string& p : materialParameterNames()) allowed.push_back(p);
+    allowed.push_back("emission");
     if (tag == "sphere") allowed.insert(allowed.end(), {"center", "radius", "medium"});
     if (tag == "plane") allowed.insert(allowed.end(), {"normal", "distance"});
     if (tag == "triangle") allowed.insert(allowed.end(), {"vA", "vB", "vC"});
@@ -875,12 +878,8 @@ private:
     const pugi::xml_node mat = required(c, n, "material");
     o.material = text(mat);
     o.materialLoc = loc(mat);
-    if (!materialKinds().count(o.material)) {
-      if (o.material.empty())
-        fail(mat, std::string("a material ") + kMaterialKindList + " or a <material id>",
-             "nothing");
-      o.materialRef = o.material; // checked once every <material id> is known
-    }
+    if (o.material.empty())
+      fail(mat, "a material " + materialKindList() + " or a <material id>", "nothing");
     parseMaterialParameters(c, o);
     if (c.count("emission")) {
       const pugi::xml_node e = c.at("emission");

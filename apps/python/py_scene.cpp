@@ -7,9 +7,12 @@
 #include <filesystem>
 
 #include "apps/python/py_arguments.h"
+#include "apps/python/py_parameters.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "integrators/materials/material_kind.h"
 #include "io/camera_checks.h"
+#include "io/material_parameters.h"
 #include "io/scene_limits.h"
 
 namespace nxpy {
@@ -17,19 +20,12 @@ namespace {
 
 using StatePtr = std::shared_ptr<SceneState>;
 
-void record(SceneState& s, const std::string& what, const py::handle& value) {
-  s.edits.push_back(what + " = " + py::repr(value).cast<std::string>());
+py::object spectrumToPythonOpt(const std::optional<nx::SpectrumDesc>& s) {
+  return s ? spectrumToPython(*s) : py::object(py::none());
 }
 
-double rangedArgument(const py::handle& value, const std::string& param,
-                      const nx::ParameterRange& r) {
-  const double v = numberArgument(value, param.c_str(), -1e300, 1e300);
-  if (!r.contains(v))
-    throw py::value_error(param + ": expected " + r.what + " in " + (r.openLow ? "(" : "[") +
-                          py::str(py::float_(r.lo)).cast<std::string>() + ", " +
-                          py::str(py::float_(r.hi)).cast<std::string>() + "], found " +
-                          py::str(py::float_(v)).cast<std::string>());
-  return v;
+void record(SceneState& s, const std::string& what, const py::handle& value) {
+  s.edits.push_back(what + " = " + py::repr(value).cast<std::string>());
 }
 
 // Applies edit to a copy of the camera, checks the result as the scene build does (the same
@@ -59,56 +55,6 @@ nx::Vec3d pointArgument(const py::handle& value, const std::string& param) {
 
 py::tuple tupleOf(const nx::Vec3d& v) {
   return py::make_tuple(v.x, v.y, v.z);
-}
-
-// ---- spectra as Python values ----
-
-py::object spectrumValue(const std::optional<nx::SpectrumDesc>& s) {
-  if (!s) return py::none();
-  switch (s->kind) {
-  case nx::SpectrumDesc::Kind::Number:
-    return py::float_(s->number);
-  case nx::SpectrumDesc::Kind::Name:
-    return py::str(s->name);
-  case nx::SpectrumDesc::Kind::Pairs:
-    return py::make_tuple(py::cast(s->nm), py::cast(s->value));
-  case nx::SpectrumDesc::Kind::CsvFile:
-    return py::str("csv:" + s->path);
-  case nx::SpectrumDesc::Kind::Texture:
-    return py::str("texture:" + s->texture);
-  }
-  return py::none();
-}
-
-// A reflectance from Python: a number >= 0, a spectrum name, or (wavelengths, values).
-nx::SpectrumDesc spectrumArgument(const py::handle& value, const std::string& param,
-                                  const nx::SourceLocation& loc) {
-  nx::SpectrumDesc s;
-  s.loc = loc;
-  if (py::isinstance<py::str>(value)) {
-    s.kind = nx::SpectrumDesc::Kind::Name;
-    s.name = value.cast<std::string>();
-    if (s.name.empty()) throw py::value_error(param + ": expected a spectrum name, found ''");
-    return s;
-  }
-  if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
-    if (py::len(value) != 2)
-      throw py::value_error(param + ": expected (wavelengths_nm, values), found a sequence of " +
-                            std::to_string(py::len(value)));
-    s.kind = nx::SpectrumDesc::Kind::Pairs;
-    s.nm = numberListArgument(value[py::int_(0)], (param + "[0] (wavelengths)").c_str(), 2);
-    s.value = numberListArgument(value[py::int_(1)], (param + "[1] (values)").c_str(), 2);
-    if (s.nm.size() != s.value.size())
-      throw py::value_error(param + ": expected as many values as wavelengths, found " +
-                            std::to_string(s.value.size()) + " and " + std::to_string(s.nm.size()));
-    for (size_t i = 1; i < s.nm.size(); ++i)
-      if (!(s.nm[i] > s.nm[i - 1]))
-        throw py::value_error(param + ": expected increasing wavelengths");
-    return s;
-  }
-  s.kind = nx::SpectrumDesc::Kind::Number;
-  s.number = numberArgument(value, param.c_str(), 0, 1e300);
-  return s;
 }
 
 // ---- views ----
@@ -152,7 +98,7 @@ struct MaterialView {
 struct FluorescenceView {
   MaterialView m;
   nx::FluorescenceDesc& get() const {
-    auto& f = m.get().fluorescence;
+    nx::FluorescenceDesc* f = m.get().params.getMutable<nx::FluorescenceDesc>("fluorescence");
     if (!f) throw py::value_error(m.label() + ": has no fluorescence any more");
     return *f;
   }
@@ -166,6 +112,43 @@ struct FluorescenceView {
     return f;
   }
 };
+
+// Refuses a parameter the material's kind does not take (its schema), as the loader does.
+void requireKindTakes(const MaterialView& v, const char* name, const std::string& param) {
+  const nx::MaterialKindSpec* kind = nx::findMaterialKind(v.get().material);
+  if (!kind || kind->param(name)) return;
+  nx::ParameterSet probe;
+  probe.set({name, 0.0, v.loc()});
+  try {
+    nx::checkMaterialParameters(*kind, probe);
+  } catch (const nx::Error& e) {
+    const std::string m = e.what(), prefix = v.loc().str() + ": ";
+    throw py::value_error(param + ": " + (m.rfind(prefix, 0) == 0 ? m.substr(prefix.size()) : m));
+  }
+}
+
+// Sets (None: removes) one declared parameter of a material, checked by its type, its range
+// and the kind's schema; the names it excludes are removed.
+void setMaterialParameter(const MaterialView& v, const nx::ParamSpec& spec, const py::handle& value,
+                          const std::string& param) {
+  nx::MaterialDesc& d = v.editable();
+  if (value.is_none()) {
+    d.params.erase(spec.name);
+    return;
+  }
+  requireKindTakes(v, spec.name, param);
+  d.params.set({spec.name, parameterFromPython(spec, value, param, v.loc()), v.loc()});
+  std::string excluded;
+  for (const char* c = spec.excludes;; ++c) {
+    if (*c == ' ' || *c == '\0') {
+      if (!excluded.empty()) d.params.erase(excluded);
+      excluded.clear();
+      if (*c == '\0') break;
+    } else {
+      excluded += *c;
+    }
+  }
+}
 
 struct ObjectView {
   StatePtr s;
@@ -196,10 +179,10 @@ void bindMediumSpectrum(py::class_<MediumView>& c, const char* name,
                         nx::SpectrumDesc nx::MediumDesc::*field, double nx::MediumDesc::*scale,
                         const char* doc) {
   c.def_property(
-      name, [field](const MediumView& v) { return spectrumValue(v.get().*field); },
+      name, [field](const MediumView& v) { return spectrumToPythonOpt(v.get().*field); },
       [field, scale, name](const MediumView& v, const py::object& value) {
         const std::string param = v.label() + "." + name;
-        v.get().*field = spectrumArgument(value, param, v.o.get().loc);
+        v.get().*field = spectrumFromPython(value, param, v.o.get().loc);
         v.get().*scale = 1; // a new value stands alone
         record(*v.o.s, param, value);
       },
@@ -341,64 +324,45 @@ void bindScene(py::module_& m) {
            ", stokes=" + std::to_string(d.stokesNm.value_or(0)) + " nm>";
   });
 
-  py::class_<MaterialView>(m, "Material", "A material's parameters (an object's or a named one)")
-      .def_property_readonly(
-          "kind", [](const MaterialView& v) { return v.get().material; },
-          "matte, metal, plastic, mirror, glass, ...")
-      .def_property(
-          "reflectance", [](const MaterialView& v) { return spectrumValue(v.get().reflectance); },
-          [](const MaterialView& v, const py::object& value) {
-            nx::MaterialDesc& d = v.editable();
-            d.reflectance = spectrumArgument(value, v.label() + ".reflectance", v.loc());
-            record(*v.s, v.label() + ".reflectance", value);
-          },
-          "A number (flat), a spectrum name, or (wavelengths_nm, values) linear between them")
-      .def_property(
-          "roughness",
-          [](const MaterialView& v) -> py::object {
-            const auto& r = v.get().roughness;
-            return r ? py::object(py::float_(*r)) : py::object(py::none());
-          },
-          [](const MaterialView& v, const py::object& value) {
-            nx::MaterialDesc& d = v.editable();
-            d.roughness = rangedArgument(value, v.label() + ".roughness", nx::kRoughnessRange);
-            d.roughnessLoc = v.loc();
-            record(*v.s, v.label() + ".roughness", value);
-          },
-          "Roughness in [0, 1] (None: the kind's default)")
-      .def_property(
-          "ior",
-          [](const MaterialView& v) -> py::object {
-            const auto& i = v.get().ior;
-            if (!i) return py::none();
-            if (i->kind == nx::IorDesc::Kind::Number) return py::float_(i->value);
-            if (i->kind == nx::IorDesc::Kind::Named) return py::str(i->name);
-            return py::str(i->kind == nx::IorDesc::Kind::Cauchy ? "cauchy" : "sellmeier");
-          },
-          [](const MaterialView& v, const py::object& value) {
-            nx::MaterialDesc& d = v.editable();
-            nx::IorDesc ior;
-            ior.loc = v.loc();
-            ior.value = rangedArgument(value, v.label() + ".ior", nx::kIorRange);
-            d.ior = ior;
-            record(*v.s, v.label() + ".ior", value);
-          },
-          "Index of refraction: a number (set), a named glass or a dispersion formula (get)")
-      .def_property(
-          "fluorescence",
-          [](const MaterialView& v) -> py::object {
-            if (!v.get().fluorescence) return py::none();
-            return py::cast(FluorescenceView{v});
-          },
-          [](const MaterialView& v, const py::object& value) {
-            if (!value.is_none())
-              throw py::type_error(v.label() +
-                                   ".fluorescence: expected None (to remove it); give a model "
-                                   "with set_fluorescence(...)");
-            v.editable().fluorescence.reset();
-            record(*v.s, v.label() + ".fluorescence", value);
-          },
-          "The fluorescence (None: none); assign None to remove it")
+  py::class_<MaterialView> mat(m, "Material",
+                               "A material's parameters (an object's or a named one): a "
+                               "property per parameter of the scene format "
+                               "(docs/reference/materials.md)");
+  mat.def_property_readonly(
+      "kind", [](const MaterialView& v) { return v.get().material; },
+      "matte, metal, plastic, mirror, glass, ...");
+  // One property per declared parameter: read as its Python form (None: not given, the
+  // kind's default), set checked by its type and range, None removes it.
+  for (const nx::ParamSpec& spec : nx::materialParameters()) {
+    if (spec.type == nx::ParamType::Fluorescence) continue; // a view of its own, below
+    const nx::ParamSpec* sp = &spec;
+    mat.def_property(
+        spec.name,
+        [sp](const MaterialView& v) -> py::object {
+          const nx::Parameter* q = v.get().params.find(sp->name);
+          return q ? parameterToPython(q->value) : py::object(py::none());
+        },
+        [sp](const MaterialView& v, const py::object& value) {
+          setMaterialParameter(v, *sp, value, v.label() + "." + sp->name);
+          record(*v.s, v.label() + "." + sp->name, value);
+        },
+        spec.doc);
+  }
+  mat.def_property(
+         "fluorescence",
+         [](const MaterialView& v) -> py::object {
+           if (!v.get().params.has("fluorescence")) return py::none();
+           return py::cast(FluorescenceView{v});
+         },
+         [](const MaterialView& v, const py::object& value) {
+           if (!value.is_none())
+             throw py::type_error(v.label() +
+                                  ".fluorescence: expected None (to remove it); give a model "
+                                  "with set_fluorescence(...)");
+           v.editable().params.erase("fluorescence");
+           record(*v.s, v.label() + ".fluorescence", value);
+         },
+         "The fluorescence (None: none); assign None to remove it")
       .def(
           "set_fluorescence",
           [](const MaterialView& v, const py::object& absorptionNm, const py::object& stokesNm,
@@ -406,12 +370,13 @@ void bindScene(py::module_& m) {
              const py::object& peakAbsorptance) {
             nx::MaterialDesc& d = v.editable();
             const std::string p = v.label() + ".set_fluorescence: ";
+            requireKindTakes(v, "fluorescence", v.label() + ".set_fluorescence");
             nx::FluorescenceDesc f =
                 fluorescenceModel(p, v.loc(), absorptionNm, stokesNm, widthNm, skew, quantumYield);
             if (!peakAbsorptance.is_none())
               f.peakAbsorptance =
                   rangedArgument(peakAbsorptance, p + "peak_absorptance", nx::kPeakRange);
-            d.fluorescence = f;
+            d.params.set({"fluorescence", f, v.loc()});
             v.s->edits.push_back(v.label() + ".set_fluorescence(" +
                                  py::repr(py::make_tuple(absorptionNm, stokesNm, widthNm, skew,
                                                          quantumYield, peakAbsorptance))
@@ -424,105 +389,20 @@ void bindScene(py::module_& m) {
           py::arg("peak_absorptance") = py::none(),
           "Gives the material a fluorescence model (replacing any); returns it")
       .def_property(
-          "metal",
-          [](const MaterialView& v) -> py::object {
-            const auto& m = v.get().metal;
-            return m ? py::object(py::str(*m)) : py::object(py::none());
-          },
-          [](const MaterialView& v, const py::object& value) {
-            nx::MaterialDesc& d = v.editable();
-            d.metal = stringArgument(value, (v.label() + ".metal").c_str());
-            d.metalLoc = v.loc();
-            d.eta.reset();
-            d.k.reset();
-            record(*v.s, v.label() + ".metal", value);
-          },
-          "A conductor's built-in metal (gold, silver, copper, aluminium); setting it replaces "
-          "eta and k")
-      .def_property(
-          "eta", [](const MaterialView& v) { return spectrumValue(v.get().eta); },
-          [](const MaterialView& v, const py::object& value) {
-            nx::MaterialDesc& d = v.editable();
-            d.eta = spectrumArgument(value, v.label() + ".eta", v.loc());
-            d.metal.reset();
-            record(*v.s, v.label() + ".eta", value);
-          },
-          "A conductor's refractive index (real part), in the forms of reflectance; setting it "
-          "replaces the metal")
-      .def_property(
-          "k", [](const MaterialView& v) { return spectrumValue(v.get().k); },
-          [](const MaterialView& v, const py::object& value) {
-            nx::MaterialDesc& d = v.editable();
-            d.k = spectrumArgument(value, v.label() + ".k", v.loc());
-            d.metal.reset();
-            record(*v.s, v.label() + ".k", value);
-          },
-          "A conductor's extinction coefficient; setting it replaces the metal")
-      .def_property(
-          "alpha",
-          [](const MaterialView& v) -> py::object {
-            const auto& d = v.get();
-            return d.alpha ? py::object(py::float_(*d.alpha)) : py::object(py::none());
-          },
-          [](const MaterialView& v, const py::object& value) {
-            nx::MaterialDesc& d = v.editable();
-            d.alpha = rangedArgument(value, v.label() + ".alpha", nx::kAlphaRange);
-            d.alphaU.reset();
-            d.alphaV.reset();
-            d.alphaLoc = v.loc();
-            record(*v.s, v.label() + ".alpha", value);
-          },
-          "Isotropic GGX roughness of a conductor or dielectric (None when anisotropic or "
-          "smooth)")
-      .def_property(
           "alpha_uv",
           [](const MaterialView& v) -> py::object {
-            const auto& d = v.get();
-            if (!d.alphaU) return py::none();
-            return py::make_tuple(*d.alphaU, *d.alphaV);
+            const auto& p = v.get().params;
+            if (!p.has("alpha_u") || !p.has("alpha_v")) return py::none();
+            return py::make_tuple(*p.number("alpha_u"), *p.number("alpha_v"));
           },
           [](const MaterialView& v, const py::object& value) {
-            nx::MaterialDesc& d = v.editable();
-            const std::vector<double> uv =
-                numbersArgument(value, (v.label() + ".alpha_uv").c_str(), 2);
-            for (double a : uv)
-              (void)rangedArgument(py::float_(a), v.label() + ".alpha_uv", nx::kAlphaRange);
-            d.alphaU = uv[0];
-            d.alphaV = uv[1];
-            d.alpha.reset();
-            d.alphaLoc = v.loc();
-            record(*v.s, v.label() + ".alpha_uv", value);
+            const std::string param = v.label() + ".alpha_uv";
+            const std::vector<double> uv = numbersArgument(value, param.c_str(), 2);
+            setMaterialParameter(v, *nx::materialParameter("alpha_u"), py::float_(uv[0]), param);
+            setMaterialParameter(v, *nx::materialParameter("alpha_v"), py::float_(uv[1]), param);
+            record(*v.s, param, value);
           },
-          "Anisotropic GGX roughness (along dpdu, across it), or None")
-      .def_property(
-          "coating",
-          [](const MaterialView& v) -> py::object {
-            const auto& c = v.get().coating;
-            if (!c) return py::none();
-            return py::make_tuple(c->thicknessNm, c->ior.kind == nx::IorDesc::Kind::Number
-                                                      ? py::object(py::float_(c->ior.value))
-                                                      : py::object(py::str(c->ior.name)));
-          },
-          [](const MaterialView& v, const py::object& value) {
-            nx::MaterialDesc& d = v.editable();
-            if (value.is_none()) {
-              d.coating.reset();
-            } else {
-              const std::vector<double> c =
-                  numbersArgument(value, (v.label() + ".coating").c_str(), 2);
-              nx::MaterialDesc::Coating coat;
-              coat.loc = v.loc();
-              coat.thicknessNm = rangedArgument(py::float_(c[0]), v.label() + ".coating[0]",
-                                                nx::kCoatingThicknessRange);
-              coat.ior.loc = v.loc();
-              coat.ior.kind = nx::IorDesc::Kind::Number;
-              coat.ior.value =
-                  rangedArgument(py::float_(c[1]), v.label() + ".coating[1]", nx::kIorRange);
-              d.coating = coat;
-            }
-            record(*v.s, v.label() + ".coating", value);
-          },
-          "A thin-film coating (thickness_nm, ior), or None")
+          "Anisotropic GGX roughness (alpha_u, alpha_v), or None")
       .def("__repr__", [](const MaterialView& v) {
         return "<nxrender.Material " + v.label() + " " + v.get().material + ">";
       });
@@ -543,13 +423,13 @@ void bindScene(py::module_& m) {
          },
          "Henyey-Greenstein mean cosine in [-0.999, 0.999]")
       .def_property(
-          "emission", [](const MediumView& v) { return spectrumValue(v.get().emission); },
+          "emission", [](const MediumView& v) { return spectrumToPythonOpt(v.get().emission); },
           [](const MediumView& v, const py::object& value) {
             const std::string param = v.label() + ".emission";
             if (value.is_none())
               v.get().emission.reset();
             else
-              v.get().emission = spectrumArgument(value, param, v.o.get().loc);
+              v.get().emission = spectrumFromPython(value, param, v.o.get().loc);
             v.get().emissionScale = 1; // a new value stands alone
             record(*v.o.s, param, value);
           },
@@ -633,8 +513,8 @@ void bindScene(py::module_& m) {
                                     shapeName(t));
             nx::MediumDesc d;
             d.loc = o.get().loc;
-            d.sigmaA = spectrumArgument(sigmaA, o.label() + ".set_medium: sigma_a", d.loc);
-            d.sigmaS = spectrumArgument(sigmaS, o.label() + ".set_medium: sigma_s", d.loc);
+            d.sigmaA = spectrumFromPython(sigmaA, o.label() + ".set_medium: sigma_a", d.loc);
+            d.sigmaS = spectrumFromPython(sigmaS, o.label() + ".set_medium: sigma_s", d.loc);
             d.g = rangedArgument(g, o.label() + ".set_medium: g", nx::kPhaseGRange);
             o.get().medium = d;
             o.s->edits.push_back(o.label() + ".set_medium(" +
@@ -684,7 +564,7 @@ void bindScene(py::module_& m) {
           },
           "A sphere's radius")
       .def_property_readonly(
-          "emission", [](const ObjectView& o) { return spectrumValue(o.get().emission); },
+          "emission", [](const ObjectView& o) { return spectrumToPythonOpt(o.get().emission); },
           "Its emission spectrum (an area light), or None")
       .def_property(
           "emission_scale", [](const ObjectView& o) { return o.get().emissionScale; },

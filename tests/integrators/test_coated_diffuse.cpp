@@ -183,7 +183,7 @@ TEST(CoatedDiffuse, SceneErrors) {
             std::string::npos);
   EXPECT_NE(error("<material>coated</material><reflectance>0.5</reflectance><roughness>0.3"
                   "</roughness>")
-                .find("expected no <roughness> on a coated surface"),
+                .find("on coated, found <roughness> (a Lambertian base under a smooth coat)"),
             std::string::npos);
   EXPECT_NE(error("<material>coated</material>").find("expected <reflectance> or <color>"),
             std::string::npos);

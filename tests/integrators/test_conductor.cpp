@@ -272,7 +272,7 @@ TEST(Conductor, SceneErrors) {
   EXPECT_NE(error("<material>conductor</material><eta>0.2</eta>").find("found <eta> alone"),
             std::string::npos);
   EXPECT_NE(error("<material>conductor</material><metal>gold</metal><reflectance>0.5</reflectance>")
-                .find("expected no <color>, <reflectance>"),
+                .find("on conductor, found <reflectance> (its colour is its <metal>"),
             std::string::npos);
   EXPECT_NE(error("<material>conductor</material><metal>gold</metal><eta>1</eta><k>2</k>")
                 .find("either <metal> or <eta> and <k>, found both"),
@@ -286,7 +286,7 @@ TEST(Conductor, SceneErrors) {
                 .find("<alpha_u> and <alpha_v> together"),
             std::string::npos);
   EXPECT_NE(error("<material>matte</material><reflectance>0.5</reflectance><alpha>0.1</alpha>")
-                .find("expected <alpha> only on a conductor or a dielectric"),
+                .find("on matte, found <alpha> (GGX roughness is for conductors and dielectrics"),
             std::string::npos);
 }
 

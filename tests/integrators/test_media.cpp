@@ -177,14 +177,16 @@ TEST(Media, SceneErrors) {
   };
   EXPECT_EQ(error("<plane><normal>0,1,0</normal><distance>0</distance><material>interface"
                   "</material><medium><sigma_a>1</sigma_a><sigma_s>0</sigma_s></medium></plane>"),
-            "t.scn:1: expected one of <material>, <color>, <reflectance>, <emission>, "
-            "<fluorescence>, <roughness>, <ior>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, "
-            "<alpha_v>, <coating>, <normal>, <distance> inside <plane>, found "
-            "<medium>");
+            "t.scn:1: expected one of <material>, <color>, <reflectance>, <roughness>, <ior>, "
+            "<fluorescence>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, <coating>, "
+            "<emission>, <normal>, <distance> inside <plane>, found <medium>");
   EXPECT_EQ(error("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
                   "</material><reflectance>0.5</reflectance></sphere>"),
-            "t.scn:1: expected no <color>, <reflectance>, <roughness>, <ior>, <fluorescence> or "
-            "<emission> on an interface (it only bounds a medium), found some");
+            "t.scn:1: expected no parameters on interface, found <reflectance> (it only bounds a "
+            "medium)");
+  EXPECT_EQ(error("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
+                  "</material><emission>1</emission></sphere>"),
+            "t.scn:1: expected no <emission> on an interface (it only bounds a medium), found one");
   EXPECT_EQ(error("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
                   "</material><medium><sigma_a>400:1, 700:-1</sigma_a><sigma_s>0</sigma_s>"
                   "</medium></sphere>")

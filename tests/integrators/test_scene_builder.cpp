@@ -100,7 +100,7 @@ TEST(SceneBuilder, UnknownGlassNameIsAnError) {
   SceneDesc d = parseScene(scene("<sphere><center>0,0,0</center><radius>1</radius><material>glass"
                                  "</material><ior>bk7</ior></sphere>\n"),
                            "t.scn");
-  d.objects[0].ior->name = "crown";
+  d.objects[0].params.getMutable<IorDesc>("ior")->name = "crown";
   EXPECT_EQ(test::errorMessage([&] { buildRenderScene(d); }),
             "t.scn:4: expected a named glass bk7, diamond or fused_silica, found 'crown'");
 }
@@ -159,16 +159,18 @@ TEST(SceneBuilder, ErrorsNameTheLine) {
        "1.5 "
        "at 300 nm"},
       {scene(sphere + "<material>glass</material><roughness>0.2</roughness></sphere>\n"),
-       "t.scn:4: expected no <roughness> on a smooth dielectric (glass), found one"},
+       "t.scn:4: expected only <color>, <reflectance>, <ior>, <alpha>, <alpha_u>, <alpha_v> or "
+       "<coating> on glass, found <roughness> (a dielectric's roughness is <alpha>)"},
       {scene(sphere +
              "<material>matte</material><reflectance>gray</reflectance><ior>1.3</ior></sphere>\n"),
-       "t.scn:4: expected <ior> only on glass, diamond, translucent or transparent, found it on "
-       "matte"},
+       "t.scn:4: expected only <color>, <reflectance>, <roughness> or <fluorescence> on matte, "
+       "found <ior>"},
       {scene(
            sphere +
            "<material>glass</material><fluorescence><absorption>uv</absorption><stokes>100</stokes>"
            "</fluorescence></sphere>\n"),
-       "t.scn:4: expected fluorescence only on matte, metal, plastic, mirror or coated surfaces"},
+       "t.scn:4: expected only <color>, <reflectance>, <ior>, <alpha>, <alpha_u>, <alpha_v> or "
+       "<coating> on glass, found <fluorescence> (fluorescent dielectrics need media"},
       {scene(sphere + "<material>matte</material></sphere>\n"),
        "t.scn:4: expected <reflectance> or <color> on a non-emitting matte object, found neither"},
       {scene(sphere + "<material>matte</material></sphere>\n", "mcpt"),

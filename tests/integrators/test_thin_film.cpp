@@ -126,10 +126,11 @@ TEST(ThinFilm, CoatedGlassReflectance) {
 
 TEST(ThinFilm, SceneErrors) {
   const auto error = test::sphereSceneError;
-  EXPECT_NE(error("<material>matte</material><reflectance>0.5</reflectance><coating><thickness>100"
-                  "</thickness><ior>1.4</ior></coating>")
-                .find("expected a <coating> only on a conductor or on glass"),
-            std::string::npos);
+  EXPECT_NE(
+      error("<material>matte</material><reflectance>0.5</reflectance><coating><thickness>100"
+            "</thickness><ior>1.4</ior></coating>")
+          .find("on matte, found <coating> (thin films lie on conductors and smooth dielectrics)"),
+      std::string::npos);
   EXPECT_NE(error("<material>conductor</material><metal>gold</metal><coating><ior>1.4</ior>"
                   "</coating>")
                 .find("expected <thickness> inside <coating>, found none"),

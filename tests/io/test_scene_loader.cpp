@@ -49,10 +49,11 @@ TEST(SceneLoader, ReadsTheThesisScene) {
   EXPECT_EQ(d.objects[0].distance, -10);
   EXPECT_FALSE(d.objects[0].emission.has_value()); // <emission>0.0</emission>: not a light
   EXPECT_EQ(d.objects[2].material, "diamond");
-  EXPECT_EQ(d.objects[3].reflectance->name, "orange");
-  ASSERT_TRUE(d.objects[3].fluorescence.has_value());
-  EXPECT_EQ(*d.objects[3].fluorescence->absorptionName, "blue");
-  EXPECT_EQ(*d.objects[3].fluorescence->stokesNm, 220);
+  EXPECT_EQ(d.objects[3].params.get<SpectrumDesc>("reflectance")->name, "orange");
+  const auto* fluorescence = d.objects[3].params.get<FluorescenceDesc>("fluorescence");
+  ASSERT_NE(fluorescence, nullptr);
+  EXPECT_EQ(*fluorescence->absorptionName, "blue");
+  EXPECT_EQ(*fluorescence->stokesNm, 220);
   EXPECT_EQ(d.objects[5].emission->name, "bbd65");
   EXPECT_EQ(d.objects[5].radius, 6);
   EXPECT_EQ(d.objects[5].loc.line, 61);
@@ -89,10 +90,10 @@ TEST(SceneLoader, Extensions) {
   EXPECT_EQ(d.settings.background->number, 0.05);
   EXPECT_EQ(d.camera.fovDegrees, 40);
   EXPECT_EQ(d.camera.up, Vec3d(0.1, 1, 0));
-  EXPECT_EQ(*d.objects[1].roughness, 0.5);
-  EXPECT_EQ(d.objects[2].ior->kind, IorDesc::Kind::Cauchy);
+  EXPECT_EQ(*d.objects[1].params.number("roughness"), 0.5);
+  EXPECT_EQ(d.objects[2].params.get<IorDesc>("ior")->kind, IorDesc::Kind::Cauchy);
   EXPECT_EQ(d.objects[4].emissionScale, 6);
-  EXPECT_EQ(d.objects[0].reflectance->number, 0.5);
+  EXPECT_EQ(d.objects[0].params.get<SpectrumDesc>("reflectance")->number, 0.5);
 }
 
 TEST(SceneLoader, SecondCameraIsIgnoredWithAWarning) {
@@ -130,8 +131,8 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
        "t.scn:4: expected one of <settings>, <camera>, <light>, <sphere>, <plane>, <triangle>, "
        "<quad>, <mesh>, <material>, <spectrum>, found <shpere>"},
       {"unknown child", scene("<sphere><centre>0,0,0</centre></sphere>\n"),
-       "t.scn:4: expected one of <material>, <color>, <reflectance>, <emission>, <fluorescence>, "
-       "<roughness>, <ior>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, <coating>, "
+       "t.scn:4: expected one of <material>, <color>, <reflectance>, <roughness>, <ior>, "
+       "<fluorescence>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, <coating>, <emission>, "
        "<center>, <radius>, <medium> inside <sphere>, found <centre>"},
       {"repeated tag", scene("<sphere><radius>1</radius><radius>2</radius></sphere>\n"),
        "t.scn:4: expected one <radius>, found a second <radius>"},

@@ -1,0 +1,169 @@
+#include "apps/python/py_parameters.h"
+
+#include <pybind11/stl.h>
+
+#include "apps/python/py_arguments.h"
+
+namespace nxpy {
+
+double rangedArgument(const py::handle& value, const std::string& param,
+                      const nx::ParameterRange& r) {
+  const double v = numberArgument(value, param.c_str(), -1e300, 1e300);
+  if (!r.contains(v))
+    throw py::value_error(param + ": expected " + r.what + " in " + (r.openLow ? "(" : "[") +
+                          py::str(py::float_(r.lo)).cast<std::string>() + ", " +
+                          py::str(py::float_(r.hi)).cast<std::string>() + "], found " +
+                          py::str(py::float_(v)).cast<std::string>());
+  return v;
+}
+
+py::object spectrumToPython(const nx::SpectrumDesc& s) {
+  switch (s.kind) {
+  case nx::SpectrumDesc::Kind::Number:
+    return py::float_(s.number);
+  case nx::SpectrumDesc::Kind::Name:
+    return py::str(s.name);
+  case nx::SpectrumDesc::Kind::Pairs:
+    return py::make_tuple(py::cast(s.nm), py::cast(s.value));
+  case nx::SpectrumDesc::Kind::CsvFile:
+    return py::str("csv:" + s.path);
+  case nx::SpectrumDesc::Kind::Texture:
+    return py::str("texture:" + s.texture);
+  }
+  return py::none();
+}
+
+nx::SpectrumDesc spectrumFromPython(const py::handle& value, const std::string& param,
+                                    const nx::SourceLocation& loc) {
+  nx::SpectrumDesc s;
+  s.loc = loc;
+  if (py::isinstance<py::str>(value)) {
+    s.kind = nx::SpectrumDesc::Kind::Name;
+    s.name = value.cast<std::string>();
+    if (s.name.empty()) throw py::value_error(param + ": expected a spectrum name, found ''");
+    return s;
+  }
+  if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
+    if (py::len(value) != 2)
+      throw py::value_error(param + ": expected (wavelengths_nm, values), found a sequence of " +
+                            std::to_string(py::len(value)));
+    s.kind = nx::SpectrumDesc::Kind::Pairs;
+    s.nm = numberListArgument(value[py::int_(0)], (param + "[0] (wavelengths)").c_str(), 2);
+    s.value = numberListArgument(value[py::int_(1)], (param + "[1] (values)").c_str(), 2);
+    if (s.nm.size() != s.value.size())
+      throw py::value_error(param + ": expected as many values as wavelengths, found " +
+                            std::to_string(s.value.size()) + " and " + std::to_string(s.nm.size()));
+    for (size_t i = 1; i < s.nm.size(); ++i)
+      if (!(s.nm[i] > s.nm[i - 1]))
+        throw py::value_error(param + ": expected increasing wavelengths");
+    return s;
+  }
+  s.kind = nx::SpectrumDesc::Kind::Number;
+  s.number = numberArgument(value, param.c_str(), 0, 1e300);
+  return s;
+}
+
+namespace {
+
+py::object iorToPython(const nx::IorDesc& i) {
+  switch (i.kind) {
+  case nx::IorDesc::Kind::Number:
+    return py::float_(i.value);
+  case nx::IorDesc::Kind::Named:
+    return py::str(i.name);
+  case nx::IorDesc::Kind::Cauchy:
+    return py::make_tuple("cauchy", py::cast(i.coefficients));
+  case nx::IorDesc::Kind::Sellmeier:
+    return py::make_tuple("sellmeier", py::cast(i.coefficients));
+  }
+  return py::none();
+}
+
+nx::IorDesc iorFromPython(const py::handle& value, const std::string& param,
+                          const nx::SourceLocation& loc) {
+  nx::IorDesc d;
+  d.loc = loc;
+  if (py::isinstance<py::str>(value)) {
+    d.kind = nx::IorDesc::Kind::Named;
+    d.name = value.cast<std::string>();
+    if (d.name != "bk7" && d.name != "diamond" && d.name != "fused_silica")
+      throw py::value_error(
+          param + ": expected a named glass bk7, diamond or fused_silica, found '" + d.name + "'");
+    return d;
+  }
+  if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
+    if (py::len(value) != 2 || !py::isinstance<py::str>(value[py::int_(0)]))
+      throw py::value_error(param + ": expected a number, a glass name, (\"cauchy\", [A, B, C]) or "
+                                    "(\"sellmeier\", [B1, B2, B3, C1, C2, C3])");
+    const std::string formula = value[py::int_(0)].cast<std::string>();
+    d.coefficients = numberListArgument(value[py::int_(1)], (param + "[1]").c_str(), 2);
+    if (formula == "cauchy" && d.coefficients.size() <= 3) {
+      d.kind = nx::IorDesc::Kind::Cauchy;
+    } else if (formula == "sellmeier" && d.coefficients.size() == 6) {
+      d.kind = nx::IorDesc::Kind::Sellmeier;
+    } else {
+      throw py::value_error(param +
+                            ": expected (\"cauchy\", 2 or 3 coefficients) or (\"sellmeier\", 6 "
+                            "coefficients), found ('" +
+                            formula + "', " + std::to_string(d.coefficients.size()) + ")");
+    }
+    return d;
+  }
+  d.kind = nx::IorDesc::Kind::Number;
+  d.value = rangedArgument(value, param, nx::kIorRange);
+  return d;
+}
+
+} // namespace
+
+py::object parameterToPython(const nx::ParamValue& v) {
+  if (const double* d = std::get_if<double>(&v)) return py::float_(*d);
+  if (const auto* c = std::get_if<std::array<double, 4>>(&v))
+    return py::make_tuple((*c)[0], (*c)[1], (*c)[2], (*c)[3]);
+  if (const auto* s = std::get_if<nx::SpectrumDesc>(&v)) return spectrumToPython(*s);
+  if (const auto* i = std::get_if<nx::IorDesc>(&v)) return iorToPython(*i);
+  if (const auto* c = std::get_if<nx::CoatingDesc>(&v))
+    return py::make_tuple(c->thicknessNm, iorToPython(c->ior));
+  if (const auto* t = std::get_if<std::string>(&v)) return py::str(*t);
+  return py::none(); // fluorescence: its own view (py_scene.cpp)
+}
+
+nx::ParamValue parameterFromPython(const nx::ParamSpec& spec, const py::handle& value,
+                                   const std::string& param, const nx::SourceLocation& loc) {
+  switch (spec.type) {
+  case nx::ParamType::Number:
+    return rangedArgument(value, param, *spec.range);
+  case nx::ParamType::Rgb: {
+    const std::vector<double> c = numberListArgument(value, param.c_str(), 3);
+    if (c.size() > 4)
+      throw py::value_error(param + ": expected (r, g, b[, a]), found " + std::to_string(c.size()) +
+                            " numbers");
+    for (size_t i = 0; i < 3; ++i)
+      if (!(c[i] >= 0 && c[i] <= 1))
+        throw py::value_error(param + ": expected reflectance colour channels in [0, 1]");
+    return std::array<double, 4>{c[0], c[1], c[2], c.size() == 4 ? c[3] : 1.0};
+  }
+  case nx::ParamType::Spectrum:
+  case nx::ParamType::Reflectance:
+    return spectrumFromPython(value, param, loc);
+  case nx::ParamType::Ior:
+    return iorFromPython(value, param, loc);
+  case nx::ParamType::Coating: {
+    if (!(py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) ||
+        py::len(value) != 2)
+      throw py::type_error(param + ": expected (thickness_nm, ior), found " + typeName(value));
+    nx::CoatingDesc c;
+    c.loc = loc;
+    c.thicknessNm = rangedArgument(value[py::int_(0)], param + "[0]", *spec.range);
+    c.ior = iorFromPython(value[py::int_(1)], param + "[1]", loc);
+    return c;
+  }
+  case nx::ParamType::Name:
+    return stringArgument(value, param.c_str());
+  case nx::ParamType::Fluorescence:
+    break;
+  }
+  throw py::type_error(param + ": set with set_fluorescence(...) or by its fields");
+}
+
+} // namespace nxpy

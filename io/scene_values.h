@@ -1,0 +1,64 @@
+#pragma once
+// The values a scene's parameters take, as written: spectra, indices of refraction,
+// fluorescence, coatings, each with the file and line it came from.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace nx {
+
+/// Where an item was written: file name and 1-based line.
+struct SourceLocation {
+  std::string file;
+  int line = 0;
+  /// "file:line", the prefix of every error about this item.
+  std::string str() const { return file + ":" + std::to_string(line); }
+};
+
+/// A spectrum as a scene refers to it.
+struct SpectrumDesc {
+  enum class Kind { Name, Number, Pairs, CsvFile, Texture };
+  /// What a table does beyond its wavelengths (extrapolate="zero|hold"; unset: zero, with a
+  /// warning when the render traces beyond it).
+  enum class Extrapolation { Unset, Zero, Hold };
+  Kind kind = Kind::Number;
+  Extrapolation extrapolate = Extrapolation::Unset;
+  std::string name;          ///< Kind::Name: a built-in or scene-defined spectrum name
+  double number = 0;         ///< Kind::Number: a flat spectrum
+  std::vector<double> nm;    ///< Kind::Pairs: wavelengths
+  std::vector<double> value; ///< Kind::Pairs: values
+  std::string path;          ///< Kind::CsvFile: resolved relative to the scene file
+  std::string column;        ///< Kind::CsvFile: the header's name of the value column, or ""
+  std::string texture; ///< Kind::Texture: "colorchecker" or a spectral EXR (relative to the scene)
+  SourceLocation loc;
+};
+
+/// Index of refraction: a number, a built-in glass, or a dispersion formula.
+struct IorDesc {
+  enum class Kind { Number, Named, Cauchy, Sellmeier };
+  Kind kind = Kind::Number;
+  double value = 1.5;               ///< Kind::Number
+  std::string name;                 ///< Kind::Named (bk7, diamond, fused_silica)
+  std::vector<double> coefficients; ///< Cauchy: A, B[, C] (um); Sellmeier: B1 B2 B3 C1 C2 C3 (um^2)
+  SourceLocation loc;
+};
+
+/// <fluorescence>: the parameters of the re-radiation matrix, or a measured matrix.
+struct FluorescenceDesc {
+  std::optional<std::string> absorptionName; ///< a colour name (peak wavelength)
+  std::optional<double> absorptionNm;        ///< or the peak wavelength itself
+  std::optional<double> stokesNm;
+  std::optional<double> widthNm, skew, quantumYield, peakAbsorptance;
+  std::optional<std::string> matrixCsv; ///< measured Donaldson matrix
+  SourceLocation loc;
+};
+
+/// A thin-film coating: thickness in nm and index of refraction.
+struct CoatingDesc {
+  double thicknessNm = 0;
+  IorDesc ior;
+  SourceLocation loc;
+};
+
+} // namespace nx
