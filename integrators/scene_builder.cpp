@@ -514,6 +514,12 @@ private:
     std::shared_ptr<const ReradiationMatrix>
     measuredMatrix(const FluorescenceDesc& d) const override {
       try {
+        if (d.matrix) { // given as numbers (Python): checked, its content in the render key
+          checkMeasuredMatrix(*d.matrix, "the measured matrix");
+          b_.digest_ = fnv1a64(canonicalText(ParamValue(d)), b_.digest_);
+          return std::make_shared<const ReradiationMatrix>(
+              ReradiationMatrix::fromMeasured(*d.matrix));
+        }
         return std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromMeasured(
             parseMeasuredMatrixCsv(b_.readReferencedFile(*d.matrixCsv), *d.matrixCsv)));
       } catch (const Error& e) {

@@ -21,8 +21,31 @@ double shortestFocal(int pixels) {
 
 } // namespace
 
+std::string extrinsicsProblem(const std::array<double, 12>& v) {
+  double worst = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double dotij = 0;
+      for (int k = 0; k < 3; ++k) dotij += v[3 * k + i] * v[3 * k + j];
+      worst = std::max(worst, std::abs(dotij - (i == j ? 1.0 : 0.0)));
+    }
+  const double det = v[0] * (v[4] * v[8] - v[5] * v[7]) - v[1] * (v[3] * v[8] - v[5] * v[6]) +
+                     v[2] * (v[3] * v[7] - v[4] * v[6]);
+  if (!(worst <= 1e-4) || !(det > 0))
+    return "a rotation R in <extrinsics> (R^T R = I within 1e-4, determinant +1), found R^T R "
+           "off by " +
+           numberText(worst) + ", determinant " + numberText(det);
+  if (!(std::abs(v[9]) <= kMaxSceneCoordinate && std::abs(v[10]) <= kMaxSceneCoordinate &&
+        std::abs(v[11]) <= kMaxSceneCoordinate))
+    return "a translation within 1e12 in <extrinsics>, found " + numberText(v[9]) + ", " +
+           numberText(v[10]) + ", " + numberText(v[11]);
+  return "";
+}
+
 void checkCameraDesc(const CameraDesc& c, int width, int height) {
   const std::string at = c.loc.str() + ": expected ";
+  if (c.extrinsics)
+    if (const std::string p = extrinsicsProblem(*c.extrinsics); !p.empty()) throw Error(at + p);
   if (!c.extrinsics) {
     const Vec3d view = c.lookAt - c.position;
     if (!(length(view) > 0))

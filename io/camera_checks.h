@@ -15,4 +15,9 @@ namespace nx {
 /// focused at a positive distance.
 void checkCameraDesc(const CameraDesc& camera, int width, int height);
 
+/// What is wrong with extrinsics (R row by row, t) as "expected ..., found ..." text, or "":
+/// R must be a rotation up to the rounding of printed calibration output (R^T R within 1e-4 of
+/// the identity, determinant +1) and t within 1e12.
+std::string extrinsicsProblem(const std::array<double, 12>& e);
+
 } // namespace nx

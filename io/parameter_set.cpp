@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <sstream>
 
+#include "core/hash.h"
+#include "spectra/reradiation_matrix.h"
+
 namespace nx {
 
 const char* paramTypeName(ParamType t) {
@@ -62,7 +65,7 @@ namespace {
 #if defined(__x86_64__) && defined(__GLIBCXX__)
 static_assert(sizeof(SpectrumDesc) == 232, "a SpectrumDesc field was added: write it below");
 static_assert(sizeof(IorDesc) == 112, "an IorDesc field was added: write it below");
-static_assert(sizeof(FluorescenceDesc) == 216, "a FluorescenceDesc field was added: write it");
+static_assert(sizeof(FluorescenceDesc) == 232, "a FluorescenceDesc field was added: write it");
 static_assert(sizeof(CoatingDesc) == 160, "a CoatingDesc field was added: write it below");
 #endif
 
@@ -101,6 +104,15 @@ struct CanonicalWriter {
     opt(f.absorptionNm), opt(f.stokesNm), opt(f.widthNm), opt(f.skew), opt(f.quantumYield);
     opt(f.peakAbsorptance);
     text(f.matrixCsv);
+    if (f.matrix) { // the content of a matrix given as numbers
+      const MeasuredMatrix& m = *f.matrix;
+      uint64_t h = fnv1a64("");
+      for (const std::vector<double>* v : {&m.excitationNm, &m.emissionNm, &m.cells})
+        h = fnv1a64(
+            std::string_view(reinterpret_cast<const char*>(v->data()), v->size() * sizeof(double)),
+            fnv1a64(std::to_string(v->size()), h));
+      t << "matrix:" << h;
+    }
   }
   void operator()(const CoatingDesc& c) const {
     t << c.thicknessNm << ',';

@@ -20,6 +20,7 @@
 #include "core/memory.h"
 #include "core/text_table.h"
 #include "integrators/materials/material_kind.h"
+#include "io/camera_checks.h"
 #include "io/material_parameters.h"
 #include "io/scene_desc.h"
 #include "io/scene_limits.h"
@@ -608,21 +609,8 @@ private:
     const auto v = numbers(e, 12, 12, "r11, r12, r13, r21, r22, r23, r31, r32, r33, t1, t2, t3");
     std::array<double, 12> out{};
     std::copy(v.begin(), v.end(), out.begin());
-    double worst = 0;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        double dotij = 0;
-        for (int k = 0; k < 3; ++k) dotij += v[3 * k + i] * v[3 * k + j];
-        worst = std::max(worst, std::abs(dotij - (i == j ? 1.0 : 0.0)));
-      }
-    const double det = v[0] * (v[4] * v[8] - v[5] * v[7]) - v[1] * (v[3] * v[8] - v[5] * v[6]) +
-                       v[2] * (v[3] * v[7] - v[4] * v[6]);
-    if (worst > 1e-4 || !(det > 0))
-      fail(e, "a rotation R in <extrinsics> (R^T R = I within 1e-4, determinant +1)",
-           "R^T R off by " + numberText(worst) + ", determinant " + numberText(det));
-    if (std::abs(v[9]) > kMaxCoordinate || std::abs(v[10]) > kMaxCoordinate ||
-        std::abs(v[11]) > kMaxCoordinate)
-      fail(e, "a translation within 1e12", shownText(text(e)));
+    if (const std::string problem = extrinsicsProblem(out); !problem.empty())
+      throw Error(loc(e).str() + ": expected " + problem);
     return out;
   }
 

@@ -2,11 +2,14 @@
 // The values a scene's parameters take, as written: spectra, indices of refraction,
 // fluorescence, coatings, each with the file and line it came from.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace nx {
+
+struct MeasuredMatrix; // spectra/reradiation_matrix.h
 
 /// Where an item was written: file name and 1-based line.
 struct SourceLocation {
@@ -51,6 +54,8 @@ struct FluorescenceDesc {
   std::optional<double> stokesNm;
   std::optional<double> widthNm, skew, quantumYield, peakAbsorptance;
   std::optional<std::string> matrixCsv; ///< measured Donaldson matrix
+  /// Or the measured matrix itself (given from Python as arrays), checked
+  std::shared_ptr<const MeasuredMatrix> matrix;
   SourceLocation loc;
 };
 

@@ -206,4 +206,28 @@ MeasuredMatrix measuredFromTable(const NumberTable& t, const std::string& path) 
 }
 } // namespace
 
+void checkMeasuredMatrix(const MeasuredMatrix& m, const std::string& where) {
+  for (const auto& [axis, nm] :
+       {std::pair{"excitation", &m.excitationNm}, std::pair{"emission", &m.emissionNm}}) {
+    if (nm->size() < 2)
+      throw Error(where + ": expected at least two " + axis + " wavelengths, found " +
+                  std::to_string(nm->size()));
+    for (size_t i = 0; i < nm->size(); ++i) {
+      if (!((*nm)[i] >= 100 && (*nm)[i] <= 2000))
+        throw Error(where + ": expected " + axis + " wavelengths in nm within [100, 2000], found " +
+                    std::to_string((*nm)[i]));
+      if (i > 0 && !((*nm)[i] > (*nm)[i - 1]))
+        throw Error(where + ": expected increasing " + axis + " wavelengths, found " +
+                    std::to_string((*nm)[i]) + " after " + std::to_string((*nm)[i - 1]));
+    }
+  }
+  if (m.cells.size() != m.excitationNm.size() * m.emissionNm.size())
+    throw Error(where + ": expected " + std::to_string(m.excitationNm.size()) + " x " +
+                std::to_string(m.emissionNm.size()) + " cells (excitation x emission), found " +
+                std::to_string(m.cells.size()));
+  for (double v : m.cells)
+    if (!(v >= 0 && v <= 1))
+      throw Error(where + ": expected matrix values in [0, 1], found " + std::to_string(v));
+}
+
 } // namespace nx

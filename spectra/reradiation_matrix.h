@@ -138,4 +138,9 @@ MeasuredMatrix readMeasuredMatrixCsv(const std::string& path);
 /// The same from CSV text; `source` names it in messages.
 MeasuredMatrix parseMeasuredMatrixCsv(const std::string& text, const std::string& source);
 
+/// Checks a matrix given as numbers (not read from a CSV file): at least two increasing
+/// excitation and emission wavelengths within the traced range's neighbourhood, one finite
+/// cell in [0, 1] per pair. Throws nx::Error "<where>: expected ..., found ...".
+void checkMeasuredMatrix(const MeasuredMatrix& m, const std::string& where);
+
 } // namespace nx

@@ -7,6 +7,7 @@
 #include "apps/python/py_image.h"
 #include "apps/python/py_render.h"
 #include "apps/python/py_scene.h"
+#include "apps/python/py_scene_parameters.h"
 #include "core/error.h"
 
 PYBIND11_MODULE(nxrender, m) {
@@ -16,5 +17,6 @@ PYBIND11_MODULE(nxrender, m) {
   pybind11::register_exception<nx::Error>(m, "Error", PyExc_ValueError);
   nxpy::bindImage(m);
   nxpy::bindScene(m);
+  nxpy::bindSceneParameters(m);
   nxpy::bindRender(m);
 }

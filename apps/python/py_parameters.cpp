@@ -26,7 +26,7 @@ py::object spectrumToPython(const nx::SpectrumDesc& s) {
   case nx::SpectrumDesc::Kind::Pairs:
     return py::make_tuple(py::cast(s.nm), py::cast(s.value));
   case nx::SpectrumDesc::Kind::CsvFile:
-    return py::str("csv:" + s.path);
+    return py::str("csv:" + s.path + (s.column.empty() ? "" : "#" + s.column));
   case nx::SpectrumDesc::Kind::Texture:
     return py::str("texture:" + s.texture);
   }
@@ -38,8 +38,23 @@ nx::SpectrumDesc spectrumFromPython(const py::handle& value, const std::string& 
   nx::SpectrumDesc s;
   s.loc = loc;
   if (py::isinstance<py::str>(value)) {
+    const std::string text = value.cast<std::string>();
+    // "csv:FILE[#COLUMN]" and "texture:FILE" (what reading such a parameter gives): files
+    // relative to the working directory.
+    if (text.rfind("csv:", 0) == 0 && text.size() > 4) {
+      s.kind = nx::SpectrumDesc::Kind::CsvFile;
+      const size_t hash = text.find('#', 4);
+      s.path = text.substr(4, hash == std::string::npos ? std::string::npos : hash - 4);
+      if (hash != std::string::npos) s.column = text.substr(hash + 1);
+      return s;
+    }
+    if (text.rfind("texture:", 0) == 0 && text.size() > 8) {
+      s.kind = nx::SpectrumDesc::Kind::Texture;
+      s.texture = text.substr(8);
+      return s;
+    }
     s.kind = nx::SpectrumDesc::Kind::Name;
-    s.name = value.cast<std::string>();
+    s.name = text;
     if (s.name.empty()) throw py::value_error(param + ": expected a spectrum name, found ''");
     return s;
   }
@@ -143,7 +158,13 @@ nx::ParamValue parameterFromPython(const nx::ParamSpec& spec, const py::handle& 
         throw py::value_error(param + ": expected reflectance colour channels in [0, 1]");
     return std::array<double, 4>{c[0], c[1], c[2], c.size() == 4 ? c[3] : 1.0};
   }
-  case nx::ParamType::Spectrum:
+  case nx::ParamType::Spectrum: {
+    nx::SpectrumDesc d = spectrumFromPython(value, param, loc);
+    if (d.kind == nx::SpectrumDesc::Kind::Texture)
+      throw py::value_error(param + ": expected a spectrum, found a texture (only <reflectance> "
+                                    "takes one)");
+    return d;
+  }
   case nx::ParamType::Reflectance:
     return spectrumFromPython(value, param, loc);
   case nx::ParamType::Ior:

@@ -2,6 +2,7 @@
 
 #include "apps/python/py_scene.h"
 
+#include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
 #include <filesystem>
@@ -9,11 +10,13 @@
 #include "apps/python/py_arguments.h"
 #include "apps/python/py_parameters.h"
 #include "core/error.h"
+#include "core/file_text.h"
 #include "core/hash.h"
 #include "integrators/materials/material_kind.h"
 #include "io/camera_checks.h"
 #include "io/material_parameters.h"
 #include "io/scene_limits.h"
+#include "spectra/reradiation_matrix.h"
 
 namespace nxpy {
 namespace {
@@ -105,12 +108,16 @@ struct FluorescenceView {
   nx::FluorescenceDesc& editable(const char* field) const {
     nx::FluorescenceDesc& f = get();
     (void)m.editable();
-    if (f.matrixCsv)
+    if (f.matrixCsv || f.matrix)
       throw py::value_error(m.label() + ".fluorescence." + field +
-                            ": the fluorescence is a measured matrix (" + *f.matrixCsv +
-                            "); set a model with set_fluorescence(...) first");
+                            ": the fluorescence is a measured matrix" +
+                            (f.matrixCsv ? " (" + *f.matrixCsv + ")" : std::string()) +
+                            "; set a model with set_fluorescence(...) first");
     return f;
   }
+  /// The name its fields are recorded under ("objects[1].fluorescence").
+  std::string prefix() const { return m.label() + ".fluorescence"; }
+  SceneState& state() const { return *m.s; }
 };
 
 // Refuses a parameter the material's kind does not take (its schema), as the loader does.
@@ -150,6 +157,52 @@ void setMaterialParameter(const MaterialView& v, const nx::ParamSpec& spec, cons
   }
 }
 
+// A measured matrix as Python arrays: (excitation_nm, emission_nm, values) with values of shape
+// (excitation, emission).
+py::object matrixToPython(const nx::MeasuredMatrix& m) {
+  py::array_t<double> values({m.excitationNm.size(), m.emissionNm.size()});
+  std::copy(m.cells.begin(), m.cells.end(), values.mutable_data());
+  return py::make_tuple(py::array_t<double>(m.excitationNm.size(), m.excitationNm.data()),
+                        py::array_t<double>(m.emissionNm.size(), m.emissionNm.data()), values);
+}
+
+// Gives a material a measured matrix from Python arrays (replacing any fluorescence), checked
+// as a CSV matrix is; the edit is recorded with a digest of the content (a numpy repr elides).
+void setMeasuredMatrix(const MaterialView& v, const py::handle& value, const std::string& param) {
+  nx::MaterialDesc& d = v.editable();
+  requireKindTakes(v, "fluorescence", param);
+  if (!(py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) || py::len(value) != 3)
+    throw py::type_error(param + ": expected (excitation_nm, emission_nm, values), found " +
+                         typeName(value));
+  auto m = std::make_shared<nx::MeasuredMatrix>();
+  m->source = param;
+  m->excitationNm = numberListArgument(value[py::int_(0)], (param + "[0]").c_str(), 2);
+  m->emissionNm = numberListArgument(value[py::int_(1)], (param + "[1]").c_str(), 2);
+  const auto cells =
+      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value[py::int_(2)]);
+  if (!cells || cells.ndim() != 2)
+    throw py::type_error(param + "[2]: expected a 2-d array of values (excitation, emission)");
+  if (static_cast<size_t>(cells.shape(0)) != m->excitationNm.size() ||
+      static_cast<size_t>(cells.shape(1)) != m->emissionNm.size())
+    throw py::value_error(param + "[2]: expected shape (" + std::to_string(m->excitationNm.size()) +
+                          ", " + std::to_string(m->emissionNm.size()) + "), found (" +
+                          std::to_string(cells.shape(0)) + ", " + std::to_string(cells.shape(1)) +
+                          ")");
+  m->cells.assign(cells.data(), cells.data() + cells.size());
+  try {
+    nx::checkMeasuredMatrix(*m, param);
+  } catch (const nx::Error& e) {
+    throw py::value_error(e.what());
+  }
+  nx::FluorescenceDesc f;
+  f.loc = v.loc();
+  f.matrix = m;
+  d.params.set({"fluorescence", f, v.loc()});
+  v.s->edits.push_back(param + " = <matrix " + std::to_string(m->excitationNm.size()) + "x" +
+                       std::to_string(m->emissionNm.size()) + " digest " +
+                       std::to_string(nx::fnv1a64(nx::canonicalText(nx::ParamValue(f)))) + ">");
+}
+
 struct ObjectView {
   StatePtr s;
   size_t i;
@@ -172,6 +225,20 @@ struct MediumView {
     return *m;
   }
   std::string label() const { return o.label() + ".medium"; }
+};
+
+// The fluorescent dye dissolved in a medium: the parametric model's fields (its peak is the
+// medium's dye_peak, a coefficient per unit length).
+struct DyeView {
+  MediumView v;
+  nx::FluorescenceDesc& get() const {
+    auto& f = v.get().fluorescence;
+    if (!f) throw py::value_error(v.label() + ": has no dye any more");
+    return *f;
+  }
+  nx::FluorescenceDesc& editable(const char*) const { return get(); }
+  std::string prefix() const { return v.label() + ".dye"; }
+  SceneState& state() const { return *v.o.s; }
 };
 
 // A spectrum field of the medium (sigma_a, sigma_s): a number >= 0, a name or (nm, values).
@@ -215,26 +282,61 @@ const char* shapeName(nx::ShapeType t) {
   return "?";
 }
 
-// A optional<double> field of the fluorescence model, with its range.
-void bindFluorescenceField(py::class_<FluorescenceView>& c, const char* name,
+// A optional<double> field of a fluorescence model (a material's or a dye's), with its range.
+template <typename View>
+void bindFluorescenceField(py::class_<View>& c, const char* name,
                            std::optional<double> nx::FluorescenceDesc::*field,
                            const nx::ParameterRange& range, const char* doc) {
   c.def_property(
       name,
-      [field](const FluorescenceView& f) -> py::object {
+      [field](const View& f) -> py::object {
         const auto& v = f.get().*field;
         return v ? py::object(py::float_(*v)) : py::object(py::none());
       },
-      [field, name, range](const FluorescenceView& f, const py::object& value) {
+      [field, name, range](const View& f, const py::object& value) {
         nx::FluorescenceDesc& d = f.editable(name);
-        const std::string param = f.m.label() + ".fluorescence." + name;
+        const std::string param = f.prefix() + "." + name;
         if (value.is_none())
           d.*field = std::nullopt;
         else
           d.*field = rangedArgument(value, param, range);
-        record(*f.m.s, param, value);
+        record(f.state(), param, value);
       },
       doc);
+}
+
+// The model's fields both a material's fluorescence and a dye have.
+template <typename View>
+void bindFluorescenceModel(py::class_<View>& c) {
+  c.def_property(
+      "absorption_nm",
+      [](const View& f) -> py::object {
+        const auto& d = f.get();
+        return d.absorptionNm ? py::object(py::float_(*d.absorptionNm)) : py::object(py::none());
+      },
+      [](const View& f, const py::object& value) {
+        nx::FluorescenceDesc& d = f.editable("absorption_nm");
+        const std::string param = f.prefix() + ".absorption_nm";
+        d.absorptionNm = rangedArgument(value, param, nx::kAbsorptionRange);
+        d.absorptionName.reset();
+        record(f.state(), param, value);
+      },
+      "Absorption peak in nm (None when given by a colour name)");
+  c.def_property_readonly(
+      "absorption",
+      [](const View& f) -> py::object {
+        const auto& d = f.get();
+        return d.absorptionName ? py::object(py::str(*d.absorptionName)) : py::object(py::none());
+      },
+      "Absorption colour name, if the scene gave one");
+  bindFluorescenceField(c, "stokes_nm", &nx::FluorescenceDesc::stokesNm, nx::kStokesRange,
+                        "Stokes shift in nm (emission peak minus absorption peak)");
+  bindFluorescenceField(c, "width_nm", &nx::FluorescenceDesc::widthNm, nx::kWidthRange,
+                        "Width of the absorption and emission bands in nm (None: default)");
+  bindFluorescenceField(c, "skew", &nx::FluorescenceDesc::skew, nx::kSkewRange,
+                        "Skew magnitude of the bands (None: default)");
+  bindFluorescenceField(c, "quantum_yield", &nx::FluorescenceDesc::quantumYield, nx::kYieldRange,
+                        "Quantum yield in [0, 1] (None: default)");
 }
 
 // The parametric fluorescence model's arguments (set_fluorescence, set_dye), checked; `p`
@@ -278,47 +380,40 @@ void bindScene(py::module_& m) {
   py::class_<FluorescenceView> fl(m, "Fluorescence",
                                   "The fluorescence of a material (the re-radiation matrix's "
                                   "parameters; docs/fluorescence.md)");
-  fl.def_property(
-      "absorption_nm",
-      [](const FluorescenceView& f) -> py::object {
-        const auto& d = f.get();
-        return d.absorptionNm ? py::object(py::float_(*d.absorptionNm)) : py::object(py::none());
-      },
-      [](const FluorescenceView& f, const py::object& value) {
-        nx::FluorescenceDesc& d = f.editable("absorption_nm");
-        const std::string param = f.m.label() + ".fluorescence.absorption_nm";
-        d.absorptionNm = rangedArgument(value, param, nx::kAbsorptionRange);
-        d.absorptionName.reset();
-        record(*f.m.s, param, value);
-      },
-      "Absorption peak in nm (None when given by a colour name)");
-  fl.def_property_readonly(
-      "absorption",
-      [](const FluorescenceView& f) -> py::object {
-        const auto& d = f.get();
-        return d.absorptionName ? py::object(py::str(*d.absorptionName)) : py::object(py::none());
-      },
-      "Absorption colour name, if the scene gave one");
-  bindFluorescenceField(fl, "stokes_nm", &nx::FluorescenceDesc::stokesNm, nx::kStokesRange,
-                        "Stokes shift in nm (emission peak minus absorption peak)");
-  bindFluorescenceField(fl, "width_nm", &nx::FluorescenceDesc::widthNm, nx::kWidthRange,
-                        "Width of the absorption and emission bands in nm (None: default)");
-  bindFluorescenceField(fl, "skew", &nx::FluorescenceDesc::skew, nx::kSkewRange,
-                        "Skew magnitude of the bands (None: default)");
-  bindFluorescenceField(fl, "quantum_yield", &nx::FluorescenceDesc::quantumYield, nx::kYieldRange,
-                        "Quantum yield in [0, 1] (None: default)");
+  bindFluorescenceModel(fl);
   bindFluorescenceField(fl, "peak_absorptance", &nx::FluorescenceDesc::peakAbsorptance,
                         nx::kPeakRange, "Absorptance at the absorption peak (None: default)");
   fl.def_property_readonly(
-      "matrix",
+      "matrix_file",
       [](const FluorescenceView& f) -> py::object {
         const auto& d = f.get();
         return d.matrixCsv ? py::object(py::str(*d.matrixCsv)) : py::object(py::none());
       },
-      "The measured matrix's CSV file, if the fluorescence is measured");
+      "The measured matrix's CSV file, if it was read from one");
+  fl.def_property(
+      "matrix",
+      [](const FluorescenceView& f) -> py::object {
+        const auto& d = f.get();
+        if (d.matrix) return matrixToPython(*d.matrix);
+        if (!d.matrixCsv) return py::none();
+        nx::MeasuredMatrix read;
+        try {
+          read = nx::parseMeasuredMatrixCsv(
+              nx::readRegularFile(*d.matrixCsv, 64u << 20, "table file"), *d.matrixCsv);
+        } catch (const nx::Error& e) {
+          throw py::value_error(f.m.label() + ".fluorescence.matrix: " + e.what());
+        }
+        return matrixToPython(read);
+      },
+      [](const FluorescenceView& f, const py::object& value) {
+        setMeasuredMatrix(f.m, value, f.m.label() + ".fluorescence.matrix");
+      },
+      "The measured matrix (excitation_nm, emission_nm, values[excitation, emission]) as numpy "
+      "arrays, or None for the parametric model; set it the same way (checked like a CSV's)");
   fl.def("__repr__", [](const FluorescenceView& f) {
     const auto& d = f.get();
     if (d.matrixCsv) return "<nxrender.Fluorescence matrix=" + *d.matrixCsv + ">";
+    if (d.matrix) return std::string("<nxrender.Fluorescence matrix (from arrays)>");
     return "<nxrender.Fluorescence absorption=" +
            (d.absorptionNm ? std::to_string(*d.absorptionNm) + " nm" : *d.absorptionName) +
            ", stokes=" + std::to_string(d.stokesNm.value_or(0)) + " nm>";
@@ -388,6 +483,17 @@ void bindScene(py::module_& m) {
           py::arg("skew") = py::none(), py::arg("quantum_yield") = py::none(),
           py::arg("peak_absorptance") = py::none(),
           "Gives the material a fluorescence model (replacing any); returns it")
+      .def(
+          "set_fluorescence_matrix",
+          [](const MaterialView& v, const py::object& excitationNm, const py::object& emissionNm,
+             const py::object& values) {
+            setMeasuredMatrix(v, py::make_tuple(excitationNm, emissionNm, values),
+                              v.label() + ".fluorescence.matrix");
+            return FluorescenceView{v};
+          },
+          py::arg("excitation_nm"), py::arg("emission_nm"), py::arg("values"),
+          "Gives the material a measured Donaldson matrix from arrays (values[excitation, "
+          "emission] in [0, 1], as a CSV matrix's cells), replacing any fluorescence; returns it")
       .def_property(
           "alpha_uv",
           [](const MaterialView& v) -> py::object {
@@ -406,6 +512,11 @@ void bindScene(py::module_& m) {
       .def("__repr__", [](const MaterialView& v) {
         return "<nxrender.Material " + v.label() + " " + v.get().material + ">";
       });
+
+  py::class_<DyeView> dye(m, "Dye",
+                          "The fluorescent dye dissolved in a medium (the parametric model; its "
+                          "peak absorption coefficient is the medium's dye_peak)");
+  bindFluorescenceModel(dye);
 
   py::class_<MediumView> med(m, "Medium",
                              "The participating medium inside a sphere or closed mesh "
@@ -443,6 +554,12 @@ void bindScene(py::module_& m) {
             record(*v.o.s, param, value);
           },
           "The factor on its emission (> 0)")
+      .def_property_readonly(
+          "dye",
+          [](const MediumView& v) -> py::object {
+            return v.get().fluorescence ? py::cast(DyeView{v}) : py::object(py::none());
+          },
+          "The dye dissolved in it (None: none; set_dye(...) adds one)")
       .def_property(
           "dye_peak",
           [](const MediumView& v) -> py::object {
@@ -563,9 +680,76 @@ void bindScene(py::module_& m) {
             record(*o.s, o.label() + ".radius", value);
           },
           "A sphere's radius")
-      .def_property_readonly(
+      .def_property(
           "emission", [](const ObjectView& o) { return spectrumToPythonOpt(o.get().emission); },
-          "Its emission spectrum (an area light), or None")
+          [](const ObjectView& o, const py::object& value) {
+            const std::string param = o.label() + ".emission";
+            if (value.is_none())
+              o.get().emission.reset();
+            else
+              o.get().emission = spectrumFromPython(value, param, o.get().loc);
+            record(*o.s, param, value);
+          },
+          "Its emitted radiance (an area light; W m^-2 sr^-1 nm^-1): a number, an illuminant "
+          "name or (wavelengths_nm, values); None: not a light")
+      .def_property(
+          "normal",
+          [](const ObjectView& o) -> py::object {
+            return o.get().shape == nx::ShapeType::Plane ? py::object(tupleOf(o.get().normal))
+                                                         : py::object(py::none());
+          },
+          [](const ObjectView& o, const py::object& value) {
+            const std::string param = o.label() + ".normal";
+            if (o.get().shape != nx::ShapeType::Plane)
+              throw py::value_error(param + ": only planes have a normal");
+            const nx::Vec3d n = pointArgument(value, param);
+            if (!(length(n) > 0)) throw py::value_error(param + ": expected a non-zero normal");
+            o.get().normal = n / length(n);
+            record(*o.s, param, value);
+          },
+          "A plane's normal (normalised; the plane is dot(normal, p) = distance)")
+      .def_property(
+          "distance",
+          [](const ObjectView& o) -> py::object {
+            return o.get().shape == nx::ShapeType::Plane ? py::object(py::float_(o.get().distance))
+                                                         : py::object(py::none());
+          },
+          [](const ObjectView& o, const py::object& value) {
+            const std::string param = o.label() + ".distance";
+            if (o.get().shape != nx::ShapeType::Plane)
+              throw py::value_error(param + ": only planes have a distance");
+            o.get().distance = numberArgument(value, param.c_str(), -nx::kMaxSceneCoordinate,
+                                              nx::kMaxSceneCoordinate);
+            record(*o.s, param, value);
+          },
+          "A plane's signed distance from the origin along its normal")
+      .def_property(
+          "vertices",
+          [](const ObjectView& o) -> py::object {
+            const auto t = o.get().shape;
+            if (t != nx::ShapeType::Triangle && t != nx::ShapeType::Quad) return py::none();
+            const auto& v = o.get().vertices;
+            return py::make_tuple(tupleOf(v[0]), tupleOf(v[1]), tupleOf(v[2]));
+          },
+          [](const ObjectView& o, const py::object& value) {
+            const std::string param = o.label() + ".vertices";
+            const auto t = o.get().shape;
+            if (t != nx::ShapeType::Triangle && t != nx::ShapeType::Quad)
+              throw py::value_error(param + ": only triangles and quads have vertices");
+            if (!(py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) ||
+                py::len(value) != 3)
+              throw py::type_error(param + ": expected three points");
+            std::array<nx::Vec3d, 3> v;
+            for (int i = 0; i < 3; ++i)
+              v[i] = pointArgument(value[py::int_(i)], param + "[" + std::to_string(i) + "]");
+            const nx::Vec3d area =
+                t == nx::ShapeType::Triangle ? cross(v[1] - v[0], v[2] - v[0]) : cross(v[1], v[2]);
+            if (!(length(area) > 0))
+              throw py::value_error(param + ": expected a shape with non-zero area");
+            o.get().vertices = v;
+            record(*o.s, param, value);
+          },
+          "A triangle's vertices (vA, vB, vC) or a quad's (origin, edge_u, edge_v)")
       .def_property(
           "emission_scale", [](const ObjectView& o) { return o.get().emissionScale; },
           [](const ObjectView& o, const py::object& value) {
@@ -595,7 +779,35 @@ void bindScene(py::module_& m) {
                 numberArgument(value, (l.label() + ".emission_scale").c_str(), 1e-300, 1e300);
             record(*l.s, l.label() + ".emission_scale", value);
           },
-          "The factor on its emission (> 0)");
+          "The factor on its emission (> 0)")
+      .def_property(
+          "emission", [](const LightView& l) { return spectrumToPythonOpt(l.get().emission); },
+          [](const LightView& l, const py::object& value) {
+            const std::string param = l.label() + ".emission";
+            if (value.is_none())
+              l.get().emission.reset();
+            else
+              l.get().emission = spectrumFromPython(value, param, l.get().loc);
+            record(*l.s, param, value);
+          },
+          "Its spectral intensity (W sr^-1 nm^-1; spectral_mcpt), or None (its colour)")
+      .def_property(
+          "color",
+          [](const LightView& l) {
+            const auto& c = l.get().color;
+            return py::make_tuple(c[0], c[1], c[2], c[3]);
+          },
+          [](const LightView& l, const py::object& value) {
+            const std::string param = l.label() + ".color";
+            const std::vector<double> c = numberListArgument(value, param.c_str(), 3);
+            if (c.size() > 4) throw py::value_error(param + ": expected (r, g, b[, a])");
+            for (size_t i = 0; i < 3; ++i)
+              if (!(c[i] >= 0 && c[i] <= 1e12))
+                throw py::value_error(param + ": expected non-negative colour channels");
+            l.get().color = {c[0], c[1], c[2], c.size() == 4 ? c[3] : 1.0};
+            record(*l.s, param, value);
+          },
+          "Its RGB intensity (rt and mcpt, and spectral_mcpt without an emission)");
 
   py::class_<CameraView>(m, "Camera", "The scene's camera")
       .def_property(
@@ -649,7 +861,62 @@ void bindScene(py::module_& m) {
               d.intrinsics = std::array<double, 4>{v[0], v[1], v[2], v[3]};
             });
           },
-          "OpenCV intrinsics (fx, fy, cx, cy) in pixels, or None");
+          "OpenCV intrinsics (fx, fy, cx, cy) in pixels, or None")
+      .def_property(
+          "distortion",
+          [](const CameraView& c) {
+            const auto& d = c.s->desc.camera.distortion;
+            return py::make_tuple(d[0], d[1], d[2], d[3], d[4]);
+          },
+          [](const CameraView& c, const py::object& value) {
+            const std::vector<double> v = numberListArgument(value, "camera.distortion", 4);
+            if (v.size() > 5)
+              throw py::value_error("camera.distortion: expected k1, k2, p1, p2[, k3]");
+            for (double x : v)
+              if (!(std::abs(x) <= 1e4))
+                throw py::value_error(
+                    "camera.distortion: expected coefficients within [-1e4, 1e4]");
+            editCamera(*c.s, "camera.distortion", value, [&](nx::CameraDesc& d) {
+              d.distortion = {};
+              std::copy(v.begin(), v.end(), d.distortion.begin());
+              d.distortionLoc = d.loc;
+            });
+          },
+          "OpenCV distortion (k1, k2, p1, p2, k3); a fold in the image is refused at render")
+      .def_property(
+          "thin_lens",
+          [](const CameraView& c) -> py::object {
+            const auto& l = c.s->desc.camera.thinLens;
+            return l ? py::object(py::make_tuple((*l)[0], (*l)[1])) : py::object(py::none());
+          },
+          [](const CameraView& c, const py::object& value) {
+            if (value.is_none())
+              return editCamera(*c.s, "camera.thin_lens", value,
+                                [](nx::CameraDesc& d) { d.thinLens.reset(); });
+            const std::vector<double> v = numbersArgument(value, "camera.thin_lens", 2);
+            editCamera(*c.s, "camera.thin_lens", value, [&](nx::CameraDesc& d) {
+              d.thinLens = std::array<double, 2>{v[0], v[1]};
+            });
+          },
+          "(aperture radius, focus distance) in scene units, or None (a pinhole)")
+      .def_property(
+          "extrinsics",
+          [](const CameraView& c) -> py::object {
+            const auto& e = c.s->desc.camera.extrinsics;
+            if (!e) return py::none();
+            return py::cast(std::vector<double>(e->begin(), e->end()));
+          },
+          [](const CameraView& c, const py::object& value) {
+            if (value.is_none())
+              throw py::value_error("camera.extrinsics: expected 12 numbers (r11 .. r33, t1, t2, "
+                                    "t3); a camera placed by extrinsics has no look-at form");
+            const std::vector<double> v = numbersArgument(value, "camera.extrinsics", 12);
+            editCamera(*c.s, "camera.extrinsics", value, [&](nx::CameraDesc& d) {
+              d.extrinsics = std::array<double, 12>{};
+              std::copy(v.begin(), v.end(), d.extrinsics->begin());
+            });
+          },
+          "OpenCV extrinsics r11 .. r33, t1, t2, t3 (x_cam = R x_world + t), or None");
 
   py::class_<PyScene>(m, "Scene",
                       "A scene file read once and edited from Python; render it with "
@@ -726,6 +993,30 @@ void bindScene(py::module_& m) {
             record(*s.state, "bands", value);
           },
           "The output bands ('400:700:10', 'gaussian:...', 'boxes:...')")
+      .def_property(
+          "background",
+          [](const PyScene& s) { return spectrumToPythonOpt(s.state->desc.settings.background); },
+          [](const PyScene& s, const py::object& value) {
+            if (value.is_none())
+              s.state->desc.settings.background.reset();
+            else
+              s.state->desc.settings.background =
+                  spectrumFromPython(value, "background", s.state->desc.settings.loc);
+            record(*s.state, "background", value);
+          },
+          "Uniform environment radiance (a spectrum), or None (black)")
+      .def_property(
+          "illuminant",
+          [](const PyScene& s) { return spectrumToPythonOpt(s.state->desc.settings.illuminant); },
+          [](const PyScene& s, const py::object& value) {
+            if (value.is_none())
+              s.state->desc.settings.illuminant.reset();
+            else
+              s.state->desc.settings.illuminant =
+                  spectrumFromPython(value, "illuminant", s.state->desc.settings.loc);
+            record(*s.state, "illuminant", value);
+          },
+          "The preview's white (<illum>, a spectrum), or None (D65)")
       .def_property_readonly("camera", [](const PyScene& s) { return CameraView{s.state}; })
       .def_property_readonly(
           "objects",

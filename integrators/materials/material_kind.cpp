@@ -118,7 +118,7 @@ void setSurfaceReflectance(Material& m, const ParameterSet& p, const MaterialInp
 void setFluorescence(Material& m, const ParameterSet& p, const MaterialInputs& in) {
   const FluorescenceDesc* f = p.get<FluorescenceDesc>("fluorescence");
   if (!f) return;
-  if (f->matrixCsv) {
+  if (f->matrixCsv || f->matrix) {
     m.reradiation = in.measuredMatrix(*f);
     return;
   }

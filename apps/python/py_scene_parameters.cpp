@@ -1,0 +1,310 @@
+// Scene.parameters(), Scene.get(name), Scene.set(name, value): every parameter of the scene
+// by a stable name (the names Scene.edits records), with its type, unit, range and meaning.
+// Material parameters come from the kinds' schemas (integrators/materials/material_kind.h);
+// the others from the table below. Values are read and set through the views' properties, so
+// a value set by name is checked and recorded exactly as one set by attribute.
+
+#include "apps/python/py_scene_parameters.h"
+
+#include <pybind11/stl.h>
+
+#include <cctype>
+
+#include "integrators/materials/material_kind.h"
+#include "io/material_parameters.h"
+
+namespace nxpy {
+namespace {
+
+// A parameter that is not a material's: the leaf of its name (with the kind of item it
+// belongs to), how it is written, its unit, range and meaning.
+struct FixedParameter {
+  const char* key; ///< "spp", "camera.fov", "object.radius", "medium.g", "light.position", ...
+  const char* type;
+  const char* unit;
+  const nx::ParameterRange* range;
+  const char* doc;
+};
+
+constexpr nx::ParameterRange kPositiveScale{0, 1e300, true, "a scale factor"};
+
+constexpr FixedParameter kFixed[] = {
+    {"resolution", "integers", "px", nullptr, "(width, height) in pixels"},
+    {"spp", "integer", "1", nullptr, "samples per pixel"},
+    {"seed", "integer", "1", nullptr, "the sampler's seed"},
+    {"depth", "integer", "1", nullptr, "the bounce count"},
+    {"bands", "text", "nm", nullptr, "the output bands ('400:700:10', 'gaussian:...', ...)"},
+    {"background", "spectrum", "W m^-2 sr^-1 nm^-1", nullptr,
+     "uniform environment radiance, or None (black)"},
+    {"illuminant", "spectrum", "1", nullptr, "the preview's white, or None (D65)"},
+    {"camera.position", "point", "scene units", nullptr, "the eye (look-at form)"},
+    {"camera.look_at", "point", "scene units", nullptr, "the point looked at"},
+    {"camera.up", "vector", "1", nullptr, "the up direction"},
+    {"camera.fov", "number", "degrees", &nx::kFovRange, "horizontal field of view"},
+    {"camera.intrinsics", "numbers", "px", nullptr, "OpenCV fx, fy, cx, cy, or None"},
+    {"camera.distortion", "numbers", "1", nullptr, "OpenCV k1, k2, p1, p2, k3"},
+    {"camera.thin_lens", "numbers", "scene units", nullptr,
+     "(aperture radius, focus distance), or None"},
+    {"camera.extrinsics", "numbers", "1, scene units", nullptr,
+     "OpenCV r11 .. r33, t1, t2, t3, or None"},
+    {"object.center", "point", "scene units", nullptr, "a sphere's centre"},
+    {"object.radius", "number", "scene units", &nx::kRadiusRange, "a sphere's radius"},
+    {"object.normal", "vector", "1", nullptr, "a plane's normal"},
+    {"object.distance", "number", "scene units", nullptr, "a plane's distance along its normal"},
+    {"object.vertices", "points", "scene units", nullptr,
+     "a triangle's vertices or a quad's origin and edges"},
+    {"object.emission", "spectrum", "W m^-2 sr^-1 nm^-1", nullptr,
+     "emitted radiance (an area light), or None"},
+    {"object.emission_scale", "number", "1", &kPositiveScale, "the factor on its emission"},
+    {"medium.sigma_a", "spectrum", "1/scene unit", nullptr, "absorption coefficient"},
+    {"medium.sigma_s", "spectrum", "1/scene unit", nullptr, "scattering coefficient"},
+    {"medium.sigma_a_scale", "number", "1", &kPositiveScale, "the factor on sigma_a"},
+    {"medium.sigma_s_scale", "number", "1", &kPositiveScale, "the factor on sigma_s"},
+    {"medium.g", "number", "1", &nx::kPhaseGRange, "Henyey-Greenstein mean cosine"},
+    {"medium.emission", "spectrum", "W m^-2 sr^-1 nm^-1", nullptr,
+     "emitted radiance Le (source sigma_a Le), or None"},
+    {"medium.emission_scale", "number", "1", &kPositiveScale, "the factor on its emission"},
+    {"medium.dye_peak", "number", "1/scene unit", &nx::kPeakCoefficientRange,
+     "the dye's peak absorption coefficient"},
+    {"fluorescence.absorption_nm", "number", "nm", &nx::kAbsorptionRange, "absorption peak"},
+    {"fluorescence.stokes_nm", "number", "nm", &nx::kStokesRange, "Stokes shift"},
+    {"fluorescence.width_nm", "number", "nm", &nx::kWidthRange, "band width (None: default)"},
+    {"fluorescence.skew", "number", "1", &nx::kSkewRange, "band skew (None: default)"},
+    {"fluorescence.quantum_yield", "number", "1", &nx::kYieldRange,
+     "quantum yield (None: default)"},
+    {"fluorescence.peak_absorptance", "number", "1", &nx::kPeakRange,
+     "absorptance at the peak (None: default)"},
+    {"fluorescence.matrix", "matrix", "1", nullptr,
+     "measured matrix (excitation_nm, emission_nm, values[excitation, emission])"},
+    {"light.position", "point", "scene units", nullptr, "a point light's position"},
+    {"light.color", "rgb", "W sr^-1 nm^-1", nullptr, "its RGB intensity"},
+    {"light.emission", "spectrum", "W sr^-1 nm^-1", nullptr, "its spectral intensity, or None"},
+    {"light.emission_scale", "number", "1", &kPositiveScale, "the factor on its emission"},
+};
+
+const FixedParameter& fixed(const std::string& key) {
+  for (const FixedParameter& f : kFixed)
+    if (key == f.key) return f;
+  throw std::logic_error("no parameter declaration '" + key + "'"); // a defect of this file
+}
+
+// One entry of parameters(): the name and its description.
+struct Entry {
+  std::string name, type, unit, doc, defaultText;
+  const nx::ParameterRange* range = nullptr;
+};
+
+void addFixed(std::vector<Entry>& out, const std::string& name, const std::string& key) {
+  const FixedParameter& f = fixed(key);
+  out.push_back({name, f.type, f.unit, f.doc, "", f.range});
+}
+
+// The fluorescence fields of a material or a dye named `prefix`.
+void addFluorescence(std::vector<Entry>& out, const std::string& prefix,
+                     const nx::FluorescenceDesc& f, bool dye) {
+  if (f.matrixCsv || f.matrix) return addFixed(out, prefix + ".matrix", "fluorescence.matrix");
+  for (const char* field :
+       {"absorption_nm", "stokes_nm", "width_nm", "skew", "quantum_yield", "peak_absorptance"})
+    if (!(dye && std::string(field) == "peak_absorptance"))
+      addFixed(out, prefix + "." + field, std::string("fluorescence.") + field);
+}
+
+// Every parameter a material's kind takes (given or not), named `label.<parameter>`.
+void addMaterial(std::vector<Entry>& out, const std::string& label, const nx::MaterialDesc& m) {
+  const nx::MaterialKindSpec* kind = nx::findMaterialKind(m.material);
+  if (!kind) return;
+  for (const nx::KindParameter& p : kind->params) {
+    const nx::ParamSpec& spec = *nx::materialParameter(p.name);
+    out.push_back({label + "." + p.name, nx::paramTypeName(spec.type), spec.unit,
+                   *p.doc ? p.doc : spec.doc, p.defaultText, spec.range});
+    if (spec.type == nx::ParamType::Fluorescence)
+      if (const auto* f = m.params.get<nx::FluorescenceDesc>("fluorescence"))
+        addFluorescence(out, label + ".fluorescence", *f, false);
+  }
+}
+
+std::vector<Entry> entries(const SceneState& s) {
+  std::vector<Entry> out;
+  for (const char* k : {"resolution", "spp", "seed", "depth", "bands", "background", "illuminant"})
+    addFixed(out, k, k);
+  const nx::CameraDesc& c = s.desc.camera;
+  if (!c.extrinsics)
+    for (const char* k : {"position", "look_at", "up"})
+      addFixed(out, std::string("camera.") + k, std::string("camera.") + k);
+  else
+    addFixed(out, "camera.extrinsics", "camera.extrinsics");
+  addFixed(out, c.intrinsics ? "camera.intrinsics" : "camera.fov",
+           c.intrinsics ? "camera.intrinsics" : "camera.fov");
+  addFixed(out, "camera.distortion", "camera.distortion");
+  addFixed(out, "camera.thin_lens", "camera.thin_lens");
+  for (size_t i = 0; i < s.desc.objects.size(); ++i) {
+    const nx::ObjectDesc& o = s.desc.objects[i];
+    const std::string label = "objects[" + std::to_string(i) + "]";
+    switch (o.shape) {
+    case nx::ShapeType::Sphere:
+      addFixed(out, label + ".center", "object.center");
+      addFixed(out, label + ".radius", "object.radius");
+      break;
+    case nx::ShapeType::Plane:
+      addFixed(out, label + ".normal", "object.normal");
+      addFixed(out, label + ".distance", "object.distance");
+      break;
+    case nx::ShapeType::Triangle:
+    case nx::ShapeType::Quad:
+      addFixed(out, label + ".vertices", "object.vertices");
+      break;
+    case nx::ShapeType::Mesh:
+      break; // its vertices are its file's
+    }
+    addFixed(out, label + ".emission", "object.emission");
+    if (o.emission) addFixed(out, label + ".emission_scale", "object.emission_scale");
+    if (o.materialRef.empty()) addMaterial(out, label, o);
+    if (o.medium) {
+      for (const char* k :
+           {"sigma_a", "sigma_s", "sigma_a_scale", "sigma_s_scale", "g", "emission"})
+        addFixed(out, label + ".medium." + k, std::string("medium.") + k);
+      if (o.medium->emission)
+        addFixed(out, label + ".medium.emission_scale", "medium.emission_scale");
+      if (o.medium->fluorescence) {
+        addFixed(out, label + ".medium.dye_peak", "medium.dye_peak");
+        addFluorescence(out, label + ".medium.dye", *o.medium->fluorescence, true);
+      }
+    }
+  }
+  for (const nx::NamedMaterialDesc& m : s.desc.materials)
+    addMaterial(out, "materials['" + m.id + "']", m.material);
+  for (size_t i = 0; i < s.desc.lights.size(); ++i) {
+    const std::string label = "lights[" + std::to_string(i) + "]";
+    for (const char* k : {"position", "color", "emission", "emission_scale"})
+      addFixed(out, label + "." + k, std::string("light.") + k);
+  }
+  return out;
+}
+
+// A name split into its steps: "objects[1].fluorescence.stokes_nm" -> (objects, 1),
+// (fluorescence), (stokes_nm); "materials['card'].reflectance" -> (materials, 'card'), ...
+struct Step {
+  std::string attribute;
+  py::object index; ///< None, an int or a str
+};
+
+std::vector<Step> steps(const std::string& name) {
+  std::vector<Step> out;
+  size_t i = 0;
+  auto bad = [&] { return py::key_error("no scene parameter named '" + name + "'"); };
+  while (i < name.size()) {
+    Step s;
+    s.index = py::none();
+    while (i < name.size() && (std::isalnum(static_cast<unsigned char>(name[i])) || name[i] == '_'))
+      s.attribute += name[i++];
+    if (s.attribute.empty()) throw bad();
+    if (i < name.size() && name[i] == '[') {
+      const size_t close = name.find(']', i);
+      if (close == std::string::npos) throw bad();
+      const std::string inside = name.substr(i + 1, close - i - 1);
+      if (inside.size() >= 2 && (inside.front() == '\'' || inside.front() == '"') &&
+          inside.back() == inside.front())
+        s.index = py::str(inside.substr(1, inside.size() - 2));
+      else if (!inside.empty() && inside.find_first_not_of("0123456789") == std::string::npos)
+        s.index = py::int_(std::stoll(inside));
+      else
+        throw bad();
+      i = close + 1;
+    }
+    out.push_back(std::move(s));
+    if (i < name.size()) {
+      if (name[i] != '.') throw bad();
+      ++i;
+      if (i == name.size()) throw bad();
+    }
+  }
+  if (out.empty() || !out.back().index.is_none()) throw bad();
+  return out;
+}
+
+// The canonical spelling of a name (materials["x"] -> materials['x']), checked to be one of
+// the scene's parameters.
+std::string knownName(const SceneState& s, const std::string& name) {
+  std::string canonical = name;
+  for (char& ch : canonical)
+    if (ch == '"') ch = '\'';
+  for (const Entry& e : entries(s))
+    if (e.name == canonical) return canonical;
+  throw py::key_error("no scene parameter named '" + name + "' (Scene.parameters() lists them)");
+}
+
+// An object's material parameters are named after the object ("objects[1].reflectance", as
+// errors and edits name them): the step goes through its material view.
+py::object owner(const py::object& at, const std::string& attribute) {
+  if (!py::hasattr(at, attribute.c_str()) && py::hasattr(at, "material"))
+    return at.attr("material");
+  return at;
+}
+
+// The object holding the last step, walking the views from the scene.
+py::object holder(const py::object& scene, const std::vector<Step>& path) {
+  py::object at = scene;
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const py::object from = owner(at, path[i].attribute);
+    at = from.attr(path[i].attribute.c_str());
+    if (!path[i].index.is_none()) at = at[path[i].index];
+    if (at.is_none())
+      throw py::key_error("the scene has no " + path[i].attribute + " here any more");
+  }
+  return owner(at, path.back().attribute);
+}
+
+} // namespace
+
+void bindSceneParameters(py::module_& m) {
+  py::object scene = m.attr("Scene");
+  scene.attr("parameters") = py::cpp_function(
+      [](const py::object& self) {
+        const PyScene& s = self.cast<const PyScene&>();
+        py::dict out;
+        for (const Entry& e : entries(*s.state)) {
+          py::dict d;
+          const std::vector<Step> path = steps(e.name);
+          const py::object at = holder(self, path);
+          py::object value = at.attr(path.back().attribute.c_str());
+          // A fluorescence is a view of its fields (listed as parameters of their own).
+          if (e.type == nx::paramTypeName(nx::ParamType::Fluorescence) && !value.is_none())
+            value = value.attr("matrix_file").is_none() && value.attr("matrix").is_none()
+                        ? py::str("model")
+                        : py::str("matrix");
+          d["value"] = value;
+          d["type"] = e.type;
+          d["unit"] = e.unit;
+          d["range"] = e.range ? py::object(py::make_tuple(e.range->lo, e.range->hi))
+                               : py::object(py::none());
+          d["default"] = e.defaultText.empty() ? py::object(py::none()) : py::str(e.defaultText);
+          d["doc"] = e.doc;
+          out[py::str(e.name)] = d;
+        }
+        return out;
+      },
+      py::name("parameters"), py::is_method(scene),
+      "Every parameter of the scene by its stable name (the names Scene.edits records): a dict "
+      "name -> {value, type, unit, range, default, doc}. Material parameters a kind takes are "
+      "listed whether given or not (value None: the kind's default).");
+  scene.attr("get") = py::cpp_function(
+      [](const py::object& self, const std::string& name) -> py::object {
+        const PyScene& s = self.cast<const PyScene&>();
+        const std::vector<Step> path = steps(knownName(*s.state, name));
+        const py::object at = holder(self, path);
+        return at.attr(path.back().attribute.c_str());
+      },
+      py::name("get"), py::is_method(scene), py::arg("name"),
+      "The value of the parameter called `name` (see parameters())");
+  scene.attr("set") = py::cpp_function(
+      [](const py::object& self, const std::string& name, const py::object& value) {
+        const PyScene& s = self.cast<const PyScene&>();
+        const std::vector<Step> path = steps(knownName(*s.state, name));
+        py::setattr(holder(self, path), path.back().attribute.c_str(), value);
+      },
+      py::name("set"), py::is_method(scene), py::arg("name"), py::arg("value"),
+      "Sets the parameter called `name`, checked and recorded as the attribute's setter does "
+      "(ValueError / TypeError naming it)");
+}
+
+} // namespace nxpy

@@ -1,0 +1,131 @@
+"""Scene.parameters(): every parameter of every example scene by name, each settable to a new
+valid value (checked and recorded as its attribute is) and rendering; a measured matrix given
+as numpy arrays renders as the same matrix from its CSV file."""
+
+import numpy as np
+import pytest
+
+import nxrender
+from conftest import SCENES
+
+
+def new_value(info):
+    """A valid value different from the current one, from the parameter's type and range."""
+    v, t, r = info["value"], info["type"], info["range"]
+    if v is None or t == "fluorescence":
+        return None
+    if t == "number":
+        if r is None:
+            return v + 0.01
+        lo, hi = r
+        mid = (lo + min(hi, lo + 10.0)) / 2
+        return 0.95 * v + 0.05 * mid if v != mid else 0.9 * v + 0.1 * lo
+    if t == "integer":
+        return v + 1
+    if t == "integers":
+        return (3, 2)
+    if t in ("point", "vector"):
+        return (v[0] + 0.01, v[1], v[2])
+    if t == "points":
+        return tuple((p[0] + 0.01, p[1], p[2]) for p in v)
+    if t in ("spectrum", "spectrum or texture"):
+        if isinstance(v, float):
+            return v * 0.9 if v > 0 else 0.1
+        if isinstance(v, tuple):
+            return (v[0], [x * 0.9 for x in v[1]])
+        return v  # a name or a file: the same, set again
+    if t == "rgb":
+        return tuple(x * 0.9 for x in v)
+    if t == "ior":
+        return v * 0.99 if isinstance(v, float) and v * 0.99 >= 1 else v
+    if t == "coating":
+        return (v[0] * 0.9, v[1])
+    if t == "numbers":
+        if len(v) == 2:  # thin_lens
+            return (v[0] * 0.9, v[1])
+        return v
+    if t == "matrix":
+        return (v[0], v[1], v[2] * 0.9)
+    return v  # text (bands), names
+
+
+def small(scene):
+    scene.resolution = (3, 2)
+    scene.spp = 1
+    return scene
+
+
+@pytest.mark.parametrize("path", sorted(SCENES.glob("*.scn")), ids=lambda p: p.stem)
+def test_every_parameter_is_settable_by_name_and_renders(path):
+    scene = small(nxrender.Scene(path))
+    parameters = scene.parameters()
+    assert parameters, "a scene has parameters"
+    changed = 0
+    for name, info in parameters.items():
+        assert set(info) == {"value", "type", "unit", "range", "default", "doc"}
+        assert info["doc"], name
+        value = new_value(info)
+        if value is None:
+            continue
+        edited = scene.copy()
+        before = len(edited.edits)
+        edited.set(name, value)
+        assert len(edited.edits) == before + 1, name
+        assert name.replace("'", "") in edited.edits[-1].replace("'", "")
+        if info["type"] == "number":
+            assert edited.get(name) == pytest.approx(value), name
+        image = nxrender.render(edited, threads=1)
+        assert np.isfinite(np.asarray(image.radiance)).all(), name
+        changed += 1
+    assert changed >= 5
+
+
+def test_unknown_names_and_bad_values_are_refused():
+    scene = nxrender.Scene(SCENES / "thesis.scn")
+    with pytest.raises(KeyError, match="no scene parameter named 'objects\\[99\\].radius'"):
+        scene.set("objects[99].radius", 1)
+    with pytest.raises(KeyError):
+        scene.get("camera..fov")
+    with pytest.raises(ValueError, match=r"^objects\[2\]\.radius: expected a radius in \(0"):
+        scene.set("objects[2].radius", -1)
+    with pytest.raises(ValueError, match=r"^objects\[2\]\.alpha: expected a GGX roughness"):
+        scene.set("objects[2].alpha", 3)
+    # A parameter the kind does not take is refused as the loader refuses it.
+    with pytest.raises(ValueError, match=r"^objects\[0\]\.alpha: expected only <color>"):
+        scene.objects[0].material.alpha = 0.2
+    assert scene.edits == []
+
+
+def csv_matrix(path):
+    """A Donaldson matrix CSV read with numpy alone: (excitation_nm, emission_nm, values)."""
+    rows = [line.split(",") for line in path.read_text().splitlines()
+            if line.strip() and not line.startswith("#")]
+    emission = np.array([float(x) for x in rows[0][1:]])
+    body = np.array([[float(x) for x in r] for r in rows[1:]])
+    return body[:, 0], emission, body[:, 1:]
+
+
+def test_matrix_from_numpy_renders_like_the_csv():
+    path = SCENES / "measured.scn"
+    scene = small(nxrender.Scene(path))
+    names = [n for n in scene.parameters() if n.endswith(".fluorescence.matrix")]
+    assert names, "measured.scn has a measured matrix"
+    name = names[0]
+    reference = nxrender.render(scene, threads=1, spp=8, seed=3)
+    excitation, emission, values = csv_matrix(SCENES / "data" / "orange_sheet_donaldson.csv")
+    got = scene.get(name)
+    np.testing.assert_array_equal(got[0], excitation)
+    np.testing.assert_array_equal(got[2], values)
+    edited = scene.copy()
+    edited.set(name, (excitation, emission, values))
+    assert "digest" in edited.edits[-1]
+    same = nxrender.render(edited, threads=1, spp=8, seed=3)
+    np.testing.assert_array_equal(np.asarray(same.radiance), np.asarray(reference.radiance))
+    # A different matrix renders differently; a malformed one is refused naming the parameter.
+    edited.set(name, (excitation, emission, values * 0.5))
+    other = nxrender.render(edited, threads=1, spp=8, seed=3)
+    assert not np.array_equal(np.asarray(other.radiance), np.asarray(reference.radiance))
+    with pytest.raises(ValueError, match=r"fluorescence\.matrix: expected matrix values in \[0, 1\]"):
+        edited.set(name, (excitation, emission, values + 2))
+    with pytest.raises(ValueError, match=r"fluorescence\.matrix\[2\]: expected shape"):
+        edited.set(name, (excitation, emission, values[:, :-1]))
