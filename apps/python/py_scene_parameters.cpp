@@ -12,80 +12,13 @@
 
 #include "integrators/materials/material_kind.h"
 #include "io/material_parameters.h"
+#include "io/scene_parameters.h"
 
 namespace nxpy {
 namespace {
 
-// A parameter that is not a material's: the leaf of its name (with the kind of item it
-// belongs to), how it is written, its unit, range and meaning.
-struct FixedParameter {
-  const char* key; ///< "spp", "camera.fov", "object.radius", "medium.g", "light.position", ...
-  const char* type;
-  const char* unit;
-  const nx::ParameterRange* range;
-  const char* doc;
-};
-
-constexpr nx::ParameterRange kPositiveScale{0, 1e300, true, "a scale factor"};
-
-constexpr FixedParameter kFixed[] = {
-    {"resolution", "integers", "px", nullptr, "(width, height) in pixels"},
-    {"spp", "integer", "1", nullptr, "samples per pixel"},
-    {"seed", "integer", "1", nullptr, "the sampler's seed"},
-    {"depth", "integer", "1", nullptr, "the bounce count"},
-    {"bands", "text", "nm", nullptr, "the output bands ('400:700:10', 'gaussian:...', ...)"},
-    {"background", "spectrum", "W m^-2 sr^-1 nm^-1", nullptr,
-     "uniform environment radiance, or None (black)"},
-    {"illuminant", "spectrum", "1", nullptr, "the preview's white, or None (D65)"},
-    {"camera.position", "point", "scene units", nullptr, "the eye (look-at form)"},
-    {"camera.look_at", "point", "scene units", nullptr, "the point looked at"},
-    {"camera.up", "vector", "1", nullptr, "the up direction"},
-    {"camera.fov", "number", "degrees", &nx::kFovRange, "horizontal field of view"},
-    {"camera.intrinsics", "numbers", "px", nullptr, "OpenCV fx, fy, cx, cy, or None"},
-    {"camera.distortion", "numbers", "1", nullptr, "OpenCV k1, k2, p1, p2, k3"},
-    {"camera.thin_lens", "numbers", "scene units", nullptr,
-     "(aperture radius, focus distance), or None"},
-    {"camera.extrinsics", "numbers", "1, scene units", nullptr,
-     "OpenCV r11 .. r33, t1, t2, t3, or None"},
-    {"object.center", "point", "scene units", nullptr, "a sphere's centre"},
-    {"object.radius", "number", "scene units", &nx::kRadiusRange, "a sphere's radius"},
-    {"object.normal", "vector", "1", nullptr, "a plane's normal"},
-    {"object.distance", "number", "scene units", nullptr, "a plane's distance along its normal"},
-    {"object.vertices", "points", "scene units", nullptr,
-     "a triangle's vertices or a quad's origin and edges"},
-    {"object.emission", "spectrum", "W m^-2 sr^-1 nm^-1", nullptr,
-     "emitted radiance (an area light), or None"},
-    {"object.emission_scale", "number", "1", &kPositiveScale, "the factor on its emission"},
-    {"medium.sigma_a", "spectrum", "1/scene unit", nullptr, "absorption coefficient"},
-    {"medium.sigma_s", "spectrum", "1/scene unit", nullptr, "scattering coefficient"},
-    {"medium.sigma_a_scale", "number", "1", &kPositiveScale, "the factor on sigma_a"},
-    {"medium.sigma_s_scale", "number", "1", &kPositiveScale, "the factor on sigma_s"},
-    {"medium.g", "number", "1", &nx::kPhaseGRange, "Henyey-Greenstein mean cosine"},
-    {"medium.emission", "spectrum", "W m^-2 sr^-1 nm^-1", nullptr,
-     "emitted radiance Le (source sigma_a Le), or None"},
-    {"medium.emission_scale", "number", "1", &kPositiveScale, "the factor on its emission"},
-    {"medium.dye_peak", "number", "1/scene unit", &nx::kPeakCoefficientRange,
-     "the dye's peak absorption coefficient"},
-    {"fluorescence.absorption_nm", "number", "nm", &nx::kAbsorptionRange, "absorption peak"},
-    {"fluorescence.stokes_nm", "number", "nm", &nx::kStokesRange, "Stokes shift"},
-    {"fluorescence.width_nm", "number", "nm", &nx::kWidthRange, "band width (None: default)"},
-    {"fluorescence.skew", "number", "1", &nx::kSkewRange, "band skew (None: default)"},
-    {"fluorescence.quantum_yield", "number", "1", &nx::kYieldRange,
-     "quantum yield (None: default)"},
-    {"fluorescence.peak_absorptance", "number", "1", &nx::kPeakRange,
-     "absorptance at the peak (None: default)"},
-    {"fluorescence.matrix", "matrix", "1", nullptr,
-     "measured matrix (excitation_nm, emission_nm, values[excitation, emission])"},
-    {"light.position", "point", "scene units", nullptr, "a point light's position"},
-    {"light.color", "rgb", "W sr^-1 nm^-1", nullptr, "its RGB intensity"},
-    {"light.emission", "spectrum", "W sr^-1 nm^-1", nullptr, "its spectral intensity, or None"},
-    {"light.emission_scale", "number", "1", &kPositiveScale, "the factor on its emission"},
-};
-
-const FixedParameter& fixed(const std::string& key) {
-  for (const FixedParameter& f : kFixed)
-    if (key == f.key) return f;
-  throw std::logic_error("no parameter declaration '" + key + "'"); // a defect of this file
+const nx::FixedParameter& fixed(const std::string& key) {
+  return nx::fixedParameter(key);
 }
 
 // One entry of parameters(): the name and its description.
@@ -95,7 +28,7 @@ struct Entry {
 };
 
 void addFixed(std::vector<Entry>& out, const std::string& name, const std::string& key) {
-  const FixedParameter& f = fixed(key);
+  const nx::FixedParameter& f = fixed(key);
   out.push_back({name, f.type, f.unit, f.doc, "", f.range});
 }
 
