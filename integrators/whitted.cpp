@@ -7,7 +7,6 @@
 #include "integrators/integrator.h"
 #include "integrators/lights/direct_lighting.h"
 #include "integrators/materials/bsdf.h"
-#include "integrators/materials/fresnel.h"
 
 namespace nx {
 namespace {
@@ -77,48 +76,12 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
     stack.push_back(next);
   };
 
-  if (material.kind == MaterialKind::Conductor) {
-    // A smooth conductor's mirror ray, weighted by the lanes' Fresnel reflectance; a rough one
-    // has only its direct light (above), like the diffuse lobe.
-    BsdfSample bs;
-    if ((bsdf.lobes() & kSpecularReflection) && bsdf.sample(0, {}, bs))
-      spawn(bs.wi, bs.weight, false);
-    return;
-  }
-  if (bsdf.lobes() & (kGlossyReflection | kGlossyTransmission)) return; // rough: direct light only
-  if (material.kind == MaterialKind::CoatedDiffuse) {
-    // the clear coat's mirror ray, weighted by its Fresnel reflectance
-    const float c = dot(wo, bsdf.normal());
-    if (c > 0)
-      spawn(reflect(wo, bsdf.normal()),
-            SampledSpectrum::filled(
-                fresnelDielectric(c, static_cast<float>(material.ior.at(lambda.lambda[0])))),
-            false);
-    return;
-  }
-  if (material.kind == MaterialKind::Mixture) {
-    if (material.roughness < 1 && dot(wo, bsdf.normal()) > 0)
-      spawn(reflect(wo, bsdf.normal()), rho * (1 - material.roughness), false);
-    return;
-  }
-  // Fresnel split: both the reflected and the refracted ray are traced.
-  const float cosO = dot(wo, hit.ng);
-  const bool entering = cosO > 0;
-  const Vec3 n = entering ? hit.ng : -hit.ng;
-  const bool dispersive = material.ior.dispersive();
-  SampledSpectrum fr, tr;
-  float etaHero = 1;
-  for (int i = 0; i < kLanes; ++i) {
-    const float ior = static_cast<float>(material.ior.at(lambda.lambda[i]));
-    const float eta = entering ? ior : 1.0f / ior;
-    if (i == 0) etaHero = eta;
-    fr[i] = dielectricReflectance(material, std::abs(cosO), entering ? 1.0f : ior,
-                                  entering ? ior : 1.0f, lambda.lambda[i]);
-    tr[i] = (1 - fr[i]) / (eta * eta);
-  }
-  Vec3 wt;
-  if (refract(wo, n, etaHero, wt)) spawn(normalize(wt), rho * tr, dispersive);
-  spawn(reflect(wo, n), rho * fr, false);
+  // The delta lobes, each followed with its full weight; pushed transmission first so that
+  // the reflection's subtree is traced first, as the recursive form did. Glossy and diffuse
+  // lobes have only their direct light (above).
+  SpecularLobe lobes[2];
+  for (int i = bsdf.specularLobes(lobes) - 1; i >= 0; --i)
+    spawn(lobes[i].wi, lobes[i].weight, lobes[i].heroOnly);
 }
 
 } // namespace

@@ -195,6 +195,63 @@ bool SurfaceBsdf::sample(float uLobe, Sample2 u, BsdfSample& out) const {
   return false;
 }
 
+int SurfaceBsdf::specularLobes(SpecularLobe (&out)[2]) const {
+  const Material& m = *material_;
+  const float c = dot(wo_, n_);
+  switch (m.kind) {
+  case MaterialKind::Mixture:
+    if (!(m.roughness < 1) || c <= 0) return 0;
+    out[0] = {reflect(wo_, n_), rho_ * (1 - m.roughness), false};
+    return 1;
+  case MaterialKind::Conductor: {
+    BsdfSample bs;
+    if (!smoothConductor() || !sampleConductor({}, bs)) return 0;
+    out[0] = {bs.wi, bs.weight, false};
+    return 1;
+  }
+  case MaterialKind::CoatedDiffuse:
+    if (c <= 0) return 0;
+    out[0] = {reflect(wo_, n_), SampledSpectrum::filled(coatReflectance(c)), false};
+    return 1;
+  case MaterialKind::Interface:
+    out[0] = {-wo_, SampledSpectrum::filled(1.0f), false};
+    return 1;
+  case MaterialKind::ThinDielectric: {
+    const float ac = std::abs(c);
+    SampledSpectrum r, t;
+    for (int i = 0; i < kLanes; ++i) {
+      r[i] = thinSlabReflectance(ac, static_cast<float>(m.ior.at(lambda_->lambda[i])));
+      t[i] = 1 - r[i];
+    }
+    out[0] = {reflect(wo_, c > 0 ? n_ : -n_), rho_ * r, false};
+    out[1] = {-wo_, rho_ * t, false};
+    return 2;
+  }
+  case MaterialKind::Dielectric: {
+    if (roughDielectric()) return 0;
+    // The Fresnel split: the reflected and (unless totally reflected) the refracted ray.
+    const bool entering = c > 0;
+    const Vec3 n = entering ? n_ : -n_;
+    SampledSpectrum fr, tr;
+    float etaHero = 1;
+    for (int i = 0; i < kLanes; ++i) {
+      const float ior = static_cast<float>(m.ior.at(lambda_->lambda[i]));
+      const float eta = entering ? ior : 1.0f / ior;
+      if (i == 0) etaHero = eta;
+      fr[i] = dielectricReflectance(m, std::abs(c), entering ? 1.0f : ior, entering ? ior : 1.0f,
+                                    lambda_->lambda[i]);
+      tr[i] = mode_ == TransportMode::Radiance ? (1 - fr[i]) / (eta * eta) : 1 - fr[i];
+    }
+    out[0] = {reflect(wo_, n), rho_ * fr, false};
+    Vec3 wt;
+    if (!refract(wo_, n, etaHero, wt)) return 1;
+    out[1] = {normalize(wt), rho_ * tr, m.ior.dispersive()};
+    return 2;
+  }
+  }
+  return 0;
+}
+
 // A thin glass wall: reflect with probability R(hero) (thinSlabReflectance), else pass straight
 // through; lane i's weight is rho_i R_i / R_hero or rho_i (1 - R_i) / (1 - R_hero). The
 // direction never depends on the wavelength, so dispersion needs no lane termination.

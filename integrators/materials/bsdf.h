@@ -31,6 +31,14 @@ struct BsdfSample {
   bool straight = false;
 };
 
+/// A delta lobe of a surface: its one direction and the fraction of radiance it carries per
+/// lane (for a refraction including the 1/eta^2 radiance scaling).
+struct SpecularLobe {
+  Vec3 wi;
+  SampledSpectrum weight;
+  bool heroOnly = false; ///< the direction is the hero wavelength's (a dispersive refraction)
+};
+
 /// The kinds of scattering a BSDF has (bit flags): integrators ask for what they need (can a
 /// light be sampled here? is there a delta lobe?) without naming a material's lobes.
 enum BsdfLobe : uint8_t {
@@ -102,6 +110,11 @@ public:
   /// Draws a direction: uLobe picks the lobe, u the direction within it. Returns false when
   /// nothing is scattered (a black surface).
   bool sample(float uLobe, Sample2 u, BsdfSample& out) const;
+
+  /// Every delta lobe at once, each with its full weight (what Whitted ray tracing follows,
+  /// instead of choosing one): reflection first, then transmission. Returns how many (0-2);
+  /// glossy and diffuse lobes have none.
+  int specularLobes(SpecularLobe (&out)[2]) const;
 
   /// The shading normal on the side of wo (Mixture) or the outward one (Dielectric).
   const Vec3& normal() const { return n_; }

@@ -29,6 +29,7 @@ std::vector<std::string> bodiesOf(MaterialKind kind) {
             "<material>mirror</material><reflectance>1</reflectance>"};
   case MaterialKind::Dielectric:
     return {"<material>glass</material><ior>1.5</ior>", "<material>diamond</material>",
+            "<material>glass</material><ior>bk7</ior>",
             "<material>glass</material><ior>bk7</ior><alpha>0.3</alpha>",
             "<material>glass</material><ior>2.4</ior><alpha>0.05</alpha>"};
   case MaterialKind::Interface:
@@ -102,6 +103,64 @@ TEST(MaterialConformance, EveryKindKeepsEnergyAndStaysFinite) {
       }
     }
   }
+}
+
+// The material of a sphere with `body`.
+RenderScene sphereScene(const std::string& body) {
+  return resolveRenderScene(
+      parseScene(sceneText("<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>",
+                           "<position>0,0,-5</position><look_at>0,0,0</look_at>",
+                           "<sphere><center>0,0,0</center><radius>1</radius>" + body + "</sphere>"),
+                 "t.scn"));
+}
+
+// What Whitted ray tracing follows (every delta lobe with its full weight) is what the path
+// tracer's sampling draws on average: over a fine grid of lobe choices, the specular samples'
+// weights summed per direction and divided by the count equal each lobe's weight (the choice
+// probability cancels its 1/p), lane by lane (the hero lane alone after a dispersive
+// refraction, whose secondaries the sample terminates).
+TEST(MaterialConformance, SpecularLobesAreWhatSamplingDrawsOnAverage) {
+  SampledWavelengths lambda;
+  for (int i = 0; i < kLanes; ++i) {
+    lambda.lambda[i] = 420.0f + 70.0f * static_cast<float>(i);
+    lambda.pdf[i] = 1.0f / 300.0f;
+  }
+  int lobesChecked = 0;
+  for (const MaterialKind kind : kKinds)
+    for (const std::string& body : bodiesOf(kind)) {
+      const RenderScene scene = sphereScene(body);
+      const Material& m = scene.materials[scene.spheres[0].material];
+      SampledSpectrum rho;
+      m.reflectance.evaluate(lambda.lambda, rho);
+      for (float cosTheta : {1.0f, 0.5f, 0.1f, -0.3f, -0.9f}) {
+        const Vec3 wo = direction(cosTheta, 0.7f), n(0, 0, 1);
+        const SurfaceBsdf bsdf(m, lambda, rho, n, wo);
+        SpecularLobe lobes[2];
+        const int count = bsdf.specularLobes(lobes);
+        EXPECT_EQ(count > 0, (bsdf.lobes() & (kSpecularReflection | kSpecularTransmission)) != 0)
+            << body;
+        const int grid = 20000;
+        SampledSpectrum sum[2];
+        for (int i = 0; i < grid; ++i) {
+          BsdfSample s;
+          if (!bsdf.sample((static_cast<float>(i) + 0.5f) / grid, {0.3f, 0.6f}, s) || !s.specular)
+            continue;
+          int which = -1;
+          for (int l = 0; l < count; ++l)
+            if (dot(s.wi, lobes[l].wi) > 1 - 1e-5f) which = l;
+          ASSERT_GE(which, 0) << body << " cos " << cosTheta << ": a specular sample in no lobe";
+          sum[which] += s.weight * (1.0f / grid);
+        }
+        for (int l = 0; l < count; ++l)
+          for (int k = 0; k < (lobes[l].heroOnly ? 1 : kLanes); ++k) {
+            const float want = lobes[l].weight[k];
+            EXPECT_NEAR(sum[l][k], want, 0.01f * want + 1e-4f)
+                << body << " cos " << cosTheta << " lobe " << l << " lane " << k;
+            ++lobesChecked;
+          }
+      }
+    }
+  EXPECT_GT(lobesChecked, 100);
 }
 
 } // namespace
