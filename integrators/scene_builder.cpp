@@ -1,13 +1,6 @@
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <map>
-#include <set>
-#include <sstream>
 #include <tuple>
 
 #include "accel/closed_mesh.h"
@@ -18,16 +11,13 @@
 #include "core/text_table.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/render_scene.h"
-#include "io/camera_checks.h"
+#include "io/camera_from_desc.h"
 #include "io/mesh_reader.h"
-#include "io/spectral_exr.h"
-#include "io/srgb_image.h"
+#include "io/texture_reader.h"
 #include "spectra/colour.h"
 #include "spectra/illuminants.h"
-#include "spectra/metals.h"
 #include "spectra/named_spectra.h"
 #include "spectra/rgb_upsampling.h"
-#include "spectra/sigmoid_table.h"
 #include "spectra/spectrum_bounds.h"
 #include "spectra/water.h"
 
@@ -44,7 +34,7 @@ public:
     RenderScene scene;
     const SettingsDesc& s = desc_.settings;
     scene.settings = {s.width, s.height, s.mode, s.depth, s.samples, s.seed, s.bands, s.outputPath};
-    scene.camera = camera(desc_.camera, s);
+    scene.camera = cameraFromDesc(desc_.camera, s.width, s.height);
     const bool spectral = s.mode == RenderMode::SpectralMcpt;
 
     scene.previewWhite =
@@ -198,80 +188,6 @@ public:
   }
 
 private:
-  // The camera: the look-at form as it always was, or OpenCV's calibration (either part may
-  // stand alone: intrinsics with a look-at pose, extrinsics with a field of view).
-  static PinholeCamera camera(const CameraDesc& c, const SettingsDesc& s) {
-    PinholeCamera cam = pinhole(c, s);
-    if (c.thinLens) cam.setThinLens((*c.thinLens)[0], (*c.thinLens)[1]);
-    return cam;
-  }
-
-  static PinholeCamera pinhole(const CameraDesc& c, const SettingsDesc& s) {
-    checkCameraDesc(c, s.width, s.height); // also what Python edits made of it
-    if (!c.intrinsics && !c.extrinsics && c.distortion == std::array<double, 5>{})
-      return PinholeCamera(c.position, c.lookAt, c.up, c.fovDegrees, s.width, s.height);
-    CameraCalibration cal =
-        c.extrinsics ? CameraCalibration{}
-                     : PinholeCamera(c.position, c.lookAt, c.up, c.fovDegrees, s.width, s.height)
-                           .calibration();
-    if (c.intrinsics) {
-      cal.fx = (*c.intrinsics)[0], cal.fy = (*c.intrinsics)[1];
-      cal.cx = (*c.intrinsics)[2], cal.cy = (*c.intrinsics)[3];
-    } else if (c.extrinsics) {
-      cal.fx = cal.fy = 0.5 * s.width / std::tan(0.5 * c.fovDegrees * kPi / 180.0);
-      cal.cx = 0.5 * s.width - 0.5, cal.cy = 0.5 * s.height - 0.5;
-    }
-    if (c.extrinsics) {
-      const auto& e = *c.extrinsics;
-      cal.R = exactRotation({{{e[0], e[1], e[2]}, {e[3], e[4], e[5]}, {e[6], e[7], e[8]}}});
-      cal.t = Vec3d(e[9], e[10], e[11]);
-    }
-    cal.distortion = c.distortion;
-    if (cal.distorted()) checkNoFold(cal, s, c.distortionLoc);
-    return PinholeCamera(cal, s.width, s.height);
-  }
-
-  // The rotation nearest to a printed one (polar decomposition by Newton's iteration
-  // R <- (R + R^-T) / 2), so that rays are exactly what the calibration means.
-  static Matrix3 exactRotation(Matrix3 r) {
-    for (int it = 0; it < 20; ++it) {
-      const Matrix3 inv = inverse(r);
-      Matrix3 next{};
-      double change = 0;
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          next[i][j] = 0.5 * (r[i][j] + inv[j][i]);
-          change = std::max(change, std::abs(next[i][j] - r[i][j]));
-        }
-      r = next;
-      if (change < 1e-16) break;
-    }
-    return r;
-  }
-
-  // The distortion must map the image one to one: on a 65 x 65 grid over the film (edges
-  // included) the inverse must converge and the Jacobian of the distortion stay positive
-  // there (a fold makes two directions meet in one pixel, and no inverse is the right one).
-  static void checkNoFold(const CameraCalibration& cal, const SettingsDesc& s,
-                          const SourceLocation& loc) {
-    const int n = 64;
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) {
-        const double px = s.width * static_cast<double>(i) / n - 0.5,
-                     py = s.height * static_cast<double>(j) / n - 0.5;
-        const double xd = (px - cal.cx) / cal.fx, yd = (py - cal.cy) / cal.fy;
-        double x = 0, y = 0, jac[4], dx = 0, dy = 0;
-        const bool ok = cal.undistort(xd, yd, x, y);
-        if (ok) cal.distort(x, y, dx, dy, jac);
-        if (!ok || !(jac[0] * jac[3] - jac[1] * jac[2] > 0))
-          throw Error(loc.str() +
-                      ": expected a <distortion> that maps the image one to one, found a fold "
-                      "near pixel " +
-                      numberText(px) + "," + numberText(py) +
-                      " (the coefficients do not describe a lens over this field of view)");
-      }
-  }
-
   // The bytes of a file the scene refers to (a table), folded into the content digest with its
   // path, so that renders made with different data do not resume or merge together.
   std::string readReferencedFile(const std::string& path) const {
@@ -566,63 +482,13 @@ private:
       const std::string bytes = readRegularFile(d.texture, kMaxTextureFileBytes, "texture file");
       digest_ = fnv1a64(
           bytes, fnv1a64(std::string_view(d.texture.c_str(), d.texture.size() + 1), digest_));
-      return isExrPath(d.texture) ? spectralTexture(d.texture) : srgbTexture(bytes, d.texture);
+      return readReflectanceTexture(d.texture, bytes);
     } catch (const Error& e) {
       // Every texture error names the texture, whichever reader raised it.
       const std::string what = e.what();
       throw Error(d.loc.str() + ": " + (what.rfind(d.texture, 0) == 0 ? "" : d.texture + ": ") +
                   what);
     }
-  }
-
-  static bool isExrPath(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
-    return ext == ".exr";
-  }
-
-  static std::shared_ptr<const ReflectanceTexture> srgbTexture(const std::string& bytes,
-                                                               const std::string& path) {
-    const LinearSrgbImage img = decodeSrgbImage(bytes, path);
-    const size_t texels = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
-    std::vector<float> coefficients(texels * 3);
-    const SigmoidTable& table = srgbSigmoidTable();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, texels),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                        for (size_t t = r.begin(); t != r.end(); ++t) {
-                          const float* c = &img.rgb[t * 3];
-                          const SigmoidCoefficients k = table.lookup({c[0], c[1], c[2]});
-                          for (int a = 0; a < 3; ++a)
-                            coefficients[t * 3 + a] = static_cast<float>(k[a]);
-                        }
-                      });
-    return ReflectanceTexture::sigmoidImage(img.width, img.height, std::move(coefficients));
-  }
-
-  static std::shared_ptr<const ReflectanceTexture> spectralTexture(const std::string& path) {
-    const SpectralImage img = readSpectralExr(path);
-    const int nb = img.bands.count();
-    std::vector<int> order(static_cast<size_t>(nb));
-    for (int b = 0; b < nb; ++b) order[static_cast<size_t>(b)] = b;
-    std::sort(order.begin(), order.end(),
-              [&](int a, int b) { return img.bands.centroid(a) < img.bands.centroid(b); });
-    std::vector<double> centroids;
-    for (int b : order) centroids.push_back(img.bands.centroid(b));
-    std::vector<float> values(img.radiance.size());
-    const size_t pixels = static_cast<size_t>(img.width) * img.height;
-    for (size_t p = 0; p < pixels; ++p)
-      for (size_t k = 0; k < order.size(); ++k) {
-        const float v = img.radiance[p * static_cast<size_t>(nb) + static_cast<size_t>(order[k])];
-        if (!(v >= 0 && v <= 1))
-          throw Error(path + ": expected reflectances within [0, 1], found " + numberText(v) +
-                      " at pixel " + std::to_string(p % img.width) + "," +
-                      std::to_string(p / img.width) + " in band " + numberText(centroids[k]) +
-                      " nm");
-        values[p * order.size() + k] = v;
-      }
-    return ReflectanceTexture::spectralImage(img.width, img.height, std::move(centroids),
-                                             std::move(values));
   }
 
   IorModel iorModel(const IorDesc& d) const {
