@@ -11,6 +11,8 @@
 
 #include <embree3/rtcore.h>
 
+#include "accel/shape_kind.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -23,9 +25,6 @@
 #include "core/ray.h"
 
 namespace nx {
-
-/// Which kind of shape a hit is on.
-enum class ShapeKind : uint8_t { Sphere, Plane, Triangle };
 
 /// The nearest surface a ray meets.
 struct SurfaceHit {

@@ -1,6 +1,6 @@
 // nxdocs: the reference docs printed from the declarations, so they cannot drift from the code.
 //
-//   nxdocs --write DIR   writes DIR/materials.md and DIR/python-parameters.md
+//   nxdocs --write DIR   writes DIR/materials.md, DIR/lights.md and DIR/python-parameters.md
 //   nxdocs --check DIR   exit status 1 (naming the files) unless they are what --write writes
 //
 // The material kinds and their parameters come from the registry (integrators/materials/kinds/,
@@ -18,6 +18,7 @@
 #include "apps/command_line.h"
 #include "core/file_text.h"
 #include "core/text_table.h"
+#include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "io/material_parameters.h"
 #include "io/scene_parameters.h"
@@ -109,6 +110,38 @@ std::string materialsDoc() {
   return o.str();
 }
 
+std::string lightsDoc() {
+  std::ostringstream o;
+  o << "# Scene reference: light kinds and their parameters\n\n" << kGenerated;
+  o << "`<light type=\"KIND\">` (a point light when `type` is absent, as in Niixtracer's "
+       "files) with the kind's parameters as child elements; `<emission scale=\"...\">` is "
+       "the parameter `emission_scale`. A parameter the kind does not take is an error at its "
+       "line. Emitting objects (`<emission>` on a shape) and the uniform `<background>` are "
+       "lights too ([../scene-format.md](../scene-format.md)). In Python: the properties of "
+       "`scene.lights[i]` and the names `lights[i].<parameter>` of `Scene.parameters()`.\n\n";
+  o << "| kind | meaning |\n|---|---|\n";
+  for (const nx::LightKindSpec& k : nx::lightKinds())
+    o << "| [" << k.name << "](#" << k.name << ") | " << cell(k.doc) << " |\n";
+  for (const nx::LightKindSpec& k : nx::lightKinds()) {
+    o << "\n## " << k.name << "\n\n" << cell(k.doc) << ".\n\n";
+    o << "| parameter | type | unit | range | default | example | meaning |\n"
+         "|---|---|---|---|---|---|---|\n";
+    for (const nx::LightParameter& p : k.params()) {
+      const std::string name = p.spec.name;
+      const std::string written = name.ends_with("_scale")
+                                      ? "<" + name.substr(0, name.size() - 6) + " scale=\"...\">"
+                                      : "<" + name + ">";
+      o << "| `" << written << "` | " << nx::paramTypeName(p.spec.type) << " | " << p.spec.unit
+        << " | " << rangeText(p.spec.range) << " | "
+        << (p.required       ? std::string("required")
+            : *p.defaultText ? std::string(p.defaultText)
+                             : "-")
+        << " | `" << cell(p.spec.example) << "` | " << cell(p.spec.doc) << " |\n";
+    }
+  }
+  return o.str();
+}
+
 std::string pythonDoc() {
   std::ostringstream o;
   o << "# Python: the scene's parameters by name\n\n" << kGenerated;
@@ -142,6 +175,11 @@ std::string pythonDoc() {
       << nx::paramTypeName(p.type) << " | " << p.unit << " | "
       << rangeText(p.type == nx::ParamType::Number ? p.range : nullptr) << " | " << cell(p.doc)
       << " ([materials.md](materials.md)) |\n";
+  for (const nx::LightKindSpec& k : nx::lightKinds())
+    for (const nx::LightParameter& p : k.params())
+      o << "| `lights[i]." << p.spec.name << "` (" << k.name << ") | "
+        << nx::paramTypeName(p.spec.type) << " | " << p.spec.unit << " | "
+        << rangeText(p.spec.range) << " | " << cell(p.spec.doc) << " ([lights.md](lights.md)) |\n";
   o << "\nPython values: numbers as float, points as (x, y, z), spectra as a float, a name, "
        "(wavelengths_nm, values) or \"csv:FILE[#COLUMN]\", an ior as a float, a glass name or "
        "(\"cauchy\" | \"sellmeier\", coefficients), a coating as (thickness_nm, ior), a measured "
@@ -159,6 +197,7 @@ int main(int argc, char** argv) {
   if (const int status = nx::parseCommandLine(app, argc, argv, "nxdocs"); status >= 0)
     return status;
   const std::pair<const char*, std::string> docs[] = {{"materials.md", materialsDoc()},
+                                                      {"lights.md", lightsDoc()},
                                                       {"python-parameters.md", pythonDoc()}};
   if (!writeDir.empty()) {
     for (const auto& [name, text] : docs) {

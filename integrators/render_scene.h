@@ -8,6 +8,7 @@
 
 #include "accel/geometry_scene.h"
 #include "core/camera.h"
+#include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material.h"
 #include "integrators/media/homogeneous_medium.h"
 #include "integrators/media/medium_stack.h"
@@ -30,12 +31,6 @@ inline constexpr double kMaxMediumCoefficient = 1e9;
 
 /// Largest spectral EXR a reflectance texture may be read from (bytes).
 inline constexpr std::uintmax_t kMaxTextureFileBytes = 4ull << 30;
-
-/// A point light: radiant intensity I(lambda) in W sr^-1 nm^-1 at a position.
-struct PointLight {
-  Vec3 position;
-  Spectrum intensity;
-};
 
 /// Per-shape appearance: material index and optional emitted radiance.
 struct ShapeAppearance {
@@ -91,7 +86,7 @@ struct RenderScene {
   std::vector<Spectrum> emission;               ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
   std::vector<ShapeAppearance> spheres, planes; ///< parallel to the geometry's shapes
   std::vector<MeshAppearance> meshes;           ///< parallel to the geometry's meshes
-  std::vector<PointLight> pointLights;
+  std::vector<SceneLight> lights; ///< the <light>s (points, spots, ...), in file order
   std::optional<Spectrum> background; ///< uniform environment radiance
   Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
   size_t meshBytes = 0;               ///< bytes the meshes' buffers take

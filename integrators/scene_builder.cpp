@@ -9,6 +9,7 @@
 #include "core/hash.h"
 #include "core/math_util.h"
 #include "core/text_table.h"
+#include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/render_scene.h"
 #include "io/camera_from_desc.h"
@@ -135,22 +136,7 @@ public:
         break;
       }
     }
-    for (const PointLightDesc& l : desc_.lights) {
-      PointLight pl;
-      pl.position = Vec3(l.position);
-      if (spectral && l.emission) {
-        pl.intensity = resolve(*l.emission, SpectrumRole::Emission).scaled(l.emissionScale);
-      } else {
-        try {
-          pl.intensity = upsampleSrgbIlluminant({l.color[0], l.color[1], l.color[2]});
-        } catch (const Error& e) {
-          throw Error(l.loc.str() + ": " + e.what());
-        }
-      }
-      checkEmission(pl.intensity, l.emission ? l.emission->loc : l.loc);
-      pl.intensity = forRendering(pl.intensity);
-      scene.pointLights.push_back(std::move(pl));
-    }
+    for (const LightDesc& l : desc_.lights) scene.lights.push_back(light(l, spectral));
     if (!triangles.empty()) {
       meshes.push_back(TriangleMesh::fromTriangles(triangles));
       scene.meshes.push_back(std::move(inlineTriangles));
@@ -414,6 +400,46 @@ private:
     MediumStack stack;
     for (const auto& entry : around) stack.enter(entry.second);
     return stack;
+  }
+
+  // What the light kinds' builds ask of the scene (integrators/lights/light_kind.h).
+  class LightKindInputs : public LightInputs {
+  public:
+    explicit LightKindInputs(const Builder& b) : b_(b) {}
+    Spectrum spectrum(const SpectrumDesc& d, SpectrumRole role) const override {
+      return b_.resolve(d, role);
+    }
+    Spectrum srgbIntensity(const std::array<double, 3>& rgb) const override {
+      try {
+        return upsampleSrgbIlluminant({rgb[0], rgb[1], rgb[2]});
+      } catch (const Error& e) {
+        throw Error(loc.str() + ": " + e.what());
+      }
+    }
+    void checkEmission(const Spectrum& s, const SourceLocation& where) const override {
+      Builder::checkEmission(s, where);
+    }
+
+  private:
+    const Builder& b_;
+  };
+
+  // A light from its kind's build; its parameters are checked against the kind's declarations
+  // (the loader read them so; Python edits are checked again here).
+  SceneLight light(const LightDesc& l, bool spectral) const {
+    const LightKindSpec* kind = findLightKind(l.kind);
+    if (!kind) throw Error(l.loc.str() + ": expected a light type, found '" + l.kind + "'");
+    for (const Parameter& p : l.params.items())
+      if (!lightParameter(*kind, p.name))
+        throw Error(p.loc.str() + ": expected no <" + p.name + "> on a " + kind->name +
+                    " light, found one");
+    for (const LightParameter& p : kind->params())
+      if (p.required && !l.params.has(p.spec.name))
+        throw Error(l.loc.str() + ": expected <" + p.spec.name + "> inside <light>, found none");
+    LightKindInputs in(*this);
+    in.spectral = spectral;
+    in.loc = l.loc;
+    return kind->build(l.params, in);
   }
 
   // What the kinds' builds ask of the scene (integrators/materials/material_kind.h).

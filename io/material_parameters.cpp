@@ -4,7 +4,7 @@ namespace nx {
 
 std::span<const ParamSpec> materialParameters() {
   static const ParamSpec specs[] = {
-      {"color", ParamType::Rgb, "1", nullptr,
+      {"color", ParamType::Rgb, "1", &kUnitRange,
        "sRGB colour R, G, B[, A] in [0, 1]: rt and mcpt upsample it to a reflectance; "
        "spectral_mcpt uses it when there is no <reflectance>",
        "0.8, 0.2, 0.1"},

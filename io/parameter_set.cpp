@@ -26,6 +26,8 @@ const char* paramTypeName(ParamType t) {
     return "coating";
   case ParamType::Name:
     return "name";
+  case ParamType::Point:
+    return "point";
   }
   return "?";
 }
@@ -119,6 +121,7 @@ struct CanonicalWriter {
     (*this)(c.ior);
   }
   void operator()(const std::string& s) const { t << s.size() << ':' << s; }
+  void operator()(const Vec3d& v) const { t << v.x << ',' << v.y << ',' << v.z; }
 };
 
 } // namespace

@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/vec3.h"
 #include "io/scene_limits.h"
 #include "io/scene_values.h"
 
@@ -20,13 +21,14 @@ namespace nx {
 /// What a parameter's value is (its XML syntax, its Python form).
 enum class ParamType : uint8_t {
   Number,       ///< one number within the parameter's range
-  Rgb,          ///< R, G, B[, A] within [0, 1]
+  Rgb,          ///< R, G, B[, A], non-negative (within the range where there is one)
   Spectrum,     ///< a name, a number, nm:value pairs or csv="file"
   Reflectance,  ///< a Spectrum, or texture="colorchecker" / a spectral EXR / a PNG or JPEG
   Ior,          ///< a number, a named glass or a dispersion formula
   Fluorescence, ///< the re-radiation model's parameters or a measured matrix
   Coating,      ///< a thin film: thickness in nm and an index of refraction
   Name,         ///< a word from a list (e.g. a built-in metal)
+  Point,        ///< x, y, z within 1e12 (scene units)
 };
 
 /// The type's name in reference docs and errors ("number", "spectrum", ...).
@@ -48,9 +50,9 @@ struct ParamSpec {
 
 /// A parameter's value, by type (Number -> double, Rgb -> array, Spectrum and Reflectance ->
 /// SpectrumDesc, Ior -> IorDesc, Fluorescence -> FluorescenceDesc, Coating -> CoatingDesc,
-/// Name -> string).
+/// Name -> string, Point -> Vec3d).
 using ParamValue = std::variant<double, std::array<double, 4>, SpectrumDesc, IorDesc,
-                                FluorescenceDesc, CoatingDesc, std::string>;
+                                FluorescenceDesc, CoatingDesc, std::string, Vec3d>;
 
 /// One parameter as given.
 struct Parameter {

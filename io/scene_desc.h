@@ -84,12 +84,11 @@ struct ObjectDesc : MaterialDesc {
   std::optional<MediumDesc> medium;     ///< the medium filling a sphere, if any
 };
 
-/// A point light.
-struct PointLightDesc {
-  Vec3d position;
-  std::array<double, 4> color{};        ///< RGBA, A ignored
-  std::optional<SpectrumDesc> emission; ///< spectral emission (nxrender extension)
-  double emissionScale = 1;             ///< <emission scale="...">
+/// A <light type="...">: a light kind (point by default, Niixtracer's) and its parameters as
+/// written (integrators/lights/light_kinds.h, docs/reference/lights.md).
+struct LightDesc {
+  std::string kind = "point";
+  ParameterSet params; ///< <position>, <color>, <emission> (its scale="..." as emission_scale), ...
   SourceLocation loc;
 };
 
@@ -129,7 +128,7 @@ struct SceneDesc {
       0; ///< FNV-1a of the scene text (with the referenced files' bytes, the render key)
   SettingsDesc settings;
   CameraDesc camera;
-  std::vector<PointLightDesc> lights;
+  std::vector<LightDesc> lights;
   std::vector<ObjectDesc> objects;
   std::vector<NamedSpectrumDesc> spectra;
   std::vector<NamedMaterialDesc> materials; ///< top-level <material id="...">

@@ -19,6 +19,7 @@
 #include "core/math_util.h"
 #include "core/memory.h"
 #include "core/text_table.h"
+#include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "io/camera_checks.h"
 #include "io/material_parameters.h"
@@ -614,16 +615,44 @@ private:
     return out;
   }
 
-  PointLightDesc parseLight(const pugi::xml_node& n) const {
-    checkAttributes(n, {});
-    const auto c = uniqueChildren(n, {"position", "color", "emission"});
-    PointLightDesc l;
+  // <light type="kind"> (point when absent) with the kind's parameters as children, each read
+  // by its declared type; a Spectrum parameter's scale="..." is the parameter <name>_scale.
+  LightDesc parseLight(const pugi::xml_node& n) const {
+    checkAttributes(n, {"type"});
+    LightDesc l;
     l.loc = loc(n);
-    l.position = vec3(required(c, n, "position"), "a light position x, y, z");
-    l.color = colour(required(c, n, "color"), false);
-    if (c.count("emission")) {
-      l.emission = spectrum(c.at("emission"), true, {"scale"});
-      l.emissionScale = scaleAttribute(c.at("emission"), "an", "emission scale");
+    if (n.attribute("type")) l.kind = trim(decoded(n.attribute("type").value(), n));
+    const LightKindSpec* kind = findLightKind(l.kind);
+    if (!kind) {
+      std::vector<std::string> names;
+      for (const LightKindSpec& k : lightKinds()) names.push_back(k.name);
+      std::string list;
+      for (size_t i = 0; i < names.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+      fail(n, "a light type " + list, shownText(l.kind));
+    }
+    std::vector<std::string> names;
+    for (const LightParameter& p : kind->params())
+      if (!std::string(p.spec.name).ends_with("_scale")) names.push_back(p.spec.name);
+    const auto c = uniqueChildren(n, names);
+    for (const LightParameter& p : kind->params()) {
+      const auto it = c.find(p.spec.name);
+      if (it == c.end()) {
+        if (p.required) fail(n, "<" + std::string(p.spec.name) + "> inside <light>", "none");
+        continue;
+      }
+      const pugi::xml_node e = it->second;
+      if (p.spec.type == ParamType::Spectrum) {
+        const std::string scaleName = std::string(p.spec.name) + "_scale";
+        const bool scaled = lightParameter(*kind, scaleName) != nullptr;
+        std::optional<SpectrumDesc> s = spectrum(
+            e, true, scaled ? std::vector<std::string>{"scale"} : std::vector<std::string>{});
+        if (scaled && e.attribute("scale"))
+          l.params.set({scaleName, scaleAttribute(e, "an", "emission scale"), loc(e)});
+        if (s) l.params.set({p.spec.name, *s, loc(e)});
+        continue;
+      }
+      l.params.set({p.spec.name, parameterValue(p.spec, e), loc(e)});
     }
     return l;
   }
@@ -668,7 +697,9 @@ private:
     case ParamType::Number:
       return number(n, *spec.range);
     case ParamType::Rgb:
-      return colour(n, true);
+      return colour(n, spec.range != nullptr);
+    case ParamType::Point:
+      return vec3(n, "x, y, z");
     case ParamType::Spectrum:
       return *spectrum(n, false);
     case ParamType::Reflectance:

@@ -5,8 +5,6 @@
 namespace nx {
 namespace {
 
-constexpr ParameterRange kPositiveScale{0, 1e300, true, "a scale factor"};
-
 const FixedParameter kFixed[] = {
     {"resolution", "integers", "px", nullptr, "(width, height) in pixels"},
     {"spp", "integer", "1", nullptr, "samples per pixel"},
@@ -34,15 +32,15 @@ const FixedParameter kFixed[] = {
      "a triangle's vertices or a quad's origin and edges"},
     {"object.emission", "spectrum", "W m^-2 sr^-1 nm^-1", nullptr,
      "emitted radiance (an area light), or None"},
-    {"object.emission_scale", "number", "1", &kPositiveScale, "the factor on its emission"},
+    {"object.emission_scale", "number", "1", &kPositiveScaleRange, "the factor on its emission"},
     {"medium.sigma_a", "spectrum", "1/scene unit", nullptr, "absorption coefficient"},
     {"medium.sigma_s", "spectrum", "1/scene unit", nullptr, "scattering coefficient"},
-    {"medium.sigma_a_scale", "number", "1", &kPositiveScale, "the factor on sigma_a"},
-    {"medium.sigma_s_scale", "number", "1", &kPositiveScale, "the factor on sigma_s"},
+    {"medium.sigma_a_scale", "number", "1", &kPositiveScaleRange, "the factor on sigma_a"},
+    {"medium.sigma_s_scale", "number", "1", &kPositiveScaleRange, "the factor on sigma_s"},
     {"medium.g", "number", "1", &kPhaseGRange, "Henyey-Greenstein mean cosine"},
     {"medium.emission", "spectrum", "W m^-2 sr^-1 nm^-1", nullptr,
      "emitted radiance Le (source sigma_a Le), or None"},
-    {"medium.emission_scale", "number", "1", &kPositiveScale, "the factor on its emission"},
+    {"medium.emission_scale", "number", "1", &kPositiveScaleRange, "the factor on its emission"},
     {"medium.dye_peak", "number", "1/scene unit", &kPeakCoefficientRange,
      "the dye's peak absorption coefficient"},
     {"fluorescence.absorption_nm", "number", "nm", &kAbsorptionRange, "absorption peak"},
@@ -54,10 +52,6 @@ const FixedParameter kFixed[] = {
      "absorptance at the peak (None: default)"},
     {"fluorescence.matrix", "matrix", "1", nullptr,
      "measured matrix (excitation_nm, emission_nm, values[excitation, emission])"},
-    {"light.position", "point", "scene units", nullptr, "a point light's position"},
-    {"light.color", "rgb", "W sr^-1 nm^-1", nullptr, "its RGB intensity"},
-    {"light.emission", "spectrum", "W sr^-1 nm^-1", nullptr, "its spectral intensity, or None"},
-    {"light.emission_scale", "number", "1", &kPositiveScale, "the factor on its emission"},
 };
 
 } // namespace

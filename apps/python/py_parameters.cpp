@@ -140,6 +140,7 @@ py::object parameterToPython(const nx::ParamValue& v) {
   if (const auto* c = std::get_if<nx::CoatingDesc>(&v))
     return py::make_tuple(c->thicknessNm, iorToPython(c->ior));
   if (const auto* t = std::get_if<std::string>(&v)) return py::str(*t);
+  if (const auto* p = std::get_if<nx::Vec3d>(&v)) return py::make_tuple(p->x, p->y, p->z);
   return py::none(); // fluorescence: its own view (py_scene.cpp)
 }
 
@@ -153,9 +154,12 @@ nx::ParamValue parameterFromPython(const nx::ParamSpec& spec, const py::handle& 
     if (c.size() > 4)
       throw py::value_error(param + ": expected (r, g, b[, a]), found " + std::to_string(c.size()) +
                             " numbers");
+    const double hi = spec.range ? spec.range->hi : 1e12;
     for (size_t i = 0; i < 3; ++i)
-      if (!(c[i] >= 0 && c[i] <= 1))
-        throw py::value_error(param + ": expected reflectance colour channels in [0, 1]");
+      if (!(c[i] >= 0 && c[i] <= hi))
+        throw py::value_error(param + (spec.range
+                                           ? ": expected reflectance colour channels in [0, 1]"
+                                           : ": expected non-negative colour channels"));
     return std::array<double, 4>{c[0], c[1], c[2], c.size() == 4 ? c[3] : 1.0};
   }
   case nx::ParamType::Spectrum: {
@@ -181,6 +185,14 @@ nx::ParamValue parameterFromPython(const nx::ParamSpec& spec, const py::handle& 
   }
   case nx::ParamType::Name:
     return stringArgument(value, param.c_str());
+  case nx::ParamType::Point: {
+    const std::vector<double> v = numbersArgument(value, param.c_str(), 3);
+    for (double x : v)
+      if (!(std::abs(x) <= nx::kMaxSceneCoordinate))
+        throw py::value_error(param + ": expected coordinates within 1e12, found " +
+                              py::str(py::float_(x)).cast<std::string>());
+    return nx::Vec3d(v[0], v[1], v[2]);
+  }
   case nx::ParamType::Fluorescence:
     break;
   }

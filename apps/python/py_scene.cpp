@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/hash.h"
+#include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "io/camera_checks.h"
 #include "io/material_parameters.h"
@@ -69,7 +70,7 @@ struct CameraView {
 struct LightView {
   StatePtr s;
   size_t i;
-  nx::PointLightDesc& get() const { return s->desc.lights.at(i); }
+  nx::LightDesc& get() const { return s->desc.lights.at(i); }
   std::string label() const { return "lights[" + std::to_string(i) + "]"; }
 };
 
@@ -765,49 +766,44 @@ void bindScene(py::module_& m) {
                std::to_string(o.get().loc.line) + ")>";
       });
 
-  py::class_<LightView>(m, "Light", "A point light")
-      .def_property(
-          "position", [](const LightView& l) { return tupleOf(l.get().position); },
-          [](const LightView& l, const py::object& value) {
-            l.get().position = pointArgument(value, l.label() + ".position");
-            record(*l.s, l.label() + ".position", value);
-          })
-      .def_property(
-          "emission_scale", [](const LightView& l) { return l.get().emissionScale; },
-          [](const LightView& l, const py::object& value) {
-            l.get().emissionScale =
-                numberArgument(value, (l.label() + ".emission_scale").c_str(), 1e-300, 1e300);
-            record(*l.s, l.label() + ".emission_scale", value);
+  py::class_<LightView> light(m, "Light",
+                              "A <light>: a point or spot light; a property per parameter of "
+                              "its kind (docs/reference/lights.md)");
+  light.def_property_readonly(
+      "kind", [](const LightView& l) { return l.get().kind; }, "point, spot, ...");
+  // One property per parameter any light kind declares (the first declaration of a name); a
+  // parameter the light's kind does not take is refused; None removes one (its default).
+  std::vector<std::string> lightNames;
+  for (const nx::LightKindSpec& kind : nx::lightKinds())
+    for (const nx::LightParameter& lp : kind.params()) {
+      if (std::find(lightNames.begin(), lightNames.end(), lp.spec.name) != lightNames.end())
+        continue;
+      lightNames.push_back(lp.spec.name);
+      const std::string name = lp.spec.name;
+      light.def_property(
+          lp.spec.name,
+          [name](const LightView& l) -> py::object {
+            const nx::Parameter* q = l.get().params.find(name);
+            return q ? parameterToPython(q->value) : py::object(py::none());
           },
-          "The factor on its emission (> 0)")
-      .def_property(
-          "emission", [](const LightView& l) { return spectrumToPythonOpt(l.get().emission); },
-          [](const LightView& l, const py::object& value) {
-            const std::string param = l.label() + ".emission";
-            if (value.is_none())
-              l.get().emission.reset();
-            else
-              l.get().emission = spectrumFromPython(value, param, l.get().loc);
+          [name](const LightView& l, const py::object& value) {
+            const std::string param = l.label() + "." + name;
+            nx::LightDesc& d = l.get();
+            const nx::LightKindSpec* its = nx::findLightKind(d.kind);
+            const nx::LightParameter* decl = its ? nx::lightParameter(*its, name) : nullptr;
+            if (!decl)
+              throw py::value_error(param + ": a " + d.kind + " light takes no <" + name + ">");
+            if (value.is_none()) {
+              if (decl->required)
+                throw py::value_error(param + ": a " + d.kind + " light needs it");
+              d.params.erase(name);
+            } else {
+              d.params.set({name, parameterFromPython(decl->spec, value, param, d.loc), d.loc});
+            }
             record(*l.s, param, value);
           },
-          "Its spectral intensity (W sr^-1 nm^-1; spectral_mcpt), or None (its colour)")
-      .def_property(
-          "color",
-          [](const LightView& l) {
-            const auto& c = l.get().color;
-            return py::make_tuple(c[0], c[1], c[2], c[3]);
-          },
-          [](const LightView& l, const py::object& value) {
-            const std::string param = l.label() + ".color";
-            const std::vector<double> c = numberListArgument(value, param.c_str(), 3);
-            if (c.size() > 4) throw py::value_error(param + ": expected (r, g, b[, a])");
-            for (size_t i = 0; i < 3; ++i)
-              if (!(c[i] >= 0 && c[i] <= 1e12))
-                throw py::value_error(param + ": expected non-negative colour channels");
-            l.get().color = {c[0], c[1], c[2], c.size() == 4 ? c[3] : 1.0};
-            record(*l.s, param, value);
-          },
-          "Its RGB intensity (rt and mcpt, and spectral_mcpt without an emission)");
+          lp.spec.doc);
+    }
 
   py::class_<CameraView>(m, "Camera", "The scene's camera")
       .def_property(

@@ -10,6 +10,7 @@
 
 #include <cctype>
 
+#include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "io/material_parameters.h"
 #include "io/scene_parameters.h"
@@ -108,8 +109,10 @@ std::vector<Entry> entries(const SceneState& s) {
     addMaterial(out, "materials['" + m.id + "']", m.material);
   for (size_t i = 0; i < s.desc.lights.size(); ++i) {
     const std::string label = "lights[" + std::to_string(i) + "]";
-    for (const char* k : {"position", "color", "emission", "emission_scale"})
-      addFixed(out, label + "." + k, std::string("light.") + k);
+    if (const nx::LightKindSpec* kind = nx::findLightKind(s.desc.lights[i].kind))
+      for (const nx::LightParameter& p : kind->params())
+        out.push_back({label + "." + p.spec.name, nx::paramTypeName(p.spec.type), p.spec.unit,
+                       p.spec.doc, p.defaultText, p.spec.range});
   }
   return out;
 }

@@ -8,6 +8,16 @@
 
 namespace nx {
 
+/// True when the sample lies on the surface it is meant to light, where it cannot be seen: the
+/// same triangle, or the same sphere seen from outside (rayDir arrives from outside). A point
+/// rounded just inside a sphere would otherwise be lit by its own emission "from inside"; from
+/// the inside (a camera in a furnace) a sphere does light itself.
+inline bool lightsItsOwnSurface(const SurfaceHit& hit, const LightSample& ls, const Vec3& rayDir) {
+  if (ls.delta || ls.infinite || ls.kind != hit.kind || ls.shape != hit.index) return false;
+  if (hit.kind == ShapeKind::Sphere) return dot(rayDir, hit.ng) < 0;
+  return ls.prim == hit.prim;
+}
+
 /// Direct light at a point p through media (offset by pError along ng; zero vectors for a point
 /// in a medium, whose f and pdf are the phase function's): f T Le w / p_light, w the power
 /// heuristic against pdf unless the light is a delta or `mis` is off.

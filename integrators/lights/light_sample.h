@@ -4,14 +4,16 @@
 
 #include <cstdint>
 
-#include "accel/geometry_scene.h"
+#include "accel/shape_kind.h"
+#include "core/ray.h"
 #include "spectra/sampled_wavelengths.h"
 
 namespace nx {
 
 /// The kinds of light next-event estimation can aim at.
 enum class LightKind : uint8_t {
-  Point,      ///< a point light (a delta: never hit by BSDF sampling)
+  Point,      ///< a light of the scene's <light> list: a point or spot light (a delta, never
+              ///< hit by BSDF sampling)
   Sphere,     ///< an emitting sphere (cone sampling from outside, uniform from inside)
   Mesh,       ///< an emitting mesh or inline triangle (a triangle by area, a point on it)
   Background, ///< the uniform environment (uniform directions)
@@ -44,15 +46,5 @@ inline constexpr float kShadowEpsilon = 1e-4f;
 /// the direction is not unit length and the ray is valid for t in (0, 1 - kShadowEpsilon). A
 /// background sample gives a unit direction valid to infinity.
 Ray shadowRayTo(const Vec3& p, const Vec3& pError, const Vec3& n, const LightSample& ls);
-
-/// True when the sample lies on the surface it is meant to light, where it cannot be seen: the
-/// same triangle, or the same sphere seen from outside (rayDir arrives from outside). A point
-/// rounded just inside a sphere would otherwise be lit by its own emission "from inside"; from
-/// the inside (a camera in a furnace) a sphere does light itself.
-inline bool lightsItsOwnSurface(const SurfaceHit& hit, const LightSample& ls, const Vec3& rayDir) {
-  if (ls.delta || ls.infinite || ls.kind != hit.kind || ls.shape != hit.index) return false;
-  if (hit.kind == ShapeKind::Sphere) return dot(rayDir, hit.ng) < 0;
-  return ls.prim == hit.prim;
-}
 
 } // namespace nx

@@ -14,13 +14,6 @@
 namespace nx {
 namespace {
 
-// Integral of a spectrum over the traced range (1 nm trapezoids), W per unit of what it is.
-double tracedIntegral(const Spectrum& s) {
-  double sum = 0.5 * (s(kTraceMinNm) + s(kTraceMaxNm));
-  for (double nm = kTraceMinNm + 1; nm < kTraceMaxNm; nm += 1) sum += s(nm);
-  return sum;
-}
-
 double triangleArea(const TriangleShape& t) {
   return 0.5 * length(cross(t.b - t.a, t.c - t.a));
 }
@@ -110,12 +103,13 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
       lights_.push_back(l);
     }
   }
-  for (size_t i = 0; i < scene.pointLights.size(); ++i) {
-    const Spectrum* e = &scene.pointLights[i].intensity;
-    const double ie = tracedIntegral(*e);
-    lights_.push_back({LightKind::Point, static_cast<uint32_t>(i), -1, e, 0, 0, 4 * kPi * ie, ie,
-                       scene.pointLights[i].position, 0});
-  }
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    std::visit(
+        [&](const auto& light) {
+          lights_.push_back({LightKind::Point, static_cast<uint32_t>(i), -1, nullptr, 0, 0,
+                             light.power(), light.tracedPeak(), light.center(), 0});
+        },
+        scene.lights[i]);
   if (scene.background) {
     const double r = sceneRadius(scene);
     background_ = static_cast<int32_t>(lights_.size());
@@ -235,21 +229,9 @@ bool LightSampler::sampleLight(int k, const Vec3& p, float uChoice, Sample2 u,
   out.infinite = false;
   out.light = k;
   switch (l.kind) {
-  case LightKind::Point: {
-    const PointLight& pl = scene_->pointLights[l.shape];
-    const Vec3 toLight = pl.position - p;
-    const float d2 = dot(toLight, toLight);
-    if (!(d2 > 0)) return false;
-    out.distance = std::sqrt(d2);
-    out.wi = toLight / out.distance;
-    out.p = pl.position;
-    out.pError = Vec3(0, 0, 0);
-    out.n = Vec3(0, 0, 0);
-    out.radiance = evaluate(*l.emission, lambda) * (1.0f / d2);
-    out.pdf = 1;
-    out.delta = true;
-    return true;
-  }
+  case LightKind::Point: // a light of the scene's list: its kind samples it (static dispatch)
+    return std::visit([&](const auto& light) { return light.sample(p, lambda, out); },
+                      scene_->lights[l.shape]);
   case LightKind::Sphere:
     if (!sampleSphere(l, p, u, out)) return false;
     break;

@@ -94,7 +94,7 @@ TEST(LightSampler, PointLightInverseSquare) {
   ASSERT_TRUE(lights.sample(Vec3(0, 0, 0), 0.3f, {0.5f, 0.5f}, test::flatWavelengths(500), ls));
   EXPECT_TRUE(ls.delta);
   EXPECT_FLOAT_EQ(ls.distance, 2.0f);
-  EXPECT_NEAR(ls.radiance[0], s.pointLights[0].intensity(500) / 4, 1e-5);
+  EXPECT_NEAR(ls.radiance[0], std::get<PointLight>(s.lights[0]).intensity(500) / 4, 1e-5);
 }
 
 TEST(LightSampler, InsideASphereLightEveryDirectionCounts) {

@@ -117,8 +117,9 @@ TEST(SceneBuilder, RgbModesUpsampleColours) {
   EXPECT_NEAR(light.g, 7.2, 0.03);
   EXPECT_NEAR(light.b, 5.6, 0.03);
   const RenderScene rt = buildRenderScene(loadScene(NX_SOURCE_DIR "/scenes/rt_whitted.scn"));
-  ASSERT_EQ(rt.pointLights.size(), 2u);
-  EXPECT_NEAR(xyzToLinearSrgb(spectrumToXyz(rt.pointLights[0].intensity)).g, 40.0, 0.1);
+  ASSERT_EQ(rt.lights.size(), 2u);
+  EXPECT_NEAR(xyzToLinearSrgb(spectrumToXyz(std::get<PointLight>(rt.lights[0]).intensity)).g, 40.0,
+              0.1);
 }
 
 // Each mode prefers its own reflectance tag and falls back on the other.
@@ -277,8 +278,9 @@ TEST(SceneBuilder, PointLightEmissionScale) {
       scene("<light><position>0,5,0</position><color>1,1,1</color><emission>A</emission>"
             "</light>\n<sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
             "<reflectance>0.5</reflectance></sphere>\n"));
-  EXPECT_NEAR(s.pointLights[0].intensity(560), 50 * one.pointLights[0].intensity(560),
-              1e-9 * s.pointLights[0].intensity(560));
+  EXPECT_NEAR(std::get<PointLight>(s.lights[0]).intensity(560),
+              50 * std::get<PointLight>(one.lights[0]).intensity(560),
+              1e-9 * std::get<PointLight>(s.lights[0]).intensity(560));
 }
 
 // A camera pasted from an OpenCV calibration: K, R, t and distortion as given (R made exactly

@@ -1,0 +1,67 @@
+#pragma once
+// A point light (Niixtracer's <light>): radiant intensity I(lambda) in W sr^-1 nm^-1, the same
+// in every direction, at a position.
+
+#include <cmath>
+
+#include "integrators/lights/light_kind.h"
+
+namespace nx {
+
+/// A point light.
+struct PointLight {
+  Vec3 position;
+  Spectrum intensity;
+
+  static constexpr const char* kName = "point";
+  static constexpr const char* kDoc =
+      "a point light: intensity I in W sr^-1 nm^-1 in every direction (Niixtracer's <light>)";
+  /// Its parameters.
+  static std::span<const LightParameter> parameters() {
+    static const LightParameter p[] = {
+        {{"position", ParamType::Point, "scene units", nullptr, "where it is", "0, 5, 0"},
+         "",
+         true},
+        {{"color", ParamType::Rgb, "W sr^-1 nm^-1", nullptr,
+          "RGB intensity (rt and mcpt; spectral_mcpt without <emission>)", "40, 40, 40"},
+         "",
+         true},
+        {{"emission", ParamType::Spectrum, "W sr^-1 nm^-1", nullptr,
+          "spectral intensity (spectral_mcpt); scale=\"...\" multiplies it", "D65"},
+         ""},
+        {{"emission_scale", ParamType::Number, "1", &kPositiveScaleRange,
+          "the factor on <emission> (its scale=\"...\")", "2"},
+         "1"},
+    };
+    return p;
+  }
+  /// Builds it from its checked parameters.
+  static PointLight build(const ParameterSet& p, const LightInputs& in) {
+    return {Vec3(*p.get<Vec3d>("position")), lightIntensity(p, in)};
+  }
+
+  /// Where Local light selection weighs it from: its position, no extent.
+  Vec3 center() const { return position; }
+  /// The traced-range integral of its peak intensity (W sr^-1).
+  double tracedPeak() const { return tracedIntegral(intensity); }
+  /// Emitted power over the traced range (W).
+  double power() const { return 4 * kPi * tracedPeak(); }
+  /// The direction from p to it and I / d^2 (a delta: pdf 1).
+  bool sample(const Vec3& p, const SampledWavelengths& lambda, LightSample& out) const {
+    const Vec3 toLight = position - p;
+    const float d2 = dot(toLight, toLight);
+    if (!(d2 > 0)) return false;
+    out.distance = std::sqrt(d2);
+    out.wi = toLight / out.distance;
+    out.p = position;
+    out.pError = Vec3(0, 0, 0);
+    out.n = Vec3(0, 0, 0);
+    intensity.evaluate(lambda, out.radiance);
+    out.radiance *= 1.0f / d2;
+    out.pdf = 1;
+    out.delta = true;
+    return true;
+  }
+};
+
+} // namespace nx

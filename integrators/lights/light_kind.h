@@ -1,0 +1,65 @@
+#pragma once
+// What a light kind declares and needs: its parameters (each with its type, unit, range and
+// meaning: the scene loader reads them by it), and what its build asks of the scene. A kind is
+// one header of integrators/lights/kinds/ (its parameters, build, sampling and power); the
+// registry (light_kinds.h) lists the kinds in one variant.
+
+#include <array>
+#include <span>
+#include <string>
+
+#include "core/math_util.h"
+#include "integrators/lights/light_sample.h"
+#include "integrators/materials/material_kind.h"
+#include "io/parameter_set.h"
+#include "spectra/spectrum.h"
+
+namespace nx {
+
+/// One parameter a light kind takes: its declaration and its default.
+struct LightParameter {
+  ParamSpec spec;          ///< name, type, unit, range, meaning, example
+  const char* defaultText; ///< its default as a scene would write it ("": none)
+  bool required = false;   ///< the light cannot be built without it
+};
+
+/// What a light kind's build asks of the scene: spectra resolved and checked. Implemented by
+/// the scene builder; called once per light, never while rendering.
+class LightInputs {
+public:
+  virtual ~LightInputs() = default;
+  /// A spectrum reference resolved (emissions checked to lie within [0, kMaxEmission]).
+  virtual Spectrum spectrum(const SpectrumDesc& d, SpectrumRole role) const = 0;
+  /// An RGB intensity upsampled to a spectrum (rt and mcpt's <color>).
+  virtual Spectrum srgbIntensity(const std::array<double, 3>& rgb) const = 0;
+  /// Throws "<loc>: expected an emission within [0, 1e12] ..." unless `s` is one.
+  virtual void checkEmission(const Spectrum& s, const SourceLocation& loc) const = 0;
+
+  bool spectral = true; ///< spectral_mcpt (else rt or mcpt: <color> preferred)
+  SourceLocation loc;   ///< the <light> element
+};
+
+/// Integral of a spectrum over the traced range (1 nm trapezoids): the lights' power weights.
+inline double tracedIntegral(const Spectrum& s) {
+  double sum = 0.5 * (s(kTraceMinNm) + s(kTraceMaxNm));
+  for (double nm = kTraceMinNm + 1; nm < kTraceMaxNm; nm += 1) sum += s(nm);
+  return sum;
+}
+
+/// A delta light's intensity from its parameters: <emission> (times <emission> scale="...") in
+/// spectral_mcpt or without a <color>, else its RGB <color>; checked and prepared for
+/// rendering.
+inline Spectrum lightIntensity(const ParameterSet& p, const LightInputs& in) {
+  const SpectrumDesc* emission = p.get<SpectrumDesc>("emission");
+  const auto* color = p.get<std::array<double, 4>>("color");
+  Spectrum s;
+  if (emission && (in.spectral || !color))
+    s = in.spectrum(*emission, SpectrumRole::Emission)
+            .scaled(p.number("emission_scale").value_or(1.0));
+  else if (color)
+    s = in.srgbIntensity({(*color)[0], (*color)[1], (*color)[2]});
+  in.checkEmission(s, emission ? emission->loc : in.loc);
+  return forRendering(s);
+}
+
+} // namespace nx
