@@ -9,11 +9,12 @@
 #include <variant>
 
 #include "integrators/lights/kinds/point_light.h"
+#include "integrators/lights/kinds/spot_light.h"
 
 namespace nx {
 
 /// A light of the scene's light list (not a shape's emission, not the uniform background).
-using SceneLight = std::variant<PointLight>;
+using SceneLight = std::variant<PointLight, SpotLight>;
 
 /// A light kind as the scene format sees it.
 struct LightKindSpec {
