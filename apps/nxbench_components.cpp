@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
     // each kind: what a vertex pays for aiming at a point light, a sphere, a mesh of n triangles
     // (a binary search over their areas) or the background.
     {
-      static const char* kKindNames[] = {"point", "sphere", "mesh", "background"};
+      static const char* kKindNames[] = {"point", "sphere", "mesh", "background", "environment"};
       int shownOfKind[4] = {0, 0, 0, 0};
       LightSample one;
       for (int k = 0; k < lights.count(); ++k) {

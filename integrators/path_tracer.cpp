@@ -176,6 +176,9 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
       if (scene.background)
         L += weighted() * evaluate(*scene.background, current) *
              (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP)));
+      for (int e = 0; e < ctx.lights->environmentCount(); ++e)
+        L += weighted() * ctx.lights->environmentRadiance(e, ray.d, current) *
+             (specular ? 1.0f : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d)));
       break;
     }
     const ShapeAppearance& app = scene.appearance(hit);

@@ -14,6 +14,7 @@
 #include "integrators/render_scene.h"
 #include "io/camera_from_desc.h"
 #include "io/mesh_reader.h"
+#include "io/spectral_exr.h"
 #include "io/texture_reader.h"
 #include "spectra/colour.h"
 #include "spectra/illuminants.h"
@@ -418,6 +419,22 @@ private:
     }
     void checkEmission(const Spectrum& s, const SourceLocation& where) const override {
       Builder::checkEmission(s, where);
+    }
+    std::shared_ptr<const SpectralImage> spectralImage(const std::string& path,
+                                                       const SourceLocation& where) const override {
+      try {
+        const std::string bytes = readRegularFile(path, kMaxTextureFileBytes, "environment map");
+        b_.digest_ =
+            fnv1a64(bytes, fnv1a64(std::string_view(path.c_str(), path.size() + 1), b_.digest_));
+        return std::make_shared<const SpectralImage>(readSpectralExr(path));
+      } catch (const Error& e) {
+        const std::string what = e.what();
+        throw Error(where.str() + ": " + (what.rfind(path, 0) == 0 ? "" : path + ": ") + what);
+      }
+    }
+    void tabulated(const SourceLocation& where, const std::string& what, double loNm,
+                   double hiNm) const override {
+      b_.tables_.push_back({where.str(), what, loNm, hiNm});
     }
 
   private:

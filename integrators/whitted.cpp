@@ -32,6 +32,8 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
   ++counters.rays;
   if (!scene.geometry->intersect(ray, hit)) {
     if (scene.background) L += beta * evaluate(*scene.background, lambda);
+    for (int e = 0; e < ctx.lights->environmentCount(); ++e)
+      L += beta * ctx.lights->environmentRadiance(e, ray.d, lambda);
     return;
   }
   const ShapeAppearance& app = scene.appearance(hit);

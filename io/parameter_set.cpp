@@ -28,6 +28,8 @@ const char* paramTypeName(ParamType t) {
     return "name";
   case ParamType::Point:
     return "point";
+  case ParamType::File:
+    return "file";
   }
   return "?";
 }

@@ -29,6 +29,7 @@ enum class ParamType : uint8_t {
   Coating,      ///< a thin film: thickness in nm and an index of refraction
   Name,         ///< a word from a list (e.g. a built-in metal)
   Point,        ///< x, y, z within 1e12 (scene units)
+  File,         ///< a file name, relative to the scene file
 };
 
 /// The type's name in reference docs and errors ("number", "spectrum", ...).
@@ -50,7 +51,7 @@ struct ParamSpec {
 
 /// A parameter's value, by type (Number -> double, Rgb -> array, Spectrum and Reflectance ->
 /// SpectrumDesc, Ior -> IorDesc, Fluorescence -> FluorescenceDesc, Coating -> CoatingDesc,
-/// Name -> string, Point -> Vec3d).
+/// Name and File -> string, Point -> Vec3d).
 using ParamValue = std::variant<double, std::array<double, 4>, SpectrumDesc, IorDesc,
                                 FluorescenceDesc, CoatingDesc, std::string, Vec3d>;
 

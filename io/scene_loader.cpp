@@ -700,6 +700,11 @@ private:
       return colour(n, spec.range != nullptr);
     case ParamType::Point:
       return vec3(n, "x, y, z");
+    case ParamType::File: {
+      const std::string t = text(n);
+      if (t.empty()) fail(n, "a file name in <" + std::string(n.name()) + ">", "nothing");
+      return relativeToScene(t);
+    }
     case ParamType::Spectrum:
       return *spectrum(n, false);
     case ParamType::Reflectance:

@@ -185,6 +185,8 @@ nx::ParamValue parameterFromPython(const nx::ParamSpec& spec, const py::handle& 
   }
   case nx::ParamType::Name:
     return stringArgument(value, param.c_str());
+  case nx::ParamType::File:
+    return pathArgument(value, param.c_str());
   case nx::ParamType::Point: {
     const std::vector<double> v = numbersArgument(value, param.c_str(), 3);
     for (double x : v)

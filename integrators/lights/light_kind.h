@@ -5,16 +5,25 @@
 // registry (light_kinds.h) lists the kinds in one variant.
 
 #include <array>
+#include <memory>
 #include <span>
 #include <string>
 
 #include "core/math_util.h"
+#include "core/sampler.h"
 #include "integrators/lights/light_sample.h"
 #include "integrators/materials/material_kind.h"
 #include "io/parameter_set.h"
+#include "io/spectral_exr.h"
 #include "spectra/spectrum.h"
 
 namespace nx {
+
+/// Largest emitted radiance (W m^-2 sr^-1 nm^-1) or point-light intensity (W sr^-1 nm^-1) a
+/// scene may hold: the Sun's spectral radiance is about 2.6e4, so this leaves seven orders of
+/// magnitude while every sample value, and its square in the error estimate, stays finite in
+/// single precision (an emission of 1e21 made every Variance channel infinite; 1e39 every sample).
+inline constexpr double kMaxEmission = 1e12;
 
 /// One parameter a light kind takes: its declaration and its default.
 struct LightParameter {
@@ -34,6 +43,12 @@ public:
   virtual Spectrum srgbIntensity(const std::array<double, 3>& rgb) const = 0;
   /// Throws "<loc>: expected an emission within [0, 1e12] ..." unless `s` is one.
   virtual void checkEmission(const Spectrum& s, const SourceLocation& loc) const = 0;
+  /// A spectral EXR read (its bytes in the render key); errors name `loc` and the file.
+  virtual std::shared_ptr<const SpectralImage> spectralImage(const std::string& path,
+                                                             const SourceLocation& loc) const = 0;
+  /// Notes data tabulated over [loNm, hiNm] only (0 beyond): a render tracing beyond warns.
+  virtual void tabulated(const SourceLocation& loc, const std::string& what, double loNm,
+                         double hiNm) const = 0;
 
   bool spectral = true; ///< spectral_mcpt (else rt or mcpt: <color> preferred)
   SourceLocation loc;   ///< the <light> element

@@ -106,8 +106,13 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
   for (size_t i = 0; i < scene.lights.size(); ++i)
     std::visit(
         [&](const auto& light) {
-          lights_.push_back({LightKind::Point, static_cast<uint32_t>(i), -1, nullptr, 0, 0,
-                             light.power(), light.tracedPeak(), light.center(), 0});
+          using Kind = std::decay_t<decltype(light)>;
+          if constexpr (Kind::kInfinite)
+            environments_.push_back(static_cast<int32_t>(lights_.size()));
+          lights_.push_back({Kind::kInfinite ? LightKind::Environment : LightKind::Point,
+                             static_cast<uint32_t>(i), -1, nullptr, 0, 0,
+                             light.power(Kind::kInfinite ? sceneRadius(scene) : 0.0),
+                             light.tracedPeak(), light.center(), 0});
         },
         scene.lights[i]);
   if (scene.background) {
@@ -152,6 +157,7 @@ float LightSampler::localWeight(const Light& l, const Vec3& p) const {
                           : std::min(static_cast<float>(2 * kPi), static_cast<float>(l.area) / d2);
     break;
   case LightKind::Background:
+  case LightKind::Environment:
     solidAngle = static_cast<float>(4 * kPi);
     break;
   }
@@ -166,6 +172,33 @@ float LightSampler::probability(int k, const Vec3& p) const {
   float total = 0;
   for (const Light& l : lights_) total += localWeight(l, p);
   return total > 0 ? localWeight(lights_[static_cast<size_t>(k)], p) / total : 0.0f;
+}
+
+SampledSpectrum LightSampler::environmentRadiance(int i, const Vec3& d,
+                                                  const SampledWavelengths& lambda) const {
+  const Light& l = lights_[static_cast<size_t>(environments_[static_cast<size_t>(i)])];
+  return std::visit(
+      [&](const auto& light) {
+        if constexpr (std::decay_t<decltype(light)>::kInfinite)
+          return light.radiance(d, lambda);
+        else
+          return SampledSpectrum(); // unreachable: environments_ holds infinite lights only
+      },
+      scene_->lights[l.shape]);
+}
+
+float LightSampler::pdfEnvironment(int i, const Vec3& p, const Vec3& d) const {
+  const int k = environments_[static_cast<size_t>(i)];
+  const Light& l = lights_[static_cast<size_t>(k)];
+  const float pdf = std::visit(
+      [&](const auto& light) {
+        if constexpr (std::decay_t<decltype(light)>::kInfinite)
+          return light.pdf(d);
+        else
+          return 0.0f; // unreachable: environments_ holds infinite lights only
+      },
+      scene_->lights[l.shape]);
+  return pdf * probability(k, p);
 }
 
 float LightSampler::pdfBackground(const Vec3& p) const {
@@ -230,7 +263,8 @@ bool LightSampler::sampleLight(int k, const Vec3& p, float uChoice, Sample2 u,
   out.light = k;
   switch (l.kind) {
   case LightKind::Point: // a light of the scene's list: its kind samples it (static dispatch)
-    return std::visit([&](const auto& light) { return light.sample(p, lambda, out); },
+  case LightKind::Environment:
+    return std::visit([&](const auto& light) { return light.sample(p, u, lambda, out); },
                       scene_->lights[l.shape]);
   case LightKind::Sphere:
     if (!sampleSphere(l, p, u, out)) return false;

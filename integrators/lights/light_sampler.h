@@ -63,6 +63,15 @@ public:
   /// without one.
   float pdfBackground(const Vec3& p) const;
 
+  /// Number of environment lights (infinite lights of the scene's list) a ray that leaves
+  /// the scene sees.
+  int environmentCount() const { return static_cast<int>(environments_.size()); }
+  /// Radiance environment light i sends from direction d (d points away from the scene).
+  SampledSpectrum environmentRadiance(int i, const Vec3& d, const SampledWavelengths& lambda) const;
+  /// Density (solid angle, with the choice probability) with which sample() returns
+  /// direction d from p through environment light i.
+  float pdfEnvironment(int i, const Vec3& p, const Vec3& d) const;
+
 private:
   struct Light {
     LightKind kind;
@@ -93,6 +102,7 @@ private:
   std::vector<int32_t> meshLight_;   ///< light number per mesh (whole meshes), or -1
   std::vector<std::vector<int32_t>> triangleLight_; ///< per mesh with inline triangles
   int32_t background_ = -1;
+  std::vector<int32_t> environments_; ///< light numbers of the environment lights
 };
 
 } // namespace nx

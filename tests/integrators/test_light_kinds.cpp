@@ -7,6 +7,7 @@
 #include <set>
 
 #include "integrators/render_scene.h"
+#include "io/spectral_exr.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 
@@ -21,12 +22,29 @@ std::string lightScene(const std::string& light) {
          light + "\n</scene>\n";
 }
 
+// A spectral EXR (a constant one) where a file parameter's example names one.
+std::string exampleFile(const std::string& example) {
+  const std::string path = ::testing::TempDir() + "/" + example;
+  SpectralImage img;
+  img.width = 4, img.height = 2;
+  img.bands = Sensor(SpectralBands::parse("350:1050:100"));
+  img.radiance.assign(static_cast<size_t>(8 * img.bands.count()), 0.5f);
+  img.rgb.assign(24, 0.5f);
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  writeSpectralExr(path, img);
+  return path;
+}
+
 // Every parameter the kind declares, at its example (a scale as its spectrum's attribute).
 std::string exampleLight(const LightKindSpec& kind) {
   std::string body;
   for (const LightParameter& p : kind.params()) {
     const std::string name = p.spec.name;
     if (name.ends_with("_scale")) continue;
+    if (p.spec.type == ParamType::File) {
+      body += "<" + name + ">" + exampleFile(p.spec.example) + "</" + name + ">";
+      continue;
+    }
     const std::string scale = name + "_scale";
     const LightParameter* s = lightParameter(kind, scale);
     body += "<" + name + (s ? std::string(" scale=\"") + s->spec.example + "\"" : "") + ">" +

@@ -106,9 +106,10 @@ TEST(SpotLight, SceneErrors) {
   EXPECT_NE(error("<light type=\"spot\"><position>0,4,0</position><emission>1</emission></light>")
                 .find("expected <look_at> inside <light>, found none"),
             std::string::npos);
-  EXPECT_NE(error("<light type=\"lamp\"><position>0,4,0</position></light>")
-                .find("expected a light type point or spot, found 'lamp'"),
-            std::string::npos);
+  const std::string unknown = error("<light type=\"lamp\"><position>0,4,0</position></light>");
+  EXPECT_NE(unknown.find("expected a light type point"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("spot"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("found 'lamp'"), std::string::npos) << unknown;
   EXPECT_NE(error("<light type=\"spot\"><position>0,4,0</position><look_at>0,0,0</look_at>"
                   "<radius>1</radius><emission>1</emission></light>")
                 .find("inside <light>, found <radius>"),

@@ -45,9 +45,10 @@ struct PointLight {
   /// The traced-range integral of its peak intensity (W sr^-1).
   double tracedPeak() const { return tracedIntegral(intensity); }
   /// Emitted power over the traced range (W).
-  double power() const { return 4 * kPi * tracedPeak(); }
+  double power(double = 0) const { return 4 * kPi * tracedPeak(); }
+  static constexpr bool kInfinite = false;
   /// The direction from p to it and I / d^2 (a delta: pdf 1).
-  bool sample(const Vec3& p, const SampledWavelengths& lambda, LightSample& out) const {
+  bool sample(const Vec3& p, Sample2, const SampledWavelengths& lambda, LightSample& out) const {
     const Vec3 toLight = position - p;
     const float d2 = dot(toLight, toLight);
     if (!(d2 > 0)) return false;

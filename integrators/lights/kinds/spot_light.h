@@ -24,6 +24,7 @@ struct SpotLight {
   float cosEdge = 0;         ///< cos of the cone's half-angle: nothing beyond it
   float cosFalloffStart = 1; ///< cos of the half-angle within which the intensity is whole
 
+  static constexpr bool kInfinite = false;
   static constexpr const char* kName = "spot";
   static constexpr const char* kDoc =
       "a spot light (a lamp): intensity I on its axis, falling off smoothly to 0 at the cone's "
@@ -94,7 +95,7 @@ struct SpotLight {
   double tracedPeak() const { return tracedIntegral(intensity); }
   /// Emitted power over the traced range (W): 2 pi times the integral of the falloff over
   /// cos theta, found by the midpoint rule.
-  double power() const {
+  double power(double = 0) const {
     double integral = 0;
     const int steps = 1000;
     for (int i = 0; i < steps; ++i) {
@@ -104,7 +105,7 @@ struct SpotLight {
     return 2 * kPi * integral * tracedPeak();
   }
   /// The direction from p to it and I s(cos theta) / d^2 (a delta: pdf 1).
-  bool sample(const Vec3& p, const SampledWavelengths& lambda, LightSample& out) const {
+  bool sample(const Vec3& p, Sample2, const SampledWavelengths& lambda, LightSample& out) const {
     const Vec3 toLight = position - p;
     const float d2 = dot(toLight, toLight);
     if (!(d2 > 0)) return false;
