@@ -8,13 +8,14 @@
 #include <utility>
 #include <variant>
 
+#include "integrators/lights/kinds/environment_light.h"
 #include "integrators/lights/kinds/point_light.h"
 #include "integrators/lights/kinds/spot_light.h"
 
 namespace nx {
 
 /// A light of the scene's light list (not a shape's emission, not the uniform background).
-using SceneLight = std::variant<PointLight, SpotLight>;
+using SceneLight = std::variant<PointLight, SpotLight, EnvironmentLight>;
 
 /// A light kind as the scene format sees it.
 struct LightKindSpec {
