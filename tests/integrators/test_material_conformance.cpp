@@ -11,6 +11,7 @@
 
 #include "integrators/materials/bsdf.h"
 #include "integrators/sampling.h"
+#include "support/direction_chi_square.h"
 #include "support/render_checks.h"
 #include "support/statistics.h"
 
@@ -161,6 +162,78 @@ TEST(MaterialConformance, SpecularLobesAreWhatSamplingDrawsOnAverage) {
       }
     }
   EXPECT_GT(lobesChecked, 100);
+}
+
+// Every kind's non-specular sampling follows its pdf (chi-square over the sphere), its weights
+// are f / pdf (what MIS and Russian roulette rely on), and its reflection is reciprocal:
+// f(wo, wi) = f(wi, wo), compared as f |cos wi| / |cos wi| both ways. The kinds are bodiesOf's
+// compile-time list.
+TEST(MaterialConformance, SamplingFollowsThePdfWeightsAreFOverPdfReflectionIsReciprocal) {
+  SampledWavelengths lambda;
+  for (int i = 0; i < kLanes; ++i) {
+    lambda.lambda[i] = 420.0f + 70.0f * static_cast<float>(i);
+    lambda.pdf[i] = 1.0f / 300.0f;
+  }
+  int checked = 0;
+  for (const MaterialKind kind : kKinds)
+    for (const std::string& body : bodiesOf(kind)) {
+      const RenderScene scene = sphereScene(body);
+      const Material& m = scene.materials[scene.spheres[0].material];
+      SampledSpectrum rho;
+      m.reflectance.evaluate(lambda.lambda, rho);
+      const Vec3 n(0, 0, 1);
+      for (const Vec3& wo :
+           {normalize(Vec3(0.3f, 0.1f, 0.9f)), normalize(Vec3(-0.8f, 0.3f, 0.25f))}) {
+        SCOPED_TRACE(body + " wo.z " + std::to_string(wo.z));
+        const SurfaceBsdf bsdf(m, lambda, rho, n, wo, TransportMode::Energy);
+        if (!bsdf.hasNonSpecular()) continue;
+        uint32_t k = 0;
+        int weightChecks = 0;
+        auto draw = [&](Sample2 u) {
+          BsdfSample s;
+          if (!bsdf.sample(uniform2(700000 + k++).u, u, s) || s.specular) return Vec3(0, 0, 0);
+          // The weight is f |cos| / pdf on the hero lane (the one every sample keeps); a
+          // dispersive transmission's f counts the hero for all lanes (kLanes x; see
+          // SurfaceBsdf::setHeroAlone), its sample's weight the hero alone.
+          const float f = bsdf.f(s.wi)[0] / (s.terminateSecondary ? kLanes : 1),
+                      pdf = bsdf.pdf(s.wi);
+          if (pdf > 1e-3f && f > 1e-6f && weightChecks < 2000) {
+            EXPECT_NEAR(s.weight[0], f / pdf, 2e-3f * (f / pdf) + 1e-6f);
+            ++weightChecks;
+          }
+          return s.wi;
+        };
+        // The expected counts integrate the pdf over 40 x 40 cells (8 x 8 points each): a lobe
+        // narrower than a cell (GGX alpha below 0.1) is beyond that quadrature; its weights
+        // are still checked.
+        const float alpha = std::max(m.alphaU, m.alphaV);
+        if (alpha > 0 && alpha < 0.1f) {
+          for (uint32_t i = 0; i < 20000; ++i) (void)draw(uniform2(i));
+        } else {
+          expectDirectionsFollowPdf(
+              draw, [&](const Vec3& wi) { return bsdf.pdf(wi); }, 100000);
+        }
+        EXPECT_GT(weightChecks, 0);
+        ++checked;
+      }
+      // Reciprocity of reflection (non-fluorescent surfaces: re-radiation shifts wavelengths).
+      if (m.reradiation) continue;
+      for (uint32_t i = 0; i < 64; ++i) {
+        auto dir = [](Sample2 u) {
+          const float z = 0.05f + 0.95f * u.u, r = std::sqrt(1 - z * z);
+          const float p = 2 * static_cast<float>(kPi) * u.v;
+          return Vec3(r * std::cos(p), r * std::sin(p), z);
+        };
+        const Vec3 a = dir(uniform2(2 * i)), b = dir(uniform2(2 * i + 1));
+        const SurfaceBsdf fa(m, lambda, rho, n, a, TransportMode::Energy),
+            fb(m, lambda, rho, n, b, TransportMode::Energy);
+        for (int lane = 0; lane < kLanes; ++lane) {
+          const float ab = fa.f(b)[lane] / b.z, ba = fb.f(a)[lane] / a.z;
+          EXPECT_NEAR(ab, ba, 1e-3f * std::max(ab, ba) + 1e-6f) << body << " lane " << lane;
+        }
+      }
+    }
+  EXPECT_GT(checked, 8);
 }
 
 } // namespace
