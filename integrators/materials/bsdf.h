@@ -6,8 +6,8 @@
 
 #include "core/frame.h"
 #include "core/sampler.h"
+#include "integrators/materials/material.h"
 #include "integrators/materials/microfacet.h"
-#include "integrators/render_scene.h"
 #include "spectra/sampled_wavelengths.h"
 
 namespace nx {

@@ -1,11 +1,14 @@
 // A metal: GGX microfacets (smooth when alpha is 0) with the exact Fresnel reflectance of its
 // complex index eta + i k, a built-in measured metal or given spectra, optionally under a thin
-// film on each microfacet. Evaluation: SurfaceBsdf's conductor lobes (bsdf.cpp).
+// film on each microfacet: its parameters, its build and its lobes (SurfaceBsdf's conductor
+// Fresnel, f and sampling, below; dispatched from bsdf.cpp).
 
 #include <tuple>
 
 #include "core/error.h"
 #include "core/text_table.h"
+#include "integrators/materials/bsdf.h"
+#include "integrators/materials/fresnel.h"
 #include "integrators/materials/material_kind.h"
 #include "spectra/metals.h"
 #include "spectra/spectrum_bounds.h"
@@ -81,5 +84,67 @@ constexpr std::pair<const char*, const char*> kRefusals[] = {
 extern const MaterialKindSpec kConductorKind{
     "conductor", "a metal: GGX microfacets and the exact Fresnel reflectance of eta + i k", kParams,
     kRefusals, buildConductor};
+
+// ---- evaluation (SurfaceBsdf's lobes of this kind) ----
+
+// The lanes' Fresnel reflectance at a micro-surface seen with cosine cosI (through the
+// coating: a thin film on each microfacet).
+SampledSpectrum SurfaceBsdf::conductorFresnel(float cosI) const {
+  SampledSpectrum f;
+  const Material& m = *material_;
+  if (m.coatingNm > 0) {
+    for (int i = 0; i < kLanes; ++i) {
+      const float nm = lambda_->lambda[i];
+      f[i] = thinFilmReflectance(cosI, 1.0f, static_cast<float>(m.coatingIor.at(nm)), eta_[i],
+                                 k_[i], m.coatingNm, nm);
+    }
+    return f;
+  }
+  for (int i = 0; i < kLanes; ++i) f[i] = fresnelConductor(cosI, eta_[i], k_[i]);
+  return f;
+}
+
+// Torrance-Sparrow with GGX: f cos(wi) = D(h) G2(wo, wi) F(wo.h) / (4 cos(wo)), h the half
+// vector (Walter et al. 2007, eq. 20); zero below the surface (either normal).
+SampledSpectrum SurfaceBsdf::conductorF(const Vec3& wi) const {
+  if (smoothConductor() || dot(wi, ng_) <= 0) return {};
+  const Vec3 o = frame_.toLocal(wo_), i = frame_.toLocal(wi);
+  if (o.z <= 0 || i.z <= 0) return {};
+  const Vec3 h = normalize(o + i);
+  const float d = alpha_.d(h);
+  if (!(d > 0)) return {};
+  return conductorFresnel(dot(o, h)) * (d * alpha_.g2(o, i) / (4 * o.z));
+}
+
+// Visible-normal sampling: h from D_wo, wi = reflect(wo, h); the weight f cos / pdf is
+// F G2 / G1(wo) with pdf = G1(wo) D(h) / (4 cos(wo)) (Heitz 2018, sec. 2). A reflection below
+// the surface is lost (the single-scattering model's energy loss, docs/materials.md).
+bool SurfaceBsdf::sampleConductor(Sample2 u, BsdfSample& out) const {
+  const float cosO = dot(wo_, n_);
+  if (cosO <= 0) return false;
+  out.terminateSecondary = false;
+  out.eta = 1;
+  if (smoothConductor()) {
+    out.wi = reflect(wo_, n_);
+    if (dot(out.wi, ng_) <= 0) return false;
+    out.weight = conductorFresnel(cosO);
+    out.pdf = 0;
+    out.specular = true;
+    return true;
+  }
+  const Vec3 o = frame_.toLocal(wo_);
+  const Vec3 h = alpha_.sampleVisibleNormal(o, u);
+  const float oh = dot(o, h);
+  if (!(oh > 0)) return false;
+  const Vec3 i = h * (2 * oh) - o;
+  if (i.z <= 0) return false;
+  out.wi = frame_.toWorld(i);
+  if (dot(out.wi, ng_) <= 0) return false;
+  out.pdf = alpha_.g1(o) * alpha_.d(h) / (4 * o.z);
+  if (!(out.pdf > 0)) return false;
+  out.weight = conductorFresnel(oh) * (alpha_.g2(o, i) / alpha_.g1(o));
+  out.specular = false;
+  return true;
+}
 
 } // namespace nx

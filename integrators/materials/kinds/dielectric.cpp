@@ -1,12 +1,14 @@
 // Dielectrics: exact Fresnel reflection and refraction with total internal reflection, smooth
 // or rough (GGX microfacets, Walter et al. 2007), dispersive through a Cauchy or Sellmeier
 // index, optionally under a thin-film coating (smooth only). Four names differing in their
-// default index. Evaluation: SurfaceBsdf::sampleDielectric (bsdf.cpp) and the rough lobes
-// (bsdf_rough_dielectric.cpp).
+// default index: their parameters, build and lobes (the smooth Fresnel split and the rough
+// microfacet lobes, below; dispatched from bsdf.cpp).
 
 #include <algorithm>
 
 #include "core/error.h"
+#include "integrators/materials/bsdf.h"
+#include "integrators/materials/fresnel.h"
 #include "integrators/materials/material_kind.h"
 
 namespace nx {
@@ -59,5 +61,195 @@ extern const MaterialKindSpec kTranslucentKind{"translucent",
                                                kTranslucentParams, kRefusals, buildDielectric};
 extern const MaterialKindSpec kTransparentKind{"transparent", "the same as translucent",
                                                kTranslucentParams, kRefusals, buildDielectric};
+
+// ---- evaluation (SurfaceBsdf's lobes of this kind) ----
+
+float dielectricReflectance(const Material& m, float cosI, float nIncident, float nTransmitted,
+                            float lambdaNm) {
+  if (!(m.coatingNm > 0)) return fresnelDielectric(cosI, nTransmitted / nIncident);
+  return thinFilmReflectance(cosI, nIncident, static_cast<float>(m.coatingIor.at(lambdaNm)),
+                             nTransmitted, 0.0f, m.coatingNm, lambdaNm);
+}
+
+// Smooth dielectric: reflect with probability F(hero), else refract (Snell); total internal
+// reflection when there is no refracted direction. Lane i's weight is F_i / F_hero after a
+// reflection and, through a non-dispersive interface, (1 - F_i) / (1 - F_hero) after a
+// refraction. Through a dispersive interface the refracted direction is the hero's alone:
+// the sample asks to terminate the secondaries (their weight is 0 here; the integrator makes
+// the hero's estimator stand alone from this vertex on, see heroOnly()). Unbiased: given the
+// lanes' wavelengths, lane i's expected weight is F_i R_i + [i = 0] (1 - F_0) T_0 kLanes, and
+// with every lane's marginal density the same, the lanes' sum estimates the integral of
+// F R + (1 - F) T (docs/rendering.md, "Dispersion").
+bool SurfaceBsdf::sampleDielectric(float uLobe, BsdfSample& out) const {
+  const float cosO = dot(wo_, n_);
+  const bool entering = cosO > 0;
+  const Vec3 n = entering ? n_ : -n_;
+  const float c = std::abs(cosO);
+  const bool dispersive = material_->ior.dispersive();
+  const bool coated = material_->coatingNm > 0; // reflectance varies with the wavelength
+  SampledSpectrum eta, fresnel;
+  for (int i = 0; i < kLanes; ++i) {
+    const float ior = static_cast<float>(material_->ior.at((*lambda_).lambda[i]));
+    eta[i] = entering ? ior : 1.0f / ior; // n_transmitted / n_incident
+    fresnel[i] = coated ? dielectricReflectance(*material_, c, entering ? 1.0f : ior,
+                                                entering ? ior : 1.0f, (*lambda_).lambda[i])
+                        : fresnelDielectric(c, eta[i]);
+    if (!dispersive && !coated) {
+      for (int k = 1; k < kLanes; ++k) eta[k] = eta[0], fresnel[k] = fresnel[0];
+      break;
+    }
+  }
+  out.pdf = 0;
+  out.specular = true;
+  const float fHero = fresnel[0];
+  if (uLobe < fHero) {
+    out.wi = reflect(wo_, n);
+    for (int i = 0; i < kLanes; ++i) out.weight[i] = rho_[i] * fresnel[i] / fHero;
+    out.terminateSecondary = false;
+    out.eta = 1;
+    return true;
+  }
+  Vec3 wt;
+  if (!refract(wo_, n, eta[0], wt)) return false; // unreachable: F = 1 under TIR
+  out.wi = normalize(wt);
+  out.eta = eta[0];
+  out.terminateSecondary = dispersive;
+  for (int i = 0; i < kLanes; ++i) {
+    const float scale = mode_ == TransportMode::Radiance ? 1.0f / (eta[i] * eta[i]) : 1.0f;
+    out.weight[i] = dispersive && i > 0 ? 0.0f : rho_[i] * (1 - fresnel[i]) / (1 - fHero) * scale;
+  }
+  return true;
+}
+
+// A rough dielectric interface: GGX microfacets that reflect and refract (Walter, Marschner,
+// Li & Torrance 2007, "Microfacet Models for Refraction through Rough Surfaces"), sampled
+// through the normals visible from wo (Heitz 2018). Everything is computed with wo's side of
+// the surface as +z; eta_ holds each lane's n_(other side) / n_(wo's side).
+//
+// Dispersion: a refracted direction belongs to one index. When the index varies over the lanes,
+// a transmitted sample carries the hero alone (the integrator's heroOnly(), as for smooth
+// glass), and so does the transmission part of f() used by next-event estimation (hero lane
+// times kLanes, others 0): both techniques then estimate the hero's transmission with the
+// hero's densities, and every wavelength is the hero equally often (a path that already carries
+// the hero alone, setHeroAlone(), is not scaled again). Reflection keeps all lanes.
+namespace {
+
+// The generalized half vector of a refraction from o (above) into i (below) with relative index
+// eta, facing +z: h ~ o + eta i (Walter et al. 2007, eq. 16).
+Vec3 refractionHalfVector(const Vec3& o, const Vec3& i, float eta) {
+  const Vec3 h = normalize(o + i * eta);
+  return h.z < 0 ? -h : h;
+}
+
+} // namespace
+
+// wo and wi in the microfacet frame with wo's side as +z; false when there is no such pair:
+// not a rough dielectric, wi in the surface, or the geometric normal disagreeing (reflection
+// must stay on wo's side, transmission must cross).
+bool SurfaceBsdf::roughDielectricPair(const Vec3& wi, Vec3& o, Vec3& i) const {
+  if (!roughDielectric()) return false;
+  const float side = dot(wo_, n_) > 0 ? 1.0f : -1.0f;
+  o = frame_.toLocal(wo_) * side;
+  i = frame_.toLocal(wi) * side;
+  if (o.z <= 0 || i.z == 0) return false;
+  return ((dot(wi, ng_) > 0) == (dot(wo_, ng_) > 0)) == (i.z > 0);
+}
+
+SampledSpectrum SurfaceBsdf::roughDielectricF(const Vec3& wi) const {
+  Vec3 o, i;
+  if (!roughDielectricPair(wi, o, i)) return {};
+  SampledSpectrum f;
+  if (i.z > 0) { // reflection: f |cos i| = D G2 F / (4 cos o)
+    const Vec3 h = normalize(o + i);
+    const float common = alpha_.d(h) * alpha_.g2(o, i) / (4 * o.z);
+    for (int k = 0; k < kLanes; ++k) f[k] = common * fresnelDielectric(dot(o, h), eta_[k]);
+    return f * rho_;
+  }
+  // transmission: f |cos i| = D G2 (1 - F) |i.h| |o.h| / (cos o (o.h + eta i.h)^2), times eta^2
+  // for energy (radiance is divided by eta^2 on entering a denser medium)
+  const bool dispersive = material_->ior.dispersive();
+  for (int k = 0; k < (dispersive ? 1 : kLanes); ++k) {
+    const float eta = eta_[k];
+    const Vec3 h = refractionHalfVector(o, i, eta);
+    const float oh = dot(o, h), ih = dot(i, h);
+    if (oh <= 0 || ih >= 0) return {};
+    const float denom = oh + eta * ih;
+    float v = alpha_.d(h) * alpha_.g2(o, i) * (1 - fresnelDielectric(oh, eta)) * -ih * oh /
+              (o.z * denom * denom);
+    if (mode_ == TransportMode::Energy) v *= eta * eta;
+    f[k] = v * rho_[k];
+  }
+  // dispersive: the hero's alone, scaled by kLanes unless the path already carries the hero
+  // alone (its weight holds that factor)
+  if (!dispersive) return f;
+  if (!heroAlone_) return heroOnly(f);
+  for (int k = 1; k < kLanes; ++k) f[k] = 0;
+  return f;
+}
+
+float SurfaceBsdf::roughDielectricPdf(const Vec3& wi) const {
+  Vec3 o, i;
+  if (!roughDielectricPair(wi, o, i)) return 0;
+  const float eta = eta_[0];
+  if (i.z > 0) {
+    const Vec3 h = normalize(o + i);
+    return alpha_.visibleNormalPdf(o, h) / (4 * dot(o, h)) * fresnelDielectric(dot(o, h), eta);
+  }
+  const Vec3 h = refractionHalfVector(o, i, eta);
+  const float oh = dot(o, h), ih = dot(i, h);
+  if (oh <= 0 || ih >= 0) return 0;
+  const float denom = ih + oh / eta; // dh / dwi = |i.h| / (i.h + o.h / eta)^2
+  return alpha_.visibleNormalPdf(o, h) * -ih / (denom * denom) * (1 - fresnelDielectric(oh, eta));
+}
+
+// A visible normal h from D_o; reflect with the hero's probability F(o.h), else refract
+// through h with the hero's index. Weights: F_k / F_hero G2 / G1(o) after a reflection,
+// (1 - F_k) / (1 - F_hero) G2 / G1(o) / eta^2 (radiance) after a refraction.
+bool SurfaceBsdf::sampleRoughDielectric(float uLobe, Sample2 u, BsdfSample& out) const {
+  const float side = dot(wo_, n_) > 0 ? 1.0f : -1.0f;
+  const Vec3 o = frame_.toLocal(wo_) * side;
+  if (o.z <= 0) return false;
+  const Vec3 h = alpha_.sampleVisibleNormal(o, u);
+  const float oh = dot(o, h);
+  if (!(oh > 0)) return false;
+  SampledSpectrum fresnel;
+  for (int k = 0; k < kLanes; ++k) fresnel[k] = fresnelDielectric(oh, eta_[k]);
+  const float fHero = fresnel[0];
+  const float pdfH = alpha_.visibleNormalPdf(o, h);
+  out.specular = false;
+  if (uLobe < fHero) {
+    const Vec3 i = h * (2 * oh) - o;
+    if (i.z <= 0) return false;
+    out.wi = frame_.toWorld(i * side);
+    if ((dot(out.wi, ng_) > 0) != (dot(wo_, ng_) > 0)) return false;
+    const float g = alpha_.g2(o, i) / alpha_.g1(o);
+    for (int k = 0; k < kLanes; ++k) out.weight[k] = rho_[k] * fresnel[k] / fHero * g;
+    out.pdf = pdfH / (4 * oh) * fHero;
+    out.terminateSecondary = false;
+    out.eta = 1;
+    return true;
+  }
+  const float eta = eta_[0];
+  Vec3 t;
+  if (!refract(o, h, eta, t)) return false; // F = 1 under total internal reflection
+  const Vec3 i = normalize(t);
+  if (i.z >= 0) return false;
+  out.wi = frame_.toWorld(i * side);
+  if ((dot(out.wi, ng_) > 0) == (dot(wo_, ng_) > 0)) return false;
+  const float ih = dot(i, h);
+  const float denom = ih + oh / eta;
+  out.pdf = pdfH * -ih / (denom * denom) * (1 - fHero);
+  if (!(out.pdf > 0)) return false;
+  const bool dispersive = material_->ior.dispersive();
+  const float g = alpha_.g2(o, i) / alpha_.g1(o);
+  for (int k = 0; k < kLanes; ++k) {
+    const float scale = mode_ == TransportMode::Radiance ? 1.0f / (eta_[k] * eta_[k]) : 1.0f;
+    out.weight[k] =
+        dispersive && k > 0 ? 0.0f : rho_[k] * (1 - fresnel[k]) / (1 - fHero) * g * scale;
+  }
+  out.terminateSecondary = dispersive;
+  out.eta = eta;
+  return true;
+}
 
 } // namespace nx

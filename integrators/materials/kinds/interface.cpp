@@ -1,5 +1,6 @@
 // The boundary of a medium with the same index on both sides: light passes unchanged (no
-// reflection, no refraction). Evaluation: SurfaceBsdf::sample (bsdf.cpp).
+// reflection, no refraction). Its one lobe (straight on) is a line of SurfaceBsdf::sample
+// (bsdf.cpp).
 
 #include "core/error.h"
 #include "integrators/materials/material_kind.h"

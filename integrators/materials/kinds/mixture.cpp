@@ -1,9 +1,12 @@
 // Niixtracer's surfaces: (1 - r) rho * ideal mirror + r rho / pi, one model under six names that
 // differ in their default r (matte, diffuse and default 1, plastic 0.7, metal 0.3, mirror 0),
-// made energy-conserving (each lobe drawn with its weight; docs/materials.md). Evaluation:
-// SurfaceBsdf's mixture lobes (materials/bsdf.cpp).
+// made energy-conserving (each lobe drawn with its weight; docs/materials.md): their
+// parameters, build and sampling (below; dispatched from bsdf.cpp).
 
+#include "integrators/materials/bsdf.h"
+#include "integrators/materials/fresnel.h"
 #include "integrators/materials/material_kind.h"
+#include "integrators/sampling.h"
 
 namespace nx {
 namespace {
@@ -54,5 +57,32 @@ extern const MaterialKindSpec kMetalKind{
 extern const MaterialKindSpec kMirrorKind{"mirror",
                                           "an ideal mirror tinted by rho (the mixture with r = 0)",
                                           kMirrorParams, kRefusals, buildMixture};
+
+// ---- evaluation (SurfaceBsdf's lobes of this kind) ----
+
+// (1 - r) rho * mirror + r rho / pi, lobe chosen with probabilities 1 - r and r: either way
+// the weight is rho (Niixtracer's "roughness" mixture, made energy-conserving).
+bool SurfaceBsdf::sampleMixture(float uLobe, Sample2 u, BsdfSample& out) const {
+  if (dot(wo_, n_) <= 0) return false;
+  const float r = material_->roughness;
+  if (uLobe < r) {
+    const Frame frame = Frame::fromNormal(n_);
+    const Vec3 local = sampleCosineHemisphere(u);
+    if (local.z <= 0) return false;
+    out.wi = frame.toWorld(local);
+    out.pdf = r * cosineHemispherePdf(local.z);
+    out.specular = false;
+  } else {
+    out.wi = reflect(wo_, n_);
+    out.pdf = 0;
+    out.specular = true;
+  }
+  // A direction the shading frame allows below the geometric surface is absorbed.
+  if (dot(out.wi, ng_) <= 0) return false;
+  out.weight = rho_;
+  out.terminateSecondary = false;
+  out.eta = 1;
+  return true;
+}
 
 } // namespace nx
