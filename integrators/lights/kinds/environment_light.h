@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/memory.h"
 #include "core/text_table.h"
 #include "integrators/lights/light_kind.h"
 
@@ -64,6 +65,11 @@ struct EnvironmentLight {
     for (int b : order) e.bandNm.push_back(img->bands.centroid(b));
     in.tabulated(where, file, e.bandNm.front(), e.bandNm.back());
     const size_t n = static_cast<size_t>(e.width) * static_cast<size_t>(e.height);
+    // Its tables beside the image just read: radiance per band, weights, both CDFs, the pdf.
+    requireMemory(static_cast<double>(n) * (4.0 * nb + 8 + 8 + 4), where.str(),
+                  "an environment map",
+                  std::to_string(e.width) + "x" + std::to_string(e.height) + " texels with " +
+                      std::to_string(nb) + " bands");
     auto texels = std::make_shared<std::vector<float>>(n * static_cast<size_t>(nb));
     std::vector<double> weight(n, 0.0);
     for (size_t t = 0; t < n; ++t)

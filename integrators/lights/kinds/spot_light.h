@@ -78,6 +78,13 @@ struct SpotLight {
     s.axis = Vec3(normalize(to - from));
     s.intensity = lightIntensity(p, in);
     s.cosEdge = static_cast<float>(std::cos(edge * kPi / 180));
+    // A cone whose cosine rounds to 1 in single precision (below about 0.014 degrees) lights
+    // nothing, and one not much wider has its falloff badly resolved: refused, not black.
+    if (!(edge >= 0.03) || !(s.cosEdge < 1))
+      throw Error(p.locOf("cone_angle", in.loc).str() +
+                  ": expected a cone_angle of at least 0.03 degrees (a narrower cone is not "
+                  "resolved in single precision and would light nothing), found " +
+                  numberText(edge));
     s.cosFalloffStart = static_cast<float>(std::cos(start * kPi / 180));
     return s;
   }
