@@ -101,14 +101,14 @@ TEST(SpotLight, SceneErrors) {
             std::string::npos);
   EXPECT_NE(error("<light type=\"spot\"><position>0,4,0</position><look_at>0,0,0</look_at>"
                   "<cone_angle>95</cone_angle><emission>1</emission></light>")
-                .find("expected a half-angle in degrees in (0, 90]"),
+                .find("expected a half-angle in degrees in [0.03, 90]"),
             std::string::npos);
   EXPECT_NE(error("<light type=\"spot\"><position>0,4,0</position><emission>1</emission></light>")
                 .find("expected <look_at> inside <light>, found none"),
             std::string::npos);
   EXPECT_NE(error("<light type=\"spot\"><position>0,4,0</position><look_at>0,0,0</look_at>"
                   "<cone_angle>0.001</cone_angle><emission>1</emission></light>")
-                .find("expected a cone_angle of at least 0.03 degrees"),
+                .find("expected a half-angle in degrees in [0.03, 90]"),
             std::string::npos);
   const std::string unknown = error("<light type=\"lamp\"><position>0,4,0</position></light>");
   EXPECT_NE(unknown.find("expected a light type point"), std::string::npos) << unknown;

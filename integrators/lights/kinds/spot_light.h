@@ -13,7 +13,9 @@
 
 namespace nx {
 
-inline constexpr ParameterRange kSpotAngleRange{0, 90, true, "a half-angle in degrees"};
+/// A cone narrower than 0.03 degrees is not resolved in single precision (its cosine rounds to 1
+/// below about 0.014 degrees): it would light nothing.
+inline constexpr ParameterRange kSpotAngleRange{0.03, 90, false, "a half-angle in degrees"};
 inline constexpr ParameterRange kSpotFalloffRange{0, 90, false, "a half-angle in degrees"};
 
 /// A spot light.
@@ -78,9 +80,8 @@ struct SpotLight {
     s.axis = Vec3(normalize(to - from));
     s.intensity = lightIntensity(p, in);
     s.cosEdge = static_cast<float>(std::cos(edge * kPi / 180));
-    // A cone whose cosine rounds to 1 in single precision (below about 0.014 degrees) lights
-    // nothing, and one not much wider has its falloff badly resolved: refused, not black.
-    if (!(edge >= 0.03) || !(s.cosEdge < 1))
+    // (kSpotAngleRange keeps the cone resolved; Python edits are range-checked too.)
+    if (!(s.cosEdge < 1))
       throw Error(p.locOf("cone_angle", in.loc).str() +
                   ": expected a cone_angle of at least 0.03 degrees (a narrower cone is not "
                   "resolved in single precision and would light nothing), found " +
