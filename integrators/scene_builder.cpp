@@ -5,13 +5,12 @@
 
 #include "accel/closed_mesh.h"
 #include "core/error.h"
-#include "core/file_text.h"
-#include "core/hash.h"
 #include "core/math_util.h"
 #include "core/text_table.h"
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/render_scene.h"
+#include "integrators/scene_references.h"
 #include "io/camera_from_desc.h"
 #include "io/mesh_reader.h"
 #include "io/spectral_exr.h"
@@ -21,16 +20,13 @@
 #include "spectra/named_spectra.h"
 #include "spectra/rgb_upsampling.h"
 #include "spectra/spectrum_bounds.h"
-#include "spectra/water.h"
 
 namespace nx {
 namespace {
 
 class Builder {
 public:
-  explicit Builder(const SceneDesc& desc) : desc_(desc), digest_(desc.textDigest) {
-    for (const auto& s : desc.spectra) named_[s.name] = &s;
-  }
+  explicit Builder(const SceneDesc& desc) : desc_(desc), refs_(desc) {}
 
   RenderScene build(bool withGeometry) {
     RenderScene scene;
@@ -40,7 +36,7 @@ public:
     const bool spectral = s.mode == RenderMode::SpectralMcpt;
 
     scene.previewWhite =
-        s.illuminant ? resolve(*s.illuminant, SpectrumRole::Emission) : *namedEmission("D65");
+        s.illuminant ? refs_.resolve(*s.illuminant, SpectrumRole::Emission) : *namedEmission("D65");
     // The preview is white-balanced from this white's chromaticity: it needs visible light.
     if (const Xyz w = spectrumToXyz(scene.previewWhite); s.illuminant && !(w.y > 0))
       throw Error(s.illuminant->loc.str() +
@@ -48,7 +44,7 @@ public:
                   "needs its colour), found luminance Y = " +
                   numberText(w.y));
     if (s.background)
-      scene.background = forRendering(resolve(*s.background, SpectrumRole::Emission));
+      scene.background = forRendering(refs_.resolve(*s.background, SpectrumRole::Emission));
 
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
@@ -165,8 +161,8 @@ public:
                                     meshes, scene.meshes);
     scene.meshBytes = 0;
     for (const TriangleMesh& m : meshes) scene.meshBytes += m.bytes();
-    scene.contentDigest = digest_;
-    scene.tables = tables_;
+    scene.contentDigest = refs_.digest();
+    scene.tables = refs_.tables();
     if (!withGeometry) return scene;
     scene.device = std::make_unique<EmbreeDevice>();
     scene.geometry = std::make_unique<GeometryScene>(*scene.device, std::move(spheres),
@@ -175,109 +171,6 @@ public:
   }
 
 private:
-  // The bytes of a file the scene refers to (a table), folded into the content digest with its
-  // path, so that renders made with different data do not resume or merge together.
-  std::string readReferencedFile(const std::string& path) const {
-    std::string text = readRegularFile(path, 64u << 20, "table file");
-    digest_ = fnv1a64(text, fnv1a64(std::string_view(path.c_str(), path.size() + 1), digest_));
-    return text;
-  }
-
-  // Resolves a spectrum reference; emission spectra are checked to lie within [0, 1e12].
-  Spectrum resolve(const SpectrumDesc& s, SpectrumRole role) const {
-    Spectrum r = resolveUnchecked(s, role, 0, s.extrapolate);
-    if (role == SpectrumRole::Emission) checkEmission(r, s.loc);
-    return r;
-  }
-
-  // A table's behaviour beyond its wavelengths: held, zero by choice, or zero and remembered
-  // for a warning when a render traces beyond it.
-  Spectrum extrapolated(Spectrum r, SpectrumDesc::Extrapolation mode, const SourceLocation& loc,
-                        const std::string& what) const {
-    if (const auto* t = std::get_if<TabulatedSpectrum>(&r.kind())) {
-      if (mode != SpectrumDesc::Extrapolation::Unset) {
-        TabulatedSpectrum chosen = *t;
-        chosen.holdEnds = mode == SpectrumDesc::Extrapolation::Hold;
-        return Spectrum(std::move(chosen), r.scale());
-      }
-      if (!t->holdEnds) // built-in tables that hold their ends need no warning
-        tables_.push_back({loc.str(), what, t->nm.front(), t->nm.back()});
-    }
-    return r;
-  }
-
-  // `mode`: the extrapolation asked for by the outermost reference that names one (a use of a
-  // <spectrum> definition overrides the definition's own).
-  Spectrum resolveUnchecked(const SpectrumDesc& s, SpectrumRole role, int depth,
-                            SpectrumDesc::Extrapolation mode) const {
-    if (mode == SpectrumDesc::Extrapolation::Unset) mode = s.extrapolate;
-    try {
-      switch (s.kind) {
-      case SpectrumDesc::Kind::Number:
-        return Spectrum(ConstantSpectrum{s.number});
-      case SpectrumDesc::Kind::Pairs:
-        return extrapolated(Spectrum(makeTabulated(s.nm, s.value, "nm:value pairs")), mode, s.loc,
-                            "nm:value pairs");
-      case SpectrumDesc::Kind::CsvFile:
-        return extrapolated(
-            Spectrum(parseSpectrumCsv(readReferencedFile(s.path), s.path, s.column)), mode, s.loc,
-            s.column.empty() ? s.path : s.path + " (column " + s.column + ")");
-      case SpectrumDesc::Kind::Name:
-        break;
-      case SpectrumDesc::Kind::Texture: // the loader allows textures on <reflectance> only
-        throw Error("expected a spectrum, found a texture");
-      }
-    } catch (const Error& e) {
-      throw Error(s.loc.str() + ": " + e.what());
-    }
-    if (auto it = named_.find(s.name); it != named_.end()) {
-      if (depth > 16)
-        throw Error(s.loc.str() +
-                    ": expected spectrum definitions without a cycle, found one through '" +
-                    s.name + "'");
-      return resolveUnchecked(it->second->spectrum, role, depth + 1, mode);
-    }
-    if (role == SpectrumRole::Coefficient)
-      if (auto c = namedMediumCoefficient(s.name)) return extrapolated(*c, mode, s.loc, s.name);
-    if (role != SpectrumRole::Emission) {
-      if (auto r = namedReflectance(s.name)) return extrapolated(*r, mode, s.loc, s.name);
-      throw Error(s.loc.str() + ": expected " +
-                  (role == SpectrumRole::Coefficient
-                       ? "water:absorption, water:scattering (per metre), "
-                       : "") +
-                  "a reflectance name (red, orange, yellow, green, blue, purple, uv, "
-                  "gray, const, null, colorchecker:<patch> (dark_skin, ..., black_2), or a "
-                  "<spectrum> of the scene), found '" +
-                  s.name + "'");
-    }
-    std::optional<Spectrum> e;
-    try {
-      e = namedEmission(s.name);
-    } catch (const Error& err) {
-      throw Error(s.loc.str() + ": " + err.what());
-    }
-    if (e) return extrapolated(*e, mode, s.loc, s.name);
-    throw Error(
-        s.loc.str() +
-        ": expected an illuminant name (A, D50, D55, D65, D75, D<nn>, daylight:<K>, F1-F12, "
-        "E, blackbody:<K>, bba, bbd50, bbd55, bbd65, bbd75, bl, or a <spectrum> of the "
-        "scene), found '" +
-        s.name + "'");
-  }
-
-  // Emission (radiance, or a point light's intensity) within [0, kMaxEmission] everywhere.
-  static void checkEmission(const Spectrum& s, const SourceLocation& loc) {
-    const SpectrumExtremes e = spectrumExtremes(s, kTraceMinNm, kTraceMaxNm);
-    if (e.min >= 0 && e.max <= kMaxEmission) return;
-    const bool low = !(e.min >= 0);
-    throw Error(loc.str() + ": expected an emission within [0, " + numberText(kMaxEmission) +
-                "] (W m^-2 sr^-1 nm^-1; W sr^-1 nm^-1 for point lights) at every wavelength of " +
-                tracedRange() + ", found " +
-                (std::isnan(e.min) ? std::string("a non-finite value")
-                                   : numberText(low ? e.min : e.max) + " at " +
-                                         numberText(low ? e.minNm : e.maxNm) + " nm"));
-  }
-
   // What makes two materials the same (shared, one MaterialId): the kind, whether the object
   // emits (an emitter without a reflectance is black), and the canonical text of the
   // parameters (one serialisation: io/parameter_set.h).
@@ -313,8 +206,7 @@ private:
   TriangleMesh meshFromFile(const ObjectDesc& o) const {
     try {
       MeshFile f = readMeshFile(o.meshPath);
-      digest_ = fnv1a64(
-          f.bytes, fnv1a64(std::string_view(o.meshPath.c_str(), o.meshPath.size() + 1), digest_));
+      refs_.fold(f.bytes, o.meshPath);
       f.mesh.transform(o.transform.m, o.transform.t);
       if (const std::string problem = f.mesh.validate(); !problem.empty())
         throw Error("mesh '" + o.meshPath + "' after its <transform>: " + problem);
@@ -345,8 +237,10 @@ private:
 
   HomogeneousMedium medium(const MediumDesc& d) const {
     HomogeneousMedium m;
-    m.sigmaA = forRendering(resolve(d.sigmaA, SpectrumRole::Coefficient).scaled(d.sigmaAScale));
-    m.sigmaS = forRendering(resolve(d.sigmaS, SpectrumRole::Coefficient).scaled(d.sigmaSScale));
+    m.sigmaA =
+        forRendering(refs_.resolve(d.sigmaA, SpectrumRole::Coefficient).scaled(d.sigmaAScale));
+    m.sigmaS =
+        forRendering(refs_.resolve(d.sigmaS, SpectrumRole::Coefficient).scaled(d.sigmaSScale));
     for (const auto& [sp, desc, what] : {std::tuple{&m.sigmaA, &d.sigmaA, "sigma_a"},
                                          std::tuple{&m.sigmaS, &d.sigmaS, "sigma_s"}}) {
       const SpectrumExtremes e = spectrumExtremes(*sp, kTraceMinNm, kTraceMaxNm);
@@ -366,8 +260,9 @@ private:
                     ": expected a medium that absorbs (sigma_a > 0 somewhere in " + tracedRange() +
                     ") for an <emission>: the medium emits sigma_a Le per unit length, found "
                     "sigma_a = 0 everywhere");
-      const Spectrum le = resolve(*d.emission, SpectrumRole::Emission).scaled(d.emissionScale);
-      checkEmission(le, d.emission->loc);
+      const Spectrum le =
+          refs_.resolve(*d.emission, SpectrumRole::Emission).scaled(d.emissionScale);
+      SceneReferences::checkEmission(le, d.emission->loc);
       m.emission = forRendering(le);
     }
     if (d.fluorescence) {
@@ -408,7 +303,7 @@ private:
   public:
     explicit LightKindInputs(const Builder& b) : b_(b) {}
     Spectrum spectrum(const SpectrumDesc& d, SpectrumRole role) const override {
-      return b_.resolve(d, role);
+      return b_.refs_.resolve(d, role);
     }
     Spectrum srgbIntensity(const std::array<double, 3>& rgb) const override {
       try {
@@ -418,14 +313,12 @@ private:
       }
     }
     void checkEmission(const Spectrum& s, const SourceLocation& where) const override {
-      Builder::checkEmission(s, where);
+      SceneReferences::checkEmission(s, where);
     }
     std::shared_ptr<const SpectralImage> spectralImage(const std::string& path,
                                                        const SourceLocation& where) const override {
       try {
-        const std::string bytes = readRegularFile(path, kMaxTextureFileBytes, "environment map");
-        b_.digest_ =
-            fnv1a64(bytes, fnv1a64(std::string_view(path.c_str(), path.size() + 1), b_.digest_));
+        (void)b_.refs_.readFile(path, kMaxTextureFileBytes, "environment map");
         return std::make_shared<const SpectralImage>(readSpectralExr(path));
       } catch (const Error& e) {
         const std::string what = e.what();
@@ -434,7 +327,7 @@ private:
     }
     void tabulated(const SourceLocation& where, const std::string& what, double loNm,
                    double hiNm) const override {
-      b_.tables_.push_back({where.str(), what, loNm, hiNm});
+      b_.refs_.noteTable({where.str(), what, loNm, hiNm});
     }
 
   private:
@@ -464,7 +357,7 @@ private:
   public:
     explicit KindInputs(const Builder& b) : b_(b) {}
     Spectrum spectrum(const SpectrumDesc& d, SpectrumRole role) const override {
-      return b_.resolve(d, role);
+      return b_.refs_.resolve(d, role);
     }
     IorModel ior(const IorDesc& d) const override { return b_.iorModel(d); }
     FluorescenceModel fluorescenceModel(const FluorescenceDesc& d) const override {
@@ -475,12 +368,13 @@ private:
       try {
         if (d.matrix) { // given as numbers (Python): checked, its content in the render key
           checkMeasuredMatrix(*d.matrix, "the measured matrix");
-          b_.digest_ = fnv1a64(canonicalText(ParamValue(d)), b_.digest_);
+          b_.refs_.fold(canonicalText(ParamValue(d)), "the measured matrix");
           return std::make_shared<const ReradiationMatrix>(
               ReradiationMatrix::fromMeasured(*d.matrix));
         }
-        return std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromMeasured(
-            parseMeasuredMatrixCsv(b_.readReferencedFile(*d.matrixCsv), *d.matrixCsv)));
+        return std::make_shared<const ReradiationMatrix>(
+            ReradiationMatrix::fromMeasured(parseMeasuredMatrixCsv(
+                b_.refs_.readFile(*d.matrixCsv, 64u << 20, "table file"), *d.matrixCsv)));
       } catch (const Error& e) {
         throw Error(d.loc.str() + ": " + e.what());
       }
@@ -522,9 +416,7 @@ private:
   std::shared_ptr<const ReflectanceTexture> texture(const SpectrumDesc& d) const {
     if (d.texture == "colorchecker") return ReflectanceTexture::colorChecker();
     try {
-      const std::string bytes = readRegularFile(d.texture, kMaxTextureFileBytes, "texture file");
-      digest_ = fnv1a64(
-          bytes, fnv1a64(std::string_view(d.texture.c_str(), d.texture.size() + 1), digest_));
+      const std::string bytes = refs_.readFile(d.texture, kMaxTextureFileBytes, "texture file");
       return readReflectanceTexture(d.texture, bytes);
     } catch (const Error& e) {
       // Every texture error names the texture, whichever reader raised it.
@@ -604,7 +496,7 @@ private:
     if (!o.emission) return std::nullopt;
     Spectrum e;
     if (spectral || o.emission->kind != SpectrumDesc::Kind::Number) {
-      e = resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale);
+      e = refs_.resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale);
     } else {
       // rt and mcpt: a numeric <emission> is scaled by <color> (white if absent); a spectrum
       // is used as in spectral mode.
@@ -617,14 +509,12 @@ private:
         throw Error(o.emission->loc.str() + ": " + err.what());
       }
     }
-    checkEmission(e, o.emission->loc);
+    SceneReferences::checkEmission(e, o.emission->loc);
     return e;
   }
 
   const SceneDesc& desc_;
-  std::map<std::string, const NamedSpectrumDesc*> named_;
-  mutable std::vector<TabulatedRange> tables_; ///< tables without an extrapolate choice
-  mutable uint64_t digest_; ///< the scene text's digest, then every referenced file's bytes
+  mutable SceneReferences refs_; ///< spectra resolved, referenced files in the digest
 };
 
 } // namespace
