@@ -5,6 +5,7 @@
 // registry (light_kinds.h) lists the kinds in one variant.
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <span>
 #include <string>
@@ -53,6 +54,37 @@ public:
   bool spectral = true; ///< spectral_mcpt (else rt or mcpt: <color> preferred)
   SourceLocation loc;   ///< the <light> element
 };
+
+/// Where a light is (every positioned kind's first parameter).
+inline const LightParameter kLightPosition{
+    {"position", ParamType::Point, "scene units", nullptr, "where it is", "0, 5, 0"}, "", true};
+/// The factor on a light's <emission>, written as its scale="...".
+inline const LightParameter kLightEmissionScale{
+    {"emission_scale", ParamType::Number, "1", &kPositiveScaleRange,
+     "the factor on <emission> (its scale=\"...\")", "2"},
+    "1"};
+
+/// A delta light's sample from p: the direction and distance to `position` and the intensity
+/// times factor(wi) / d^2 (pdf 1); false where it sends nothing (factor 0).
+template <class Factor>
+bool sampleDeltaLight(const Vec3& position, const Spectrum& intensity, const Vec3& p,
+                      const SampledWavelengths& lambda, LightSample& out, Factor&& factor) {
+  const Vec3 toLight = position - p;
+  const float d2 = dot(toLight, toLight);
+  if (!(d2 > 0)) return false;
+  out.distance = std::sqrt(d2);
+  out.wi = toLight / out.distance;
+  const float s = factor(out.wi);
+  if (!(s > 0)) return false;
+  out.p = position;
+  out.pError = Vec3(0, 0, 0);
+  out.n = Vec3(0, 0, 0);
+  intensity.evaluate(lambda, out.radiance);
+  out.radiance *= s / d2;
+  out.pdf = 1;
+  out.delta = true;
+  return true;
+}
 
 /// Integral of a spectrum over the traced range (1 nm trapezoids): the lights' power weights.
 inline double tracedIntegral(const Spectrum& s) {

@@ -55,28 +55,47 @@ const MaterialKind kKinds[] = {MaterialKind::Mixture,   MaterialKind::Dielectric
                                MaterialKind::Interface, MaterialKind::ThinDielectric,
                                MaterialKind::Conductor, MaterialKind::CoatedDiffuse};
 
-Vec3 direction(float cosTheta, float phi) {
-  const float s = std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta));
-  return {s * std::cos(phi), s * std::sin(phi), cosTheta};
-}
-
-TEST(MaterialConformance, EveryKindKeepsEnergyAndStaysFinite) {
+// The lanes' wavelengths the checks use: spread over the visible range and beyond.
+SampledWavelengths conformanceWavelengths() {
   SampledWavelengths lambda;
   for (int i = 0; i < kLanes; ++i) {
     lambda.lambda[i] = 420.0f + 70.0f * static_cast<float>(i);
     lambda.pdf[i] = 1.0f / 300.0f;
   }
+  return lambda;
+}
+
+Vec3 direction(float cosTheta, float phi) {
+  const float s = std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta));
+  return {s * std::cos(phi), s * std::sin(phi), cosTheta};
+}
+
+// A sphere made of one way of reaching a kind, and the material's reflectance at the lanes.
+struct KindCase {
+  RenderScene scene;
+  SampledSpectrum rho;
+  const Material& material() const { return scene.materials[scene.spheres[0].material]; }
+};
+
+KindCase kindCase(const std::string& body, const SampledWavelengths& lambda) {
+  KindCase c{resolveRenderScene(parseScene(
+                 sceneText("<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>",
+                           "<position>0,0,-5</position><look_at>0,0,0</look_at>",
+                           "<sphere><center>0,0,0</center><radius>1</radius>" + body + "</sphere>"),
+                 "t.scn")),
+             {}};
+  c.material().reflectance.evaluate(lambda.lambda, c.rho);
+  return c;
+}
+
+TEST(MaterialConformance, EveryKindKeepsEnergyAndStaysFinite) {
+  const SampledWavelengths lambda = conformanceWavelengths();
   for (const MaterialKind kind : kKinds) {
     for (const std::string& body : bodiesOf(kind)) {
-      const std::string settings = "<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>";
-      const RenderScene scene = resolveRenderScene(parseScene(
-          sceneText(settings, "<position>0,0,-5</position><look_at>0,0,0</look_at>",
-                    "<sphere><center>0,0,0</center><radius>1</radius>" + body + "</sphere>"),
-          "t.scn"));
-      const Material& m = scene.materials[scene.spheres[0].material];
+      const KindCase c = kindCase(body, lambda);
+      const Material& m = c.material();
+      const SampledSpectrum& rho = c.rho;
       ASSERT_EQ(m.kind, kind) << body;
-      SampledSpectrum rho;
-      m.reflectance.evaluate(lambda.lambda, rho);
       for (float cosTheta : {1.0f, 0.6f, 0.2f, 0.02f, -0.02f, -0.2f, -0.6f, -1.0f}) {
         const Vec3 wo = direction(cosTheta, 0.7f), n(0, 0, 1);
         const SurfaceBsdf bsdf(m, lambda, rho, n, wo, TransportMode::Energy);
@@ -106,33 +125,19 @@ TEST(MaterialConformance, EveryKindKeepsEnergyAndStaysFinite) {
   }
 }
 
-// The material of a sphere with `body`.
-RenderScene sphereScene(const std::string& body) {
-  return resolveRenderScene(
-      parseScene(sceneText("<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>",
-                           "<position>0,0,-5</position><look_at>0,0,0</look_at>",
-                           "<sphere><center>0,0,0</center><radius>1</radius>" + body + "</sphere>"),
-                 "t.scn"));
-}
-
 // What Whitted ray tracing follows (every delta lobe with its full weight) is what the path
 // tracer's sampling draws on average: over a fine grid of lobe choices, the specular samples'
 // weights summed per direction and divided by the count equal each lobe's weight (the choice
 // probability cancels its 1/p), lane by lane (the hero lane alone after a dispersive
 // refraction, whose secondaries the sample terminates).
 TEST(MaterialConformance, SpecularLobesAreWhatSamplingDrawsOnAverage) {
-  SampledWavelengths lambda;
-  for (int i = 0; i < kLanes; ++i) {
-    lambda.lambda[i] = 420.0f + 70.0f * static_cast<float>(i);
-    lambda.pdf[i] = 1.0f / 300.0f;
-  }
+  const SampledWavelengths lambda = conformanceWavelengths();
   int lobesChecked = 0;
   for (const MaterialKind kind : kKinds)
     for (const std::string& body : bodiesOf(kind)) {
-      const RenderScene scene = sphereScene(body);
-      const Material& m = scene.materials[scene.spheres[0].material];
-      SampledSpectrum rho;
-      m.reflectance.evaluate(lambda.lambda, rho);
+      const KindCase c = kindCase(body, lambda);
+      const Material& m = c.material();
+      const SampledSpectrum& rho = c.rho;
       for (float cosTheta : {1.0f, 0.5f, 0.1f, -0.3f, -0.9f}) {
         const Vec3 wo = direction(cosTheta, 0.7f), n(0, 0, 1);
         const SurfaceBsdf bsdf(m, lambda, rho, n, wo);
@@ -169,18 +174,13 @@ TEST(MaterialConformance, SpecularLobesAreWhatSamplingDrawsOnAverage) {
 // f(wo, wi) = f(wi, wo), compared as f |cos wi| / |cos wi| both ways. The kinds are bodiesOf's
 // compile-time list.
 TEST(MaterialConformance, SamplingFollowsThePdfWeightsAreFOverPdfReflectionIsReciprocal) {
-  SampledWavelengths lambda;
-  for (int i = 0; i < kLanes; ++i) {
-    lambda.lambda[i] = 420.0f + 70.0f * static_cast<float>(i);
-    lambda.pdf[i] = 1.0f / 300.0f;
-  }
+  const SampledWavelengths lambda = conformanceWavelengths();
   int checked = 0;
   for (const MaterialKind kind : kKinds)
     for (const std::string& body : bodiesOf(kind)) {
-      const RenderScene scene = sphereScene(body);
-      const Material& m = scene.materials[scene.spheres[0].material];
-      SampledSpectrum rho;
-      m.reflectance.evaluate(lambda.lambda, rho);
+      const KindCase c = kindCase(body, lambda);
+      const Material& m = c.material();
+      const SampledSpectrum& rho = c.rho;
       const Vec3 n(0, 0, 1);
       for (const Vec3& wo :
            {normalize(Vec3(0.3f, 0.1f, 0.9f)), normalize(Vec3(-0.8f, 0.3f, 0.25f))}) {

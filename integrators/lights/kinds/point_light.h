@@ -19,9 +19,7 @@ struct PointLight {
   /// Its parameters.
   static std::span<const LightParameter> parameters() {
     static const LightParameter p[] = {
-        {{"position", ParamType::Point, "scene units", nullptr, "where it is", "0, 5, 0"},
-         "",
-         true},
+        kLightPosition,
         {{"color", ParamType::Rgb, "W sr^-1 nm^-1", nullptr,
           "RGB intensity (rt and mcpt; spectral_mcpt without <emission>)", "40, 40, 40"},
          "",
@@ -29,9 +27,7 @@ struct PointLight {
         {{"emission", ParamType::Spectrum, "W sr^-1 nm^-1", nullptr,
           "spectral intensity (spectral_mcpt); scale=\"...\" multiplies it", "D65"},
          ""},
-        {{"emission_scale", ParamType::Number, "1", &kPositiveScaleRange,
-          "the factor on <emission> (its scale=\"...\")", "2"},
-         "1"},
+        kLightEmissionScale,
     };
     return p;
   }
@@ -49,19 +45,7 @@ struct PointLight {
   static constexpr bool kInfinite = false;
   /// The direction from p to it and I / d^2 (a delta: pdf 1).
   bool sample(const Vec3& p, Sample2, const SampledWavelengths& lambda, LightSample& out) const {
-    const Vec3 toLight = position - p;
-    const float d2 = dot(toLight, toLight);
-    if (!(d2 > 0)) return false;
-    out.distance = std::sqrt(d2);
-    out.wi = toLight / out.distance;
-    out.p = position;
-    out.pError = Vec3(0, 0, 0);
-    out.n = Vec3(0, 0, 0);
-    intensity.evaluate(lambda, out.radiance);
-    out.radiance *= 1.0f / d2;
-    out.pdf = 1;
-    out.delta = true;
-    return true;
+    return sampleDeltaLight(position, intensity, p, lambda, out, [](const Vec3&) { return 1.0f; });
   }
 };
 

@@ -34,9 +34,7 @@ struct SpotLight {
   /// Its parameters.
   static std::span<const LightParameter> parameters() {
     static const LightParameter p[] = {
-        {{"position", ParamType::Point, "scene units", nullptr, "where it is", "0, 5, 0"},
-         "",
-         true},
+        kLightPosition,
         {{"look_at", ParamType::Point, "scene units", nullptr, "a point on its axis", "0, 0, 0"},
          "",
          true},
@@ -55,9 +53,7 @@ struct SpotLight {
           "multiplies it",
           "A"},
          ""},
-        {{"emission_scale", ParamType::Number, "1", &kPositiveScaleRange,
-          "the factor on <emission> (its scale=\"...\")", "2"},
-         "1"},
+        kLightEmissionScale,
     };
     return p;
   }
@@ -114,21 +110,8 @@ struct SpotLight {
   }
   /// The direction from p to it and I s(cos theta) / d^2 (a delta: pdf 1).
   bool sample(const Vec3& p, Sample2, const SampledWavelengths& lambda, LightSample& out) const {
-    const Vec3 toLight = position - p;
-    const float d2 = dot(toLight, toLight);
-    if (!(d2 > 0)) return false;
-    out.distance = std::sqrt(d2);
-    out.wi = toLight / out.distance;
-    const float s = falloff(-dot(out.wi, axis));
-    if (!(s > 0)) return false;
-    out.p = position;
-    out.pError = Vec3(0, 0, 0);
-    out.n = Vec3(0, 0, 0);
-    intensity.evaluate(lambda, out.radiance);
-    out.radiance *= s / d2;
-    out.pdf = 1;
-    out.delta = true;
-    return true;
+    return sampleDeltaLight(position, intensity, p, lambda, out,
+                            [&](const Vec3& wi) { return falloff(-dot(wi, axis)); });
   }
 };
 
