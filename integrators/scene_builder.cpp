@@ -338,7 +338,9 @@ private:
   // (the loader read them so; Python edits are checked again here).
   SceneLight light(const LightDesc& l, bool spectral) const {
     const LightKindSpec* kind = findLightKind(l.kind);
-    if (!kind) throw Error(l.loc.str() + ": expected a light type, found '" + l.kind + "'");
+    if (!kind)
+      throw Error(l.loc.str() + ": expected a light type " + lightKindList() + ", found '" +
+                  l.kind + "'");
     for (const Parameter& p : l.params.items())
       if (!lightParameter(*kind, p.name))
         throw Error(p.loc.str() + ": expected no <" + p.name + "> on a " + kind->name +

@@ -623,14 +623,7 @@ private:
     l.loc = loc(n);
     if (n.attribute("type")) l.kind = trim(decoded(n.attribute("type").value(), n));
     const LightKindSpec* kind = findLightKind(l.kind);
-    if (!kind) {
-      std::vector<std::string> names;
-      for (const LightKindSpec& k : lightKinds()) names.push_back(k.name);
-      std::string list;
-      for (size_t i = 0; i < names.size(); ++i)
-        list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
-      fail(n, "a light type " + list, shownText(l.kind));
-    }
+    if (!kind) fail(n, "a light type " + lightKindList(), shownText(l.kind));
     std::vector<std::string> names;
     for (const LightParameter& p : kind->params())
       if (!std::string(p.spec.name).ends_with("_scale")) names.push_back(p.spec.name);

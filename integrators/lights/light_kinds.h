@@ -4,6 +4,7 @@
 // its header in kinds/ and its name in SceneLight below (docs/architecture.md).
 
 #include <array>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <variant>
@@ -51,6 +52,15 @@ inline const LightKindSpec* findLightKind(std::string_view name) {
   for (const LightKindSpec& k : lightKinds())
     if (name == k.name) return &k;
   return nullptr;
+}
+
+/// "point, spot or environment": the kinds' names for messages.
+inline std::string lightKindList() {
+  std::string list;
+  const auto kinds = lightKinds();
+  for (size_t i = 0; i < kinds.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == kinds.size() ? " or " : ", ") + std::string(kinds[i].name);
+  return list;
 }
 
 /// The declaration of parameter `name` of `kind`, or null.

@@ -147,6 +147,28 @@ TEST(EnvironmentLight, OneBrightTexelIsADistantLightsClosedForm) {
       film, [&](int) { return expected; }, 0.02);
 }
 
+// A map whose bands end inside the traced range is 0 beyond them, and a render tracing there
+// says so (the extrapolation warning names the map and its range).
+TEST(EnvironmentLight, BandsEndingInsideTheTracedRangeWarn) {
+  SpectralImage img;
+  img.width = 4, img.height = 2;
+  img.bands = Sensor(SpectralBands::parse("500:600:50"));
+  img.radiance.assign(static_cast<size_t>(8 * img.bands.count()), 1.0f);
+  img.rgb.assign(24, 0.5f);
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  const std::string map = ::testing::TempDir() + "/env_narrow.exr";
+  writeSpectralExr(map, img);
+  const RenderScene scene = resolveRenderScene(parseScene(
+      sceneWith("", kLookDown, "<light type=\"environment\"><file>" + map + "</file></light>"),
+      "t.scn"));
+  const std::vector<std::string> w = extrapolationWarnings(scene, 400, 700);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("t.scn:1: warning: spectrum '" + map + "' is tabulated over 500-600 nm"),
+            std::string::npos)
+      << w[0];
+  EXPECT_TRUE(extrapolationWarnings(scene, 520, 580).empty());
+}
+
 TEST(EnvironmentLight, SceneErrors) {
   auto error = [](const std::string& light) {
     return test::errorMessage(
