@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace nx {
 
@@ -30,6 +31,14 @@ inline std::string numberText(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.7g", v);
   return buf;
+}
+
+/// "a, b or c": names listed in a message.
+inline std::string listWithOr(const std::vector<std::string>& items) {
+  std::string out;
+  for (size_t i = 0; i < items.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == items.size() ? " or " : ", ") + items[i];
+  return out;
 }
 
 } // namespace nx

@@ -8,6 +8,9 @@
 #include <string_view>
 #include <utility>
 #include <variant>
+#include <vector>
+
+#include "core/kind_lookup.h"
 
 #include "integrators/lights/kinds/environment_light.h"
 #include "integrators/lights/kinds/point_light.h"
@@ -49,25 +52,17 @@ inline std::span<const LightKindSpec> lightKinds() {
 
 /// The kind called `name`, or null.
 inline const LightKindSpec* findLightKind(std::string_view name) {
-  for (const LightKindSpec& k : lightKinds())
-    if (name == k.name) return &k;
-  return nullptr;
+  return findKindNamed(lightKinds(), name);
 }
 
 /// "point, spot or environment": the kinds' names for messages.
 inline std::string lightKindList() {
-  std::string list;
-  const auto kinds = lightKinds();
-  for (size_t i = 0; i < kinds.size(); ++i)
-    list += (i == 0 ? "" : i + 1 == kinds.size() ? " or " : ", ") + std::string(kinds[i].name);
-  return list;
+  return kindNameList(lightKinds());
 }
 
 /// The declaration of parameter `name` of `kind`, or null.
 inline const LightParameter* lightParameter(const LightKindSpec& kind, std::string_view name) {
-  for (const LightParameter& p : kind.params())
-    if (name == p.spec.name) return &p;
-  return nullptr;
+  return findParameterNamed(kind.params(), name);
 }
 
 } // namespace nx

@@ -29,18 +29,6 @@ const MaterialKindSpec* findMaterialKind(std::string_view name) {
   return nullptr;
 }
 
-namespace {
-
-// "a, b or c".
-std::string listWithOr(const std::vector<std::string>& items) {
-  std::string out;
-  for (size_t i = 0; i < items.size(); ++i)
-    out += (i == 0 ? "" : i + 1 == items.size() ? " or " : ", ") + items[i];
-  return out;
-}
-
-} // namespace
-
 std::string materialKindList() {
   std::vector<std::string> names;
   for (const MaterialKindSpec* k : materialKinds()) names.push_back(k->name);
