@@ -19,10 +19,6 @@
 
 namespace nx {
 
-/// Largest absorption or scattering coefficient of a medium (per scene unit of length): a
-/// mean free path of 1e-9 units, far below any scene's scale.
-inline constexpr double kMaxMediumCoefficient = 1e9;
-
 /// Largest spectral EXR a reflectance texture may be read from (bytes).
 inline constexpr std::uintmax_t kMaxTextureFileBytes = 4ull << 30;
 
@@ -80,7 +76,7 @@ struct RenderScene {
   std::vector<Spectrum> emission;               ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
   std::vector<ShapeAppearance> spheres, planes; ///< parallel to the geometry's shapes
   std::vector<MeshAppearance> meshes;           ///< parallel to the geometry's meshes
-  std::vector<SceneLight> lights; ///< the <light>s (points, spots, ...), in file order
+  std::vector<SceneLight> lights;     ///< the <light>s (points, spots, ...), in file order
   std::optional<Spectrum> background; ///< uniform environment radiance
   Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
   size_t meshBytes = 0;               ///< bytes the meshes' buffers take

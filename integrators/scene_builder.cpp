@@ -4,11 +4,13 @@
 #include <tuple>
 
 #include "accel/closed_mesh.h"
+#include "accel/shape_kinds.h"
 #include "core/error.h"
 #include "core/math_util.h"
 #include "core/text_table.h"
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
+#include "integrators/media/medium_kinds.h"
 #include "integrators/render_scene.h"
 #include "integrators/scene_references.h"
 #include "io/camera_from_desc.h"
@@ -26,7 +28,7 @@ namespace {
 
 class Builder {
 public:
-  explicit Builder(const SceneDesc& desc) : desc_(desc), refs_(desc) {}
+  explicit Builder(const SceneDesc& desc) : desc_(desc), refs_(desc), mediumInputs_(*this) {}
 
   RenderScene build(bool withGeometry) {
     RenderScene scene;
@@ -57,7 +59,8 @@ public:
     // that description.
     std::map<std::string, uint32_t> materialByText;
     std::vector<uint32_t> materialIdOf;                 // per material index
-    std::vector<std::pair<size_t, size_t>> meshObjects; // (mesh, object) of mesh files
+    std::vector<std::pair<size_t, size_t>> meshObjects; // (mesh, object) of meshes
+    const ShapeKindInputs shapeInputs(*this);
     for (size_t objectIndex = 0; objectIndex < desc_.objects.size(); ++objectIndex) {
       const ObjectDesc& o = desc_.objects[objectIndex];
       ShapeAppearance app;
@@ -86,12 +89,6 @@ public:
       if (o.medium) {
         app.medium = static_cast<int32_t>(scene.media.size());
         scene.media.push_back(medium(*o.medium));
-        if (o.shape == ShapeType::Sphere)
-          warnIfBelowFloatPrecision(
-              scene.media.back(), o.medium->loc,
-              std::max({std::abs(o.center.x), std::abs(o.center.y), std::abs(o.center.z)}) +
-                  o.radius,
-              scene.warnings);
         scene.hasMedia = true;
         if (scene.media.back().dye) scene.hasFluorescence = true;
       }
@@ -99,39 +96,41 @@ public:
         app.emission = static_cast<int32_t>(scene.emission.size());
         scene.emission.push_back(forRendering(*e));
       }
-      switch (o.shape) {
-      case ShapeType::Sphere:
-        spheres.push_back({o.center, o.radius});
-        app.boundary = 1;
-        scene.spheres.push_back(app);
-        break;
-      case ShapeType::Plane:
-        planes.push_back({o.normal, o.distance});
-        scene.planes.push_back(app);
-        break;
-      case ShapeType::Triangle:
-        triangles.push_back({o.vertices[0], o.vertices[1], o.vertices[2]});
-        inlineTriangles.perTriangle.push_back(app);
-        break;
-      case ShapeType::Quad:
-        meshes.push_back(quadMesh(o.vertices[0], o.vertices[1], o.vertices[2]));
-        scene.meshes.push_back({app, {}});
-        break;
-      case ShapeType::Mesh:
-        meshes.push_back(meshFromFile(o));
-        if (o.medium) {
-          double extent = 0;
-          for (uint32_t v = 0; v < meshes.back().vertexCount(); ++v) {
-            const Vec3 p = meshes.back().position(v);
-            extent = std::max(
-                {extent, double(std::abs(p.x)), double(std::abs(p.y)), double(std::abs(p.z))});
-          }
-          warnIfBelowFloatPrecision(scene.media.back(), o.medium->loc, extent, scene.warnings);
-        }
-        scene.meshes.push_back({app, {}});
-        meshObjects.emplace_back(meshes.size() - 1, objectIndex);
-        break;
-      }
+      // The kind's primitive, placed by its type: spheres and planes in their lists, inline
+      // triangles gathered into one mesh, meshes (quads, files) one Embree geometry each.
+      const ShapeKindSpec& kind = *findShapeKind(o.shape); // the loader checked the name
+      ShapeGeometry geometry = shapeInputs.build(kind, o);
+      double extent = 0; // how far from the origin it reaches (a medium's float resolution)
+      std::visit(
+          [&](auto& shape) {
+            using Shape = std::decay_t<decltype(shape)>;
+            if constexpr (std::is_same_v<Shape, SphereShape>) {
+              extent = std::max({std::abs(shape.center.x), std::abs(shape.center.y),
+                                 std::abs(shape.center.z)}) +
+                       shape.radius;
+              spheres.push_back(shape);
+              app.boundary = 1;
+              scene.spheres.push_back(app);
+            } else if constexpr (std::is_same_v<Shape, PlaneShape>) {
+              planes.push_back(shape);
+              scene.planes.push_back(app);
+            } else if constexpr (std::is_same_v<Shape, TriangleShape>) {
+              triangles.push_back(shape);
+              inlineTriangles.perTriangle.push_back(app);
+            } else {
+              for (uint32_t v = 0; v < shape.vertexCount(); ++v) {
+                const Vec3 p = shape.position(v);
+                extent = std::max(
+                    {extent, double(std::abs(p.x)), double(std::abs(p.y)), double(std::abs(p.z))});
+              }
+              meshes.push_back(std::move(shape));
+              scene.meshes.push_back({app, {}});
+              meshObjects.emplace_back(meshes.size() - 1, objectIndex);
+            }
+          },
+          geometry);
+      if (o.medium)
+        warnIfBelowFloatPrecision(scene.media.back(), o.medium->loc, extent, scene.warnings);
     }
     for (const LightDesc& l : desc_.lights) scene.lights.push_back(light(l, spectral));
     if (!triangles.empty()) {
@@ -148,7 +147,8 @@ public:
         throw Error(o.medium->loc.str() +
                     ": expected a closed mesh around a <medium> (every "
                     "edge shared by two triangles wound alike), found " +
-                    c.problem + " in " + o.meshPath);
+                    c.problem + " in " +
+                    (o.geometry.has("file") ? *o.geometry.get<std::string>("file") : o.shape));
       if (!c.closed) continue;
       scene.meshes[meshIndex].whole.boundary = c.volume > 0 ? 1 : -1;
       closedMeshes.emplace_back(std::abs(c.volume), meshIndex);
@@ -190,32 +190,6 @@ private:
     throw Error("no material '" + id + "'"); // unreachable after loading
   }
 
-  // A quad as two triangles with uv (0,0) at the origin corner, (1,1) at the opposite one.
-  static TriangleMesh quadMesh(const Vec3d& origin, const Vec3d& edgeU, const Vec3d& edgeV) {
-    TriangleMesh m;
-    const uint32_t a = m.addVertex(Vec3(origin)), b = m.addVertex(Vec3(origin + edgeU)),
-                   c = m.addVertex(Vec3(origin + edgeU + edgeV)),
-                   d = m.addVertex(Vec3(origin + edgeV));
-    m.addTriangle(a, b, c);
-    m.addTriangle(a, c, d);
-    m.setAttributes({}, {0, 0, 1, 0, 1, 1, 0, 1});
-    return m;
-  }
-
-  // A mesh file, read and transformed; its bytes join the content digest.
-  TriangleMesh meshFromFile(const ObjectDesc& o) const {
-    try {
-      MeshFile f = readMeshFile(o.meshPath);
-      refs_.fold(f.bytes, o.meshPath);
-      f.mesh.transform(o.transform.m, o.transform.t);
-      if (const std::string problem = f.mesh.validate(); !problem.empty())
-        throw Error("mesh '" + o.meshPath + "' after its <transform>: " + problem);
-      return std::move(f.mesh);
-    } catch (const Error& e) {
-      throw Error(o.loc.str() + ": " + e.what());
-    }
-  }
-
   // A <medium>: its coefficients resolved and checked over the traced range.
   // Positions are floats: where a medium stands `extent` from the origin they are resolved to
   // about extent * 2^-23. A mean free path within 50 of those steps is walked with a relative
@@ -235,43 +209,9 @@ private:
                          "origin or give it in larger units");
   }
 
+  // A <medium>: its kind's build (the loader checked the kind's name).
   HomogeneousMedium medium(const MediumDesc& d) const {
-    HomogeneousMedium m;
-    m.sigmaA =
-        forRendering(refs_.resolve(d.sigmaA, SpectrumRole::Coefficient).scaled(d.sigmaAScale));
-    m.sigmaS =
-        forRendering(refs_.resolve(d.sigmaS, SpectrumRole::Coefficient).scaled(d.sigmaSScale));
-    for (const auto& [sp, desc, what] : {std::tuple{&m.sigmaA, &d.sigmaA, "sigma_a"},
-                                         std::tuple{&m.sigmaS, &d.sigmaS, "sigma_s"}}) {
-      const SpectrumExtremes e = spectrumExtremes(*sp, kTraceMinNm, kTraceMaxNm);
-      if (!(e.min >= 0 && e.max <= kMaxMediumCoefficient))
-        throw Error(desc->loc.str() + ": expected " + what + " within [0, " +
-                    numberText(kMaxMediumCoefficient) +
-                    "] per unit length at every wavelength of " + tracedRange() + ", found " +
-                    (std::isnan(e.min) ? std::string("a non-finite value")
-                                       : numberText(e.min < 0 ? e.min : e.max) + " at " +
-                                             numberText(e.min < 0 ? e.minNm : e.maxNm) + " nm"));
-    }
-    m.g = static_cast<float>(d.g);
-    if (d.emission) {
-      // The source is sigma_a Le: a medium that absorbs nothing cannot emit (Kirchhoff).
-      if (!(spectrumExtremes(m.sigmaA, kTraceMinNm, kTraceMaxNm).max > 0))
-        throw Error(d.emission->loc.str() +
-                    ": expected a medium that absorbs (sigma_a > 0 somewhere in " + tracedRange() +
-                    ") for an <emission>: the medium emits sigma_a Le per unit length, found "
-                    "sigma_a = 0 everywhere");
-      const Spectrum le =
-          refs_.resolve(*d.emission, SpectrumRole::Emission).scaled(d.emissionScale);
-      SceneReferences::checkEmission(le, d.emission->loc);
-      m.emission = forRendering(le);
-    }
-    if (d.fluorescence) {
-      FluorescenceModel model = fluorescence(*d.fluorescence);
-      m.dyePeak = static_cast<float>(model.peakAbsorptance); // the coefficient, per unit length
-      model.peakAbsorptance = 1;
-      m.dye = std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromModel(model));
-    }
-    return m;
+    return findMediumKind(d.kind)->build(d.params, mediumInputs_);
   }
 
   // The media of the spheres and closed meshes containing the camera, outermost (largest)
@@ -297,6 +237,50 @@ private:
     for (const auto& entry : around) stack.enter(entry.second);
     return stack;
   }
+
+  // What the medium kinds' builds ask of the scene (integrators/media/homogeneous_medium.h).
+  class MediumKindInputs : public MediumInputs {
+  public:
+    explicit MediumKindInputs(const Builder& b) : b_(b) {}
+    Spectrum spectrum(const SpectrumDesc& d, SpectrumRole role) const override {
+      return b_.refs_.resolve(d, role);
+    }
+    void checkEmission(const Spectrum& s, const SourceLocation& where) const override {
+      SceneReferences::checkEmission(s, where);
+    }
+    FluorescenceModel fluorescenceModel(const FluorescenceDesc& f) const override {
+      return b_.fluorescence(f);
+    }
+
+  private:
+    const Builder& b_;
+  };
+
+  // What the shape kinds' builds ask of the scene (accel/shape_schema.h): mesh files read,
+  // their bytes folded into the content digest; errors name the object's line.
+  class ShapeKindInputs : public ShapeInputs {
+  public:
+    explicit ShapeKindInputs(const Builder& b) : b_(b) {}
+    TriangleMesh meshFile(const std::string& path, const AffineDesc& t) const override {
+      MeshFile f = readMeshFile(path);
+      b_.refs_.fold(f.bytes, path);
+      f.mesh.transform(t.m, t.t);
+      if (const std::string problem = f.mesh.validate(); !problem.empty())
+        throw Error("mesh '" + path + "' after its <transform>: " + problem);
+      return std::move(f.mesh);
+    }
+    // The object's primitive from its kind's build.
+    ShapeGeometry build(const ShapeKindSpec& kind, const ObjectDesc& o) const {
+      try {
+        return kind.build(o.geometry, *this);
+      } catch (const Error& e) {
+        throw Error(o.loc.str() + ": " + e.what());
+      }
+    }
+
+  private:
+    const Builder& b_;
+  };
 
   // What the light kinds' builds ask of the scene (integrators/lights/light_kind.h).
   class LightKindInputs : public LightInputs {
@@ -516,7 +500,8 @@ private:
   }
 
   const SceneDesc& desc_;
-  mutable SceneReferences refs_; ///< spectra resolved, referenced files in the digest
+  mutable SceneReferences refs_;        ///< spectra resolved, referenced files in the digest
+  const MediumKindInputs mediumInputs_; ///< what the media kinds ask of the scene
 };
 
 } // namespace

@@ -30,6 +30,10 @@ const char* paramTypeName(ParamType t) {
     return "point";
   case ParamType::File:
     return "file";
+  case ParamType::Transform:
+    return "transform";
+  case ParamType::Dye:
+    return "dye";
   }
   return "?";
 }
@@ -124,6 +128,10 @@ struct CanonicalWriter {
   }
   void operator()(const std::string& s) const { t << s.size() << ':' << s; }
   void operator()(const Vec3d& v) const { t << v.x << ',' << v.y << ',' << v.z; }
+  void operator()(const AffineDesc& a) const {
+    for (const auto& row : a.m) t << row[0] << ',' << row[1] << ',' << row[2] << ',';
+    (*this)(a.t);
+  }
 };
 
 } // namespace

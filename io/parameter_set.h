@@ -30,6 +30,8 @@ enum class ParamType : uint8_t {
   Name,         ///< a word from a list (e.g. a built-in metal)
   Point,        ///< x, y, z within 1e12 (scene units)
   File,         ///< a file name, relative to the scene file
+  Transform,    ///< <translate>, <rotate>, <scale> and <matrix> steps: an affine map
+  Dye,          ///< a medium's dye: the fluorescence model with <peak> per unit length
 };
 
 /// The type's name in reference docs and errors ("number", "spectrum", ...).
@@ -47,13 +49,25 @@ struct ParamSpec {
   /// Names that cannot be given with it, space-separated ("" : none): setting it from Python
   /// removes them (a <metal> replaces <eta> and <k>).
   const char* excludes = "";
+  /// Point: what its three numbers are in errors ("" : "x, y, z"); File given as an attribute:
+  /// what the file is ("a .ply or .obj mesh").
+  const char* what = "";
+};
+
+/// One parameter a light or medium kind takes: its declaration, its default, whether it is
+/// required. A Spectrum parameter NAME may have a factor NAME_scale, written as its
+/// scale="..." attribute.
+struct TakenParameter {
+  ParamSpec spec;          ///< name, type, unit, range, meaning, example
+  const char* defaultText; ///< its default as a scene would write it ("": none)
+  bool required = false;   ///< the item cannot be built without it
 };
 
 /// A parameter's value, by type (Number -> double, Rgb -> array, Spectrum and Reflectance ->
-/// SpectrumDesc, Ior -> IorDesc, Fluorescence -> FluorescenceDesc, Coating -> CoatingDesc,
-/// Name and File -> string, Point -> Vec3d).
+/// SpectrumDesc, Ior -> IorDesc, Fluorescence and Dye -> FluorescenceDesc, Coating -> CoatingDesc,
+/// Name and File -> string, Point -> Vec3d, Transform -> AffineDesc).
 using ParamValue = std::variant<double, std::array<double, 4>, SpectrumDesc, IorDesc,
-                                FluorescenceDesc, CoatingDesc, std::string, Vec3d>;
+                                FluorescenceDesc, CoatingDesc, std::string, Vec3d, AffineDesc>;
 
 /// One parameter as given.
 struct Parameter {

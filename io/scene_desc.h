@@ -26,23 +26,13 @@ struct NamedSpectrumDesc {
   SourceLocation loc;
 };
 
-/// <medium> inside a closed object: a homogeneous participating medium filling it.
+/// <medium type="..."> inside a sphere or closed mesh: a medium kind (homogeneous when absent)
+/// and its parameters as written (integrators/media/medium_kinds.h, docs/reference/media.md).
 struct MediumDesc {
-  SpectrumDesc sigmaA;                     ///< absorption coefficient per scene unit of length
-  SpectrumDesc sigmaS;                     ///< scattering coefficient per scene unit of length
-  double sigmaAScale = 1, sigmaSScale = 1; ///< their scale="..." factors (unit conversions)
-  double g = 0;                            ///< Henyey-Greenstein mean cosine, in (-1, 1)
-  /// Emitted radiance Le (source sigma_a Le), with its scale="..."
-  std::optional<SpectrumDesc> emission;
-  double emissionScale = 1; ///< <emission scale="..."> of the medium
-  /// A fluorescent dye dissolved in it: the parametric model, its <peak> being the dye's peak
-  /// absorption coefficient per unit length (added to sigma_a's absorption)
-  std::optional<FluorescenceDesc> fluorescence;
+  std::string kind = "homogeneous";
+  ParameterSet params; ///< <sigma_a> (its scale="..." as sigma_a_scale), <sigma_s>, <g>, ...
   SourceLocation loc;
 };
-
-/// The shapes a scene can hold.
-enum class ShapeType { Sphere, Plane, Triangle, Quad, Mesh };
 
 /// How a surface scatters: a material kind with its parameters (inline on an object, or a
 /// top-level <material id="..." type="...">). Which parameters a kind takes, their defaults and
@@ -60,28 +50,18 @@ struct NamedMaterialDesc {
   SourceLocation loc;
 };
 
-/// An affine map p -> m p + t (row-major m), composed from a <transform>'s steps.
-struct AffineDesc {
-  std::array<std::array<double, 3>, 3> m{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-  Vec3d t;
-};
-
-/// A sphere, plane, triangle, quad or mesh file with its appearance: its own material (the
-/// MaterialDesc part) or a reference to a <material id>.
+/// An object: a shape kind (sphere, plane, triangle, quad, mesh) with its parameters, and its
+/// appearance: its own material (the MaterialDesc part) or a reference to a <material id>.
+/// Which parameters a shape kind takes: its schema (accel/shape_kinds.h,
+/// docs/reference/shapes.md).
 struct ObjectDesc : MaterialDesc {
-  ShapeType shape = ShapeType::Sphere;
+  std::string shape = "sphere"; ///< the kind, as its element name
+  ParameterSet geometry;        ///< <center>, <radius>, ... (file="..." of a mesh) as written
   SourceLocation loc;
-  Vec3d center;                         ///< sphere
-  double radius = 0;                    ///< sphere
-  Vec3d normal;                         ///< plane (unit length after loading)
-  double distance = 0;                  ///< plane: dot(normal, p) = distance
-  std::array<Vec3d, 3> vertices;        ///< triangle vA, vB, vC; quad: origin, edge u, edge v
-  std::string meshPath;                 ///< mesh: the file, resolved relative to the scene file
-  AffineDesc transform;                 ///< mesh: applied to its vertices
   std::string materialRef;              ///< the id of a <material id> (then no inline material)
   std::optional<SpectrumDesc> emission; ///< absent, 0 or empty: not a light
   double emissionScale = 1;             ///< <emission scale="...">
-  std::optional<MediumDesc> medium;     ///< the medium filling a sphere, if any
+  std::optional<MediumDesc> medium;     ///< the medium filling a sphere or closed mesh, if any
 };
 
 /// A <light type="...">: a light kind (point by default, Niixtracer's) and its parameters as

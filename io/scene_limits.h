@@ -23,6 +23,9 @@ inline constexpr ParameterRange kUnitRange{0, 1, false, "a colour channel"};
 inline constexpr ParameterRange kFovRange{0, 179, true, "a horizontal field of view in degrees"};
 inline constexpr ParameterRange kRoughnessRange{0, 1, false, "a roughness"};
 inline constexpr ParameterRange kRadiusRange{0, kMaxSceneCoordinate, true, "a radius"};
+/// A plane's signed distance from the origin along its normal.
+inline constexpr ParameterRange kPlaneDistanceRange{-kMaxSceneCoordinate, kMaxSceneCoordinate,
+                                                    false, "a plane distance"};
 inline constexpr ParameterRange kIorRange{1, 10, false, "an index of refraction"};
 inline constexpr ParameterRange kAbsorptionRange{200, 1000, false, "an absorption peak in nm"};
 inline constexpr ParameterRange kStokesRange{0, 1000, false, "a Stokes shift in nm"};

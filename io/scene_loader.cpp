@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "accel/shape_kinds.h"
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/hash.h"
@@ -21,6 +22,7 @@
 #include "core/text_table.h"
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
+#include "integrators/media/medium_kinds.h"
 #include "io/camera_checks.h"
 #include "io/material_parameters.h"
 #include "io/scene_desc.h"
@@ -95,17 +97,16 @@ public:
         scene.camera = parseCamera(n);
       } else if (tag == "light") {
         scene.lights.push_back(parseLight(n));
-      } else if (tag == "sphere" || tag == "plane" || tag == "triangle" || tag == "quad" ||
-                 tag == "mesh") {
-        scene.objects.push_back(parseObject(n));
+      } else if (const ShapeKindSpec* shape = findShapeKind(tag)) {
+        scene.objects.push_back(parseObject(n, *shape));
       } else if (tag == "spectrum") {
         scene.spectra.push_back(parseNamedSpectrum(n));
       } else if (tag == "material") {
         scene.materials.push_back(parseNamedMaterial(n));
       } else {
-        fail(n,
-             "one of <settings>, <camera>, <light>, <sphere>, <plane>, <triangle>, <quad>, "
-             "<mesh>, <material>, <spectrum>",
+        std::string shapes;
+        for (const ShapeKindSpec& k : shapeKinds()) shapes += "<" + std::string(k.name) + ">, ";
+        fail(n, "one of <settings>, <camera>, <light>, " + shapes + "<material>, <spectrum>",
              "<" + tag + ">");
       }
     }
@@ -615,8 +616,7 @@ private:
     return out;
   }
 
-  // <light type="kind"> (point when absent) with the kind's parameters as children, each read
-  // by its declared type; a Spectrum parameter's scale="..." is the parameter <name>_scale.
+  // <light type="kind"> (point when absent) with the kind's parameters as children.
   LightDesc parseLight(const pugi::xml_node& n) const {
     checkAttributes(n, {"type"});
     LightDesc l;
@@ -624,30 +624,44 @@ private:
     if (n.attribute("type")) l.kind = trim(decoded(n.attribute("type").value(), n));
     const LightKindSpec* kind = findLightKind(l.kind);
     if (!kind) fail(n, "a light type " + lightKindList(), shownText(l.kind));
+    parseTakenParameters(n, kind->params(), l.params);
+    return l;
+  }
+
+  // A light's or medium's parameters, the children of `n`, each read by its declared type; a
+  // Spectrum parameter NAME's scale="..." is the parameter NAME_scale where the kind takes one
+  // (an empty optional spectrum is no parameter: "absent, 0 or empty").
+  void parseTakenParameters(const pugi::xml_node& n, std::span<const TakenParameter> params,
+                            ParameterSet& out) const {
     std::vector<std::string> names;
-    for (const LightParameter& p : kind->params())
+    for (const TakenParameter& p : params)
       if (!std::string(p.spec.name).ends_with("_scale")) names.push_back(p.spec.name);
     const auto c = uniqueChildren(n, names);
-    for (const LightParameter& p : kind->params()) {
+    for (const TakenParameter& p : params) {
       const auto it = c.find(p.spec.name);
       if (it == c.end()) {
-        if (p.required) fail(n, "<" + std::string(p.spec.name) + "> inside <light>", "none");
+        if (p.required) required(c, n, p.spec.name);
         continue;
       }
       const pugi::xml_node e = it->second;
       if (p.spec.type == ParamType::Spectrum) {
-        const std::string scaleName = std::string(p.spec.name) + "_scale";
-        const bool scaled = lightParameter(*kind, scaleName) != nullptr;
+        const TakenParameter* scale =
+            findParameterNamed(params, std::string(p.spec.name) + "_scale");
         std::optional<SpectrumDesc> s = spectrum(
-            e, true, scaled ? std::vector<std::string>{"scale"} : std::vector<std::string>{});
-        if (scaled && e.attribute("scale"))
-          l.params.set({scaleName, scaleAttribute(e, "an", "emission scale"), loc(e)});
-        if (s) l.params.set({p.spec.name, *s, loc(e)});
+            e, !p.required, scale ? std::vector<std::string>{"scale"} : std::vector<std::string>{});
+        if (scale && e.attribute("scale")) {
+          const std::string noun = scale->spec.what;
+          out.set(
+              {scale->spec.name,
+               scaleAttribute(
+                   e, std::string("aeiou").find(noun[0]) == std::string::npos ? "a" : "an", noun),
+               loc(e)});
+        }
+        if (s) out.set({p.spec.name, *s, loc(e)});
         continue;
       }
-      l.params.set({p.spec.name, parameterValue(p.spec, e), loc(e)});
+      out.set({p.spec.name, parameterValue(p.spec, e), loc(e)});
     }
-    return l;
   }
 
   // The optional scale="..." of an element (an <emission>, a medium's coefficient): a positive
@@ -692,7 +706,9 @@ private:
     case ParamType::Rgb:
       return colour(n, spec.range != nullptr);
     case ParamType::Point:
-      return vec3(n, "x, y, z");
+      return vec3(n, *spec.what ? spec.what : "x, y, z");
+    case ParamType::Transform:
+      return transform(n);
     case ParamType::File: {
       const std::string t = text(n);
       if (t.empty()) fail(n, "a file name in <" + std::string(n.name()) + ">", "nothing");
@@ -706,6 +722,8 @@ private:
       return ior(n);
     case ParamType::Fluorescence:
       return fluorescence(n);
+    case ParamType::Dye:
+      return fluorescence(n, true);
     case ParamType::Coating: {
       checkAttributes(n, {});
       const auto cc = uniqueChildren(n, {"thickness", "ior"});
@@ -833,65 +851,55 @@ private:
              "<" + tag + ">");
       }
     }
-    const double det = a.m[0][0] * (a.m[1][1] * a.m[2][2] - a.m[1][2] * a.m[2][1]) -
-                       a.m[0][1] * (a.m[1][0] * a.m[2][2] - a.m[1][2] * a.m[2][0]) +
-                       a.m[0][2] * (a.m[1][0] * a.m[2][1] - a.m[1][1] * a.m[2][0]);
-    if (!(std::abs(det) > 1e-300) || !std::isfinite(det))
+    const double det = a.determinant();
+    if (!a.keepsVolume())
       fail(n, "a transform that keeps volume (non-zero determinant)",
            "determinant " + numberText(det));
     return a;
   }
 
-  ObjectDesc parseObject(const pugi::xml_node& n) const {
+  // An object element (<sphere>, <plane>, ...: a shape kind) with its kind's parameters, each
+  // read by its declared type and checked by the kind, and its appearance: <material> (a kind
+  // or a <material id>) with the material's parameters, <emission>, and a <medium> where the
+  // kind holds one.
+  ObjectDesc parseObject(const pugi::xml_node& n, const ShapeKindSpec& kind) const {
     const std::string tag = n.name();
-    checkAttributes(n,
-                    tag == "mesh" ? std::vector<std::string>{"file"} : std::vector<std::string>{});
-    std::vector<std::string> allowed{"material"};
+    std::vector<std::string> attributes, allowed{"material"};
     for (const std::string& p : materialParameterNames()) allowed.push_back(p);
     allowed.push_back("emission");
-    if (tag == "sphere") allowed.insert(allowed.end(), {"center", "radius", "medium"});
-    if (tag == "plane") allowed.insert(allowed.end(), {"normal", "distance"});
-    if (tag == "triangle") allowed.insert(allowed.end(), {"vA", "vB", "vC"});
-    if (tag == "quad") allowed.insert(allowed.end(), {"origin", "edge_u", "edge_v"});
-    if (tag == "mesh") allowed.insert(allowed.end(), {"transform", "medium"});
+    for (const ShapeParameter& p : kind.params())
+      (p.attribute ? attributes : allowed).push_back(p.spec.name);
+    checkAttributes(n, attributes);
+    if (kind.holdsMedium) allowed.push_back("medium");
     const auto c = uniqueChildren(n, allowed);
     ObjectDesc o;
+    o.shape = tag;
     o.loc = loc(n);
-    if (tag == "sphere") {
-      o.shape = ShapeType::Sphere;
-      o.center = vec3(required(c, n, "center"), "a sphere centre x, y, z");
-      o.radius = number(required(c, n, "radius"), kRadiusRange);
-    } else if (tag == "plane") {
-      o.shape = ShapeType::Plane;
-      const pugi::xml_node nn = required(c, n, "normal");
-      o.normal = vec3(nn, "a plane normal x, y, z");
-      const double len = length(o.normal);
-      if (!(len > 0)) fail(nn, "a non-zero plane normal", shownText(text(nn)));
-      o.normal = o.normal / len;
-      o.distance =
-          number(required(c, n, "distance"), "a plane distance", -kMaxCoordinate, kMaxCoordinate);
-    } else if (tag == "triangle") {
-      o.shape = ShapeType::Triangle;
-      o.vertices = {vec3(required(c, n, "vA"), "a vertex x, y, z"),
-                    vec3(required(c, n, "vB"), "a vertex x, y, z"),
-                    vec3(required(c, n, "vC"), "a vertex x, y, z")};
-      if (!(length(cross(o.vertices[1] - o.vertices[0], o.vertices[2] - o.vertices[0])) > 0))
-        fail(n, "a triangle with non-zero area", "collinear vertices");
-    } else if (tag == "quad") {
-      o.shape = ShapeType::Quad;
-      o.vertices = {vec3(required(c, n, "origin"), "a corner x, y, z"),
-                    vec3(required(c, n, "edge_u"), "an edge vector x, y, z"),
-                    vec3(required(c, n, "edge_v"), "an edge vector x, y, z")};
-      if (!(length(cross(o.vertices[1], o.vertices[2])) > 0))
-        fail(n, "a quad with non-zero area (edge_u and edge_v not parallel)",
-             "parallel or zero edges");
-    } else {
-      o.shape = ShapeType::Mesh;
-      const std::string f = trim(decoded(n.attribute("file").value(), n));
-      if (f.empty()) fail(n, "a file=\"...\" (a .ply or .obj mesh) on <mesh>", "none");
-      o.meshPath = relativeToScene(f);
-      if (c.count("transform")) o.transform = transform(c.at("transform"));
+    for (const ShapeParameter& p : kind.params()) {
+      if (p.attribute) {
+        const pugi::xml_attribute a = n.attribute(p.spec.name);
+        const std::string v = a ? trim(decoded(a.value(), n)) : std::string();
+        if (v.empty()) {
+          if (!p.required) continue;
+          fail(n,
+               "a " + std::string(p.spec.name) + "=\"...\" (" + p.spec.what + ") on <" + tag + ">",
+               "none");
+        }
+        o.geometry.set({p.spec.name, relativeToScene(v), o.loc});
+        continue;
+      }
+      const auto it = c.find(p.spec.name);
+      if (it == c.end()) {
+        if (p.required) required(c, n, p.spec.name);
+        continue;
+      }
+      const ParamValue v = parameterValue(p.spec, it->second);
+      if (p.valueProblem)
+        if (const char* expected = p.valueProblem(v))
+          fail(it->second, expected, shownText(text(it->second)));
+      o.geometry.set({p.spec.name, v, loc(it->second)});
     }
+    if (const auto problem = kind.problem(o.geometry)) fail(n, problem->expected, problem->found);
     const pugi::xml_node mat = required(c, n, "material");
     o.material = text(mat);
     o.materialLoc = loc(mat);
@@ -907,22 +915,15 @@ private:
     return o;
   }
 
-  // <medium> with <sigma_a>, <sigma_s> (spectra per unit length) and an optional <g>.
+  // <medium type="kind"> (homogeneous when absent) with the kind's parameters as children.
   MediumDesc medium(const pugi::xml_node& n) const {
-    checkAttributes(n, {});
-    const auto c = uniqueChildren(n, {"sigma_a", "sigma_s", "g", "fluorescence", "emission"});
+    checkAttributes(n, {"type"});
     MediumDesc m;
     m.loc = loc(n);
-    m.sigmaA = *spectrum(required(c, n, "sigma_a"), false, {"scale"});
-    m.sigmaAScale = scaleAttribute(c.at("sigma_a"), "a", "coefficient scale");
-    m.sigmaS = *spectrum(required(c, n, "sigma_s"), false, {"scale"});
-    m.sigmaSScale = scaleAttribute(c.at("sigma_s"), "a", "coefficient scale");
-    if (c.count("g")) m.g = number(c.at("g"), kPhaseGRange);
-    if (c.count("fluorescence")) m.fluorescence = fluorescence(c.at("fluorescence"), true);
-    if (c.count("emission")) {
-      m.emission = spectrum(c.at("emission"), false, {"scale"});
-      m.emissionScale = scaleAttribute(c.at("emission"), "an", "emission scale");
-    }
+    if (n.attribute("type")) m.kind = trim(decoded(n.attribute("type").value(), n));
+    const MediumKindSpec* kind = findMediumKind(m.kind);
+    if (!kind) fail(n, "a medium type " + mediumKindList(), shownText(m.kind));
+    parseTakenParameters(n, kind->params(), m.params);
     return m;
   }
 

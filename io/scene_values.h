@@ -2,10 +2,14 @@
 // The values a scene's parameters take, as written: spectra, indices of refraction,
 // fluorescence, coatings, each with the file and line it came from.
 
+#include <array>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/vec3.h"
 
 namespace nx {
 
@@ -64,6 +68,23 @@ struct CoatingDesc {
   double thicknessNm = 0;
   IorDesc ior;
   SourceLocation loc;
+};
+
+/// An affine map p -> m p + t (row-major m): a mesh's <transform>, its steps composed.
+struct AffineDesc {
+  std::array<std::array<double, 3>, 3> m{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  Vec3d t;
+  /// det(m): a transform must keep volume (non-zero and finite).
+  double determinant() const {
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  }
+  /// Whether it keeps volume: |det| > 1e-300 and finite (a singular map flattens the mesh).
+  bool keepsVolume() const {
+    const double d = determinant();
+    return std::isfinite(d) && std::abs(d) > 1e-300;
+  }
 };
 
 } // namespace nx

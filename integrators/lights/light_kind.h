@@ -27,11 +27,7 @@ namespace nx {
 inline constexpr double kMaxEmission = 1e12;
 
 /// One parameter a light kind takes: its declaration and its default.
-struct LightParameter {
-  ParamSpec spec;          ///< name, type, unit, range, meaning, example
-  const char* defaultText; ///< its default as a scene would write it ("": none)
-  bool required = false;   ///< the light cannot be built without it
-};
+using LightParameter = TakenParameter;
 
 /// What a light kind's build asks of the scene: spectra resolved and checked. Implemented by
 /// the scene builder; called once per light, never while rendering.
@@ -61,7 +57,7 @@ inline const LightParameter kLightPosition{
 /// The factor on a light's <emission>, written as its scale="...".
 inline const LightParameter kLightEmissionScale{
     {"emission_scale", ParamType::Number, "1", &kPositiveScaleRange,
-     "the factor on <emission> (its scale=\"...\")", "2"},
+     "the factor on <emission> (its scale=\"...\")", "2", "", "emission scale"},
     "1"};
 
 /// A delta light's sample from p: the direction and distance to `position` and the intensity

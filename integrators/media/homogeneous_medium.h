@@ -3,14 +3,40 @@
 // scene unit of length), a Henyey-Greenstein lobe, and optionally a fluorescent dye, the same
 // everywhere inside its shape.
 
+// The kind is one of the scene format (<medium type="homogeneous">, the default): its
+// parameters and its build from them are declared below, after the evaluation.
+
+#include <cmath>
 #include <memory>
 #include <optional>
+#include <span>
 
+#include "core/error.h"
+#include "integrators/materials/material_kind.h"
+#include "io/parameter_set.h"
 #include "spectra/reradiation_matrix.h"
 #include "spectra/sampled_wavelengths.h"
 #include "spectra/spectrum.h"
+#include "spectra/spectrum_bounds.h"
 
 namespace nx {
+
+/// Largest absorption or scattering coefficient of a medium (per scene unit of length): a
+/// mean free path of 1e-9 units, far below any scene's scale.
+inline constexpr double kMaxMediumCoefficient = 1e9;
+
+/// What a medium kind's build asks of the scene: spectra resolved and checked, the dye's model
+/// checked. Implemented by the scene builder; called once per medium, never while rendering.
+class MediumInputs {
+public:
+  virtual ~MediumInputs() = default;
+  /// A spectrum reference resolved (coefficients take the media tables' names).
+  virtual Spectrum spectrum(const SpectrumDesc& d, SpectrumRole role) const = 0;
+  /// Throws "<loc>: expected an emission within [0, 1e12] ..." unless `s` is one.
+  virtual void checkEmission(const Spectrum& s, const SourceLocation& loc) const = 0;
+  /// The parametric re-radiation model, checked.
+  virtual FluorescenceModel fluorescenceModel(const FluorescenceDesc& d) const = 0;
+};
 
 /// The medium filling a closed shape.
 ///
@@ -52,6 +78,96 @@ struct HomogeneousMedium {
       absorption[i] += dyePeak * static_cast<float>(dye->absorptance(bin));
       fluorescent[i] = dyePeak * static_cast<float>(dye->columnSum(bin));
     }
+  }
+};
+
+/// The homogeneous medium kind.
+struct HomogeneousMediumKind {
+  static constexpr const char* kName = "homogeneous";
+  static constexpr const char* kDoc =
+      "the same absorption, scattering (Henyey-Greenstein), emission and dye everywhere inside "
+      "its sphere or closed mesh";
+  /// Its parameters.
+  static std::span<const TakenParameter> parameters() {
+    static const TakenParameter p[] = {
+        {{"sigma_a", ParamType::Spectrum, "1/scene unit", nullptr,
+          "absorption coefficient (besides the dye's); scale=\"...\" multiplies it",
+          "water:absorption"},
+         "",
+         true},
+        {{"sigma_a_scale", ParamType::Number, "1", &kPositiveScaleRange,
+          "the factor on <sigma_a> (its scale=\"...\", e.g. 0.01 for a per-metre table in "
+          "centimetres)",
+          "0.01", "", "coefficient scale"},
+         "1"},
+        {{"sigma_s", ParamType::Spectrum, "1/scene unit", nullptr,
+          "scattering coefficient; scale=\"...\" multiplies it", "0.5"},
+         "",
+         true},
+        {{"sigma_s_scale", ParamType::Number, "1", &kPositiveScaleRange,
+          "the factor on <sigma_s> (its scale=\"...\")", "0.01", "", "coefficient scale"},
+         "1"},
+        {{"g", ParamType::Number, "1", &kPhaseGRange, "Henyey-Greenstein mean cosine", "0.3"}, "0"},
+        {{"fluorescence", ParamType::Dye, "", nullptr,
+          "a dissolved fluorescent dye: the parametric model, its <peak> the dye's peak "
+          "absorption coefficient per unit length (added to sigma_a)",
+          "<absorption>blue</absorption><stokes>60</stokes><peak>2</peak>"},
+         ""},
+        {{"emission", ParamType::Spectrum, "W m^-2 sr^-1 nm^-1", nullptr,
+          "emitted radiance Le: the medium emits sigma_a Le per unit length (Kirchhoff)", "D65"},
+         ""},
+        {{"emission_scale", ParamType::Number, "1", &kPositiveScaleRange,
+          "the factor on <emission> (its scale=\"...\")", "2", "", "emission scale"},
+         "1"},
+    };
+    return p;
+  }
+  /// Builds it from its checked parameters: coefficients within [0, kMaxMediumCoefficient]
+  /// over the traced range, emission only where it absorbs.
+  static HomogeneousMedium build(const ParameterSet& p, const MediumInputs& in) {
+    HomogeneousMedium m;
+    const auto coefficient = [&](const char* name) {
+      const SpectrumDesc& d = *p.get<SpectrumDesc>(name);
+      const Spectrum s =
+          forRendering(in.spectrum(d, SpectrumRole::Coefficient)
+                           .scaled(p.number(std::string(name) + "_scale").value_or(1)));
+      return std::pair<Spectrum, const SpectrumDesc*>{s, &d};
+    };
+    const auto [sigmaA, aDesc] = coefficient("sigma_a");
+    const auto [sigmaS, sDesc] = coefficient("sigma_s");
+    m.sigmaA = sigmaA;
+    m.sigmaS = sigmaS;
+    for (const auto& [sp, desc, what] :
+         {std::tuple{&m.sigmaA, aDesc, "sigma_a"}, std::tuple{&m.sigmaS, sDesc, "sigma_s"}}) {
+      const SpectrumExtremes e = spectrumExtremes(*sp, kTraceMinNm, kTraceMaxNm);
+      if (!(e.min >= 0 && e.max <= kMaxMediumCoefficient))
+        throw Error(desc->loc.str() + ": expected " + what + " within [0, " +
+                    numberText(kMaxMediumCoefficient) +
+                    "] per unit length at every wavelength of " + tracedRange() + ", found " +
+                    (std::isnan(e.min) ? std::string("a non-finite value")
+                                       : numberText(e.min < 0 ? e.min : e.max) + " at " +
+                                             numberText(e.min < 0 ? e.minNm : e.maxNm) + " nm"));
+    }
+    m.g = static_cast<float>(p.number("g").value_or(0));
+    if (const SpectrumDesc* emission = p.get<SpectrumDesc>("emission")) {
+      // The source is sigma_a Le: a medium that absorbs nothing cannot emit (Kirchhoff).
+      if (!(spectrumExtremes(m.sigmaA, kTraceMinNm, kTraceMaxNm).max > 0))
+        throw Error(emission->loc.str() +
+                    ": expected a medium that absorbs (sigma_a > 0 somewhere in " + tracedRange() +
+                    ") for an <emission>: the medium emits sigma_a Le per unit length, found "
+                    "sigma_a = 0 everywhere");
+      const Spectrum le = in.spectrum(*emission, SpectrumRole::Emission)
+                              .scaled(p.number("emission_scale").value_or(1));
+      in.checkEmission(le, emission->loc);
+      m.emission = forRendering(le);
+    }
+    if (const FluorescenceDesc* dye = p.get<FluorescenceDesc>("fluorescence")) {
+      FluorescenceModel model = in.fluorescenceModel(*dye);
+      m.dyePeak = static_cast<float>(model.peakAbsorptance); // the coefficient, per unit length
+      model.peakAbsorptance = 1;
+      m.dye = std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromModel(model));
+    }
+    return m;
   }
 };
 

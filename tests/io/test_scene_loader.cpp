@@ -44,9 +44,9 @@ TEST(SceneLoader, ReadsTheThesisScene) {
   EXPECT_EQ(d.camera.lookAt, Vec3d(0, 2, 2));
   EXPECT_NEAR(d.camera.fovDegrees, 81.8, 1e-12);
   ASSERT_EQ(d.objects.size(), 6u);
-  EXPECT_EQ(d.objects[0].shape, ShapeType::Plane);
-  EXPECT_EQ(d.objects[0].normal, Vec3d(0, 0, -1));
-  EXPECT_EQ(d.objects[0].distance, -10);
+  EXPECT_EQ(d.objects[0].shape, "plane");
+  EXPECT_EQ(*d.objects[0].geometry.get<Vec3d>("normal"), Vec3d(0, 0, -1));
+  EXPECT_EQ(*d.objects[0].geometry.number("distance"), -10);
   EXPECT_FALSE(d.objects[0].emission.has_value()); // <emission>0.0</emission>: not a light
   EXPECT_EQ(d.objects[2].material, "diamond");
   EXPECT_EQ(d.objects[3].params.get<SpectrumDesc>("reflectance")->name, "orange");
@@ -55,7 +55,7 @@ TEST(SceneLoader, ReadsTheThesisScene) {
   EXPECT_EQ(*fluorescence->absorptionName, "blue");
   EXPECT_EQ(*fluorescence->stokesNm, 220);
   EXPECT_EQ(d.objects[5].emission->name, "bbd65");
-  EXPECT_EQ(d.objects[5].radius, 6);
+  EXPECT_EQ(*d.objects[5].geometry.number("radius"), 6);
   EXPECT_EQ(d.objects[5].loc.line, 61);
 }
 
@@ -64,12 +64,12 @@ TEST(SceneLoader, NumberListsAcceptAnySeparators) {
       scene("<sphere><center>1,2 ,  3</center><radius>2</radius><material>matte</material>"
             "<reflectance>gray</reflectance></sphere>\n"),
       "t.scn");
-  EXPECT_EQ(d.objects[0].center, Vec3d(1, 2, 3));
+  EXPECT_EQ(*d.objects[0].geometry.get<Vec3d>("center"), Vec3d(1, 2, 3));
   const SceneDesc e =
       parseScene(scene("<sphere><center>1 2 3</center><radius>2</radius><material>matte</material>"
                        "<reflectance>gray</reflectance></sphere>\n"),
                  "t.scn");
-  EXPECT_EQ(e.objects[0].center, Vec3d(1, 2, 3));
+  EXPECT_EQ(*e.objects[0].geometry.get<Vec3d>("center"), Vec3d(1, 2, 3));
 }
 
 TEST(SceneLoader, SamplesTagAndItsThesisTypo) {
@@ -284,7 +284,7 @@ TEST(SceneLoader, EntitiesResolvedOrRefused) {
              "<reflectance>a&amp;bAB</reflectance></sphere>\n</scene>\n",
       "t.scn");
   EXPECT_EQ(d.spectra[0].name, "a&bAB");
-  EXPECT_EQ(d.objects[0].center[2], 5.0);
+  EXPECT_EQ((*d.objects[0].geometry.get<Vec3d>("center"))[2], 5.0);
   EXPECT_EQ(errorOf(head + "<sphere><center>0,0,5</center><radius>1</radius><material>matte"
                            "</material><reflectance>&foo;</reflectance></sphere>\n</scene>\n"),
             "t.scn:4: expected only the entities &amp; &lt; &gt; &quot; &apos; and character "

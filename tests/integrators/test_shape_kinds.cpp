@@ -1,0 +1,156 @@
+// The shape and medium kinds' registries against the scene format, generated from the
+// registries (a new kind is covered without editing this file): every kind builds from its
+// declared examples into its primitive, needs its required parameters, refuses another kind's
+// parameters at their line, and Python-visible names do not collide.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+
+#include "accel/shape_kinds.h"
+#include "integrators/media/medium_kinds.h"
+#include "integrators/render_scene.h"
+#include "io/material_parameters.h"
+#include "io/scene_desc.h"
+#include "support/errors.h"
+#include "support/render_checks.h"
+
+namespace nx {
+namespace {
+
+using test::errorMessage;
+
+std::string withObject(const std::string& object) {
+  return sceneText("<xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode>",
+                   "<position>0,1,-5</position><look_at>0,0,0</look_at>", object);
+}
+
+// A closed tetrahedron in a PLY file, where a file parameter's example names a mesh.
+std::string exampleMesh() {
+  const std::string path = ::testing::TempDir() + "/shape_kind_tetrahedron.ply";
+  std::ofstream f(path);
+  f << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+       "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+       "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  return path;
+}
+
+// The kind's element with every parameter at its declared example, and `extra` inside.
+std::string exampleObject(const ShapeKindSpec& kind, const std::string& extra = "") {
+  std::string attributes, children;
+  for (const ShapeParameter& p : kind.params()) {
+    const std::string value = p.spec.type == ParamType::File ? exampleMesh() : p.spec.example;
+    if (p.attribute)
+      attributes += " " + std::string(p.spec.name) + "=\"" + value + "\"";
+    else
+      children += "<" + std::string(p.spec.name) + ">" + value + "</" + p.spec.name + ">";
+  }
+  return "<" + std::string(kind.name) + attributes + ">" + children + extra +
+         "<material>matte</material><reflectance>0.5</reflectance></" + kind.name + ">";
+}
+
+TEST(ShapeKinds, EveryKindBuildsFromItsExamplesIntoOnePrimitive) {
+  std::set<std::string> names;
+  for (const ShapeKindSpec& kind : shapeKinds()) {
+    SCOPED_TRACE(kind.name);
+    EXPECT_TRUE(names.insert(kind.name).second);
+    EXPECT_EQ(findShapeKind(kind.name), &kind);
+    const SceneDesc d = parseScene(withObject(exampleObject(kind)), "t.scn");
+    ASSERT_EQ(d.objects.size(), 1u);
+    EXPECT_EQ(d.objects[0].shape, kind.name);
+    for (const ShapeParameter& p : kind.params())
+      EXPECT_TRUE(d.objects[0].geometry.has(p.spec.name));
+    const RenderScene s = buildRenderScene(d);
+    EXPECT_EQ(s.spheres.size() + s.planes.size() + s.meshes.size(), 1u);
+    EXPECT_EQ(s.geometry->spheres().size() + s.geometry->planes().size() +
+                  s.geometry->meshes().size(),
+              1u);
+  }
+}
+
+TEST(ShapeKinds, RequiredParametersAndOtherKindsParametersAreRefusedAtTheirLine) {
+  for (const ShapeKindSpec& kind : shapeKinds()) {
+    SCOPED_TRACE(kind.name);
+    for (const ShapeParameter& p : kind.params()) {
+      if (!p.required || p.attribute) continue;
+      std::string object = exampleObject(kind);
+      const std::string open = "<" + std::string(p.spec.name) + ">";
+      const size_t a = object.find(open);
+      const size_t b = object.find("</" + std::string(p.spec.name) + ">", a);
+      object.erase(a, b + open.size() + 1 - a);
+      EXPECT_EQ(errorMessage([&] { parseScene(withObject(object), "t.scn"); }),
+                "t.scn:1: expected " + open + " inside <" + kind.name + ">, found none");
+    }
+    // A parameter only other kinds take.
+    for (const ShapeKindSpec& other : shapeKinds())
+      for (const ShapeParameter& p : other.params()) {
+        if (p.attribute || shapeParameter(kind, p.spec.name)) continue;
+        const std::string object = exampleObject(
+            kind, "<" + std::string(p.spec.name) + ">" + p.spec.example + "</" + p.spec.name + ">");
+        const std::string e = errorMessage([&] { parseScene(withObject(object), "t.scn"); });
+        EXPECT_EQ(e.rfind("t.scn:1: expected one of <material>", 0), 0u) << e;
+        EXPECT_NE(e.find("inside <" + std::string(kind.name) + ">, found <" + p.spec.name + ">"),
+                  std::string::npos)
+            << e;
+      }
+  }
+}
+
+TEST(ShapeKinds, ShapeMaterialAndObjectNamesDoNotCollide) {
+  std::set<std::string> material;
+  for (const ParamSpec& p : materialParameters()) material.insert(p.name);
+  for (const ShapeKindSpec& kind : shapeKinds())
+    for (const ShapeParameter& p : kind.params()) {
+      EXPECT_FALSE(material.count(p.spec.name)) << kind.name << " " << p.spec.name;
+      for (const char* appearance : {"material", "emission", "medium"})
+        EXPECT_NE(std::string(p.spec.name), appearance) << kind.name;
+    }
+}
+
+TEST(MediumKinds, EveryKindBuildsFromItsExamplesInEveryShapeThatHoldsOne) {
+  for (const MediumKindSpec& kind : mediumKinds()) {
+    SCOPED_TRACE(kind.name);
+    EXPECT_EQ(findMediumKind(kind.name), &kind);
+    std::string medium = std::string("<medium type=\"") + kind.name + "\">";
+    for (const TakenParameter& p : kind.params()) {
+      const std::string name = p.spec.name;
+      if (name.ends_with("_scale")) continue;
+      const TakenParameter* scale = mediumParameter(kind, name + "_scale");
+      medium += "<" + name + (scale ? std::string(" scale=\"") + scale->spec.example + "\"" : "") +
+                ">" + p.spec.example + "</" + name + ">";
+    }
+    medium += "</medium>";
+    for (const ShapeKindSpec& shape : shapeKinds()) {
+      const std::string object = exampleObject(shape, medium);
+      if (!shape.holdsMedium) {
+        EXPECT_NE(
+            errorMessage([&] { parseScene(withObject(object), "t.scn"); }).find("found <medium>"),
+            std::string::npos)
+            << shape.name;
+        continue;
+      }
+      const SceneDesc d = parseScene(withObject(object), "t.scn");
+      ASSERT_TRUE(d.objects[0].medium.has_value()) << shape.name;
+      for (const TakenParameter& p : kind.params())
+        EXPECT_TRUE(d.objects[0].medium->params.has(p.spec.name))
+            << shape.name << " " << p.spec.name;
+      const RenderScene s = buildRenderScene(d);
+      ASSERT_EQ(s.media.size(), 1u) << shape.name;
+      EXPECT_TRUE(s.hasMedia);
+      EXPECT_TRUE(s.media[0].dye && s.media[0].emission) << shape.name;
+      EXPECT_NEAR(s.media[0].g, *d.objects[0].medium->params.number("g"), 1e-6);
+    }
+    // Unknown kinds are refused with the list of kinds.
+    EXPECT_NE(errorMessage([&] {
+                parseScene(withObject("<sphere><center>0,0,0</center><radius>1</radius>"
+                                      "<material>interface</material><medium type=\"fog\">"
+                                      "<sigma_a>1</sigma_a><sigma_s>1</sigma_s></medium></sphere>"),
+                           "t.scn");
+              }).find("expected a medium type " + mediumKindList() + ", found 'fog'"),
+              std::string::npos);
+  }
+}
+
+} // namespace
+} // namespace nx
