@@ -1,7 +1,8 @@
 // nxdocs: the reference docs printed from the declarations, so they cannot drift from the code.
 //
-//   nxdocs --write DIR   writes DIR/materials.md, DIR/lights.md and DIR/python-parameters.md
-//   nxdocs --check DIR   exit status 1 (naming the files) unless they are what --write writes
+//   nxdocs --write DIR   writes DIR/materials.md, DIR/lights.md, DIR/shapes.md, DIR/media.md and
+//   DIR/python-parameters.md nxdocs --check DIR   exit status 1 (naming the files) unless they are
+//   what --write writes
 //
 // The material kinds and their parameters come from the registry (integrators/materials/kinds/,
 // io/material_parameters.cpp), the other parameters from io/scene_parameters.cpp. CI runs
@@ -15,11 +16,13 @@
 #include <sstream>
 #include <string>
 
+#include "accel/shape_kinds.h"
 #include "apps/command_line.h"
 #include "core/file_text.h"
 #include "core/text_table.h"
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
+#include "integrators/media/medium_kinds.h"
 #include "io/material_parameters.h"
 #include "io/scene_parameters.h"
 
@@ -44,6 +47,13 @@ std::string cell(const std::string& s) {
     }
   }
   return out;
+}
+
+// An example value as code: the whole of it (a '|' escaped), element content included.
+std::string exampleCell(const std::string& s) {
+  std::string out = "`";
+  for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out + "`";
 }
 
 // "eta k" -> "<eta>, <k>".
@@ -75,7 +85,7 @@ std::string materialsDoc() {
     o << "| `<" << p.name << ">` | " << nx::paramTypeName(p.type) << " | " << p.unit << " | "
       << rangeText(p.type == nx::ParamType::Number || p.type == nx::ParamType::Coating ? p.range
                                                                                        : nullptr)
-      << " | `" << cell(p.example) << "` | " << cell(p.doc)
+      << " | " << exampleCell(p.example) << " | " << cell(p.doc)
       << cell(*p.excludes ? std::string(" (not with ") + tagList(p.excludes) + ")" : std::string())
       << " |\n";
   o << "\n## Which kind takes which\n\n| kind |";
@@ -110,6 +120,24 @@ std::string materialsDoc() {
   return o.str();
 }
 
+// The parameter table of a light or medium kind (NAME_scale written as NAME's scale="...").
+void takenTable(std::ostringstream& o, std::span<const nx::TakenParameter> params) {
+  o << "| parameter | type | unit | range | default | example | meaning |\n"
+       "|---|---|---|---|---|---|---|\n";
+  for (const nx::TakenParameter& p : params) {
+    const std::string name = p.spec.name;
+    const std::string written = name.ends_with("_scale")
+                                    ? "<" + name.substr(0, name.size() - 6) + " scale=\"...\">"
+                                    : "<" + name + ">";
+    o << "| `" << written << "` | " << nx::paramTypeName(p.spec.type) << " | "
+      << (*p.spec.unit ? p.spec.unit : "-") << " | " << rangeText(p.spec.range) << " | "
+      << (p.required       ? std::string("required")
+          : *p.defaultText ? std::string(p.defaultText)
+                           : "-")
+      << " | " << exampleCell(p.spec.example) << " | " << cell(p.spec.doc) << " |\n";
+  }
+}
+
 std::string lightsDoc() {
   std::ostringstream o;
   o << "# Scene reference: light kinds and their parameters\n\n" << kGenerated;
@@ -124,20 +152,59 @@ std::string lightsDoc() {
     o << "| [" << k.name << "](#" << k.name << ") | " << cell(k.doc) << " |\n";
   for (const nx::LightKindSpec& k : nx::lightKinds()) {
     o << "\n## " << k.name << "\n\n" << cell(k.doc) << ".\n\n";
+    takenTable(o, k.params());
+  }
+  return o.str();
+}
+
+std::string mediaDoc() {
+  std::ostringstream o;
+  o << "# Scene reference: medium kinds and their parameters\n\n" << kGenerated;
+  o << "`<medium type=\"KIND\">` (homogeneous when `type` is absent) inside a shape that "
+       "holds one ([shapes.md](shapes.md)), with the kind's parameters as child elements; "
+       "`<sigma_a scale=\"...\">` is the parameter `sigma_a_scale` (likewise `sigma_s`, "
+       "`emission`). Coefficients are per scene unit of length. A parameter the kind does not "
+       "take is an error at its line. The physics and its tests: [../media.md](../media.md). "
+       "In Python: the properties of `scene.objects[i].medium` and the names "
+       "`objects[i].medium.<parameter>` of `Scene.parameters()` (the dye by its fields, "
+       "`objects[i].medium.dye.*` and `dye_peak`).\n\n";
+  o << "| kind | meaning |\n|---|---|\n";
+  for (const nx::MediumKindSpec& k : nx::mediumKinds())
+    o << "| [" << k.name << "](#" << k.name << ") | " << cell(k.doc) << " |\n";
+  for (const nx::MediumKindSpec& k : nx::mediumKinds()) {
+    o << "\n## " << k.name << "\n\n" << cell(k.doc) << ".\n\n";
+    takenTable(o, k.params());
+  }
+  return o.str();
+}
+
+std::string shapesDoc() {
+  std::ostringstream o;
+  o << "# Scene reference: shape kinds and their parameters\n\n" << kGenerated;
+  o << "An object is a shape kind's element (`<sphere>`, `<plane>`, ...) with the kind's "
+       "parameters as child elements (attributes where noted), and its appearance: "
+       "`<material>` (a kind or a `<material id>`, [materials.md](materials.md)) with the "
+       "material's parameters, an optional `<emission>` (any shape can be an area light: "
+       "spheres are sampled by the cone they subtend, triangles, quads and meshes by area, "
+       "planes by BSDF sampling only) and, where the kind holds one, a `<medium>` "
+       "([../media.md](../media.md)). A parameter the kind does not take is an error at its "
+       "line. In Python: the properties of `scene.objects[i]` and the names "
+       "`objects[i].<parameter>` of `Scene.parameters()`.\n\n";
+  o << "| kind | holds a medium | meaning |\n|---|---|---|\n";
+  for (const nx::ShapeKindSpec& k : nx::shapeKinds())
+    o << "| [" << k.name << "](#" << k.name << ") | " << (k.holdsMedium ? "yes" : "no") << " | "
+      << cell(k.doc) << " |\n";
+  for (const nx::ShapeKindSpec& k : nx::shapeKinds()) {
+    o << "\n## " << k.name << "\n\n" << cell(k.doc) << ".\n\n";
     o << "| parameter | type | unit | range | default | example | meaning |\n"
          "|---|---|---|---|---|---|---|\n";
-    for (const nx::LightParameter& p : k.params()) {
-      const std::string name = p.spec.name;
-      const std::string written = name.ends_with("_scale")
-                                      ? "<" + name.substr(0, name.size() - 6) + " scale=\"...\">"
-                                      : "<" + name + ">";
-      o << "| `" << written << "` | " << nx::paramTypeName(p.spec.type) << " | " << p.spec.unit
-        << " | " << rangeText(p.spec.range) << " | "
-        << (p.required       ? std::string("required")
-            : *p.defaultText ? std::string(p.defaultText)
-                             : "-")
-        << " | `" << cell(p.spec.example) << "` | " << cell(p.spec.doc) << " |\n";
-    }
+    for (const nx::ShapeParameter& p : k.params())
+      o << "| `"
+        << (p.attribute ? std::string(p.spec.name) + "=\"...\""
+                        : "<" + std::string(p.spec.name) + ">")
+        << "` | " << nx::paramTypeName(p.spec.type) << " | " << (*p.spec.unit ? p.spec.unit : "-")
+        << " | " << rangeText(p.spec.range) << " | " << (p.required ? "required" : "none") << " | "
+        << exampleCell(p.spec.example) << " | " << cell(p.spec.doc) << " |\n";
   }
   return o.str();
 }
@@ -175,6 +242,17 @@ std::string pythonDoc() {
       << nx::paramTypeName(p.type) << " | " << p.unit << " | "
       << rangeText(p.type == nx::ParamType::Number ? p.range : nullptr) << " | " << cell(p.doc)
       << " ([materials.md](materials.md)) |\n";
+  for (const nx::ShapeKindSpec& k : nx::shapeKinds())
+    for (const nx::ShapeParameter& p : k.params())
+      o << "| `objects[i]." << p.spec.name << "` (" << k.name << ") | "
+        << nx::paramTypeName(p.spec.type) << " | " << (*p.spec.unit ? p.spec.unit : "-") << " | "
+        << rangeText(p.spec.range) << " | " << cell(p.spec.doc) << " ([shapes.md](shapes.md)) |\n";
+  for (const nx::MediumKindSpec& k : nx::mediumKinds())
+    for (const nx::TakenParameter& p : k.params())
+      if (p.spec.type != nx::ParamType::Dye)
+        o << "| `objects[i].medium." << p.spec.name << "` (" << k.name << ") | "
+          << nx::paramTypeName(p.spec.type) << " | " << p.spec.unit << " | "
+          << rangeText(p.spec.range) << " | " << cell(p.spec.doc) << " ([media.md](media.md)) |\n";
   for (const nx::LightKindSpec& k : nx::lightKinds())
     for (const nx::LightParameter& p : k.params())
       o << "| `lights[i]." << p.spec.name << "` (" << k.name << ") | "
@@ -183,7 +261,9 @@ std::string pythonDoc() {
   o << "\nPython values: numbers as float, points as (x, y, z), spectra as a float, a name, "
        "(wavelengths_nm, values) or \"csv:FILE[#COLUMN]\", an ior as a float, a glass name or "
        "(\"cauchy\" | \"sellmeier\", coefficients), a coating as (thickness_nm, ior), a measured "
-       "matrix as (excitation_nm, emission_nm, values) numpy arrays.\n";
+       "matrix as (excitation_nm, emission_nm, values) numpy arrays, a transform as 3 rows (or 4, "
+       "the "
+       "last 0, 0, 0, 1) of [m | t], e.g. a (3, 4) numpy array.\n";
   return o.str();
 }
 
@@ -198,6 +278,8 @@ int main(int argc, char** argv) {
     return status;
   const std::pair<const char*, std::string> docs[] = {{"materials.md", materialsDoc()},
                                                       {"lights.md", lightsDoc()},
+                                                      {"shapes.md", shapesDoc()},
+                                                      {"media.md", mediaDoc()},
                                                       {"python-parameters.md", pythonDoc()}};
   if (!writeDir.empty()) {
     for (const auto& [name, text] : docs) {

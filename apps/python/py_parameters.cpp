@@ -1,5 +1,7 @@
 #include "apps/python/py_parameters.h"
 
+#include "core/error.h"
+
 #include <pybind11/stl.h>
 
 #include "apps/python/py_arguments.h"
@@ -141,6 +143,12 @@ py::object parameterToPython(const nx::ParamValue& v) {
     return py::make_tuple(c->thicknessNm, iorToPython(c->ior));
   if (const auto* t = std::get_if<std::string>(&v)) return py::str(*t);
   if (const auto* p = std::get_if<nx::Vec3d>(&v)) return py::make_tuple(p->x, p->y, p->z);
+  if (const auto* a = std::get_if<nx::AffineDesc>(&v)) {
+    py::list rows;
+    for (int i = 0; i < 3; ++i)
+      rows.append(py::make_tuple(a->m[i][0], a->m[i][1], a->m[i][2], a->t[i]));
+    return py::tuple(rows);
+  }
   return py::none(); // fluorescence: its own view (py_scene.cpp)
 }
 
@@ -194,6 +202,38 @@ nx::ParamValue parameterFromPython(const nx::ParamSpec& spec, const py::handle& 
         throw py::value_error(param + ": expected coordinates within 1e12, found " +
                               py::str(py::float_(x)).cast<std::string>());
     return nx::Vec3d(v[0], v[1], v[2]);
+  }
+  case nx::ParamType::Transform: {
+    // Rows [m | t] of the affine map: 3 rows, or 4 with the last 0, 0, 0, 1.
+    if (py::isinstance<py::str>(value) || !py::hasattr(value, "__len__") ||
+        (py::len(value) != 3 && py::len(value) != 4))
+      throw py::type_error(param +
+                           ": expected 3 or 4 rows of 4 numbers (the matrix [m | t]), found " +
+                           typeName(value));
+    nx::AffineDesc a;
+    double t[3] = {0, 0, 0};
+    for (size_t i = 0; i < py::len(value); ++i) {
+      const std::string row = param + "[" + std::to_string(i) + "]";
+      const std::vector<double> r = numbersArgument(value[py::int_(i)], row.c_str(), 4);
+      if (i == 3) {
+        if (r[0] != 0 || r[1] != 0 || r[2] != 0 || r[3] != 1)
+          throw py::value_error(param + ": expected an affine matrix (last row 0, 0, 0, 1)");
+        continue;
+      }
+      for (int j = 0; j < 3; ++j) a.m[i][j] = r[j];
+      t[i] = r[3];
+    }
+    a.t = nx::Vec3d(t[0], t[1], t[2]);
+    for (const auto& row : a.m)
+      for (double x : row)
+        if (!std::isfinite(x) || !std::isfinite(t[0] + t[1] + t[2]))
+          throw py::value_error(param + ": expected finite numbers");
+    if (!a.keepsVolume())
+      throw py::value_error(param +
+                            ": expected a transform that keeps volume (non-zero "
+                            "determinant), found determinant " +
+                            nx::numberText(a.determinant()));
+    return a;
   }
   case nx::ParamType::Fluorescence:
     break;

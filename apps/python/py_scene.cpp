@@ -7,6 +7,7 @@
 
 #include <filesystem>
 
+#include "accel/shape_kinds.h"
 #include "apps/python/py_arguments.h"
 #include "apps/python/py_parameters.h"
 #include "core/error.h"
@@ -14,6 +15,7 @@
 #include "core/hash.h"
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
+#include "integrators/media/medium_kinds.h"
 #include "io/camera_checks.h"
 #include "io/material_parameters.h"
 #include "io/scene_limits.h"
@@ -72,6 +74,15 @@ struct LightView {
   size_t i;
   nx::LightDesc& get() const { return s->desc.lights.at(i); }
   std::string label() const { return "lights[" + std::to_string(i) + "]"; }
+  // What bindTakenParameters asks of a view.
+  nx::ParameterSet& params() const { return get().params; }
+  std::string kindText() const { return "a " + get().kind + " light"; }
+  const nx::TakenParameter* declared(const std::string& name) const {
+    const nx::LightKindSpec* k = nx::findLightKind(get().kind);
+    return k ? nx::lightParameter(*k, name) : nullptr;
+  }
+  nx::SourceLocation loc() const { return get().loc; }
+  SceneState& state() const { return *s; }
 };
 
 struct MaterialView {
@@ -226,6 +237,15 @@ struct MediumView {
     return *m;
   }
   std::string label() const { return o.label() + ".medium"; }
+  // What bindTakenParameters asks of a view.
+  nx::ParameterSet& params() const { return get().params; }
+  std::string kindText() const { return "a " + get().kind + " medium"; }
+  const nx::TakenParameter* declared(const std::string& name) const {
+    const nx::MediumKindSpec* k = nx::findMediumKind(get().kind);
+    return k ? nx::mediumParameter(*k, name) : nullptr;
+  }
+  nx::SourceLocation loc() const { return get().loc; }
+  SceneState& state() const { return *o.s; }
 };
 
 // The fluorescent dye dissolved in a medium: the parametric model's fields (its peak is the
@@ -233,7 +253,7 @@ struct MediumView {
 struct DyeView {
   MediumView v;
   nx::FluorescenceDesc& get() const {
-    auto& f = v.get().fluorescence;
+    nx::FluorescenceDesc* f = v.get().params.getMutable<nx::FluorescenceDesc>("fluorescence");
     if (!f) throw py::value_error(v.label() + ": has no dye any more");
     return *f;
   }
@@ -242,45 +262,79 @@ struct DyeView {
   SceneState& state() const { return *v.o.s; }
 };
 
-// A spectrum field of the medium (sigma_a, sigma_s): a number >= 0, a name or (nm, values).
-void bindMediumSpectrum(py::class_<MediumView>& c, const char* name,
-                        nx::SpectrumDesc nx::MediumDesc::*field, double nx::MediumDesc::*scale,
-                        const char* doc) {
-  c.def_property(
-      name, [field](const MediumView& v) { return spectrumToPythonOpt(v.get().*field); },
-      [field, scale, name](const MediumView& v, const py::object& value) {
-        const std::string param = v.label() + "." + name;
-        v.get().*field = spectrumFromPython(value, param, v.o.get().loc);
-        v.get().*scale = 1; // a new value stands alone
-        record(*v.o.s, param, value);
-      },
-      doc);
-  const std::string scaleName = std::string(name) + "_scale";
-  c.def_property(
-      scaleName.c_str(), [scale](const MediumView& v) { return v.get().*scale; },
-      [scale, scaleName](const MediumView& v, const py::object& value) {
-        const std::string param = v.label() + "." + scaleName;
-        v.get().*scale = numberArgument(value, param.c_str(), 1e-300, 1e300);
-        record(*v.o.s, param, value);
-      },
-      "The factor on it (> 0; e.g. 0.01 for a per-metre table in a scene in centimetres); "
-      "assigning the coefficient resets it to 1");
+// One property per parameter any kind in `kinds` declares (the first declaration of a name; a
+// lights' or media's TakenParameter list), except those with views of their own (`skip`): read
+// as its Python form (None: not given, the kind's default); set checked by its type and range,
+// refused where the item's kind does not take it; None removes it (refused if required). A
+// new spectrum NAME stands alone: it removes NAME_scale.
+template <class View, class Kinds>
+void bindTakenParameters(py::class_<View>& c, const Kinds& kinds, nx::ParamType skip) {
+  std::vector<std::string> names;
+  for (const auto& kind : kinds)
+    for (const nx::TakenParameter& tp : kind.params()) {
+      if (tp.spec.type == skip ||
+          std::find(names.begin(), names.end(), tp.spec.name) != names.end())
+        continue;
+      names.push_back(tp.spec.name);
+      const std::string name = tp.spec.name;
+      c.def_property(
+          tp.spec.name,
+          [name](const View& v) -> py::object {
+            const nx::Parameter* q = v.params().find(name);
+            return q ? parameterToPython(q->value) : py::object(py::none());
+          },
+          [name](const View& v, const py::object& value) {
+            const std::string param = v.label() + "." + name;
+            const nx::TakenParameter* decl = v.declared(name);
+            if (!decl)
+              throw py::value_error(param + ": " + v.kindText() + " takes no <" + name + ">");
+            nx::ParameterSet& p = v.params();
+            if (value.is_none()) {
+              if (decl->required) throw py::value_error(param + ": " + v.kindText() + " needs it");
+              p.erase(name);
+            } else {
+              p.set({name, parameterFromPython(decl->spec, value, param, v.loc()),
+                     p.locOf(name, v.loc())});
+              if (decl->spec.type == nx::ParamType::Spectrum) p.erase(name + "_scale");
+            }
+            record(v.state(), param, value);
+          },
+          tp.spec.doc);
+    }
 }
 
-const char* shapeName(nx::ShapeType t) {
-  switch (t) {
-  case nx::ShapeType::Sphere:
-    return "sphere";
-  case nx::ShapeType::Plane:
-    return "plane";
-  case nx::ShapeType::Triangle:
-    return "triangle";
-  case nx::ShapeType::Quad:
-    return "quad";
-  case nx::ShapeType::Mesh:
-    return "mesh";
+// The three corner parameters of a triangle or a quad (their `vertices` together), if it is one.
+std::optional<std::array<const char*, 3>> cornerNames(const std::string& shape) {
+  if (shape == nx::TriangleShapeKind::kName) return std::array<const char*, 3>{"vA", "vB", "vC"};
+  if (shape == nx::QuadShapeKind::kName)
+    return std::array<const char*, 3>{"origin", "edge_u", "edge_v"};
+  return std::nullopt;
+}
+
+// Sets (None: removes) one parameter of an object's shape, checked by its type and range and
+// by the kind (shapeProblem: a required one, a value's own check, the parameters together): a
+// refused value leaves the object as it was.
+void setShapeParameter(const ObjectView& o, const std::string& name, const py::handle& value,
+                       const std::string& param) {
+  nx::ObjectDesc& d = o.get();
+  const nx::ShapeKindSpec& kind = *nx::findShapeKind(d.shape);
+  const nx::ShapeParameter* decl = nx::shapeParameter(kind, name);
+  if (!decl) {
+    std::vector<std::string> takers;
+    for (const nx::ShapeKindSpec& k : nx::shapeKinds())
+      if (nx::shapeParameter(k, name)) takers.push_back(std::string("a ") + k.name);
+    throw py::value_error(param + ": a " + d.shape + " takes no " + name + " (" +
+                          nx::listWithOr(takers) + " does)");
   }
-  return "?";
+  nx::ParameterSet next = d.geometry;
+  if (value.is_none())
+    next.erase(name);
+  else
+    next.set({name, parameterFromPython(decl->spec, value, param, d.loc),
+              d.geometry.locOf(name, d.loc)});
+  if (const auto problem = nx::shapeProblem(kind, next))
+    throw py::value_error(param + ": expected " + problem->expected + ", found " + problem->found);
+  d.geometry = std::move(next);
 }
 
 // A optional<double> field of a fluorescence model (a material's or a dye's), with its range.
@@ -522,54 +576,25 @@ void bindScene(py::module_& m) {
   py::class_<MediumView> med(m, "Medium",
                              "The participating medium inside a sphere or closed mesh "
                              "(docs/media.md); coefficients per scene unit of length");
-  bindMediumSpectrum(med, "sigma_a", &nx::MediumDesc::sigmaA, &nx::MediumDesc::sigmaAScale,
-                     "Absorption coefficient: a number, a name (water:absorption, ...) or "
-                     "(wavelengths_nm, values)");
-  bindMediumSpectrum(med, "sigma_s", &nx::MediumDesc::sigmaS, &nx::MediumDesc::sigmaSScale,
-                     "Scattering coefficient, in the same forms as sigma_a");
-  med.def_property(
-         "g", [](const MediumView& v) { return v.get().g; },
-         [](const MediumView& v, const py::object& value) {
-           v.get().g = rangedArgument(value, v.label() + ".g", nx::kPhaseGRange);
-           record(*v.o.s, v.label() + ".g", value);
-         },
-         "Henyey-Greenstein mean cosine in [-0.999, 0.999]")
-      .def_property(
-          "emission", [](const MediumView& v) { return spectrumToPythonOpt(v.get().emission); },
-          [](const MediumView& v, const py::object& value) {
-            const std::string param = v.label() + ".emission";
-            if (value.is_none())
-              v.get().emission.reset();
-            else
-              v.get().emission = spectrumFromPython(value, param, v.o.get().loc);
-            v.get().emissionScale = 1; // a new value stands alone
-            record(*v.o.s, param, value);
-          },
-          "Emitted radiance Le (the medium emits sigma_a Le), or None; assigning it resets "
-          "emission_scale to 1")
-      .def_property(
-          "emission_scale", [](const MediumView& v) { return v.get().emissionScale; },
-          [](const MediumView& v, const py::object& value) {
-            const std::string param = v.label() + ".emission_scale";
-            v.get().emissionScale = numberArgument(value, param.c_str(), 1e-300, 1e300);
-            record(*v.o.s, param, value);
-          },
-          "The factor on its emission (> 0)")
+  bindTakenParameters(med, nx::mediumKinds(), nx::ParamType::Dye);
+  med.def_property_readonly(
+         "kind", [](const MediumView& v) { return v.get().kind; }, "homogeneous")
       .def_property_readonly(
           "dye",
           [](const MediumView& v) -> py::object {
-            return v.get().fluorescence ? py::cast(DyeView{v}) : py::object(py::none());
+            return v.get().params.has("fluorescence") ? py::cast(DyeView{v})
+                                                      : py::object(py::none());
           },
           "The dye dissolved in it (None: none; set_dye(...) adds one)")
       .def_property(
           "dye_peak",
           [](const MediumView& v) -> py::object {
-            const auto& f = v.get().fluorescence;
+            const auto* f = v.get().params.get<nx::FluorescenceDesc>("fluorescence");
             return f && f->peakAbsorptance ? py::object(py::float_(*f->peakAbsorptance))
                                            : py::object(py::none());
           },
           [](const MediumView& v, const py::object& value) {
-            auto& f = v.get().fluorescence;
+            auto* f = v.get().params.getMutable<nx::FluorescenceDesc>("fluorescence");
             const std::string param = v.label() + ".dye_peak";
             if (!f) throw py::value_error(param + ": the medium has no dye; use set_dye(...)");
             f->peakAbsorptance = rangedArgument(value, param, nx::kPeakCoefficientRange);
@@ -585,7 +610,7 @@ void bindScene(py::module_& m) {
             nx::FluorescenceDesc f = fluorescenceModel(p, v.o.get().loc, absorptionNm, stokesNm,
                                                        widthNm, skew, quantumYield);
             f.peakAbsorptance = rangedArgument(peak, p + "peak", nx::kPeakCoefficientRange);
-            v.get().fluorescence = f;
+            v.get().params.set({"fluorescence", f, v.get().loc});
             v.o.s->edits.push_back(
                 v.label() + ".set_dye(" +
                 py::repr(py::make_tuple(absorptionNm, stokesNm, peak, widthNm, skew, quantumYield))
@@ -599,12 +624,15 @@ void bindScene(py::module_& m) {
           "coefficient per unit length), replacing any")
       .def("remove_dye",
            [](const MediumView& v) {
-             v.get().fluorescence.reset();
+             v.get().params.erase("fluorescence");
              v.o.s->edits.push_back(v.label() + ".remove_dye()");
            })
       .def("__repr__", [](const MediumView& v) { return "<nxrender.Medium " + v.label() + ">"; });
 
-  py::class_<ObjectView>(m, "Object", "One object of the scene (sphere, plane, triangle, ...)")
+  py::class_<ObjectView> object(m, "Object",
+                                "One object of the scene: a shape kind's parameters (a property "
+                                "each, docs/reference/shapes.md) and its appearance");
+  object
       .def_property(
           "medium",
           [](const ObjectView& o) -> py::object {
@@ -623,17 +651,17 @@ void bindScene(py::module_& m) {
           "set_medium",
           [](const ObjectView& o, const py::object& sigmaA, const py::object& sigmaS,
              const py::object& g) {
-            const nx::ShapeType t = o.get().shape;
-            if (t != nx::ShapeType::Sphere && t != nx::ShapeType::Mesh)
+            if (!nx::findShapeKind(o.get().shape)->holdsMedium)
               throw py::value_error(o.label() +
                                     ".set_medium: expected a sphere or a closed mesh, "
                                     "found a " +
-                                    shapeName(t));
+                                    o.get().shape);
             nx::MediumDesc d;
             d.loc = o.get().loc;
-            d.sigmaA = spectrumFromPython(sigmaA, o.label() + ".set_medium: sigma_a", d.loc);
-            d.sigmaS = spectrumFromPython(sigmaS, o.label() + ".set_medium: sigma_s", d.loc);
-            d.g = rangedArgument(g, o.label() + ".set_medium: g", nx::kPhaseGRange);
+            const std::string p = o.label() + ".set_medium: ";
+            d.params.set({"sigma_a", spectrumFromPython(sigmaA, p + "sigma_a", d.loc), d.loc});
+            d.params.set({"sigma_s", spectrumFromPython(sigmaS, p + "sigma_s", d.loc), d.loc});
+            d.params.set({"g", rangedArgument(g, p + "g", nx::kPhaseGRange), d.loc});
             o.get().medium = d;
             o.s->edits.push_back(o.label() + ".set_medium(" +
                                  py::repr(py::make_tuple(sigmaA, sigmaS, g)).cast<std::string>() +
@@ -642,7 +670,9 @@ void bindScene(py::module_& m) {
           },
           py::arg("sigma_a"), py::arg("sigma_s"), py::arg("g") = 0.0,
           "Fills a sphere or closed mesh with a homogeneous medium (replacing any); returns it")
-      .def_property_readonly("shape", [](const ObjectView& o) { return shapeName(o.get().shape); })
+      .def_property_readonly(
+          "shape", [](const ObjectView& o) { return o.get().shape; },
+          "Its kind: sphere, plane, triangle, quad or mesh (docs/reference/shapes.md)")
       .def_property_readonly(
           "line", [](const ObjectView& o) { return o.get().loc.line; },
           "Its line in the scene file")
@@ -656,32 +686,6 @@ void bindScene(py::module_& m) {
           },
           "The id of the named material it uses, or None")
       .def_property(
-          "center",
-          [](const ObjectView& o) -> py::object {
-            return o.get().shape == nx::ShapeType::Sphere ? py::object(tupleOf(o.get().center))
-                                                          : py::object(py::none());
-          },
-          [](const ObjectView& o, const py::object& value) {
-            if (o.get().shape != nx::ShapeType::Sphere)
-              throw py::value_error(o.label() + ".center: only spheres have a centre");
-            o.get().center = pointArgument(value, o.label() + ".center");
-            record(*o.s, o.label() + ".center", value);
-          },
-          "A sphere's centre (x, y, z)")
-      .def_property(
-          "radius",
-          [](const ObjectView& o) -> py::object {
-            return o.get().shape == nx::ShapeType::Sphere ? py::object(py::float_(o.get().radius))
-                                                          : py::object(py::none());
-          },
-          [](const ObjectView& o, const py::object& value) {
-            if (o.get().shape != nx::ShapeType::Sphere)
-              throw py::value_error(o.label() + ".radius: only spheres have a radius");
-            o.get().radius = rangedArgument(value, o.label() + ".radius", nx::kRadiusRange);
-            record(*o.s, o.label() + ".radius", value);
-          },
-          "A sphere's radius")
-      .def_property(
           "emission", [](const ObjectView& o) { return spectrumToPythonOpt(o.get().emission); },
           [](const ObjectView& o, const py::object& value) {
             const std::string param = o.label() + ".emission";
@@ -694,63 +698,41 @@ void bindScene(py::module_& m) {
           "Its emitted radiance (an area light; W m^-2 sr^-1 nm^-1): a number, an illuminant "
           "name or (wavelengths_nm, values); None: not a light")
       .def_property(
-          "normal",
-          [](const ObjectView& o) -> py::object {
-            return o.get().shape == nx::ShapeType::Plane ? py::object(tupleOf(o.get().normal))
-                                                         : py::object(py::none());
-          },
-          [](const ObjectView& o, const py::object& value) {
-            const std::string param = o.label() + ".normal";
-            if (o.get().shape != nx::ShapeType::Plane)
-              throw py::value_error(param + ": only planes have a normal");
-            const nx::Vec3d n = pointArgument(value, param);
-            if (!(length(n) > 0)) throw py::value_error(param + ": expected a non-zero normal");
-            o.get().normal = n / length(n);
-            record(*o.s, param, value);
-          },
-          "A plane's normal (normalised; the plane is dot(normal, p) = distance)")
-      .def_property(
-          "distance",
-          [](const ObjectView& o) -> py::object {
-            return o.get().shape == nx::ShapeType::Plane ? py::object(py::float_(o.get().distance))
-                                                         : py::object(py::none());
-          },
-          [](const ObjectView& o, const py::object& value) {
-            const std::string param = o.label() + ".distance";
-            if (o.get().shape != nx::ShapeType::Plane)
-              throw py::value_error(param + ": only planes have a distance");
-            o.get().distance = numberArgument(value, param.c_str(), -nx::kMaxSceneCoordinate,
-                                              nx::kMaxSceneCoordinate);
-            record(*o.s, param, value);
-          },
-          "A plane's signed distance from the origin along its normal")
-      .def_property(
           "vertices",
           [](const ObjectView& o) -> py::object {
-            const auto t = o.get().shape;
-            if (t != nx::ShapeType::Triangle && t != nx::ShapeType::Quad) return py::none();
-            const auto& v = o.get().vertices;
-            return py::make_tuple(tupleOf(v[0]), tupleOf(v[1]), tupleOf(v[2]));
+            const nx::ParameterSet& g = o.get().geometry;
+            const auto names = cornerNames(o.get().shape);
+            if (!names) return py::none();
+            py::list out;
+            for (const char* n : *names) out.append(tupleOf(*g.get<nx::Vec3d>(n)));
+            return py::tuple(out);
           },
           [](const ObjectView& o, const py::object& value) {
             const std::string param = o.label() + ".vertices";
-            const auto t = o.get().shape;
-            if (t != nx::ShapeType::Triangle && t != nx::ShapeType::Quad)
-              throw py::value_error(param + ": only triangles and quads have vertices");
+            const auto names = cornerNames(o.get().shape);
+            if (!names) throw py::value_error(param + ": only triangles and quads have vertices");
             if (!(py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) ||
                 py::len(value) != 3)
               throw py::type_error(param + ": expected three points");
-            std::array<nx::Vec3d, 3> v;
-            for (int i = 0; i < 3; ++i)
-              v[i] = pointArgument(value[py::int_(i)], param + "[" + std::to_string(i) + "]");
-            const nx::Vec3d area =
-                t == nx::ShapeType::Triangle ? cross(v[1] - v[0], v[2] - v[0]) : cross(v[1], v[2]);
-            if (!(length(area) > 0))
-              throw py::value_error(param + ": expected a shape with non-zero area");
-            o.get().vertices = v;
+            // All three at once: the kind checks them together.
+            const nx::ParameterSet before = o.get().geometry;
+            try {
+              for (int i = 0; i < 3; ++i)
+                o.get().geometry.set(
+                    {(*names)[i],
+                     pointArgument(value[py::int_(i)], param + "[" + std::to_string(i) + "]"),
+                     before.locOf((*names)[i], o.get().loc)});
+              if (const auto problem =
+                      nx::shapeProblem(*nx::findShapeKind(o.get().shape), o.get().geometry))
+                throw py::value_error(param + ": expected " + problem->expected + ", found " +
+                                      problem->found);
+            } catch (...) {
+              o.get().geometry = before;
+              throw;
+            }
             record(*o.s, param, value);
           },
-          "A triangle's vertices (vA, vB, vC) or a quad's (origin, edge_u, edge_v)")
+          "A triangle's (vA, vB, vC) or a quad's (origin, edge_u, edge_v) together")
       .def_property(
           "emission_scale", [](const ObjectView& o) { return o.get().emissionScale; },
           [](const ObjectView& o, const py::object& value) {
@@ -762,48 +744,38 @@ void bindScene(py::module_& m) {
           },
           "The factor on its emission (> 0)")
       .def("__repr__", [](const ObjectView& o) {
-        return "<nxrender.Object " + o.label() + " " + shapeName(o.get().shape) + " (line " +
+        return "<nxrender.Object " + o.label() + " " + o.get().shape + " (line " +
                std::to_string(o.get().loc.line) + ")>";
       });
+  // One property per parameter any shape kind declares (the first declaration of a name): None
+  // on an object whose kind does not take it; setting it there is refused.
+  std::vector<std::string> shapeNames;
+  for (const nx::ShapeKindSpec& kind : nx::shapeKinds())
+    for (const nx::ShapeParameter& sp : kind.params()) {
+      if (std::find(shapeNames.begin(), shapeNames.end(), sp.spec.name) != shapeNames.end())
+        continue;
+      shapeNames.push_back(sp.spec.name);
+      const std::string name = sp.spec.name;
+      object.def_property(
+          sp.spec.name,
+          [name](const ObjectView& o) -> py::object {
+            const nx::Parameter* q = o.get().geometry.find(name);
+            return q ? parameterToPython(q->value) : py::object(py::none());
+          },
+          [name](const ObjectView& o, const py::object& value) {
+            const std::string param = o.label() + "." + name;
+            setShapeParameter(o, name, value, param);
+            record(*o.s, param, value);
+          },
+          sp.spec.doc);
+    }
 
   py::class_<LightView> light(m, "Light",
                               "A <light>: a point or spot light; a property per parameter of "
                               "its kind (docs/reference/lights.md)");
   light.def_property_readonly(
       "kind", [](const LightView& l) { return l.get().kind; }, "point, spot, ...");
-  // One property per parameter any light kind declares (the first declaration of a name); a
-  // parameter the light's kind does not take is refused; None removes one (its default).
-  std::vector<std::string> lightNames;
-  for (const nx::LightKindSpec& kind : nx::lightKinds())
-    for (const nx::LightParameter& lp : kind.params()) {
-      if (std::find(lightNames.begin(), lightNames.end(), lp.spec.name) != lightNames.end())
-        continue;
-      lightNames.push_back(lp.spec.name);
-      const std::string name = lp.spec.name;
-      light.def_property(
-          lp.spec.name,
-          [name](const LightView& l) -> py::object {
-            const nx::Parameter* q = l.get().params.find(name);
-            return q ? parameterToPython(q->value) : py::object(py::none());
-          },
-          [name](const LightView& l, const py::object& value) {
-            const std::string param = l.label() + "." + name;
-            nx::LightDesc& d = l.get();
-            const nx::LightKindSpec* its = nx::findLightKind(d.kind);
-            const nx::LightParameter* decl = its ? nx::lightParameter(*its, name) : nullptr;
-            if (!decl)
-              throw py::value_error(param + ": a " + d.kind + " light takes no <" + name + ">");
-            if (value.is_none()) {
-              if (decl->required)
-                throw py::value_error(param + ": a " + d.kind + " light needs it");
-              d.params.erase(name);
-            } else {
-              d.params.set({name, parameterFromPython(decl->spec, value, param, d.loc), d.loc});
-            }
-            record(*l.s, param, value);
-          },
-          lp.spec.doc);
-    }
+  bindTakenParameters(light, nx::lightKinds(), nx::ParamType::Dye);
 
   py::class_<CameraView>(m, "Camera", "The scene's camera")
       .def_property(

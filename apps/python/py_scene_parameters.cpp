@@ -1,7 +1,8 @@
 // Scene.parameters(), Scene.get(name), Scene.set(name, value): every parameter of the scene
 // by a stable name (the names Scene.edits records), with its type, unit, range and meaning.
-// Material parameters come from the kinds' schemas (integrators/materials/material_kind.h);
-// the others from the table below. Values are read and set through the views' properties, so
+// Shape, material and light parameters come from the kinds' schemas (accel/shape_kinds.h,
+// integrators/materials/material_kind.h, integrators/lights/light_kinds.h); the others from
+// the table of io/scene_parameters.cpp. Values are read and set through the views' properties, so
 // a value set by name is checked and recorded exactly as one set by attribute.
 
 #include "apps/python/py_scene_parameters.h"
@@ -10,8 +11,10 @@
 
 #include <cctype>
 
+#include "accel/shape_kinds.h"
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
+#include "integrators/media/medium_kinds.h"
 #include "io/material_parameters.h"
 #include "io/scene_parameters.h"
 
@@ -57,6 +60,16 @@ void addMaterial(std::vector<Entry>& out, const std::string& label, const nx::Ma
   }
 }
 
+// Every parameter a light's or medium's kind takes, named `label.<parameter>` (a dye is listed
+// by its fields).
+void addTaken(std::vector<Entry>& out, const std::string& label,
+              std::span<const nx::TakenParameter> params) {
+  for (const nx::TakenParameter& p : params)
+    if (p.spec.type != nx::ParamType::Dye)
+      out.push_back({label + "." + p.spec.name, nx::paramTypeName(p.spec.type), p.spec.unit,
+                     p.spec.doc, p.defaultText, p.spec.range});
+}
+
 std::vector<Entry> entries(const SceneState& s) {
   std::vector<Entry> out;
   for (const char* k : {"resolution", "spp", "seed", "depth", "bands", "background", "illuminant"})
@@ -74,34 +87,19 @@ std::vector<Entry> entries(const SceneState& s) {
   for (size_t i = 0; i < s.desc.objects.size(); ++i) {
     const nx::ObjectDesc& o = s.desc.objects[i];
     const std::string label = "objects[" + std::to_string(i) + "]";
-    switch (o.shape) {
-    case nx::ShapeType::Sphere:
-      addFixed(out, label + ".center", "object.center");
-      addFixed(out, label + ".radius", "object.radius");
-      break;
-    case nx::ShapeType::Plane:
-      addFixed(out, label + ".normal", "object.normal");
-      addFixed(out, label + ".distance", "object.distance");
-      break;
-    case nx::ShapeType::Triangle:
-    case nx::ShapeType::Quad:
-      addFixed(out, label + ".vertices", "object.vertices");
-      break;
-    case nx::ShapeType::Mesh:
-      break; // its vertices are its file's
-    }
+    if (const nx::ShapeKindSpec* kind = nx::findShapeKind(o.shape))
+      for (const nx::ShapeParameter& p : kind->params())
+        out.push_back({label + "." + p.spec.name, nx::paramTypeName(p.spec.type), p.spec.unit,
+                       p.spec.doc, "", p.spec.range});
     addFixed(out, label + ".emission", "object.emission");
     if (o.emission) addFixed(out, label + ".emission_scale", "object.emission_scale");
     if (o.materialRef.empty()) addMaterial(out, label, o);
     if (o.medium) {
-      for (const char* k :
-           {"sigma_a", "sigma_s", "sigma_a_scale", "sigma_s_scale", "g", "emission"})
-        addFixed(out, label + ".medium." + k, std::string("medium.") + k);
-      if (o.medium->emission)
-        addFixed(out, label + ".medium.emission_scale", "medium.emission_scale");
-      if (o.medium->fluorescence) {
+      if (const nx::MediumKindSpec* kind = nx::findMediumKind(o.medium->kind))
+        addTaken(out, label + ".medium", kind->params());
+      if (const auto* dye = o.medium->params.get<nx::FluorescenceDesc>("fluorescence")) {
         addFixed(out, label + ".medium.dye_peak", "medium.dye_peak");
-        addFluorescence(out, label + ".medium.dye", *o.medium->fluorescence, true);
+        addFluorescence(out, label + ".medium.dye", *dye, true);
       }
     }
   }
@@ -110,9 +108,7 @@ std::vector<Entry> entries(const SceneState& s) {
   for (size_t i = 0; i < s.desc.lights.size(); ++i) {
     const std::string label = "lights[" + std::to_string(i) + "]";
     if (const nx::LightKindSpec* kind = nx::findLightKind(s.desc.lights[i].kind))
-      for (const nx::LightParameter& p : kind->params())
-        out.push_back({label + "." + p.spec.name, nx::paramTypeName(p.spec.type), p.spec.unit,
-                       p.spec.doc, p.defaultText, p.spec.range});
+      addTaken(out, label, kind->params());
   }
   return out;
 }

@@ -9,9 +9,14 @@ import nxrender
 from conftest import SCENES
 
 
-def new_value(info):
+def new_value(name, info):
     """A valid value different from the current one, from the parameter's type and range."""
     v, t, r = info["value"], info["type"], info["range"]
+    if t == "transform":  # rows [m | t]: moved a little (from the identity when absent)
+        rows = v or ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0))
+        return tuple(tuple(row[:3]) + (row[3] + 0.01,) for row in rows)
+    if v is None and name.endswith("_scale"):
+        v = float(info["default"])  # a factor not given: moved from its default, 1
     if v is None or t == "fluorescence":
         return None
     if t == "number":
@@ -64,7 +69,7 @@ def test_every_parameter_is_settable_by_name_and_renders(path):
     for name, info in parameters.items():
         assert set(info) == {"value", "type", "unit", "range", "default", "doc"}
         assert info["doc"], name
-        value = new_value(info)
+        value = new_value(name, info)
         if value is None:
             continue
         edited = scene.copy()
@@ -78,6 +83,38 @@ def test_every_parameter_is_settable_by_name_and_renders(path):
         assert np.isfinite(np.asarray(image.radiance)).all(), name
         changed += 1
     assert changed >= 5
+
+
+def test_shape_parameters_come_from_the_kinds_and_are_checked_like_the_file(tmp_path):
+    scene = nxrender.Scene(SCENES / "lab_bench.scn")
+    params = scene.parameters()
+    mesh = next(i for i, o in enumerate(scene.objects) if o.shape == "mesh")
+    label = f"objects[{mesh}]"
+    assert params[label + ".file"]["type"] == "file"
+    assert params[label + ".transform"]["type"] == "transform"
+    rows = scene.get(label + ".transform")
+    assert len(rows) == 3 and rows[0][0] == pytest.approx(0.45) and rows[0][3] == pytest.approx(-0.5)
+    # A transform from numpy, a singular one refused (the file's message), the scene unchanged.
+    moved = scene.copy()
+    moved.set(label + ".transform", np.array([[0.5, 0, 0, 0], [0, 0.5, 0, 0], [0, 0, 0.5, 0]]))
+    assert moved.get(label + ".transform")[1][1] == 0.5
+    with pytest.raises(ValueError, match=r"keeps volume \(non-zero determinant\), found determinant 0"):
+        moved.set(label + ".transform", np.zeros((3, 4)))
+    assert moved.get(label + ".transform")[1][1] == 0.5
+    # The mesh file can be replaced; a missing one is refused when the scene is built.
+    moved.set(label + ".file", str(SCENES / "data" / "vase.ply"))
+    assert np.isfinite(np.asarray(nxrender.render(small(moved), threads=1).radiance)).all()
+    moved.set(label + ".file", str(tmp_path / "none.ply"))
+    with pytest.raises(Exception, match="none.ply"):
+        nxrender.render(moved, threads=1)
+    # Checks of a kind: a zero plane normal, collinear triangle vertices.
+    thesis = nxrender.Scene(SCENES / "thesis.scn")
+    plane = next(i for i, o in enumerate(thesis.objects) if o.shape == "plane")
+    with pytest.raises(ValueError, match=r"expected a non-zero plane normal, found 0, 0, 0"):
+        thesis.set(f"objects[{plane}].normal", (0, 0, 0))
+    with pytest.raises(ValueError, match=r"a plane takes no vA \(a triangle does\)"):
+        thesis.objects[plane].vA = (0, 0, 0)
+    assert thesis.edits == []
 
 
 def test_unknown_names_and_bad_values_are_refused():

@@ -142,7 +142,7 @@ def test_medium_edits_equal_the_edited_file(scenes):
     assert liquid.sigma_a == "water:absorption" and liquid.sigma_a_scale == 0.01
     liquid.sigma_a_scale = 0.02
     liquid.sigma_s = ([400, 700], [0.05, 0.01])
-    assert liquid.sigma_s_scale == 1  # a new coefficient stands alone
+    assert liquid.sigma_s_scale is None  # a new coefficient stands alone (default scale 1)
     liquid.g = 0.5
     liquid.emission = 0.3
     scene.objects[2].medium.dye_peak = 2
