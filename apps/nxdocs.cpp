@@ -261,7 +261,9 @@ std::string pythonDoc() {
   o << "\nPython values: numbers as float, points as (x, y, z), spectra as a float, a name, "
        "(wavelengths_nm, values) or \"csv:FILE[#COLUMN]\", an ior as a float, a glass name or "
        "(\"cauchy\" | \"sellmeier\", coefficients), a coating as (thickness_nm, ior), a measured "
-       "matrix as (excitation_nm, emission_nm, values) numpy arrays, a transform as 3 rows (or 4, "
+       "matrix as (excitation_nm, emission_nm, values) numpy arrays, a reflectance texture as "
+       "(wavelengths_nm, values) with values of shape (height, width, bands) in [0, 1] (or "
+       "\"texture:FILE\"), a transform as 3 rows (or 4, "
        "the "
        "last 0, 0, 0, 1) of [m | t], e.g. a (3, 4) numpy array.\n";
   return o.str();

@@ -400,6 +400,11 @@ private:
   // A reflectance texture: the built-in chart, a spectral EXR checked to hold reflectances,
   // or a PNG/JPEG image upsampled per texel through the sRGB sigmoid table.
   std::shared_ptr<const ReflectanceTexture> texture(const SpectrumDesc& d) const {
+    if (d.texels) { // numbers from Python, checked there; their digest joins the render key
+      const SpectralTexels& t = *d.texels;
+      refs_.fold(std::to_string(t.digest), "texture given as numbers");
+      return ReflectanceTexture::spectralImage(t.width, t.height, t.nm, t.values);
+    }
     if (d.texture == "colorchecker") return ReflectanceTexture::colorChecker();
     try {
       const std::string bytes = refs_.readFile(d.texture, kMaxTextureFileBytes, "texture file");

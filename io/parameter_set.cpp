@@ -71,7 +71,7 @@ namespace {
 // changes its size here and must be written below too (else two different materials whose
 // descriptions differ only in it would be shared). Sizes of x86-64 with libstdc++.
 #if defined(__x86_64__) && defined(__GLIBCXX__)
-static_assert(sizeof(SpectrumDesc) == 232, "a SpectrumDesc field was added: write it below");
+static_assert(sizeof(SpectrumDesc) == 248, "a SpectrumDesc field was added: write it below");
 static_assert(sizeof(IorDesc) == 112, "an IorDesc field was added: write it below");
 static_assert(sizeof(FluorescenceDesc) == 232, "a FluorescenceDesc field was added: write it");
 static_assert(sizeof(CoatingDesc) == 160, "a CoatingDesc field was added: write it below");
@@ -89,6 +89,7 @@ struct CanonicalWriter {
       << s.column.size() << ':' << s.column << ',' << s.texture.size() << ':' << s.texture << ','
       << s.nm.size() << ':';
     for (size_t i = 0; i < s.nm.size(); ++i) t << s.nm[i] << ':' << s.value[i] << ' ';
+    if (s.texels) t << "texels:" << s.texels->digest;
   }
   void operator()(const IorDesc& d) const {
     t << static_cast<int>(d.kind) << ',' << d.value << ',' << d.name.size() << ':' << d.name << ','

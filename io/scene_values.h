@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,6 +15,16 @@
 namespace nx {
 
 struct MeasuredMatrix; // spectra/reradiation_matrix.h
+
+/// A spectral reflectance texture given as numbers (from Python) rather than a file: width x
+/// height texels (row 0 at the top), values [texel][band] in [0, 1] at increasing band
+/// wavelengths, and a digest of the content (its identity in the render key).
+struct SpectralTexels {
+  int width = 0, height = 0;
+  std::vector<double> nm;
+  std::vector<float> values;
+  uint64_t digest = 0;
+};
 
 /// Where an item was written: file name and 1-based line.
 struct SourceLocation {
@@ -38,6 +49,8 @@ struct SpectrumDesc {
   std::string path;          ///< Kind::CsvFile: resolved relative to the scene file
   std::string column;        ///< Kind::CsvFile: the header's name of the value column, or ""
   std::string texture; ///< Kind::Texture: "colorchecker" or a spectral EXR (relative to the scene)
+  /// Kind::Texture given as numbers (then `texture` is empty), checked
+  std::shared_ptr<const SpectralTexels> texels;
   SourceLocation loc;
 };
 

@@ -12,6 +12,8 @@
 
 #include "apps/python/py_arguments.h"
 #include "core/error.h"
+#include "core/hash.h"
+#include "integrators/render_scene.h"
 #include "io/envi_export.h"
 #include "io/spectral_cube.h"
 #include "spectra/band_colour.h"
@@ -155,6 +157,44 @@ PyImage makeImage(const py::object& radiance, const py::object& wavelengths,
 }
 
 } // namespace
+
+std::shared_ptr<const nx::SpectralTexels>
+texelsArgument(const py::handle& wavelengths, const py::handle& values, const std::string& param) {
+  const py::array a = realArray(values, (param + "[1] (values)").c_str());
+  if (a.ndim() != 3 || a.shape(0) < 1 || a.shape(1) < 1 || a.shape(2) < 1)
+    throw py::value_error(param + ": expected texel values of shape (height, width, bands)");
+  auto t = std::make_shared<nx::SpectralTexels>();
+  t->nm = numberListArgument(wavelengths, (param + "[0] (wavelengths)").c_str(), 1);
+  if (static_cast<py::ssize_t>(t->nm.size()) != a.shape(2))
+    throw py::value_error(param + ": expected one wavelength per band, found " +
+                          std::to_string(t->nm.size()) + " wavelengths and " +
+                          std::to_string(a.shape(2)) + " bands");
+  for (size_t i = 0; i < t->nm.size(); ++i)
+    if (!(t->nm[i] > 0 && std::isfinite(t->nm[i])) || (i > 0 && !(t->nm[i] > t->nm[i - 1])))
+      throw py::value_error(param + ": expected increasing positive wavelengths");
+  if (static_cast<double>(a.size()) * sizeof(float) > static_cast<double>(nx::kMaxTextureFileBytes))
+    throw py::value_error(param + ": expected a texture of at most " +
+                          std::to_string(nx::kMaxTextureFileBytes >> 20) + " MiB of float32");
+  t->height = static_cast<int>(a.shape(0));
+  t->width = static_cast<int>(a.shape(1));
+  t->values = pixelsArgument<float>(a, (param + "[1] (values)").c_str(), a.shape(0), a.shape(1),
+                                    a.shape(2), 0.0, 1.0);
+  uint64_t h = nx::fnv1a64(std::to_string(t->width) + "x" + std::to_string(t->height));
+  h = nx::fnv1a64(
+      std::string_view(reinterpret_cast<const char*>(t->nm.data()), t->nm.size() * sizeof(double)),
+      h);
+  t->digest = nx::fnv1a64(std::string_view(reinterpret_cast<const char*>(t->values.data()),
+                                           t->values.size() * sizeof(float)),
+                          h);
+  return t;
+}
+
+py::object texelsToPython(const nx::SpectralTexels& t) {
+  py::array_t<float> values({static_cast<py::ssize_t>(t.height), static_cast<py::ssize_t>(t.width),
+                             static_cast<py::ssize_t>(t.nm.size())});
+  std::copy(t.values.begin(), t.values.end(), values.mutable_data());
+  return py::make_tuple(py::cast(t.nm), values);
+}
 
 void bindImage(py::module_& m) {
   py::class_<PyImage>(m, "Image",

@@ -4,6 +4,10 @@
 
 #include <pybind11/pybind11.h>
 
+#include <memory>
+#include <string>
+
+#include "io/scene_values.h"
 #include "io/spectral_exr.h"
 
 namespace nxpy {
@@ -14,6 +18,15 @@ namespace py = pybind11;
 struct PyImage {
   nx::SpectralImage image;
 };
+
+/// A reflectance texture given as numbers: values of shape (height, width, bands), each a
+/// finite reflectance in [0, 1], at `wavelengths` (increasing nm, one per band); checked (the
+/// first offending texel named) and its content digested. `param` names it in errors.
+std::shared_ptr<const nx::SpectralTexels>
+texelsArgument(const py::handle& wavelengths, const py::handle& values, const std::string& param);
+
+/// A texture's numbers as (wavelengths_nm, values[height, width, bands] float32).
+py::object texelsToPython(const nx::SpectralTexels& t);
 
 /// Registers Image, read_exr, write_exr and write_envi.
 void bindImage(py::module_& m);

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "apps/python/py_arguments.h"
+#include "apps/python/py_image.h"
 
 namespace nxpy {
 
@@ -30,6 +31,7 @@ py::object spectrumToPython(const nx::SpectrumDesc& s) {
   case nx::SpectrumDesc::Kind::CsvFile:
     return py::str("csv:" + s.path + (s.column.empty() ? "" : "#" + s.column));
   case nx::SpectrumDesc::Kind::Texture:
+    if (s.texels) return texelsToPython(*s.texels);
     return py::str("texture:" + s.texture);
   }
   return py::none();
@@ -64,6 +66,13 @@ nx::SpectrumDesc spectrumFromPython(const py::handle& value, const std::string& 
     if (py::len(value) != 2)
       throw py::value_error(param + ": expected (wavelengths_nm, values), found a sequence of " +
                             std::to_string(py::len(value)));
+    // Values of shape (height, width, bands): a texture given as numbers.
+    const py::object values = value[py::int_(1)];
+    if (py::hasattr(values, "ndim") && values.attr("ndim").cast<int>() == 3) {
+      s.kind = nx::SpectrumDesc::Kind::Texture;
+      s.texels = texelsArgument(value[py::int_(0)], values, param);
+      return s;
+    }
     s.kind = nx::SpectrumDesc::Kind::Pairs;
     s.nm = numberListArgument(value[py::int_(0)], (param + "[0] (wavelengths)").c_str(), 2);
     s.value = numberListArgument(value[py::int_(1)], (param + "[1] (values)").c_str(), 2);

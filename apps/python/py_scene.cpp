@@ -493,8 +493,17 @@ void bindScene(py::module_& m) {
           return q ? parameterToPython(q->value) : py::object(py::none());
         },
         [sp](const MaterialView& v, const py::object& value) {
-          setMaterialParameter(v, *sp, value, v.label() + "." + sp->name);
-          record(*v.s, v.label() + "." + sp->name, value);
+          const std::string param = v.label() + "." + sp->name;
+          setMaterialParameter(v, *sp, value, param);
+          // A texture's numbers are recorded by their digest (a numpy repr elides them).
+          const auto* t = v.get().params.get<nx::SpectrumDesc>(sp->name);
+          if (t && t->texels)
+            v.s->edits.push_back(param + " = <texture " + std::to_string(t->texels->height) + "x" +
+                                 std::to_string(t->texels->width) + "x" +
+                                 std::to_string(t->texels->nm.size()) + " digest " +
+                                 std::to_string(t->texels->digest) + ">");
+          else
+            record(*v.s, param, value);
         },
         spec.doc);
   }

@@ -166,3 +166,48 @@ def test_matrix_from_numpy_renders_like_the_csv():
         edited.set(name, (excitation, emission, values + 2))
     with pytest.raises(ValueError, match=r"fluorescence\.matrix\[2\]: expected shape"):
         edited.set(name, (excitation, emission, values[:, :-1]))
+
+
+def test_texture_from_numpy_renders_like_the_same_texture_from_its_file(tmp_path):
+    """A reflectance texture given as (wavelengths, values[h, w, bands]) renders exactly as the
+    same texels written to a spectral EXR and named by texture="..."; bad arrays are refused."""
+    rng = np.random.default_rng(5)
+    wavelengths = np.arange(380.0, 781.0, 20.0)
+    values = rng.uniform(0.05, 0.95, size=(6, 8, wavelengths.size)).astype(np.float32)
+    path = tmp_path / "texels.exr"
+    nxrender.write_exr(path, nxrender.Image(values, wavelengths=wavelengths))
+    scene = small(nxrender.Scene(SCENES / "lab_bench.scn"))
+    scene.resolution = (16, 9)
+    chart = next(i for i, o in enumerate(scene.objects)
+                 if o.material.reflectance == "texture:colorchecker")
+    name = f"objects[{chart}].reflectance"
+    from_file, from_numpy = scene.copy(), scene.copy()
+    from_file.set(name, f"texture:{path}")
+    from_numpy.set(name, (wavelengths, values))
+    got = from_numpy.get(name)
+    np.testing.assert_array_equal(got[0], wavelengths)
+    np.testing.assert_array_equal(got[1], values)
+    a = nxrender.render(from_file, threads=1, spp=4, seed=2)
+    b = nxrender.render(from_numpy, threads=1, spp=4, seed=2)
+    np.testing.assert_array_equal(np.asarray(a.radiance), np.asarray(b.radiance))
+    # The edit is recorded with the texture's content (a digest), so two textures differ.
+    other = from_numpy.copy()
+    other.set(name, (wavelengths, values * 0.5))
+    assert other.edits[-1] != from_numpy.edits[-1] and "digest" in other.edits[-1]
+    assert nxrender.render(other, threads=1, spp=4, seed=2).radiance.mean() < b.radiance.mean()
+    before = list(scene.edits)
+    # Refused: reflectances beyond [0, 1] (the texel named), a band count other than the
+    # wavelengths', complex values; a texture where a spectrum is expected.
+    with pytest.raises(ValueError, match=r"in \[0, 1\], found 1\.5 at row 2, column 3"):
+        bad = values.copy()
+        bad[2, 3, 0] = 1.5
+        scene.set(name, (wavelengths, bad))
+    with pytest.raises(ValueError, match="one wavelength per band"):
+        scene.set(name, (wavelengths[:-1], values))
+    with pytest.raises(TypeError, match="complex"):
+        scene.set(name, (wavelengths, values.astype(np.complex64)))
+    lights = [n for n, i in scene.parameters().items() if n.startswith("lights[") and i["type"] == "spectrum"]
+    if lights:
+        with pytest.raises(ValueError, match="expected a spectrum, found a texture"):
+            scene.set(lights[0], (wavelengths, values))
+    assert scene.edits == before
