@@ -228,6 +228,7 @@ std::string pythonDoc() {
     if (item == "object") return "objects[i]." + leaf;
     if (item == "medium") return "objects[i].medium." + leaf;
     if (item == "light") return "lights[i]." + leaf;
+    if (item == "spectrum") return "spectra['name']." + leaf;
     if (item == "fluorescence")
       return "objects[i].fluorescence." + leaf + ", materials['id'].fluorescence." + leaf +
              (leaf == "peak_absorptance" || leaf == "matrix" ? std::string()

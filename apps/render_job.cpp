@@ -14,10 +14,6 @@
 namespace nx {
 namespace {
 
-const char* modeName(RenderMode m) {
-  return m == RenderMode::Rt ? "rt" : m == RenderMode::Mcpt ? "mcpt" : "spectral_mcpt";
-}
-
 std::string hex(uint64_t v) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
@@ -162,7 +158,7 @@ SpectralImage RenderJob::image(const Film& film, double seconds) const {
   image.attributes["nxrender.version"] = NX_VERSION;
   image.attributes["nxrender.scene"] = scenePath_;
   image.attributes["nxrender.renderKey"] = renderKey_;
-  image.attributes["nxrender.mode"] = modeName(scene_.settings.mode);
+  image.attributes["nxrender.mode"] = renderModeName(scene_.settings.mode);
   image.attributes["nxrender.sampleRange"] =
       std::to_string(firstSample_) + ":" + std::to_string(firstSample_ + samples_);
   image.attributes["nxrender.seed"] = std::to_string(seed_);

@@ -19,6 +19,18 @@ namespace nx {
 /// The three rendering modes of Niixtracer scene files.
 enum class RenderMode { Rt, Mcpt, SpectralMcpt };
 
+/// "rt", "mcpt" or "spectral_mcpt": a mode as <mode> writes it.
+inline const char* renderModeName(RenderMode m) {
+  return m == RenderMode::Rt ? "rt" : m == RenderMode::Mcpt ? "mcpt" : "spectral_mcpt";
+}
+
+/// The mode <mode> names, or nullopt.
+inline std::optional<RenderMode> parseRenderMode(const std::string& name) {
+  for (RenderMode m : {RenderMode::Rt, RenderMode::Mcpt, RenderMode::SpectralMcpt})
+    if (name == renderModeName(m)) return m;
+  return std::nullopt;
+}
+
 /// <spectrum name="...">: a spectrum defined once and used by name.
 struct NamedSpectrumDesc {
   std::string name;

@@ -512,14 +512,9 @@ private:
     const pugi::xml_node mode = required(c, n, "mode");
     s.modeLoc = loc(mode);
     const std::string m = text(mode);
-    if (m == "rt")
-      s.mode = RenderMode::Rt;
-    else if (m == "mcpt")
-      s.mode = RenderMode::Mcpt;
-    else if (m == "spectral_mcpt")
-      s.mode = RenderMode::SpectralMcpt;
-    else
-      fail(mode, "a mode rt, mcpt or spectral_mcpt", shownText(m));
+    const std::optional<RenderMode> parsed = parseRenderMode(m);
+    if (!parsed) fail(mode, "a mode rt, mcpt or spectral_mcpt", shownText(m));
+    s.mode = *parsed;
     if (c.count("path")) {
       s.outputPath = text(c.at("path"));
       if (s.outputPath.empty()) fail(c.at("path"), "an output file name in <path>", "nothing");

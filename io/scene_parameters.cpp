@@ -7,6 +7,7 @@ namespace {
 
 const FixedParameter kFixed[] = {
     {"resolution", "integers", "px", nullptr, "(width, height) in pixels"},
+    {"mode", "name", "1", nullptr, "the rendering mode: rt, mcpt or spectral_mcpt"},
     {"spp", "integer", "1", nullptr, "samples per pixel"},
     {"seed", "integer", "1", nullptr, "the sampler's seed"},
     {"depth", "integer", "1", nullptr, "the bounce count"},
@@ -14,6 +15,9 @@ const FixedParameter kFixed[] = {
     {"background", "spectrum", "W m^-2 sr^-1 nm^-1", nullptr,
      "uniform environment radiance, or None (black)"},
     {"illuminant", "spectrum", "1", nullptr, "the preview's white, or None (D65)"},
+    {"path", "text", "", nullptr, "the output the command line writes (<path>)"},
+    {"spectrum.value", "spectrum", "as used", nullptr,
+     "a <spectrum name=...>'s values (its users' units)"},
     {"camera.position", "point", "scene units", nullptr, "the eye (look-at form)"},
     {"camera.look_at", "point", "scene units", nullptr, "the point looked at"},
     {"camera.up", "vector", "1", nullptr, "the up direction"},

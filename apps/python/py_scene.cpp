@@ -69,6 +69,14 @@ struct CameraView {
   StatePtr s;
 };
 
+/// A <spectrum name="..."> of the scene.
+struct NamedSpectrumView {
+  StatePtr s;
+  size_t i;
+  nx::NamedSpectrumDesc& get() const { return s->desc.spectra.at(i); }
+  std::string label() const { return "spectra['" + get().name + "']"; }
+};
+
 struct LightView {
   StatePtr s;
   size_t i;
@@ -786,6 +794,26 @@ void bindScene(py::module_& m) {
       "kind", [](const LightView& l) { return l.get().kind; }, "point, spot, ...");
   bindTakenParameters(light, nx::lightKinds(), nx::ParamType::Dye);
 
+  py::class_<NamedSpectrumView>(m, "NamedSpectrum",
+                                "A <spectrum name=...> of the scene, used by its name")
+      .def_property_readonly("name", [](const NamedSpectrumView& v) { return v.get().name; })
+      .def_property(
+          "value", [](const NamedSpectrumView& v) { return spectrumToPython(v.get().spectrum); },
+          [](const NamedSpectrumView& v, const py::object& value) {
+            const std::string param = v.label() + ".value";
+            nx::SpectrumDesc d = spectrumFromPython(value, param, v.get().loc);
+            if (d.kind == nx::SpectrumDesc::Kind::Texture)
+              throw py::value_error(param + ": expected a spectrum, found a texture");
+            if (d.kind == nx::SpectrumDesc::Kind::Name)
+              throw py::value_error(param + ": expected numbers or a CSV file (a named spectrum "
+                                            "is defined by values, not by another name)");
+            v.get().spectrum = d;
+            record(*v.s, param, value);
+          },
+          "Its values: a number, (wavelengths_nm, values) or \"csv:FILE[#COLUMN]\"")
+      .def("__repr__",
+           [](const NamedSpectrumView& v) { return "<nxrender.NamedSpectrum " + v.label() + ">"; });
+
   py::class_<CameraView>(m, "Camera", "The scene's camera")
       .def_property(
           "position", [](const CameraView& c) { return tupleOf(c.s->desc.camera.position); },
@@ -994,6 +1022,33 @@ void bindScene(py::module_& m) {
             record(*s.state, "illuminant", value);
           },
           "The preview's white (<illum>, a spectrum), or None (D65)")
+      .def_property(
+          "mode", [](const PyScene& s) { return nx::renderModeName(s.state->desc.settings.mode); },
+          [](const PyScene& s, const py::object& value) {
+            const auto m = nx::parseRenderMode(stringArgument(value, "mode"));
+            if (!m)
+              throw py::value_error("mode: expected rt, mcpt or spectral_mcpt, found " +
+                                    py::repr(value).cast<std::string>());
+            s.state->desc.settings.mode = *m;
+            record(*s.state, "mode", value);
+          },
+          "The rendering mode (<mode>): rt, mcpt or spectral_mcpt")
+      .def_property(
+          "path", [](const PyScene& s) { return s.state->desc.settings.outputPath; },
+          [](const PyScene& s, const py::object& value) {
+            s.state->desc.settings.outputPath = stringArgument(value, "path");
+            record(*s.state, "path", value);
+          },
+          "The output the command line writes (<path>; renders from Python return images)")
+      .def_property_readonly(
+          "spectra",
+          [](const PyScene& s) {
+            py::dict d;
+            for (size_t i = 0; i < s.state->desc.spectra.size(); ++i)
+              d[py::str(s.state->desc.spectra[i].name)] = NamedSpectrumView{s.state, i};
+            return d;
+          },
+          "The named spectra (<spectrum name=...>) by name")
       .def_property_readonly("camera", [](const PyScene& s) { return CameraView{s.state}; })
       .def_property_readonly(
           "objects",

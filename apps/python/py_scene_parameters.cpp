@@ -72,8 +72,11 @@ void addTaken(std::vector<Entry>& out, const std::string& label,
 
 std::vector<Entry> entries(const SceneState& s) {
   std::vector<Entry> out;
-  for (const char* k : {"resolution", "spp", "seed", "depth", "bands", "background", "illuminant"})
+  for (const char* k :
+       {"resolution", "mode", "spp", "seed", "depth", "bands", "background", "illuminant", "path"})
     addFixed(out, k, k);
+  for (const nx::NamedSpectrumDesc& n : s.desc.spectra)
+    addFixed(out, "spectra['" + n.name + "'].value", "spectrum.value");
   const nx::CameraDesc& c = s.desc.camera;
   if (!c.extrinsics)
     for (const char* k : {"position", "look_at", "up"})

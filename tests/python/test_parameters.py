@@ -211,3 +211,30 @@ def test_texture_from_numpy_renders_like_the_same_texture_from_its_file(tmp_path
         with pytest.raises(ValueError, match="expected a spectrum, found a texture"):
             scene.set(lights[0], (wavelengths, values))
     assert scene.edits == before
+
+
+def test_settings_mode_path_and_named_spectra_are_parameters():
+    scene = small(nxrender.Scene(SCENES / "extensions.scn"))
+    params = scene.parameters()
+    for name in ("mode", "path", "spectra['paint'].value", "spectra['lamp'].value"):
+        assert name in params, name
+    assert scene.get("mode") == "spectral_mcpt"
+    with pytest.raises(ValueError, match="mode: expected rt, mcpt or spectral_mcpt, found 'fast'"):
+        scene.set("mode", "fast")
+    # A named spectrum set to a constant renders as its users set to that constant.
+    users = [i for i, o in enumerate(scene.objects) if o.material.reflectance == "paint"]
+    assert users
+    by_name, by_users = scene.copy(), scene.copy()
+    by_name.set("spectra['paint'].value", 0.3)
+    for i in users:
+        by_users.objects[i].material.reflectance = 0.3
+    a = nxrender.render(by_name, threads=1, spp=2, seed=4)
+    b = nxrender.render(by_users, threads=1, spp=2, seed=4)
+    np.testing.assert_array_equal(np.asarray(a.radiance), np.asarray(b.radiance))
+    with pytest.raises(ValueError, match="a named spectrum is defined by values"):
+        scene.set("spectra['paint'].value", "red")
+    # Another mode renders with its own light transport.
+    rt = scene.copy()
+    rt.set("mode", "mcpt")
+    assert rt.get("mode") == "mcpt" and rt.edits[-1] == "mode = 'mcpt'"
+    assert np.isfinite(np.asarray(nxrender.render(rt, threads=1).radiance)).all()
