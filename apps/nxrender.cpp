@@ -317,6 +317,14 @@ int run(int argc, char** argv) {
                                  static_cast<int>(height * (id + 1) / count)};
     arrayTask = std::to_string(id);
   }
+  // A Slurm array task without a split option renders the whole image in every task.
+  if (!tileOfArray && cropText.empty() && rangeText.empty())
+    if (const char* task = std::getenv("SLURM_ARRAY_TASK_ID"))
+      std::fprintf(stderr,
+                   "nxrender: warning: SLURM_ARRAY_TASK_ID=%s is set (a Slurm array task) but no "
+                   "split option is given: every task renders the whole image (give "
+                   "--tile-of-array, --crop or --spp-range; docs/farm.md)\n",
+                   task);
   for (const std::string& aov : splitList(aovText))
     if (!nx::addAov(choices, aov))
       throw nx::Error("--aov: expected a comma list of white, ids and depth, found '" + aov + "'");
