@@ -398,23 +398,35 @@ private:
   }
 
   // A reflectance texture: the built-in chart, a spectral EXR checked to hold reflectances,
-  // or a PNG/JPEG image upsampled per texel through the sRGB sigmoid table.
+  // or a PNG/JPEG image upsampled per texel through the sRGB sigmoid table. Beyond the
+  // wavelengths its data covers, extrapolate="hold" holds its ends; otherwise it is 0 there,
+  // and a render tracing beyond them warns unless extrapolate="zero" was chosen.
   std::shared_ptr<const ReflectanceTexture> texture(const SpectrumDesc& d) const {
+    const bool hold = d.extrapolate == SpectrumDesc::Extrapolation::Hold;
+    std::shared_ptr<const ReflectanceTexture> t;
     if (d.texels) { // numbers from Python, checked there; their digest joins the render key
-      const SpectralTexels& t = *d.texels;
-      refs_.fold(std::to_string(t.digest), "texture given as numbers");
-      return ReflectanceTexture::spectralImage(t.width, t.height, t.nm, t.values);
+      const SpectralTexels& x = *d.texels;
+      refs_.fold(std::to_string(x.digest), "texture given as numbers");
+      t = ReflectanceTexture::spectralImage(x.width, x.height, x.nm, x.values, hold);
+    } else if (d.texture == "colorchecker") {
+      t = ReflectanceTexture::colorChecker(hold);
+    } else {
+      try {
+        const std::string bytes = refs_.readFile(d.texture, kMaxTextureFileBytes, "texture file");
+        t = readReflectanceTexture(d.texture, bytes, hold);
+      } catch (const Error& e) {
+        // Every texture error names the texture, whichever reader raised it.
+        const std::string what = e.what();
+        throw Error(d.loc.str() + ": " + (what.rfind(d.texture, 0) == 0 ? "" : d.texture + ": ") +
+                    what);
+      }
     }
-    if (d.texture == "colorchecker") return ReflectanceTexture::colorChecker();
-    try {
-      const std::string bytes = refs_.readFile(d.texture, kMaxTextureFileBytes, "texture file");
-      return readReflectanceTexture(d.texture, bytes);
-    } catch (const Error& e) {
-      // Every texture error names the texture, whichever reader raised it.
-      const std::string what = e.what();
-      throw Error(d.loc.str() + ": " + (what.rfind(d.texture, 0) == 0 ? "" : d.texture + ": ") +
-                  what);
-    }
+    if (const auto range = t->dataRangeNm();
+        range && d.extrapolate == SpectrumDesc::Extrapolation::Unset)
+      refs_.noteTable({d.loc.str(),
+                       "texture " + (d.texels ? std::string("given as numbers") : d.texture),
+                       range->first, range->second});
+    return t;
   }
 
   IorModel iorModel(const IorDesc& d) const {

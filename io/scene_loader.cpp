@@ -357,17 +357,28 @@ private:
   std::optional<SpectrumDesc> reflectance(const pugi::xml_node& n) const {
     const pugi::xml_attribute tex = n.attribute("texture");
     if (!tex) return spectrum(n, false);
-    const std::string t = text(n, {"texture"});
+    const std::string t = text(n, {"texture", "extrapolate"});
     if (!t.empty()) fail(n, "either texture=\"...\" or text in <reflectance>", "both");
     SpectrumDesc s;
     s.loc = loc(n);
     s.kind = SpectrumDesc::Kind::Texture;
+    s.extrapolate = extrapolation(n);
     const std::string name = trim(decoded(tex.value(), n));
     if (name.empty())
       fail(n, "texture=\"colorchecker\", a spectral EXR or a PNG/JPEG file in texture=\"...\"",
            "an empty one");
     s.texture = name == "colorchecker" ? name : relativeToScene(name);
     return s;
+  }
+
+  // A table's extrapolate="zero|hold" (Unset when absent).
+  SpectrumDesc::Extrapolation extrapolation(const pugi::xml_node& n) const {
+    const pugi::xml_attribute e = n.attribute("extrapolate");
+    if (!e) return SpectrumDesc::Extrapolation::Unset;
+    const std::string mode = trim(decoded(e.value(), n));
+    if (mode == "zero") return SpectrumDesc::Extrapolation::Zero;
+    if (mode != "hold") fail(n, "extrapolate=\"zero\" or extrapolate=\"hold\"", shownText(mode));
+    return SpectrumDesc::Extrapolation::Hold;
   }
 
   std::optional<SpectrumDesc> spectrum(const pugi::xml_node& n, bool emptyMeansNone,
@@ -379,15 +390,7 @@ private:
     const std::string t = text(n, attrs);
     SpectrumDesc s;
     s.loc = loc(n);
-    if (pugi::xml_attribute e = n.attribute("extrapolate")) {
-      const std::string mode = trim(decoded(e.value(), n));
-      if (mode == "zero")
-        s.extrapolate = SpectrumDesc::Extrapolation::Zero;
-      else if (mode == "hold")
-        s.extrapolate = SpectrumDesc::Extrapolation::Hold;
-      else
-        fail(n, "extrapolate=\"zero\" or extrapolate=\"hold\"", shownText(mode));
-    }
+    s.extrapolate = extrapolation(n);
     if (n.attribute("column") && !n.attribute("csv"))
       fail(n, "column=\"...\" only with csv=\"file\"", "column alone");
     if (pugi::xml_attribute csv = n.attribute("csv")) {

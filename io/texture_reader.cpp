@@ -41,7 +41,7 @@ std::shared_ptr<const ReflectanceTexture> srgbTexture(const std::string& bytes,
   return ReflectanceTexture::sigmoidImage(img.width, img.height, std::move(coefficients));
 }
 
-std::shared_ptr<const ReflectanceTexture> spectralTexture(const std::string& path) {
+std::shared_ptr<const ReflectanceTexture> spectralTexture(const std::string& path, bool holdEnds) {
   const SpectralImage img = readSpectralExr(path);
   const int nb = img.bands.count();
   std::vector<int> order(static_cast<size_t>(nb));
@@ -62,14 +62,14 @@ std::shared_ptr<const ReflectanceTexture> spectralTexture(const std::string& pat
       values[p * order.size() + k] = v;
     }
   return ReflectanceTexture::spectralImage(img.width, img.height, std::move(centroids),
-                                           std::move(values));
+                                           std::move(values), holdEnds);
 }
 
 } // namespace
 
-std::shared_ptr<const ReflectanceTexture> readReflectanceTexture(const std::string& path,
-                                                                 const std::string& bytes) {
-  return isExrPath(path) ? spectralTexture(path) : srgbTexture(bytes, path);
+std::shared_ptr<const ReflectanceTexture>
+readReflectanceTexture(const std::string& path, const std::string& bytes, bool holdEnds) {
+  return isExrPath(path) ? spectralTexture(path, holdEnds) : srgbTexture(bytes, path);
 }
 
 } // namespace nx

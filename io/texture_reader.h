@@ -11,9 +11,9 @@
 namespace nx {
 
 /// The texture in `path` (by its extension: .exr spectral, else PNG/JPEG); `bytes` is the
-/// file's content, read by the caller (who folds it into the render key). Throws nx::Error
-/// naming the file.
-std::shared_ptr<const ReflectanceTexture> readReflectanceTexture(const std::string& path,
-                                                                 const std::string& bytes);
+/// file's content, read by the caller (who folds it into the render key); holdEnds: a spectral
+/// one holds its end bands beyond them (else 0 there). Throws nx::Error naming the file.
+std::shared_ptr<const ReflectanceTexture>
+readReflectanceTexture(const std::string& path, const std::string& bytes, bool holdEnds = false);
 
 } // namespace nx

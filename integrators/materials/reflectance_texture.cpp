@@ -10,9 +10,10 @@ namespace nx {
 
 std::shared_ptr<const ReflectanceTexture>
 ReflectanceTexture::spectralImage(int width, int height, std::vector<double> centroidsNm,
-                                  std::vector<float> values) {
+                                  std::vector<float> values, bool holdEnds) {
   auto t = std::make_shared<ReflectanceTexture>();
   t->kind_ = Kind::Image;
+  t->holdEnds_ = holdEnds;
   t->width_ = width;
   t->height_ = height;
   t->centroids_ = std::move(centroidsNm);
@@ -30,12 +31,33 @@ ReflectanceTexture::sigmoidImage(int width, int height, std::vector<float> coeff
   return t;
 }
 
-std::shared_ptr<const ReflectanceTexture> ReflectanceTexture::colorChecker() {
+std::shared_ptr<const ReflectanceTexture> ReflectanceTexture::colorChecker(bool holdEnds) {
   auto t = std::make_shared<ReflectanceTexture>();
   t->kind_ = Kind::Chart;
   t->width_ = kColorCheckerColumns;
   t->height_ = kColorCheckerRows;
+  t->holdEnds_ = holdEnds;
+  for (int i = 0; i < kColorCheckerColumns * kColorCheckerRows; ++i) {
+    const Spectrum& p = colorCheckerPatch(i);
+    TabulatedSpectrum table = std::get<TabulatedSpectrum>(p.kind());
+    table.holdEnds = holdEnds;
+    t->patches_.emplace_back(std::move(table), p.scale());
+  }
   return t;
+}
+
+std::optional<std::pair<double, double>> ReflectanceTexture::dataRangeNm() const {
+  switch (kind_) {
+  case Kind::Image:
+    return std::pair{centroids_.front(), centroids_.back()};
+  case Kind::Chart: {
+    const auto& table = std::get<TabulatedSpectrum>(colorCheckerPatch(0).kind());
+    return std::pair{table.nm.front(), table.nm.back()};
+  }
+  case Kind::Sigmoid:
+    break;
+  }
+  return std::nullopt;
 }
 
 SampledSpectrum ReflectanceTexture::evaluate(float u, float v,
@@ -62,7 +84,7 @@ SampledSpectrum ReflectanceTexture::chartAt(float u, float v,
   if (fx < margin || fx > 1 - margin || fy < margin || fy > 1 - margin)
     return SampledSpectrum::filled(kColorCheckerFrame);
   SampledSpectrum out;
-  colorCheckerPatch(row * kColorCheckerColumns + col).evaluate(lambda, out);
+  patches_[static_cast<size_t>(row * kColorCheckerColumns + col)].evaluate(lambda, out);
   return out;
 }
 
@@ -92,12 +114,12 @@ SampledSpectrum ReflectanceTexture::imageAt(float u, float v,
   SampledSpectrum out;
   for (int i = 0; i < kLanes; ++i) {
     const double nm = lambda.lambda[i];
-    // Linear between the centroids around nm; the end bands held beyond them.
+    // Linear between the centroids around nm; beyond them the end bands held, or 0.
     const size_t hi = static_cast<size_t>(
         std::upper_bound(centroids_.begin(), centroids_.end(), nm) - centroids_.begin());
-    if (hi == 0) {
-      out[i] = texel(0);
-    } else if (hi == bands) {
+    if (nm < centroids_.front() || nm > centroids_.back()) {
+      out[i] = holdEnds_ ? texel(hi == 0 ? 0 : bands - 1) : 0.0f;
+    } else if (hi == bands) { // at the last centroid
       out[i] = texel(bands - 1);
     } else {
       const double w = (nm - centroids_[hi - 1]) / (centroids_[hi] - centroids_[hi - 1]);

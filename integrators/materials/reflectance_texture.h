@@ -2,22 +2,28 @@
 // Reflectance that varies over a surface: looked up by the hit's (u, v) for all lanes at once.
 
 #include <memory>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "spectra/sampled_wavelengths.h"
+#include "spectra/spectrum.h"
 
 namespace nx {
 
 /// A reflectance texture: a spectral image (bands at their centroid wavelengths, bilinear in
-/// space, linear between bands, the end bands held beyond them), an RGB image upsampled per
+/// space, linear between bands, beyond them the end bands held or 0), an RGB image upsampled per
 /// texel, or the built-in ColorChecker chart. (u, v) = (0, 0) is the image's bottom-left corner,
 /// (1, 1) its top-right (row 0 of an image is its top); outside [0, 1] the edge texels continue.
 class ReflectanceTexture {
 public:
   /// A spectral image of width x height texels, `values` [texel][band] (row 0 at the top)
-  /// at the given increasing band centroids (nm). Values must lie in [0, 1].
-  static std::shared_ptr<const ReflectanceTexture>
-  spectralImage(int width, int height, std::vector<double> centroidsNm, std::vector<float> values);
+  /// at the given increasing band centroids (nm). Values must lie in [0, 1]. Beyond the first
+  /// and last centroid the end bands are held (holdEnds) or the reflectance is 0.
+  static std::shared_ptr<const ReflectanceTexture> spectralImage(int width, int height,
+                                                                 std::vector<double> centroidsNm,
+                                                                 std::vector<float> values,
+                                                                 bool holdEnds = false);
 
   /// An RGB image upsampled per texel: `coefficients` [texel][3] are each texel's
   /// sigmoid-polynomial coefficients (row 0 at the top), bilinear in space between the
@@ -28,7 +34,12 @@ public:
   /// The ColorChecker Classic, 6 x 4 patches (dark_skin top left at v = 1, black_2 bottom
   /// right), each cell's central kColorCheckerPatchFraction its patch's measured reflectance,
   /// the rest the chart's black frame (reflectance kColorCheckerFrame).
-  static std::shared_ptr<const ReflectanceTexture> colorChecker();
+  /// Its patches are measured over 380-780 nm: beyond, held (holdEnds) or 0.
+  static std::shared_ptr<const ReflectanceTexture> colorChecker(bool holdEnds = false);
+
+  /// The wavelengths its data covers (nm): an image's first and last centroid, the chart's
+  /// measured range; none for an sRGB image (its sigmoid spectra are defined everywhere).
+  std::optional<std::pair<double, double>> dataRangeNm() const;
 
   /// Reflectance at (u, v) for the lanes of lambda.
   SampledSpectrum evaluate(float u, float v, const SampledWavelengths& lambda) const;
@@ -49,6 +60,8 @@ private:
   int width_ = 0, height_ = 0;
   std::vector<double> centroids_;
   std::vector<float> values_;
+  bool holdEnds_ = false;         ///< beyond the data range: the ends held, else 0
+  std::vector<Spectrum> patches_; ///< the chart's patches, with holdEnds_ as their ends
   SampledSpectrum imageAt(float u, float v, const SampledWavelengths& lambda) const;
   SampledSpectrum sigmoidAt(float u, float v, const SampledWavelengths& lambda) const;
   SampledSpectrum chartAt(float u, float v, const SampledWavelengths& lambda) const;

@@ -22,13 +22,13 @@ float fl(int i) {
 
 // A 2 x 2 texture with bands at 500, 600, 700 nm: texel (x, y) band b holds
 // 0.1 (1 + x + 2 y) + 0.01 b.
-std::shared_ptr<const ReflectanceTexture> smallTexture() {
+std::shared_ptr<const ReflectanceTexture> smallTexture(bool holdEnds = false) {
   std::vector<float> v;
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 2; ++x)
       for (int b = 0; b < 3; ++b)
         v.push_back(0.1f * static_cast<float>(1 + x + 2 * y) + 0.01f * static_cast<float>(b));
-  return ReflectanceTexture::spectralImage(2, 2, {500, 600, 700}, v);
+  return ReflectanceTexture::spectralImage(2, 2, {500, 600, 700}, v, holdEnds);
 }
 
 TEST(Textures, ImageLookupsMatchKnownTexels) {
@@ -45,10 +45,17 @@ TEST(Textures, ImageLookupsMatchKnownTexels) {
   EXPECT_NEAR(t->evaluate(0.5f, 0.5f, test::flatWavelengths(500))[0], 0.25f, 1e-6f);
   // A quarter of the way from texel (0,0) to texel (1,0).
   EXPECT_NEAR(t->evaluate(0.375f, 0.75f, test::flatWavelengths(500))[0], 0.125f, 1e-6f);
-  // Linear between band centroids, held beyond the ends.
+  // Linear between band centroids (the last one included); beyond the ends 0, or the ends held
+  // when asked (extrapolate="hold").
   EXPECT_NEAR(t->evaluate(0.25f, 0.75f, test::flatWavelengths(550))[0], 0.105f, 1e-6f);
-  EXPECT_NEAR(t->evaluate(0.25f, 0.75f, test::flatWavelengths(420))[0], 0.1f, 1e-6f);
-  EXPECT_NEAR(t->evaluate(0.25f, 0.75f, test::flatWavelengths(900))[0], 0.12f, 1e-6f);
+  EXPECT_NEAR(t->evaluate(0.25f, 0.75f, test::flatWavelengths(700))[0], 0.12f, 1e-6f);
+  EXPECT_EQ(t->evaluate(0.25f, 0.75f, test::flatWavelengths(420))[0], 0.0f);
+  EXPECT_EQ(t->evaluate(0.25f, 0.75f, test::flatWavelengths(900))[0], 0.0f);
+  const auto held = smallTexture(true);
+  EXPECT_NEAR(held->evaluate(0.25f, 0.75f, test::flatWavelengths(420))[0], 0.1f, 1e-6f);
+  EXPECT_NEAR(held->evaluate(0.25f, 0.75f, test::flatWavelengths(900))[0], 0.12f, 1e-6f);
+  ASSERT_TRUE(t->dataRangeNm().has_value());
+  EXPECT_EQ(*t->dataRangeNm(), std::make_pair(500.0, 700.0));
   // Outside [0, 1] the edge texels continue.
   EXPECT_NEAR(t->evaluate(-3.0f, 7.0f, test::flatWavelengths(500))[0], 0.1f, 1e-6f);
 }
@@ -100,6 +107,40 @@ TEST(Textures, ChartOnAQuadRendersEachPatch) {
           << colorCheckerPatchNames()[static_cast<size_t>(patch)] << " band " << b;
     }
   }
+}
+
+// The chart's data covers 380-780 nm: a render tracing beyond warns (naming the texture and
+// its line), extrapolate="hold" holds each patch's 780 nm value and does not warn, "zero" is 0
+// without a warning; the texture form took no extrapolate="..." before.
+TEST(Textures, ChartBeyondItsMeasuredRangeWarnsHoldsOrIsZero) {
+  for (const char* mode : {"", "hold", "zero"}) {
+    SCOPED_TRACE(mode);
+    const std::string attr = *mode ? std::string(" extrapolate=\"") + mode + "\"" : "";
+    const RenderScene scene = buildRenderScene(
+        parseScene(sceneWith("<reflectance texture=\"colorchecker\"" + attr + "/>"), "t.scn"));
+    const std::vector<std::string> w = extrapolationWarnings(scene, 600, 975);
+    if (!*mode) {
+      ASSERT_EQ(w.size(), 1u);
+      EXPECT_NE(w[0].find("t.scn:"), std::string::npos) << w[0];
+      EXPECT_NE(w[0].find("colorchecker"), std::string::npos) << w[0];
+      EXPECT_NE(w[0].find("380-780"), std::string::npos) << w[0];
+    } else {
+      EXPECT_TRUE(w.empty()) << w[0];
+    }
+    EXPECT_TRUE(extrapolationWarnings(scene, 400, 700).empty());
+    const Material& m = scene.materials[scene.meshes[0].whole.material];
+    ASSERT_TRUE(m.texture);
+    // dark_skin's cell centre (top left) at 900 nm and at 780 nm.
+    const float at900 = m.texture->evaluate(1 / 12.0f, 1 - 1 / 8.0f, test::flatWavelengths(900))[0];
+    const float at780 = m.texture->evaluate(1 / 12.0f, 1 - 1 / 8.0f, test::flatWavelengths(780))[0];
+    EXPECT_GT(at780, 0.3f);
+    EXPECT_EQ(at900, std::string(mode) == "hold" ? at780 : 0.0f);
+  }
+  EXPECT_NE(test::errorMessage([] {
+              parseScene(sceneWith("<reflectance texture=\"colorchecker\" extrapolate=\"clamp\"/>"),
+                         "t.scn");
+            }).find("expected extrapolate=\"zero\" or extrapolate=\"hold\""),
+            std::string::npos);
 }
 
 // A spectral EXR in this project's layout is read as a texture: its texels come back at their
