@@ -163,6 +163,7 @@ public:
     for (const TriangleMesh& m : meshes) scene.meshBytes += m.bytes();
     scene.contentDigest = refs_.digest();
     scene.tables = refs_.tables();
+    scene.warnings.insert(scene.warnings.end(), warnings_.begin(), warnings_.end());
     if (!withGeometry) return scene;
     scene.device = std::make_unique<EmbreeDevice>();
     scene.geometry = std::make_unique<GeometryScene>(*scene.device, std::move(spheres),
@@ -345,22 +346,24 @@ private:
     Spectrum spectrum(const SpectrumDesc& d, SpectrumRole role) const override {
       return b_.refs_.resolve(d, role);
     }
+    void warn(const std::string& message) const override { b_.warnings_.push_back(message); }
     IorModel ior(const IorDesc& d) const override { return b_.iorModel(d); }
     FluorescenceModel fluorescenceModel(const FluorescenceDesc& d) const override {
       return b_.fluorescence(d);
     }
-    std::shared_ptr<const ReradiationMatrix>
-    measuredMatrix(const FluorescenceDesc& d) const override {
+    std::shared_ptr<const ReradiationMatrix> measuredMatrix(const FluorescenceDesc& d,
+                                                            const Spectrum* rho) const override {
       try {
         if (d.matrix) { // given as numbers (Python): checked, its content in the render key
           checkMeasuredMatrix(*d.matrix, "the measured matrix");
           b_.refs_.fold(canonicalText(ParamValue(d)), "the measured matrix");
           return std::make_shared<const ReradiationMatrix>(
-              ReradiationMatrix::fromMeasured(*d.matrix));
+              ReradiationMatrix::fromMeasured(*d.matrix, rho));
         }
-        return std::make_shared<const ReradiationMatrix>(
-            ReradiationMatrix::fromMeasured(parseMeasuredMatrixCsv(
-                b_.refs_.readFile(*d.matrixCsv, 64u << 20, "table file"), *d.matrixCsv)));
+        return std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromMeasured(
+            parseMeasuredMatrixCsv(b_.refs_.readFile(*d.matrixCsv, 64u << 20, "table file"),
+                                   *d.matrixCsv),
+            rho));
       } catch (const Error& e) {
         throw Error(d.loc.str() + ": " + e.what());
       }
@@ -517,8 +520,9 @@ private:
   }
 
   const SceneDesc& desc_;
-  mutable SceneReferences refs_;        ///< spectra resolved, referenced files in the digest
-  const MediumKindInputs mediumInputs_; ///< what the media kinds ask of the scene
+  mutable SceneReferences refs_;              ///< spectra resolved, referenced files in the digest
+  mutable std::vector<std::string> warnings_; ///< the kinds' builds' warnings
+  const MediumKindInputs mediumInputs_;       ///< what the media kinds ask of the scene
 };
 
 } // namespace

@@ -51,7 +51,7 @@ bool bracket(const std::vector<double>& g, double x, size_t& k, double& t) {
 
 } // namespace
 
-ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm) {
+ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm, const Spectrum* rho) {
   ReradiationMatrix r;
   r.measured_ = true;
   const size_t nEx = mm.excitationNm.size(), nEm = mm.emissionNm.size();
@@ -87,12 +87,12 @@ ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm) {
         diagNm.push_back(mm.emissionNm[col]);
         diagValue.push_back(cell(row, col));
       }
-  for (int o = 0; o < kBins; ++o) {
+  r.elasticFromRho_ = diagNm.size() < 2;
+  for (int o = 0; o < kBins && !r.elasticFromRho_; ++o) {
     size_t k;
     double t;
-    r.diagonal_[o] = bracket(diagNm, centre(o), k, t) && diagNm.size() >= 2
-                         ? (1 - t) * diagValue[k] + t * diagValue[k + 1]
-                         : 0.0;
+    r.diagonal_[o] =
+        bracket(diagNm, centre(o), k, t) ? (1 - t) * diagValue[k] + t * diagValue[k + 1] : 0.0;
   }
   r.finish();
   // Energy: light arriving at excitation bin i is reflected elastically (the diagonal D(i)) or
@@ -101,13 +101,14 @@ ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm) {
   for (int i = 0; i < kBins; ++i) {
     double out = 0;
     for (int o = 0; o < kBins; ++o) out += r(i, o);
-    if (r.diagonal_[i] + out > 1.0 + 1e-9)
-      throw Error(mm.source +
-                  ": expected a matrix whose reflectance (diagonal) plus re-radiated energy is at "
-                  "most 1 at every excitation wavelength, found " +
-                  numberText(r.diagonal_[i] + out) + " at " + numberText(centre(i)) +
-                  " nm (diagonal " + numberText(r.diagonal_[i]) + ", re-radiated " +
-                  numberText(out) + ")");
+    const double elastic = r.elasticFromRho_ ? (rho ? (*rho)(centre(i)) : 0.0) : r.diagonal_[i];
+    if (elastic + out > 1.0 + 1e-9)
+      throw Error(mm.source + ": expected a matrix whose reflectance (" +
+                  (r.elasticFromRho_ ? "the surface's <reflectance>: the matrix has no diagonal"
+                                     : "diagonal") +
+                  ") plus re-radiated energy is at most 1 at every excitation wavelength, found " +
+                  numberText(elastic + out) + " at " + numberText(centre(i)) + " nm (reflectance " +
+                  numberText(elastic) + ", re-radiated " + numberText(out) + ")");
   }
   return r;
 }
@@ -125,8 +126,10 @@ void ReradiationMatrix::finish() {
   guide_.assign(static_cast<size_t>(kBins) * kGuide, 0);
   for (int o = 0; o < kBins; ++o) {
     ColumnSampling& col = columns_[o];
-    col.elasticScale = measured_ ? 0.0f : static_cast<float>(1 - absorptance_[o]);
-    col.elasticConstant = measured_ ? static_cast<float>(diagonal_[o]) : 0.0f;
+    col.elasticScale = elasticFromRho_ ? 1.0f
+                       : measured_     ? 0.0f
+                                       : static_cast<float>(1 - absorptance_[o]);
+    col.elasticConstant = measured_ && !elasticFromRho_ ? static_cast<float>(diagonal_[o]) : 0.0f;
     col.sum = static_cast<float>(columnSum_[o]);
     col.guideScale = col.sum > 0 ? static_cast<float>(kGuide) / col.sum : 0.0f;
     const float* cdf = &cdf_[static_cast<size_t>(o) * kBins];

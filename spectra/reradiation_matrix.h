@@ -55,8 +55,13 @@ public:
   /// A measured matrix resampled onto the grid: off-diagonal cells (emission longer than
   /// excitation) as a bilinearly interpolated density per nm of emission times 5 nm; the
   /// diagonal gives the elastic reflectance D. Cells with emission shorter than excitation
-  /// are ignored (anti-Stokes light is not modelled).
-  static ReradiationMatrix fromMeasured(const MeasuredMatrix& m);
+  /// are ignored (anti-Stokes light is not modelled). A matrix without a diagonal (no
+  /// excitation wavelength equal to an emission one: fluorescence only, as an instrument EEM)
+  /// takes its elastic part from the surface's reflectance rho instead; `rho`, when given, is
+  /// then checked with it for energy (rho + re-radiated <= 1 at every excitation bin).
+  static ReradiationMatrix fromMeasured(const MeasuredMatrix& m, const Spectrum* rho = nullptr);
+  /// A measured matrix whose elastic part is the surface's reflectance (it has no diagonal).
+  bool elasticFromReflectance() const { return elasticFromRho_; }
 
   /// Absorptance of bin i (parametric model; 0 for measured matrices, whose D is explicit).
   double absorptance(int i) const { return absorptance_[i]; }
@@ -70,6 +75,7 @@ public:
   /// Elastic part D at bin o for a surface of reflectance rhoValue at the lane's wavelength:
   /// (1 - a_o) rho (model) or the measured diagonal.
   double elastic(int o, double rhoValue) const {
+    if (elasticFromRho_) return rhoValue;
     return measured_ ? diagonal_[o] : (1 - absorptance_[o]) * rhoValue;
   }
 
@@ -82,7 +88,7 @@ public:
   float sampleExcitation(float nm, float rhoValue, float u, float v, float& weight) const {
     const float x = (nm - static_cast<float>(kMinNm)) * static_cast<float>(1.0 / kBinNm);
     if (!(x >= 0 && x < static_cast<float>(kBins))) {
-      weight *= measured_ ? 0.0f : rhoValue;
+      weight *= measured_ && !elasticFromRho_ ? 0.0f : rhoValue;
       return nm;
     }
     const int o = static_cast<int>(x);
@@ -126,7 +132,7 @@ private:
   std::vector<float> cdf_;     ///< [o][i]: running sums of M[.][o] over i
   std::vector<uint8_t> guide_; ///< [o][j]: first bin whose running sum exceeds j/kGuide of c(o)
 
-  bool measured_ = false;
+  bool measured_ = false, elasticFromRho_ = false;
   std::array<double, kBins> absorptance_{}, diagonal_{}, columnSum_{};
   std::vector<double> m_ = std::vector<double>(static_cast<size_t>(kBins) * kBins, 0.0);
 };

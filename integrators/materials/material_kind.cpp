@@ -107,7 +107,18 @@ void setFluorescence(Material& m, const ParameterSet& p, const MaterialInputs& i
   const FluorescenceDesc* f = p.get<FluorescenceDesc>("fluorescence");
   if (!f) return;
   if (f->matrixCsv || f->matrix) {
-    m.reradiation = in.measuredMatrix(*f);
+    m.reradiation = in.measuredMatrix(*f, m.texture ? nullptr : &m.reflectance);
+    // Which elastic part the surface has: the matrix's diagonal, or (a fluorescence-only
+    // matrix, as an instrument EEM gives) the material's reflectance; the latter is said.
+    if (m.reradiation->elasticFromReflectance())
+      in.warn(f->loc.str() + ": warning: the measured matrix " +
+              (f->matrixCsv ? *f->matrixCsv : std::string("given as numbers")) +
+              " has no diagonal (no excitation wavelength equals an emission one): its elastic "
+              "reflectance is the material's " +
+              (p.has("reflectance") ? "<reflectance>"
+               : p.has("color")     ? "<color>"
+                                    : "reflectance") +
+              (m.texture ? " (a texture: the energy of each texel is not checked)" : ""));
     return;
   }
   m.fluorescenceModel = in.fluorescenceModel(*f);

@@ -33,9 +33,12 @@ public:
   virtual IorModel ior(const IorDesc& d) const = 0;
   /// The parametric re-radiation model, checked.
   virtual FluorescenceModel fluorescenceModel(const FluorescenceDesc& d) const = 0;
-  /// A measured matrix read from its CSV file.
-  virtual std::shared_ptr<const ReradiationMatrix>
-  measuredMatrix(const FluorescenceDesc& d) const = 0;
+  /// A measured matrix read from its CSV file (or given as numbers); `rho`: the surface's
+  /// reflectance, the elastic part of a matrix without a diagonal (null: a texture's).
+  virtual std::shared_ptr<const ReradiationMatrix> measuredMatrix(const FluorescenceDesc& d,
+                                                                  const Spectrum* rho) const = 0;
+  /// Records a warning ("file:line: warning: ...") the render prints.
+  virtual void warn(const std::string& message) const = 0;
   /// A reflectance texture read from its file (or the built-in chart).
   virtual std::shared_ptr<const ReflectanceTexture> texture(const SpectrumDesc& d) const = 0;
   /// An sRGB reflectance colour upsampled to a spectrum (rt and mcpt's <color>).

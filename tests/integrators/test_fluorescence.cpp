@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "integrators/renderer.h"
 #include "spectra/reradiation_matrix.h"
@@ -182,6 +183,65 @@ TEST(Fluorescence, EnergyIsConservedAndSingleBounceMatchesTheMatrix) {
   double rendered = 0;
   for (int b = 0; b < out.film.bands().count(); ++b) rendered += out.film.bandMean(5, 5, b) * 10;
   EXPECT_LT(rendered, incoming);
+}
+
+} // namespace
+} // namespace nx
+
+namespace nx {
+namespace {
+
+// A fluorescence-only measured matrix (no excitation wavelength equals an emission one, as an
+// instrument EEM gives): the surface's elastic part is its <reflectance> (it was 0 before, the
+// reflectance silently ignored), the build says so, and the energy check counts the
+// reflectance with the re-radiated light.
+TEST(Fluorescence, MatrixWithoutDiagonalTakesItsElasticPartFromTheReflectance) {
+  const std::string csv = ::testing::TempDir() + "/eem_no_diagonal.csv";
+  {
+    std::ofstream f(csv);
+    f << "ex,600,650,700\n350,0.02,0.04,0.02\n400,0.02,0.04,0.02\n";
+  }
+  auto scene = [&](const std::string& reflectance) {
+    // A quad filling the view under a uniform background of 1, one bounce: its radiance in
+    // bands away from the matrix's emission is its elastic reflectance.
+    return "<scene><settings><xres>8</xres><yres>8</yres><mode>spectral_mcpt</mode><sampl>64"
+           "</sampl><depth>1</depth><background>1</background><bands>450:550:50</bands>"
+           "</settings><camera><position>0,0,-1</position><look_at>0,0,0</look_at><fov>20</fov>"
+           "</camera><quad><origin>-1,-1,0</origin><edge_u>2,0,0</edge_u><edge_v>0,2,0</edge_v>"
+           "<material>matte</material>" +
+           reflectance + "<fluorescence><matrix>" + csv + "</matrix></fluorescence></quad></scene>";
+  };
+  const RenderScene s =
+      buildRenderScene(parseScene(scene("<reflectance>0.86</reflectance>"), "t.scn"));
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("t.scn:1: warning: the measured matrix"), std::string::npos);
+  EXPECT_NE(s.warnings[0].find("has no diagonal"), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("the material's <reflectance>"), std::string::npos) << s.warnings[0];
+  const RenderOutput out = render(s, RenderOptions{});
+  for (int b = 0; b < out.film.bands().count(); ++b) {
+    test::RunningStats st;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) st.add(out.film.bandMean(x, y, b));
+    EXPECT_NEAR(st.mean, 0.86, 5 * st.standardError() + 1e-3) << "band " << b;
+  }
+  // The reflectance plus the re-radiated light above 1 is refused, naming the reflectance.
+  try {
+    (void)buildRenderScene(parseScene(scene("<reflectance>0.97</reflectance>"), "t.scn"));
+    ADD_FAILURE() << "an albedo above 1 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the surface's <reflectance>: the matrix has no diagonal"),
+              std::string::npos)
+        << e.what();
+  }
+  // A matrix with a diagonal keeps it: no warning.
+  const std::string withDiagonal = ::testing::TempDir() + "/eem_diagonal.csv";
+  {
+    std::ofstream f(withDiagonal);
+    f << "ex,400,600\n400,0.5,0.04\n600,0,0.5\n";
+  }
+  std::string text = scene("<reflectance>0.86</reflectance>");
+  text.replace(text.find(csv), csv.size(), withDiagonal);
+  EXPECT_TRUE(buildRenderScene(parseScene(text, "t.scn")).warnings.empty());
 }
 
 } // namespace
