@@ -16,8 +16,10 @@ struct ParameterRange {
 inline constexpr double kMaxSceneCoordinate = 1e12; ///< far below Embree's limit of 1.8e18
 inline constexpr int kMaxResolution = 65536;        ///< pixels per side
 
-/// A factor on a spectrum (an emission's scale="..."): positive and finite.
+/// A factor on a spectrum (a medium coefficient's scale="..."): positive and finite.
 inline constexpr ParameterRange kPositiveScaleRange{0, 1e300, true, "a scale factor"};
+/// The factor on an emission: non-negative and finite (0: a lamp switched off, in a sweep).
+inline constexpr ParameterRange kEmissionScaleRange{0, 1e300, false, "an emission scale"};
 /// A reflectance colour channel.
 inline constexpr ParameterRange kUnitRange{0, 1, false, "a colour channel"};
 inline constexpr ParameterRange kFovRange{0, 179, true, "a horizontal field of view in degrees"};

@@ -649,11 +649,11 @@ private:
             e, !p.required, scale ? std::vector<std::string>{"scale"} : std::vector<std::string>{});
         if (scale && e.attribute("scale")) {
           const std::string noun = scale->spec.what;
-          out.set(
-              {scale->spec.name,
-               scaleAttribute(
-                   e, std::string("aeiou").find(noun[0]) == std::string::npos ? "a" : "an", noun),
-               loc(e)});
+          out.set({scale->spec.name,
+                   scaleAttribute(
+                       e, std::string("aeiou").find(noun[0]) == std::string::npos ? "a" : "an",
+                       noun, scale->spec.range && !scale->spec.range->openLow),
+                   loc(e)});
         }
         if (s) out.set({p.spec.name, *s, loc(e)});
         continue;
@@ -663,14 +663,16 @@ private:
   }
 
   // The optional scale="..." of an element (an <emission>, a medium's coefficient): a positive
-  // finite number, 1 if absent; errors name it "<article> <noun>" ("an", "emission scale").
+  // finite number (or zero where allowed: an emission switched off), 1 if absent; errors name
+  // it "<article> <noun>" ("an", "emission scale").
   double scaleAttribute(const pugi::xml_node& e, const std::string& article,
-                        const std::string& noun) const {
+                        const std::string& noun, bool zeroAllowed) const {
     const pugi::xml_attribute sc = e.attribute("scale");
     if (!sc) return 1.0;
     const std::string text = decoded(sc.value(), e);
     const double v = parseNumber(text, loc(e).str(), article + " " + noun + " in scale=\"...\"");
-    if (!(v > 0) || !std::isfinite(v)) fail(e, "a positive " + noun, shownText(text));
+    if (!(zeroAllowed ? v >= 0 : v > 0) || !std::isfinite(v))
+      fail(e, (zeroAllowed ? "a non-negative " : "a positive ") + noun, shownText(text));
     return v;
   }
 
@@ -907,7 +909,7 @@ private:
     if (c.count("emission")) {
       const pugi::xml_node e = c.at("emission");
       o.emission = spectrum(e, true, {"scale"});
-      o.emissionScale = scaleAttribute(e, "an", "emission scale");
+      o.emissionScale = scaleAttribute(e, "an", "emission scale", true);
     }
     if (c.count("medium")) o.medium = medium(c.at("medium"));
     return o;

@@ -756,7 +756,7 @@ void bindScene(py::module_& m) {
             if (!o.get().emission)
               throw py::value_error(o.label() + ".emission_scale: the object emits no light");
             o.get().emissionScale =
-                numberArgument(value, (o.label() + ".emission_scale").c_str(), 1e-300, 1e300);
+                rangedArgument(value, o.label() + ".emission_scale", nx::kEmissionScaleRange);
             record(*o.s, o.label() + ".emission_scale", value);
           },
           "The factor on its emission (> 0)")

@@ -56,7 +56,7 @@ inline const LightParameter kLightPosition{
     {"position", ParamType::Point, "scene units", nullptr, "where it is", "0, 5, 0"}, "", true};
 /// The factor on a light's <emission>, written as its scale="...".
 inline const LightParameter kLightEmissionScale{
-    {"emission_scale", ParamType::Number, "1", &kPositiveScaleRange,
+    {"emission_scale", ParamType::Number, "1", &kEmissionScaleRange,
      "the factor on <emission> (its scale=\"...\")", "2", "", "emission scale"},
     "1"};
 

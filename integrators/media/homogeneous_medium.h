@@ -116,7 +116,7 @@ struct HomogeneousMediumKind {
         {{"emission", ParamType::Spectrum, "W m^-2 sr^-1 nm^-1", nullptr,
           "emitted radiance Le: the medium emits sigma_a Le per unit length (Kirchhoff)", "D65"},
          ""},
-        {{"emission_scale", ParamType::Number, "1", &kPositiveScaleRange,
+        {{"emission_scale", ParamType::Number, "1", &kEmissionScaleRange,
           "the factor on <emission> (its scale=\"...\")", "2", "", "emission scale"},
          "1"},
     };

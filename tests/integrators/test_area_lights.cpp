@@ -10,7 +10,9 @@
 #include "core/math_util.h"
 #include "integrators/lights/light_sampler.h"
 #include "integrators/renderer.h"
+#include "support/errors.h"
 #include "support/flat_wavelengths.h"
+#include "support/render_checks.h"
 #include "support/statistics.h"
 
 namespace nx {
@@ -260,6 +262,55 @@ TEST(AreaLights, EveryEmitterKindAgreesAcrossStrategies) {
                                 stats[LightSampling::Mis].variance() / stats[s].n);
     EXPECT_LT(std::abs(stats[s].mean - stats[LightSampling::Mis].mean), 5 * se) << int(s);
   }
+}
+
+} // namespace
+} // namespace nx
+
+namespace nx {
+namespace {
+
+// emission scale="0" switches a lamp off (a sweep's first step): the lamp is a black emitter
+// and takes no light samples. A scene whose only lights are off renders 0 (no NaN); beside a
+// lit panel, a switched-off point light and UV sphere change nothing (the image equals the
+// panel's alone, bit for bit: their selection probability is 0).
+TEST(AreaLights, EmissionScaleZeroSwitchesALampOff) {
+  const std::string settings =
+      "<settings><xres>12</xres><yres>8</yres><mode>spectral_mcpt</mode><sampl>4</sampl>"
+      "<depth>3</depth></settings><camera><position>0,1.5,-2</position><look_at>0,0,0</look_at>"
+      "</camera><plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>"
+      "<reflectance>0.6</reflectance></plane>";
+  const std::string panel =
+      "<quad><origin>-0.15,1.5,-0.15</origin><edge_u>0.3,0,0</edge_u><edge_v>0,0,0.3</edge_v>"
+      "<material>matte</material><emission scale=\"10\">D65</emission></quad>";
+  const std::string off =
+      "<sphere><center>1.5,0.5,0</center><radius>0.05</radius><material>matte</material>"
+      "<emission scale=\"0\">bl</emission></sphere>"
+      "<light><position>0,3,0</position><color>1,1,1</color><emission scale=\"0\">A</emission>"
+      "</light>";
+  const RenderOutput dark = renderText("<scene>" + settings + off + "</scene>");
+  for (int b = 0; b < dark.film.bands().count(); ++b)
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 12; ++x) ASSERT_EQ(dark.film.bandMean(x, y, b), 0.0) << b;
+  const RenderOutput lit = renderText("<scene>" + settings + panel + "</scene>");
+  const RenderOutput litAndOff = renderText("<scene>" + settings + panel + off + "</scene>");
+  double sum = 0;
+  for (int b = 0; b < lit.film.bands().count(); ++b)
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 12; ++x) {
+        sum += lit.film.bandMean(x, y, b);
+        EXPECT_NEAR(litAndOff.film.bandMean(x, y, b), lit.film.bandMean(x, y, b),
+                    1e-6 * lit.film.bandMean(x, y, b) + 1e-9);
+      }
+  EXPECT_GT(sum, 0);
+  // A negative scale is still refused.
+  EXPECT_NE(test::errorMessage([&] {
+              parseScene("<scene>" + settings +
+                             "<light><position>0,3,0</position><color>1,1,1"
+                             "</color><emission scale=\"-1\">A</emission></light></scene>",
+                         "t.scn");
+            }).find("a non-negative emission scale, found '-1'"),
+            std::string::npos);
 }
 
 } // namespace

@@ -106,8 +106,8 @@ TEST(EmittingMedia, Errors) {
   EXPECT_NE(error("<sigma_a>1</sigma_a><sigma_s>1</sigma_s><emission>-1</emission>")
                 .find("t.scn:1: expected"),
             std::string::npos);
-  EXPECT_NE(error("<sigma_a>1</sigma_a><sigma_s>1</sigma_s><emission scale=\"0\">1</emission>")
-                .find("a positive emission scale"),
+  EXPECT_NE(error("<sigma_a>1</sigma_a><sigma_s>1</sigma_s><emission scale=\"-1\">1</emission>")
+                .find("a non-negative emission scale, found '-1'"),
             std::string::npos);
   EXPECT_NE(error("<sigma_a scale=\"-2\">1</sigma_a><sigma_s>1</sigma_s>")
                 .find("a positive coefficient scale, found '-2'"),
