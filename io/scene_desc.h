@@ -96,6 +96,11 @@ struct CameraDesc {
   std::array<double, 5> distortion{}; ///< k1, k2, p1, p2, k3 (OpenCV's order; zero if absent)
   /// <thin_lens>aperture radius, focus distance</thin_lens> (scene units), if any
   std::optional<std::array<double, 2>> thinLens;
+  /// calibration="file" (an OpenCV FileStorage YAML or XML) the intrinsics, distortion and pose
+  /// came from, if any, and the image size it states (the render's must equal it)
+  std::string calibrationFile;
+  std::optional<std::array<int, 2>> calibrationSize;
+  uint64_t calibrationDigest = 0; ///< the file's bytes (FNV-1a), part of the render key
   SourceLocation loc, distortionLoc;
 };
 

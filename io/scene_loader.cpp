@@ -25,6 +25,7 @@
 #include "integrators/media/medium_kinds.h"
 #include "io/camera_checks.h"
 #include "io/material_parameters.h"
+#include "io/opencv_calibration.h"
 #include "io/scene_desc.h"
 #include "io/scene_limits.h"
 
@@ -113,6 +114,13 @@ public:
     resolveMaterialReferences(scene);
     if (!haveSettings) fail(root, "a <settings> element", "none");
     if (!haveCamera) fail(root, "a <camera> element", "none");
+    if (const auto& size = scene.camera.calibrationSize;
+        size && ((*size)[0] != scene.settings.width || (*size)[1] != scene.settings.height))
+      throw Error(
+          scene.camera.loc.str() + ": expected <xres>, <yres> of the calibration's image (" +
+          std::to_string((*size)[0]) + "x" + std::to_string((*size)[1]) + " in " +
+          scene.camera.calibrationFile + "; intrinsics are in its pixels), found " +
+          std::to_string(scene.settings.width) + "x" + std::to_string(scene.settings.height));
     checkMemory(scene.settings);
     std::set<std::string> names;
     for (const auto& s : scene.spectra)
@@ -546,12 +554,57 @@ private:
   }
 
   CameraDesc parseCamera(const pugi::xml_node& n) const {
-    checkAttributes(n, {});
+    checkAttributes(n, {"calibration", "view"});
     const auto c = uniqueChildren(n, {"position", "look_at", "up", "fov", "intrinsics",
                                       "extrinsics", "distortion", "thin_lens"});
     CameraDesc cam;
     cam.loc = loc(n);
-    if (c.count("extrinsics")) {
+    // calibration="calib.yml" view="N": intrinsics, distortion and (if the file has poses) the
+    // pose from an OpenCV calibration file; the elements it replaces are then refused.
+    std::optional<OpenCvCalibration> calib;
+    if (n.attribute("view") && !n.attribute("calibration"))
+      fail(n, "view=\"N\" only with calibration=\"file\" on <camera>", "view alone");
+    if (const pugi::xml_attribute ca = n.attribute("calibration")) {
+      const std::string f = trim(decoded(ca.value(), n));
+      if (f.empty()) fail(n, "a file name in calibration=\"...\"", "an empty one");
+      cam.calibrationFile = relativeToScene(f);
+      std::optional<int> view;
+      if (const pugi::xml_attribute va = n.attribute("view")) {
+        const std::string vt = trim(decoded(va.value(), n));
+        if (vt.empty() || vt.find_first_not_of("0123456789") != std::string::npos || vt.size() > 9)
+          fail(n, "a view index 0, 1, ... in view=\"...\"", shownText(vt));
+        view = std::stoi(vt);
+      }
+      try {
+        const std::string bytes =
+            readRegularFile(cam.calibrationFile, 16u << 20, "calibration file");
+        calib = parseOpenCvCalibration(bytes, cam.calibrationFile, view);
+        cam.calibrationDigest = fnv1a64(bytes);
+      } catch (const Error& e) {
+        throw Error(loc(n).str() + ": " + e.what());
+      }
+      for (const char* tag : {"intrinsics", "distortion", "fov"})
+        if (c.count(tag))
+          fail(c.at(tag), "either calibration=\"...\" or <" + std::string(tag) + "> on <camera>",
+               "both");
+      if (calib->extrinsics)
+        for (const char* tag : {"position", "look_at", "up", "extrinsics"})
+          if (c.count(tag))
+            fail(c.at(tag),
+                 "no <" + std::string(tag) + "> with a calibration file that gives the pose",
+                 "<" + std::string(tag) + ">");
+      cam.intrinsics = calib->intrinsics;
+      cam.distortion = calib->distortion;
+      cam.distortionLoc = cam.loc;
+      cam.calibrationSize = calib->imageSize;
+      if (calib->extrinsics) {
+        if (const std::string problem = extrinsicsProblem(*calib->extrinsics); !problem.empty())
+          throw Error(loc(n).str() + ": " + cam.calibrationFile + ": expected " + problem);
+        cam.extrinsics = calib->extrinsics;
+      }
+    }
+    if (cam.extrinsics) {
+    } else if (c.count("extrinsics")) {
       for (const char* tag : {"position", "look_at", "up"})
         if (c.count(tag))
           fail(c.at(tag), "either <extrinsics> or <position>/<look_at>/<up> in <camera>",
@@ -1039,6 +1092,8 @@ double renderBufferBytes(int width, int height, int bands) {
 SceneDesc parseScene(const std::string& text, const std::string& file) {
   SceneDesc d = SceneParser(text, file).parse();
   d.textDigest = fnv1a64(text);
+  if (!d.camera.calibrationFile.empty()) // the calibration file's bytes join the render key
+    d.textDigest = fnv1a64(std::to_string(d.camera.calibrationDigest), d.textDigest);
   return d;
 }
 

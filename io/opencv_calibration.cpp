@@ -1,0 +1,216 @@
+#include "io/opencv_calibration.h"
+
+#include <opencv2/core.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "core/error.h"
+
+namespace nx {
+namespace {
+
+// OpenCV's message without its trailing line break.
+std::string messageOf(const cv::Exception& e) {
+  std::string m = e.msg;
+  while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
+  return m;
+}
+
+// The first of `names` present in the file, or an empty node.
+cv::FileNode firstOf(const cv::FileStorage& fs, std::initializer_list<const char*> names) {
+  for (const char* n : names) {
+    cv::FileNode node = fs[n];
+    if (!node.empty()) return node;
+  }
+  return {};
+}
+
+// A node's numbers, row by row: an opencv-matrix, a sequence (of numbers or of sequences), or
+// one number; `rows`/`cols` get its shape (a sequence of sequences: its length and the first's).
+std::vector<double> numbersOf(const cv::FileNode& node, const std::string& what,
+                              const std::string& path, int& rows, int& cols) {
+  std::vector<double> out;
+  rows = cols = 0;
+  if (node.isMap()) {
+    cv::Mat m;
+    node >> m;
+    if (m.empty() || m.channels() != 1)
+      throw Error(path + ": expected " + what +
+                  " as a one-channel opencv-matrix, found another map");
+    cv::Mat d;
+    m.convertTo(d, CV_64F);
+    rows = d.rows, cols = d.cols;
+    for (int r = 0; r < d.rows; ++r)
+      for (int c = 0; c < d.cols; ++c) out.push_back(d.at<double>(r, c));
+  } else if (node.isSeq()) {
+    rows = static_cast<int>(node.size());
+    for (const cv::FileNode& item : node) {
+      if (item.isSeq() || item.isMap()) {
+        int r = 0, c = 0;
+        const std::vector<double> inner = numbersOf(item, what, path, r, c);
+        cols = static_cast<int>(inner.size());
+        out.insert(out.end(), inner.begin(), inner.end());
+      } else if (item.isReal() || item.isInt()) {
+        out.push_back(static_cast<double>(item));
+        cols = 1;
+      } else {
+        throw Error(path + ": expected numbers in " + what + ", found text");
+      }
+    }
+  } else if (node.isReal() || node.isInt()) {
+    out.push_back(static_cast<double>(node));
+    rows = cols = 1;
+  } else {
+    throw Error(path + ": expected numbers in " + what + ", found text");
+  }
+  for (double v : out)
+    if (!std::isfinite(v))
+      throw Error(path + ": expected finite numbers in " + what + ", found " + numberText(v));
+  return out;
+}
+
+std::vector<double> numbersOf(const cv::FileNode& node, const std::string& what,
+                              const std::string& path) {
+  int r = 0, c = 0;
+  return numbersOf(node, what, path, r, c);
+}
+
+// R from a rotation vector (Rodrigues' formula: R = cos t I + sin t [k]x + (1 - cos t) k k^T,
+// t = |r|, k = r / t).
+std::array<double, 9> rotationFromVector(const std::vector<double>& r) {
+  const double t = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  if (t == 0) return {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const double x = r[0] / t, y = r[1] / t, z = r[2] / t, c = std::cos(t), s = std::sin(t),
+               v = 1 - c;
+  return {c + x * x * v,     x * y * v - z * s, x * z * v + y * s, y * x * v + z * s, c + y * y * v,
+          y * z * v - x * s, z * x * v - y * s, z * y * v + x * s, c + z * z * v};
+}
+
+void setPose(OpenCvCalibration& out, const std::array<double, 9>& R, const std::vector<double>& t) {
+  std::array<double, 12> e{};
+  for (int i = 0; i < 9; ++i) e[static_cast<size_t>(i)] = R[static_cast<size_t>(i)];
+  for (int i = 0; i < 3; ++i) e[static_cast<size_t>(9 + i)] = t[static_cast<size_t>(i)];
+  out.extrinsics = e;
+}
+
+} // namespace
+
+OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::string& path,
+                                         std::optional<int> view) {
+  cv::FileStorage fs;
+  try {
+    if (!fs.open(bytes, cv::FileStorage::READ | cv::FileStorage::MEMORY))
+      throw Error(path + ": expected an OpenCV FileStorage file (YAML or XML), found data it "
+                         "cannot read");
+  } catch (const cv::Exception& e) {
+    throw Error(path + ": expected an OpenCV FileStorage file (YAML or XML), found an error: " +
+                messageOf(e));
+  }
+  OpenCvCalibration out;
+  try {
+    const cv::FileNode k = firstOf(fs, {"camera_matrix", "cameraMatrix", "K", "Camera_Matrix"});
+    if (k.empty())
+      throw Error(path +
+                  ": expected a camera matrix (camera_matrix, cameraMatrix or K), found none");
+    int rows = 0, cols = 0;
+    const std::vector<double> m = numbersOf(k, "the camera matrix", path, rows, cols);
+    if (m.size() != 9 || m[1] != 0 || m[3] != 0 || m[6] != 0 || m[7] != 0 || m[8] != 1)
+      throw Error(path + ": expected a 3 x 3 camera matrix [fx 0 cx; 0 fy cy; 0 0 1], found " +
+                  std::to_string(m.size()) + " numbers" +
+                  (m.size() == 9 ? " with non-zero skew or a last row other than 0 0 1" : ""));
+    out.intrinsics = {m[0], m[4], m[2], m[5]};
+    const cv::FileNode d = firstOf(fs, {"distortion_coefficients", "dist_coeffs", "distCoeffs", "D",
+                                        "Distortion_Coefficients"});
+    if (!d.empty()) {
+      const std::vector<double> v = numbersOf(d, "the distortion coefficients", path);
+      if (v.size() < 4)
+        throw Error(path +
+                    ": expected 4 or more distortion coefficients (k1, k2, p1, p2[, k3, "
+                    "...]), found " +
+                    std::to_string(v.size()));
+      for (size_t i = 5; i < v.size(); ++i)
+        if (v[i] != 0)
+          throw Error(path +
+                      ": expected at most 5 non-zero distortion coefficients (k1, k2, p1, "
+                      "p2, k3: the rational and thin-prism terms are not modelled), found " +
+                      numberText(v[i]) + " as coefficient " + std::to_string(i + 1));
+      for (size_t i = 0; i < 5 && i < v.size(); ++i) out.distortion[i] = v[i];
+    }
+    const cv::FileNode w = fs["image_width"], h = fs["image_height"], size = fs["image_size"];
+    if (!w.empty() && !h.empty()) {
+      out.imageSize = std::array<int, 2>{static_cast<int>(w), static_cast<int>(h)};
+    } else if (!size.empty()) {
+      const std::vector<double> s = numbersOf(size, "image_size", path);
+      if (s.size() != 2) throw Error(path + ": expected image_size as width, height");
+      out.imageSize = std::array<int, 2>{static_cast<int>(s[0]), static_cast<int>(s[1])};
+    }
+    // The pose: per view (rvecs / tvecs, extrinsic_parameters) or one (R / T).
+    const cv::FileNode rv = fs["rvecs"], tv = fs["tvecs"], ep = fs["extrinsic_parameters"];
+    if (!rv.empty() || !ep.empty()) {
+      std::vector<double> r, t;
+      int n = 0;
+      if (!ep.empty()) {
+        int rows6 = 0, cols6 = 0;
+        const std::vector<double> e = numbersOf(ep, "extrinsic_parameters", path, rows6, cols6);
+        if (cols6 != 6)
+          throw Error(path + ": expected extrinsic_parameters as N x 6 (rvec, tvec per view)");
+        n = rows6;
+        if (view && *view >= 0 && *view < n) {
+          r.assign(e.begin() + *view * 6, e.begin() + *view * 6 + 3);
+          t.assign(e.begin() + *view * 6 + 3, e.begin() + *view * 6 + 6);
+        }
+      } else {
+        if (tv.empty()) throw Error(path + ": expected tvecs beside rvecs, found none");
+        const std::vector<double> ra = numbersOf(rv, "rvecs", path),
+                                  ta = numbersOf(tv, "tvecs", path);
+        if (ra.size() % 3 != 0 || ra.size() != ta.size())
+          throw Error(path + ": expected as many rvecs as tvecs, 3 numbers each");
+        n = static_cast<int>(ra.size() / 3);
+        if (view && *view >= 0 && *view < n) {
+          r.assign(ra.begin() + *view * 3, ra.begin() + *view * 3 + 3);
+          t.assign(ta.begin() + *view * 3, ta.begin() + *view * 3 + 3);
+        }
+      }
+      out.views = n;
+      if (!view)
+        throw Error(path + ": expected view=\"N\" on <camera> (the file holds " +
+                    std::to_string(n) + " views), found none");
+      if (*view < 0 || *view >= n)
+        throw Error(path + ": expected a view from 0 to " + std::to_string(n - 1) + ", found " +
+                    std::to_string(*view));
+      setPose(out, rotationFromVector(r), t);
+    } else {
+      const cv::FileNode R = firstOf(fs, {"R", "rotation", "rotation_matrix"}),
+                         T = firstOf(fs, {"T", "translation", "translation_vector"});
+      if (!R.empty() || !T.empty()) {
+        if (R.empty() || T.empty())
+          throw Error(path + ": expected both R and T, found one of them");
+        const std::vector<double> r = numbersOf(R, "R", path), t = numbersOf(T, "T", path);
+        if (t.size() != 3)
+          throw Error(path + ": expected T as 3 numbers, found " + std::to_string(t.size()));
+        if (r.size() == 3) {
+          setPose(out, rotationFromVector(r), t);
+        } else if (r.size() == 9) {
+          std::array<double, 9> m9{};
+          std::copy(r.begin(), r.end(), m9.begin());
+          setPose(out, m9, t);
+        } else {
+          throw Error(path + ": expected R as 3 x 3 or a rotation vector of 3, found " +
+                      std::to_string(r.size()) + " numbers");
+        }
+      }
+      if (view && !out.extrinsics)
+        throw Error(path +
+                    ": expected poses (rvecs/tvecs, extrinsic_parameters or R/T) for "
+                    "view=\"" +
+                    std::to_string(*view) + "\", found none");
+    }
+  } catch (const cv::Exception& e) {
+    throw Error(path +
+                ": expected an OpenCV calibration, found an error reading it: " + messageOf(e));
+  }
+  return out;
+}
+
+} // namespace nx

@@ -1,0 +1,30 @@
+#pragma once
+// Camera calibrations as OpenCV writes them (cv::FileStorage YAML or XML): what
+// <camera calibration="calib.yml" view="N"/> reads.
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace nx {
+
+/// A calibration's intrinsics, distortion, image size and (when it holds one) pose.
+struct OpenCvCalibration {
+  std::array<double, 4> intrinsics{};               ///< fx, fy, cx, cy (pixels)
+  std::array<double, 5> distortion{};               ///< k1, k2, p1, p2, k3 (0 where absent)
+  std::optional<std::array<int, 2>> imageSize;      ///< width, height, if the file gives it
+  std::optional<std::array<double, 12>> extrinsics; ///< r11 .. r33, t1, t2, t3 (x_cam = R x + t)
+  int views = 0;                                    ///< poses the file holds (rvecs / tvecs)
+};
+
+/// Reads a cv::FileStorage text (`bytes` of the file `path`, YAML or XML, found by its first
+/// line): the camera matrix (camera_matrix, cameraMatrix or K: 3 x 3), the distortion
+/// coefficients (distortion_coefficients, dist_coeffs, distCoeffs or D: 4, 5 or more, the first
+/// five kept; beyond them must be 0), the image size (image_width and image_height, or
+/// image_size), and the pose: view `view` of rvecs / tvecs (N x 3, or a sequence of 3 x 1) or
+/// extrinsic_parameters (N x 6, OpenCV's calibration sample), or R (3 x 3, or a 3 x 1 rotation
+/// vector) and T (3 x 1). Throws nx::Error "path: expected ..., found ..." for anything else.
+OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::string& path,
+                                         std::optional<int> view);
+
+} // namespace nx
