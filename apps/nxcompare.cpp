@@ -230,9 +230,11 @@ int main(int argc, char** argv) {
     // Both cubes on the window, the render through the capture's bands.
     const int nb = capture.bands();
     const size_t np = static_cast<size_t>(cw) * static_cast<size_t>(ch);
-    std::vector<float> r(np * static_cast<size_t>(nb)), c(np * static_cast<size_t>(nb)), v;
+    std::vector<float> r(np * static_cast<size_t>(nb)), c(np * static_cast<size_t>(nb)), v, cv;
     const bool variance = !render.variance.empty();
+    const bool captureVariance = !capture.variance.empty(); // a render compared as a capture
     if (variance) v.resize(r.size());
+    if (captureVariance) cv.resize(c.size());
     for (long y = 0; y < ch; ++y)
       for (long x = 0; x < cw; ++x) {
         const size_t p = static_cast<size_t>(y * cw + x);
@@ -243,9 +245,12 @@ int main(int argc, char** argv) {
         if (variance)
           resampling.applyToVariance(&render.variance[rp * static_cast<size_t>(render.bands())],
                                      &v[p * static_cast<size_t>(nb)]);
-        for (int b = 0; b < nb; ++b)
-          c[p * static_cast<size_t>(nb) + static_cast<size_t>(b)] =
-              capture.values[cp * static_cast<size_t>(nb) + static_cast<size_t>(b)];
+        for (int b = 0; b < nb; ++b) {
+          const size_t i = p * static_cast<size_t>(nb) + static_cast<size_t>(b),
+                       j = cp * static_cast<size_t>(nb) + static_cast<size_t>(b);
+          c[i] = capture.values[j];
+          if (captureVariance) cv[i] = capture.variance[j];
+        }
       }
 
     // Pixels left out: saturated capture values, and non-finite values when asked.
@@ -274,6 +279,7 @@ int main(int argc, char** argv) {
     in.render = r.data();
     in.capture = c.data();
     in.renderVariance = variance ? v.data() : nullptr;
+    in.captureVariance = captureVariance ? cv.data() : nullptr;
     // Regions, in render pixels, cut to the window.
     auto windowMask = [&](const std::function<bool(long, long)>& inside) {
       std::vector<uint8_t> m(np, 0);

@@ -14,8 +14,11 @@ namespace nx {
 
 /// How the render is scaled before it is compared (absolute calibration is often unknown).
 enum class ScaleFit {
-  None,    ///< compared as they are
-  Global,  ///< one factor s minimising sum (capture - s render)^2 over all bands and pixels
+  None, ///< compared as they are
+  /// One factor s minimising sum (capture - s render)^2 over all bands and pixels; with the
+  /// render's variances, corrected for the render's noise (errors in the regressor):
+  /// s = sum c r / sum (r^2 - var r), since E[r^2] = mu^2 + var r biases the plain fit low.
+  Global,
   PerBand, ///< one such factor per band
 };
 
@@ -33,6 +36,9 @@ struct ComparisonInputs {
   const float* render = nullptr;         ///< the render's values (resampled to the capture's bands)
   const float* capture = nullptr;        ///< the capture's values
   const float* renderVariance = nullptr; ///< variance of each render value, or null
+  /// Variance of each capture value (a render compared as a capture, or a capture with a noise
+  /// model), or null: the z-scores then count the render's noise alone
+  const float* captureVariance = nullptr;
   std::vector<ComparisonRegion> regions; ///< the regions; none: every pixel
   std::vector<uint8_t> excluded;         ///< [pixel] != 0: left out everywhere (or empty)
 };
@@ -47,11 +53,13 @@ struct BandFigures {
   double rmse = 0;         ///< root mean square of (scaled render - capture)
   double relativeRmse = 0; ///< rmse / renderMean
   double psnrDb = 0;       ///< 20 log10(largest capture value / rmse); infinite when rmse = 0
-  /// bias / its standard error from the render's Monte Carlo variance (NaN without variances):
-  /// |z| much above 2-3 says the difference is not the render's noise.
+  /// bias / its standard error from the render's Monte Carlo variance and the capture's, when
+  /// given (NaN without render variances): |z| much above 2-3 says the difference is not noise.
   double zMean = 0;
-  /// root mean square over pixels of (difference / the render value's standard deviation):
-  /// about 1 when the differences are the render's noise alone.
+  /// sqrt(sum d^2 / sum var d) over the pixels, var d = s^2 var r + var c: the pooled ratio of
+  /// the differences to their expected noise, about 1 when they are noise alone (pooled, not a
+  /// mean of per-pixel ratios: a pixel whose few samples put its variance estimate near 0
+  /// would dominate those).
   double rmsZ = 0;
 };
 

@@ -269,5 +269,61 @@ TEST(CubeComparison, RegionColoursOfFlatSpectra) {
   EXPECT_NEAR(rep.regions[0].deltaE2000, de(100, lstar(0.5)), 1e-6);
 }
 
+// Two noisy renders of one scene, compared with a fitted scale: the plain least-squares fit is
+// low by the render's relative variance (E[r^2] = mu^2 + var r), the corrected fit is 1 within
+// its error; with both sides' variances the band z-scores are N(0, 1) and the pooled rms z is
+// 1. Closed forms: mu, the noise's variances and the sample size are known here.
+TEST(CubeComparison, ScaleFitAndZScoresAccountForTheNoiseOfBothSides) {
+  const int w = 100, h = 100, nb = 40;
+  const size_t n = static_cast<size_t>(w * h * nb);
+  std::mt19937 rng(17);
+  std::normal_distribution<double> unit(0, 1);
+  std::vector<float> render(n), capture(n), vr(n), vc(n);
+  for (size_t i = 0; i < n; ++i) {
+    const double mu = 1.0 + 0.5 * static_cast<double>(i % 7);
+    // A 16-spp render (relative sd 0.3) against a 64-spp one (0.15); the renders' own
+    // variance estimates, as a render stores them, scatter around the true ones.
+    const double sr = 0.3 * mu, sc = 0.15 * mu;
+    render[i] = static_cast<float>(mu + sr * unit(rng));
+    capture[i] = static_cast<float>(mu + sc * unit(rng));
+    vr[i] = static_cast<float>(sr * sr * (1 + 0.2 * unit(rng)));
+    vc[i] = static_cast<float>(sc * sc * (1 + 0.2 * unit(rng)));
+    if (i % 997 == 0) vr[i] = 0; // a pixel whose estimate is 0 (no lane in the band)
+  }
+  ComparisonInputs in;
+  in.width = w, in.height = h, in.bands = nb;
+  for (int b = 0; b < nb; ++b) in.wavelengthNm.push_back(400 + 10 * b);
+  in.render = render.data();
+  in.capture = capture.data();
+  // Without variances: the plain fit, biased low by about 1 / (1 + 0.09).
+  const ComparisonReport plain = compareCubes(in, ScaleFit::PerBand);
+  double plainMean = 0;
+  for (const BandFigures& f : plain.bands) plainMean += f.scale / nb;
+  EXPECT_NEAR(plainMean, 1 / 1.09, 0.01);
+  in.renderVariance = vr.data();
+  in.captureVariance = vc.data();
+  const ComparisonReport r = compareCubes(in, ScaleFit::PerBand);
+  double z2 = 0, zMax = 0;
+  for (const BandFigures& f : r.bands) {
+    EXPECT_NEAR(f.scale, 1.0, 0.02) << f.wavelengthNm;
+    EXPECT_NEAR(f.rmsZ, 1.0, 0.05) << f.wavelengthNm;
+    z2 += f.zMean * f.zMean / nb;
+    zMax = std::max(zMax, std::abs(f.zMean));
+  }
+  // With the scale fitted per band the bias is fitted away too: |z| is below N(0,1)'s, never
+  // above it (the plain fit gave z of -50 and worse on two renders of the lab bench).
+  EXPECT_LT(z2, 2.0);
+  EXPECT_LT(zMax, 4.0);
+  // No fit: z ~ N(0, 1) band by band, rms z 1.
+  const ComparisonReport none = compareCubes(in, ScaleFit::None);
+  double zn2 = 0;
+  for (const BandFigures& f : none.bands) {
+    zn2 += f.zMean * f.zMean / nb;
+    EXPECT_NEAR(f.rmsZ, 1.0, 0.05);
+  }
+  EXPECT_GT(zn2, 0.4);
+  EXPECT_LT(zn2, 1.9); // chi-square with 40 dof / 40: within [0.5, 1.6] at 99.9%
+}
+
 } // namespace
 } // namespace nx
