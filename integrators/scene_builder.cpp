@@ -164,6 +164,7 @@ public:
     scene.contentDigest = refs_.digest();
     scene.tables = refs_.tables();
     scene.warnings.insert(scene.warnings.end(), warnings_.begin(), warnings_.end());
+    scene.warnings.insert(scene.warnings.end(), refs_.warnings().begin(), refs_.warnings().end());
     if (!withGeometry) return scene;
     scene.device = std::make_unique<EmbreeDevice>();
     scene.geometry = std::make_unique<GeometryScene>(*scene.device, std::move(spheres),

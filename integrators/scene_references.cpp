@@ -62,12 +62,17 @@ Spectrum SceneReferences::resolveUnchecked(const SpectrumDesc& s, SpectrumRole r
     case SpectrumDesc::Kind::Number:
       return Spectrum(ConstantSpectrum{s.number});
     case SpectrumDesc::Kind::Pairs:
-      return extrapolated(Spectrum(makeTabulated(s.nm, s.value, "nm:value pairs")), mode, s.loc,
-                          "nm:value pairs");
-    case SpectrumDesc::Kind::CsvFile:
       return extrapolated(
-          Spectrum(parseSpectrumCsv(readFile(s.path, 64u << 20, "table file"), s.path, s.column)),
-          mode, s.loc, s.column.empty() ? s.path : s.path + " (column " + s.column + ")");
+          Spectrum(clamped(makeTabulated(s.nm, s.value, "nm:value pairs"), s, "nm:value pairs")),
+          mode, s.loc, "nm:value pairs");
+    case SpectrumDesc::Kind::CsvFile: {
+      const std::string what = s.column.empty() ? s.path : s.path + " (column " + s.column + ")";
+      return extrapolated(
+          Spectrum(
+              clamped(parseSpectrumCsv(readFile(s.path, 64u << 20, "table file"), s.path, s.column),
+                      s, what)),
+          mode, s.loc, what);
+    }
     case SpectrumDesc::Kind::Name:
       break;
     case SpectrumDesc::Kind::Texture: // the loader allows textures on <reflectance> only
@@ -108,6 +113,21 @@ Spectrum SceneReferences::resolveUnchecked(const SpectrumDesc& s, SpectrumRole r
               "E, blackbody:<K>, bba, bbd50, bbd55, bbd65, bbd75, bl, or a <spectrum> of the "
               "scene), found '" +
               s.name + "'");
+}
+
+TabulatedSpectrum SceneReferences::clamped(TabulatedSpectrum t, const SpectrumDesc& s,
+                                           const std::string& what) const {
+  if (!s.clampNegative) return t;
+  size_t count = 0;
+  double lowest = 0;
+  for (double& v : t.value)
+    if (v < 0) ++count, lowest = std::min(lowest, v), v = 0;
+  if (count > 0)
+    warnings_.push_back(s.loc.str() + ": warning: " + std::to_string(count) + " of " +
+                        std::to_string(t.value.size()) + " values of '" + what +
+                        "' were negative (down to " + numberText(lowest) +
+                        ") and were set to 0 (negative=\"clamp\")");
+  return t;
 }
 
 // Emission (radiance, or a point light's intensity) within [0, kMaxEmission] everywhere.

@@ -37,6 +37,8 @@ public:
   uint64_t digest() const { return digest_; }
   /// Tables used without an extrapolate="..." choice.
   const std::vector<TabulatedRange>& tables() const { return tables_; }
+  /// Warnings of the resolution ("file:line: warning: ...": negative values clamped).
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
   /// Throws "<loc>: expected an emission within [0, 1e12] ..." unless `s` is one at every
   /// traced wavelength.
@@ -50,6 +52,10 @@ private:
 
   std::map<std::string, const NamedSpectrumDesc*> named_;
   mutable std::vector<TabulatedRange> tables_;
+  mutable std::vector<std::string> warnings_;
+  /// A table with negative="clamp": its negative values set to 0, counted in a warning.
+  TabulatedSpectrum clamped(TabulatedSpectrum t, const SpectrumDesc& s,
+                            const std::string& what) const;
   mutable uint64_t digest_;
 };
 

@@ -71,7 +71,7 @@ namespace {
 // changes its size here and must be written below too (else two different materials whose
 // descriptions differ only in it would be shared). Sizes of x86-64 with libstdc++.
 #if defined(__x86_64__) && defined(__GLIBCXX__)
-static_assert(sizeof(SpectrumDesc) == 248, "a SpectrumDesc field was added: write it below");
+static_assert(sizeof(SpectrumDesc) == 256, "a SpectrumDesc field was added: write it below");
 static_assert(sizeof(IorDesc) == 112, "an IorDesc field was added: write it below");
 static_assert(sizeof(FluorescenceDesc) == 232, "a FluorescenceDesc field was added: write it");
 static_assert(sizeof(CoatingDesc) == 160, "a CoatingDesc field was added: write it below");
@@ -84,10 +84,10 @@ struct CanonicalWriter {
     t << c[0] << ',' << c[1] << ',' << c[2] << ',' << c[3];
   }
   void operator()(const SpectrumDesc& s) const {
-    t << static_cast<int>(s.kind) << ',' << static_cast<int>(s.extrapolate) << ',' << s.name.size()
-      << ':' << s.name << ',' << s.number << ',' << s.path.size() << ':' << s.path << ','
-      << s.column.size() << ':' << s.column << ',' << s.texture.size() << ':' << s.texture << ','
-      << s.nm.size() << ':';
+    t << static_cast<int>(s.kind) << ',' << static_cast<int>(s.extrapolate) << ','
+      << (s.clampNegative ? "clamp," : "") << s.name.size() << ':' << s.name << ',' << s.number
+      << ',' << s.path.size() << ':' << s.path << ',' << s.column.size() << ':' << s.column << ','
+      << s.texture.size() << ':' << s.texture << ',' << s.nm.size() << ':';
     for (size_t i = 0; i < s.nm.size(); ++i) t << s.nm[i] << ':' << s.value[i] << ' ';
     if (s.texels) t << "texels:" << s.texels->digest;
   }

@@ -395,10 +395,16 @@ private:
     attrs.push_back("csv");
     attrs.push_back("column");
     attrs.push_back("extrapolate");
+    attrs.push_back("negative");
     const std::string t = text(n, attrs);
     SpectrumDesc s;
     s.loc = loc(n);
     s.extrapolate = extrapolation(n);
+    if (const pugi::xml_attribute neg = n.attribute("negative")) {
+      const std::string mode = trim(decoded(neg.value(), n));
+      if (mode != "clamp") fail(n, "negative=\"clamp\"", shownText(mode));
+      s.clampNegative = true;
+    }
     if (n.attribute("column") && !n.attribute("csv"))
       fail(n, "column=\"...\" only with csv=\"file\"", "column alone");
     if (pugi::xml_attribute csv = n.attribute("csv")) {

@@ -42,6 +42,9 @@ struct SpectrumDesc {
   enum class Extrapolation { Unset, Zero, Hold };
   Kind kind = Kind::Number;
   Extrapolation extrapolate = Extrapolation::Unset;
+  /// negative="clamp": a measured table's negative values (dark-subtraction noise) set to 0,
+  /// their count warned about; else a negative value is refused where it cannot be
+  bool clampNegative = false;
   std::string name;          ///< Kind::Name: a built-in or scene-defined spectrum name
   double number = 0;         ///< Kind::Number: a flat spectrum
   std::vector<double> nm;    ///< Kind::Pairs: wavelengths

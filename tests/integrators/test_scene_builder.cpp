@@ -400,5 +400,35 @@ TEST(SceneBuilder, TablesEndingInsideTheTracedRangeWarnUnlessTheyChoose) {
             "t.scn:4: expected extrapolate=\"zero\" or extrapolate=\"hold\", found 'last'");
 }
 
+// A lamp measured with dark subtraction has small negative values: refused as an emission, or
+// with negative="clamp" set to 0 and counted in a warning (CSV and pairs, inline and in a
+// named <spectrum>); reflectance tables are clamped the same way.
+TEST(SceneBuilder, NegativeClampSetsMeasuredNegativesToZeroAndCountsThem) {
+  const std::string csv = ::testing::TempDir() + "/lamp_dark_subtracted.csv";
+  std::ofstream(csv) << "nm,value\n380,-0.002\n400,0.1\n500,0.8\n600,0.9\n700,-0.001\n800,0.2\n";
+  const std::string light =
+      "<light><position>0,5,0</position><color>1,1,1</color><emission csv=\"" + csv + "\"";
+  EXPECT_NE(errorOf(scene(light + "/></light>")).find("expected an emission within [0"),
+            std::string::npos);
+  const RenderScene s = build(scene(light + " negative=\"clamp\"/></light>"));
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("t.scn:4: warning: 2 of 6 values of '" + csv +
+                               "' were negative (down to -0.002) and were set to 0"),
+            std::string::npos)
+      << s.warnings[0];
+  const auto& point = std::get<PointLight>(s.lights[0]);
+  EXPECT_EQ(point.intensity(700), 0.0);
+  EXPECT_NEAR(point.intensity(500), 0.8, 1e-6);
+  const RenderScene named = build(scene(
+      "<spectrum name=\"lamp\" negative=\"clamp\">400:0.5, 500:-0.01, 600:0.5</spectrum>" +
+      std::string("<light><position>0,5,0</position><color>1,1,1</color><emission>lamp</emission>"
+                  "</light>")));
+  ASSERT_EQ(named.warnings.size(), 1u);
+  EXPECT_NE(named.warnings[0].find("1 of 3 values of 'nm:value pairs'"), std::string::npos);
+  EXPECT_NE(
+      errorOf(scene(light + " negative=\"zero\"/></light>")).find("expected negative=\"clamp\""),
+      std::string::npos);
+}
+
 } // namespace
 } // namespace nx
