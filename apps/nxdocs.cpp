@@ -120,15 +120,23 @@ std::string materialsDoc() {
   return o.str();
 }
 
-// The parameter table of a light or medium kind (NAME_scale written as NAME's scale="...").
+// The parameter table of a light or medium kind (NAME_scale and NAME_at written as NAME's
+// scale="..." and at="...").
 void takenTable(std::ostringstream& o, std::span<const nx::TakenParameter> params) {
   o << "| parameter | type | unit | range | default | example | meaning |\n"
        "|---|---|---|---|---|---|---|\n";
   for (const nx::TakenParameter& p : params) {
     const std::string name = p.spec.name;
-    const std::string written = name.ends_with("_scale")
-                                    ? "<" + name.substr(0, name.size() - 6) + " scale=\"...\">"
-                                    : "<" + name + ">";
+    // NAME_scale and NAME_at of a Spectrum parameter NAME are its element's attributes.
+    std::string written = "<" + name + ">";
+    for (const char* a : {"scale", "at"}) {
+      const std::string suffix = std::string("_") + a;
+      if (!name.ends_with(suffix)) continue;
+      const std::string base = name.substr(0, name.size() - suffix.size());
+      const nx::TakenParameter* b = nx::findParameterNamed(params, base);
+      if (b && b->spec.type == nx::ParamType::Spectrum)
+        written = "<" + base + " " + a + "=\"...\">";
+    }
     o << "| `" << written << "` | " << nx::paramTypeName(p.spec.type) << " | "
       << (*p.spec.unit ? p.spec.unit : "-") << " | " << rangeText(p.spec.range) << " | "
       << (p.required       ? std::string("required")

@@ -18,6 +18,9 @@ inline constexpr int kMaxResolution = 65536;        ///< pixels per side
 
 /// A factor on a spectrum (a medium coefficient's scale="..."): positive and finite.
 inline constexpr ParameterRange kPositiveScaleRange{0, 1e300, true, "a scale factor"};
+/// The distance (scene units) at which a lamp's spectral irradiance was measured.
+inline constexpr ParameterRange kMeasuredDistanceRange{0, kMaxSceneCoordinate, true,
+                                                       "a measuring distance"};
 /// The factor on an emission: non-negative and finite (0: a lamp switched off, in a sweep).
 inline constexpr ParameterRange kEmissionScaleRange{0, 1e300, false, "an emission scale"};
 /// A reflectance colour channel.

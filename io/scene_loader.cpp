@@ -33,6 +33,8 @@ namespace nx {
 namespace {
 
 constexpr double kMaxCoordinate = kMaxSceneCoordinate;
+/// The attributes of a Spectrum parameter NAME that are parameters NAME_<attribute>.
+constexpr const char* kSpectrumAttributes[] = {"scale", "at"};
 
 std::string shownText(const std::string& s) {
   std::string shown = s.size() > 60 ? s.substr(0, 57) + "..." : s;
@@ -686,13 +688,26 @@ private:
   }
 
   // A light's or medium's parameters, the children of `n`, each read by its declared type; a
-  // Spectrum parameter NAME's scale="..." is the parameter NAME_scale where the kind takes one
-  // (an empty optional spectrum is no parameter: "absent, 0 or empty").
+  // Spectrum parameter NAME's attributes scale="..." and at="..." are the parameters
+  // NAME_scale and NAME_at where the kind takes them (kSpectrumAttributes); an empty optional
+  // spectrum is no parameter ("absent, 0 or empty").
   void parseTakenParameters(const pugi::xml_node& n, std::span<const TakenParameter> params,
                             ParameterSet& out) const {
+    // NAME_<attribute> is an attribute of NAME's element when NAME is a Spectrum parameter
+    // (look_at is not one of an element "look").
+    auto isAttribute = [&](const std::string& name) {
+      for (const char* a : kSpectrumAttributes) {
+        const std::string suffix = std::string("_") + a;
+        if (!name.ends_with(suffix)) continue;
+        const TakenParameter* base =
+            findParameterNamed(params, name.substr(0, name.size() - suffix.size()));
+        if (base && base->spec.type == ParamType::Spectrum) return true;
+      }
+      return false;
+    };
     std::vector<std::string> names;
     for (const TakenParameter& p : params)
-      if (!std::string(p.spec.name).ends_with("_scale")) names.push_back(p.spec.name);
+      if (!isAttribute(p.spec.name)) names.push_back(p.spec.name);
     const auto c = uniqueChildren(n, names);
     for (const TakenParameter& p : params) {
       const auto it = c.find(p.spec.name);
@@ -702,17 +717,30 @@ private:
       }
       const pugi::xml_node e = it->second;
       if (p.spec.type == ParamType::Spectrum) {
-        const TakenParameter* scale =
-            findParameterNamed(params, std::string(p.spec.name) + "_scale");
-        std::optional<SpectrumDesc> s = spectrum(
-            e, !p.required, scale ? std::vector<std::string>{"scale"} : std::vector<std::string>{});
-        if (scale && e.attribute("scale")) {
-          const std::string noun = scale->spec.what;
-          out.set({scale->spec.name,
-                   scaleAttribute(
-                       e, std::string("aeiou").find(noun[0]) == std::string::npos ? "a" : "an",
-                       noun, scale->spec.range && !scale->spec.range->openLow),
-                   loc(e)});
+        std::vector<std::string> attributes;
+        for (const char* a : kSpectrumAttributes)
+          if (findParameterNamed(params, std::string(p.spec.name) + "_" + a))
+            attributes.push_back(a);
+        std::optional<SpectrumDesc> s = spectrum(e, !p.required, attributes);
+        for (const std::string& a : attributes) {
+          if (!e.attribute(a.c_str())) continue;
+          const TakenParameter& d = *findParameterNamed(params, std::string(p.spec.name) + "_" + a);
+          const std::string noun = d.spec.what;
+          const std::string article =
+              std::string("aeiou").find(noun[0]) == std::string::npos ? "a" : "an";
+          double v;
+          if (a == "scale") {
+            v = scaleAttribute(e, article, noun, d.spec.range && !d.spec.range->openLow);
+          } else {
+            const std::string t = decoded(e.attribute(a.c_str()).value(), e);
+            v = parseNumber(t, loc(e).str(), article + " " + noun + " in " + a + "=\"...\"");
+            if (!d.spec.range->contains(v))
+              fail(e,
+                   std::string(d.spec.range->what) + " in " + a + "=\"...\" within (" +
+                       numberText(d.spec.range->lo) + ", " + numberText(d.spec.range->hi) + "]",
+                   shownText(t));
+          }
+          out.set({d.spec.name, v, loc(e)});
         }
         if (s) out.set({p.spec.name, *s, loc(e)});
         continue;

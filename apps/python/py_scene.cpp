@@ -274,7 +274,7 @@ struct DyeView {
 // lights' or media's TakenParameter list), except those with views of their own (`skip`): read
 // as its Python form (None: not given, the kind's default); set checked by its type and range,
 // refused where the item's kind does not take it; None removes it (refused if required). A
-// new spectrum NAME stands alone: it removes NAME_scale.
+// new spectrum NAME stands alone: it removes NAME_scale and NAME_at.
 template <class View, class Kinds>
 void bindTakenParameters(py::class_<View>& c, const Kinds& kinds, nx::ParamType skip) {
   std::vector<std::string> names;
@@ -303,7 +303,8 @@ void bindTakenParameters(py::class_<View>& c, const Kinds& kinds, nx::ParamType 
             } else {
               p.set({name, parameterFromPython(decl->spec, value, param, v.loc()),
                      p.locOf(name, v.loc())});
-              if (decl->spec.type == nx::ParamType::Spectrum) p.erase(name + "_scale");
+              if (decl->spec.type == nx::ParamType::Spectrum)
+                p.erase(name + "_scale"), p.erase(name + "_at");
             }
             record(v.state(), param, value);
           },

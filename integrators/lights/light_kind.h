@@ -60,6 +60,16 @@ inline const LightParameter kLightEmissionScale{
      "the factor on <emission> (its scale=\"...\")", "2", "", "emission scale"},
     "1"};
 
+/// <emission at="d">: the emission is the spectral irradiance E the lamp gives on its axis at
+/// distance d (scene units, the length unit of E's area; a lamp measured with a
+/// spectroradiometer at 500 mm in a scene in millimetres: at="500" and E per mm^2), at normal
+/// incidence; the intensity is I = E d^2 (inverse square law, the far field of the lamp).
+inline const LightParameter kLightEmissionAt{
+    {"emission_at", ParamType::Number, "scene units", &kMeasuredDistanceRange,
+     "<emission> is the irradiance on the axis at this distance (its at=\"...\"): I = E d^2", "500",
+     "", "measuring distance"},
+    ""};
+
 /// A delta light's sample from p: the direction and distance to `position` and the intensity
 /// times factor(wi) / d^2 (pdf 1); false where it sends nothing (factor 0).
 template <class Factor>
@@ -89,17 +99,19 @@ inline double tracedIntegral(const Spectrum& s) {
   return sum;
 }
 
-/// A delta light's intensity from its parameters: <emission> (times <emission> scale="...") in
+/// A delta light's intensity from its parameters: <emission> (times <emission> scale="...",
+/// times d^2 for an irradiance measured at="d") in
 /// spectral_mcpt or without a <color>, else its RGB <color>; checked and prepared for
 /// rendering.
 inline Spectrum lightIntensity(const ParameterSet& p, const LightInputs& in) {
   const SpectrumDesc* emission = p.get<SpectrumDesc>("emission");
   const auto* color = p.get<std::array<double, 4>>("color");
   Spectrum s;
-  if (emission && (in.spectral || !color))
+  if (emission && (in.spectral || !color)) {
+    const double d = p.number("emission_at").value_or(1.0); // irradiance at d: I = E d^2
     s = in.spectrum(*emission, SpectrumRole::Emission)
-            .scaled(p.number("emission_scale").value_or(1.0));
-  else if (color)
+            .scaled(p.number("emission_scale").value_or(1.0) * d * d);
+  } else if (color)
     s = in.srgbIntensity({(*color)[0], (*color)[1], (*color)[2]});
   in.checkEmission(s, emission ? emission->loc : in.loc);
   return forRendering(s);

@@ -40,15 +40,16 @@ std::string exampleLight(const LightKindSpec& kind) {
   std::string body;
   for (const LightParameter& p : kind.params()) {
     const std::string name = p.spec.name;
-    if (name.ends_with("_scale")) continue;
+    if (name.ends_with("_scale") || name == "emission_at") continue; // attributes of <emission>
     if (p.spec.type == ParamType::File) {
       body += "<" + name + ">" + exampleFile(p.spec.example) + "</" + name + ">";
       continue;
     }
-    const std::string scale = name + "_scale";
-    const LightParameter* s = lightParameter(kind, scale);
-    body += "<" + name + (s ? std::string(" scale=\"") + s->spec.example + "\"" : "") + ">" +
-            p.spec.example + "</" + name + ">";
+    std::string attributes;
+    for (const char* a : {"scale", "at"})
+      if (const LightParameter* s = lightParameter(kind, name + "_" + a))
+        attributes += std::string(" ") + a + "=\"" + s->spec.example + "\"";
+    body += "<" + name + attributes + ">" + p.spec.example + "</" + name + ">";
   }
   return std::string("<light type=\"") + kind.name + "\">" + body + "</light>";
 }
@@ -99,6 +100,39 @@ TEST(LightKinds, UndeclaredParametersAreRefusedAtTheirLine) {
   EXPECT_NE(test::errorMessage([&] {
               (void)parseScene(lightScene("<light type=\"lamp\"></light>"), "t.scn");
             }).find("t.scn:5: expected a light type point"),
+            std::string::npos);
+}
+
+// A lamp given as measured: its spectral irradiance E on the axis at distance d
+// (<emission at="d">) is an intensity I = E d^2, so a point at distance r on the axis receives
+// E d^2 / r^2 (closed form of the inverse square law), for point and spot lights alike; the
+// measuring distance must be positive.
+TEST(LightKinds, IrradianceMeasuredAtADistanceBecomesTheIntensity) {
+  for (const std::string light :
+       {"<light><position>0,5,0</position><color>1,1,1</color>",
+        "<light type=\"spot\"><position>0,5,0</position><look_at>0,0,0</look_at>"}) {
+    SCOPED_TRACE(light);
+    const RenderScene s = buildRenderScene(parseScene(
+        lightScene(light + "<emission at=\"2\" scale=\"3\">0.1</emission></light>"), "t.scn"));
+    SampledWavelengths lambda;
+    for (int i = 0; i < kLanes; ++i)
+      lambda.lambda[i] = 450.0f + 30.0f * static_cast<float>(i), lambda.pdf[i] = 1;
+    for (double r : {2.0, 4.0, 5.0}) {
+      LightSample out;
+      const Vec3 p(0, static_cast<float>(5 - r), 0);
+      ASSERT_TRUE(std::visit(
+          [&](const auto& l) {
+            return l.sample(p, {0.5f, 0.5f}, lambda, out);
+          },
+          s.lights[0]));
+      for (int i = 0; i < kLanes; ++i) EXPECT_NEAR(out.radiance[i], 0.3 * 4 / (r * r), 1e-6) << r;
+    }
+  }
+  EXPECT_NE(test::errorMessage([] {
+              parseScene(lightScene("<light><position>0,5,0</position><color>1,1,1</color>"
+                                    "<emission at=\"0\">0.1</emission></light>"),
+                         "t.scn");
+            }).find("a measuring distance in at=\"...\" within (0, 1e+12], found '0'"),
             std::string::npos);
 }
 

@@ -28,6 +28,7 @@ struct PointLight {
           "spectral intensity (spectral_mcpt); scale=\"...\" multiplies it", "D65"},
          ""},
         kLightEmissionScale,
+        kLightEmissionAt,
     };
     return p;
   }

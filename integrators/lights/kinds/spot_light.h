@@ -54,6 +54,7 @@ struct SpotLight {
           "A"},
          ""},
         kLightEmissionScale,
+        kLightEmissionAt,
     };
     return p;
   }
