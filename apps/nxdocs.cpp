@@ -146,6 +146,18 @@ void takenTable(std::ostringstream& o, std::span<const nx::TakenParameter> param
   }
 }
 
+// A light's or medium kinds' index and one section per kind with its parameter table.
+template <class Spec>
+void takenKinds(std::ostringstream& o, std::span<const Spec> kinds) {
+  o << "| kind | meaning |\n|---|---|\n";
+  for (const Spec& k : kinds)
+    o << "| [" << k.name << "](#" << k.name << ") | " << cell(k.doc) << " |\n";
+  for (const Spec& k : kinds) {
+    o << "\n## " << k.name << "\n\n" << cell(k.doc) << ".\n\n";
+    takenTable(o, k.params());
+  }
+}
+
 std::string lightsDoc() {
   std::ostringstream o;
   o << "# Scene reference: light kinds and their parameters\n\n" << kGenerated;
@@ -155,13 +167,7 @@ std::string lightsDoc() {
        "line. Emitting objects (`<emission>` on a shape) and the uniform `<background>` are "
        "lights too ([../scene-format.md](../scene-format.md)). In Python: the properties of "
        "`scene.lights[i]` and the names `lights[i].<parameter>` of `Scene.parameters()`.\n\n";
-  o << "| kind | meaning |\n|---|---|\n";
-  for (const nx::LightKindSpec& k : nx::lightKinds())
-    o << "| [" << k.name << "](#" << k.name << ") | " << cell(k.doc) << " |\n";
-  for (const nx::LightKindSpec& k : nx::lightKinds()) {
-    o << "\n## " << k.name << "\n\n" << cell(k.doc) << ".\n\n";
-    takenTable(o, k.params());
-  }
+  takenKinds(o, nx::lightKinds());
   return o.str();
 }
 
@@ -176,13 +182,7 @@ std::string mediaDoc() {
        "In Python: the properties of `scene.objects[i].medium` and the names "
        "`objects[i].medium.<parameter>` of `Scene.parameters()` (the dye by its fields, "
        "`objects[i].medium.dye.*` and `dye_peak`).\n\n";
-  o << "| kind | meaning |\n|---|---|\n";
-  for (const nx::MediumKindSpec& k : nx::mediumKinds())
-    o << "| [" << k.name << "](#" << k.name << ") | " << cell(k.doc) << " |\n";
-  for (const nx::MediumKindSpec& k : nx::mediumKinds()) {
-    o << "\n## " << k.name << "\n\n" << cell(k.doc) << ".\n\n";
-    takenTable(o, k.params());
-  }
+  takenKinds(o, nx::mediumKinds());
   return o.str();
 }
 
