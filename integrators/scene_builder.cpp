@@ -18,6 +18,7 @@
 #include "io/spectral_exr.h"
 #include "io/texture_reader.h"
 #include "spectra/colour.h"
+#include "spectra/eem_import.h"
 #include "spectra/illuminants.h"
 #include "spectra/named_spectra.h"
 #include "spectra/rgb_upsampling.h"
@@ -361,6 +362,7 @@ private:
           return std::make_shared<const ReradiationMatrix>(
               ReradiationMatrix::fromMeasured(*d.matrix, rho));
         }
+        if (d.eem) return b_.importedEem(d, rho);
         return std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromMeasured(
             parseMeasuredMatrixCsv(b_.refs_.readFile(*d.matrixCsv, 64u << 20, "table file"),
                                    *d.matrixCsv),
@@ -466,6 +468,54 @@ private:
                                                           "formula, or n^2 < 0)")) +
                   " at " + numberText(*nm) + " nm");
     return m;
+  }
+
+  // An instrument EEM made an absolute Donaldson matrix (spectra/eem_import.h); what the
+  // import did is said in a note.
+  std::shared_ptr<const ReradiationMatrix> importedEem(const FluorescenceDesc& f,
+                                                       const Spectrum* rho) const {
+    const EemDesc& e = *f.eem;
+    EemSummary summary;
+    auto table = [&](const std::string& path) {
+      return withoutScatter(
+          parseEemCsv(refs_.readFile(path, 64u << 20, "EEM file"), path, e.layout), e.layout,
+          summary);
+    };
+    const EemTable sample = table(e.file);
+    EemSummary sampleCounts = summary;
+    std::optional<EemTable> reference;
+    EemYield yield;
+    yield.quantumYield = f.quantumYield;
+    if (!e.referenceFile.empty()) {
+      reference = table(e.referenceFile);
+      yield.reference = &*reference;
+      yield.referenceYield = e.referenceYield;
+      yield.referenceAbsorptance = e.referenceAbsorptance;
+      yield.referenceExcitationNm = e.referenceExcitationNm;
+    }
+    EemAbsorptance absorptance;
+    std::optional<Spectrum> a;
+    if (e.absorptance) {
+      a = refs_.resolve(*e.absorptance, SpectrumRole::Reflectance);
+      for (double nm : sample.excitationNm)
+        if (!((*a)(nm) >= 0 && (*a)(nm) <= 1))
+          throw Error(e.absorptance->loc.str() +
+                      ": expected an absorptance within [0, 1] at "
+                      "the EEM's excitation wavelengths, found " +
+                      numberText((*a)(nm)) + " at " + numberText(nm) + " nm");
+      absorptance.spectrum = [&a](double nm) { return (*a)(nm); };
+    } else {
+      absorptance.peak = f.peakAbsorptance;
+    }
+    MeasuredMatrix m = donaldsonFromEem(sample, e.layout, yield, absorptance, sampleCounts);
+    auto r = std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromMeasured(m, rho));
+    warnings_.push_back(
+        e.loc.str() + ": note: the EEM " + e.file + " imported (" + sampleCounts.text() +
+        "); absorptance " +
+        (e.absorptance ? "as given"
+                       : "from its excitation profile, peak " + numberText(*f.peakAbsorptance)) +
+        "; its elastic reflectance is the material's");
+    return r;
   }
 
   FluorescenceModel fluorescence(const FluorescenceDesc& f) const {

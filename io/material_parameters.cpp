@@ -20,8 +20,8 @@ std::span<const ParamSpec> materialParameters() {
        "sellmeier: B1, B2, B3, C1, C2, C3 (um^2)",
        "1.4"},
       {"fluorescence", ParamType::Fluorescence, "-", nullptr,
-       "re-radiation of the diffuse lobe: the parametric model or a measured matrix "
-       "(docs/fluorescence.md)",
+       "re-radiation of the diffuse lobe: the parametric model, a measured matrix or an "
+       "instrument EEM (docs/fluorescence.md, docs/eem-import.md)",
        "<absorption>450</absorption><stokes>60</stokes>"},
       {"eta", ParamType::Spectrum, "1", nullptr,
        "real part of a conductor's complex index eta + i k, within [0.001, 1000]", "0.2", "metal"},

@@ -73,7 +73,9 @@ namespace {
 #if defined(__x86_64__) && defined(__GLIBCXX__)
 static_assert(sizeof(SpectrumDesc) == 256, "a SpectrumDesc field was added: write it below");
 static_assert(sizeof(IorDesc) == 112, "an IorDesc field was added: write it below");
-static_assert(sizeof(FluorescenceDesc) == 232, "a FluorescenceDesc field was added: write it");
+static_assert(sizeof(FluorescenceDesc) == 248, "a FluorescenceDesc field was added: write it");
+static_assert(sizeof(EemDesc) == 448, "an EemDesc field was added: write it below");
+static_assert(sizeof(EemLayout) == 48, "an EemLayout field was added: write it below");
 static_assert(sizeof(CoatingDesc) == 160, "a CoatingDesc field was added: write it below");
 #endif
 
@@ -121,6 +123,16 @@ struct CanonicalWriter {
             std::string_view(reinterpret_cast<const char*>(v->data()), v->size() * sizeof(double)),
             fnv1a64(std::to_string(v->size()), h));
       t << "matrix:" << h;
+    }
+    if (f.eem) { // the files' bytes join the render key when they are read
+      const EemDesc& e = *f.eem;
+      const EemLayout& l = e.layout;
+      t << "eem:" << e.file.size() << ':' << e.file << ',' << l.emissionRows << l.energyUnits
+        << l.secondOrder << l.meanEmissionShape << ',' << l.rayleighWidthNm << ',' << l.ramanShiftCm
+        << ',' << l.ramanWidthNm << ',' << e.referenceFile.size() << ':' << e.referenceFile << ','
+        << e.referenceYield << ',' << e.referenceAbsorptance << ',';
+      opt(e.referenceExcitationNm);
+      if (e.absorptance) (*this)(*e.absorptance);
     }
   }
   void operator()(const CoatingDesc& c) const {

@@ -38,6 +38,14 @@ inline constexpr ParameterRange kWidthRange{0, 500, true, "a width in nm"};
 inline constexpr ParameterRange kSkewRange{0, 1000, false, "a skew magnitude"};
 inline constexpr ParameterRange kYieldRange{0, 1, false, "a quantum yield"};
 inline constexpr ParameterRange kPeakRange{0, 1, false, "a peak absorptance"};
+/// An EEM's scatter bands: full widths in nm (0: none removed) and a Raman shift in cm^-1.
+inline constexpr ParameterRange kScatterWidthRange{0, 200, false, "a band's full width in nm"};
+inline constexpr ParameterRange kRamanShiftRange{0, 10000, true, "a Raman shift in cm^-1"};
+/// A reference dye's quantum yield and absorptance (positive: they divide).
+inline constexpr ParameterRange kReferenceYieldRange{0, 1, true, "a reference quantum yield"};
+inline constexpr ParameterRange kReferenceAbsorptanceRange{0, 1, true, "a reference absorptance"};
+/// A wavelength in nm of an instrument's range.
+inline constexpr ParameterRange kInstrumentNmRange{100, 2000, false, "a wavelength in nm"};
 /// A dye's peak absorption coefficient in a medium (per scene unit of length).
 inline constexpr ParameterRange kPeakCoefficientRange{
     0, 1e9, true, "a peak absorption coefficient per unit length"};

@@ -1060,15 +1060,21 @@ private:
   // the dye's peak absorption coefficient per unit length, required).
   FluorescenceDesc fluorescence(const pugi::xml_node& n, bool inMedium = false) const {
     checkAttributes(n, {});
-    const auto c =
-        uniqueChildren(n, {"absorption", "stokes", "width", "skew", "yield", "peak", "matrix"});
+    const auto c = uniqueChildren(n, {"absorption", "stokes", "width", "skew", "yield", "peak",
+                                      "matrix", "eem", "absorptance", "reference"});
     FluorescenceDesc f;
     f.loc = loc(n);
-    if (inMedium && c.count("matrix"))
-      fail(c.at("matrix"),
-           "the parametric model in a medium's <fluorescence> (<absorption>, <stokes>, <peak>, "
-           "...; measured matrices describe surfaces)",
-           "<matrix>");
+    for (const char* measured : {"matrix", "eem"})
+      if (inMedium && c.count(measured))
+        fail(c.at(measured),
+             "the parametric model in a medium's <fluorescence> (<absorption>, <stokes>, <peak>, "
+             "...; measured matrices and EEMs describe surfaces)",
+             "<" + std::string(measured) + ">");
+    if (c.count("eem")) return importedEem(c, n, f);
+    for (const char* tag : {"absorptance", "reference"})
+      if (c.count(tag))
+        fail(c.at(tag), "<" + std::string(tag) + "> only with an <eem> in <fluorescence>",
+             "<" + std::string(tag) + "> without one");
     if (inMedium && !c.count("peak"))
       fail(n,
            "a <peak> (the dye's peak absorption coefficient per unit length) in a medium's "
@@ -1099,6 +1105,104 @@ private:
     if (c.count("yield")) f.quantumYield = number(c.at("yield"), kYieldRange);
     if (c.count("peak"))
       f.peakAbsorptance = number(c.at("peak"), inMedium ? kPeakCoefficientRange : kPeakRange);
+    return f;
+  }
+
+  // A number in attribute `name` of n, within r.
+  double numberAttribute(const pugi::xml_node& n, const char* name, const ParameterRange& r) const {
+    const std::string t = trim(decoded(n.attribute(name).value(), n));
+    const double v = numberOf(n, t, std::string(r.what) + " in " + name + "=\"...\"");
+    if (!r.contains(v)) {
+      std::ostringstream range;
+      range << r.what << " in " << (r.openLow ? "(" : "[") << r.lo << ", " << r.hi << "] in "
+            << name << "=\"...\"";
+      fail(n, range.str(), shownText(t));
+    }
+    return v;
+  }
+
+  // One of the words in attribute `name` of n (the first when absent): its index.
+  size_t choiceAttribute(const pugi::xml_node& n, const char* name,
+                         const std::vector<std::string>& words) const {
+    const pugi::xml_attribute a = n.attribute(name);
+    if (!a) return 0;
+    const std::string t = trim(decoded(a.value(), n));
+    for (size_t i = 0; i < words.size(); ++i)
+      if (t == words[i]) return i;
+    std::string list;
+    for (size_t i = 0; i < words.size(); ++i)
+      list +=
+          (i ? (i + 1 == words.size() ? " or " : ", ") : "") + (name + ("=\"" + words[i] + "\""));
+    fail(n, list, shownText(t));
+  }
+
+  // <fluorescence> with an <eem file="..." rayleigh_width="..." .../>: an instrument EEM, made
+  // absolute by <yield> or <reference>, and <peak> or <absorptance> (docs/eem-import.md).
+  FluorescenceDesc importedEem(const std::map<std::string, pugi::xml_node>& c,
+                               const pugi::xml_node& n, FluorescenceDesc f) const {
+    for (const char* tag : {"absorption", "stokes", "width", "skew", "matrix"})
+      if (c.count(tag))
+        fail(c.at(tag), "only <yield> or <reference>, and <peak> or <absorptance>, with an <eem>",
+             "<" + std::string(tag) + ">");
+    const pugi::xml_node x = c.at("eem");
+    checkAttributes(x, {"file", "layout", "units", "rayleigh_width", "second_order", "raman_shift",
+                        "raman_width", "emission_shape"});
+    if (!text(x, {"file", "layout", "units", "rayleigh_width", "second_order", "raman_shift",
+                  "raman_width", "emission_shape"})
+             .empty())
+      fail(x, "attributes only on <eem>", "text inside it");
+    auto e = std::make_shared<EemDesc>();
+    e->loc = loc(x);
+    const std::string file = trim(decoded(x.attribute("file").value(), x));
+    if (file.empty()) fail(x, "an EEM CSV file in file=\"...\" on <eem>", "none");
+    e->file = relativeToScene(file);
+    e->layout.emissionRows = choiceAttribute(x, "layout", {"excitation_rows", "emission_rows"});
+    e->layout.energyUnits = choiceAttribute(x, "units", {"photons", "energy"});
+    if (!x.attribute("rayleigh_width"))
+      fail(x,
+           "rayleigh_width=\"nm\" on <eem> (the full width of the Rayleigh bands to remove; 0 "
+           "for an EEM without them)",
+           "none");
+    e->layout.rayleighWidthNm = numberAttribute(x, "rayleigh_width", kScatterWidthRange);
+    e->layout.secondOrder = choiceAttribute(x, "second_order", {"true", "false"}) == 0;
+    const bool hasShift = x.attribute("raman_shift"), hasWidth = x.attribute("raman_width");
+    if (hasShift != hasWidth)
+      fail(x, "raman_shift=\"cm^-1\" (or \"water\") and raman_width=\"nm\" together on <eem>",
+           "only one of them");
+    if (x.attribute("raman_shift")) {
+      const std::string shift = trim(decoded(x.attribute("raman_shift").value(), x));
+      e->layout.ramanShiftCm = shift == "water"
+                                   ? kWaterRamanShiftCm
+                                   : numberAttribute(x, "raman_shift", kRamanShiftRange);
+      e->layout.ramanWidthNm = numberAttribute(x, "raman_width", kScatterWidthRange);
+    }
+    e->layout.meanEmissionShape = choiceAttribute(x, "emission_shape", {"rows", "mean"}) == 1;
+    // The absolute scale: a yield or a reference dye; an absorptance or a peak.
+    if (c.count("yield") == c.count("reference"))
+      fail(n, "either <yield> or <reference> with an <eem>", c.count("yield") ? "both" : "neither");
+    if (c.count("peak") == c.count("absorptance"))
+      fail(n,
+           "either <peak> (absorptance from the EEM's excitation profile) or <absorptance> "
+           "with an <eem>",
+           c.count("peak") ? "both" : "neither");
+    if (c.count("yield")) f.quantumYield = number(c.at("yield"), kYieldRange);
+    if (c.count("peak")) f.peakAbsorptance = number(c.at("peak"), kPeakRange);
+    if (c.count("absorptance")) e->absorptance = spectrum(c.at("absorptance"), false);
+    if (c.count("reference")) {
+      const pugi::xml_node r = c.at("reference");
+      checkAttributes(r, {"file", "yield", "absorptance", "excitation"});
+      for (const char* a : {"file", "yield", "absorptance"})
+        if (!r.attribute(a))
+          fail(r, std::string(a) + "=\"...\" on <reference> (file, yield and absorptance)", "none");
+      const std::string rf = trim(decoded(r.attribute("file").value(), r));
+      if (rf.empty()) fail(r, "a reference EEM file in file=\"...\"", "an empty one");
+      e->referenceFile = relativeToScene(rf);
+      e->referenceYield = numberAttribute(r, "yield", kReferenceYieldRange);
+      e->referenceAbsorptance = numberAttribute(r, "absorptance", kReferenceAbsorptanceRange);
+      if (r.attribute("excitation"))
+        e->referenceExcitationNm = numberAttribute(r, "excitation", kInstrumentNmRange);
+    }
+    f.eem = std::move(e);
     return f;
   }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/vec3.h"
+#include "spectra/eem_layout.h"
 
 namespace nx {
 
@@ -67,6 +68,18 @@ struct IorDesc {
   SourceLocation loc;
 };
 
+/// <fluorescence><eem .../>: an instrument excitation-emission matrix to import, with what
+/// makes it absolute (the <fluorescence>'s <yield> or <reference>, <peak> or <absorptance>).
+struct EemDesc {
+  std::string file;                        ///< the EEM CSV
+  EemLayout layout;                        ///< its orientation, units and scatter bands
+  std::optional<SpectrumDesc> absorptance; ///< A(lambda), or none: from the excitation profile
+  std::string referenceFile;               ///< a reference dye's EEM (the relative yield), or ""
+  double referenceYield = 0, referenceAbsorptance = 0; ///< its yield and absorptance
+  std::optional<double> referenceExcitationNm; ///< where the two are compared (default: peak)
+  SourceLocation loc;
+};
+
 /// <fluorescence>: the parameters of the re-radiation matrix, or a measured matrix.
 struct FluorescenceDesc {
   std::optional<std::string> absorptionName; ///< a colour name (peak wavelength)
@@ -76,6 +89,8 @@ struct FluorescenceDesc {
   std::optional<std::string> matrixCsv; ///< measured Donaldson matrix
   /// Or the measured matrix itself (given from Python as arrays), checked
   std::shared_ptr<const MeasuredMatrix> matrix;
+  /// Or an instrument EEM (quantumYield and peakAbsorptance are then its yield and a_max)
+  std::shared_ptr<const EemDesc> eem;
   SourceLocation loc;
 };
 

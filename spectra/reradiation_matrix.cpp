@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_text.h"
 #include "core/text_table.h"
 
 namespace nx {
@@ -51,17 +52,23 @@ bool bracket(const std::vector<double>& g, double x, size_t& k, double& t) {
 
 } // namespace
 
+std::vector<double> gridCellWidths(const std::vector<double>& nm) {
+  const size_t n = nm.size();
+  std::vector<double> width(n);
+  for (size_t c = 0; c < n; ++c) {
+    const double lo = nm[c > 0 ? c - 1 : c], hi = nm[c + 1 < n ? c + 1 : c];
+    width[c] = (hi - lo) / static_cast<double>((c > 0 ? 1 : 0) + (c + 1 < n ? 1 : 0));
+  }
+  return width;
+}
+
 ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm, const Spectrum* rho) {
   ReradiationMatrix r;
   r.measured_ = true;
   const size_t nEx = mm.excitationNm.size(), nEm = mm.emissionNm.size();
   auto cell = [&](size_t row, size_t col) { return mm.cells[row * nEm + col]; };
   // Emission bin widths of the CSV grid (to turn fractions per CSV bin into densities per nm).
-  std::vector<double> width(nEm);
-  for (size_t c = 0; c < nEm; ++c) {
-    const double lo = mm.emissionNm[c > 0 ? c - 1 : c], hi = mm.emissionNm[c + 1 < nEm ? c + 1 : c];
-    width[c] = (hi - lo) / static_cast<double>((c > 0 ? 1 : 0) + (c + 1 < nEm ? 1 : 0));
-  }
+  const std::vector<double> width = gridCellWidths(mm.emissionNm);
   // Off-diagonal density: cells with emission longer than excitation; the rest count as 0.
   auto density = [&](size_t row, size_t col) {
     return mm.emissionNm[col] > mm.excitationNm[row] ? cell(row, col) / width[col] : 0.0;
@@ -87,7 +94,7 @@ ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm, cons
         diagNm.push_back(mm.emissionNm[col]);
         diagValue.push_back(cell(row, col));
       }
-  r.elasticFromRho_ = diagNm.size() < 2;
+  r.elasticFromRho_ = mm.fluorescenceOnly || diagNm.size() < 2;
   for (int o = 0; o < kBins && !r.elasticFromRho_; ++o) {
     size_t k;
     double t;
@@ -155,59 +162,58 @@ std::string ReradiationMatrix::toCsv() const {
   return out.str();
 }
 
-namespace {
-MeasuredMatrix measuredFromTable(const NumberTable& t, const std::string& path);
-} // namespace
-
 MeasuredMatrix readMeasuredMatrixCsv(const std::string& path) {
-  return measuredFromTable(readNumberTable(path, true), path);
+  return parseMeasuredMatrixCsv(readRegularFile(path, 64u << 20, "table file"), path);
 }
 
 MeasuredMatrix parseMeasuredMatrixCsv(const std::string& text, const std::string& source) {
-  return measuredFromTable(parseNumberTable(text, source, true), source);
+  return parseWavelengthGrid(text, source, true, "excitation", "emission");
 }
 
-namespace {
-MeasuredMatrix measuredFromTable(const NumberTable& t, const std::string& path) {
+MeasuredMatrix parseWavelengthGrid(const std::string& text, const std::string& source,
+                                   bool fractions, const std::string& rowAxis,
+                                   const std::string& columnAxis) {
+  const NumberTable t = parseNumberTable(text, source, true);
+  const std::string& path = source;
   MeasuredMatrix m;
   m.source = path;
   size_t firstRow = 0;
   if (!t.header.empty()) {
     for (size_t i = 1; i < t.header.size(); ++i)
-      m.emissionNm.push_back(parseNumber(t.header[i], path + ":1", "an emission wavelength"));
+      m.emissionNm.push_back(
+          parseNumber(t.header[i], path + ":1", "an " + columnAxis + " wavelength"));
   } else {
     m.emissionNm.assign(t.rows[0].values.begin() + 1, t.rows[0].values.end());
     firstRow = 1;
   }
   if (m.emissionNm.size() < 2)
-    throw Error(path + ":1: expected at least two emission wavelengths in the first row");
+    throw Error(path + ":1: expected at least two " + columnAxis + " wavelengths in the first row");
   for (size_t i = 1; i < m.emissionNm.size(); ++i)
     if (!(m.emissionNm[i] > m.emissionNm[i - 1]))
-      throw Error(path + ":1: expected increasing emission wavelengths, found " +
+      throw Error(path + ":1: expected increasing " + columnAxis + " wavelengths, found " +
                   std::to_string(m.emissionNm[i]) + " after " +
                   std::to_string(m.emissionNm[i - 1]));
   for (size_t r = firstRow; r < t.rows.size(); ++r) {
     const auto& row = t.rows[r];
     const std::string where = path + ":" + std::to_string(row.line);
     if (row.values.size() != m.emissionNm.size() + 1)
-      throw Error(where + ": expected " + std::to_string(m.emissionNm.size() + 1) +
-                  " cells (excitation wavelength and " + std::to_string(m.emissionNm.size()) +
+      throw Error(where + ": expected " + std::to_string(m.emissionNm.size() + 1) + " cells (" +
+                  rowAxis + " wavelength and " + std::to_string(m.emissionNm.size()) +
                   " values), found " + std::to_string(row.values.size()));
     if (!m.excitationNm.empty() && !(row.values[0] > m.excitationNm.back()))
-      throw Error(where + ": expected increasing excitation wavelengths, found " +
+      throw Error(where + ": expected increasing " + rowAxis + " wavelengths, found " +
                   std::to_string(row.values[0]) + " after " +
                   std::to_string(m.excitationNm.back()));
-    for (size_t k = 1; k < row.values.size(); ++k)
+    for (size_t k = 1; fractions && k < row.values.size(); ++k)
       if (row.values[k] < 0 || row.values[k] > 1)
         throw Error(where + ": expected matrix values in [0, 1], found " +
                     std::to_string(row.values[k]));
     m.excitationNm.push_back(row.values[0]);
     m.cells.insert(m.cells.end(), row.values.begin() + 1, row.values.end());
   }
-  if (m.excitationNm.size() < 2) throw Error(path + ": expected at least two excitation rows");
+  if (m.excitationNm.size() < 2) throw Error(path + ": expected at least two " + rowAxis + " rows");
   return m;
 }
-} // namespace
 
 void checkMeasuredMatrix(const MeasuredMatrix& m, const std::string& where) {
   for (const auto& [axis, nm] :

@@ -27,6 +27,9 @@ struct FluorescenceModel {
 struct MeasuredMatrix {
   std::vector<double> excitationNm, emissionNm, cells;
   std::string source; ///< file name for messages
+  /// Fluorescence only (an imported EEM): cells where excitation equals emission are not a
+  /// diagonal, and the elastic part is the surface's reflectance.
+  bool fluorescenceOnly = false;
 };
 
 /// M[i][o] (energy re-radiated from excitation bin i into emission bin o, o > i), the
@@ -58,7 +61,8 @@ public:
   /// are ignored (anti-Stokes light is not modelled). A matrix without a diagonal (no
   /// excitation wavelength equal to an emission one: fluorescence only, as an instrument EEM)
   /// takes its elastic part from the surface's reflectance rho instead; `rho`, when given, is
-  /// then checked with it for energy (rho + re-radiated <= 1 at every excitation bin).
+  /// then checked with it for energy (rho + re-radiated <= 1 at every excitation bin). An
+  /// imported EEM (m.fluorescenceOnly) always takes its elastic part from rho.
   static ReradiationMatrix fromMeasured(const MeasuredMatrix& m, const Spectrum* rho = nullptr);
   /// A measured matrix whose elastic part is the surface's reflectance (it has no diagonal).
   bool elasticFromReflectance() const { return elasticFromRho_; }
@@ -143,6 +147,18 @@ MeasuredMatrix readMeasuredMatrixCsv(const std::string& path);
 
 /// The same from CSV text; `source` names it in messages.
 MeasuredMatrix parseMeasuredMatrixCsv(const std::string& text, const std::string& source);
+
+/// The grid table both forms share (first row: a label cell and the column wavelengths; then
+/// rows of a wavelength and its cells): cells in [0, 1] when `fractions`, else any finite
+/// number (instrument counts). Errors name source:line and the axes by rowAxis / columnAxis
+/// ("excitation", "emission"); the result's excitationNm holds the rows' wavelengths.
+MeasuredMatrix parseWavelengthGrid(const std::string& text, const std::string& source,
+                                   bool fractions, const std::string& rowAxis,
+                                   const std::string& columnAxis);
+
+/// Widths (nm) of the cells of a wavelength grid: half the distance between a cell's
+/// neighbours (one-sided at the ends), so that a fraction per cell / width is a density per nm.
+std::vector<double> gridCellWidths(const std::vector<double>& nm);
 
 /// Checks a matrix given as numbers (not read from a CSV file): at least two increasing
 /// excitation and emission wavelengths within the traced range's neighbourhood, one finite

@@ -128,6 +128,18 @@ struct FluorescenceView {
   nx::FluorescenceDesc& editable(const char* field) const {
     nx::FluorescenceDesc& f = get();
     (void)m.editable();
+    if (f.eem) { // an imported EEM: its yield and peak absorptance, when the scene gave them
+      const std::string name = field;
+      if ((name == "quantum_yield" && f.eem->referenceFile.empty()) ||
+          (name == "peak_absorptance" && !f.eem->absorptance))
+        return f;
+      throw py::value_error(
+          m.label() + ".fluorescence." + field + ": the fluorescence is the EEM " + f.eem->file +
+          (name == "quantum_yield" || name == "peak_absorptance"
+               ? std::string(" whose ") + field + " comes from its <reference> or <absorptance>"
+               : "; only quantum_yield and peak_absorptance of an "
+                 "EEM are set from Python"));
+    }
     if (f.matrixCsv || f.matrix)
       throw py::value_error(m.label() + ".fluorescence." + field +
                             ": the fluorescence is a measured matrix" +
@@ -454,6 +466,13 @@ void bindScene(py::module_& m) {
         return d.matrixCsv ? py::object(py::str(*d.matrixCsv)) : py::object(py::none());
       },
       "The measured matrix's CSV file, if it was read from one");
+  fl.def_property_readonly(
+      "eem_file",
+      [](const FluorescenceView& f) -> py::object {
+        const auto& d = f.get();
+        return d.eem ? py::object(py::str(d.eem->file)) : py::object(py::none());
+      },
+      "The imported EEM's CSV file, if the fluorescence is one (docs/eem-import.md)");
   fl.def_property(
       "matrix",
       [](const FluorescenceView& f) -> py::object {

@@ -40,6 +40,13 @@ void addFixed(std::vector<Entry>& out, const std::string& name, const std::strin
 void addFluorescence(std::vector<Entry>& out, const std::string& prefix,
                      const nx::FluorescenceDesc& f, bool dye) {
   if (f.matrixCsv || f.matrix) return addFixed(out, prefix + ".matrix", "fluorescence.matrix");
+  if (f.eem) { // an imported EEM: the yield and peak it was made absolute with
+    if (f.eem->referenceFile.empty())
+      addFixed(out, prefix + ".quantum_yield", "fluorescence.quantum_yield");
+    if (!f.eem->absorptance)
+      addFixed(out, prefix + ".peak_absorptance", "fluorescence.peak_absorptance");
+    return;
+  }
   for (const char* field :
        {"absorption_nm", "stokes_nm", "width_nm", "skew", "quantum_yield", "peak_absorptance"})
     if (!(dye && std::string(field) == "peak_absorptance"))

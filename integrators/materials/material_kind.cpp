@@ -106,8 +106,9 @@ void setSurfaceReflectance(Material& m, const ParameterSet& p, const MaterialInp
 void setFluorescence(Material& m, const ParameterSet& p, const MaterialInputs& in) {
   const FluorescenceDesc* f = p.get<FluorescenceDesc>("fluorescence");
   if (!f) return;
-  if (f->matrixCsv || f->matrix) {
+  if (f->matrixCsv || f->matrix || f->eem) {
     m.reradiation = in.measuredMatrix(*f, m.texture ? nullptr : &m.reflectance);
+    if (f->eem) return; // an imported EEM is fluorescence only by nature (the import notes it)
     // Which elastic part the surface has: the matrix's diagonal, or (a fluorescence-only
     // matrix, as an instrument EEM gives) the material's reflectance; the latter is said.
     if (m.reradiation->elasticFromReflectance())

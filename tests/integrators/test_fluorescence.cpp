@@ -6,6 +6,7 @@
 #include "integrators/renderer.h"
 #include "spectra/reradiation_matrix.h"
 #include "support/statistics.h"
+#include "support/synthetic_eem.h"
 
 namespace nx {
 namespace {
@@ -242,6 +243,48 @@ TEST(Fluorescence, MatrixWithoutDiagonalTakesItsElasticPartFromTheReflectance) {
   std::string text = scene("<reflectance>0.86</reflectance>");
   text.replace(text.find(csv), csv.size(), withDiagonal);
   EXPECT_TRUE(buildRenderScene(parseScene(text, "t.scn")).warnings.empty());
+}
+
+// An instrument EEM (Rayleigh and Raman lines, instrument grids, counts) imported from the
+// scene file renders as the dye it was synthesised from: a quad under a uniform background of
+// 1, one bounce, has radiance rho + c(o) (c the model's column sums, averaged over each band),
+// z-tested; the import is noted, and the elastic part is the <reflectance>.
+TEST(Fluorescence, ImportedEemRendersAsTheModelDye) {
+  const test::Dye dye;
+  test::Synthetic syn;
+  syn.ex = test::grid(250, 600, 5);
+  syn.em = test::grid(300, 1100, 2);
+  const std::string csv = ::testing::TempDir() + "/dye_eem.csv";
+  std::ofstream(csv) << syn.csv(dye);
+  const double rho = 0.2;
+  const std::string text =
+      "<scene><settings><xres>8</xres><yres>8</yres><mode>spectral_mcpt</mode><sampl>64"
+      "</sampl><depth>1</depth><background>1</background><bands>520:640:40</bands>"
+      "</settings><camera><position>0,0,-1</position><look_at>0,0,0</look_at><fov>20</fov>"
+      "</camera><quad><origin>-1,-1,0</origin><edge_u>2,0,0</edge_u><edge_v>0,2,0</edge_v>"
+      "<material>matte</material><reflectance>0.2</reflectance><fluorescence>\n"
+      "<eem file=\"" +
+      csv +
+      "\" rayleigh_width=\"12\" raman_shift=\"water\" raman_width=\"12\" "
+      "emission_shape=\"mean\"/><yield>0.6</yield><peak>0.9</peak></fluorescence></quad></scene>";
+  const RenderScene s = buildRenderScene(parseScene(text, "t.scn"));
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("t.scn:2: note: the EEM"), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("quantum yield 0.6"), std::string::npos) << s.warnings[0];
+  ASSERT_TRUE(s.materials[0].reradiation->elasticFromReflectance());
+  const ReradiationMatrix model = ReradiationMatrix::fromModel(dye.model());
+  const RenderOutput out = render(s, RenderOptions{});
+  for (int b = 0; b < out.film.bands().count(); ++b) {
+    const double lo = 500 + 40 * b; // bands centred 520, 560, ..., 40 nm wide
+    double want = 0;
+    for (int o = ReradiationMatrix::binOf(lo); o < ReradiationMatrix::binOf(lo + 40); ++o)
+      want += (rho + model.columnSum(o)) / 8;
+    test::RunningStats st;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) st.add(out.film.bandMean(x, y, b));
+    // The EEM's grid resamples the model's absorption edge (a few per cent: the unit tests).
+    EXPECT_NEAR(st.mean, want, 5 * st.standardError() + 0.03 * want) << "band " << b;
+  }
 }
 
 } // namespace
