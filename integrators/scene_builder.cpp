@@ -9,6 +9,7 @@
 #include "core/math_util.h"
 #include "core/text_table.h"
 #include "integrators/lights/light_kinds.h"
+#include "integrators/lights/measured_emitter.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
 #include "integrators/render_scene.h"
@@ -93,14 +94,14 @@ public:
         scene.hasMedia = true;
         if (scene.media.back().dye) scene.hasFluorescence = true;
       }
-      if (auto e = emission(o, spectral)) {
-        app.emission = static_cast<int32_t>(scene.emission.size());
-        scene.emission.push_back(forRendering(*e));
-      }
       // The kind's primitive, placed by its type: spheres and planes in their lists, inline
       // triangles gathered into one mesh, meshes (quads, files) one Embree geometry each.
       const ShapeKindSpec& kind = *findShapeKind(o.shape); // the loader checked the name
       ShapeGeometry geometry = shapeInputs.build(kind, o);
+      if (auto e = emission(o, spectral, geometry)) {
+        app.emission = static_cast<int32_t>(scene.emission.size());
+        scene.emission.push_back(forRendering(*e));
+      }
       double extent = 0; // how far from the origin it reaches (a medium's float resolution)
       std::visit(
           [&](auto& shape) {
@@ -548,16 +549,26 @@ private:
     return p;
   }
 
-  // The object's emitted radiance, checked again after its scale.
-  std::optional<Spectrum> emission(const ObjectDesc& o, bool spectral) const {
+  // The object's emitted radiance, checked again after its scale; a lamp given as measured
+  // (irradiance at a distance, or flux) divided by what one unit of radiance of its shape gives.
+  std::optional<Spectrum> emission(const ObjectDesc& o, bool spectral,
+                                   const ShapeGeometry& shape) const {
     if (!o.emission) return std::nullopt;
     Spectrum e;
+    double perRadiance = 1;
+    if (o.emissionAt)
+      perRadiance = axialIrradiancePerRadiance(shape, *o.emissionAt, o.emission->loc.str());
+    else if (o.emissionFlux)
+      perRadiance = fluxPerRadiance(shape, o.emission->loc.str());
+    if (!(perRadiance > 0))
+      throw Error(o.emission->loc.str() + ": expected an emitter that reaches its measuring " +
+                  "point, found none (a zero projected solid angle)");
     if (spectral || o.emission->kind != SpectrumDesc::Kind::Number) {
-      e = refs_.resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale);
+      e = refs_.resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale / perRadiance);
     } else {
       // rt and mcpt: a numeric <emission> is scaled by <color> (white if absent); a spectrum
       // is used as in spectral mode.
-      const double k = o.emission->number * o.emissionScale;
+      const double k = o.emission->number * o.emissionScale / perRadiance;
       const auto* color = o.params.get<std::array<double, 4>>("color");
       const Rgb c = color ? Rgb{(*color)[0] * k, (*color)[1] * k, (*color)[2] * k} : Rgb{k, k, k};
       try {

@@ -73,7 +73,10 @@ struct ObjectDesc : MaterialDesc {
   std::string materialRef;              ///< the id of a <material id> (then no inline material)
   std::optional<SpectrumDesc> emission; ///< absent, 0 or empty: not a light
   double emissionScale = 1;             ///< <emission scale="...">
-  std::optional<MediumDesc> medium;     ///< the medium filling a sphere or closed mesh, if any
+  /// <emission at="d">: the spectrum is the irradiance on the emitter's axis at distance d
+  std::optional<double> emissionAt;
+  bool emissionFlux = false;        ///< <emission quantity="flux">: the spectrum is the total flux
+  std::optional<MediumDesc> medium; ///< the medium filling a sphere or closed mesh, if any
 };
 
 /// A <light type="...">: a light kind (point by default, Niixtracer's) and its parameters as

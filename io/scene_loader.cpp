@@ -995,8 +995,14 @@ private:
     parseMaterialParameters(c, o);
     if (c.count("emission")) {
       const pugi::xml_node e = c.at("emission");
-      o.emission = spectrum(e, true, {"scale"});
+      o.emission = spectrum(e, true, {"scale", "at", "quantity"});
       o.emissionScale = scaleAttribute(e, "an", "emission scale", true);
+      // A lamp as measured: irradiance on its axis at="d", or its total flux.
+      if (e.attribute("at")) o.emissionAt = numberAttribute(e, "at", kMeasuredDistanceRange);
+      o.emissionFlux = choiceAttribute(e, "quantity", {"radiance", "flux"}) == 1;
+      if (o.emissionAt && o.emissionFlux)
+        fail(e, "either at=\"d\" (irradiance at a distance) or quantity=\"flux\" on <emission>",
+             "both");
     }
     if (c.count("medium")) o.medium = medium(c.at("medium"));
     return o;

@@ -32,6 +32,11 @@ const FixedParameter kFixed[] = {
      "emitted radiance (an area light), or None"},
     {"object.emission_scale", "number", "1", &kEmissionScaleRange,
      "the factor on its emission (0: switched off)"},
+    {"object.emission_at", "number", "scene units", &kMeasuredDistanceRange,
+     "its emission is the irradiance on its axis at this distance (at=\"...\"), or None"},
+    {"object.emission_quantity", "text", "-", nullptr,
+     "what its emission gives: 'radiance' (default), 'flux' (total), or 'irradiance' (with "
+     "emission_at)"},
     {"medium.dye_peak", "number", "1/scene unit", &kPeakCoefficientRange,
      "the dye's peak absorption coefficient"},
     {"fluorescence.absorption_nm", "number", "nm", &kAbsorptionRange, "absorption peak"},

@@ -780,6 +780,42 @@ void bindScene(py::module_& m) {
             record(*o.s, o.label() + ".emission_scale", value);
           },
           "The factor on its emission (> 0)")
+      .def_property(
+          "emission_at",
+          [](const ObjectView& o) -> py::object {
+            const auto& a = o.get().emissionAt;
+            return a ? py::object(py::float_(*a)) : py::object(py::none());
+          },
+          [](const ObjectView& o, const py::object& value) {
+            const std::string param = o.label() + ".emission_at";
+            if (!o.get().emission) throw py::value_error(param + ": the object emits no light");
+            if (value.is_none())
+              o.get().emissionAt.reset();
+            else {
+              o.get().emissionAt = rangedArgument(value, param, nx::kMeasuredDistanceRange);
+              o.get().emissionFlux = false;
+            }
+            record(*o.s, param, value);
+          },
+          "Its emission is the irradiance on its axis at this distance (None: radiance)")
+      .def_property(
+          "emission_quantity",
+          [](const ObjectView& o) {
+            return o.get().emissionAt ? "irradiance" : o.get().emissionFlux ? "flux" : "radiance";
+          },
+          [](const ObjectView& o, const std::string& value) {
+            const std::string param = o.label() + ".emission_quantity";
+            if (!o.get().emission) throw py::value_error(param + ": the object emits no light");
+            if (value == "irradiance" && !o.get().emissionAt)
+              throw py::value_error(param + ": 'irradiance' needs a distance: set emission_at");
+            if (value != "radiance" && value != "flux" && value != "irradiance")
+              throw py::value_error(
+                  param + ": expected 'radiance', 'flux' or 'irradiance', found '" + value + "'");
+            if (value != "irradiance") o.get().emissionAt.reset();
+            o.get().emissionFlux = value == "flux";
+            record(*o.s, param, py::str(value));
+          },
+          "What its emission gives: 'radiance', 'flux' (total) or 'irradiance' (emission_at)")
       .def("__repr__", [](const ObjectView& o) {
         return "<nxrender.Object " + o.label() + " " + o.get().shape + " (line " +
                std::to_string(o.get().loc.line) + ")>";

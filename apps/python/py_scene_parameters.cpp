@@ -102,7 +102,9 @@ std::vector<Entry> entries(const SceneState& s) {
         out.push_back({label + "." + p.spec.name, nx::paramTypeName(p.spec.type), p.spec.unit,
                        p.spec.doc, "", p.spec.range});
     addFixed(out, label + ".emission", "object.emission");
-    if (o.emission) addFixed(out, label + ".emission_scale", "object.emission_scale");
+    if (o.emission)
+      for (const char* f : {"emission_scale", "emission_at", "emission_quantity"})
+        addFixed(out, label + "." + f, std::string("object.") + f);
     if (o.materialRef.empty()) addMaterial(out, label, o);
     if (o.medium) {
       if (const nx::MediumKindSpec* kind = nx::findMediumKind(o.medium->kind))
