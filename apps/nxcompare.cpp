@@ -15,6 +15,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -171,23 +172,41 @@ int main(int argc, char** argv) {
     const nx::SpectralCube render = nx::readSpectralCube(renderPath);
     const nx::SpectralCube capture = nx::readSpectralCube(capturePath, captureOptions);
 
-    // Band matching.
-    const bool same = render.bands() == capture.bands() && [&] {
-      for (int b = 0; b < render.bands(); ++b)
-        if (std::abs(render.wavelengthNm[static_cast<size_t>(b)] -
-                     capture.wavelengthNm[static_cast<size_t>(b)]) > 0.01)
-          return false;
+    // Band matching. By identity when the capture was taken through the render's own bands:
+    // the same sensor description (an nxcamera capture of the render, another render), or a
+    // band list naming the render's bands (the SRF's nominal centres, as a camera's ENVI header
+    // lists them); else through the capture's responses (--srf) or Gaussians.
+    auto sameList = [&](const std::vector<double>& a, const std::vector<double>& b) {
+      if (a.size() != b.size()) return false;
+      for (size_t i = 0; i < a.size(); ++i)
+        if (std::abs(a[i] - b[i]) > 0.01) return false;
       return true;
-    }();
+    };
+    const bool sameSensor = !render.sensorText.empty() && render.sensorText == capture.sensorText;
+    const bool sameCentroids = sameList(render.wavelengthNm, capture.wavelengthNm);
+    const bool sameNames = !sameCentroids && sameList(render.channelNm, capture.channelNm);
     nx::BandResampling resampling = nx::BandResampling::identity(render.bands());
-    std::string matching = "identical bands";
-    if (!srf.empty()) {
-      const nx::Sensor responses = nx::Sensor::readCsv(srf);
-      if (responses.count() != capture.bands())
+    std::string matching = sameSensor  ? "paired by identity (the render's own sensor)"
+                           : sameNames ? "paired by identity (the render's band list, its "
+                                         "nominal centres)"
+                                       : "identical bands";
+    const bool same = sameSensor || sameCentroids || sameNames;
+    std::optional<nx::Sensor> responses;
+    if (!srf.empty()) responses = nx::Sensor::readCsv(srf);
+    if (responses && !render.sensorText.empty() && responses->toString() == render.sensorText) {
+      // The render was recorded through these responses already: resampling again would apply
+      // them twice.
+      if (responses->count() != capture.bands())
         throw Error(srf + ": expected " + std::to_string(capture.bands()) +
                     " band responses (the capture's bands), found " +
-                    std::to_string(responses.count()));
-      resampling = nx::BandResampling::through(render.wavelengthNm, responses, capturePath);
+                    std::to_string(responses->count()));
+      matching = "paired by identity (" + srf + " is the render's own sensor)";
+    } else if (responses) {
+      if (responses->count() != capture.bands())
+        throw Error(srf + ": expected " + std::to_string(capture.bands()) +
+                    " band responses (the capture's bands), found " +
+                    std::to_string(responses->count()));
+      resampling = nx::BandResampling::through(render.wavelengthNm, *responses, capturePath);
       matching = "render resampled through the responses in " + srf;
     } else if (!same) {
       if (capture.fwhmNm.empty())
@@ -319,8 +338,10 @@ int main(int argc, char** argv) {
           ids[render.objectId[static_cast<size_t>(y * render.width + x)]] = true;
       for (const auto& [id, unused] : ids) {
         if (id == 0) continue;
+        const auto label = render.objectLabels.find(id);
         in.regions.push_back(
-            {"object " + std::to_string(id), windowMask([&, id = id](long x, long y) {
+            {label != render.objectLabels.end() ? label->second : "object " + std::to_string(id),
+             windowMask([&, id = id](long x, long y) {
                return render.objectId[static_cast<size_t>(y * render.width + x)] == id;
              })});
       }
@@ -358,15 +379,23 @@ int main(int argc, char** argv) {
                   saturated, general(excludeAbove).c_str(), nonFinite, rep.excludedPixels);
     if (fit == nx::ScaleFit::Global)
       std::printf("scale (least squares, global): %.6g\n", rep.bands[0].scale);
-    std::printf("\n%10s %10s %12s %12s %12s %12s %10s %8s %8s\n", "nm", "scale", "render",
-                "capture", "bias", "rmse", "rel.rmse", "psnr dB", "z");
+    // The bands by their own names (the render's when paired by identity, else the
+    // capture's), or by wavelength.
+    const std::vector<std::string>& names =
+        same && !render.bandNames.empty() ? render.bandNames : capture.bandNames;
+    auto bandName = [&](size_t b) {
+      return b < names.size() ? names[b] : fixed(rep.bands[b].wavelengthNm, 2) + " nm";
+    };
+    std::printf("\n%-12s %10s %10s %12s %12s %12s %12s %10s %8s %8s\n", "band", "nm", "scale",
+                "render", "capture", "bias", "rmse", "rel.rmse", "psnr dB", "z");
     double worstRel = 0;
-    for (const nx::BandFigures& f : rep.bands) {
-      std::printf("%10s %10s %12s %12s %12s %12s %10s %8s %8s\n", fixed(f.wavelengthNm, 2).c_str(),
-                  general(f.scale).c_str(), general(f.renderMean).c_str(),
-                  general(f.captureMean).c_str(), general(f.bias).c_str(), general(f.rmse).c_str(),
-                  fixed(f.relativeRmse, 4).c_str(), fixed(f.psnrDb, 1).c_str(),
-                  fixed(f.zMean, 2).c_str());
+    for (size_t b = 0; b < rep.bands.size(); ++b) {
+      const nx::BandFigures& f = rep.bands[b];
+      std::printf(
+          "%-12s %10s %10s %12s %12s %12s %12s %10s %8s %8s\n", bandName(b).c_str(),
+          fixed(f.wavelengthNm, 2).c_str(), general(f.scale).c_str(), general(f.renderMean).c_str(),
+          general(f.captureMean).c_str(), general(f.bias).c_str(), general(f.rmse).c_str(),
+          fixed(f.relativeRmse, 4).c_str(), fixed(f.psnrDb, 1).c_str(), fixed(f.zMean, 2).c_str());
       worstRel = std::max(worstRel, std::abs(f.relativeRmse));
     }
     std::printf("\nspectral angle (degrees) over %ld pixels: mean %s, median %s, 95th percentile "
@@ -393,13 +422,17 @@ int main(int argc, char** argv) {
 
     if (!csv.empty()) {
       std::ostringstream out;
-      out << "wavelength_nm,rmse,relative_rmse,bias,psnr_db,render_mean,capture_mean,scale,z_mean,"
-             "rms_z\n";
-      for (const nx::BandFigures& f : rep.bands)
-        out << general(f.wavelengthNm) << ',' << general(f.rmse) << ',' << general(f.relativeRmse)
-            << ',' << general(f.bias) << ',' << general(f.psnrDb) << ',' << general(f.renderMean)
-            << ',' << general(f.captureMean) << ',' << general(f.scale) << ',' << general(f.zMean)
-            << ',' << general(f.rmsZ) << '\n';
+      out << "band,wavelength_nm,rmse,relative_rmse,bias,psnr_db,render_mean,capture_mean,scale,"
+             "z_mean,rms_z\n";
+      for (size_t b = 0; b < rep.bands.size(); ++b) {
+        const nx::BandFigures& f = rep.bands[b];
+        std::string name = bandName(b);
+        std::replace(name.begin(), name.end(), ',', ';');
+        out << name << ',' << general(f.wavelengthNm) << ',' << general(f.rmse) << ','
+            << general(f.relativeRmse) << ',' << general(f.bias) << ',' << general(f.psnrDb) << ','
+            << general(f.renderMean) << ',' << general(f.captureMean) << ',' << general(f.scale)
+            << ',' << general(f.zMean) << ',' << general(f.rmsZ) << '\n';
+      }
       writeText(csv, out.str());
     }
     if (!regionCsv.empty()) {

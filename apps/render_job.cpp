@@ -181,6 +181,12 @@ SpectralImage RenderJob::image(const Film& film, double seconds) const {
   if (choices_.aovIds || choices_.aovDepth) {
     addGeometryAovs(scene_, image);
     if (!choices_.aovIds) image.objectId.clear(), image.materialId.clear();
+    if (choices_.aovIds) { // the ids' names, one "id<TAB>label" line each
+      std::string labels;
+      for (size_t i = 0; i < scene_.objectLabels.size(); ++i)
+        labels += std::to_string(i + 1) + "\t" + scene_.objectLabels[i] + "\n";
+      image.attributes["nxrender.objectLabels"] = labels;
+    }
     if (!choices_.aovDepth) image.depth.clear();
   }
   return image;

@@ -73,6 +73,9 @@ struct RenderScene {
   std::unique_ptr<EmbreeDevice> device;
   std::unique_ptr<GeometryScene> geometry;
   std::vector<Material> materials;
+  /// What each object is called (index: object id - 1): its name="...", else the <material
+  /// id> it uses, else "sphere at line 12 (matte)"; names a comparison's regions by object id
+  std::vector<std::string> objectLabels;
   std::vector<Spectrum> emission;               ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
   std::vector<ShapeAppearance> spheres, planes; ///< parallel to the geometry's shapes
   std::vector<MeshAppearance> meshes;           ///< parallel to the geometry's meshes

@@ -65,6 +65,11 @@ public:
     const ShapeKindInputs shapeInputs(*this);
     for (size_t objectIndex = 0; objectIndex < desc_.objects.size(); ++objectIndex) {
       const ObjectDesc& o = desc_.objects[objectIndex];
+      scene.objectLabels.push_back(!o.name.empty() ? o.name
+                                   : !o.materialRef.empty()
+                                       ? o.materialRef
+                                       : o.shape + " at line " + std::to_string(o.loc.line) + " (" +
+                                             o.material + ")");
       ShapeAppearance app;
       app.objectId = static_cast<uint32_t>(objectIndex + 1);
       const bool emitter = o.emission.has_value();

@@ -79,7 +79,7 @@ void writeEnvi(const std::string& dataPath, const SpectralImage& image) {
       plane[i] = image.radiance[i * static_cast<size_t>(nb) + static_cast<size_t>(b)];
     GDALRasterBandH band = gdal().GDALGetRasterBand(ds, b + 1);
     char desc[64];
-    std::snprintf(desc, sizeof desc, "%.6f nm", sensor.centroid(b));
+    std::snprintf(desc, sizeof desc, "%.6f nm", sensor.channelNm(b));
     gdal().GDALSetDescription(band, desc);
     ok = gdal().GDALRasterIO(band, GF_Write, 0, 0, w, h, plane.data(), w, h, GDT_Float32, 0, 0) ==
          CE_None;
@@ -87,7 +87,7 @@ void writeEnvi(const std::string& dataPath, const SpectralImage& image) {
   const auto number = [](double v) { return exactNumberText(v); };
   gdal().GDALSetMetadataItem(ds, "wavelength units", "Nanometers", "ENVI");
   gdal().GDALSetMetadataItem(
-      ds, "wavelength", enviList(nb, [&](int b) { return number(sensor.centroid(b)); }).c_str(),
+      ds, "wavelength", enviList(nb, [&](int b) { return number(sensor.channelNm(b)); }).c_str(),
       "ENVI");
   gdal().GDALSetMetadataItem(
       ds, "fwhm", enviList(nb, [&](int b) { return number(sensor.fwhm(b)); }).c_str(), "ENVI");

@@ -328,7 +328,7 @@ SpectralImage stitchBands(const std::vector<ImagePart>& images) {
                   ": its pixels hold other sample counts");
     const Sensor& s = p.image.bands;
     for (int b = 0; b < s.count(); ++b) {
-      const std::string layer = spectralChannelName(s.centroid(b));
+      const std::string layer = spectralChannelName(s.channelNm(b));
       if (auto [it, fresh] = layerOwner.emplace(layer, p.name); !fresh)
         throw Error(p.name + ": cannot be stitched with " + it->second + ": both hold the band " +
                     layer + " (stitch renders of disjoint bands)");

@@ -68,6 +68,7 @@ struct NamedMaterialDesc {
 /// docs/reference/shapes.md).
 struct ObjectDesc : MaterialDesc {
   std::string shape = "sphere"; ///< the kind, as its element name
+  std::string name;             ///< its name="..." (regions of a comparison), or empty
   ParameterSet geometry;        ///< <center>, <radius>, ... (file="..." of a mesh) as written
   SourceLocation loc;
   std::string materialRef;              ///< the id of a <material id> (then no inline material)

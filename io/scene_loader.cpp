@@ -956,12 +956,22 @@ private:
     allowed.push_back("emission");
     for (const ShapeParameter& p : kind.params())
       (p.attribute ? attributes : allowed).push_back(p.spec.name);
+    attributes.push_back("name");
     checkAttributes(n, attributes);
     if (kind.holdsMedium) allowed.push_back("medium");
     const auto c = uniqueChildren(n, allowed);
     ObjectDesc o;
     o.shape = tag;
     o.loc = loc(n);
+    if (const pugi::xml_attribute a = n.attribute("name")) {
+      o.name = trim(decoded(a.value(), n));
+      const bool printable = std::none_of(o.name.begin(), o.name.end(), [](char ch) {
+        return static_cast<unsigned char>(ch) < 0x20;
+      });
+      if (o.name.empty() || !printable)
+        fail(n, "a name of printable characters in name=\"...\" on <" + tag + ">",
+             o.name.empty() ? "an empty one" : "control characters");
+    }
     for (const ShapeParameter& p : kind.params()) {
       if (p.attribute) {
         const pugi::xml_attribute a = n.attribute(p.spec.name);

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/file_text.h"
@@ -123,7 +125,21 @@ SpectralCube fromExr(const std::string& path) {
   c.height = img.height;
   for (int b = 0; b < img.bands.count(); ++b) {
     c.wavelengthNm.push_back(img.bands.centroid(b));
+    c.channelNm.push_back(img.bands.channelNm(b));
     c.fwhmNm.push_back(img.bands.fwhm(b));
+    c.bandNames.push_back(img.bands.channel(b).name);
+  }
+  if (const auto it = img.attributes.find("nxrender.bands"); it != img.attributes.end())
+    c.sensorText = it->second;
+  if (const auto it = img.attributes.find("nxrender.objectLabels"); it != img.attributes.end()) {
+    std::istringstream lines(it->second);
+    std::string line;
+    while (std::getline(lines, line)) {
+      const size_t tab = line.find('\t');
+      if (tab == std::string::npos) continue;
+      c.objectLabels[static_cast<uint32_t>(
+          std::strtoul(line.substr(0, tab).c_str(), nullptr, 10))] = line.substr(tab + 1);
+    }
   }
   c.values = std::move(img.radiance);
   c.variance = std::move(img.bandVariance);
@@ -387,6 +403,7 @@ SpectralCube readSpectralCube(const std::string& path, const CubeReadOptions& op
                        "with its .hdr beside it), a TIFF (.tif) or a directory of per-band PNGs, "
                        "found neither");
   }
+  if (c.channelNm.empty()) c.channelNm = c.wavelengthNm;
   for (size_t i = 1; i < c.wavelengthNm.size(); ++i)
     if (!(c.wavelengthNm[i] > c.wavelengthNm[i - 1]))
       throw Error(path + ": expected increasing band wavelengths, found " +

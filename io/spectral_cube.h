@@ -4,6 +4,7 @@
 // with a capture.
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,12 @@ struct SpectralCube {
   std::vector<float> values;        ///< [pixel][band]
   std::vector<float> variance;      ///< [pixel][band] variance of each value; empty: unknown
   std::vector<uint32_t> objectId;   ///< [pixel] object id (renders with the ids AOV); or empty
+  /// The wavelengths naming the bands (a measured sensor's nominal centres; else wavelengthNm)
+  std::vector<double> channelNm;
+  std::vector<std::string> bandNames; ///< the bands' own names (this project's EXRs), or empty
+  /// This project's EXRs: the sensor's exact description (nxrender.bands); empty otherwise
+  std::string sensorText;
+  std::map<uint32_t, std::string> objectLabels; ///< object id -> its name (nxrender.objectLabels)
   /// Number of bands.
   int bands() const { return static_cast<int>(wavelengthNm.size()); }
 };

@@ -26,6 +26,21 @@
 
 namespace nx {
 
+std::map<std::string, std::string> bandAttributes(const Sensor& bands) {
+  std::string names, centroids, fwhm;
+  for (int b = 0; b < bands.count(); ++b) {
+    const char* sep = b ? "," : "";
+    std::string name = bands.channel(b).name;
+    std::replace(name.begin(), name.end(), ',', ';'); // the list's separator
+    names += sep + name;
+    centroids += sep + exactNumberText(bands.centroid(b));
+    fwhm += sep + exactNumberText(bands.fwhm(b));
+  }
+  return {{"nxrender.bandNames", names},
+          {"nxrender.bandCentroids", centroids},
+          {"nxrender.bandFwhm", fwhm}};
+}
+
 std::string spectralChannelName(double nm) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "S0.%.6fnm", nm);
@@ -140,6 +155,10 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
     header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
     for (const auto& [key, value] : image.attributes)
       header.insert(key, Imf::StringAttribute(value));
+    // What each band is, beside the wavelength its channel is named by: its own name (a
+    // measured sensor's band list), centroid and FWHM, comma-separated in channel order.
+    for (const auto& [key, value] : bandAttributes(image.bands))
+      header.insert(key, Imf::StringAttribute(value));
 
     Imf::FrameBuffer fb;
     // A float channel: `first` is its value in the first pixel, `stride` floats apart. Half
@@ -161,19 +180,19 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
     };
     const size_t nb = static_cast<size_t>(nBands);
     for (int b = 0; b < nBands; ++b)
-      addChannel(spectralChannelName(image.bands.centroid(b)), image.radiance.data() + b, nb);
+      addChannel(spectralChannelName(image.bands.channelNm(b)), image.radiance.data() + b, nb);
     const char* rgbNames[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c) addChannel(rgbNames[c], image.rgb.data() + c, 3);
     const char* xyzNames[3] = {"X", "Y", "Z"};
     for (int c = 0; c < 3 && !image.xyz.empty(); ++c)
       addChannel(xyzNames[c], image.xyz.data() + c, 3);
     for (int b = 0; b < nBands && !image.bandVariance.empty(); ++b)
-      addChannel(kVariancePrefix + spectralChannelName(image.bands.centroid(b)),
+      addChannel(kVariancePrefix + spectralChannelName(image.bands.channelNm(b)),
                  image.bandVariance.data() + b, nb);
     if (!image.yVariance.empty())
       addChannel(std::string(kVariancePrefix) + "Y", image.yVariance.data(), 1);
     for (int b = 0; b < nBands && !image.white.empty(); ++b)
-      addChannel(kWhitePrefix + spectralChannelName(image.bands.centroid(b)),
+      addChannel(kWhitePrefix + spectralChannelName(image.bands.channelNm(b)),
                  image.white.data() + b, nb);
     if (!image.depth.empty()) addChannel(kDepthChannel, image.depth.data(), 1);
     auto addUint = [&](const char* name, const std::vector<uint32_t>& v) {
@@ -235,14 +254,22 @@ SpectralImage readSpectralExr(const std::string& path) {
         img.attributes[it.name()] = s->value();
     img.attributes.erase("spectralLayoutVersion");
     img.attributes.erase("emissiveUnits");
+    for (const auto& [key, value] : bandAttributes(Sensor())) img.attributes.erase(key);
     // This project's files name their bands (a sensor's responses) in nxrender.bands; other
     // files of the layout are read by their channel names.
     std::vector<std::string> bandChannels;
     const auto bandsAttr = img.attributes.find("nxrender.bands");
     if (bandsAttr != img.attributes.end()) {
       img.bands = Sensor::parse(bandsAttr->second, path + ": nxrender.bands");
-      for (int b = 0; b < img.bands.count(); ++b)
-        bandChannels.push_back(spectralChannelName(img.bands.centroid(b)));
+      // Named by the nominal centre (the SRF's band list) or, in files written before
+      // channels kept it, by the centroid.
+      for (int b = 0; b < img.bands.count(); ++b) {
+        const std::string nominal = spectralChannelName(img.bands.channelNm(b));
+        const std::string centroid = spectralChannelName(img.bands.centroid(b));
+        bandChannels.push_back(h.channels().findChannel(nominal)    ? nominal
+                               : h.channels().findChannel(centroid) ? centroid
+                                                                    : nominal);
+      }
     } else {
       std::vector<std::string> names;
       for (auto it = h.channels().begin(); it != h.channels().end(); ++it)
@@ -287,10 +314,10 @@ SpectralImage readSpectralExr(const std::string& path) {
         fb.insert(xyzNames[c], Imf::Slice::Make(Imf::FLOAT, img.xyz.data() + c, dw,
                                                 sizeof(float) * 3, sizeof(float) * 3 * img.width));
     }
-    if (h.channels().findChannel(kVariancePrefix + spectralChannelName(img.bands.centroid(0)))) {
+    if (h.channels().findChannel(kVariancePrefix + bandChannels[0])) {
       img.bandVariance.assign(pixels * nb, 0.0f);
       for (int b = 0; b < nb; ++b)
-        fb.insert(kVariancePrefix + spectralChannelName(img.bands.centroid(b)),
+        fb.insert(kVariancePrefix + bandChannels[static_cast<size_t>(b)],
                   Imf::Slice::Make(Imf::FLOAT, img.bandVariance.data() + b, dw, sizeof(float) * nb,
                                    sizeof(float) * nb * img.width));
     }
@@ -300,10 +327,10 @@ SpectralImage readSpectralExr(const std::string& path) {
                 Imf::Slice::Make(Imf::FLOAT, img.yVariance.data(), dw, sizeof(float),
                                  sizeof(float) * img.width));
     }
-    if (h.channels().findChannel(kWhitePrefix + spectralChannelName(img.bands.centroid(0)))) {
+    if (h.channels().findChannel(kWhitePrefix + bandChannels[0])) {
       img.white.assign(pixels * nb, 0.0f);
       for (int b = 0; b < nb; ++b)
-        fb.insert(kWhitePrefix + spectralChannelName(img.bands.centroid(b)),
+        fb.insert(kWhitePrefix + bandChannels[static_cast<size_t>(b)],
                   Imf::Slice::Make(Imf::FLOAT, img.white.data() + b, dw, sizeof(float) * nb,
                                    sizeof(float) * nb * img.width));
     }

@@ -50,6 +50,10 @@ inline constexpr const char* kObjectIdChannel = "ObjectId";
 inline constexpr const char* kMaterialIdChannel = "MaterialId";
 inline constexpr const char* kDepthChannel = "Depth";
 
+/// The attributes naming each band of `bands` (written with every spectral EXR, derived
+/// again when read): nxrender.bandNames, nxrender.bandCentroids, nxrender.bandFwhm.
+std::map<std::string, std::string> bandAttributes(const Sensor& bands);
+
 /// Channel name of a band centred at nm for Stokes component 0, e.g. "S0.550,000000nm"
 /// (a comma as decimal separator, since a dot separates EXR layers).
 std::string spectralChannelName(double nm);

@@ -1,8 +1,10 @@
 #include "spectra/sensor.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cfloat>
 #include <cmath>
+#include <cstdlib>
 #include <set>
 #include <sstream>
 
@@ -47,6 +49,19 @@ std::vector<double> parseCentres(const std::string& text, const std::string& whe
 }
 
 } // namespace
+
+std::optional<double> SensorChannel::nominalNm() const {
+  if (shape != ResponseShape::Table) return std::nullopt;
+  std::string t = name;
+  while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.pop_back();
+  if (t.size() > 2 && (t.ends_with("nm") || t.ends_with("NM"))) t.resize(t.size() - 2);
+  while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.pop_back();
+  if (t.empty() || !(std::isdigit(static_cast<unsigned char>(t[0])))) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  if (end != t.c_str() + t.size() || !(v >= 100 && v <= 2000)) return std::nullopt;
+  return v;
+}
 
 double SensorChannel::operator()(double l) const {
   if (!(l >= lo && l <= hi)) return 0.0;
@@ -271,6 +286,7 @@ void Sensor::finish(const std::string& where) {
   centroid_.assign(n, 0);
   fwhm_.assign(n, 0);
   integral_.assign(n, 0);
+  channelNm_.assign(n, 0);
   std::set<std::string> layerNames;
   for (size_t i = 0; i < n; ++i) {
     const SensorChannel& c = channels_[i];
@@ -318,12 +334,16 @@ void Sensor::finish(const std::string& where) {
       throw Error(where + ": expected band '" + c.name +
                   "' to have a finite centroid, width and area, found " + numberText(centroid_[i]) +
                   " nm, " + numberText(fwhm_[i]) + " nm, " + numberText(integral_[i]) + " nm");
+    const std::optional<double> nominal = c.nominalNm();
+    channelNm_[i] = nominal ? *nominal : centroid_[i];
     char name[64];
-    std::snprintf(name, sizeof name, "%.6f", centroid_[i]);
+    std::snprintf(name, sizeof name, "%.6f", channelNm_[i]);
     if (!layerNames.insert(name).second)
       throw Error(where +
-                  ": expected bands with distinct centroids (they name the image's "
-                  "channels), found two at " +
+                  (nominal ? ": expected bands with distinct nominal centres (their names, "
+                             "which name the image's channels), found two at "
+                           : ": expected bands with distinct centroids (they name the image's "
+                             "channels), found two at ") +
                   std::string(name) + " nm");
   }
 }

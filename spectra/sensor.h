@@ -2,6 +2,7 @@
 // A spectral sensor: the list of channel responses a render is recorded through (uniform
 // boxes, boxes with their own edges, Gaussians from centres and FWHMs, or measured responses).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct SensorChannel {
   std::vector<double> nm, response;         ///< Table knots
   /// R at nm (relative; peak 1 for boxes and Gaussians).
   double operator()(double nm) const;
+  /// A measured channel's nominal centre: its name when that is a wavelength in nm ("650",
+  /// "650nm", "650 nm", as vendors' SRF headers give the band list); none otherwise.
+  std::optional<double> nominalNm() const;
 };
 
 /// A sensor: an ordered list of channels. A channel's value for radiance L is
@@ -53,8 +57,11 @@ public:
   int count() const { return static_cast<int>(channels_.size()); }
   /// Channel i.
   const SensorChannel& channel(int i) const { return channels_[static_cast<size_t>(i)]; }
-  /// Centroid of channel i (nm): integral(l R) / integral(R); names the channel's EXR layer.
+  /// Centroid of channel i (nm): integral(l R) / integral(R).
   double centroid(int i) const { return centroid_[static_cast<size_t>(i)]; }
+  /// The wavelength naming channel i's EXR layer: a measured channel's nominal centre (its
+  /// name, the sensor's own band list) when it has one, else its centroid.
+  double channelNm(int i) const { return channelNm_[static_cast<size_t>(i)]; }
   /// Full width at half maximum of channel i (nm; a box's width).
   double fwhm(int i) const { return fwhm_[static_cast<size_t>(i)]; }
   /// integral(R dl) of channel i (nm), as the film integrates it.
@@ -89,7 +96,7 @@ public:
 private:
   void finish(const std::string& where);
   std::vector<SensorChannel> channels_;
-  std::vector<double> centroid_, fwhm_, integral_;
+  std::vector<double> centroid_, fwhm_, integral_, channelNm_;
   double minNm_ = 0, maxNm_ = 0, cellNm_ = 0.05;
   int cellCount_ = 0;
   SpectralBands bands_;

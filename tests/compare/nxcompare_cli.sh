@@ -17,9 +17,12 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$nxcompare" "$d/r.exr" "$d/r.hdr" --max-sam 0.0001 --max-relative-rmse 0 --csv "$d/b.csv" --labels \
   --region-csv "$d/g.csv" >"$d/out" || fail "identical cubes: exit $?"
 grep -q "spectral angle (degrees) over .* mean 0.0000" "$d/out" || fail "angle not 0: $(cat "$d/out")"
-head -1 "$d/b.csv" | grep -q '^wavelength_nm,rmse,relative_rmse,bias,' || fail "csv header"
+head -1 "$d/b.csv" | grep -q '^band,wavelength_nm,rmse,relative_rmse,bias,' || fail "csv header"
 [ "$(wc -l <"$d/b.csv")" = 32 ] || fail "csv rows: $(wc -l <"$d/b.csv")"
-grep -q '^"object 1",' "$d/g.csv" || fail "region csv"
+# Regions by --labels are named after their objects (a name="...", else a <material id>, else
+# the shape, its line and material), not "object N".
+grep -q '^"plane at line 19 (matte)",' "$d/g.csv" || fail "region csv: $(head -3 "$d/g.csv")"
+! grep -q '^"object ' "$d/g.csv" || fail "regions named by number"
 
 # A window of the render against the same window of the capture.
 "$nxcompare" "$d/r.exr" "$d/r.hdr" --crop 100,20,200,100 --offset 0,0 --max-sam 0.0001 >"$d/out" ||

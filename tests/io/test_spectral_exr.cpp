@@ -122,6 +122,57 @@ TEST(SpectralExr, MeasuredSensorIsStoredInTheFile) {
   EXPECT_EQ(back.radiance, img.radiance);
 }
 
+// A vendor SRF whose header names the bands by nominal centre ("450", "900 nm"): the channels
+// keep those names however far a side lobe pulls the centroid, each band's name, centroid and
+// FWHM are attributes, and a file written with channels at the centroids still reads.
+TEST(SpectralExr, MeasuredBandsKeepTheirNominalCentres) {
+  SpectralImage img = testImage();
+  img.bands = Sensor::fromCsv("nm,450,900 nm\n440,0,0\n450,1,0\n470,0,0\n900,0,0\n910,0.5,0\n"
+                              "930,0,1\n931,0,0\n",
+                              "srf.csv");
+  ASSERT_GT(std::abs(img.bands.centroid(0) - 450), 100); // the side lobe at 910 nm
+  EXPECT_EQ(img.bands.channelNm(0), 450);
+  EXPECT_EQ(img.bands.channelNm(1), 900);
+  img.radiance.clear();
+  for (int p = 0; p < 15; ++p)
+    for (int b = 0; b < 2; ++b) img.radiance.push_back(float(p) + 0.5f * float(b));
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  const std::string path = ::testing::TempDir() + "nominal.exr";
+  writeSpectralExr(path, img);
+  {
+    Imf::InputFile in(path.c_str());
+    EXPECT_TRUE(in.header().channels().findChannel("S0.450,000000nm"));
+    EXPECT_TRUE(in.header().channels().findChannel("S0.900,000000nm"));
+    const auto* names = in.header().findTypedAttribute<Imf::StringAttribute>("nxrender.bandNames");
+    ASSERT_NE(names, nullptr);
+    EXPECT_EQ(names->value(), "450,900 nm");
+    const auto* c = in.header().findTypedAttribute<Imf::StringAttribute>("nxrender.bandCentroids");
+    ASSERT_NE(c, nullptr);
+    EXPECT_EQ(c->value(), exactNumberText(img.bands.centroid(0)) + "," +
+                              exactNumberText(img.bands.centroid(1)));
+    EXPECT_NE(in.header().findTypedAttribute<Imf::StringAttribute>("nxrender.bandFwhm"), nullptr);
+  }
+  const SpectralImage back = readSpectralExr(path);
+  EXPECT_EQ(back.bands.toString(), img.bands.toString());
+  EXPECT_EQ(back.radiance, img.radiance);
+  EXPECT_EQ(back.attributes.count("nxrender.bandNames"), 0u); // derived again, not carried
+  // An older file: channels at the centroids (bands named otherwise), the same bands attribute.
+  SpectralImage old = img;
+  old.bands = Sensor::fromCsv("nm,a,b\n440,0,0\n450,1,0\n470,0,0\n900,0,0\n910,0.5,0\n"
+                              "930,0,1\n931,0,0\n",
+                              "old.csv");
+  const std::string oldPath = ::testing::TempDir() + "centroid_named.exr";
+  writeSpectralExr(oldPath, old);
+  const SpectralImage oldBack = readSpectralExr(oldPath);
+  EXPECT_EQ(oldBack.bands.toString(), img.bands.toString());
+  EXPECT_EQ(oldBack.radiance, img.radiance);
+  // Two bands named at one wavelength would name one channel twice: refused.
+  EXPECT_NE(test::errorMessage([] {
+              Sensor::fromCsv("nm,450,450nm\n440,0,0\n450,1,1\n470,0,0\n", "dup.csv");
+            }).find("expected bands with distinct nominal centres"),
+            std::string::npos);
+}
+
 TEST(SpectralExr, UnwritablePathIsAClearErrorAndWritesNothing) {
   SpectralImage img = testImage();
   try {
