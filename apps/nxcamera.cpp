@@ -79,6 +79,9 @@ int main(int argc, char** argv) {
     out.fullHeight = img.fullHeight;
     out.bands = img.bands;
     out.radiance = dn;
+    // Each value's variance (the camera's noise and the render's own error), so a comparison
+    // with a render has the capture's side of the z-scores.
+    out.bandVariance = nx::cameraVariance(cam, bands, img.radiance, img.bandVariance, pixels);
     // The preview: the mean DN over the bands, as grey relative to the largest DN.
     const double maxDn = std::ldexp(1.0, cam.bitDepth) - 1;
     for (size_t p = 0; p < pixels; ++p) {

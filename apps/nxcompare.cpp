@@ -2,7 +2,8 @@
 //
 //   nxcompare RENDER CAPTURE [--srf FILE.csv] [--capture-wavelengths L] [--capture-fwhm F]
 //             [--rect X,Y,W,H]... [--mask MASK.png] [--labels] [--scale none|global|band]
-//             [--crop X,Y,W,H] [--offset DX,DY] [--exclude-above V] [--skip-nonfinite]
+//             [--crop X,Y,W,H] [--offset DX,DY] [--black-level DN] [--exclude-above V]
+//             [--skip-nonfinite]
 //             [--csv OUT.csv] [--region-csv OUT.csv] [--sam-map MAP.tif]
 //             [--plot FIG.png] [--colour radiance|reflectance] [--illuminant NAME]
 //             [--max-sam DEG] [--max-relative-rmse R]
@@ -111,7 +112,7 @@ int main(int argc, char** argv) {
   std::string samMap, plot, colourMode = "radiance", illuminantName = "D65";
   std::vector<std::string> rects;
   bool labels = false, skipNonFinite = false;
-  double excludeAbove = std::numeric_limits<double>::infinity();
+  double excludeAbove = std::numeric_limits<double>::infinity(), blackLevel = 0;
   double maxSam = -1, maxRelRmse = -1;
   app.add_option("render", renderPath, "The render (spectral EXR, ENVI cube or TIFF)")->required();
   app.add_option("capture", capturePath, "The capture (ENVI cube, TIFF or spectral EXR)")
@@ -135,6 +136,9 @@ int main(int argc, char** argv) {
                  "DX,DY: render pixel (x, y) is capture pixel (x + DX, y + DY)");
   app.add_option("--csv", csv, "Per-band figures as CSV");
   app.add_option("--region-csv", regionCsv, "Per-region mean spectra as CSV");
+  app.add_option("--black-level", blackLevel,
+                 "Subtract this from every capture value first (a camera's offset in DN; "
+                 "--exclude-above applies to the values as recorded)");
   app.add_option("--exclude-above", excludeAbove,
                  "Leave out pixels where a capture band reaches this value (saturation, e.g. the "
                  "full well in DN)");
@@ -286,6 +290,8 @@ int main(int argc, char** argv) {
           excluded[p] = 1;
         }
       }
+    if (blackLevel != 0)
+      for (float& x : c) x = static_cast<float>(x - blackLevel);
 
     nx::ComparisonInputs in;
     in.excluded = excluded;

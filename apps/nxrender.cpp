@@ -166,7 +166,7 @@ int run(int argc, char** argv) {
   int threads = 0, spp = 0;
   long long seed = -1;
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
-  std::string output, bandsText, sensorText,
+  std::string output, bandsText, sensorText, sensorCentres,
       density = "sensor", errorOf = "luminance", aovText, lightSampling = "mis",
       lightSelection = "local", sampler = "sobol", compression, adaptiveFrom, scenePath, cropText,
       rangeText, resumePath;
@@ -187,6 +187,9 @@ int run(int argc, char** argv) {
                  "The camera's bands: a CSV of measured responses (header nm,<band>,...), or "
                  "gaussian:CENTRES@FWHM (CENTRES a,b,c or START:END:STEP; one FWHM or one per "
                  "centre), or boxes:LO-HI,LO-HI,... (default: the scene's <bands>/<sensor>)");
+  app.add_option("--sensor-centres", sensorCentres,
+                 "Nominal centres naming the --sensor CSV's bands (a,b,c or START:END:STEP, one "
+                 "per band), when its header does not name them by wavelength");
   app.add_option("--wavelength-density", density,
                  "sensor (default: half the lanes over the bands, each band the same share, half "
                  "over the visible range for XYZ and the preview) or visible (the eye's density "
@@ -277,6 +280,10 @@ int run(int argc, char** argv) {
     throw nx::Error("expected one of --bands and --sensor, found both");
   if (!bandsText.empty()) choices.bands = nx::Sensor(nx::SpectralBands::parse(bandsText));
   if (!sensorText.empty()) choices.bands = nx::sensorFromOption(sensorText, "--sensor");
+  if (!sensorCentres.empty()) {
+    if (sensorText.empty()) throw nx::Error("--sensor-centres: expected a --sensor CSV to name");
+    choices.bands = choices.bands->withNominalCentres(sensorCentres, "--sensor-centres");
+  }
   choices.sampler = sampler;
   choices.lightSampling = lightSampling;
   choices.lightSelection = lightSelection;

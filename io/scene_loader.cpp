@@ -488,7 +488,9 @@ private:
 
   // <sensor csv="file"/>, <sensor gaussian="CENTRES" fwhm="FWHM"/> or <sensor boxes="LO-HI,..."/>.
   Sensor sensor(const pugi::xml_node& n) const {
-    checkAttributes(n, {"csv", "gaussian", "fwhm", "boxes"});
+    checkAttributes(n, {"csv", "gaussian", "fwhm", "boxes", "centres"});
+    if (n.attribute("centres") && !n.attribute("csv"))
+      fail(n, "centres=\"...\" (nominal band centres) only with csv=\"file\"", "centres alone");
     if (n.first_child()) fail(n, "an empty <sensor .../> with attributes", "content");
     const bool csv = n.attribute("csv"), gaussian = n.attribute("gaussian"),
                boxes = n.attribute("boxes");
@@ -503,7 +505,10 @@ private:
       if (csv) {
         const std::string name = trim(decoded(n.attribute("csv").value(), n));
         if (name.empty()) fail(n, "a file name in csv=\"...\"", "an empty one");
-        return Sensor::readCsv(relativeToScene(name));
+        const Sensor measured = Sensor::readCsv(relativeToScene(name));
+        if (const pugi::xml_attribute centres = n.attribute("centres"))
+          return measured.withNominalCentres(decoded(centres.value(), n), where + " centres");
+        return measured;
       }
       if (boxes) return Sensor::parse("boxes:" + decoded(n.attribute("boxes").value(), n), where);
       if (!n.attribute("fwhm")) fail(n, "a fwhm=\"...\" attribute with gaussian=\"...\"", "none");

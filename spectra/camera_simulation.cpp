@@ -77,6 +77,25 @@ void validateCameraModel(const CameraModel& c, int bands, const std::string& whe
     require(q >= 0 && q <= 1, "quantum efficiencies in [0, 1]", q);
 }
 
+std::vector<float> cameraVariance(const CameraModel& c, const std::vector<CameraBand>& bands,
+                                  const std::vector<float>& radiance,
+                                  const std::vector<float>& radianceVariance, size_t pixels) {
+  const size_t nb = bands.size();
+  std::vector<float> v(pixels * nb);
+  const double dark = c.darkCurrentElectrons * c.exposureSeconds, k = c.gainDnPerElectron;
+  for (size_t b = 0; b < nb; ++b) {
+    const double perRadiance = meanSignalElectrons(c, bands[b], static_cast<double>(b), 1.0);
+    for (size_t p = 0; p < pixels; ++p) {
+      const size_t i = p * nb + b;
+      const double signal = std::min(perRadiance * radiance[i] + dark, c.fullWellElectrons);
+      double var = k * k * (signal + c.readNoiseElectrons * c.readNoiseElectrons) + 1.0 / 12;
+      if (!radianceVariance.empty()) var += k * k * perRadiance * perRadiance * radianceVariance[i];
+      v[i] = static_cast<float>(var);
+    }
+  }
+  return v;
+}
+
 std::vector<float> simulateCamera(const CameraModel& c, const std::vector<CameraBand>& bands,
                                   const std::vector<float>& radiance, size_t pixels) {
   const size_t nb = bands.size();

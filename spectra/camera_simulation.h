@@ -50,4 +50,13 @@ void validateCameraModel(const CameraModel& camera, int bands, const std::string
 std::vector<float> simulateCamera(const CameraModel& camera, const std::vector<CameraBand>& bands,
                                   const std::vector<float>& radiance, size_t pixels);
 
+/// The variance (DN^2) of each simulated value: the camera's own noise at its mean,
+/// K^2 (min(signal, full well) + dark + read^2) + 1/12 (quantisation), plus the input's
+/// variance carried through, (K g)^2 var L with g the electrons per unit radiance (the render's
+/// Monte Carlo error; `radianceVariance` empty: none). What a comparison of a synthetic capture
+/// needs to give z-scores of N(0, 1) (docs/compare.md).
+std::vector<float> cameraVariance(const CameraModel& camera, const std::vector<CameraBand>& bands,
+                                  const std::vector<float>& radiance,
+                                  const std::vector<float>& radianceVariance, size_t pixels);
+
 } // namespace nx

@@ -53,6 +53,7 @@ std::vector<double> parseCentres(const std::string& text, const std::string& whe
 std::optional<double> SensorChannel::nominalNm() const {
   if (shape != ResponseShape::Table) return std::nullopt;
   std::string t = name;
+  t.erase(0, t.find_first_not_of(" \t"));
   while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.pop_back();
   if (t.size() > 2 && (t.ends_with("nm") || t.ends_with("NM"))) t.resize(t.size() - 2);
   while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.pop_back();
@@ -104,6 +105,25 @@ Sensor Sensor::fromChannels(std::vector<SensorChannel> channels, const std::stri
   s.uniform_ = false;
   s.finish(where);
   return s;
+}
+
+Sensor Sensor::withNominalCentres(const std::string& centres, const std::string& where) const {
+  const std::vector<double> nm = parseCentres(centres, where);
+  if (nm.size() != channels_.size())
+    throw Error(where + ": expected " + std::to_string(channels_.size()) +
+                " nominal centres (one per band of the sensor), found " +
+                std::to_string(nm.size()));
+  std::vector<SensorChannel> channels = channels_;
+  for (size_t i = 0; i < nm.size(); ++i) {
+    if (channels[i].shape != ResponseShape::Table)
+      throw Error(where + ": expected nominal centres for measured responses (a CSV), found " +
+                  "band '" + channels[i].name + "' of another kind (it is named at its centre)");
+    if (!(nm[i] >= 100 && nm[i] <= 2000))
+      throw Error(where + ": expected nominal centres in nm within [100, 2000], found " +
+                  numberText(nm[i]));
+    channels[i].name = exactNumberText(nm[i]);
+  }
+  return fromChannels(std::move(channels), where);
 }
 
 Sensor Sensor::gaussian(const std::vector<double>& centres, const std::vector<double>& fwhm,

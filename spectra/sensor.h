@@ -49,6 +49,10 @@ public:
   static Sensor fromCsv(const std::string& text, const std::string& source);
   /// The same from a file.
   static Sensor readCsv(const std::string& path);
+  /// This measured sensor with its bands named by the nominal centres in `centres` ("a,b,c" or
+  /// START:END:STEP, one per band): the band list a vendor's SRF header does not give.
+  /// Throws nx::Error (prefixed by `where`) for a count that differs or a sensor not measured.
+  Sensor withNominalCentres(const std::string& centres, const std::string& where) const;
   /// Gaussian channels; `fwhm` holds one value for all or one per centre.
   static Sensor gaussian(const std::vector<double>& centres, const std::vector<double>& fwhm,
                          const std::string& where);

@@ -270,6 +270,24 @@ void bindImage(py::module_& m) {
           },
           "(bands,) float64: each band's full width at half maximum in nm")
       .def_property_readonly(
+          "band_names",
+          [](const PyImage& p) {
+            std::vector<std::string> v;
+            for (int b = 0; b < p.image.bands.count(); ++b)
+              v.push_back(p.image.bands.channel(b).name);
+            return v;
+          },
+          "Each band's own name (a measured sensor's band list, e.g. '650'; else generated)")
+      .def_property_readonly(
+          "channel_wavelengths",
+          [](const PyImage& p) {
+            std::vector<double> v;
+            for (int b = 0; b < p.image.bands.count(); ++b) v.push_back(p.image.bands.channelNm(b));
+            return py::array_t<double>(py::cast(v));
+          },
+          "(bands,) float64: the wavelengths naming the EXR channels (a measured band's nominal "
+          "centre, else its centroid)")
+      .def_property_readonly(
           "bands", [](const PyImage& p) { return p.image.bands.toString(); },
           "The bands as nxrender describes them ('400:700:10', 'gaussian:...', 'table:...')")
       .def_property(

@@ -770,6 +770,13 @@ void bindScene(py::module_& m) {
             record(*o.s, param, value);
           },
           "A triangle's (vA, vB, vC) or a quad's (origin, edge_u, edge_v) together")
+      .def_property_readonly(
+          "name",
+          [](const ObjectView& o) -> py::object {
+            return o.get().name.empty() ? py::object(py::none())
+                                        : py::object(py::str(o.get().name));
+          },
+          "Its name=\"...\" in the scene file (names its region in comparisons), or None")
       .def_property(
           "emission_scale", [](const ObjectView& o) { return o.get().emissionScale; },
           [](const ObjectView& o, const py::object& value) {

@@ -63,6 +63,37 @@ TEST(CameraSimulation, DnMeanAndVarianceMatchPoissonPlusGaussian) {
   EXPECT_NEAR(var, theoryVar, 5 * theoryVar * std::sqrt(2.0 / (n - 1)));
 }
 
+// cameraVariance states the simulation's variance: against the empirical variance of many
+// simulated values, and with an input radiance variance carried through as (K g)^2 var L
+// (checked by simulating inputs that themselves vary with that variance).
+TEST(CameraSimulation, StatedVarianceIsTheSimulatedOne) {
+  CameraBand band;
+  CameraModel c = cameraFor(1000, band);
+  c.darkCurrentElectrons = 50 / c.exposureSeconds;
+  c.readNoiseElectrons = 10;
+  c.gainDnPerElectron = 0.5;
+  c.fullWellElectrons = 1e6;
+  c.bitDepth = 16;
+  const size_t n = 40000;
+  const std::vector<float> ones(n, 1.0f);
+  const std::vector<float> stated = cameraVariance(c, {band}, ones, {}, n);
+  const std::vector<float> dn = simulateCamera(c, {band}, ones, n);
+  double sum = 0, sum2 = 0;
+  for (float v : dn) sum += v, sum2 += double(v) * v;
+  const double var = (sum2 - sum * sum / n) / (n - 1);
+  EXPECT_NEAR(var, stated[0], 5 * stated[0] * std::sqrt(2.0 / (n - 1)));
+  // Inputs 1 +- 0.1 (two values, variance 0.01): the stated variance adds (K g)^2 0.01.
+  std::vector<float> varying(n), inputVar(n, 0.01f);
+  for (size_t i = 0; i < n; ++i) varying[i] = i % 2 ? 1.1f : 0.9f;
+  const std::vector<float> dn2 = simulateCamera(c, {band}, varying, n);
+  sum = sum2 = 0;
+  for (float v : dn2) sum += v, sum2 += double(v) * v;
+  const double var2 = (sum2 - sum * sum / n) / (n - 1);
+  const double want = cameraVariance(c, {band}, ones, inputVar, n)[0];
+  EXPECT_NEAR(var2, want, 5 * want * std::sqrt(2.0 / (n - 1)));
+  EXPECT_GT(want, 1.5 * stated[0]); // the input's share is not negligible: the check can fail
+}
+
 TEST(CameraSimulation, LowSignalIsPoisson) {
   CameraBand band;
   CameraModel c = cameraFor(2, band);

@@ -210,3 +210,40 @@ TEST(Sensor, MeasuredResponsesInAnyScaleAreTheSameSensor) {
 
 } // namespace
 } // namespace nx
+
+namespace nx {
+namespace {
+
+// A measured band named by a wavelength keeps it as the name of its channel; other names get
+// nominal centres given separately (withNominalCentres), which round-trip through toString.
+TEST(Sensor, NominalCentresNameMeasuredBands) {
+  const std::string csv = "nm,B1,B2\n440,0,0\n450,1,0\n470,0,0\n480,0,0\n500,0,1\n530,0,0\n";
+  const Sensor plain = Sensor::fromCsv(csv, "srf.csv");
+  EXPECT_EQ(plain.channelNm(0), plain.centroid(0)); // "B1" is no wavelength
+  const Sensor named = plain.withNominalCentres("450,500", "centres");
+  EXPECT_EQ(named.channelNm(0), 450);
+  EXPECT_EQ(named.channelNm(1), 500);
+  EXPECT_EQ(named.centroid(1), plain.centroid(1)); // the responses are unchanged
+  EXPECT_NE(named.centroid(1), 500);
+  EXPECT_EQ(Sensor::parse(named.toString()).channelNm(1), 500);
+  for (const char* name : {"650", "650nm", "650 nm", " 650.5 NM"}) {
+    SensorChannel c;
+    c.shape = ResponseShape::Table;
+    c.name = name;
+    ASSERT_TRUE(c.nominalNm()) << name;
+  }
+  SensorChannel box;
+  box.name = "650"; // a box is named at its centre whatever its name
+  EXPECT_FALSE(box.nominalNm());
+  EXPECT_NE(test::errorMessage([&] {
+              plain.withNominalCentres("450", "t.scn:3");
+            }).find("t.scn:3: expected 2 nominal centres (one per band of the sensor), found 1"),
+            std::string::npos);
+  EXPECT_NE(test::errorMessage([] {
+              Sensor(SpectralBands::parse("400:500:50")).withNominalCentres("1,2,3", "w");
+            }).find("expected nominal centres for measured responses"),
+            std::string::npos);
+}
+
+} // namespace
+} // namespace nx
