@@ -53,8 +53,10 @@ struct BandFigures {
   double rmse = 0;         ///< root mean square of (scaled render - capture)
   double relativeRmse = 0; ///< rmse / renderMean
   double psnrDb = 0;       ///< 20 log10(largest capture value / rmse); infinite when rmse = 0
-  /// bias / its standard error from the render's Monte Carlo variance and the capture's, when
-  /// given (NaN without render variances): |z| much above 2-3 says the difference is not noise.
+  /// bias / its standard error (NaN without render variances): from the render's Monte Carlo
+  /// variance and the capture's, when given; with a fitted scale, the delete-a-group
+  /// jackknife's over 16 interleaved pixel groups (the scale's own error included). |z| much
+  /// above 2-3 says the difference is not noise.
   double zMean = 0;
   /// sqrt(sum d^2 / sum var d) over the pixels, var d = s^2 var r + var c: the pooled ratio of
   /// the differences to their expected noise, about 1 when they are noise alone (pooled, not a
