@@ -29,7 +29,8 @@ std::vector<TriangleShape> trianglesOf(const ShapeGeometry& g) {
   return out;
 }
 
-// Projected solid angle of triangle t seen from x with unit normal n (Lambert's formula).
+} // namespace
+
 double projectedSolidAngle(const TriangleShape& t, const Vec3d& x, const Vec3d& n) {
   const Vec3d v[3] = {normalize(t.a - x), normalize(t.b - x), normalize(t.c - x)};
   double sum = 0;
@@ -43,8 +44,6 @@ double projectedSolidAngle(const TriangleShape& t, const Vec3d& x, const Vec3d& 
   }
   return std::abs(sum) / 2;
 }
-
-} // namespace
 
 double axialIrradiancePerRadiance(const ShapeGeometry& g, double d, const std::string& where) {
   if (const auto* s = std::get_if<SphereShape>(&g)) {

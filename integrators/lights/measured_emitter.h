@@ -9,6 +9,11 @@
 
 namespace nx {
 
+/// Projected solid angle of triangle t seen from x with unit normal n (the irradiance of a
+/// triangle of radiance 1 wholly above x's horizon): Lambert's contour formula, half the sum
+/// over edges of the angle the edge subtends times n . the unit normal of its plane with x.
+double projectedSolidAngle(const TriangleShape& t, const Vec3d& x, const Vec3d& n);
+
 /// Irradiance / radiance on the emitter's axis at distance d, the receiver facing it: a
 /// sphere's pi R^2 / d^2 (d > R, any direction from its centre); a flat emitter's (a
 /// triangle, a quad, a planar mesh) projected solid angle seen from centroid + d * normal, by

@@ -10,6 +10,7 @@
 
 #include "core/math_util.h"
 #include "integrators/lights/light_sampler.h"
+#include "integrators/lights/measured_emitter.h"
 #include "integrators/renderer.h"
 #include "support/flat_wavelengths.h"
 #include "support/statistics.h"
@@ -126,22 +127,6 @@ TEST(Meshes, PlyMeshRendersLikeTheSameTrianglesInline) {
   EXPECT_GT(compared, 20);
 }
 
-// Irradiance at p (normal n) from a triangle of radiance 1 entirely above p's horizon: Lambert's
-// polygon formula E = 1/2 sum_i Theta_i (n . Gamma_i) over the edges (Theta_i the angle the edge
-// subtends, Gamma_i the unit normal of the plane through p and the edge).
-double lambertTriangle(const TriangleShape& t, const Vec3d& p, const Vec3d& n) {
-  const Vec3d v[3] = {normalize(t.a - p), normalize(t.b - p), normalize(t.c - p)};
-  double sum = 0;
-  for (int i = 0; i < 3; ++i) {
-    const Vec3d& a = v[i];
-    const Vec3d& b = v[(i + 1) % 3];
-    const Vec3d c = cross(a, b);
-    const double len = length(c);
-    if (len > 0) sum += std::atan2(len, dot(a, b)) * dot(n, c) / len;
-  }
-  return 0.5 * std::abs(sum);
-}
-
 // The irradiance a tessellated emitting sphere of radiance 1 gives a point facing it. Next-event
 // estimation (a triangle by area, a point on it, a shadow ray) agrees with the exact value for
 // the polyhedron (Lambert's formula over its front faces) at each tessellation, and that value
@@ -166,7 +151,7 @@ TEST(Meshes, TessellatedSphereLightConvergesToTheAnalyticSphere) {
       // The outward face normal (the sphere is centred at the origin); faces turned towards p.
       Vec3d outward = cross(c.b - c.a, c.c - c.a);
       if (dot(outward, c.a + c.b + c.c) < 0) outward = -outward;
-      if (dot(outward, Vec3d(p) - c.a) > 0) exact += lambertTriangle(c, Vec3d(p), Vec3d(n));
+      if (dot(outward, Vec3d(p) - c.a) > 0) exact += projectedSolidAngle(c, Vec3d(p), Vec3d(n));
     }
     const LightSampler lights(s);
     test::RunningStats e;

@@ -20,6 +20,14 @@ using test::Dye;
 using test::grid;
 using test::Synthetic;
 
+// Excitation and emission at the matrix's bin centres (excitation up to 647.5 nm).
+Synthetic onTheMatrixGrid() {
+  Synthetic s;
+  s.ex = grid(302.5, 647.5, 5);
+  s.em = grid(302.5, 1097.5, 5);
+  return s;
+}
+
 EemLayout scatterLayout(double width = 12, bool raman = true) {
   EemLayout l;
   l.rayleighWidthNm = width;
@@ -74,9 +82,7 @@ TEST(EemImport, OnTheMatrixGridItIsTheModelsMatrix) {
   // removed, absorptance from the excitation profile) is the model's matrix but for the cells
   // inside the removed bands, which are interpolated.
   const Dye d;
-  Synthetic s;
-  s.ex = grid(302.5, 647.5, 5);
-  s.em = grid(302.5, 1097.5, 5);
+  Synthetic s = onTheMatrixGrid();
   s.raman = 0; // a band over the emission peak: ABandOverTheEmissionPeak
   const RM want = RM::fromModel(d.model());
   EemSummary sum;
@@ -103,9 +109,7 @@ TEST(EemImport, ABandOverTheEmissionPeak) {
   // Interpolating across it (emission_shape="rows") underestimates those rows, by 15% here;
   // the rank-1 fit outside the bands (emission_shape="mean") recovers the model.
   const Dye d;
-  Synthetic s;
-  s.ex = grid(302.5, 647.5, 5);
-  s.em = grid(302.5, 1097.5, 5);
+  Synthetic s = onTheMatrixGrid();
   s.raman = 2e4;
   const RM want = RM::fromModel(d.model());
   EemLayout l = scatterLayout();
@@ -186,9 +190,7 @@ TEST(EemImport, GivenAbsorptanceNormalisesEachRow) {
   // With A(lambda) given (a dilute solution's EEM: its profile is not the surface's), each row
   // is normalised to Q A(ex); the instrument's scale and the row's count level drop out.
   const Dye d;
-  Synthetic s;
-  s.ex = grid(302.5, 647.5, 5);
-  s.em = grid(302.5, 1097.5, 5);
+  Synthetic s = onTheMatrixGrid();
   s.k = 123.0;
   s.raman = 0;
   EemAbsorptance a;
