@@ -131,10 +131,11 @@ ComparisonReport compareCubes(const ComparisonInputs& in, ScaleFit fit) {
                          n);
       }
       if (biases.size() < 2) continue;
+      const double k = static_cast<double>(biases.size());
       double mean = 0, sum2 = 0;
-      for (double x : biases) mean += x / static_cast<double>(biases.size());
+      for (double x : biases) mean += x / k;
       for (double x : biases) sum2 += (x - mean) * (x - mean);
-      biasJackknife[b] = (biases.size() - 1.0) / biases.size() * sum2;
+      biasJackknife[b] = (k - 1) / k * sum2;
     }
   }
 
