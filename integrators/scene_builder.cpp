@@ -481,19 +481,18 @@ private:
   std::shared_ptr<const ReradiationMatrix> importedEem(const FluorescenceDesc& f,
                                                        const Spectrum* rho) const {
     const EemDesc& e = *f.eem;
-    EemSummary summary;
-    auto table = [&](const std::string& path) {
+    auto table = [&](const std::string& path, EemSummary& counts) {
       return withoutScatter(
           parseEemCsv(refs_.readFile(path, 64u << 20, "EEM file"), path, e.layout), e.layout,
-          summary);
+          counts);
     };
-    const EemTable sample = table(e.file);
-    EemSummary sampleCounts = summary;
+    EemSummary summary, referenceCounts; // the note reports the sample's
+    const EemTable sample = table(e.file, summary);
     std::optional<EemTable> reference;
     EemYield yield;
     yield.quantumYield = f.quantumYield;
     if (!e.referenceFile.empty()) {
-      reference = table(e.referenceFile);
+      reference = table(e.referenceFile, referenceCounts);
       yield.reference = &*reference;
       yield.referenceYield = e.referenceYield;
       yield.referenceAbsorptance = e.referenceAbsorptance;
@@ -513,10 +512,10 @@ private:
     } else {
       absorptance.peak = f.peakAbsorptance;
     }
-    MeasuredMatrix m = donaldsonFromEem(sample, e.layout, yield, absorptance, sampleCounts);
+    MeasuredMatrix m = donaldsonFromEem(sample, e.layout, yield, absorptance, summary);
     auto r = std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromMeasured(m, rho));
     warnings_.push_back(
-        e.loc.str() + ": note: the EEM " + e.file + " imported (" + sampleCounts.text() +
+        e.loc.str() + ": note: the EEM " + e.file + " imported (" + summary.text() +
         "); absorptance " +
         (e.absorptance ? "as given"
                        : "from its excitation profile, peak " + numberText(*f.peakAbsorptance)) +

@@ -733,18 +733,9 @@ private:
           const std::string noun = d.spec.what;
           const std::string article =
               std::string("aeiou").find(noun[0]) == std::string::npos ? "a" : "an";
-          double v;
-          if (a == "scale") {
-            v = scaleAttribute(e, article, noun, d.spec.range && !d.spec.range->openLow);
-          } else {
-            const std::string t = decoded(e.attribute(a.c_str()).value(), e);
-            v = parseNumber(t, loc(e).str(), article + " " + noun + " in " + a + "=\"...\"");
-            if (!d.spec.range->contains(v))
-              fail(e,
-                   std::string(d.spec.range->what) + " in " + a + "=\"...\" within (" +
-                       numberText(d.spec.range->lo) + ", " + numberText(d.spec.range->hi) + "]",
-                   shownText(t));
-          }
+          const double v = a == "scale" ? scaleAttribute(e, article, noun,
+                                                         d.spec.range && !d.spec.range->openLow)
+                                        : numberAttribute(e, a.c_str(), *d.spec.range);
           out.set({d.spec.name, v, loc(e)});
         }
         if (s) out.set({p.spec.name, *s, loc(e)});
@@ -1129,16 +1120,17 @@ private:
     return f;
   }
 
-  // A number in attribute `name` of n, within r.
+  // A number in attribute `name` of n, within r: "expected <what> in name="..." within
+  // (lo, hi], found '...'".
   double numberAttribute(const pugi::xml_node& n, const char* name, const ParameterRange& r) const {
-    const std::string t = trim(decoded(n.attribute(name).value(), n));
-    const double v = numberOf(n, t, std::string(r.what) + " in " + name + "=\"...\"");
-    if (!r.contains(v)) {
-      std::ostringstream range;
-      range << r.what << " in " << (r.openLow ? "(" : "[") << r.lo << ", " << r.hi << "] in "
-            << name << "=\"...\"";
-      fail(n, range.str(), shownText(t));
-    }
+    const std::string t = decoded(n.attribute(name).value(), n);
+    const std::string what = std::string(r.what) + " in " + name + "=\"...\"";
+    const double v = parseNumber(t, loc(n).str(), what);
+    if (!r.contains(v))
+      fail(n,
+           what + " within " + (r.openLow ? "(" : "[") + numberText(r.lo) + ", " +
+               numberText(r.hi) + "]",
+           shownText(t));
     return v;
   }
 

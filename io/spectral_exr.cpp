@@ -26,6 +26,12 @@
 
 namespace nx {
 
+namespace {
+// The attributes bandAttributes writes: derived from the bands, so dropped when read.
+constexpr const char* kBandAttributeKeys[] = {"nxrender.bandNames", "nxrender.bandCentroids",
+                                              "nxrender.bandFwhm"};
+} // namespace
+
 std::map<std::string, std::string> bandAttributes(const Sensor& bands) {
   std::string names, centroids, fwhm;
   for (int b = 0; b < bands.count(); ++b) {
@@ -36,9 +42,9 @@ std::map<std::string, std::string> bandAttributes(const Sensor& bands) {
     centroids += sep + exactNumberText(bands.centroid(b));
     fwhm += sep + exactNumberText(bands.fwhm(b));
   }
-  return {{"nxrender.bandNames", names},
-          {"nxrender.bandCentroids", centroids},
-          {"nxrender.bandFwhm", fwhm}};
+  return {{kBandAttributeKeys[0], names},
+          {kBandAttributeKeys[1], centroids},
+          {kBandAttributeKeys[2], fwhm}};
 }
 
 std::string spectralChannelName(double nm) {
@@ -254,7 +260,7 @@ SpectralImage readSpectralExr(const std::string& path) {
         img.attributes[it.name()] = s->value();
     img.attributes.erase("spectralLayoutVersion");
     img.attributes.erase("emissiveUnits");
-    for (const auto& [key, value] : bandAttributes(Sensor())) img.attributes.erase(key);
+    for (const char* key : kBandAttributeKeys) img.attributes.erase(key);
     // This project's files name their bands (a sensor's responses) in nxrender.bands; other
     // files of the layout are read by their channel names.
     std::vector<std::string> bandChannels;

@@ -222,8 +222,9 @@ MeasuredMatrix donaldsonFromEem(const EemTable& clean, const EemLayout& layout,
   double q = yield.quantumYield.value_or(0);
   if (yield.reference) {
     const EemTable& ref = *yield.reference;
-    std::vector<double> sRef = rowIntegrals(ref, gridCellWidths(ref.emissionNm)), unused;
-    if (layout.meanEmissionShape) rankOneFit(ref, gridCellWidths(ref.emissionNm), sRef, unused);
+    const std::vector<double> refWidth = gridCellWidths(ref.emissionNm);
+    std::vector<double> sRef = rowIntegrals(ref, refWidth), unused;
+    if (layout.meanEmissionShape) rankOneFit(ref, refWidth, sRef, unused);
     double nm = 0;
     if (yield.referenceExcitationNm)
       nm = *yield.referenceExcitationNm;
