@@ -215,7 +215,10 @@ int run(int argc, char** argv) {
                  "Extra channels, a comma list of: white (white.S0.<band>: the radiance a white "
                  "Lambertian surface would reflect at the first hit, for flat-fielding; one more "
                  "path per sample), ids (ObjectId, MaterialId at the pixel centre; 0 = none), "
-                 "depth (Depth: camera-space z at the pixel centre; 0 = none)");
+                 "depth (Depth: camera-space z at the pixel centre; 0 = none), components "
+                 "(reflected., fluoresced., direct., indirect.S0.<band>nm: the radiance split by "
+                 "path class, with variances; docs/components.md), lightgroups "
+                 "(light.NAME.S0.<band>nm per light group, group=\"NAME\" on emitters)");
   app.add_flag("--envi", envi,
                "Also write the bands as an ENVI cube beside the EXR: OUT.img (BSQ float32) and "
                "OUT.hdr (wavelength and fwhm lists), for spectral-imaging tools");
@@ -334,7 +337,9 @@ int run(int argc, char** argv) {
                    task);
   for (const std::string& aov : splitList(aovText))
     if (!nx::addAov(choices, aov))
-      throw nx::Error("--aov: expected a comma list of white, ids and depth, found '" + aov + "'");
+      throw nx::Error("--aov: expected a comma list of white, ids, depth, components and "
+                      "lightgroups, found '" +
+                      aov + "'");
   choices.targetError = targetError;
   choices.errorOf = errorOf;
   choices.timeLimit = timeLimit;
@@ -471,7 +476,10 @@ int run(int argc, char** argv) {
   if (!compression.empty())
     encoding.compression = nx::parseExrCompression(compression, "--compression");
   auto writeImage = [&](nx::SpectralImage image) {
-    if (noVariance) image.bandVariance.clear(), image.yVariance.clear();
+    if (noVariance) {
+      image.bandVariance.clear(), image.yVariance.clear();
+      for (nx::ImageLayer& l : image.layers) l.variances.clear();
+    }
     if (halfFloat && nx::fitsInHalf(image))
       return nx::writeSpectralExrHalf(exrPath, image, encoding);
     if (halfFloat)

@@ -69,10 +69,12 @@ Sensor sensorFromOption(const std::string& text, const std::string& option) {
 }
 
 bool addAov(RenderChoices& choices, const std::string& name) {
-  bool* flag = name == "white"   ? &choices.aovWhite
-               : name == "ids"   ? &choices.aovIds
-               : name == "depth" ? &choices.aovDepth
-                                 : nullptr;
+  bool* flag = name == "white"         ? &choices.aovWhite
+               : name == "ids"         ? &choices.aovIds
+               : name == "depth"       ? &choices.aovDepth
+               : name == "components"  ? &choices.aovComponents
+               : name == "lightgroups" ? &choices.aovLightGroups
+                                       : nullptr;
   if (flag) *flag = true;
   return flag != nullptr;
 }
@@ -116,6 +118,8 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
   options_.wavelengthDensity =
       choices.density == "visible" ? WavelengthDensity::Visible : WavelengthDensity::Sensor;
   options_.whiteReference = choices.aovWhite;
+  options_.components = choices.aovComponents;
+  options_.lightGroups = choices.aovLightGroups;
   options_.targetRelativeError = choices.targetError;
   options_.errorMeasure = errorMeasureFrom(choices.errorOf);
   options_.timeLimitSeconds = choices.timeLimit;
@@ -132,12 +136,13 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
   options_.adaptive = choices.adaptive;
   options_.adaptiveMinSamples = choices.adaptiveMinSamples;
 
-  renderKey_ =
-      hex(fnv1a64(std::string(NX_VERSION) + "|" + choices.sampler + "|" + choices.lightSampling +
-                      "|" + choices.lightSelection + "|" + choices.density + "|" +
-                      (choices.aovWhite ? "white|" : "") +
-                      (choices.noFluorescence ? "nofl" : "fl") + "|" + std::to_string(kLanes),
-                  scene.contentDigest));
+  renderKey_ = hex(fnv1a64(
+      std::string(NX_VERSION) + "|" + choices.sampler + "|" + choices.lightSampling + "|" +
+          choices.lightSelection + "|" + choices.density + "|" +
+          (choices.aovWhite ? "white|" : "") + (choices.aovComponents ? "components|" : "") +
+          (choices.aovLightGroups ? "lightgroups|" : "") +
+          (choices.noFluorescence ? "nofl" : "fl") + "|" + std::to_string(kLanes),
+      scene.contentDigest));
   seed_ = choices.seed ? *choices.seed : scene.settings.seed;
   bands_ = choices.bands ? *choices.bands : scene.settings.bands;
   firstSample_ = choices.firstSample;

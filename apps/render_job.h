@@ -27,6 +27,7 @@ struct RenderChoices {
   std::string density = "sensor";       ///< sensor or visible
   bool noFluorescence = false;          ///< fluorescent materials as their plain reflectance
   bool aovWhite = false, aovIds = false, aovDepth = false; ///< extra channels
+  bool aovComponents = false, aovLightGroups = false;      ///< component layers
   double targetError = 0;            ///< stop at this relative RMS error; 0 = off
   std::string errorOf = "luminance"; ///< luminance, bands or bands:LO-HI
   double timeLimit = 0;              ///< seconds; 0 = off

@@ -37,9 +37,17 @@ bool allFinite(const SampledSpectrum& L) {
 }
 } // namespace
 
+void Film::setLayers(std::vector<std::string> names) {
+  layerNames_ = std::move(names);
+  const size_t n = counts_.size() * layerNames_.size() * static_cast<size_t>(nBands_);
+  layerSums_.assign(n, 0.0);
+  layerOddSums_.assign(n, 0.0);
+}
+
 Film::Pixel Film::newPixel() const {
   Pixel p;
   for (auto& b : p.bands) b.assign(static_cast<size_t>(nBands_), 0.0);
+  for (auto& l : p.layers) l.assign(layerNames_.size() * static_cast<size_t>(nBands_), 0.0);
   if (hasWhite()) p.white.assign(static_cast<size_t>(nBands_), 0.0);
   return p;
 }
@@ -68,6 +76,20 @@ bool Film::addSample(Pixel& pixel, const SampledWavelengths& lambda, const Sampl
     xyz[2] += static_cast<double>(v * (c[2] + (c[5] - c[2]) * f));
   }
   return true;
+}
+
+void Film::addLayerSamples(Pixel& pixel, const SampledWavelengths& lambda,
+                           const SampledSpectrum* layers, bool odd) const {
+  double* sums = pixel.layers[odd ? 1 : 0].data();
+  for (int i = 0; i < kLanes; ++i) {
+    const float weight = WavelengthSampler::laneWeight(lambda, i);
+    responses_.forEach(lambda.lambda[i], [&](int b, float w) {
+      for (size_t l = 0; l < layerNames_.size(); ++l) {
+        const float v = layers[l][i] * weight;
+        if (v != 0) sums[l * static_cast<size_t>(nBands_) + static_cast<size_t>(b)] += v * w;
+      }
+    });
+  }
 }
 
 bool Film::addWhiteSample(Pixel& pixel, const SampledWavelengths& lambda,
@@ -99,6 +121,11 @@ void Film::add(int x, int y, const Pixel& pixel) {
     bandOddSums_[i * nBands_ + b] += odd;
   }
   for (int c = 0; c < 3; ++c) xyzSums_[i * 3 + c] += pixel.xyz[0][c] + pixel.xyz[1][c];
+  const size_t nl = layerNames_.size() * static_cast<size_t>(nBands_);
+  for (size_t k = 0; k < nl; ++k) {
+    layerSums_[i * nl + k] += pixel.layers[0][k] + pixel.layers[1][k];
+    layerOddSums_[i * nl + k] += pixel.layers[1][k];
+  }
   yOddSums_[i] += pixel.xyz[1][1];
   oddCounts_[i] += pixel.samples[1];
   counts_[i] += pixel.samples[0] + pixel.samples[1];
@@ -135,11 +162,37 @@ void Film::setFromMeans(int x, int y, const float* bandMeans, const float* bandV
   oddCounts_[i] = oddSamples;
 }
 
+void Film::setLayerFromMeans(int x, int y, int l, const float* means, const float* variances) {
+  // As setFromMeans: the odd replicate rebuilt from the variance (its size, not its sign).
+  const size_t i = index(x, y), nb = static_cast<size_t>(nBands_);
+  const size_t at = (i * layerNames_.size() + static_cast<size_t>(l)) * nb;
+  const double n = counts_[i], nOdd = oddCounts_[i];
+  for (size_t b = 0; b < nb; ++b) {
+    layerSums_[at + b] = static_cast<double>(means[b]) * n;
+    layerOddSums_[at + b] =
+        (means[b] - std::sqrt(variances ? std::max(0.0f, variances[b]) : 0.0f)) * nOdd;
+  }
+}
+
+double Film::layerMean(int x, int y, int l, int b) const {
+  const size_t i = index(x, y);
+  const size_t k = (i * layerNames_.size() + static_cast<size_t>(l)) * nBands_ + b;
+  return counts_[i] ? layerSums_[k] / counts_[i] : 0.0;
+}
+
+double Film::layerVariance(int x, int y, int l, int b) const {
+  const size_t i = index(x, y);
+  const size_t k = (i * layerNames_.size() + static_cast<size_t>(l)) * nBands_ + b;
+  return halfDifferenceVariance(layerSums_[k], layerOddSums_[k], counts_[i], oddCounts_[i]);
+}
+
 Film Film::cropped(const PixelRect& r) const {
   if (r.x0 < rect_.x0 || r.y0 < rect_.y0 || r.x1 > rect_.x1 || r.y1 > rect_.y1 || r.x1 <= r.x0 ||
       r.y1 <= r.y0)
     throw Error("internal error: a film crop outside the film");
   Film out(width_, height_, r, bands_, hasWhite());
+  out.setLayers(layerNames_);
+  const size_t nl = layerNames_.size() * static_cast<size_t>(nBands_);
   for (int y = r.y0; y < r.y1; ++y)
     for (int x = r.x0; x < r.x1; ++x) {
       const size_t i = index(x, y), o = out.index(x, y);
@@ -148,6 +201,8 @@ Film Film::cropped(const PixelRect& r) const {
       std::copy_n(&bandOddSums_[i * nb], nb, &out.bandOddSums_[o * nb]);
       if (hasWhite()) std::copy_n(&whiteSums_[i * nb], nb, &out.whiteSums_[o * nb]);
       std::copy_n(&xyzSums_[i * 3], 3, &out.xyzSums_[o * 3]);
+      std::copy_n(layerSums_.data() + i * nl, nl, out.layerSums_.data() + o * nl);
+      std::copy_n(layerOddSums_.data() + i * nl, nl, out.layerOddSums_.data() + o * nl);
       out.yOddSums_[o] = yOddSums_[i];
       out.oddCounts_[o] = oddCounts_[i];
       out.counts_[o] = counts_[i];

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "spectra/cie.h"
@@ -33,6 +34,13 @@ public:
       : Film(width, height, {0, 0, width, height}, bands) {}
   /// True when the film holds the white reference.
   bool hasWhite() const { return !whiteSums_.empty(); }
+  /// Keeps component layers (EXR layers "<name>.S0.<band>nm", e.g. "reflected", "light.lamp"),
+  /// each estimated per band like the radiance, with its variance; zeroes them.
+  void setLayers(std::vector<std::string> names);
+  /// Component layers kept (0 unless setLayers was called).
+  int layerCount() const { return static_cast<int>(layerNames_.size()); }
+  /// The name of layer l.
+  const std::string& layerName(int l) const { return layerNames_[static_cast<size_t>(l)]; }
 
   int width() const { return width_; }   ///< full image width
   int height() const { return height_; } ///< full image height
@@ -56,9 +64,10 @@ public:
   /// Accumulator for one pixel's samples (lives on the stack of the tile task), kept per
   /// replicate: [0] the even-numbered samples, [1] the odd-numbered ones.
   struct Pixel {
-    std::vector<double> bands[2]; ///< sums of band estimates
-    double xyz[2][3] = {};        ///< sums of XYZ estimates
-    std::vector<double> white;    ///< sums of white-reference band estimates (if kept)
+    std::vector<double> bands[2];  ///< sums of band estimates
+    double xyz[2][3] = {};         ///< sums of XYZ estimates
+    std::vector<double> white;     ///< sums of white-reference band estimates (if kept)
+    std::vector<double> layers[2]; ///< sums of component layers' band estimates, [layer][band]
     uint32_t samples[2] = {0, 0};
   };
 
@@ -70,6 +79,7 @@ public:
       std::fill(p.bands[r].begin(), p.bands[r].end(), 0.0);
       p.xyz[r][0] = p.xyz[r][1] = p.xyz[r][2] = 0;
       p.samples[r] = 0;
+      std::fill(p.layers[r].begin(), p.layers[r].end(), 0.0);
     }
     std::fill(p.white.begin(), p.white.end(), 0.0);
   }
@@ -85,6 +95,11 @@ public:
   bool addSample(Pixel& pixel, const SampledWavelengths& lambda, const SampledSpectrum& L,
                  bool odd) const;
 
+  /// Adds the component layers of a sample that addSample accepted (layerCount() spectra, with
+  /// the sample's lanes and replicate), weighted like its radiance.
+  void addLayerSamples(Pixel& pixel, const SampledWavelengths& lambda,
+                       const SampledSpectrum* layers, bool odd) const;
+
   /// Adds one sample of the white reference (radiance L of a white Lambertian surface at the
   /// first hit) to the bands, like addSample; false (and nothing added) when not finite.
   bool addWhiteSample(Pixel& pixel, const SampledWavelengths& lambda,
@@ -98,6 +113,10 @@ public:
                     const double xyzMean[3], double yVariance, uint32_t samples,
                     uint32_t oddSamples, const float* whiteMeans = nullptr);
 
+  /// Sets layer l of a pixel already set by setFromMeans from stored means and variances of the
+  /// means (null: unknown).
+  void setLayerFromMeans(int x, int y, int l, const float* means, const float* variances);
+
   /// The part of this film over `r` (inside its rectangle), with the same sums.
   Film cropped(const PixelRect& r) const;
 
@@ -105,6 +124,10 @@ public:
   double bandMean(int x, int y, int b) const;
   /// Mean white-reference radiance of pixel (x, y), band b (0 without the white reference).
   double whiteMean(int x, int y, int b) const;
+  /// Mean radiance of component layer l in pixel (x, y), band b.
+  double layerMean(int x, int y, int l, int b) const;
+  /// Estimated variance of that mean (from the two replicates, like bandVariance).
+  double layerVariance(int x, int y, int l, int b) const;
   /// Mean XYZ of pixel (x, y).
   Xyz xyzMean(int x, int y) const;
   /// Samples taken in pixel (x, y).
@@ -143,6 +166,9 @@ private:
   std::vector<uint32_t> oddCounts_; ///< [pixel]
   std::vector<uint32_t> counts_;
   std::vector<double> whiteSums_; ///< [pixel][band]; empty without the white reference
+  std::vector<std::string> layerNames_;
+  std::vector<double> layerSums_;    ///< [pixel][layer][band]
+  std::vector<double> layerOddSums_; ///< [pixel][layer][band]
 };
 
 } // namespace nx

@@ -6,6 +6,7 @@
 #include "core/ray.h"
 #include "core/sampler.h"
 #include "integrators/lights/light_sampler.h"
+#include "integrators/path_contributions.h"
 #include "integrators/render_scene.h"
 
 namespace nx {
@@ -56,6 +57,14 @@ struct TraceCounters {
 /// the hero lane alone, scaled by kLanes (see heroOnly()).
 SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
                           PixelSampleStream& rng, TraceCounters& counters);
+
+/// tracePath that also splits the radiance into the layers of `layout` (path classes, light
+/// groups; see ComponentSink), adding to layers[0 .. layout.count) (zeroed by the caller): the
+/// same random numbers and the same radiance as tracePath.
+SampledSpectrum tracePathComponents(const IntegratorContext& ctx, Ray ray,
+                                    const SampledWavelengths& lambda, PixelSampleStream& rng,
+                                    TraceCounters& counters, const ComponentLayout& layout,
+                                    SampledSpectrum* layers);
 
 /// The white reference along `ray`: the radiance a white Lambertian surface (reflectance 1,
 /// not emitting) put in place of the first surface hit would reflect towards the camera, lit by

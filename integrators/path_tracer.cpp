@@ -8,6 +8,7 @@
 #include "integrators/media/free_flight.h"
 #include "integrators/media/henyey_greenstein.h"
 #include "integrators/media/transmittance.h"
+#include "integrators/path_contributions.h"
 #include "integrators/sampling.h"
 
 namespace nx {
@@ -46,16 +47,28 @@ const Material& whiteLambertian() {
 // is in, samples free flights through them and sees through interfaces in its shadow rays.
 // kWhite: the first surface hit is replaced by a white Lambertian reflector that does not emit
 // (the white-reference AOV); later bounces see the scene as it is.
-template <bool kFluorescence, bool kMedia, bool kWhite>
-SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
-                              const SampledWavelengths& lambda, PixelSampleStream& rng,
-                              TraceCounters& counters) {
+// Sink: where contributions go (path_contributions.h); with Sink::kClasses the path's class
+// (shifted lanes, scatterings, light group) is tracked for each of them.
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
+                   PixelSampleStream& rng, TraceCounters& counters, Sink& sink) {
   const RenderScene& scene = *ctx.scene;
   const int rouletteStart = scene.settings.depth;
   // lambda: the sensor wavelengths (where the film accumulates); current: what lights and
   // materials are evaluated at (they differ after a fluorescent shift).
   SampledWavelengths current = lambda;
-  SampledSpectrum L, beta = SampledSpectrum::filled(1.0f);
+  SampledSpectrum beta = SampledSpectrum::filled(1.0f);
+  const LightGroups& groups = scene.lightGroups;
+  // Lanes re-radiated so far (tracked for component sinks only).
+  [[maybe_unused]] uint64_t shifted = 0;
+  // The class of a contribution after `events` scatterings from `group`'s emitter, the lanes of
+  // `extra` shifted in addition.
+  auto classOf = [&]([[maybe_unused]] int events, [[maybe_unused]] uint16_t group,
+                     [[maybe_unused]] uint64_t extra = 0) {
+    PathClass k;
+    if constexpr (Sink::kClasses) k = {shifted | extra, events, group};
+    return k;
+  };
   // Russian roulette looks at beta * rrScale: the throughput without the radiance scaling
   // 1 / eta^2 of refractions (a lossless path through glass keeps probability 1, as in pbrt-v4
   // and Mitsuba 3) and without the factor kLanes of a hero-only path.
@@ -111,7 +124,8 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
         const FreeFlight flight =
             sampleFreeFlight(medium, current, found ? hit.t : INFINITY, uDistance, uEvent, beta,
                              misRatios, medium.emission ? &glow : nullptr);
-        if (medium.emission) L += before * glow;
+        if (medium.emission)
+          sink.add(before * glow, classOf(scatterings, groups.ofMedium[static_cast<size_t>(m)]));
         // beta_i / mean(ratios) is all that counts, so both are divided by the mean after each
         // flight: the products stay near 1 on long chromatic paths (ratios' mean 1; the hero's
         // own ratio, once 1, becomes 1 / (the product of these means)).
@@ -148,16 +162,19 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
               const auto visible = [&](const Ray& r) {
                 return shadowTransmittance(scene, r, media, lit, counters);
               };
-              L += weighted() *
-                   directLightAt(
-                       p, Vec3(), Vec3(), ls,
-                       [&](const Vec3& wi) { return SampledSpectrum::filled(phaseTo(wi)); },
-                       phaseTo, ctx.lightSampling != LightSampling::NeeOnly, visible);
+              sink.add(weighted() *
+                           directLightAt(
+                               p, Vec3(), Vec3(), ls,
+                               [&](const Vec3& wi) { return SampledSpectrum::filled(phaseTo(wi)); },
+                               phaseTo, ctx.lightSampling != LightSampling::NeeOnly, visible),
+                       classOf(scatterings + 1, ctx.lights->group(ls.light),
+                               Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0}));
             }
           }
           const Sample2 uDir = rng.next2D();
           const Vec3 wi =
               reemitted ? sampleUniformSphere(uDir) : sampleHenyeyGreenstein(ray.d, medium.g, uDir);
+          if constexpr (Sink::kClasses) shifted |= shiftedLanes(lit, current);
           current = lit;
           specular = false;
           prevPdf = phaseTo(wi);
@@ -174,11 +191,13 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     }
     if (!found) {
       if (scene.background)
-        L += weighted() * evaluate(*scene.background, current) *
-             (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP)));
+        sink.add(weighted() * evaluate(*scene.background, current) *
+                     (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP))),
+                 classOf(scatterings, groups.ofBackground));
       for (int e = 0; e < ctx.lights->environmentCount(); ++e)
-        L += weighted() * ctx.lights->environmentRadiance(e, ray.d, current) *
-             (specular ? 1.0f : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d)));
+        sink.add(weighted() * ctx.lights->environmentRadiance(e, ray.d, current) *
+                     (specular ? 1.0f : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d))),
+                 classOf(scatterings, ctx.lights->environmentGroup(e)));
       break;
     }
     const ShapeAppearance& app = scene.appearance(hit);
@@ -202,7 +221,9 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     if (app.emission >= 0 && !whiteHere) {
       const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d));
       if (w > 0)
-        L += weighted() * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) * w;
+        sink.add(weighted() * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) *
+                     w,
+                 classOf(scatterings, groups.ofEmission[static_cast<size_t>(app.emission)]));
     }
     if (bounce >= kMaxPathBounces) {
       ++counters.bounceLimited; // still carrying light: counted, reported
@@ -238,16 +259,20 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
           return fluorescent ? shift.albedo * bsdf.diffuseLobe(wi) : bsdf.f(wi);
         };
         auto pdf = [&](const Vec3& wi) { return bsdf.pdf(wi); };
+        const PathClass k = classOf(scatterings + 1, ctx.lights->group(ls.light),
+                                    Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0});
         if constexpr (kMedia) {
           const auto visible = [&](const Ray& r) {
             return shadowTransmittance(scene, r, media, lit, counters);
           };
-          L +=
-              weighted() * directLightThrough(hit, ray.d, ls, f, pdf,
-                                              ctx.lightSampling != LightSampling::NeeOnly, visible);
+          sink.add(weighted() * directLightThrough(hit, ray.d, ls, f, pdf,
+                                                   ctx.lightSampling != LightSampling::NeeOnly,
+                                                   visible),
+                   k);
         } else {
-          L += beta * directLight(scene, hit, ray.d, ls, f, pdf,
-                                  ctx.lightSampling != LightSampling::NeeOnly, counters);
+          sink.add(beta * directLight(scene, hit, ray.d, ls, f, pdf,
+                                      ctx.lightSampling != LightSampling::NeeOnly, counters),
+                   k);
         }
       }
     }
@@ -259,6 +284,7 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     if constexpr (kFluorescence) {
       if (fluorescent && !bs.specular) { // the diffuse lobe re-radiates; the mirror lobe does not
         bs.weight = shift.albedo * bs.diffuseScale;
+        if constexpr (Sink::kClasses) shifted |= shiftedLanes(shift.excited, current);
         current = shift.excited;
       }
     }
@@ -296,34 +322,52 @@ SampledSpectrum tracePathImpl(const IntegratorContext& ctx, Ray ray,
     ray.tMin = 0;
     ray.tMax = INFINITY;
   }
-  return L;
 }
 
 } // namespace
 
 namespace {
-template <bool kWhite>
-SampledSpectrum traceVariant(const IntegratorContext& ctx, const Ray& ray,
-                             const SampledWavelengths& lambda, PixelSampleStream& rng,
-                             TraceCounters& counters) {
+template <bool kWhite, class Sink>
+void traceVariant(const IntegratorContext& ctx, const Ray& ray, const SampledWavelengths& lambda,
+                  PixelSampleStream& rng, TraceCounters& counters, Sink& sink) {
   const bool media = ctx.scene->hasMedia;
-  if (ctx.fluorescence)
-    return media ? tracePathImpl<true, true, kWhite>(ctx, ray, lambda, rng, counters)
-                 : tracePathImpl<true, false, kWhite>(ctx, ray, lambda, rng, counters);
-  return media ? tracePathImpl<false, true, kWhite>(ctx, ray, lambda, rng, counters)
-               : tracePathImpl<false, false, kWhite>(ctx, ray, lambda, rng, counters);
+  if (ctx.fluorescence) {
+    if (media)
+      tracePathImpl<true, true, kWhite>(ctx, ray, lambda, rng, counters, sink);
+    else
+      tracePathImpl<true, false, kWhite>(ctx, ray, lambda, rng, counters, sink);
+  } else if (media) {
+    tracePathImpl<false, true, kWhite>(ctx, ray, lambda, rng, counters, sink);
+  } else {
+    tracePathImpl<false, false, kWhite>(ctx, ray, lambda, rng, counters, sink);
+  }
 }
 } // namespace
 
 SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
                           PixelSampleStream& rng, TraceCounters& counters) {
-  return traceVariant<false>(ctx, ray, lambda, rng, counters);
+  RadianceSink sink;
+  traceVariant<false>(ctx, ray, lambda, rng, counters, sink);
+  return sink.L;
+}
+
+SampledSpectrum tracePathComponents(const IntegratorContext& ctx, Ray ray,
+                                    const SampledWavelengths& lambda, PixelSampleStream& rng,
+                                    TraceCounters& counters, const ComponentLayout& layout,
+                                    SampledSpectrum* layers) {
+  ComponentSink sink;
+  sink.layers = layers;
+  sink.layout = &layout;
+  traceVariant<false>(ctx, ray, lambda, rng, counters, sink);
+  return sink.L;
 }
 
 SampledSpectrum traceWhiteReference(const IntegratorContext& ctx, Ray ray,
                                     const SampledWavelengths& lambda, PixelSampleStream& rng,
                                     TraceCounters& counters) {
-  return traceVariant<true>(ctx, ray, lambda, rng, counters);
+  RadianceSink sink;
+  traceVariant<true>(ctx, ray, lambda, rng, counters, sink);
+  return sink.L;
 }
 
 } // namespace nx

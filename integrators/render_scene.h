@@ -63,6 +63,24 @@ struct TabulatedRange {
   double loNm = 0, hiNm = 0;
 };
 
+/// The scene's light groups: every emitter belongs to one, named by its group="NAME" (ungrouped
+/// emitters form the group "default"); --aov lightgroups splits the image by group.
+struct LightGroups {
+  std::vector<std::string> names;   ///< group id -> name, in order of first appearance
+  std::vector<uint16_t> ofEmission; ///< group of each RenderScene::emission
+  std::vector<uint16_t> ofLight;    ///< group of each RenderScene::lights
+  std::vector<uint16_t> ofMedium;   ///< group of each RenderScene::media (its emission)
+  uint16_t ofBackground = 0;        ///< group of the background
+  /// The id of group `name`, added when new.
+  uint16_t idOf(const std::string& name) {
+    const std::string n = name.empty() ? "default" : name;
+    for (size_t i = 0; i < names.size(); ++i)
+      if (names[i] == n) return static_cast<uint16_t>(i);
+    names.push_back(n);
+    return static_cast<uint16_t>(names.size() - 1);
+  }
+};
+
 /// Everything an integrator needs, immutable after building.
 struct RenderScene {
   RenderSettings settings;
@@ -80,6 +98,7 @@ struct RenderScene {
   std::vector<ShapeAppearance> spheres, planes; ///< parallel to the geometry's shapes
   std::vector<MeshAppearance> meshes;           ///< parallel to the geometry's meshes
   std::vector<SceneLight> lights;     ///< the <light>s (points, spots, ...), in file order
+  LightGroups lightGroups;            ///< which group each emitter belongs to
   std::optional<Spectrum> background; ///< uniform environment radiance
   Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
   size_t meshBytes = 0;               ///< bytes the meshes' buffers take

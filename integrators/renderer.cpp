@@ -25,6 +25,15 @@ uint32_t oddSamplesIn(int64_t first, int64_t n) {
 }
 } // namespace
 
+std::vector<std::string> componentLayerNames(const RenderScene& scene,
+                                             const RenderOptions& options) {
+  std::vector<std::string> names;
+  if (options.components) names = {"reflected", "fluoresced", "direct", "indirect"};
+  if (options.lightGroups)
+    for (const std::string& g : scene.lightGroups.names) names.push_back("light." + g);
+  return names;
+}
+
 RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   // Every tile task runs in the same floating-point mode, whatever thread started the render:
@@ -50,6 +59,26 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                    options.firstSample,
                    0,
                    0};
+  // Component layers: set on a new film, the same names on a resumed one.
+  const std::vector<std::string> layerNames = componentLayerNames(scene, options);
+  ComponentLayout layout;
+  if (options.components) layout.classes = 0;
+  if (options.lightGroups) layout.groups = options.components ? 4 : 0;
+  layout.count = static_cast<int>(layerNames.size());
+  if (layout.any() && settings.mode == RenderMode::Rt)
+    throw Error("component images (--aov components, lightgroups) need a path-traced mode "
+                "(spectral_mcpt or mcpt), found rt (Whitted ray tracing has no path classes)");
+  if (!options.resumeFrom) {
+    out.film.setLayers(layerNames);
+  } else {
+    std::vector<std::string> held;
+    for (int l = 0; l < out.film.layerCount(); ++l) held.push_back(out.film.layerName(l));
+    if (held != layerNames)
+      throw Error("cannot continue a render with other component layers: it holds " +
+                  std::to_string(held.size()) + " (" + (held.empty() ? "none" : held.front()) +
+                  (held.size() > 1 ? ", ..." : "") + "), this one asks for " +
+                  std::to_string(layerNames.size()) + " (use the same --aov as the first run)");
+  }
   out.samplesPerPixel = options.samples > 0 ? options.samples : settings.samples;
   out.seed = options.seed ? *options.seed : settings.seed;
   const uint32_t seed = out.seed;
@@ -116,6 +145,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           TraceCounters counters;
           uint64_t dropped = 0, taken = 0;
           Film::Pixel pixel = out.film.newPixel();
+          std::vector<SampledSpectrum> layers(static_cast<size_t>(layout.count));
           bool halted = false;
           for (int y = y0; y < y1 && !halted; ++y) {
             for (int x = x0; x < x1 && !halted; ++x) {
@@ -156,9 +186,19 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                 const Ray ray =
                     scene.camera.generateRay(static_cast<double>(x) + jitter.u,
                                              static_cast<double>(y) + jitter.v, lensX, lensY);
-                const SampledSpectrum L = whitted ? traceWhitted(ctx, ray, lambda, rng, counters)
-                                                  : tracePath(ctx, ray, lambda, rng, counters);
-                if (!out.film.addSample(pixel, lambda, L, odd)) ++dropped;
+                if (layout.any()) {
+                  std::fill(layers.begin(), layers.end(), SampledSpectrum());
+                  const SampledSpectrum L =
+                      tracePathComponents(ctx, ray, lambda, rng, counters, layout, layers.data());
+                  if (out.film.addSample(pixel, lambda, L, odd))
+                    out.film.addLayerSamples(pixel, lambda, layers.data(), odd);
+                  else
+                    ++dropped;
+                } else {
+                  const SampledSpectrum L = whitted ? traceWhitted(ctx, ray, lambda, rng, counters)
+                                                    : tracePath(ctx, ray, lambda, rng, counters);
+                  if (!out.film.addSample(pixel, lambda, L, odd)) ++dropped;
+                }
                 if (out.film.hasWhite()) {
                   // Its own random numbers (a salted seed): the same for every thread count.
                   PixelSampleStream whiteRng(whiteSequences[odd], static_cast<uint32_t>(s) >> 1);
@@ -313,6 +353,9 @@ SpectralImage toSpectralImage(const Film& film) {
   img.bandVariance.resize(pixels * nb);
   img.yVariance.resize(pixels);
   if (film.hasWhite()) img.white.resize(pixels * nb);
+  for (int l = 0; l < film.layerCount(); ++l)
+    img.layers.push_back(
+        {film.layerName(l), std::vector<float>(pixels * nb), std::vector<float>(pixels * nb)});
   // Rows in parallel (each value is computed the same way on any thread).
   tbb::parallel_for(0, img.height, [&](int row) {
     const FlushDenormalsScope rowMode;
@@ -323,6 +366,11 @@ SpectralImage toSpectralImage(const Film& film) {
         img.radiance[i * nb + b] = static_cast<float>(film.bandMean(x, y, b));
         img.bandVariance[i * nb + b] = static_cast<float>(film.bandVariance(x, y, b));
         if (film.hasWhite()) img.white[i * nb + b] = static_cast<float>(film.whiteMean(x, y, b));
+        for (int l = 0; l < film.layerCount(); ++l) {
+          ImageLayer& layer = img.layers[static_cast<size_t>(l)];
+          layer.values[i * nb + b] = static_cast<float>(film.layerMean(x, y, l, b));
+          layer.variances[i * nb + b] = static_cast<float>(film.layerVariance(x, y, l, b));
+        }
       }
       img.yVariance[i] = static_cast<float>(film.yVariance(x, y));
       const Xyz xyz = film.xyzMean(x, y);
@@ -361,6 +409,10 @@ Film filmFromImage(const SpectralImage& img, int firstSample, int maxSamples) {
   check(img.bandVariance, static_cast<size_t>(nb), "the Variance channels");
   check(img.yVariance, 1, "Variance.Y");
   check(img.white, static_cast<size_t>(nb), "the white-reference channels");
+  for (const ImageLayer& l : img.layers) {
+    check(l.values, static_cast<size_t>(nb), "a component layer");
+    check(l.variances, static_cast<size_t>(nb), "a component layer's variances");
+  }
   for (size_t i = 0; i < pixels; ++i)
     if (img.sampleCount[i] > static_cast<uint32_t>(maxSamples))
       throw Error(where(i) + ": expected at most the " + std::to_string(maxSamples) +
@@ -368,6 +420,9 @@ Film filmFromImage(const SpectralImage& img, int firstSample, int maxSamples) {
   Film film(img.displayWidth(), img.displayHeight(),
             {img.originX, img.originY, img.originX + img.width, img.originY + img.height},
             img.bands, !img.white.empty());
+  std::vector<std::string> layerNames;
+  for (const ImageLayer& l : img.layers) layerNames.push_back(l.name);
+  film.setLayers(layerNames);
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const size_t i = static_cast<size_t>(y) * img.width + x;
@@ -377,6 +432,10 @@ Film filmFromImage(const SpectralImage& img, int firstSample, int maxSamples) {
                         img.yVariance.empty() ? 0.0 : img.yVariance[i], img.sampleCount[i],
                         oddSamplesIn(firstSample, img.sampleCount[i]),
                         img.white.empty() ? nullptr : &img.white[i * nb]);
+      for (size_t l = 0; l < img.layers.size(); ++l)
+        film.setLayerFromMeans(
+            img.originX + x, img.originY + y, static_cast<int>(l), &img.layers[l].values[i * nb],
+            img.layers[l].variances.empty() ? nullptr : &img.layers[l].variances[i * nb]);
     }
   return film;
 }

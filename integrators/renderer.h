@@ -34,6 +34,10 @@ struct RenderOptions {
   /// Also estimate the white reference (traceWhiteReference) per band: one more path per
   /// sample, in every mode.
   bool whiteReference = false;
+  /// Also split the radiance into component layers (path tracing only): reflected, fluoresced,
+  /// direct, indirect (components) and one layer per light group (lightGroups); see
+  /// componentLayerNames.
+  bool components = false, lightGroups = false;
   SamplerKind sampler = SamplerKind::SobolOwen;
   int tileSize = 16;
   int passSamples = 8; ///< samples per pixel in one pass (progress, checkpoints, stops)
@@ -104,6 +108,12 @@ std::vector<std::string> warningsOf(const RenderStats& stats);
 /// Throws nx::Error naming `what` when every sample of a render was non-finite: such an
 /// image holds nothing and must not be written as a black one.
 void requireSomeFiniteSamples(const RenderStats& stats, const std::string& what);
+
+/// The component layers a render with these options keeps, in film order: "reflected",
+/// "fluoresced", "direct", "indirect" (components), then "light.NAME" per light group of the
+/// scene (lightGroups).
+std::vector<std::string> componentLayerNames(const RenderScene& scene,
+                                             const RenderOptions& options);
 
 /// Renders the scene with its mode (spectral_mcpt and mcpt: path tracing; rt: Whitted).
 RenderOutput render(const RenderScene& scene, const RenderOptions& options);

@@ -47,8 +47,10 @@ public:
                   ": expected an <illum> with visible light (the preview's white balance "
                   "needs its colour), found luminance Y = " +
                   numberText(w.y));
-    if (s.background)
+    if (s.background) {
       scene.background = forRendering(refs_.resolve(*s.background, SpectrumRole::Emission));
+      scene.lightGroups.ofBackground = scene.lightGroups.idOf(s.backgroundGroup);
+    }
 
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
@@ -96,6 +98,8 @@ public:
       if (o.medium) {
         app.medium = static_cast<int32_t>(scene.media.size());
         scene.media.push_back(medium(*o.medium));
+        scene.lightGroups.ofMedium.push_back(
+            scene.media.back().emission ? scene.lightGroups.idOf(o.group) : 0);
         scene.hasMedia = true;
         if (scene.media.back().dye) scene.hasFluorescence = true;
       }
@@ -106,6 +110,7 @@ public:
       if (auto e = emission(o, spectral, geometry)) {
         app.emission = static_cast<int32_t>(scene.emission.size());
         scene.emission.push_back(forRendering(*e));
+        scene.lightGroups.ofEmission.push_back(scene.lightGroups.idOf(o.group));
       }
       double extent = 0; // how far from the origin it reaches (a medium's float resolution)
       std::visit(
@@ -139,7 +144,10 @@ public:
       if (o.medium)
         warnIfBelowFloatPrecision(scene.media.back(), o.medium->loc, extent, scene.warnings);
     }
-    for (const LightDesc& l : desc_.lights) scene.lights.push_back(light(l, spectral));
+    for (const LightDesc& l : desc_.lights) {
+      scene.lights.push_back(light(l, spectral));
+      scene.lightGroups.ofLight.push_back(scene.lightGroups.idOf(l.group));
+    }
     if (!triangles.empty()) {
       meshes.push_back(TriangleMesh::fromTriangles(triangles));
       scene.meshes.push_back(std::move(inlineTriangles));

@@ -138,6 +138,25 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
   const bool white = all(&SpectralImage::white), ids = all(&SpectralImage::objectId),
              depth = all(&SpectralImage::depth);
   std::vector<double> whiteSum(white ? pixels * nb : 0, 0.0);
+  // Component layers: every part holds the same ones (the render key names them too), merged
+  // like the bands (means weighted by samples, variances by their square).
+  auto layerNames = [](const SpectralImage& img) {
+    std::string names;
+    for (const ImageLayer& l : img.layers) names += (names.empty() ? "" : ",") + l.name;
+    return names;
+  };
+  const size_t nLayers = first.image.layers.size();
+  for (const ImagePart& p : parts)
+    if (layerNames(p.image) != layerNames(first.image))
+      throw Error(p.name + ": does not belong with " + first.name + ": its component layers are '" +
+                  layerNames(p.image) + "', not '" + layerNames(first.image) + "'");
+  const bool layerVariances = std::all_of(parts.begin(), parts.end(), [](const ImagePart& p) {
+    return std::all_of(p.image.layers.begin(), p.image.layers.end(),
+                       [](const ImageLayer& l) { return !l.variances.empty(); });
+  });
+  std::vector<std::vector<double>> layerSum(nLayers, std::vector<double>(pixels * nb, 0.0));
+  std::vector<std::vector<double>> layerVar(
+      nLayers, std::vector<double>(layerVariances ? pixels * nb : 0, 0.0));
   if (ids) out.objectId.assign(pixels, 0), out.materialId.assign(pixels, 0);
   if (depth) out.depth.assign(pixels, 0.0f);
   std::vector<uint64_t> count(pixels, 0);
@@ -180,6 +199,12 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
         if (white)
           for (int b = 0; b < nb; ++b)
             whiteSum[dst * nb + b] += static_cast<double>(p.white[src * nb + b]) * n;
+        for (size_t l = 0; l < nLayers; ++l)
+          for (int b = 0; b < nb; ++b) {
+            layerSum[l][dst * nb + b] += static_cast<double>(p.layers[l].values[src * nb + b]) * n;
+            if (layerVariances)
+              layerVar[l][dst * nb + b] += p.layers[l].variances[src * nb + b] * n * n;
+          }
         if (ids) out.objectId[dst] = p.objectId[src], out.materialId[dst] = p.materialId[src];
         if (depth) out.depth[dst] = p.depth[src];
         count[dst] += p.sampleCount[src];
@@ -235,6 +260,9 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
     out.yVariance.resize(pixels);
   }
   if (white) out.white.resize(pixels * nb);
+  for (size_t l = 0; l < nLayers; ++l)
+    out.layers.push_back({first.image.layers[l].name, std::vector<float>(pixels * nb),
+                          std::vector<float>(layerVariances ? pixels * nb : 0)});
   for (size_t i = 0; i < pixels; ++i) {
     out.sampleCount[i] = static_cast<uint32_t>(count[i]);
     if (covering[i] == 1) { // a single part: its values, bit for bit
@@ -245,6 +273,11 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
       std::copy_n(&p.xyz[src * 3], 3, &out.xyz[i * 3]);
       std::copy_n(&p.rgb[src * 3], 3, &out.rgb[i * 3]);
       if (white) std::copy_n(&p.white[src * nb], nb, &out.white[i * nb]);
+      for (size_t l = 0; l < nLayers; ++l) {
+        std::copy_n(&p.layers[l].values[src * nb], nb, &out.layers[l].values[i * nb]);
+        if (layerVariances)
+          std::copy_n(&p.layers[l].variances[src * nb], nb, &out.layers[l].variances[i * nb]);
+      }
       if (variances) {
         std::copy_n(&p.bandVariance[src * nb], nb, &out.bandVariance[i * nb]);
         out.yVariance[i] = p.yVariance[src];
@@ -256,6 +289,13 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
       out.radiance[i * nb + b] = static_cast<float>(bandSum[i * nb + b] / n);
     for (int b = 0; b < nb && white; ++b)
       out.white[i * nb + b] = static_cast<float>(whiteSum[i * nb + b] / n);
+    for (size_t l = 0; l < nLayers; ++l)
+      for (int b = 0; b < nb; ++b) {
+        out.layers[l].values[i * nb + b] = static_cast<float>(layerSum[l][i * nb + b] / n);
+        if (layerVariances)
+          out.layers[l].variances[i * nb + b] =
+              static_cast<float>(layerVar[l][i * nb + b] / (n * n));
+      }
     if (variances) {
       for (int b = 0; b < nb; ++b)
         out.bandVariance[i * nb + b] = static_cast<float>(bandVar[i * nb + b] / (n * n));
@@ -365,6 +405,21 @@ SpectralImage stitchBands(const std::vector<ImagePart>& images) {
   out.radiance.assign(pixels * nb, 0.0f);
   out.bandVariance.assign(variances ? pixels * nb : 0, 0.0f);
   out.white.assign(white ? pixels * nb : 0, 0.0f);
+  // Component layers: the same ones in every image, stitched like the bands.
+  for (const ImagePart& p : images) {
+    bool same = p.image.layers.size() == a.layers.size();
+    for (size_t l = 0; same && l < a.layers.size(); ++l)
+      same = p.image.layers[l].name == a.layers[l].name &&
+             p.image.layers[l].variances.empty() == a.layers[l].variances.empty();
+    if (!same)
+      throw Error(p.name + ": cannot be stitched with " + first.name +
+                  ": it holds other component layers (render every band range with the same "
+                  "--aov)");
+  }
+  for (ImageLayer& l : out.layers) {
+    l.values.assign(pixels * nb, 0.0f);
+    if (!l.variances.empty()) l.variances.assign(pixels * nb, 0.0f);
+  }
   for (size_t c = 0; c < nb; ++c) {
     const SpectralImage& src = images[sortedSources[c].image].image;
     const size_t srcBands = static_cast<size_t>(src.bands.count()),
@@ -373,6 +428,11 @@ SpectralImage stitchBands(const std::vector<ImagePart>& images) {
       out.radiance[i * nb + c] = src.radiance[i * srcBands + b];
       if (variances) out.bandVariance[i * nb + c] = src.bandVariance[i * srcBands + b];
       if (white) out.white[i * nb + c] = src.white[i * srcBands + b];
+      for (size_t l = 0; l < out.layers.size(); ++l) {
+        out.layers[l].values[i * nb + c] = src.layers[l].values[i * srcBands + b];
+        if (!out.layers[l].variances.empty())
+          out.layers[l].variances[i * nb + c] = src.layers[l].variances[i * srcBands + b];
+      }
     }
   }
   setTotalRenderSeconds(out, images);

@@ -78,6 +78,7 @@ struct ObjectDesc : MaterialDesc {
   std::optional<double> emissionAt;
   bool emissionFlux = false;        ///< <emission quantity="flux">: the spectrum is the total flux
   std::optional<MediumDesc> medium; ///< the medium filling a sphere or closed mesh, if any
+  std::string group; ///< its group="NAME" (light groups: its emission's layer), or empty
 };
 
 /// A <light type="...">: a light kind (point by default, Niixtracer's) and its parameters as
@@ -86,6 +87,7 @@ struct LightDesc {
   std::string kind = "point";
   ParameterSet params; ///< <position>, <color>, <emission> (its scale="..." as emission_scale), ...
   SourceLocation loc;
+  std::string group; ///< its group="NAME" (light groups), or empty
 };
 
 /// The pinhole camera.
@@ -118,6 +120,7 @@ struct SettingsDesc {
   std::optional<SpectrumDesc> illuminant; ///< <illum>
   Sensor bands;
   std::optional<SpectrumDesc> background; ///< uniform environment radiance
+  std::string backgroundGroup;            ///< <background group="NAME">, or empty
   uint32_t seed = 0;
   SourceLocation loc, widthLoc, modeLoc;
 };

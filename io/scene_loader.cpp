@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -549,7 +550,10 @@ private:
     for (const char* tag : {"sampl", "samp1"})
       if (c.count(tag)) s.samples = integer(c.at(tag), "a sample count per pixel", 1, 1 << 30);
     if (c.count("illum")) s.illuminant = spectrum(c.at("illum"), false);
-    if (c.count("background")) s.background = spectrum(c.at("background"), true);
+    if (c.count("background")) {
+      s.background = spectrum(c.at("background"), true, {"group"});
+      s.backgroundGroup = groupAttribute(c.at("background"));
+    }
     if (c.count("bands")) {
       try {
         s.bands = Sensor(SpectralBands::parse(text(c.at("bands"))));
@@ -680,11 +684,29 @@ private:
     return out;
   }
 
+  // A light group's name from group="NAME" on an emitter: letters, digits, '_' and '-' (it
+  // becomes part of EXR channel names, light.NAME.S0.<band>nm); empty when absent.
+  std::string groupAttribute(const pugi::xml_node& n) const {
+    const pugi::xml_attribute a = n.attribute("group");
+    if (!a) return {};
+    const std::string g = trim(decoded(a.value(), n));
+    const bool valid = !g.empty() && std::all_of(g.begin(), g.end(), [](char ch) {
+      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-';
+    });
+    if (!valid)
+      fail(n,
+           "a light group name of letters, digits, '_' and '-' in group=\"...\" on <" +
+               std::string(n.name()) + ">",
+           g.empty() ? "an empty one" : shownText(g));
+    return g;
+  }
+
   // <light type="kind"> (point when absent) with the kind's parameters as children.
   LightDesc parseLight(const pugi::xml_node& n) const {
-    checkAttributes(n, {"type"});
+    checkAttributes(n, {"type", "group"});
     LightDesc l;
     l.loc = loc(n);
+    l.group = groupAttribute(n);
     if (n.attribute("type")) l.kind = trim(decoded(n.attribute("type").value(), n));
     const LightKindSpec* kind = findLightKind(l.kind);
     if (!kind) fail(n, "a light type " + lightKindList(), shownText(l.kind));
@@ -953,6 +975,7 @@ private:
     for (const ShapeParameter& p : kind.params())
       (p.attribute ? attributes : allowed).push_back(p.spec.name);
     attributes.push_back("name");
+    attributes.push_back("group");
     checkAttributes(n, attributes);
     if (kind.holdsMedium) allowed.push_back("medium");
     const auto c = uniqueChildren(n, allowed);
@@ -1011,6 +1034,10 @@ private:
              "both");
     }
     if (c.count("medium")) o.medium = medium(c.at("medium"));
+    o.group = groupAttribute(n);
+    if (!o.group.empty() && !o.emission && !o.medium)
+      fail(n, "group=\"" + o.group + "\" on an emitter (an <emission> or an emitting <medium>)",
+           "a <" + tag + "> that emits nothing");
     return o;
   }
 

@@ -8,6 +8,7 @@
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 #include <ImfThreading.h>
+#include <algorithm>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -95,6 +96,10 @@ bool fitsInHalf(const SpectralImage& image) {
                                       &image.yVariance, &image.white, &image.depth})
     for (float x : *v)
       if (!(std::abs(x) <= 65504.0f)) return false;
+  for (const ImageLayer& l : image.layers)
+    for (const std::vector<float>* v : {&l.values, &l.variances})
+      for (float x : *v)
+        if (!(std::abs(x) <= 65504.0f)) return false;
   return true;
 }
 
@@ -121,6 +126,10 @@ void checkFiniteValues(const std::string& path, const SpectralImage& image) {
   check(image.yVariance, 1, "Variance.Y");
   check(image.white, nb, "the white-reference channels");
   check(image.depth, 1, "Depth");
+  for (const ImageLayer& l : image.layers) {
+    check(l.values, nb, ("the " + l.name + " layer").c_str());
+    check(l.variances, nb, ("the " + l.name + " layer's variances").c_str());
+  }
 }
 
 // Float channels are stored as `stored` (FLOAT or HALF; OpenEXR converts from the float
@@ -138,8 +147,15 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
       (!image.white.empty() && image.white.size() != pixels * nBands) ||
       (!image.objectId.empty() && image.objectId.size() != pixels) ||
       (!image.materialId.empty() && image.materialId.size() != pixels) ||
-      (!image.depth.empty() && image.depth.size() != pixels) || image.originX < 0 ||
-      image.originY < 0 || image.originX + image.width > image.displayWidth() ||
+      (!image.depth.empty() && image.depth.size() != pixels) ||
+      std::any_of(image.layers.begin(), image.layers.end(),
+                  [&](const ImageLayer& l) {
+                    return l.values.size() != pixels * nBands ||
+                           (!l.variances.empty() && l.variances.size() != pixels * nBands) ||
+                           l.name.empty() || l.name.find(',') != std::string::npos;
+                  }) ||
+      image.originX < 0 || image.originY < 0 ||
+      image.originX + image.width > image.displayWidth() ||
       image.originY + image.height > image.displayHeight())
     throw Error(path + ": internal error: image buffers do not match its size");
   checkExrOutputName(path);
@@ -165,13 +181,18 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
     // measured sensor's band list), centroid and FWHM, comma-separated in channel order.
     for (const auto& [key, value] : bandAttributes(image.bands))
       header.insert(key, Imf::StringAttribute(value));
+    if (!image.layers.empty()) {
+      std::string names;
+      for (const ImageLayer& l : image.layers) names += (names.empty() ? "" : ",") + l.name;
+      header.insert(kComponentLayersAttribute, Imf::StringAttribute(names));
+    }
 
     Imf::FrameBuffer fb;
     // A float channel: `first` is its value in the first pixel, `stride` floats apart. Half
     // channels get converted copies (OpenEXR converts half to float when reading, not float to
     // half when writing).
     std::vector<std::vector<half>> halves;
-    halves.reserve(2 * static_cast<size_t>(nBands) + 8);
+    halves.reserve((2 + 2 * image.layers.size()) * static_cast<size_t>(nBands) + 8);
     auto addChannel = [&](const std::string& name, const float* first, size_t stride) {
       header.channels().insert(name, Imf::Channel(stored));
       if (stored == Imf::FLOAT) {
@@ -201,6 +222,12 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
       addChannel(kWhitePrefix + spectralChannelName(image.bands.channelNm(b)),
                  image.white.data() + b, nb);
     if (!image.depth.empty()) addChannel(kDepthChannel, image.depth.data(), 1);
+    for (const ImageLayer& l : image.layers)
+      for (int b = 0; b < nBands; ++b) {
+        const std::string channel = l.name + "." + spectralChannelName(image.bands.channelNm(b));
+        addChannel(channel, l.values.data() + b, nb);
+        if (!l.variances.empty()) addChannel(kVariancePrefix + channel, l.variances.data() + b, nb);
+      }
     auto addUint = [&](const char* name, const std::vector<uint32_t>& v) {
       if (v.empty()) return;
       header.channels().insert(name, Imf::Channel(Imf::UINT));
@@ -339,6 +366,39 @@ SpectralImage readSpectralExr(const std::string& path) {
         fb.insert(kWhitePrefix + bandChannels[static_cast<size_t>(b)],
                   Imf::Slice::Make(Imf::FLOAT, img.white.data() + b, dw, sizeof(float) * nb,
                                    sizeof(float) * nb * img.width));
+    }
+    // Component layers: the channels the attribute names, each one required.
+    if (const auto it = img.attributes.find(kComponentLayersAttribute);
+        it != img.attributes.end()) {
+      std::string rest = it->second;
+      img.attributes.erase(it);
+      while (!rest.empty()) {
+        const size_t comma = rest.find(',');
+        ImageLayer& l = img.layers.emplace_back();
+        l.name = rest.substr(0, comma);
+        rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+      }
+      for (ImageLayer& l : img.layers) {
+        const bool variances =
+            h.channels().findChannel(kVariancePrefix + l.name + "." + bandChannels[0]) != nullptr;
+        l.values.assign(pixels * nb, 0.0f);
+        if (variances) l.variances.assign(pixels * nb, 0.0f);
+        for (int b = 0; b < nb; ++b) {
+          const std::string channel = l.name + "." + bandChannels[static_cast<size_t>(b)];
+          if (!h.channels().findChannel(channel))
+            throw Error(path + ": expected a channel " + channel + " (" +
+                        kComponentLayersAttribute + " lists the layer " + l.name + "), found none");
+          fb.insert(channel, Imf::Slice::Make(Imf::FLOAT, l.values.data() + b, dw,
+                                              sizeof(float) * nb, sizeof(float) * nb * img.width));
+          if (!variances) continue;
+          if (!h.channels().findChannel(kVariancePrefix + channel))
+            throw Error(path + ": expected a channel " + kVariancePrefix + channel +
+                        " (the layer's other bands have variances), found none");
+          fb.insert(kVariancePrefix + channel,
+                    Imf::Slice::Make(Imf::FLOAT, l.variances.data() + b, dw, sizeof(float) * nb,
+                                     sizeof(float) * nb * img.width));
+        }
+      }
     }
     if (h.channels().findChannel(kDepthChannel)) {
       img.depth.assign(pixels, 0.0f);

@@ -13,6 +13,14 @@
 
 namespace nx {
 
+/// A component layer of a spectral image (--aov components, lightgroups): per band, the part of
+/// the radiance carried by one class of paths, and the variance of its mean.
+struct ImageLayer {
+  std::string name;             ///< "reflected", "fluoresced", "direct", "indirect", "light.NAME"
+  std::vector<float> values;    ///< [pixel][band], like SpectralImage::radiance
+  std::vector<float> variances; ///< [pixel][band]; empty: not stored
+};
+
 /// A spectral image, or a rectangular part (crop) of one: band radiances, a linear sRGB
 /// preview and per-pixel sample counts.
 struct SpectralImage {
@@ -32,6 +40,9 @@ struct SpectralImage {
   std::vector<uint32_t> objectId;   ///< [pixel] object seen at the pixel centre (0: none)
   std::vector<uint32_t> materialId; ///< [pixel] its material (0: none)
   std::vector<float> depth; ///< [pixel] camera-space z of the surface at the pixel centre (0: none)
+  /// Component layers, as EXR channels <name>.S0.<band>nm and Variance.<name>.S0.<band>nm,
+  /// listed in the attribute nxrender.componentLayers
+  std::vector<ImageLayer> layers;
   std::map<std::string, std::string> attributes; ///< provenance, written as string attributes
 
   /// Full image size (the region's when fullWidth/fullHeight are 0).
@@ -45,6 +56,8 @@ inline constexpr const char* kSampleCountChannel = "SampleCount";
 inline constexpr const char* kVariancePrefix = "Variance.";
 /// Prefix of the white-reference channels ("white.S0.550,000000nm").
 inline constexpr const char* kWhitePrefix = "white.";
+/// The attribute listing an image's component layers (comma-separated, in channel order).
+inline constexpr const char* kComponentLayersAttribute = "nxrender.componentLayers";
 /// Names of the id and depth channels.
 inline constexpr const char* kObjectIdChannel = "ObjectId";
 inline constexpr const char* kMaterialIdChannel = "MaterialId";

@@ -124,6 +124,35 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
   }
   if (selection_ == LightSelection::Local && count() > kMaxLocalLights)
     selection_ = LightSelection::Power;
+  // Each light's group (light groups): an emitting shape's by its emission, a <light>'s by its
+  // place in the list.
+  const LightGroups& groups = scene.lightGroups;
+  auto groupOf = [&](int32_t emission) {
+    return emission >= 0 && static_cast<size_t>(emission) < groups.ofEmission.size()
+               ? groups.ofEmission[static_cast<size_t>(emission)]
+               : uint16_t{0};
+  };
+  for (const Light& l : lights_) {
+    uint16_t g = 0;
+    switch (l.kind) {
+    case LightKind::Sphere:
+      g = groupOf(scene.spheres[l.shape].emission);
+      break;
+    case LightKind::Mesh:
+      g = groupOf(scene.meshes[l.shape]
+                      .of(l.triangle < 0 ? 0u : static_cast<uint32_t>(l.triangle))
+                      .emission);
+      break;
+    case LightKind::Point:
+    case LightKind::Environment:
+      g = l.shape < groups.ofLight.size() ? groups.ofLight[l.shape] : uint16_t{0};
+      break;
+    case LightKind::Background:
+      g = groups.ofBackground;
+      break;
+    }
+    group_.push_back(g);
+  }
 
   // Choice probabilities: by power (uniform when every power is zero or not finite).
   double total = 0;

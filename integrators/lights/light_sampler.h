@@ -41,6 +41,12 @@ public:
   LightKind kind(int k) const { return lights_[static_cast<size_t>(k)].kind; }
   /// Triangles light k samples among (1 for points, spheres and the background).
   size_t triangleCount(int k) const;
+  /// The light group (RenderScene::lightGroups) light k belongs to.
+  uint16_t group(int k) const { return group_[static_cast<size_t>(k)]; }
+  /// The light group of environment light i.
+  uint16_t environmentGroup(int i) const {
+    return group_[static_cast<size_t>(environments_[static_cast<size_t>(i)])];
+  }
   /// Emitted power of light k over the traced range (W; the selection's weights).
   double power(int k) const { return lights_[static_cast<size_t>(k)].power; }
 
@@ -103,6 +109,7 @@ private:
   std::vector<std::vector<int32_t>> triangleLight_; ///< per mesh with inline triangles
   int32_t background_ = -1;
   std::vector<int32_t> environments_; ///< light numbers of the environment lights
+  std::vector<uint16_t> group_;       ///< light group per light
 };
 
 } // namespace nx
