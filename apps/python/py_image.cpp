@@ -247,6 +247,27 @@ void bindImage(py::module_& m) {
           },
           "(H, W, bands) float32: white reference (aovs=['white']), or None")
       .def_property_readonly(
+          "components",
+          [](py::object self) {
+            auto& i = self.cast<PyImage&>().image;
+            py::dict out;
+            for (auto& l : i.layers) out[py::str(l.name)] = view(self, l.values, i.bands.count());
+            return out;
+          },
+          "dict of component layer name ('reflected', 'fluoresced', 'direct', 'indirect', "
+          "'light.NAME') -> (H, W, bands) float32 (aovs=['components', 'lightgroups']); empty "
+          "without them")
+      .def_property_readonly(
+          "component_variances",
+          [](py::object self) {
+            auto& i = self.cast<PyImage&>().image;
+            py::dict out;
+            for (auto& l : i.layers)
+              out[py::str(l.name)] = view(self, l.variances, i.bands.count());
+            return out;
+          },
+          "dict of component layer name -> (H, W, bands) float32 variance of its means")
+      .def_property_readonly(
           "object_id",
           [](py::object self) { return view(self, self.cast<PyImage&>().image.objectId, 1); },
           "(H, W) uint32: object at each pixel centre, 0 for none (aovs=['ids']), or None")

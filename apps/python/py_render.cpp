@@ -125,12 +125,15 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   choices.density = optionString(density, "wavelength_density");
   choices.noFluorescence = !fluorescence;
   if (py::isinstance<py::str>(aovs) || !py::hasattr(aovs, "__iter__"))
-    throw py::type_error("aovs: expected a list of 'white', 'ids', 'depth', found " +
+    throw py::type_error("aovs: expected a list of 'white', 'ids', 'depth', 'components', "
+                         "'lightgroups', found " +
                          typeName(aovs));
   for (const py::handle a : aovs) {
     const std::string name = stringArgument(a, "aovs");
     if (!nx::addAov(choices, name))
-      throw py::value_error("aovs: expected 'white', 'ids' or 'depth', found '" + name + "'");
+      throw py::value_error("aovs: expected 'white', 'ids', 'depth', 'components' or "
+                            "'lightgroups', found '" +
+                            name + "'");
   }
   if (!targetError.is_none())
     choices.targetError = numberArgument(targetError, "target_error", 1e-9, 1e9);

@@ -211,11 +211,13 @@ TEST(Farm, DisjointBandRangesStitch) {
 ImagePart aovPart(const std::string& name, std::optional<PixelRect> crop, int first, int count) {
   RenderOptions o;
   o.whiteReference = true;
+  o.components = o.lightGroups = true;
   return renderedPart(name, o, crop, first, count, /*geometryAovs=*/true);
 }
 
-// The AOVs merge with the rest: crops bit for bit, sample ranges averaged (white reference)
-// or taken as they are (ids and depth, the same in every range).
+// The AOVs merge with the rest: crops bit for bit, sample ranges averaged (white reference,
+// component layers and their variances) or taken as they are (ids and depth, the same in every
+// range).
 TEST(Farm, AovsMergeLikeTheBands) {
   const SpectralImage full = aovPart("full", std::nullopt, 0, 4).image;
   ASSERT_FALSE(full.white.empty());
@@ -225,6 +227,13 @@ TEST(Farm, AovsMergeLikeTheBands) {
   EXPECT_EQ(crops.objectId, full.objectId);
   EXPECT_EQ(crops.materialId, full.materialId);
   EXPECT_EQ(crops.depth, full.depth);
+  ASSERT_EQ(full.layers.size(), 5u); // 4 path classes and the group "default"
+  ASSERT_EQ(crops.layers.size(), full.layers.size());
+  for (size_t l = 0; l < full.layers.size(); ++l) {
+    EXPECT_EQ(crops.layers[l].name, full.layers[l].name);
+    EXPECT_EQ(crops.layers[l].values, full.layers[l].values) << full.layers[l].name;
+    EXPECT_EQ(crops.layers[l].variances, full.layers[l].variances) << full.layers[l].name;
+  }
   const SpectralImage ranges =
       mergeParts({aovPart("r1", std::nullopt, 0, 1), aovPart("r2", std::nullopt, 1, 3)});
   ASSERT_EQ(ranges.white.size(), full.white.size());
@@ -232,6 +241,19 @@ TEST(Farm, AovsMergeLikeTheBands) {
     ASSERT_NEAR(ranges.white[i], full.white[i], 1e-5f * (1 + full.white[i])) << i;
   EXPECT_EQ(ranges.objectId, full.objectId);
   EXPECT_EQ(ranges.depth, full.depth);
+  ASSERT_EQ(ranges.layers.size(), full.layers.size());
+  for (size_t l = 0; l < full.layers.size(); ++l)
+    for (size_t i = 0; i < full.layers[l].values.size(); ++i)
+      ASSERT_NEAR(ranges.layers[l].values[i], full.layers[l].values[i],
+                  1e-5f * (1 + full.layers[l].values[i]))
+          << full.layers[l].name << " " << i;
+  // Parts with other layers do not merge.
+  ImagePart plain = part("plain", std::nullopt, 1, 3);
+  EXPECT_EQ(test::errorMessage([&] {
+              mergeParts({aovPart("r1", std::nullopt, 0, 1), plain});
+            }),
+            "plain: does not belong with r1: its component layers are '', not "
+            "'reflected,fluoresced,direct,indirect,light.default'");
 }
 
 // A render stopped part-way holds whole tiles with their true sample counts; resuming it

@@ -5,6 +5,7 @@
 
 #include "integrators/renderer.h"
 #include "spectra/reradiation_matrix.h"
+#include "support/furnace_solution.h"
 #include "support/statistics.h"
 #include "support/synthetic_eem.h"
 
@@ -17,35 +18,7 @@ RenderOutput renderText(const std::string& text) {
   return render(buildRenderScene(parseScene(text, "t.scn")), {});
 }
 
-// Solves A x = b by Gaussian elimination with partial pivoting (independent of the renderer).
-std::vector<double> solve(std::vector<std::vector<double>> a, std::vector<double> b) {
-  const size_t n = b.size();
-  for (size_t c = 0; c < n; ++c) {
-    size_t p = c;
-    for (size_t r = c + 1; r < n; ++r)
-      if (std::abs(a[r][c]) > std::abs(a[p][c])) p = r;
-    std::swap(a[c], a[p]);
-    std::swap(b[c], b[p]);
-    for (size_t r = c + 1; r < n; ++r) {
-      const double f = a[r][c] / a[c][c];
-      for (size_t k = c; k < n; ++k) a[r][k] -= f * a[c][k];
-      b[r] -= f * b[c];
-    }
-  }
-  std::vector<double> x(n);
-  for (size_t r = n; r-- > 0;) {
-    double s = b[r];
-    for (size_t k = r + 1; k < n; ++k) s -= a[r][k] * x[k];
-    x[r] = s / a[r][r];
-  }
-  return x;
-}
-
-// Bands of 10 nm starting at 400 cover two 5 nm grid bins each: their average.
-double bandOfBins(const std::vector<double>& perBin, const Sensor& bands, int b) {
-  const int first = RM::binOf(bands.channel(b).lo + 0.1);
-  return 0.5 * (perBin[static_cast<size_t>(first)] + perBin[static_cast<size_t>(first) + 1]);
-}
+using test::bandOfBins;
 
 void expectBandsEqual(const Film& film, const std::function<double(int)>& expected,
                       double precision, const std::string& what) {
@@ -87,13 +60,7 @@ TEST(Fluorescence, FurnaceMatchesTheMatrixSolution) {
                    "material><reflectance>0.5</reflectance>"
                    "<emission>0.5</emission><fluorescence>" +
                    c.fluorescence + "</fluorescence></sphere></scene>");
-    const RM m = RM::fromModel(c.model);
-    std::vector<std::vector<double>> a(RM::kBins, std::vector<double>(RM::kBins, 0));
-    for (int o = 0; o < RM::kBins; ++o) {
-      a[o][o] = 1 - m.elastic(o, rho);
-      for (int i = 0; i < RM::kBins; ++i) a[o][i] -= m(i, o); // (M^T)[o][i]
-    }
-    const std::vector<double> L = solve(a, std::vector<double>(RM::kBins, le));
+    const std::vector<double> L = test::furnaceRadiance(RM::fromModel(c.model), rho, le);
     expectBandsEqual(
         out.film, [&](int b) { return bandOfBins(L, out.film.bands(), b); }, 0.02, c.fluorescence);
     EXPECT_EQ(out.stats.nonFinite, 0u);

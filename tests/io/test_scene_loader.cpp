@@ -137,7 +137,7 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
       {"repeated tag", scene("<sphere><radius>1</radius><radius>2</radius></sphere>\n"),
        "t.scn:4: expected one <radius>, found a second <radius>"},
       {"unknown attribute", scene("<sphere colour=\"red\"></sphere>\n"),
-       "t.scn:4: expected only the attribute(s) name on <sphere>, found attribute 'colour'"},
+       "t.scn:4: expected only the attribute(s) name, group on <sphere>, found attribute 'colour'"},
       {"stray text", scene("hello\n"),
        "t.scn:4: expected only elements inside <scene>, found text 'hello'"},
       {"missing settings",

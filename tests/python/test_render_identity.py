@@ -19,6 +19,11 @@ def assert_same_pixels(a, b):
             assert x.dtype == y.dtype, name
             assert np.array_equal(x.view(np.uint8), y.view(np.uint8)), name
     assert a.origin == b.origin and a.full_size == b.full_size
+    for field in ("components", "component_variances"):
+        x, y = getattr(a, field), getattr(b, field)
+        assert list(x) == list(y), field
+        for name in x:
+            assert np.array_equal(x[name].view(np.uint8), y[name].view(np.uint8)), (field, name)
 
 
 @pytest.mark.parametrize("cli_args, py_args", [
@@ -30,6 +35,8 @@ def assert_same_pixels(a, b):
       "--light-sampling", "nee", "--light-selection", "power"],
      dict(spp=4, sensor="gaussian:450,530,610@25", sampler="independent",
           light_sampling="nee", light_selection="power")),
+    (["--spp", "4", "--aov", "components,lightgroups"],
+     dict(spp=4, aovs=["components", "lightgroups"])),
     (["--spp", "4", "--no-fluorescence", "--wavelength-density", "visible"],
      dict(spp=4, fluorescence=False, wavelength_density="visible")),
 ])
