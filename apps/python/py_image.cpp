@@ -37,6 +37,16 @@ py::object view(const py::object& owner, std::vector<T>& data, int depth) {
                         std::vector<py::ssize_t>{w * d * s, d * s, s}, data.data(), owner);
 }
 
+// One array view per component layer of the image owned by `self`, by layer name: its values
+// or its variances (`member`).
+py::dict layerViews(const py::object& self, std::vector<float> nx::ImageLayer::*member) {
+  auto& image = self.cast<PyImage&>().image;
+  py::dict out;
+  for (nx::ImageLayer& l : image.layers)
+    out[py::str(l.name)] = view(self, l.*member, image.bands.count());
+  return out;
+}
+
 // Copies a numpy-convertible array of shape (H, W, depth) (or (H, W) when depth is 0) into a
 // pixel-interleaved vector. Every value must be a real number that T holds as it is: finite,
 // within [lo, hi], and whole for an integer T. Nothing is coerced (a complex array lost its
@@ -247,25 +257,13 @@ void bindImage(py::module_& m) {
           },
           "(H, W, bands) float32: white reference (aovs=['white']), or None")
       .def_property_readonly(
-          "components",
-          [](py::object self) {
-            auto& i = self.cast<PyImage&>().image;
-            py::dict out;
-            for (auto& l : i.layers) out[py::str(l.name)] = view(self, l.values, i.bands.count());
-            return out;
-          },
+          "components", [](py::object self) { return layerViews(self, &nx::ImageLayer::values); },
           "dict of component layer name ('reflected', 'fluoresced', 'direct', 'indirect', "
           "'light.NAME') -> (H, W, bands) float32 (aovs=['components', 'lightgroups']); empty "
           "without them")
       .def_property_readonly(
           "component_variances",
-          [](py::object self) {
-            auto& i = self.cast<PyImage&>().image;
-            py::dict out;
-            for (auto& l : i.layers)
-              out[py::str(l.name)] = view(self, l.variances, i.bands.count());
-            return out;
-          },
+          [](py::object self) { return layerViews(self, &nx::ImageLayer::variances); },
           "dict of component layer name -> (H, W, bands) float32 variance of its means")
       .def_property_readonly(
           "object_id",
