@@ -171,7 +171,8 @@ int run(int argc, char** argv) {
       lightSelection = "local", sampler = "sobol", compression, adaptiveFrom, scenePath, cropText,
       rangeText, resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false,
-       envi = false, timings = false, adaptive = false;
+       envi = false, timings = false, adaptive = false, relightable = false;
+  double relightStep = 5;
   int adaptiveMinSpp = 16;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(nx::numberIn(1, 4096));
@@ -219,6 +220,13 @@ int run(int argc, char** argv) {
                  "(reflected., fluoresced., direct., indirect.S0.<band>nm: the radiance split by "
                  "path class, with variances; docs/components.md), lightgroups "
                  "(light.NAME.S0.<band>nm per light group, group=\"NAME\" on emitters)");
+  app.add_flag("--relightable", relightable,
+               "Also keep, per light group, the transport from each excitation bin to each "
+               "band (relight.GROUP.T.<excitation>nm.<band>nm channels), so that nxrelight "
+               "renders the image under any new emission spectra (docs/relighting.md)");
+  app.add_option("--relight-step", relightStep,
+                 "Width of the excitation bins of --relightable in nm: a divisor of 5 (1, 2.5, "
+                 "5) or a multiple of 5 (default 5; finer for line spectra, docs/relighting.md)");
   app.add_flag("--envi", envi,
                "Also write the bands as an ENVI cube beside the EXR: OUT.img (BSQ float32) and "
                "OUT.hdr (wavelength and fwhm lists), for spectral-imaging tools");
@@ -271,6 +279,10 @@ int run(int argc, char** argv) {
   clock.mark("load scene file");
   for (const auto& w : desc.warnings) std::fprintf(stderr, "%s\n", w.c_str());
   if (noFluorescence) nx::removeFluorescence(desc);
+  if (app.count("--relight-step") > 0 && !relightable)
+    throw nx::Error("--relight-step: only with --relightable (the excitation grid it keeps)");
+  if (relightable) nx::checkRelightStep(relightStep, "--relight-step");
+  desc.relightable = relightable;
   const nx::RenderScene scene = nx::buildRenderScene(desc);
   for (const auto& w : scene.warnings) std::fprintf(stderr, "%s\n", w.c_str());
   clock.mark("build scene (spectra, BVH)");
@@ -292,6 +304,8 @@ int run(int argc, char** argv) {
   choices.lightSelection = lightSelection;
   choices.density = density;
   choices.noFluorescence = noFluorescence;
+  choices.relightable = relightable;
+  choices.relightStepNm = relightStep;
   if (!rangeText.empty()) {
     if (spp > 0) throw nx::Error("--spp-range and --spp: give one of them");
     const auto r = integers(rangeText, ':', 2, "--spp-range");
@@ -475,6 +489,8 @@ int run(int argc, char** argv) {
   nx::ExrEncoding encoding;
   if (!compression.empty())
     encoding.compression = nx::parseExrCompression(compression, "--compression");
+  else if (relightable) // mostly zeros (paths that do not reach a pattern's pair): zip, lossless
+    encoding.compression = nx::ExrCompression::Zip;
   auto writeImage = [&](nx::SpectralImage image) {
     if (noVariance) {
       image.bandVariance.clear(), image.yVariance.clear();

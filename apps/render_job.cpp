@@ -135,12 +135,17 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
   }
   options_.adaptive = choices.adaptive;
   options_.adaptiveMinSamples = choices.adaptiveMinSamples;
+  if (choices.relightable != scene.relight.enabled)
+    throw Error("internal error: --relightable needs the scene built relightable");
+  if (choices.relightable) checkRelightStep(choices.relightStepNm, "--relight-step");
+  options_.relightStepNm = choices.relightStepNm;
 
   renderKey_ = hex(fnv1a64(
       std::string(NX_VERSION) + "|" + choices.sampler + "|" + choices.lightSampling + "|" +
           choices.lightSelection + "|" + choices.density + "|" +
           (choices.aovWhite ? "white|" : "") + (choices.aovComponents ? "components|" : "") +
           (choices.aovLightGroups ? "lightgroups|" : "") +
+          (choices.relightable ? "relight:" + numberText(choices.relightStepNm) + "|" : "") +
           (choices.noFluorescence ? "nofl" : "fl") + "|" + std::to_string(kLanes),
       scene.contentDigest));
   seed_ = choices.seed ? *choices.seed : scene.settings.seed;

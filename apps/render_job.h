@@ -28,6 +28,10 @@ struct RenderChoices {
   bool noFluorescence = false;          ///< fluorescent materials as their plain reflectance
   bool aovWhite = false, aovIds = false, aovDepth = false; ///< extra channels
   bool aovComponents = false, aovLightGroups = false;      ///< component layers
+  /// Keep the transport per light group (--relightable; the scene built with
+  /// SceneDesc::relightable) on an excitation grid of relightStepNm (--relight-step).
+  bool relightable = false;
+  double relightStepNm = 5;
   double targetError = 0;            ///< stop at this relative RMS error; 0 = off
   std::string errorOf = "luminance"; ///< luminance, bands or bands:LO-HI
   double timeLimit = 0;              ///< seconds; 0 = off

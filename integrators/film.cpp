@@ -44,8 +44,23 @@ void Film::setLayers(std::vector<std::string> names) {
   layerOddSums_.assign(n, 0.0);
 }
 
+void Film::setRelight(std::shared_ptr<const RelightPattern> pattern,
+                      std::vector<std::string> groups, std::vector<std::vector<double>> spectra) {
+  relightPattern_ = std::move(pattern);
+  relightGroupNames_ = relightPattern_ ? std::move(groups) : std::vector<std::string>();
+  relightGroupSpectra_ = relightPattern_ ? std::move(spectra) : std::vector<std::vector<double>>();
+  const size_t n = relightPattern_ ? counts_.size() * relightGroupNames_.size() *
+                                         static_cast<size_t>(relightPattern_->size())
+                                   : 0;
+  relightSums_.assign(n, 0.0f);
+  relightOddSums_.assign(n, 0.0f);
+}
+
 Film::Pixel Film::newPixel() const {
   Pixel p;
+  const size_t relight =
+      relightPattern_ ? static_cast<size_t>(relightGroups()) * relightPattern_->size() : 0;
+  for (auto& r : p.relight) r.assign(relight, 0.0);
   for (auto& b : p.bands) b.assign(static_cast<size_t>(nBands_), 0.0);
   for (auto& l : p.layers) l.assign(layerNames_.size() * static_cast<size_t>(nBands_), 0.0);
   if (hasWhite()) p.white.assign(static_cast<size_t>(nBands_), 0.0);
@@ -92,6 +107,28 @@ void Film::addLayerSamples(Pixel& pixel, const SampledWavelengths& lambda,
   }
 }
 
+uint64_t Film::addRelightSamples(Pixel& pixel, const SampledWavelengths& lambda,
+                                 const std::vector<RelightContribution>& contributions,
+                                 bool odd) const {
+  double* sums = pixel.relight[odd ? 1 : 0].data();
+  const RelightPattern& pattern = *relightPattern_;
+  const size_t perGroup = static_cast<size_t>(pattern.size());
+  uint64_t missed = 0;
+  for (const RelightContribution& c : contributions) {
+    const float v = c.value * WavelengthSampler::laneWeight(lambda, c.lane);
+    const float nm = lambda.lambda[c.lane];
+    double* group = sums + c.group * perGroup;
+    responses_.forEach(nm, [&](int b, float w) {
+      const int e = pattern.index(b, c.bin);
+      if (e < 0)
+        ++missed;
+      else
+        group[e] += static_cast<double>(v * w);
+    });
+  }
+  return missed;
+}
+
 bool Film::addWhiteSample(Pixel& pixel, const SampledWavelengths& lambda,
                           const SampledSpectrum& L) const {
   if (!allFinite(L)) return false;
@@ -125,6 +162,11 @@ void Film::add(int x, int y, const Pixel& pixel) {
   for (size_t k = 0; k < nl; ++k) {
     layerSums_[i * nl + k] += pixel.layers[0][k] + pixel.layers[1][k];
     layerOddSums_[i * nl + k] += pixel.layers[1][k];
+  }
+  const size_t nr = pixel.relight[0].size();
+  for (size_t k = 0; k < nr; ++k) {
+    relightSums_[i * nr + k] += static_cast<float>(pixel.relight[0][k] + pixel.relight[1][k]);
+    relightOddSums_[i * nr + k] += static_cast<float>(pixel.relight[1][k]);
   }
   yOddSums_[i] += pixel.xyz[1][1];
   oddCounts_[i] += pixel.samples[1];
@@ -186,13 +228,32 @@ double Film::layerVariance(int x, int y, int l, int b) const {
   return halfDifferenceVariance(layerSums_[k], layerOddSums_[k], counts_[i], oddCounts_[i]);
 }
 
+double Film::relightMean(int x, int y, int g, int e) const {
+  const size_t i = index(x, y), n = static_cast<size_t>(relightGroups()) * relightPattern_->size();
+  const size_t k = i * n + static_cast<size_t>(g) * relightPattern_->size() + e;
+  return counts_[i] ? relightSums_[k] / static_cast<double>(counts_[i]) : 0.0;
+}
+
+double Film::relightHalfDifference(int x, int y, int g, int e) const {
+  const size_t i = index(x, y), n = static_cast<size_t>(relightGroups()) * relightPattern_->size();
+  const size_t k = i * n + static_cast<size_t>(g) * relightPattern_->size() + e;
+  const uint32_t count = counts_[i], odd = oddCounts_[i];
+  if (odd == 0 || odd >= count) return 0.0;
+  const double a = (relightSums_[k] - relightOddSums_[k]) / static_cast<double>(count - odd),
+               b = relightOddSums_[k] / static_cast<double>(odd);
+  return 0.5 * (a - b);
+}
+
 Film Film::cropped(const PixelRect& r) const {
   if (r.x0 < rect_.x0 || r.y0 < rect_.y0 || r.x1 > rect_.x1 || r.y1 > rect_.y1 || r.x1 <= r.x0 ||
       r.y1 <= r.y0)
     throw Error("internal error: a film crop outside the film");
   Film out(width_, height_, r, bands_, hasWhite());
   out.setLayers(layerNames_);
+  out.setRelight(relightPattern_, relightGroupNames_, relightGroupSpectra_);
   const size_t nl = layerNames_.size() * static_cast<size_t>(nBands_);
+  const size_t nr =
+      relightPattern_ ? static_cast<size_t>(relightGroups()) * relightPattern_->size() : 0;
   for (int y = r.y0; y < r.y1; ++y)
     for (int x = r.x0; x < r.x1; ++x) {
       const size_t i = index(x, y), o = out.index(x, y);
@@ -203,6 +264,8 @@ Film Film::cropped(const PixelRect& r) const {
       std::copy_n(&xyzSums_[i * 3], 3, &out.xyzSums_[o * 3]);
       std::copy_n(layerSums_.data() + i * nl, nl, out.layerSums_.data() + o * nl);
       std::copy_n(layerOddSums_.data() + i * nl, nl, out.layerOddSums_.data() + o * nl);
+      std::copy_n(relightSums_.data() + i * nr, nr, out.relightSums_.data() + o * nr);
+      std::copy_n(relightOddSums_.data() + i * nr, nr, out.relightOddSums_.data() + o * nr);
       out.yOddSums_[o] = yOddSums_[i];
       out.oddCounts_[o] = oddCounts_[i];
       out.counts_[o] = counts_[i];

@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "integrators/path_contributions.h"
+#include "integrators/relight_pattern.h"
 #include "spectra/cie.h"
 #include "spectra/sampled_wavelengths.h"
 #include "spectra/sensor.h"
@@ -41,6 +44,21 @@ public:
   int layerCount() const { return static_cast<int>(layerNames_.size()); }
   /// The name of layer l.
   const std::string& layerName(int l) const { return layerNames_[static_cast<size_t>(l)]; }
+  /// Keeps the transport of a relightable render on `pattern` for `groups` light groups (per
+  /// pixel groups x pattern size sums per replicate, in single precision); zeroes it.
+  /// `spectra`: each group's spectrum as rendered, averaged over the grid's bins.
+  void setRelight(std::shared_ptr<const RelightPattern> pattern, std::vector<std::string> groups,
+                  std::vector<std::vector<double>> spectra);
+  /// The pattern kept (null unless setRelight was called).
+  const RelightPattern* relightPattern() const { return relightPattern_.get(); }
+  /// Light groups of the transport kept.
+  int relightGroups() const { return static_cast<int>(relightGroupNames_.size()); }
+  /// Their names.
+  const std::vector<std::string>& relightGroupNames() const { return relightGroupNames_; }
+  /// Their spectra as rendered, per bin of the grid.
+  const std::vector<std::vector<double>>& relightGroupSpectra() const {
+    return relightGroupSpectra_;
+  }
 
   int width() const { return width_; }   ///< full image width
   int height() const { return height_; } ///< full image height
@@ -64,10 +82,11 @@ public:
   /// Accumulator for one pixel's samples (lives on the stack of the tile task), kept per
   /// replicate: [0] the even-numbered samples, [1] the odd-numbered ones.
   struct Pixel {
-    std::vector<double> bands[2];  ///< sums of band estimates
-    double xyz[2][3] = {};         ///< sums of XYZ estimates
-    std::vector<double> white;     ///< sums of white-reference band estimates (if kept)
-    std::vector<double> layers[2]; ///< sums of component layers' band estimates, [layer][band]
+    std::vector<double> bands[2];   ///< sums of band estimates
+    double xyz[2][3] = {};          ///< sums of XYZ estimates
+    std::vector<double> white;      ///< sums of white-reference band estimates (if kept)
+    std::vector<double> layers[2];  ///< sums of component layers' band estimates, [layer][band]
+    std::vector<double> relight[2]; ///< sums of the transport, [group][entry]
     uint32_t samples[2] = {0, 0};
   };
 
@@ -80,6 +99,7 @@ public:
       p.xyz[r][0] = p.xyz[r][1] = p.xyz[r][2] = 0;
       p.samples[r] = 0;
       std::fill(p.layers[r].begin(), p.layers[r].end(), 0.0);
+      std::fill(p.relight[r].begin(), p.relight[r].end(), 0.0);
     }
     std::fill(p.white.begin(), p.white.end(), 0.0);
   }
@@ -99,6 +119,13 @@ public:
   /// the sample's lanes and replicate), weighted like its radiance.
   void addLayerSamples(Pixel& pixel, const SampledWavelengths& lambda,
                        const SampledSpectrum* layers, bool odd) const;
+
+  /// Adds the transport of a sample that addSample accepted (a relightable render), each
+  /// contribution weighted like the radiance into the bands responding at its lane's
+  /// wavelength. Returns the contributions that fell outside the pattern (none, unless the
+  /// pattern misses a path the scene has: they are dropped and counted).
+  uint64_t addRelightSamples(Pixel& pixel, const SampledWavelengths& lambda,
+                             const std::vector<RelightContribution>& contributions, bool odd) const;
 
   /// Adds one sample of the white reference (radiance L of a white Lambertian surface at the
   /// first hit) to the bands, like addSample; false (and nothing added) when not finite.
@@ -128,6 +155,10 @@ public:
   double layerMean(int x, int y, int l, int b) const;
   /// Estimated variance of that mean (from the two replicates, like bandVariance).
   double layerVariance(int x, int y, int l, int b) const;
+  /// Mean transport of pixel (x, y), light group g, pattern entry e.
+  double relightMean(int x, int y, int g, int e) const;
+  /// Its signed half-difference (A - B) / 2 of the two replicates' means (0 before both).
+  double relightHalfDifference(int x, int y, int g, int e) const;
   /// Mean XYZ of pixel (x, y).
   Xyz xyzMean(int x, int y) const;
   /// Samples taken in pixel (x, y).
@@ -169,6 +200,11 @@ private:
   std::vector<std::string> layerNames_;
   std::vector<double> layerSums_;    ///< [pixel][layer][band]
   std::vector<double> layerOddSums_; ///< [pixel][layer][band]
+  std::shared_ptr<const RelightPattern> relightPattern_;
+  std::vector<std::string> relightGroupNames_;
+  std::vector<std::vector<double>> relightGroupSpectra_;
+  std::vector<float> relightSums_;    ///< [pixel][group][entry]
+  std::vector<float> relightOddSums_; ///< [pixel][group][entry]
 };
 
 } // namespace nx

@@ -66,6 +66,14 @@ SampledSpectrum tracePathComponents(const IntegratorContext& ctx, Ray ray,
                                     TraceCounters& counters, const ComponentLayout& layout,
                                     SampledSpectrum* layers);
 
+/// tracePathComponents for a scene built relightable (RelightSpectra): the radiance and layers
+/// with the groups' spectra applied, and every contribution per unit spectrum appended to
+/// recorder.contributions (cleared by the caller).
+SampledSpectrum tracePathRelightable(const IntegratorContext& ctx, Ray ray,
+                                     const SampledWavelengths& lambda, PixelSampleStream& rng,
+                                     TraceCounters& counters, const ComponentLayout& layout,
+                                     SampledSpectrum* layers, RelightRecorder& recorder);
+
 /// The white reference along `ray`: the radiance a white Lambertian surface (reflectance 1,
 /// not emitting) put in place of the first surface hit would reflect towards the camera, lit by
 /// the scene as it is (direct and indirect light, path traced as tracePath). Zero where the ray

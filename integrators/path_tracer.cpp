@@ -61,12 +61,13 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
   const LightGroups& groups = scene.lightGroups;
   // Lanes re-radiated so far (tracked for component sinks only).
   [[maybe_unused]] uint64_t shifted = 0;
-  // The class of a contribution after `events` scatterings from `group`'s emitter, the lanes of
-  // `extra` shifted in addition.
+  // The class of a contribution after `events` scatterings from `group`'s emitter, which the
+  // light left at wavelengths `emitted`; the lanes of `extra` shifted in addition.
   auto classOf = [&]([[maybe_unused]] int events, [[maybe_unused]] uint16_t group,
+                     [[maybe_unused]] const SampledWavelengths& emitted,
                      [[maybe_unused]] uint64_t extra = 0) {
     PathClass k;
-    if constexpr (Sink::kClasses) k = {shifted | extra, events, group};
+    if constexpr (Sink::kClasses) k = {shifted | extra, events, group, &emitted};
     return k;
   };
   // Russian roulette looks at beta * rrScale: the throughput without the radiance scaling
@@ -125,7 +126,8 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
             sampleFreeFlight(medium, current, found ? hit.t : INFINITY, uDistance, uEvent, beta,
                              misRatios, medium.emission ? &glow : nullptr);
         if (medium.emission)
-          sink.add(before * glow, classOf(scatterings, groups.ofMedium[static_cast<size_t>(m)]));
+          sink.add(before * glow,
+                   classOf(scatterings, groups.ofMedium[static_cast<size_t>(m)], current));
         // beta_i / mean(ratios) is all that counts, so both are divided by the mean after each
         // flight: the products stay near 1 on long chromatic paths (ratios' mean 1; the hero's
         // own ratio, once 1, becomes 1 / (the product of these means)).
@@ -167,7 +169,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
                                p, Vec3(), Vec3(), ls,
                                [&](const Vec3& wi) { return SampledSpectrum::filled(phaseTo(wi)); },
                                phaseTo, ctx.lightSampling != LightSampling::NeeOnly, visible),
-                       classOf(scatterings + 1, ctx.lights->group(ls.light),
+                       classOf(scatterings + 1, ctx.lights->group(ls.light), lit,
                                Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0}));
             }
           }
@@ -193,11 +195,11 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       if (scene.background)
         sink.add(weighted() * evaluate(*scene.background, current) *
                      (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP))),
-                 classOf(scatterings, groups.ofBackground));
+                 classOf(scatterings, groups.ofBackground, current));
       for (int e = 0; e < ctx.lights->environmentCount(); ++e)
         sink.add(weighted() * ctx.lights->environmentRadiance(e, ray.d, current) *
                      (specular ? 1.0f : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d))),
-                 classOf(scatterings, ctx.lights->environmentGroup(e)));
+                 classOf(scatterings, ctx.lights->environmentGroup(e), current));
       break;
     }
     const ShapeAppearance& app = scene.appearance(hit);
@@ -221,9 +223,9 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     if (app.emission >= 0 && !whiteHere) {
       const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d));
       if (w > 0)
-        sink.add(weighted() * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) *
-                     w,
-                 classOf(scatterings, groups.ofEmission[static_cast<size_t>(app.emission)]));
+        sink.add(
+            weighted() * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) * w,
+            classOf(scatterings, groups.ofEmission[static_cast<size_t>(app.emission)], current));
     }
     if (bounce >= kMaxPathBounces) {
       ++counters.bounceLimited; // still carrying light: counted, reported
@@ -259,7 +261,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
           return fluorescent ? shift.albedo * bsdf.diffuseLobe(wi) : bsdf.f(wi);
         };
         auto pdf = [&](const Vec3& wi) { return bsdf.pdf(wi); };
-        const PathClass k = classOf(scatterings + 1, ctx.lights->group(ls.light),
+        const PathClass k = classOf(scatterings + 1, ctx.lights->group(ls.light), lit,
                                     Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0});
         if constexpr (kMedia) {
           const auto visible = [&](const Ray& r) {
@@ -365,9 +367,31 @@ SampledSpectrum tracePathComponents(const IntegratorContext& ctx, Ray ray,
 SampledSpectrum traceWhiteReference(const IntegratorContext& ctx, Ray ray,
                                     const SampledWavelengths& lambda, PixelSampleStream& rng,
                                     TraceCounters& counters) {
+  if (ctx.scene->relight.enabled) {
+    // Built with unit spectra: the groups' spectra applied per contribution, nothing recorded.
+    static const ComponentLayout none;
+    RelightSink sink;
+    sink.components.layout = &none;
+    sink.spectra = &ctx.scene->relight.ofGroup;
+    traceVariant<true>(ctx, ray, lambda, rng, counters, sink);
+    return sink.components.L;
+  }
   RadianceSink sink;
   traceVariant<true>(ctx, ray, lambda, rng, counters, sink);
   return sink.L;
+}
+
+SampledSpectrum tracePathRelightable(const IntegratorContext& ctx, Ray ray,
+                                     const SampledWavelengths& lambda, PixelSampleStream& rng,
+                                     TraceCounters& counters, const ComponentLayout& layout,
+                                     SampledSpectrum* layers, RelightRecorder& recorder) {
+  RelightSink sink;
+  sink.components.layers = layers;
+  sink.components.layout = &layout;
+  sink.recorder = &recorder;
+  sink.spectra = recorder.spectra;
+  traceVariant<false>(ctx, ray, lambda, rng, counters, sink);
+  return sink.components.L;
 }
 
 } // namespace nx

@@ -81,6 +81,17 @@ struct LightGroups {
   }
 };
 
+/// The emitters' spectra of a relightable render (--relightable, docs/relighting.md): every
+/// emitter is built as its factor kappa (its scale=, the measuring geometry of at= and flux=)
+/// times a flat unit spectrum, and the spectrum written in the scene for it, one per light
+/// group, is applied to each contribution at the wavelengths it left the emitter with. The
+/// transport per unit spectrum is then what the film keeps.
+struct RelightSpectra {
+  bool enabled = false;
+  std::vector<Spectrum> ofGroup;       ///< per light group id: its emitters' spectrum
+  std::vector<std::string> whereGroup; ///< "file:line" of the group's first emitter
+};
+
 /// Everything an integrator needs, immutable after building.
 struct RenderScene {
   RenderSettings settings;
@@ -99,6 +110,7 @@ struct RenderScene {
   std::vector<MeshAppearance> meshes;           ///< parallel to the geometry's meshes
   std::vector<SceneLight> lights;     ///< the <light>s (points, spots, ...), in file order
   LightGroups lightGroups;            ///< which group each emitter belongs to
+  RelightSpectra relight;             ///< the groups' spectra of a relightable build
   std::optional<Spectrum> background; ///< uniform environment radiance
   Spectrum previewWhite;              ///< illuminant the preview is white-balanced for
   size_t meshBytes = 0;               ///< bytes the meshes' buffers take

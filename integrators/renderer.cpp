@@ -79,6 +79,26 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                   (held.size() > 1 ? ", ..." : "") + "), this one asks for " +
                   std::to_string(layerNames.size()) + " (use the same --aov as the first run)");
   }
+  // A relightable scene: the transport per light group on the excitation grid.
+  const bool relightable = scene.relight.enabled;
+  if (relightable) {
+    if (options.resumeFrom)
+      throw Error("--relightable: continuing a relightable render (--resume) is not supported; "
+                  "render it again, or split it by --spp-range parts and merge them");
+    if (scene.lightGroups.names.empty())
+      throw Error("--relightable: the scene has no emitter to relight");
+    checkRelightStep(options.relightStepNm, "--relight-step");
+    const RelightGrid grid = RelightGrid::withStep(options.relightStepNm);
+    std::vector<std::vector<double>> spectra;
+    for (size_t g = 0; g < scene.lightGroups.names.size(); ++g) {
+      if (g >= scene.relight.ofGroup.size() || scene.relight.whereGroup[g].empty())
+        throw Error("internal error: light group '" + scene.lightGroups.names[g] +
+                    "' has no spectrum to relight");
+      spectra.push_back(binAverages(scene.relight.ofGroup[g], grid));
+    }
+    out.film.setRelight(std::make_shared<const RelightPattern>(grid, bands, scene),
+                        scene.lightGroups.names, std::move(spectra));
+  }
   out.samplesPerPixel = options.samples > 0 ? options.samples : settings.samples;
   out.seed = options.seed ? *options.seed : settings.seed;
   const uint32_t seed = out.seed;
@@ -102,7 +122,8 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const int tiles = tilesX * tilesY;
   const int passSize = std::max(1, options.passSamples);
   const int passes = (out.samplesPerPixel + passSize - 1) / passSize;
-  std::atomic<uint64_t> rays{0}, nonFinite{0}, samples{0}, truncated{0}, bounceLimited{0};
+  std::atomic<uint64_t> rays{0}, nonFinite{0}, samples{0}, truncated{0}, bounceLimited{0},
+      relightMissed{0};
   std::atomic<int64_t> finished{0};
   // Progress counts tiles of passes; an adaptive render's passes are not known in advance
   // (its count is capped at the uniform render's).
@@ -146,6 +167,13 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           uint64_t dropped = 0, taken = 0;
           Film::Pixel pixel = out.film.newPixel();
           std::vector<SampledSpectrum> layers(static_cast<size_t>(layout.count));
+          RelightRecorder recorder;
+          uint64_t missed = 0;
+          if (relightable) {
+            recorder.spectra = &scene.relight.ofGroup;
+            recorder.grid = out.film.relightPattern()->grid();
+            recorder.contributions.reserve(256);
+          }
           bool halted = false;
           for (int y = y0; y < y1 && !halted; ++y) {
             for (int x = x0; x < x1 && !halted; ++x) {
@@ -186,7 +214,19 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                 const Ray ray =
                     scene.camera.generateRay(static_cast<double>(x) + jitter.u,
                                              static_cast<double>(y) + jitter.v, lensX, lensY);
-                if (layout.any()) {
+                if (relightable) {
+                  std::fill(layers.begin(), layers.end(), SampledSpectrum());
+                  recorder.contributions.clear();
+                  const SampledSpectrum L = tracePathRelightable(ctx, ray, lambda, rng, counters,
+                                                                 layout, layers.data(), recorder);
+                  if (out.film.addSample(pixel, lambda, L, odd)) {
+                    if (layout.any()) out.film.addLayerSamples(pixel, lambda, layers.data(), odd);
+                    missed +=
+                        out.film.addRelightSamples(pixel, lambda, recorder.contributions, odd);
+                  } else {
+                    ++dropped;
+                  }
+                } else if (layout.any()) {
                   std::fill(layers.begin(), layers.end(), SampledSpectrum());
                   const SampledSpectrum L =
                       tracePathComponents(ctx, ray, lambda, rng, counters, layout, layers.data());
@@ -213,6 +253,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           rays += counters.rays;
           truncated += counters.truncated;
           bounceLimited += counters.bounceLimited;
+          relightMissed += missed;
           nonFinite += dropped;
           samples += taken;
           const int64_t done = ++finished;
@@ -298,6 +339,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   out.stats.nonFinite = nonFinite;
   out.stats.truncated = truncated;
   out.stats.bounceLimited = bounceLimited;
+  out.stats.relightMissed = relightMissed;
   return out;
 }
 
@@ -321,6 +363,11 @@ std::vector<std::string> warningsOf(const RenderStats& stats) {
                   "many dielectric interfaces); a thinner medium or a smaller scene in its units "
                   "renders it fully");
   }
+  if (stats.relightMissed > 0)
+    out.push_back(count(stats.relightMissed) +
+                  " contributions of the relightable transport fell outside its pattern and "
+                  "were dropped from it (the radiance keeps them): relit images miss that light; "
+                  "this is a defect, please report the scene");
   if (stats.nonFinite > 0)
     out.push_back(count(stats.nonFinite) +
                   " samples with a NaN or infinite value were counted as zero (black)");
@@ -356,6 +403,16 @@ SpectralImage toSpectralImage(const Film& film) {
   for (int l = 0; l < film.layerCount(); ++l)
     img.layers.push_back(
         {film.layerName(l), std::vector<float>(pixels * nb), std::vector<float>(pixels * nb)});
+  if (const RelightPattern* pattern = film.relightPattern()) {
+    RelightLayers& rl = img.relight;
+    rl.grid = pattern->grid();
+    rl.entries = pattern->entries();
+    rl.groups = film.relightGroupNames();
+    rl.spectra = film.relightGroupSpectra();
+    const size_t n = static_cast<size_t>(film.relightGroups()) * rl.size() * pixels;
+    rl.values.resize(n);
+    rl.halfDifferences.resize(n);
+  }
   // Rows in parallel (each value is computed the same way on any thread).
   tbb::parallel_for(0, img.height, [&](int row) {
     const FlushDenormalsScope rowMode;
@@ -382,6 +439,14 @@ SpectralImage toSpectralImage(const Film& film) {
       img.xyz[i * 3 + 1] = static_cast<float>(xyz.y);
       img.xyz[i * 3 + 2] = static_cast<float>(xyz.z);
       img.sampleCount[i] = film.samples(x, y);
+      RelightLayers& rl = img.relight;
+      for (int g = 0; g < film.relightGroups(); ++g)
+        for (size_t e = 0; e < rl.size(); ++e) {
+          const size_t k = (static_cast<size_t>(g) * rl.size() + e) * pixels + i;
+          const int entry = static_cast<int>(e);
+          rl.values[k] = static_cast<float>(film.relightMean(x, y, g, entry));
+          rl.halfDifferences[k] = static_cast<float>(film.relightHalfDifference(x, y, g, entry));
+        }
     }
   });
   return img;

@@ -38,6 +38,9 @@ struct RenderOptions {
   /// direct, indirect (components) and one layer per light group (lightGroups); see
   /// componentLayerNames.
   bool components = false, lightGroups = false;
+  /// Excitation grid step (nm) of a relightable render (a scene built with
+  /// SceneDesc::relightable): the film keeps the transport per light group on it.
+  double relightStepNm = 5;
   SamplerKind sampler = SamplerKind::SobolOwen;
   int tileSize = 16;
   int passSamples = 8; ///< samples per pixel in one pass (progress, checkpoints, stops)
@@ -83,6 +86,7 @@ struct RenderStats {
   uint64_t nonFinite = 0;        ///< samples with a NaN or infinite value (counted as zero)
   uint64_t truncated = 0;        ///< rt samples that reached kWhittedRayBudget
   uint64_t bounceLimited = 0;    ///< paths ended by kMaxPathBounces still carrying light
+  uint64_t relightMissed = 0;    ///< relightable contributions outside the pattern (dropped)
   bool stopped = false;          ///< ended early by the stop flag
   bool reachedTarget = false;    ///< ended because the error target was met
   bool reachedTimeLimit = false; ///< ended because the next pass would pass the time limit

@@ -28,6 +28,13 @@
 namespace nx {
 namespace {
 
+// An emitter's spectrum as written in the scene and the factor on it (its scale=, the
+// measuring geometry of at= or flux=).
+struct EmitterSpectrum {
+  Spectrum shape;
+  double factor = 1;
+};
+
 class Builder {
 public:
   explicit Builder(const SceneDesc& desc) : desc_(desc), refs_(desc), mediumInputs_(*this) {}
@@ -47,9 +54,16 @@ public:
                   ": expected an <illum> with visible light (the preview's white balance "
                   "needs its colour), found luminance Y = " +
                   numberText(w.y));
+    scene.relight.enabled = desc_.relightable;
+    if (desc_.relightable && !spectral)
+      throw Error(desc_.file +
+                  ": --relightable: expected a spectral_mcpt scene (relighting "
+                  "replaces emission spectra), found mode " +
+                  std::string(renderModeName(s.mode)));
     if (s.background) {
-      scene.background = forRendering(refs_.resolve(*s.background, SpectrumRole::Emission));
       scene.lightGroups.ofBackground = scene.lightGroups.idOf(s.backgroundGroup);
+      scene.background = traced(refs_.resolve(*s.background, SpectrumRole::Emission), 1.0,
+                                scene.lightGroups.ofBackground, s.background->loc, scene);
     }
 
     std::vector<SphereShape> spheres;
@@ -98,6 +112,10 @@ public:
       if (o.medium) {
         app.medium = static_cast<int32_t>(scene.media.size());
         scene.media.push_back(medium(*o.medium));
+        if (desc_.relightable && scene.media.back().emission)
+          throw Error(o.medium->loc.str() +
+                      ": --relightable: expected media that do not emit, found an emitting "
+                      "medium (its emission is not relit; render it without --relightable)");
         scene.lightGroups.ofMedium.push_back(
             scene.media.back().emission ? scene.lightGroups.idOf(o.group) : 0);
         scene.hasMedia = true;
@@ -109,8 +127,9 @@ public:
       ShapeGeometry geometry = shapeInputs.build(kind, o);
       if (auto e = emission(o, spectral, geometry)) {
         app.emission = static_cast<int32_t>(scene.emission.size());
-        scene.emission.push_back(forRendering(*e));
-        scene.lightGroups.ofEmission.push_back(scene.lightGroups.idOf(o.group));
+        const uint16_t group = scene.lightGroups.idOf(o.group);
+        scene.emission.push_back(traced(e->shape, e->factor, group, o.emission->loc, scene));
+        scene.lightGroups.ofEmission.push_back(group);
       }
       double extent = 0; // how far from the origin it reaches (a medium's float resolution)
       std::visit(
@@ -145,8 +164,18 @@ public:
         warnIfBelowFloatPrecision(scene.media.back(), o.medium->loc, extent, scene.warnings);
     }
     for (const LightDesc& l : desc_.lights) {
-      scene.lights.push_back(light(l, spectral));
-      scene.lightGroups.ofLight.push_back(scene.lightGroups.idOf(l.group));
+      const uint16_t group = scene.lightGroups.idOf(l.group);
+      std::optional<Spectrum> shape;
+      scene.lights.push_back(light(l, spectral, &shape));
+      if (desc_.relightable) {
+        if (std::holds_alternative<EnvironmentLight>(scene.lights.back()))
+          throw Error(l.loc.str() +
+                      ": --relightable: expected lights of one spectrum each, found an "
+                      "environment map (each texel has its own; use <background> for a uniform "
+                      "sky, or render without --relightable)");
+        if (shape) keepGroupSpectrum(*shape, group, l.loc, scene);
+      }
+      scene.lightGroups.ofLight.push_back(group);
     }
     if (!triangles.empty()) {
       meshes.push_back(TriangleMesh::fromTriangles(triangles));
@@ -316,6 +345,13 @@ private:
     void checkEmission(const Spectrum& s, const SourceLocation& where) const override {
       SceneReferences::checkEmission(s, where);
     }
+    Spectrum emitted(const Spectrum& shape, double factor) const override {
+      if (!relightShape) return forRendering(shape.scaled(factor));
+      *relightShape = forRendering(shape);
+      return Spectrum(ConstantSpectrum{1.0}, factor);
+    }
+    /// Set in a relightable build: where emitted() leaves the light's spectrum.
+    std::optional<Spectrum>* relightShape = nullptr;
     std::shared_ptr<const SpectralImage> spectralImage(const std::string& path,
                                                        const SourceLocation& where) const override {
       try {
@@ -337,7 +373,7 @@ private:
 
   // A light from its kind's build; its parameters are checked against the kind's declarations
   // (the loader read them so; Python edits are checked again here).
-  SceneLight light(const LightDesc& l, bool spectral) const {
+  SceneLight light(const LightDesc& l, bool spectral, std::optional<Spectrum>* shape) const {
     const LightKindSpec* kind = findLightKind(l.kind);
     if (!kind)
       throw Error(l.loc.str() + ": expected a light type " + lightKindList() + ", found '" +
@@ -352,6 +388,7 @@ private:
     LightKindInputs in(*this);
     in.spectral = spectral;
     in.loc = l.loc;
+    if (desc_.relightable) in.relightShape = shape;
     return kind->build(l.params, in);
   }
 
@@ -563,8 +600,8 @@ private:
 
   // The object's emitted radiance, checked again after its scale; a lamp given as measured
   // (irradiance at a distance, or flux) divided by what one unit of radiance of its shape gives.
-  std::optional<Spectrum> emission(const ObjectDesc& o, bool spectral,
-                                   const ShapeGeometry& shape) const {
+  std::optional<EmitterSpectrum> emission(const ObjectDesc& o, bool spectral,
+                                          const ShapeGeometry& shape) const {
     if (!o.emission) return std::nullopt;
     Spectrum e;
     double perRadiance = 1;
@@ -576,7 +613,10 @@ private:
       throw Error(o.emission->loc.str() + ": expected an emitter that reaches its measuring " +
                   "point, found none (a zero projected solid angle)");
     if (spectral || o.emission->kind != SpectrumDesc::Kind::Number) {
-      e = refs_.resolve(*o.emission, SpectrumRole::Emission).scaled(o.emissionScale / perRadiance);
+      const Spectrum written = refs_.resolve(*o.emission, SpectrumRole::Emission);
+      const double factor = o.emissionScale / perRadiance;
+      SceneReferences::checkEmission(written.scaled(factor), o.emission->loc);
+      return EmitterSpectrum{written, factor};
     } else {
       // rt and mcpt: a numeric <emission> is scaled by <color> (white if absent); a spectrum
       // is used as in spectral mode.
@@ -590,7 +630,43 @@ private:
       }
     }
     SceneReferences::checkEmission(e, o.emission->loc);
-    return e;
+    return EmitterSpectrum{e, 1.0};
+  }
+
+  // What an emitter of spectrum `shape` (as written in the scene) times `factor` traces:
+  // forRendering(shape.scaled(factor)); in a relightable build the factor alone (flat), the
+  // shape kept for its light group.
+  Spectrum traced(const Spectrum& shape, double factor, uint16_t group, const SourceLocation& loc,
+                  RenderScene& scene) const {
+    if (!desc_.relightable) return forRendering(shape.scaled(factor));
+    keepGroupSpectrum(forRendering(shape), group, loc, scene);
+    return Spectrum(ConstantSpectrum{1.0}, factor);
+  }
+
+  // Keeps the spectrum of light group `group` in a relightable build: every emitter of a group
+  // must have the same one (the group is relit as one spectrum).
+  static void keepGroupSpectrum(const Spectrum& shape, uint16_t group, const SourceLocation& loc,
+                                RenderScene& scene) {
+    RelightSpectra& r = scene.relight;
+    if (r.ofGroup.size() <= group) {
+      r.ofGroup.resize(group + 1u);
+      r.whereGroup.resize(group + 1u);
+    }
+    if (r.whereGroup[group].empty()) {
+      r.ofGroup[group] = shape;
+      r.whereGroup[group] = loc.str();
+      return;
+    }
+    for (int nm = static_cast<int>(kTraceMinNm); nm <= static_cast<int>(kTraceMaxNm); ++nm) {
+      const double a = shape(nm), b = r.ofGroup[group](nm);
+      if (std::abs(a - b) > 1e-6 * std::max(std::abs(a), std::abs(b)))
+        throw Error(loc.str() + ": --relightable: expected the emitters of light group '" +
+                    scene.lightGroups.names[group] +
+                    "' to share one spectrum (a group is relit as one), found another one "
+                    "than at " +
+                    r.whereGroup[group] + " (" + numberText(a) + " against " + numberText(b) +
+                    " at " + std::to_string(nm) + " nm); give them different group=\"...\"");
+    }
   }
 
   const SceneDesc& desc_;

@@ -137,6 +137,9 @@ struct SceneDesc {
   std::vector<NamedSpectrumDesc> spectra;
   std::vector<NamedMaterialDesc> materials; ///< top-level <material id="...">
   std::vector<std::string> warnings;        ///< "file:line: ..." notes that are not errors
+  /// Build for a relightable render (--relightable; never read from the file): every emitter
+  /// traced as its factor times a flat unit spectrum, its own spectrum kept per light group.
+  bool relightable = false;
 };
 
 /// Reads a scene file. Throws nx::Error "file:line: expected ..., found ..." on any problem:

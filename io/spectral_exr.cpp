@@ -23,6 +23,7 @@
 #include "io/atomic_file.h"
 #include "io/exr_header_check.h"
 #include "io/fichet_channels.h"
+#include "io/relight_channels.h"
 #include "spectra/band_colour.h"
 
 namespace nx {
@@ -100,6 +101,9 @@ bool fitsInHalf(const SpectralImage& image) {
     for (const std::vector<float>* v : {&l.values, &l.variances})
       for (float x : *v)
         if (!(std::abs(x) <= 65504.0f)) return false;
+  for (const std::vector<float>* v : {&image.relight.values, &image.relight.halfDifferences})
+    for (float x : *v)
+      if (!(std::abs(x) <= 65504.0f)) return false;
   return true;
 }
 
@@ -130,6 +134,25 @@ void checkFiniteValues(const std::string& path, const SpectralImage& image) {
     check(l.values, nb, ("the " + l.name + " layer").c_str());
     check(l.variances, nb, ("the " + l.name + " layer's variances").c_str());
   }
+  // The transport is planar ([group][entry][pixel]): name the pixel within its plane.
+  const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+  for (const std::vector<float>* v : {&image.relight.values, &image.relight.halfDifferences})
+    for (size_t k = 0; k < v->size(); ++k)
+      if (!std::isfinite((*v)[k])) {
+        const size_t p = k % pixels;
+        throw Error(path + ": expected finite values in the relight channels, found " +
+                    numberText((*v)[k]) + " at pixel " +
+                    std::to_string(image.originX + static_cast<int>(p % image.width)) + "," +
+                    std::to_string(image.originY + static_cast<int>(p / image.width)) +
+                    " (nothing written)");
+      }
+}
+
+// The text naming each band's wavelength in its channel ("550,000000nm").
+std::vector<std::string> bandWavelengthTexts(const std::vector<std::string>& bandChannels) {
+  std::vector<std::string> out;
+  for (const std::string& c : bandChannels) out.push_back(c.substr(c.find('.') + 1));
+  return out;
 }
 
 // Float channels are stored as `stored` (FLOAT or HALF; OpenEXR converts from the float
@@ -154,8 +177,11 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
                            (!l.variances.empty() && l.variances.size() != pixels * nBands) ||
                            l.name.empty() || l.name.find(',') != std::string::npos;
                   }) ||
-      image.originX < 0 || image.originY < 0 ||
-      image.originX + image.width > image.displayWidth() ||
+      image.relight.values.size() !=
+          image.relight.groups.size() * image.relight.entries.size() * pixels ||
+      image.relight.halfDifferences.size() != image.relight.values.size() ||
+      image.relight.spectra.size() != image.relight.groups.size() || image.originX < 0 ||
+      image.originY < 0 || image.originX + image.width > image.displayWidth() ||
       image.originY + image.height > image.displayHeight())
     throw Error(path + ": internal error: image buffers do not match its size");
   checkExrOutputName(path);
@@ -186,13 +212,17 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
       for (const ImageLayer& l : image.layers) names += (names.empty() ? "" : ",") + l.name;
       header.insert(kComponentLayersAttribute, Imf::StringAttribute(names));
     }
+    if (image.relight.present())
+      for (const auto& [key, value] : relightAttributes(image.relight))
+        header.insert(key, Imf::StringAttribute(value));
 
     Imf::FrameBuffer fb;
     // A float channel: `first` is its value in the first pixel, `stride` floats apart. Half
     // channels get converted copies (OpenEXR converts half to float when reading, not float to
     // half when writing).
     std::vector<std::vector<half>> halves;
-    halves.reserve((2 + 2 * image.layers.size()) * static_cast<size_t>(nBands) + 8);
+    halves.reserve((2 + 2 * image.layers.size()) * static_cast<size_t>(nBands) + 8 +
+                   2 * image.relight.groups.size() * image.relight.entries.size());
     auto addChannel = [&](const std::string& name, const float* first, size_t stride) {
       header.channels().insert(name, Imf::Channel(stored));
       if (stored == Imf::FLOAT) {
@@ -228,6 +258,20 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
         addChannel(channel, l.values.data() + b, nb);
         if (!l.variances.empty()) addChannel(kVariancePrefix + channel, l.variances.data() + b, nb);
       }
+    if (image.relight.present()) {
+      std::vector<std::string> bandChannels;
+      for (int b = 0; b < nBands; ++b)
+        bandChannels.push_back(spectralChannelName(image.bands.channelNm(b)));
+      const std::vector<std::string> bandText = bandWavelengthTexts(bandChannels);
+      const RelightLayers& rl = image.relight;
+      for (size_t g = 0; g < rl.groups.size(); ++g)
+        for (size_t e = 0; e < rl.size(); ++e) {
+          const std::string channel = relightChannelName(rl, g, e, bandText);
+          const size_t plane = (g * rl.size() + e) * pixels;
+          addChannel(channel, rl.values.data() + plane, 1);
+          addChannel(kHalfDifferencePrefix + channel, rl.halfDifferences.data() + plane, 1);
+        }
+    }
     auto addUint = [&](const char* name, const std::vector<uint32_t>& v) {
       if (v.empty()) return;
       header.channels().insert(name, Imf::Channel(Imf::UINT));
@@ -398,6 +442,24 @@ SpectralImage readSpectralExr(const std::string& path) {
                     Imf::Slice::Make(Imf::FLOAT, l.variances.data() + b, dw, sizeof(float) * nb,
                                      sizeof(float) * nb * img.width));
         }
+      }
+    }
+    // The transport of a relightable render: planes per group and entry.
+    {
+      std::vector<std::string> names;
+      for (auto it = h.channels().begin(); it != h.channels().end(); ++it)
+        names.push_back(it.name());
+      const std::vector<std::string> relightChannels = parseRelightChannels(
+          img.attributes, names, bandWavelengthTexts(bandChannels), path, img.relight);
+      img.relight.values.assign(relightChannels.size() * pixels, 0.0f);
+      img.relight.halfDifferences.assign(relightChannels.size() * pixels, 0.0f);
+      for (size_t k = 0; k < relightChannels.size(); ++k) {
+        fb.insert(relightChannels[k],
+                  Imf::Slice::Make(Imf::FLOAT, img.relight.values.data() + k * pixels, dw,
+                                   sizeof(float), sizeof(float) * img.width));
+        fb.insert(kHalfDifferencePrefix + relightChannels[k],
+                  Imf::Slice::Make(Imf::FLOAT, img.relight.halfDifferences.data() + k * pixels, dw,
+                                   sizeof(float), sizeof(float) * img.width));
       }
     }
     if (h.channels().findChannel(kDepthChannel)) {

@@ -9,6 +9,7 @@
 
 #include "io/exr_compression.h"
 
+#include "io/relight_layers.h"
 #include "spectra/sensor.h"
 
 namespace nx {
@@ -43,6 +44,9 @@ struct SpectralImage {
   /// Component layers, as EXR channels <name>.S0.<band>nm and Variance.<name>.S0.<band>nm,
   /// listed in the attribute nxrender.componentLayers
   std::vector<ImageLayer> layers;
+  /// The transport of a relightable render (--relightable), as EXR channels
+  /// relight.<group>.T.<excitation>nm.<band>nm (and .X, .Y, .Z) with HalfDifference.<...>
+  RelightLayers relight;
   std::map<std::string, std::string> attributes; ///< provenance, written as string attributes
 
   /// Full image size (the region's when fullWidth/fullHeight are 0).

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "apps/python/py_image.h"
+#include "apps/python/py_relight.h"
 #include "apps/python/py_render.h"
 #include "apps/python/py_scene.h"
 #include "apps/python/py_scene_parameters.h"
@@ -16,6 +17,7 @@ PYBIND11_MODULE(nxrender, m) {
   // Errors of scene files, data files and images: the command line's messages (file:line).
   pybind11::register_exception<nx::Error>(m, "Error", PyExc_ValueError);
   nxpy::bindImage(m);
+  nxpy::bindRelight(m);
   nxpy::bindScene(m);
   nxpy::bindSceneParameters(m);
   nxpy::bindRender(m);

@@ -81,7 +81,8 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
                   const py::object& sampler, const py::object& lightSampling,
                   const py::object& lightSelection, const py::object& density, bool fluorescence,
                   const py::object& aovs, const py::object& targetError, const py::object& errorOf,
-                  const py::object& timeLimit, bool adaptive) {
+                  const py::object& timeLimit, bool adaptive, bool relightable,
+                  const py::object& relightStep) {
   // Every argument is checked before the (possibly long) scene build.
   nx::RenderChoices choices;
   if (!spp.is_none() && !sppRange.is_none())
@@ -124,6 +125,17 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   choices.lightSelection = optionString(lightSelection, "light_selection");
   choices.density = optionString(density, "wavelength_density");
   choices.noFluorescence = !fluorescence;
+  choices.relightable = relightable;
+  if (!relightStep.is_none()) {
+    if (!relightable)
+      throw py::value_error("relight_step: only with relightable=True (the grid it keeps)");
+    choices.relightStepNm = numberArgument(relightStep, "relight_step", 1e-9, 1e9);
+    try {
+      nx::checkRelightStep(choices.relightStepNm, "relight_step");
+    } catch (const nx::Error& e) {
+      throw py::value_error(e.what());
+    }
+  }
   if (py::isinstance<py::str>(aovs) || !py::hasattr(aovs, "__iter__"))
     throw py::type_error("aovs: expected a list of 'white', 'ids', 'depth', 'components', "
                          "'lightgroups', found " +
@@ -162,6 +174,7 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
     for (const auto& w : src.desc.warnings) warn(w);
   }
   if (!fluorescence) nx::removeFluorescence(src.desc);
+  src.desc.relightable = relightable;
   std::optional<nx::RenderScene> scene;
   {
     py::gil_scoped_release release;
@@ -281,6 +294,7 @@ void bindRender(py::module_& m) {
         py::arg("fluorescence") = true, py::arg("aovs") = py::tuple(),
         py::arg("target_error") = py::none(), py::arg("error_of") = "luminance",
         py::arg("time_limit") = py::none(), py::arg("adaptive") = false,
+        py::arg("relightable") = false, py::arg("relight_step") = py::none(),
         "Renders a scene (an nxrender.Scene, a scene file name, or scene XML text) and returns "
         "an nxrender.Image, the same bit for bit as nxrender's EXR for the same scene, seed and "
         "samples. The GIL is released while rendering; Ctrl-C raises KeyboardInterrupt after "

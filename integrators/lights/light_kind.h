@@ -38,6 +38,10 @@ public:
   virtual Spectrum spectrum(const SpectrumDesc& d, SpectrumRole role) const = 0;
   /// An RGB intensity upsampled to a spectrum (rt and mcpt's <color>).
   virtual Spectrum srgbIntensity(const std::array<double, 3>& rgb) const = 0;
+  /// What the light traces for emission `shape` (as written in the scene) times `factor`:
+  /// forRendering(shape.scaled(factor)), or in a relightable build the factor alone (flat),
+  /// the shape kept for the light's group (RelightSpectra).
+  virtual Spectrum emitted(const Spectrum& shape, double factor) const = 0;
   /// Throws "<loc>: expected an emission within [0, 1e12] ..." unless `s` is one.
   virtual void checkEmission(const Spectrum& s, const SourceLocation& loc) const = 0;
   /// A spectral EXR read (its bytes in the render key); errors name `loc` and the file.
@@ -106,15 +110,16 @@ inline double tracedIntegral(const Spectrum& s) {
 inline Spectrum lightIntensity(const ParameterSet& p, const LightInputs& in) {
   const SpectrumDesc* emission = p.get<SpectrumDesc>("emission");
   const auto* color = p.get<std::array<double, 4>>("color");
-  Spectrum s;
+  Spectrum shape;
+  double factor = 1;
   if (emission && (in.spectral || !color)) {
     const double d = p.number("emission_at").value_or(1.0); // irradiance at d: I = E d^2
-    s = in.spectrum(*emission, SpectrumRole::Emission)
-            .scaled(p.number("emission_scale").value_or(1.0) * d * d);
+    shape = in.spectrum(*emission, SpectrumRole::Emission);
+    factor = p.number("emission_scale").value_or(1.0) * d * d;
   } else if (color)
-    s = in.srgbIntensity({(*color)[0], (*color)[1], (*color)[2]});
-  in.checkEmission(s, emission ? emission->loc : in.loc);
-  return forRendering(s);
+    shape = in.srgbIntensity({(*color)[0], (*color)[1], (*color)[2]});
+  in.checkEmission(shape.scaled(factor), emission ? emission->loc : in.loc);
+  return in.emitted(shape, factor);
 }
 
 } // namespace nx

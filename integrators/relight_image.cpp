@@ -1,0 +1,176 @@
+#include "integrators/relight_image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <tbb/parallel_for.h>
+
+#include "core/error.h"
+#include "core/hash.h"
+#include "integrators/relight_pattern.h"
+#include "spectra/band_colour.h"
+#include "spectra/colour.h"
+
+namespace nx {
+namespace {
+
+void requireTransport(const SpectralImage& image) {
+  if (!image.relight.present())
+    throw Error("expected a relightable image (rendered with --relightable), found one without "
+                "relight channels");
+}
+
+int groupOf(const SpectralImage& image, const std::string& group) {
+  requireTransport(image);
+  const int g = image.relight.groupIndex(group);
+  if (g < 0) {
+    std::string list;
+    for (const std::string& n : image.relight.groups) list += (list.empty() ? "" : ", ") + n;
+    throw Error("expected a light group of the image (" + list + "), found '" + group + "'");
+  }
+  return g;
+}
+
+} // namespace
+
+GroupSpectrum groupSpectrum(const SpectralImage& image, const std::string& group, const Spectrum& s,
+                            double tableLoNm, double tableHiNm, const std::string& source,
+                            std::vector<std::string>& warnings) {
+  const int g = groupOf(image, group);
+  const RelightLayers& rl = image.relight;
+  GroupSpectrum out{group, binAverages(s, rl.grid), source};
+  for (size_t j = 0; j < out.binned.size(); ++j)
+    if (!(out.binned[j] >= 0 && std::isfinite(out.binned[j])))
+      throw Error(source + ": expected an emission spectrum of finite values >= 0, found " +
+                  numberText(out.binned[j]) + " on average over " +
+                  numberText(rl.grid.lo(static_cast<int>(j))) + "-" +
+                  numberText(rl.grid.lo(static_cast<int>(j) + 1)) + " nm");
+  // The bins the group's transport reaches: where a table that ends early is 0.
+  const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+  int lo = rl.grid.bins, hi = -1;
+  for (size_t e = 0; e < rl.size(); ++e) {
+    const float* v = rl.values.data() + (static_cast<size_t>(g) * rl.size() + e) * pixels;
+    if (std::any_of(v, v + pixels, [](float x) { return x != 0; })) {
+      lo = std::min(lo, rl.entries[e].bin);
+      hi = std::max(hi, rl.entries[e].bin);
+    }
+  }
+  if (hi >= lo && (tableLoNm > rl.grid.lo(lo) || tableHiNm < rl.grid.lo(hi + 1)))
+    warnings.push_back(source + ": warning: tabulated over " + numberText(tableLoNm) + "-" +
+                       numberText(tableHiNm) + " nm and the transport of light group '" + group +
+                       "' reaches " + numberText(rl.grid.lo(lo)) + "-" +
+                       numberText(rl.grid.lo(hi + 1)) +
+                       " nm: it is 0 beyond its table, as a render would take it");
+  return out;
+}
+
+GroupSpectrum groupSpectrumFromCsv(const SpectralImage& image, const std::string& group,
+                                   const std::string& path, std::vector<std::string>& warnings) {
+  groupOf(image, group); // an unknown group before reading the file
+  TabulatedSpectrum t = readSpectrumCsv(path);
+  const double lo = t.nm.front(), hi = t.nm.back();
+  for (size_t i = 0; i < t.value.size(); ++i)
+    if (!(t.value[i] >= 0 && std::isfinite(t.value[i])))
+      throw Error(path + ": expected an emission spectrum of values >= 0, found " +
+                  numberText(t.value[i]) + " at " + numberText(t.nm[i]) + " nm");
+  t.indexUniformGrid();
+  return groupSpectrum(image, group, Spectrum(std::move(t)), lo, hi, path, warnings);
+}
+
+SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSpectrum>& spectra) {
+  requireTransport(image);
+  const RelightLayers& rl = image.relight;
+  // Each group's spectrum: the one given, else the one it was rendered with.
+  std::vector<const std::vector<double>*> use;
+  for (const std::vector<double>& s : rl.spectra) use.push_back(&s);
+  std::vector<bool> given(rl.groups.size(), false);
+  std::string relit;
+  for (const GroupSpectrum& s : spectra) {
+    const int g = groupOf(image, s.group);
+    if (given[static_cast<size_t>(g)])
+      throw Error("expected each light group once, found '" + s.group + "' twice");
+    if (s.binned.size() != static_cast<size_t>(rl.grid.bins))
+      throw Error("internal error: a spectrum binned on another grid");
+    given[static_cast<size_t>(g)] = true;
+    use[static_cast<size_t>(g)] = &s.binned;
+    relit += (relit.empty() ? "" : ";") + s.group + "=" + s.source;
+  }
+
+  SpectralImage out;
+  out.width = image.width;
+  out.height = image.height;
+  out.originX = image.originX;
+  out.originY = image.originY;
+  out.fullWidth = image.fullWidth;
+  out.fullHeight = image.fullHeight;
+  out.bands = image.bands;
+  out.sampleCount = image.sampleCount;
+  out.objectId = image.objectId;
+  out.materialId = image.materialId;
+  out.depth = image.depth;
+  out.attributes = image.attributes;
+  out.attributes["nxrender.relit"] = relit.empty() ? "(the rendered spectra)" : relit;
+  // What the image estimates changed: a relit image is not a part of the render it came from.
+  uint64_t digest = fnv1a64("relit");
+  for (const auto* s : use)
+    for (double v : *s) digest = fnv1a64({reinterpret_cast<const char*>(&v), sizeof v}, digest);
+  char key[32];
+  std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(digest));
+  out.attributes["nxrender.renderKey"] =
+      image.attributes.count("nxrender.renderKey")
+          ? image.attributes.at("nxrender.renderKey") + "|relit:" + key
+          : std::string("relit:") + key;
+
+  const int nb = image.bands.count();
+  const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+  out.radiance.assign(pixels * nb, 0.0f);
+  out.bandVariance.assign(pixels * nb, 0.0f);
+  out.xyz.assign(pixels * 3, 0.0f);
+  out.rgb.assign(pixels * 3, 0.0f);
+  out.yVariance.assign(pixels, 0.0f);
+  const size_t entries = rl.size();
+  // Colour from the relit bands (as for a file without its own XYZ): bands in wavelength order.
+  std::vector<int> order(static_cast<size_t>(nb));
+  for (int b = 0; b < nb; ++b) order[static_cast<size_t>(b)] = b;
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return image.bands.centroid(a) < image.bands.centroid(b); });
+  std::vector<double> nm;
+  for (int b : order) nm.push_back(image.bands.centroid(b));
+  const BandColour colour(nm);
+  tbb::parallel_for(size_t{0}, pixels, [&](size_t i) {
+    std::vector<double> mean(static_cast<size_t>(nb), 0.0), half(static_cast<size_t>(nb), 0.0);
+    for (size_t g = 0; g < rl.groups.size(); ++g) {
+      const std::vector<double>& s = *use[g];
+      for (size_t e = 0; e < entries; ++e) {
+        const size_t k = (g * entries + e) * pixels + i;
+        const RelightEntry& en = rl.entries[e];
+        const double w = s[static_cast<size_t>(en.bin)];
+        mean[static_cast<size_t>(en.row)] += w * rl.values[k];
+        half[static_cast<size_t>(en.row)] += w * rl.halfDifferences[k];
+      }
+    }
+    std::vector<float> sortedMean(static_cast<size_t>(nb)), sortedHalf(static_cast<size_t>(nb));
+    for (int b = 0; b < nb; ++b) {
+      const size_t u = static_cast<size_t>(b);
+      out.radiance[i * nb + b] = static_cast<float>(mean[u]);
+      out.bandVariance[i * nb + b] = static_cast<float>(half[u] * half[u]);
+      sortedMean[u] = static_cast<float>(mean[static_cast<size_t>(order[u])]);
+      sortedHalf[u] = static_cast<float>(half[static_cast<size_t>(order[u])]);
+    }
+    // Y is linear in the bands: its half-difference is the same sum of theirs.
+    const Xyz xyz = colour.xyz(sortedMean.data());
+    const double halfY = colour.xyz(sortedHalf.data()).y;
+    const Rgb c = xyzToLinearSrgb(xyz);
+    out.rgb[i * 3] = static_cast<float>(std::max(c.r, 0.0));
+    out.rgb[i * 3 + 1] = static_cast<float>(std::max(c.g, 0.0));
+    out.rgb[i * 3 + 2] = static_cast<float>(std::max(c.b, 0.0));
+    out.xyz[i * 3] = static_cast<float>(xyz.x);
+    out.xyz[i * 3 + 1] = static_cast<float>(xyz.y);
+    out.xyz[i * 3 + 2] = static_cast<float>(xyz.z);
+    out.yVariance[i] = static_cast<float>(halfY * halfY);
+  });
+  return out;
+}
+
+} // namespace nx

@@ -1,0 +1,43 @@
+#pragma once
+// Relighting a relightable render (docs/relighting.md): the image under new emission spectra
+// for some light groups is, per pixel and band, sum over groups g and excitation bins j
+// of T_g(row, j) S_g(j), S_g(j) the new spectrum's average over bin j (the others keep the
+// spectrum they were rendered with). Its variance is (sum D_g(row, j) S_g(j))^2 with D the
+// replicates' signed half-differences: the same estimator as a render's variance channels.
+
+#include <string>
+#include <vector>
+
+#include "io/spectral_exr.h"
+#include "spectra/spectrum.h"
+
+namespace nx {
+
+/// A new emission spectrum for one light group, as its bin averages on the image's grid.
+struct GroupSpectrum {
+  std::string group;          ///< the light group (as the image lists it)
+  std::vector<double> binned; ///< per bin of the image's RelightGrid
+  std::string source;         ///< what it came from (a file name), for the attributes
+};
+
+/// The bin averages of `s` on `grid` for group `group` of `image`, with a warning in `warnings`
+/// when `s` is tabulated over less than the bins the image's transport of that group reaches
+/// (it is 0 there, as a render would take it). Throws for a negative or non-finite value.
+GroupSpectrum groupSpectrum(const SpectralImage& image, const std::string& group, const Spectrum& s,
+                            double tableLoNm, double tableHiNm, const std::string& source,
+                            std::vector<std::string>& warnings);
+
+/// The same from a CSV file (two columns nm,value; errors name the file and line).
+GroupSpectrum groupSpectrumFromCsv(const SpectralImage& image, const std::string& group,
+                                   const std::string& path, std::vector<std::string>& warnings);
+
+/// The image under the new spectra: bands and their variances (Variance.S0...); XYZ, RGB and
+/// Variance.Y from the relit bands (BandColour: the bands read as a spectrum, as for a file
+/// without its own XYZ); sample counts, ids and depth; the transport, the
+/// component layers and the white reference, which belong to the lighting rendered, are not
+/// carried over. The attributes are kept, nxrender.relit names the spectra and the render
+/// key says the image was relit. Throws nx::Error for an image without a transport, a group it
+/// does not hold (listing those it does) or a group given twice.
+SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSpectrum>& spectra);
+
+} // namespace nx

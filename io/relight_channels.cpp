@@ -1,0 +1,181 @@
+#include "io/relight_channels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "core/error.h"
+
+namespace nx {
+namespace {
+
+// "452,500000nm": a wavelength as the spectral channels write it.
+std::string wavelengthText(double nm) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6f", nm);
+  std::string s = buf;
+  std::replace(s.begin(), s.end(), '.', ',');
+  return s + "nm";
+}
+
+double parseWavelength(const std::string& text, const std::string& path,
+                       const std::string& channel) {
+  std::string s = text;
+  if (s.size() < 3 || s.substr(s.size() - 2) != "nm")
+    throw Error(path + ": expected a wavelength in nm in the channel " + channel + ", found " +
+                text);
+  s = s.substr(0, s.size() - 2);
+  std::replace(s.begin(), s.end(), ',', '.');
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != s.size() || !std::isfinite(v))
+    throw Error(path + ": expected a wavelength in nm in the channel " + channel + ", found " +
+                text);
+  return v;
+}
+
+std::vector<std::string> splitCommas(const std::string& s) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start <= s.size()) {
+    const size_t comma = s.find(',', start);
+    out.push_back(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+} // namespace
+
+std::string relightChannelName(const RelightLayers& rl, size_t g, size_t e,
+                               const std::vector<std::string>& bandText) {
+  const RelightEntry& en = rl.entries[e];
+  const std::string base = "relight." + rl.groups[g] + ".";
+  const std::string excitation = wavelengthText(rl.grid.centre(en.bin));
+  return base + "T." + excitation + "." + bandText[static_cast<size_t>(en.row)];
+}
+
+std::map<std::string, std::string> relightAttributes(const RelightLayers& rl) {
+  std::map<std::string, std::string> out;
+  std::string groups;
+  for (const std::string& g : rl.groups) groups += (groups.empty() ? "" : ",") + g;
+  out[kRelightGroupsAttribute] = groups;
+  char grid[96];
+  std::snprintf(grid, sizeof grid, "%.9g:%.9g:%.9g", rl.grid.firstNm, rl.grid.lo(rl.grid.bins),
+                rl.grid.stepNm);
+  out[kRelightGridAttribute] = grid;
+  for (size_t g = 0; g < rl.groups.size(); ++g) {
+    std::string values;
+    for (double v : rl.spectra[g]) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.9g", v);
+      values += (values.empty() ? "" : ",") + std::string(buf);
+    }
+    out[kRelightSpectrumAttribute + rl.groups[g]] = values;
+  }
+  return out;
+}
+
+std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>& attributes,
+                                              const std::vector<std::string>& channels,
+                                              const std::vector<std::string>& bandText,
+                                              const std::string& path, RelightLayers& rl) {
+  const auto groupsIt = attributes.find(kRelightGroupsAttribute);
+  if (groupsIt == attributes.end()) return {};
+  rl.groups = splitCommas(groupsIt->second);
+  attributes.erase(groupsIt);
+  const auto gridIt = attributes.find(kRelightGridAttribute);
+  if (gridIt == attributes.end())
+    throw Error(path + ": expected the attribute " + std::string(kRelightGridAttribute) +
+                " beside " + kRelightGroupsAttribute + ", found none");
+  double first = 0, end = 0, step = 0;
+  char tail = 0;
+  if (std::sscanf(gridIt->second.c_str(), "%lf:%lf:%lf%c", &first, &end, &step, &tail) != 3)
+    throw Error(path + ": expected " + kRelightGridAttribute + " as FIRST:END:STEP, found '" +
+                gridIt->second + "'");
+  attributes.erase(gridIt);
+  checkRelightStep(step, path + ": " + kRelightGridAttribute);
+  rl.grid = RelightGrid::withStep(step);
+  if (first != rl.grid.firstNm || std::abs(end - rl.grid.lo(rl.grid.bins)) > 1e-6)
+    throw Error(path + ": expected " + kRelightGridAttribute + " from " +
+                std::to_string(static_cast<int>(rl.grid.firstNm)) + " nm, found '" +
+                std::to_string(first) + "'");
+  for (const std::string& g : rl.groups) {
+    const auto it = attributes.find(kRelightSpectrumAttribute + g);
+    if (it == attributes.end())
+      throw Error(path + ": expected the attribute " + kRelightSpectrumAttribute + g +
+                  " (the group's spectrum), found none");
+    std::vector<double> values;
+    for (const std::string& v : splitCommas(it->second)) {
+      size_t used = 0;
+      double x = 0;
+      try {
+        x = std::stod(v, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != v.size() || !std::isfinite(x))
+        throw Error(path + ": expected numbers in " + it->first + ", found '" + v + "'");
+      values.push_back(x);
+    }
+    if (values.size() != static_cast<size_t>(rl.grid.bins))
+      throw Error(path + ": expected " + std::to_string(rl.grid.bins) + " values in " + it->first +
+                  " (one per bin), found " + std::to_string(values.size()));
+    rl.spectra.push_back(std::move(values));
+    attributes.erase(it);
+  }
+  // The entries of each group from its channel names; every group has the same ones.
+  const int bands = static_cast<int>(bandText.size());
+  std::vector<std::set<std::pair<int, int>>> ofGroup(rl.groups.size());
+  for (const std::string& c : channels) {
+    if (c.rfind("relight.", 0) != 0) continue;
+    size_t g = 0;
+    for (; g < rl.groups.size(); ++g)
+      if (c.rfind("relight." + rl.groups[g] + ".", 0) == 0) break;
+    if (g == rl.groups.size())
+      throw Error(path + ": expected relight channels of the groups " + groupsIt->first +
+                  " lists, found " + c);
+    const std::string rest = c.substr(("relight." + rl.groups[g] + ".").size());
+    if (rest.rfind("T.", 0) != 0 || rest.find('.', 2) == std::string::npos)
+      throw Error(path + ": expected relight." + rl.groups[g] +
+                  ".T.<excitation>nm.<band>nm, found " + c);
+    const size_t dot = rest.find('.', 2);
+    const std::string excitation = rest.substr(2, dot - 2), band = rest.substr(dot + 1);
+    int row = -1;
+    for (int b = 0; b < bands; ++b)
+      if (bandText[static_cast<size_t>(b)] == band) row = b;
+    if (row < 0)
+      throw Error(path + ": expected a band of the image in the channel " + c + ", found " + band);
+    const double nm = parseWavelength(excitation, path, c);
+    const int bin = rl.grid.binOf(static_cast<float>(nm));
+    if (bin < 0 || std::abs(rl.grid.centre(bin) - nm) > 1e-3)
+      throw Error(path + ": expected an excitation bin centre of the grid in the channel " + c +
+                  ", found " + excitation);
+    ofGroup[g].insert({row, bin});
+  }
+  for (size_t g = 1; g < ofGroup.size(); ++g)
+    if (ofGroup[g] != ofGroup[0])
+      throw Error(path + ": expected the same transport channels for every light group, found " +
+                  std::to_string(ofGroup[0].size()) + " for " + rl.groups[0] + " and " +
+                  std::to_string(ofGroup[g].size()) + " for " + rl.groups[g]);
+  for (const auto& [row, bin] : ofGroup[0]) rl.entries.push_back({row, bin});
+  std::vector<std::string> out;
+  for (size_t g = 0; g < rl.groups.size(); ++g)
+    for (size_t e = 0; e < rl.entries.size(); ++e) {
+      out.push_back(relightChannelName(rl, g, e, bandText));
+      if (std::find(channels.begin(), channels.end(), kHalfDifferencePrefix + out.back()) ==
+          channels.end())
+        throw Error(path + ": expected a channel " + kHalfDifferencePrefix + out.back() +
+                    ", found none");
+    }
+  return out;
+}
+
+} // namespace nx

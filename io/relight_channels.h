@@ -1,0 +1,43 @@
+#pragma once
+// How a relightable render's transport is stored in its EXR (docs/relighting.md): one float
+// channel per light group and pattern entry, named by both wavelengths in the bispectral
+// spirit of Fichet et al. 2021 ("T.<excitation>.<emission>" within a layer per group):
+//   relight.<group>.T.<excitation bin centre>nm.<band>nm
+// each with HalfDifference.<channel> (the replicates' signed half-difference), and the
+// attributes nxrender.relightGroups, nxrender.relightGrid and nxrender.relightSpectrum.<group>.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "io/relight_layers.h"
+
+namespace nx {
+
+/// Prefix of the half-difference channels of the transport.
+inline constexpr const char* kHalfDifferencePrefix = "HalfDifference.";
+/// The attribute listing the transport's light groups (comma-separated, in layer order).
+inline constexpr const char* kRelightGroupsAttribute = "nxrender.relightGroups";
+/// The attribute giving the excitation grid: "FIRST:END:STEP" in nm.
+inline constexpr const char* kRelightGridAttribute = "nxrender.relightGrid";
+/// The attribute prefix of each group's rendered spectrum (bin averages, comma-separated).
+inline constexpr const char* kRelightSpectrumAttribute = "nxrender.relightSpectrum.";
+
+/// The channel of group g's entry e; `bandText` gives each band row's wavelength as its
+/// spectral channel names it ("550,000000nm").
+std::string relightChannelName(const RelightLayers& rl, size_t g, size_t e,
+                               const std::vector<std::string>& bandText);
+
+/// The attributes describing rl (groups, grid, spectra).
+std::map<std::string, std::string> relightAttributes(const RelightLayers& rl);
+
+/// Reads rl's description back from an image's attributes (removing them) and its channel
+/// names: groups, grid, spectra and the pattern (the entries every group has). Returns the
+/// channel of each (group, entry), in rl's order; empty when the image holds no transport.
+/// Errors name `path` and what was expected.
+std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>& attributes,
+                                              const std::vector<std::string>& channels,
+                                              const std::vector<std::string>& bandText,
+                                              const std::string& path, RelightLayers& rl);
+
+} // namespace nx

@@ -1,0 +1,30 @@
+#include "io/relight_layers.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace nx {
+
+RelightGrid RelightGrid::withStep(double stepNm) {
+  RelightGrid g;
+  g.stepNm = stepNm;
+  g.bins = static_cast<int>(std::ceil((1100.0 - g.firstNm) / stepNm - 1e-9));
+  return g;
+}
+
+void checkRelightStep(double stepNm, const std::string& option) {
+  const auto whole = [](double x) { return std::abs(x - std::round(x)) < 1e-9 && x >= 1; };
+  if (!(stepNm > 0 && stepNm <= 100 && (whole(5 / stepNm) || whole(stepNm / 5))))
+    throw Error(option + ": expected a step in nm that divides 5 (1, 2.5, 5) or is a multiple " +
+                "of 5 up to 100 (its bins nest with the 5 nm re-radiation grid), found " +
+                numberText(stepNm));
+}
+
+int RelightLayers::groupIndex(const std::string& name) const {
+  for (size_t i = 0; i < groups.size(); ++i)
+    if (groups[i] == name) return static_cast<int>(i);
+  return -1;
+}
+
+} // namespace nx

@@ -1,0 +1,66 @@
+#pragma once
+// The transport of a relightable render (--relightable, docs/relighting.md): per pixel and light
+// group, what one unit of the group's emission spectrum in each excitation bin puts into each
+// band, on the sparse pattern of (band, bin) pairs the scene can reach. The image under new group
+// spectra S_g is sum over groups and bins of T S_g(bin).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace nx {
+
+/// The excitation grid: bins of stepNm from firstNm up to kRelightMaxNm.
+struct RelightGrid {
+  double firstNm = 300; ///< the first bin's start (the traced range's start)
+  double stepNm = 5;    ///< bin width
+  int bins = 160;       ///< bins up to 1100 nm
+
+  /// The grid of `stepNm` over [300, 1100) nm.
+  static RelightGrid withStep(double stepNm);
+  /// Start of bin j (nm).
+  double lo(int j) const { return firstNm + stepNm * j; }
+  /// Centre of bin j (nm).
+  double centre(int j) const { return firstNm + stepNm * (j + 0.5); }
+  /// Bin containing nm (the range's end in the last bin), or -1 outside the grid.
+  int binOf(float nm) const {
+    const float x = (nm - static_cast<float>(firstNm)) * static_cast<float>(1.0 / stepNm);
+    if (!(x >= 0)) return -1;
+    const int j = static_cast<int>(x);
+    return j < bins ? j : (x <= static_cast<float>(bins) ? bins - 1 : -1);
+  }
+};
+
+/// Checks a relight step (nm): a divisor of 5 nm (1, 2.5, 5) or a multiple of it up to 100, so
+/// that the bins nest with the 5 nm re-radiation grid. Throws nx::Error naming `option`.
+void checkRelightStep(double stepNm, const std::string& option);
+
+/// One pair of the pattern: output row (a band) and excitation bin.
+struct RelightEntry {
+  int32_t row = 0; ///< band index
+  int32_t bin = 0; ///< excitation bin of the grid
+};
+
+/// The relightable part of a spectral image.
+struct RelightLayers {
+  RelightGrid grid;
+  std::vector<RelightEntry> entries; ///< the pattern, ordered by row then bin
+  std::vector<std::string> groups;   ///< light group names, in layer order
+  /// Per group, the bin averages (over the grid) of the spectrum its emitters were rendered
+  /// with: relighting a group not given a new spectrum uses these.
+  std::vector<std::vector<double>> spectra;
+  /// [group][entry][pixel] transport means per unit emission spectrum
+  std::vector<float> values;
+  /// [group][entry][pixel] signed half-differences (A - B) / 2 of the two replicates' means:
+  /// the variance of any linear combination c of the means is (c . d)^2
+  std::vector<float> halfDifferences;
+
+  /// True when the image holds a transport.
+  bool present() const { return !groups.empty(); }
+  /// Index of group `name`, or -1.
+  int groupIndex(const std::string& name) const;
+  /// Entries per group.
+  size_t size() const { return entries.size(); }
+};
+
+} // namespace nx

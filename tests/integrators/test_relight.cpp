@@ -1,0 +1,352 @@
+// Relightable renders (--relightable) and relighting: a render relit to another lamp spectrum
+// equals a direct render under it (z-tests per band), relit to its own spectrum equals itself
+// to the grid's bound, a narrow-band render relit to a broad spectrum still holds the whole
+// transport, per-light images sum to the total and match the light groups' layers, the
+// pattern misses no path of a cascade of dyes, the EXR round trip and the refusals.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "integrators/relight_image.h"
+#include "integrators/relight_pattern.h"
+#include "integrators/renderer.h"
+#include "support/errors.h"
+#include "support/render_checks.h"
+
+namespace nx {
+namespace {
+
+// A floor, a fluorescent sphere and a sphere lamp of group "lamp" with the <emission> element
+// `lamp`; a second lamp of group "fill" (emission element `fill`) when that is not empty.
+std::string benchScene(const std::string& lamp, const std::string& fill = "", int samples = 64,
+                       const std::string& bands = "400:700:20") {
+  return "<scene><settings><xres>32</xres><yres>32</yres><mode>spectral_mcpt</mode><depth>4</"
+         "depth><sampl>" +
+         std::to_string(samples) + "</sampl><bands>" + bands +
+         "</bands></settings><camera><position>0,1,-5</position><look_at>0,0.5,0</look_at><fov>"
+         "40</fov></camera><plane><normal>0,1,0</normal><distance>0</distance><material>matte</"
+         "material><reflectance>400:0.3, 700:0.8</reflectance></plane>"
+         "<sphere><center>0,0.7,0</center><radius>0.7</radius><material>matte</material>"
+         "<reflectance>0.5</reflectance><fluorescence><absorption>blue</absorption><stokes>100</"
+         "stokes></fluorescence></sphere>"
+         "<sphere group=\"lamp\"><center>-1.5,2.5,-1</center><radius>0.5</radius><material>matte"
+         "</material><reflectance>0</reflectance>" +
+         lamp + "</sphere>" +
+         (fill.empty() ? ""
+                       : "<sphere group=\"fill\"><center>1.8,1.5,-1.5</center><radius>0.3</"
+                         "radius><material>matte</material><reflectance>0</reflectance>" +
+                             fill + "</sphere>") +
+         "</scene>";
+}
+
+// Smooth and red-heavy; an LED-like shape; black but for 430-470 nm.
+const std::string kLampS1 = "<emission scale=\"2e-4\">blackbody:4000</emission>";
+const std::string kLampS2 =
+    "<emission scale=\"2e-4\">380:0.2, 450:3, 500:0.5, 560:2, 650:1, 800:0.1</emission>";
+const std::string kNarrowLamp = "<emission scale=\"2e-4\">430:0, 440:5, 460:5, 470:0</emission>";
+
+RenderScene relightableScene(const std::string& text) {
+  SceneDesc d = parseScene(text, "t.scn");
+  d.relightable = true;
+  return buildRenderScene(d);
+}
+
+RenderOutput renderRelightable(const std::string& text, double stepNm = 5,
+                               const RenderOptions& base = {}) {
+  const RenderScene scene = relightableScene(text);
+  RenderOptions o = base;
+  o.relightStepNm = stepNm;
+  RenderOutput out = render(scene, o);
+  EXPECT_EQ(out.stats.relightMissed, 0u);
+  return out;
+}
+
+// Image mean and standard error (over pixels) of band b of an image.
+test::RunningStats imageBand(const SpectralImage& img, int b) {
+  test::RunningStats s;
+  const int nb = img.bands.count();
+  for (size_t i = 0; i < img.sampleCount.size(); ++i)
+    s.add(img.radiance[i * static_cast<size_t>(nb) + static_cast<size_t>(b)]);
+  return s;
+}
+
+// Every band of `a` equals `b`'s (an independent render) within 5 standard errors of the
+// mean pixel difference (pixels are independent estimates); the test has power: that standard
+// error is below 5% of the band's mean.
+void expectSameBands(const SpectralImage& a, const SpectralImage& b, const std::string& what) {
+  const size_t nb = static_cast<size_t>(a.bands.count());
+  for (size_t k = 0; k < nb; ++k) {
+    test::RunningStats d, y;
+    for (size_t i = 0; i < a.sampleCount.size(); ++i) {
+      d.add(a.radiance[i * nb + k] - b.radiance[i * nb + k]);
+      y.add(b.radiance[i * nb + k]);
+    }
+    EXPECT_GT(y.mean, 0.0) << what;
+    EXPECT_LT(d.standardError(), 0.05 * y.mean) << what << " band " << a.bands.centroid(k);
+    EXPECT_LT(std::abs(d.mean), 5 * d.standardError())
+        << what << " band " << a.bands.centroid(k) << ": difference " << d.mean << " se "
+        << d.standardError() << " of " << y.mean;
+  }
+}
+
+// A direct render of scene text with another seed than the relightable one.
+SpectralImage directRender(const std::string& text) {
+  RenderOptions o;
+  o.seed = 7;
+  return toSpectralImage(renderText(text, o).film);
+}
+
+// The mean variance channel of band b over the image.
+double meanVariance(const SpectralImage& img, int b) {
+  double sum = 0;
+  const int nb = img.bands.count();
+  for (size_t i = 0; i < img.sampleCount.size(); ++i)
+    sum += img.bandVariance[i * static_cast<size_t>(nb) + static_cast<size_t>(b)];
+  return sum / static_cast<double>(img.sampleCount.size());
+}
+
+// The spectrum an <emission> element is, as written (without its scale).
+Spectrum writtenSpectrum(const std::string& element) {
+  const RenderScene s = relightableScene(benchScene(element));
+  return s.relight.ofGroup[s.lightGroups.ofEmission.back()];
+}
+
+GroupSpectrum binned(const SpectralImage& img, const std::string& group,
+                     const std::string& element) {
+  std::vector<std::string> warnings;
+  GroupSpectrum g =
+      groupSpectrum(img, group, writtenSpectrum(element), 300, 1100, element, warnings);
+  EXPECT_TRUE(warnings.empty());
+  return g;
+}
+
+// A render under S1 relit to S2 equals a direct render under S2 in every band (z-test), with
+// fluorescence (the sphere re-radiates the lamp's blue into the green); the relit variances
+// are those of an estimate as good as the direct render's (within a factor 2 on average).
+TEST(Relight, RelitToAnotherLampEqualsADirectRender) {
+  const RenderOutput under1 = renderRelightable(benchScene(kLampS1));
+  const SpectralImage img = toSpectralImage(under1.film);
+  ASSERT_TRUE(img.relight.present());
+  ASSERT_EQ(img.relight.groups, std::vector<std::string>{"lamp"});
+  const SpectralImage relit = relightImage(img, {binned(img, "lamp", kLampS2)});
+  const SpectralImage direct = directRender(benchScene(kLampS2));
+  expectSameBands(relit, direct, "S1 relit to S2");
+}
+
+// The relit variance channels estimate the relit image's own error: over renders with other
+// seeds, the scatter of each relit pixel matches the mean of its variance channel (pooled over
+// pixels and bands, within 15%).
+TEST(Relight, RelitVariancesMatchTheScatterOverSeeds) {
+  const RenderScene scene = relightableScene(benchScene(kLampS1, "", 8));
+  constexpr int kSeeds = 12;
+  std::vector<SpectralImage> relit;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    RenderOptions o;
+    o.seed = static_cast<uint32_t>(100 + seed);
+    const SpectralImage img = toSpectralImage(render(scene, o).film);
+    relit.push_back(relightImage(img, {binned(img, "lamp", kLampS2)}));
+  }
+  double scatter = 0, estimated = 0;
+  for (size_t k = 0; k < relit[0].radiance.size(); ++k) {
+    test::RunningStats v, e;
+    for (const SpectralImage& r : relit) {
+      v.add(r.radiance[k]);
+      e.add(r.bandVariance[k]);
+    }
+    scatter += v.variance();
+    estimated += e.mean;
+  }
+  EXPECT_GT(scatter, 0.0);
+  EXPECT_NEAR(estimated / scatter, 1.0, 0.15) << estimated << " vs " << scatter;
+}
+
+// Relit to the spectrum it was rendered with, a render is itself to the grid's bound: each
+// contribution c S(mu) becomes c S(bin of mu), so per pixel and band |relit - render| <=
+// eps * render with eps the largest |S - S_bin| / S_bin within a bin (all contributions >= 0).
+// The variances stay the render's.
+TEST(Relight, RelitToItsOwnSpectrumIsTheRenderToTheGridBound) {
+  for (double step : {5.0, 1.0}) {
+    const RenderOutput out = renderRelightable(benchScene(kLampS1, "", 16), step);
+    const SpectralImage img = toSpectralImage(out.film);
+    const SpectralImage relit = relightImage(img, {}); // every group keeps its spectrum
+    const Spectrum s = writtenSpectrum(kLampS1);
+    const RelightGrid& grid = img.relight.grid;
+    const std::vector<double> avg = binAverages(s, grid);
+    double eps = 0;
+    for (int j = 0; j < grid.bins; ++j)
+      for (int k = 0; k <= 20; ++k) {
+        const double v = s(grid.lo(j) + grid.stepNm * k / 20);
+        if (avg[static_cast<size_t>(j)] > 0)
+          eps = std::max(eps, std::abs(v - avg[static_cast<size_t>(j)]) / avg[j]);
+      }
+    // (the bound is tight enough to mean something: 4000 K falls steeply into the UV)
+    EXPECT_LT(eps, step == 5 ? 0.07 : 0.015);
+    double worst = 0;
+    for (size_t k = 0; k < img.radiance.size(); ++k) {
+      const double r = img.radiance[k], d = std::abs(relit.radiance[k] - r);
+      EXPECT_LE(d, eps * r + 1e-6 * r + 1e-12) << k;
+      worst = std::max(worst, d / std::max(r, 1e-30));
+    }
+    EXPECT_GT(worst, 0.0) << "relit to its own spectrum by the bins, not copied";
+    for (int b = 0; b < img.bands.count(); ++b) {
+      const double ratio = meanVariance(relit, b) / meanVariance(img, b);
+      EXPECT_GT(ratio, 0.8) << b;
+      EXPECT_LT(ratio, 1.25) << b;
+    }
+  }
+}
+
+// The transport does not depend on the lamp the render used: a lamp black but for 430-470 nm
+// relit to a broad spectrum equals a direct render under that (unit spectra are traced; the
+// lamp's spectrum is applied per contribution).
+TEST(Relight, NarrowBandRenderRelitToABroadSpectrum) {
+  const RenderOutput narrow = renderRelightable(benchScene(kNarrowLamp));
+  const SpectralImage img = toSpectralImage(narrow.film);
+  const SpectralImage relit = relightImage(img, {binned(img, "lamp", kLampS2)});
+  // Rendered, the narrow lamp lights the red band only by the far tail of the fluorescence.
+  const int red = img.bands.count() - 1;
+  EXPECT_LT(imageBand(img, red).mean, 0.1 * imageBand(relit, red).mean);
+  const SpectralImage direct = directRender(benchScene(kLampS2));
+  expectSameBands(relit, direct, "narrow relit to S2");
+}
+
+// Two lamps: relit with one lamp's spectrum at zero, the per-light images sum to the image of
+// both (to float rounding), and each is, to the grid's bound, the light group's own layer.
+TEST(Relight, PerLightImagesSumToTheTotalAndMatchTheGroupLayers) {
+  const std::string fill = "<emission scale=\"2\">400:1, 700:0.5</emission>";
+  RenderOptions o;
+  o.lightGroups = true;
+  const RenderOutput out = renderRelightable(benchScene(kLampS1, fill, 16), 5, o);
+  const SpectralImage img = toSpectralImage(out.film);
+  ASSERT_EQ(img.relight.groups, (std::vector<std::string>{"lamp", "fill"}));
+  const size_t bins = static_cast<size_t>(img.relight.grid.bins);
+  const GroupSpectrum darkLamp{"lamp", std::vector<double>(bins, 0.0), "0"};
+  const GroupSpectrum darkFill{"fill", std::vector<double>(bins, 0.0), "0"};
+  const SpectralImage both = relightImage(img, {});
+  const SpectralImage fillOnly = relightImage(img, {darkLamp});
+  const SpectralImage lampOnly = relightImage(img, {darkFill});
+  const int nb = img.bands.count();
+  ASSERT_EQ(img.layers.size(), 2u);
+  for (size_t k = 0; k < both.radiance.size(); ++k) {
+    const double sum = lampOnly.radiance[k] + fillOnly.radiance[k];
+    EXPECT_NEAR(sum, both.radiance[k], 1e-5 * both.radiance[k] + 1e-12) << k;
+    // light.lamp and light.fill: the rendered split (blackbody and a linear ramp, both
+    // within 3% over a 5 nm bin)
+    EXPECT_NEAR(lampOnly.radiance[k], img.layers[0].values[k], 0.03 * img.layers[0].values[k])
+        << k / static_cast<size_t>(nb);
+    EXPECT_NEAR(fillOnly.radiance[k], img.layers[1].values[k], 0.03 * img.layers[1].values[k]);
+  }
+}
+
+// A cascade of dyes (UV -> blue by the walls, blue -> red by a ball) and several sensors: the
+// pattern holds every contribution (none dropped), and under a lamp with light only below 370
+// nm the relit red is what the cascade brings (a render of the same says so too).
+TEST(Relight, PatternHoldsCascadesOfDyesForAnySensor) {
+  const std::string room =
+      "<scene><settings><xres>16</xres><yres>16</yres><mode>spectral_mcpt</mode><depth>6</depth>"
+      "<sampl>16</sampl></settings><camera><position>0,0,0</position><look_at>0,0,1</look_at>"
+      "<fov>60</fov></camera><sphere><center>0,0,0</center><radius>4</radius><material>matte</"
+      "material><reflectance>0.3</reflectance><fluorescence><absorption>350</absorption><stokes>"
+      "100</stokes></fluorescence></sphere><sphere><center>0.8,0,2.5</center><radius>0.6</"
+      "radius><material>matte</material><reflectance>0.2</reflectance><fluorescence><absorption>"
+      "450</absorption><stokes>160</stokes></fluorescence></sphere><sphere group=\"uv\"><center>"
+      "-0.8,0.5,2</center><radius>0.3</radius><material>matte</material><reflectance>0</"
+      "reflectance><emission>330:0, 340:20, 365:20, 370:0</emission></sphere></scene>";
+  for (const char* sensor : {"400:700:20", "gaussian:420,500,610@30", "boxes:430-450,600-650"}) {
+    RenderOptions o;
+    o.bands = Sensor::parse(sensor, "test");
+    const RenderOutput out = renderRelightable(room, 5, o); // checks relightMissed == 0
+    const SpectralImage img = toSpectralImage(out.film);
+    const int red = img.bands.count() - 1; // the longest band: only the cascade reaches it
+    EXPECT_GT(imageBand(img, red).mean, 0.0) << sensor;
+    // Relit to its own spectrum: the lamp's ramps make the grid's per-sample bound loose here,
+    // but the excitation is uniform within each 5 nm bin, so each pixel's difference from the
+    // render has mean 0 (a paired z-test over the pixels).
+    expectSameBands(relightImage(img, {}), img, sensor);
+  }
+}
+
+// An image written and read back relights as the image in memory; a file without a transport
+// and a group it does not hold are refused.
+TEST(Relight, ExrRoundTripAndRefusals) {
+  const RenderOutput out = renderRelightable(benchScene(kLampS1, "", 4));
+  const SpectralImage img = toSpectralImage(out.film);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "nx_relight_roundtrip.exr").string();
+  writeSpectralExr(path, img);
+  const SpectralImage back = readSpectralExr(path);
+  std::filesystem::remove(path);
+  ASSERT_TRUE(back.relight.present());
+  EXPECT_EQ(back.relight.entries.size(), img.relight.entries.size());
+  EXPECT_EQ(back.relight.values, img.relight.values);
+  EXPECT_EQ(back.relight.halfDifferences, img.relight.halfDifferences);
+  const GroupSpectrum s2 = binned(img, "lamp", kLampS2);
+  EXPECT_EQ(relightImage(back, {s2}).radiance, relightImage(img, {s2}).radiance);
+  EXPECT_EQ(test::errorMessage([&] {
+              relightImage(back, {s2, s2});
+            }),
+            "expected each light group once, found 'lamp' twice");
+  std::vector<std::string> warnings;
+  EXPECT_EQ(test::errorMessage([&] {
+              groupSpectrum(img, "sky", writtenSpectrum(kLampS2), 300, 1100, "x", warnings);
+            }),
+            "expected a light group of the image (lamp), found 'sky'");
+  // A table that ends inside the reach of the transport: 0 beyond it, with a warning.
+  groupSpectrum(img, "lamp", writtenSpectrum(kLampS2), 380, 800, "led.csv", warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("led.csv: warning: tabulated over 380-800 nm and the transport of "
+                             "light group 'lamp' reaches 3"),
+            std::string::npos)
+      << warnings[0];
+  const SpectralImage plain = toSpectralImage(renderText(benchScene(kLampS1, "", 2)).film);
+  EXPECT_EQ(test::errorMessage([&] { relightImage(plain, {}); }),
+            "expected a relightable image (rendered with --relightable), found one without "
+            "relight channels");
+}
+
+// What a relightable build cannot relight is refused by name: emitters of one group with two
+// spectra, emitting media, environment maps, other modes; a resume; a step off the grid.
+TEST(Relight, RefusalsNameWhatCannotBeRelit) {
+  const std::string twoSpectra = benchScene(kLampS1, "<emission>1</emission>");
+  std::string sameGroup = twoSpectra;
+  sameGroup.replace(sameGroup.find("group=\"fill\""), 12, "group=\"lamp\"");
+  EXPECT_EQ(test::errorMessage([&] { relightableScene(sameGroup); }).substr(0, 120),
+            std::string("t.scn:1: --relightable: expected the emitters of light group 'lamp' to "
+                        "share one spectrum (a group is relit as one), found another o")
+                .substr(0, 120));
+  // The same spectrum at another scale is one group's.
+  std::string scaled = benchScene(kLampS1, "<emission scale=\"3e-4\">blackbody:4000</emission>");
+  scaled.replace(scaled.find("group=\"fill\""), 12, "group=\"lamp\"");
+  EXPECT_NO_THROW(relightableScene(scaled));
+  const std::string medium =
+      "<scene><settings><xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode></settings><camera>"
+      "<position>0,0,-4</position><look_at>0,0,0</look_at></camera><sphere><center>0,0,0</"
+      "center><radius>1</radius><material>interface</material><medium><sigma_a>1</sigma_a>"
+      "<sigma_s>0</sigma_s><emission>1</emission></medium></sphere></scene>";
+  EXPECT_NE(test::errorMessage([&] {
+              relightableScene(medium);
+            }).find("--relightable: expected media that do not emit, found an emitting medium"),
+            std::string::npos);
+  std::string rt = benchScene(kLampS1);
+  rt.replace(rt.find("spectral_mcpt"), 13, "mcpt");
+  EXPECT_EQ(test::errorMessage([&] { relightableScene(rt); }),
+            "t.scn: --relightable: expected a spectral_mcpt scene (relighting replaces emission "
+            "spectra), found mode mcpt");
+  const RenderScene scene = relightableScene(benchScene(kLampS1, "", 2));
+  RenderOptions o;
+  o.relightStepNm = 3;
+  EXPECT_EQ(test::errorMessage([&] { render(scene, o); }),
+            "--relight-step: expected a step in nm that divides 5 (1, 2.5, 5) or is a multiple of "
+            "5 up to 100 (its bins nest with the 5 nm re-radiation grid), found 3");
+  const Film stored = render(scene, {}).film;
+  RenderOptions resume;
+  resume.resumeFrom = &stored;
+  EXPECT_EQ(test::errorMessage([&] { render(scene, resume); }),
+            "--relightable: continuing a relightable render (--resume) is not supported; render "
+            "it again, or split it by --spp-range parts and merge them");
+}
+
+} // namespace
+} // namespace nx

@@ -1,0 +1,84 @@
+"""Relighting from Python: render(..., relightable=True) keeps the transport per light group,
+Image.relight({group: spectrum}) takes a CSV file, (wavelengths, values) or a number, gives
+the same image as the nxrelight command, and refuses what it cannot relight by name."""
+
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import nxrender
+
+SCENE = """<scene><settings><xres>12</xres><yres>10</yres><mode>spectral_mcpt</mode>
+<depth>3</depth><sampl>8</sampl><bands>400:700:20</bands></settings>
+<camera><position>0,1,-5</position><look_at>0,0.5,0</look_at><fov>40</fov></camera>
+<plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>
+<reflectance>0.6</reflectance></plane>
+<sphere><center>0,0.7,0</center><radius>0.7</radius><material>matte</material>
+<reflectance>0.5</reflectance><fluorescence><absorption>blue</absorption><stokes>100</stokes>
+</fluorescence></sphere>
+<sphere group="lamp"><center>-1.5,2.5,-1</center><radius>0.5</radius><material>matte</material>
+<reflectance>0</reflectance><emission scale="2">400:1, 700:0.5</emission></sphere>
+<light group="spot"><position>2,3,-2</position><emission>30</emission></light>
+</scene>"""
+
+LED = (np.array([380.0, 450, 500, 560, 650, 800]), np.array([0.2, 3, 0.5, 2, 1, 0.1]))
+
+
+@pytest.fixture(scope="module")
+def relightable():
+    return nxrender.render(SCENE, relightable=True, seed=3)
+
+
+def test_groups_and_the_forms_of_a_spectrum(relightable, tmp_path):
+    assert relightable.relight_groups == ["lamp", "spot"]
+    csv = tmp_path / "led.csv"
+    csv.write_text("nm,value\n" + "".join(f"{a},{b}\n" for a, b in zip(*LED)))
+    by_file = relightable.relight({"lamp": csv})
+    by_table = relightable.relight({"lamp": LED})
+    np.testing.assert_array_equal(by_file.radiance, by_table.radiance)
+    # a flat spectrum of 0 takes the group out; the two groups' images sum to the whole
+    spot_only = relightable.relight({"lamp": 0})
+    lamp_only = relightable.relight({"spot": 0})
+    both = relightable.relight()
+    np.testing.assert_allclose(spot_only.radiance + lamp_only.radiance, both.radiance,
+                               rtol=1e-5, atol=1e-12)
+    assert spot_only.radiance.sum() > 0 and lamp_only.radiance.sum() > 0
+    # relit to its own spectra: the render, to the grid's approximation (linear spectra here)
+    np.testing.assert_allclose(both.radiance, relightable.radiance, rtol=0.02, atol=1e-9)
+    assert by_file.variance is not None and np.all(by_file.variance >= 0)
+    assert by_file.relight_groups == []  # an ordinary image
+
+
+def test_same_image_as_the_command_line(relightable, tmp_path):
+    cli = Path(os.environ["NXRENDER_CLI"]).parent / "nxrelight"
+    nxrender.write_exr(tmp_path / "in.exr", relightable)
+    csv = tmp_path / "led.csv"
+    csv.write_text("".join(f"{a},{b}\n" for a, b in zip(*LED)))
+    subprocess.run([str(cli), str(tmp_path / "in.exr"), "--light", f"lamp={csv}", "-o",
+                    str(tmp_path / "out.exr")], check=True, capture_output=True)
+    from_cli = nxrender.read_exr(tmp_path / "out.exr")
+    in_python = relightable.relight({"lamp": csv})
+    np.testing.assert_array_equal(from_cli.radiance, in_python.radiance)
+    np.testing.assert_array_equal(from_cli.variance, in_python.variance)
+    assert (tmp_path / "out.png").exists()
+    assert from_cli.attributes["nxrender.relit"] == f"lamp={csv}"
+
+
+def test_refusals(relightable, tmp_path):
+    with pytest.raises(ValueError, match=r"expected a light group of the image \(lamp, spot\), "
+                                         r"found 'sky'"):
+        relightable.relight({"sky": 1})
+    with pytest.raises(ValueError, match="expected increasing wavelengths"):
+        relightable.relight({"lamp": (np.array([500.0, 400]), np.array([1.0, 1]))})
+    with pytest.raises(ValueError, match="expected values >= 0"):
+        relightable.relight({"lamp": (np.array([400.0, 500]), np.array([1.0, -1]))})
+    plain = nxrender.render(SCENE, spp=2)
+    with pytest.raises(ValueError, match="expected a relightable image"):
+        plain.relight({"lamp": 1})
+    with pytest.raises(ValueError, match="relight_step: expected a step in nm that divides 5"):
+        nxrender.render(SCENE, relightable=True, relight_step=3)
+    with pytest.raises(ValueError, match="relight_step: only with relightable=True"):
+        nxrender.render(SCENE, relight_step=5)
