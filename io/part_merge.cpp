@@ -1,5 +1,7 @@
 #include "io/part_merge.h"
 
+#include "io/relight_merge.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -309,6 +311,7 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
     out.rgb[i * 3 + 1] = static_cast<float>(std::max(rgb.g, 0.0));
     out.rgb[i * 3 + 2] = static_cast<float>(std::max(rgb.b, 0.0));
   }
+  out.relight = mergeRelight(parts, width, height, count);
   // The merged sample range: the union, if the ranges are contiguous.
   std::vector<std::pair<long long, long long>> sorted = ranges;
   std::sort(sorted.begin(), sorted.end());
@@ -341,6 +344,11 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
 // their random numbers and are not independent).
 SpectralImage stitchBands(const std::vector<ImagePart>& images) {
   const ImagePart& first = images.front();
+  for (const ImagePart& p : images)
+    if (p.image.relight.present())
+      throw Error(p.name + ": a relightable render's band ranges cannot be stitched (its "
+                           "transport's pattern is the bands'): render the bands together, "
+                           "split by --crop or --spp-range instead");
   const SpectralImage& a = first.image;
   const size_t pixels = static_cast<size_t>(a.width) * static_cast<size_t>(a.height);
   struct Source {

@@ -12,6 +12,7 @@
 #include "integrators/relight_image.h"
 #include "integrators/relight_pattern.h"
 #include "integrators/renderer.h"
+#include "io/part_merge.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 
@@ -304,6 +305,72 @@ TEST(Relight, ExrRoundTripAndRefusals) {
   EXPECT_EQ(test::errorMessage([&] { relightImage(plain, {}); }),
             "expected a relightable image (rendered with --relightable), found one without "
             "relight channels");
+}
+
+// Farm parts of a relightable render: crops merge into the whole transport bit for bit, sample
+// ranges into its sample-weighted mean (the half-differences likewise); a part without a
+// transport, and band ranges, are refused.
+TEST(Relight, PartsMergeLikeTheBands) {
+  const RenderScene scene = relightableScene(benchScene(kLampS1, "", 4));
+  auto part = [&](const std::string& name, std::optional<PixelRect> crop, int first, int count) {
+    RenderOptions o;
+    o.crop = crop;
+    o.firstSample = first;
+    o.samples = count;
+    SpectralImage img = toSpectralImage(render(scene, o).film);
+    img.attributes["nxrender.renderKey"] = "key";
+    img.attributes["nxrender.seed"] = "0";
+    img.attributes["nxrender.bands"] = img.bands.toString();
+    img.attributes["nxrender.sampleRange"] =
+        std::to_string(first) + ":" + std::to_string(first + count);
+    return ImagePart{name, img};
+  };
+  const SpectralImage whole = part("whole", std::nullopt, 0, 4).image;
+  const SpectralImage crops = mergeParts(
+      {part("top", PixelRect{0, 0, 32, 13}, 0, 4), part("bottom", PixelRect{0, 13, 32, 32}, 0, 4)});
+  ASSERT_TRUE(crops.relight.present());
+  EXPECT_EQ(crops.relight.values, whole.relight.values);
+  EXPECT_EQ(crops.relight.halfDifferences, whole.relight.halfDifferences);
+  const SpectralImage ranges =
+      mergeParts({part("r1", std::nullopt, 0, 2), part("r2", std::nullopt, 2, 2)});
+  ASSERT_EQ(ranges.relight.values.size(), whole.relight.values.size());
+  for (size_t k = 0; k < whole.relight.values.size(); ++k)
+    ASSERT_NEAR(ranges.relight.values[k], whole.relight.values[k],
+                1e-5f * std::abs(whole.relight.values[k]) + 1e-12f)
+        << k;
+  // The relit merge is the relit whole (to float rounding).
+  const GroupSpectrum s2 = binned(whole, "lamp", kLampS2);
+  const SpectralImage a = relightImage(ranges, {s2}), b = relightImage(whole, {s2});
+  for (size_t k = 0; k < a.radiance.size(); ++k)
+    ASSERT_NEAR(a.radiance[k], b.radiance[k], 1e-4f * b.radiance[k] + 1e-12f);
+  ImagePart plain{"plain", toSpectralImage(renderText(benchScene(kLampS1, "", 2)).film)};
+  plain.image.attributes = part("r2", std::nullopt, 2, 2).image.attributes;
+  EXPECT_EQ(test::errorMessage([&] {
+              mergeParts({part("r1", std::nullopt, 0, 2), plain});
+            }),
+            "plain: does not belong with r1: their relight transports differ (none against 1 "
+            "groups, " +
+                std::to_string(whole.relight.entries.size()) +
+                " entries; render every part with the same --relightable and --relight-step)");
+  // Band ranges of a relightable render do not stitch (the pattern is the bands').
+  auto bandsPart = [&](const std::string& name, const char* bands) {
+    RenderOptions o;
+    o.samples = 1;
+    o.bands = Sensor::parse(bands, "test");
+    SpectralImage img = toSpectralImage(render(scene, o).film);
+    img.attributes = whole.attributes;
+    img.attributes["nxrender.renderKey"] = "key";
+    img.attributes["nxrender.seed"] = "0";
+    img.attributes["nxrender.sampleRange"] = "0:1";
+    img.attributes["nxrender.bands"] = img.bands.toString();
+    return ImagePart{name, img};
+  };
+  EXPECT_EQ(test::errorMessage([&] {
+              mergeParts({bandsPart("blue", "400:500:20"), bandsPart("red", "520:700:20")});
+            }),
+            "blue: a relightable render's band ranges cannot be stitched (its transport's "
+            "pattern is the bands'): render the bands together, split by --crop or --spp-range "
+            "instead");
 }
 
 // What a relightable build cannot relight is refused by name: emitters of one group with two

@@ -21,7 +21,7 @@ SCENE = """<scene><settings><xres>12</xres><yres>10</yres><mode>spectral_mcpt</m
 </fluorescence></sphere>
 <sphere group="lamp"><center>-1.5,2.5,-1</center><radius>0.5</radius><material>matte</material>
 <reflectance>0</reflectance><emission scale="2">400:1, 700:0.5</emission></sphere>
-<light group="spot"><position>2,3,-2</position><emission>30</emission></light>
+<light group="spot"><position>2,3,-2</position><color>1,1,1</color><emission>30</emission></light>
 </scene>"""
 
 LED = (np.array([380.0, 450, 500, 560, 650, 800]), np.array([0.2, 3, 0.5, 2, 1, 0.1]))
