@@ -1,6 +1,6 @@
 // nxrelight: a relightable render (nxrender --relightable) under new emission spectra.
 //
-//   nxrelight IN.exr --light GROUP=spectrum.csv [--light GROUP=...] -o OUT.exr
+//   nxrelight IN.exr --light GROUP=spectrum.csv|NAME [--light GROUP=...] -o OUT.exr
 //
 // Each --light replaces the emission spectrum of a light group's emitters (their scale= and
 // measuring geometry still apply); the other groups keep the spectra they were rendered with.
@@ -33,9 +33,10 @@ int run(int argc, char** argv) {
   app.add_option("input", input, "A relightable spectral EXR written by nxrender --relightable")
       ->required();
   app.add_option("--light", lights,
-                 "GROUP=spectrum.csv: the new emission spectrum (two columns nm,value) of light "
-                 "group GROUP's emitters, their scale= still applying; repeatable (groups not "
-                 "given keep their rendered spectra)");
+                 "GROUP=spectrum.csv: the new emission spectrum (two columns nm,value; or a "
+                 "built-in name: A, D65, F11, blackbody:3000, ...) of light group GROUP's "
+                 "emitters, their scale= still applying; repeatable (groups not given keep their "
+                 "rendered spectra)");
   app.add_option("-o,--output", output, "Relit spectral EXR (its preview goes beside it as .png)")
       ->required();
   if (const int status = nx::parseCommandLine(app, argc, argv, "nxrelight"); status >= 0)
@@ -53,10 +54,12 @@ int run(int argc, char** argv) {
   for (const std::string& l : lights) {
     const size_t eq = l.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == l.size())
-      throw nx::Error("--light: expected GROUP=spectrum.csv, found '" + l + "'");
+      throw nx::Error("--light: expected GROUP=spectrum.csv (or GROUP=NAME, a built-in emission "
+                      "such as D65), found '" +
+                      l + "'");
     try {
       spectra.push_back(
-          nx::groupSpectrumFromCsv(image, l.substr(0, eq), l.substr(eq + 1), warnings));
+          nx::groupSpectrumFromText(image, l.substr(0, eq), l.substr(eq + 1), warnings));
     } catch (const nx::Error& e) {
       throw nx::Error("--light " + l + ": " + e.what());
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include <tbb/parallel_for.h>
 
@@ -11,6 +12,7 @@
 #include "integrators/relight_pattern.h"
 #include "spectra/band_colour.h"
 #include "spectra/colour.h"
+#include "spectra/illuminants.h"
 
 namespace nx {
 namespace {
@@ -76,6 +78,23 @@ GroupSpectrum groupSpectrumFromCsv(const SpectralImage& image, const std::string
                   numberText(t.value[i]) + " at " + numberText(t.nm[i]) + " nm");
   t.indexUniformGrid();
   return groupSpectrum(image, group, Spectrum(std::move(t)), lo, hi, path, warnings);
+}
+
+GroupSpectrum groupSpectrumFromText(const SpectralImage& image, const std::string& group,
+                                    const std::string& text, std::vector<std::string>& warnings) {
+  std::error_code ec;
+  if (std::filesystem::exists(text, ec)) return groupSpectrumFromCsv(image, group, text, warnings);
+  groupOf(image, group);
+  const std::optional<Spectrum> named = namedEmission(text);
+  if (!named)
+    throw Error("expected a CSV file (nm,value) or a built-in emission name (A, D65, F1-F12, "
+                "blackbody:K, ...), found '" +
+                text + "' (no such file)");
+  // Where the built-in is not 0: a table (D illuminants, F1-F12) is 0 beyond its data.
+  double lo = 1e9, hi = -1e9;
+  for (int nm = 300; nm <= 1100; ++nm)
+    if ((*named)(nm) > 0) lo = std::min(lo, double(nm)), hi = std::max(hi, double(nm));
+  return groupSpectrum(image, group, *named, lo, hi, text, warnings);
 }
 
 SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSpectrum>& spectra) {

@@ -31,6 +31,12 @@ GroupSpectrum groupSpectrum(const SpectralImage& image, const std::string& group
 GroupSpectrum groupSpectrumFromCsv(const SpectralImage& image, const std::string& group,
                                    const std::string& path, std::vector<std::string>& warnings);
 
+/// The same from a CSV file when `text` names one, else from a built-in emission name (A, D65,
+/// F1-F12, blackbody:K, ... as a scene's <emission> reads it: scaled to the luminance of a flat
+/// 1); throws naming both when it is neither.
+GroupSpectrum groupSpectrumFromText(const SpectralImage& image, const std::string& group,
+                                    const std::string& text, std::vector<std::string>& warnings);
+
 /// The image under the new spectra: bands and their variances (Variance.S0...); XYZ, RGB and
 /// Variance.Y from the relit bands (BandColour: the bands read as a spectrum, as for a file
 /// without its own XYZ); sample counts, ids and depth; the transport, the

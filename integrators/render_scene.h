@@ -63,6 +63,20 @@ struct TabulatedRange {
   double loNm = 0, hiNm = 0;
 };
 
+/// An imported EEM's emission window and the emission its ends still hold (shares of the
+/// emission profile's peak): the matrix is 0 beyond the window, so a render tracing beyond an
+/// end where emission remains misses the dye's light there (extrapolationWarnings says so).
+struct EmissionWindow {
+  std::string where; ///< "file:line" of the <eem> element
+  std::string file;  ///< the EEM file
+  double loNm = 0, hiNm = 0;
+  double shareAtLo = 0, shareAtHi = 0; ///< the profile at each end over its peak
+};
+
+/// Share of its peak an EEM's emission may keep at the end of its window before a render
+/// tracing beyond warns (below it the dye's light beyond is negligible).
+inline constexpr double kEmissionWindowEdgeShare = 0.01;
+
 /// The scene's light groups: every emitter belongs to one, named by its group="NAME" (ungrouped
 /// emitters form the group "default"); --aov lightgroups splits the image by group.
 struct LightGroups {
@@ -125,6 +139,8 @@ struct RenderScene {
   /// Tables the scene uses without an extrapolate="..." choice (zero beyond them), with their
   /// range: a render tracing beyond one warns (extrapolationWarnings).
   std::vector<TabulatedRange> tables;
+  /// Imported EEMs' emission windows (a render tracing beyond one where emission remains warns).
+  std::vector<EmissionWindow> emissionWindows;
 
   /// The reflectance of `material` at a hit for the lanes: its texture at the hit's uv (filled
   /// in for spheres here), else its spectrum.
@@ -160,7 +176,9 @@ struct RenderScene {
 RenderScene buildRenderScene(const SceneDesc& desc);
 
 /// Warnings for the scene's tables that end inside [loNm, hiNm], the range a render traces:
-/// "file:line: warning: spectrum '<what>' is tabulated over A-B nm ... (extrapolate=...)".
+/// "file:line: warning: spectrum '<what>' is tabulated over A-B nm ... (extrapolate=...)"; and
+/// for imported EEMs whose emission window ends inside it with more than
+/// kEmissionWindowEdgeShare of their peak emission at that end.
 std::vector<std::string> extrapolationWarnings(const RenderScene& scene, double loNm, double hiNm);
 
 /// The same checks and resolution without building the Embree scene (`geometry` stays null):

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <tuple>
 
@@ -207,6 +208,7 @@ public:
     for (const TriangleMesh& m : meshes) scene.meshBytes += m.bytes();
     scene.contentDigest = refs_.digest();
     scene.tables = refs_.tables();
+    scene.emissionWindows = emissionWindows_;
     scene.warnings.insert(scene.warnings.end(), warnings_.begin(), warnings_.end());
     scene.warnings.insert(scene.warnings.end(), refs_.warnings().begin(), refs_.warnings().end());
     if (!withGeometry) return scene;
@@ -558,6 +560,18 @@ private:
       absorptance.peak = f.peakAbsorptance;
     }
     MeasuredMatrix m = donaldsonFromEem(sample, e.layout, yield, absorptance, summary);
+    // The emission profile (counts summed over excitation): how much is left at each end.
+    {
+      const size_t rows = sample.excitationNm.size(), cols = sample.emissionNm.size();
+      std::vector<double> profile(cols, 0.0);
+      for (size_t r = 0; r < rows; ++r)
+        for (size_t c = 0; c < cols; ++c) profile[c] += std::max(0.0, sample.counts[r * cols + c]);
+      const double peak = *std::max_element(profile.begin(), profile.end());
+      if (peak > 0)
+        emissionWindows_.push_back({e.loc.str(), e.file, sample.emissionNm.front(),
+                                    sample.emissionNm.back(), profile.front() / peak,
+                                    profile.back() / peak});
+    }
     auto r = std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromMeasured(m, rho));
     warnings_.push_back(
         e.loc.str() + ": note: the EEM " + e.file + " imported (" + summary.text() +
@@ -672,7 +686,8 @@ private:
   const SceneDesc& desc_;
   mutable SceneReferences refs_;              ///< spectra resolved, referenced files in the digest
   mutable std::vector<std::string> warnings_; ///< the kinds' builds' warnings
-  const MediumKindInputs mediumInputs_;       ///< what the media kinds ask of the scene
+  mutable std::vector<EmissionWindow> emissionWindows_; ///< imported EEMs' emission windows
+  const MediumKindInputs mediumInputs_;                 ///< what the media kinds ask of the scene
 };
 
 } // namespace
@@ -696,6 +711,19 @@ std::vector<std::string> extrapolationWarnings(const RenderScene& scene, double 
                     "extrapolate=\"hold\" on the element to choose)";
     if (std::find(out.begin(), out.end(), w) == out.end()) out.push_back(std::move(w));
   }
+  for (const EmissionWindow& w : scene.emissionWindows)
+    for (const bool high : {false, true}) {
+      const double end = high ? w.hiNm : w.loNm, share = high ? w.shareAtHi : w.shareAtLo;
+      if ((high ? end >= hiNm : end <= loNm) || share <= kEmissionWindowEdgeShare) continue;
+      char pct[32];
+      std::snprintf(pct, sizeof pct, "%.3g%%", 100 * share);
+      out.push_back(w.where + ": warning: the EEM " + w.file + " measures emission over " +
+                    numberText(w.loNm) + "-" + numberText(w.hiNm) + " nm and this render traces " +
+                    numberText(loNm) + "-" + numberText(hiNm) + " nm: at " + numberText(end) +
+                    " nm its emission is still " + pct + " of its peak, and the matrix is 0 " +
+                    (high ? "beyond" : "below") +
+                    " it (the dye's light there is missing: measure a wider emission window)");
+    }
   return out;
 }
 

@@ -12,13 +12,14 @@
 namespace nxpy {
 namespace {
 
-// The new spectrum of `group` from a Python value: a CSV file name (two columns nm,value), a
-// pair (wavelengths, values) of a piecewise-linear table, or one number (flat).
+// The new spectrum of `group` from a Python value: a CSV file name (two columns nm,value) or a
+// built-in emission name ("D65"), a pair (wavelengths, values) of a piecewise-linear table, or
+// one number (flat).
 nx::GroupSpectrum spectrumArgument(const nx::SpectralImage& image, const std::string& group,
                                    const py::handle& value, std::vector<std::string>& warnings) {
   const std::string param = "lights['" + group + "']";
   if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"))
-    return nx::groupSpectrumFromCsv(image, group, pathArgument(value, param.c_str()), warnings);
+    return nx::groupSpectrumFromText(image, group, pathArgument(value, param.c_str()), warnings);
   if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
     const double v = numberArgument(value, param.c_str(), 0, 1e12);
     return nx::groupSpectrum(image, group, nx::Spectrum(nx::ConstantSpectrum{v}), 0, 1e9, param,
@@ -69,7 +70,8 @@ void bindRelight(py::module_& m) {
          },
          py::arg("lights") = py::dict(),
          "The image under new emission spectra of some light groups: {group: spectrum}, a "
-         "spectrum a CSV file (nm,value), (wavelengths, values) or a number; the emitters' "
+         "spectrum a CSV file (nm,value) or built-in name ('D65'), (wavelengths, values) or a "
+         "number; the emitters' "
          "scale= still applies; groups not given keep their rendered spectra. Needs an image "
          "rendered relightable=True (docs/relighting.md). Returns an ordinary Image with "
          "variances.")

@@ -205,6 +205,10 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
     throw py::value_error(message);
   }
   nx::RenderJob& job = *jobHolder;
+  // Tables and EEM windows that end inside the range this render traces (as nxrender warns).
+  for (const std::string& w : nx::extrapolationWarnings(*scene, nx::Film::tracedMinNm(job.bands()),
+                                                        nx::Film::tracedMaxNm(job.bands())))
+    py::module_::import("warnings").attr("warn")(w);
   const nx::PixelRect r = job.rect();
   nx::requireMemory(nx::renderBufferBytes(r.width(), r.height(), job.bands().count()), src.name,
                     "a render",

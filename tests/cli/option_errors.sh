@@ -58,6 +58,26 @@ check 1 "nxcamera: error: c.hdr: expected an ENVI data file name with an extensi
   nxcamera -o c.exr --envi c.hdr inputs/in.exr
 check 1 "nxcamera: error: /nonexistent-dir/c.img: the output directory '/nonexistent-dir' does not exist" \
   nxcamera -o c.exr --envi /nonexistent-dir/c.img inputs/in.exr
+# Relighting: the grid step, a file without a transport, groups, spectra and the --light form.
+check 1 "nxrender: error: --relight-step: expected a step in nm that divides 5 (1, 2.5, 5) or is a multiple of 5 up to 100 (its bins nest with the 5 nm re-radiation grid), found 3" \
+  nxrender --relightable --relight-step 3 -o x.exr "$scene"
+check 1 "nxrender: error: --relight-step: only with --relightable (the excitation grid it keeps)" \
+  nxrender --relight-step 5 -o x.exr "$scene"
+check 1 "nxrelight: error: inputs/in.exr: expected a relightable image (rendered with --relightable), found one without relight channels" \
+  nxrelight inputs/in.exr --light default=D65 -o r.exr
+"$bin/nxrender" --spp 2 --crop 0,0,8,8 --relightable -o rel.exr "$scene" >/dev/null 2>&1 || echo "FAIL: relightable render"
+mv rel.exr inputs/
+check 1 "nxrelight: error: --light sky=D65: expected a light group of the image (default), found 'sky'" \
+  nxrelight inputs/rel.exr --light sky=D65 -o r.exr
+check 1 "nxrelight: error: --light default=nosuch: expected a CSV file (nm,value) or a built-in emission name (A, D65, F1-F12, blackbody:K, ...), found 'nosuch' (no such file)" \
+  nxrelight inputs/rel.exr --light default=nosuch -o r.exr
+check 1 "nxrelight: error: --light: expected GROUP=spectrum.csv (or GROUP=NAME, a built-in emission such as D65), found 'foo'" \
+  nxrelight inputs/rel.exr --light foo -o r.exr
+printf '400,1\n500,-2\n' >inputs/bad.csv
+check 1 "nxrelight: error: --light default=inputs/bad.csv: inputs/bad.csv: expected an emission spectrum of values >= 0, found -2 at 500 nm" \
+  nxrelight inputs/rel.exr --light default=inputs/bad.csv -o r.exr
+check 1 "nxrelight: error: r.png: expected an output name ending in .exr (the file is an OpenEXR), found '.png'" \
+  nxrelight inputs/rel.exr --light default=D65 -o r.png
 "$bin/nxrender" --help >/dev/null || { echo "FAIL: --help status $?"; failures=$((failures + 1)); }
 echo "$failures failures"
 [ "$failures" = 0 ]

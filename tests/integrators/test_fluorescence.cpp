@@ -252,6 +252,41 @@ TEST(Fluorescence, ImportedEemRendersAsTheModelDye) {
     // The EEM's grid resamples the model's absorption edge (a few per cent: the unit tests).
     EXPECT_NEAR(st.mean, want, 5 * st.standardError() + 0.03 * want) << "band " << b;
   }
+  // Its emission window (300-1100 nm) holds all the dye emits: nothing to warn about.
+  EXPECT_TRUE(extrapolationWarnings(s, 360, 830).empty());
+}
+
+// An EEM whose emission window ends where the dye still emits (300-580 nm, the emission peaking
+// at 540 nm) misses the light beyond: a render tracing past the window's end warns, naming the
+// share left at that end; one tracing within it does not.
+TEST(Fluorescence, EemEmissionWindowEndingInsideTheTracedRangeWarns) {
+  const test::Dye dye;
+  test::Synthetic syn;
+  syn.ex = test::grid(250, 500, 5);
+  syn.em = test::grid(300, 580, 2);
+  const std::string csv = ::testing::TempDir() + "/dye_eem_short.csv";
+  std::ofstream(csv) << syn.csv(dye);
+  const std::string text =
+      "<scene><settings><xres>2</xres><yres>2</yres><mode>spectral_mcpt</mode></settings>"
+      "<camera><position>0,0,-1</position><look_at>0,0,0</look_at></camera><quad><origin>-1,-1,"
+      "0</origin><edge_u>2,0,0</edge_u><edge_v>0,2,0</edge_v><material>matte</material>"
+      "<reflectance>0.2</reflectance><fluorescence>\n<eem file=\"" +
+      csv +
+      "\" rayleigh_width=\"12\" raman_shift=\"water\" raman_width=\"12\"/><yield>0.6</yield>"
+      "<peak>0.9</peak></fluorescence></quad></scene>";
+  const RenderScene s = buildRenderScene(parseScene(text, "t.scn"));
+  const std::vector<std::string> w = extrapolationWarnings(s, 360, 830);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].substr(0, w[0].find(" its emission is still")),
+            "t.scn:2: warning: the EEM " + csv +
+                " measures emission over 300-580 nm and this render traces 360-830 nm: at 580 nm");
+  EXPECT_NE(w[0].find("of its peak, and the matrix is 0 beyond it (the dye's light there is "
+                      "missing: measure a wider emission window)"),
+            std::string::npos)
+      << w[0];
+  const double share = std::stod(w[0].substr(w[0].find("still ") + 6));
+  EXPECT_GT(share, 5.0); // per cent: the tail at 580 nm of a dye emitting around 540 nm
+  EXPECT_TRUE(extrapolationWarnings(s, 400, 560).empty()); // traced within the window
 }
 
 } // namespace

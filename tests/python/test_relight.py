@@ -50,6 +50,10 @@ def test_groups_and_the_forms_of_a_spectrum(relightable, tmp_path):
     np.testing.assert_allclose(both.radiance, relightable.radiance, rtol=0.02, atol=1e-9)
     assert by_file.variance is not None and np.all(by_file.variance >= 0)
     assert by_file.relight_groups == []  # an ordinary image
+    # a built-in emission name, as a scene's <emission> reads it
+    d65 = relightable.relight({"lamp": "D65"})
+    assert d65.attributes["nxrender.relit"] == "lamp=D65"
+    assert not np.array_equal(d65.radiance, both.radiance)
 
 
 def test_same_image_as_the_command_line(relightable, tmp_path):
@@ -71,6 +75,8 @@ def test_refusals(relightable, tmp_path):
     with pytest.raises(ValueError, match=r"expected a light group of the image \(lamp, spot\), "
                                          r"found 'sky'"):
         relightable.relight({"sky": 1})
+    with pytest.raises(ValueError, match="expected a CSV file .* or a built-in emission name"):
+        relightable.relight({"lamp": "no-such-lamp"})
     with pytest.raises(ValueError, match="expected increasing wavelengths"):
         relightable.relight({"lamp": (np.array([500.0, 400]), np.array([1.0, 1]))})
     with pytest.raises(ValueError, match="expected values >= 0"):
