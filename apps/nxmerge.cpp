@@ -9,7 +9,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 
 #include "apps/command_line.h"
 #include "core/error.h"
@@ -57,22 +56,11 @@ int main(int argc, char** argv) {
     std::vector<nx::ImagePart> parts;
     for (const auto& path : inputs) parts.push_back({path, nx::readSpectralExr(path)});
     const nx::SpectralImage merged = nx::mergeParts(parts);
-    nx::Xyz white = nx::d65WhiteXyz();
-    if (const auto it = merged.attributes.find("nxrender.previewWhite");
-        it != merged.attributes.end()) {
-      std::stringstream in(it->second);
-      char comma;
-      in >> white.x >> comma >> white.y >> comma >> white.z;
-      if (!in || !(white.y > 0)) white = nx::d65WhiteXyz();
-    }
-    std::vector<nx::Xyz> xyz;
-    for (size_t i = 0; i < merged.xyz.size(); i += 3)
-      xyz.push_back({merged.xyz[i], merged.xyz[i + 1], merged.xyz[i + 2]});
     {
       const nx::OutputLock lock(output); // the EXR and its preview as one pair
       nx::AtomicFileGroup pair;          // replaced together (see AtomicFileGroup)
       nx::writeSpectralExr(output, merged);
-      nx::writePreview(preview, merged.width, merged.height, nx::previewPixels(xyz, white));
+      nx::writePreview(preview, merged.width, merged.height, nx::previewPixels(merged));
       pair.commit();
       if (envi) nx::writeEnvi(enviPath, merged);
     }

@@ -11,7 +11,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 
 #include "apps/command_line.h"
 #include "apps/program_main.h"
@@ -66,22 +65,11 @@ int run(int argc, char** argv) {
   }
   for (const std::string& w : warnings) std::fprintf(stderr, "nxrelight: %s\n", w.c_str());
   const nx::SpectralImage relit = nx::relightImage(image, spectra);
-  nx::Xyz white = nx::d65WhiteXyz();
-  if (const auto it = relit.attributes.find("nxrender.previewWhite");
-      it != relit.attributes.end()) {
-    std::stringstream in(it->second);
-    char comma;
-    in >> white.x >> comma >> white.y >> comma >> white.z;
-    if (!in || !(white.y > 0)) white = nx::d65WhiteXyz();
-  }
-  std::vector<nx::Xyz> xyz;
-  for (size_t i = 0; i < relit.xyz.size(); i += 3)
-    xyz.push_back({relit.xyz[i], relit.xyz[i + 1], relit.xyz[i + 2]});
   {
     const nx::OutputLock lock(output); // the EXR and its preview as one pair
     nx::AtomicFileGroup pair;
     nx::writeSpectralExr(output, relit);
-    nx::writePreview(preview, relit.width, relit.height, nx::previewPixels(xyz, white));
+    nx::writePreview(preview, relit.width, relit.height, nx::previewPixels(relit));
     pair.commit();
   }
   std::fprintf(stderr, "nxrelight: wrote %s and %s (%dx%d, %zu light group%s relit)\n",

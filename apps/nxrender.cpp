@@ -491,11 +491,15 @@ int run(int argc, char** argv) {
     encoding.compression = nx::parseExrCompression(compression, "--compression");
   else if (relightable) // mostly zeros (paths that do not reach a pattern's pair): zip, lossless
     encoding.compression = nx::ExrCompression::Zip;
-  auto writeImage = [&](nx::SpectralImage image) {
+  // (A copy only without the variances: a relightable image can take gigabytes.)
+  auto writeImage = [&](const nx::SpectralImage& rendered) {
+    std::optional<nx::SpectralImage> stripped;
     if (noVariance) {
-      image.bandVariance.clear(), image.yVariance.clear();
-      for (nx::ImageLayer& l : image.layers) l.variances.clear();
+      stripped.emplace(rendered);
+      stripped->bandVariance.clear(), stripped->yVariance.clear();
+      for (nx::ImageLayer& l : stripped->layers) l.variances.clear();
     }
+    const nx::SpectralImage& image = stripped ? *stripped : rendered;
     if (halfFloat && nx::fitsInHalf(image))
       return nx::writeSpectralExrHalf(exrPath, image, encoding);
     if (halfFloat)

@@ -178,15 +178,8 @@ SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSp
       sortedHalf[u] = static_cast<float>(half[static_cast<size_t>(order[u])]);
     }
     // Y is linear in the bands: its half-difference is the same sum of theirs.
-    const Xyz xyz = colour.xyz(sortedMean.data());
+    setPixelColour(out, i, colour.xyz(sortedMean.data()));
     const double halfY = colour.xyz(sortedHalf.data()).y;
-    const Rgb c = xyzToLinearSrgb(xyz);
-    out.rgb[i * 3] = static_cast<float>(std::max(c.r, 0.0));
-    out.rgb[i * 3 + 1] = static_cast<float>(std::max(c.g, 0.0));
-    out.rgb[i * 3 + 2] = static_cast<float>(std::max(c.b, 0.0));
-    out.xyz[i * 3] = static_cast<float>(xyz.x);
-    out.xyz[i * 3 + 1] = static_cast<float>(xyz.y);
-    out.xyz[i * 3 + 2] = static_cast<float>(xyz.z);
     out.yVariance[i] = static_cast<float>(halfY * halfY);
   });
   return out;

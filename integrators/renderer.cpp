@@ -5,10 +5,12 @@
 #include <chrono>
 #include <mutex>
 #include <optional>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/float_mode.h"
 #include "core/matrix3.h"
+#include "core/memory.h"
 #include "integrators/sampling.h"
 #include "spectra/colour.h"
 #include "spectra/tonemap.h"
@@ -96,8 +98,17 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                     "' has no spectrum to relight");
       spectra.push_back(binAverages(scene.relight.ofGroup[g], grid));
     }
-    out.film.setRelight(std::make_shared<const RelightPattern>(grid, bands, scene),
-                        scene.lightGroups.names, std::move(spectra));
+    auto pattern = std::make_shared<const RelightPattern>(grid, bands, scene);
+    // The film's two sums and the image's mean and half-difference per entry, group and pixel
+    // (4 bytes each), and half as much again for the EXR writer's buffers and the tiles' sums.
+    const double planes = static_cast<double>(pattern->size()) * spectra.size();
+    requireMemory(planes * rect.width() * rect.height() * 24.0, "--relightable", "a transport",
+                  std::to_string(pattern->size()) + " entries per light group x " +
+                      std::to_string(spectra.size()) + " groups x " + std::to_string(rect.width()) +
+                      "x" + std::to_string(rect.height()) +
+                      " pixels (a coarser --relight-step, fewer bands or a --crop per part "
+                      "need less)");
+    out.film.setRelight(std::move(pattern), scene.lightGroups.names, std::move(spectra));
   }
   out.samplesPerPixel = options.samples > 0 ? options.samples : settings.samples;
   out.seed = options.seed ? *options.seed : settings.seed;
@@ -430,14 +441,7 @@ SpectralImage toSpectralImage(const Film& film) {
         }
       }
       img.yVariance[i] = static_cast<float>(film.yVariance(x, y));
-      const Xyz xyz = film.xyzMean(x, y);
-      const Rgb c = xyzToLinearSrgb(xyz);
-      img.rgb[i * 3] = static_cast<float>(std::max(c.r, 0.0));
-      img.rgb[i * 3 + 1] = static_cast<float>(std::max(c.g, 0.0));
-      img.rgb[i * 3 + 2] = static_cast<float>(std::max(c.b, 0.0));
-      img.xyz[i * 3] = static_cast<float>(xyz.x);
-      img.xyz[i * 3 + 1] = static_cast<float>(xyz.y);
-      img.xyz[i * 3 + 2] = static_cast<float>(xyz.z);
+      setPixelColour(img, i, film.xyzMean(x, y));
       img.sampleCount[i] = film.samples(x, y);
       RelightLayers& rl = img.relight;
       for (int g = 0; g < film.relightGroups(); ++g)
@@ -525,6 +529,21 @@ void addGeometryAovs(const RenderScene& scene, SpectralImage& image) {
       image.depth[i] = static_cast<float>(dot(p - eye, forward));
     }
   });
+}
+
+std::vector<uint8_t> previewPixels(const SpectralImage& image) {
+  Xyz white = d65WhiteXyz();
+  if (const auto it = image.attributes.find("nxrender.previewWhite");
+      it != image.attributes.end()) {
+    std::stringstream in(it->second);
+    char comma;
+    in >> white.x >> comma >> white.y >> comma >> white.z;
+    if (!in || !(white.y > 0)) white = d65WhiteXyz();
+  }
+  std::vector<Xyz> xyz;
+  for (size_t i = 0; i + 2 < image.xyz.size(); i += 3)
+    xyz.push_back({image.xyz[i], image.xyz[i + 1], image.xyz[i + 2]});
+  return previewPixels(xyz, white);
 }
 
 std::vector<uint8_t> previewPixels(const std::vector<Xyz>& xyz, const Xyz& w) {

@@ -139,6 +139,10 @@ Film filmFromImage(const SpectralImage& image, int firstSample, int maxSamples);
 /// to D65 (Bradford), converted to sRGB, tone-mapped (Reinhard 2002). Interleaved RGB bytes.
 std::vector<uint8_t> previewPixels(const std::vector<Xyz>& xyz, const Xyz& white);
 
+/// The preview of an image from its X, Y, Z, white-balanced to the chromaticity its attribute
+/// nxrender.previewWhite gives (D65 without one).
+std::vector<uint8_t> previewPixels(const SpectralImage& image);
+
 /// The preview of a film's rectangle.
 std::vector<uint8_t> previewPixels(const Film& film, const Spectrum& white);
 

@@ -304,12 +304,7 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
       out.yVariance[i] = static_cast<float>(yVar[i] / (n * n));
     }
     const Xyz xyz{xyzSum[i * 3] / n, xyzSum[i * 3 + 1] / n, xyzSum[i * 3 + 2] / n};
-    const Rgb rgb = xyzToLinearSrgb(xyz);
-    out.xyz[i * 3] = static_cast<float>(xyz.x), out.xyz[i * 3 + 1] = static_cast<float>(xyz.y);
-    out.xyz[i * 3 + 2] = static_cast<float>(xyz.z);
-    out.rgb[i * 3] = static_cast<float>(std::max(rgb.r, 0.0));
-    out.rgb[i * 3 + 1] = static_cast<float>(std::max(rgb.g, 0.0));
-    out.rgb[i * 3 + 2] = static_cast<float>(std::max(rgb.b, 0.0));
+    setPixelColour(out, i, xyz);
   }
   out.relight = mergeRelight(parts, width, height, count);
   // The merged sample range: the union, if the ranges are contiguous.

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/text_table.h"
 
 namespace nx {
 namespace {
@@ -21,23 +22,12 @@ std::string wavelengthText(double nm) {
 
 double parseWavelength(const std::string& text, const std::string& path,
                        const std::string& channel) {
-  std::string s = text;
-  if (s.size() < 3 || s.substr(s.size() - 2) != "nm")
-    throw Error(path + ": expected a wavelength in nm in the channel " + channel + ", found " +
-                text);
-  s = s.substr(0, s.size() - 2);
+  const std::string where = path + ": channel " + channel;
+  if (text.size() < 3 || text.substr(text.size() - 2) != "nm")
+    throw Error(where + ": expected a wavelength in nm, found '" + text + "'");
+  std::string s = text.substr(0, text.size() - 2);
   std::replace(s.begin(), s.end(), ',', '.');
-  size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != s.size() || !std::isfinite(v))
-    throw Error(path + ": expected a wavelength in nm in the channel " + channel + ", found " +
-                text);
-  return v;
+  return parseNumber(s, where, "a wavelength in nm");
 }
 
 std::vector<std::string> splitCommas(const std::string& s) {
@@ -113,18 +103,8 @@ std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>
       throw Error(path + ": expected the attribute " + kRelightSpectrumAttribute + g +
                   " (the group's spectrum), found none");
     std::vector<double> values;
-    for (const std::string& v : splitCommas(it->second)) {
-      size_t used = 0;
-      double x = 0;
-      try {
-        x = std::stod(v, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != v.size() || !std::isfinite(x))
-        throw Error(path + ": expected numbers in " + it->first + ", found '" + v + "'");
-      values.push_back(x);
-    }
+    for (const std::string& v : splitCommas(it->second))
+      values.push_back(parseNumber(v, path + ": " + it->first, "a number"));
     if (values.size() != static_cast<size_t>(rl.grid.bins))
       throw Error(path + ": expected " + std::to_string(rl.grid.bins) + " values in " + it->first +
                   " (one per bin), found " + std::to_string(values.size()));

@@ -25,6 +25,7 @@
 #include "io/fichet_channels.h"
 #include "io/relight_channels.h"
 #include "spectra/band_colour.h"
+#include "spectra/colour.h"
 
 namespace nx {
 
@@ -67,6 +68,16 @@ void checkFiniteValues(const std::string& path, const SpectralImage& image);
 void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored,
               const ExrEncoding& encoding);
 } // namespace
+
+void setPixelColour(SpectralImage& image, size_t i, const Xyz& xyz) {
+  const Rgb c = xyzToLinearSrgb(xyz);
+  image.rgb[i * 3] = static_cast<float>(std::max(c.r, 0.0));
+  image.rgb[i * 3 + 1] = static_cast<float>(std::max(c.g, 0.0));
+  image.rgb[i * 3 + 2] = static_cast<float>(std::max(c.b, 0.0));
+  image.xyz[i * 3] = static_cast<float>(xyz.x);
+  image.xyz[i * 3 + 1] = static_cast<float>(xyz.y);
+  image.xyz[i * 3 + 2] = static_cast<float>(xyz.z);
+}
 
 void checkExrOutputName(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();

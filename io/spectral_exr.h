@@ -10,6 +10,7 @@
 #include "io/exr_compression.h"
 
 #include "io/relight_layers.h"
+#include "spectra/cie.h"
 #include "spectra/sensor.h"
 
 namespace nx {
@@ -53,6 +54,10 @@ struct SpectralImage {
   int displayWidth() const { return fullWidth > 0 ? fullWidth : width; }
   int displayHeight() const { return fullHeight > 0 ? fullHeight : height; }
 };
+
+/// Sets pixel i's X, Y, Z to `xyz` and its R, G, B to linear sRGB from it, negatives clamped to
+/// 0 (the buffers sized by the caller).
+void setPixelColour(SpectralImage& image, size_t i, const Xyz& xyz);
 
 /// Name of the per-pixel sample-count channel (not a spectral channel name).
 inline constexpr const char* kSampleCountChannel = "SampleCount";

@@ -74,16 +74,22 @@ test::RunningStats imageBand(const SpectralImage& img, int b) {
 }
 
 // Every band of `a` equals `b`'s (an independent render) within 5 standard errors of the
-// mean pixel difference (pixels are independent estimates); the test has power: that standard
-// error is below 5% of the band's mean.
+// mean pixel difference (pixels are independent estimates), and within 5 standard errors from
+// both images' own variance channels; the test has power: the first standard error is below 5%
+// of the band's mean.
 void expectSameBands(const SpectralImage& a, const SpectralImage& b, const std::string& what) {
   const size_t nb = static_cast<size_t>(a.bands.count());
+  const double pixels = static_cast<double>(a.sampleCount.size());
   for (size_t k = 0; k < nb; ++k) {
     test::RunningStats d, y;
+    double variances = 0; // sum over pixels of both images' variances of the pixel means
     for (size_t i = 0; i < a.sampleCount.size(); ++i) {
       d.add(a.radiance[i * nb + k] - b.radiance[i * nb + k]);
       y.add(b.radiance[i * nb + k]);
+      variances += a.bandVariance[i * nb + k] + b.bandVariance[i * nb + k];
     }
+    EXPECT_LT(std::abs(d.mean), 5 * std::sqrt(variances) / pixels)
+        << what << " band " << a.bands.centroid(k) << " (z from the variance channels)";
     EXPECT_GT(y.mean, 0.0) << what;
     EXPECT_LT(d.standardError(), 0.05 * y.mean) << what << " band " << a.bands.centroid(k);
     EXPECT_LT(std::abs(d.mean), 5 * d.standardError())
