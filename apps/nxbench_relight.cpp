@@ -80,7 +80,7 @@ int run(int argc, char** argv) {
     std::optional<RenderOutput> out;
     const double t = bench::fastestSeconds(2, [&] { out.emplace(render(scene, o)); });
     const SpectralImage img = toSpectralImage(out->film);
-    const double planes = static_cast<double>(img.relight.groups.size() * img.relight.size());
+    const double planes = static_cast<double>(img.relight.sources.size() * img.relight.size());
     const std::string path =
         (std::filesystem::temp_directory_path() / "nxbench_relight.exr").string();
     ExrEncoding zip;
@@ -118,8 +118,8 @@ int run(int argc, char** argv) {
         }
         mean /= static_cast<double>(n);
         diff /= static_cast<double>(n);
-        const double se =
-            std::sqrt(std::max(0.0, diff2 / static_cast<double>(n) - diff * diff) / (n - 1.0));
+        const double se = std::sqrt(std::max(0.0, diff2 / static_cast<double>(n) - diff * diff) /
+                                    (static_cast<double>(n) - 1.0));
         if (!(mean > 0)) continue;
         const double rel = std::abs(diff) / mean;
         if (rel > worst) worst = rel, worstZ = se > 0 ? std::abs(diff) / se : 0;

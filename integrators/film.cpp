@@ -45,11 +45,11 @@ void Film::setLayers(std::vector<std::string> names) {
 }
 
 void Film::setRelight(std::shared_ptr<const RelightPattern> pattern,
-                      std::vector<std::string> groups, std::vector<std::vector<double>> spectra) {
+                      std::vector<std::string> sources, std::vector<std::vector<double>> spectra) {
   relightPattern_ = std::move(pattern);
-  relightGroupNames_ = relightPattern_ ? std::move(groups) : std::vector<std::string>();
-  relightGroupSpectra_ = relightPattern_ ? std::move(spectra) : std::vector<std::vector<double>>();
-  const size_t n = relightPattern_ ? counts_.size() * relightGroupNames_.size() *
+  relightSourceNames_ = relightPattern_ ? std::move(sources) : std::vector<std::string>();
+  relightSourceSpectra_ = relightPattern_ ? std::move(spectra) : std::vector<std::vector<double>>();
+  const size_t n = relightPattern_ ? counts_.size() * relightSourceNames_.size() *
                                          static_cast<size_t>(relightPattern_->size())
                                    : 0;
   relightSums_.assign(n, 0.0f);
@@ -59,7 +59,7 @@ void Film::setRelight(std::shared_ptr<const RelightPattern> pattern,
 Film::Pixel Film::newPixel() const {
   Pixel p;
   const size_t relight =
-      relightPattern_ ? static_cast<size_t>(relightGroups()) * relightPattern_->size() : 0;
+      relightPattern_ ? static_cast<size_t>(relightSources()) * relightPattern_->size() : 0;
   for (auto& r : p.relight) r.assign(relight, 0.0);
   for (auto& b : p.bands) b.assign(static_cast<size_t>(nBands_), 0.0);
   for (auto& l : p.layers) l.assign(layerNames_.size() * static_cast<size_t>(nBands_), 0.0);
@@ -229,13 +229,13 @@ double Film::layerVariance(int x, int y, int l, int b) const {
 }
 
 double Film::relightMean(int x, int y, int g, int e) const {
-  const size_t i = index(x, y), n = static_cast<size_t>(relightGroups()) * relightPattern_->size();
+  const size_t i = index(x, y), n = static_cast<size_t>(relightSources()) * relightPattern_->size();
   const size_t k = i * n + static_cast<size_t>(g) * relightPattern_->size() + e;
   return counts_[i] ? relightSums_[k] / static_cast<double>(counts_[i]) : 0.0;
 }
 
 double Film::relightHalfDifference(int x, int y, int g, int e) const {
-  const size_t i = index(x, y), n = static_cast<size_t>(relightGroups()) * relightPattern_->size();
+  const size_t i = index(x, y), n = static_cast<size_t>(relightSources()) * relightPattern_->size();
   const size_t k = i * n + static_cast<size_t>(g) * relightPattern_->size() + e;
   const uint32_t count = counts_[i], odd = oddCounts_[i];
   if (odd == 0 || odd >= count) return 0.0;
@@ -250,10 +250,10 @@ Film Film::cropped(const PixelRect& r) const {
     throw Error("internal error: a film crop outside the film");
   Film out(width_, height_, r, bands_, hasWhite());
   out.setLayers(layerNames_);
-  out.setRelight(relightPattern_, relightGroupNames_, relightGroupSpectra_);
+  out.setRelight(relightPattern_, relightSourceNames_, relightSourceSpectra_);
   const size_t nl = layerNames_.size() * static_cast<size_t>(nBands_);
   const size_t nr =
-      relightPattern_ ? static_cast<size_t>(relightGroups()) * relightPattern_->size() : 0;
+      relightPattern_ ? static_cast<size_t>(relightSources()) * relightPattern_->size() : 0;
   for (int y = r.y0; y < r.y1; ++y)
     for (int x = r.x0; x < r.x1; ++x) {
       const size_t i = index(x, y), o = out.index(x, y);

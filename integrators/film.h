@@ -44,20 +44,21 @@ public:
   int layerCount() const { return static_cast<int>(layerNames_.size()); }
   /// The name of layer l.
   const std::string& layerName(int l) const { return layerNames_[static_cast<size_t>(l)]; }
-  /// Keeps the transport of a relightable render on `pattern` for `groups` light groups (per
-  /// pixel groups x pattern size sums per replicate, in single precision); zeroes it.
-  /// `spectra`: each group's spectrum as rendered, averaged over the grid's bins.
-  void setRelight(std::shared_ptr<const RelightPattern> pattern, std::vector<std::string> groups,
+  /// Keeps the transport of a relightable render on `pattern` for the light sources `sources`
+  /// (RelightSpectra; per pixel sources x pattern size sums per replicate, in single
+  /// precision); zeroes it. `spectra`: each source's spectrum as rendered, averaged over the
+  /// grid's bins.
+  void setRelight(std::shared_ptr<const RelightPattern> pattern, std::vector<std::string> sources,
                   std::vector<std::vector<double>> spectra);
   /// The pattern kept (null unless setRelight was called).
   const RelightPattern* relightPattern() const { return relightPattern_.get(); }
-  /// Light groups of the transport kept.
-  int relightGroups() const { return static_cast<int>(relightGroupNames_.size()); }
+  /// Light sources of the transport kept.
+  int relightSources() const { return static_cast<int>(relightSourceNames_.size()); }
   /// Their names.
-  const std::vector<std::string>& relightGroupNames() const { return relightGroupNames_; }
+  const std::vector<std::string>& relightSourceNames() const { return relightSourceNames_; }
   /// Their spectra as rendered, per bin of the grid.
-  const std::vector<std::vector<double>>& relightGroupSpectra() const {
-    return relightGroupSpectra_;
+  const std::vector<std::vector<double>>& relightSourceSpectra() const {
+    return relightSourceSpectra_;
   }
 
   int width() const { return width_; }   ///< full image width
@@ -201,8 +202,8 @@ private:
   std::vector<double> layerSums_;    ///< [pixel][layer][band]
   std::vector<double> layerOddSums_; ///< [pixel][layer][band]
   std::shared_ptr<const RelightPattern> relightPattern_;
-  std::vector<std::string> relightGroupNames_;
-  std::vector<std::vector<double>> relightGroupSpectra_;
+  std::vector<std::string> relightSourceNames_;
+  std::vector<std::vector<double>> relightSourceSpectra_;
   std::vector<float> relightSums_;    ///< [pixel][group][entry]
   std::vector<float> relightOddSums_; ///< [pixel][group][entry]
 };

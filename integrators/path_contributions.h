@@ -26,6 +26,7 @@ struct PathClass {
   uint64_t shifted = 0; ///< lanes with at least one re-radiation event on the path (bit per lane)
   int scatterings = 0;  ///< scattering events between the emitter and the camera
   uint16_t group = 0;   ///< the emitter's light group (RenderScene::lightGroups)
+  uint16_t source = 0;  ///< its relight source (RelightSpectra; 0 unless relightable)
   /// The wavelengths the light left the emitter with, per lane (its excitation wavelengths)
   const SampledWavelengths* emitted = nullptr;
 };
@@ -74,7 +75,7 @@ struct ComponentSink {
 };
 
 /// One lane of a contribution to a relightable render: its transport per unit emission
-/// spectrum, the light group and the excitation bin it left the emitter in.
+/// spectrum, the relight source and the excitation bin it left the emitter in.
 struct RelightContribution {
   float value;    ///< the contribution with the group's spectrum taken out (its factor kept)
   int32_t bin;    ///< excitation bin (RelightGrid), -1 outside the grid
@@ -84,30 +85,30 @@ struct RelightContribution {
 
 /// Where a relightable render's sink puts a sample's contributions (cleared per sample).
 struct RelightRecorder {
-  const std::vector<Spectrum>* spectra = nullptr; ///< per light group, RelightSpectra::ofGroup
+  const std::vector<Spectrum>* spectra = nullptr; ///< per source, RelightSpectra::ofSource
   RelightGrid grid;
   std::vector<RelightContribution> contributions; ///< this sample's, lane by lane
 };
 
 /// The sink of a relightable render: the scene was built with flat unit spectra
 /// (RelightSpectra), so each contribution c arrives per unit spectrum; the radiance (and any
-/// component layer) receives c S_g(emitted lanes), the recorder c itself with its bins.
+/// component layer) receives c S_s(emitted lanes), the recorder c itself with its bins.
 struct RelightSink {
   static constexpr bool kClasses = true; ///< the path tracer tracks path classes
   ComponentSink components;              ///< the radiance and any component layers
   RelightRecorder* recorder = nullptr;   ///< null: only apply the spectra (white reference)
   const std::vector<Spectrum>* spectra = nullptr;
 
-  /// Adds contribution c (per unit spectrum of group k.group, left at k.emitted).
+  /// Adds contribution c (per unit spectrum of source k.source, left at k.emitted).
   void add(const SampledSpectrum& c, const PathClass& k) {
     SampledSpectrum s;
-    (*spectra)[k.group].evaluate(*k.emitted, s);
+    (*spectra)[k.source].evaluate(*k.emitted, s);
     components.add(c * s, k);
     if (!recorder) return;
     for (int i = 0; i < kLanes; ++i)
       if (c[i] != 0)
         recorder->contributions.push_back(
-            {c[i], recorder->grid.binOf(k.emitted->lambda[i]), k.group, static_cast<uint8_t>(i)});
+            {c[i], recorder->grid.binOf(k.emitted->lambda[i]), k.source, static_cast<uint8_t>(i)});
   }
 };
 

@@ -29,6 +29,13 @@ void crossBoundary(const SurfaceHit& hit, const ShapeAppearance& app, const Vec3
     media.leave();
 }
 
+// The relight source of emission e (0 outside a relightable build).
+uint16_t relightSourceOf(const LightGroups& groups, int32_t e) {
+  return static_cast<size_t>(e) < groups.sourceOfEmission.size()
+             ? groups.sourceOfEmission[static_cast<size_t>(e)]
+             : uint16_t{0};
+}
+
 // The white reference's surface: a Lambertian reflector of reflectance 1.
 const Material& whiteLambertian() {
   static const Material white = [] {
@@ -61,13 +68,15 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
   const LightGroups& groups = scene.lightGroups;
   // Lanes re-radiated so far (tracked for component sinks only).
   [[maybe_unused]] uint64_t shifted = 0;
-  // The class of a contribution after `events` scatterings from `group`'s emitter, which the
-  // light left at wavelengths `emitted`; the lanes of `extra` shifted in addition.
+  // The class of a contribution after `events` scatterings from an emitter of light group
+  // `group` and relight source `source`, which the light left at wavelengths `emitted`; the
+  // lanes of `extra` shifted in addition.
   auto classOf = [&]([[maybe_unused]] int events, [[maybe_unused]] uint16_t group,
+                     [[maybe_unused]] uint16_t source,
                      [[maybe_unused]] const SampledWavelengths& emitted,
                      [[maybe_unused]] uint64_t extra = 0) {
     PathClass k;
-    if constexpr (Sink::kClasses) k = {shifted | extra, events, group, &emitted};
+    if constexpr (Sink::kClasses) k = {shifted | extra, events, group, source, &emitted};
     return k;
   };
   // Russian roulette looks at beta * rrScale: the throughput without the radiance scaling
@@ -127,7 +136,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
                              misRatios, medium.emission ? &glow : nullptr);
         if (medium.emission)
           sink.add(before * glow,
-                   classOf(scatterings, groups.ofMedium[static_cast<size_t>(m)], current));
+                   classOf(scatterings, groups.ofMedium[static_cast<size_t>(m)], 0, current));
         // beta_i / mean(ratios) is all that counts, so both are divided by the mean after each
         // flight: the products stay near 1 on long chromatic paths (ratios' mean 1; the hero's
         // own ratio, once 1, becomes 1 / (the product of these means)).
@@ -169,7 +178,8 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
                                p, Vec3(), Vec3(), ls,
                                [&](const Vec3& wi) { return SampledSpectrum::filled(phaseTo(wi)); },
                                phaseTo, ctx.lightSampling != LightSampling::NeeOnly, visible),
-                       classOf(scatterings + 1, ctx.lights->group(ls.light), lit,
+                       classOf(scatterings + 1, ctx.lights->group(ls.light),
+                               ctx.lights->source(ls.light), lit,
                                Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0}));
             }
           }
@@ -195,11 +205,11 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       if (scene.background)
         sink.add(weighted() * evaluate(*scene.background, current) *
                      (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP))),
-                 classOf(scatterings, groups.ofBackground, current));
+                 classOf(scatterings, groups.ofBackground, groups.sourceOfBackground, current));
       for (int e = 0; e < ctx.lights->environmentCount(); ++e)
         sink.add(weighted() * ctx.lights->environmentRadiance(e, ray.d, current) *
                      (specular ? 1.0f : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d))),
-                 classOf(scatterings, ctx.lights->environmentGroup(e), current));
+                 classOf(scatterings, ctx.lights->environmentGroup(e), 0, current));
       break;
     }
     const ShapeAppearance& app = scene.appearance(hit);
@@ -223,9 +233,10 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     if (app.emission >= 0 && !whiteHere) {
       const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d));
       if (w > 0)
-        sink.add(
-            weighted() * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) * w,
-            classOf(scatterings, groups.ofEmission[static_cast<size_t>(app.emission)], current));
+        sink.add(weighted() * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) *
+                     w,
+                 classOf(scatterings, groups.ofEmission[static_cast<size_t>(app.emission)],
+                         relightSourceOf(groups, app.emission), current));
     }
     if (bounce >= kMaxPathBounces) {
       ++counters.bounceLimited; // still carrying light: counted, reported
@@ -261,8 +272,9 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
           return fluorescent ? shift.albedo * bsdf.diffuseLobe(wi) : bsdf.f(wi);
         };
         auto pdf = [&](const Vec3& wi) { return bsdf.pdf(wi); };
-        const PathClass k = classOf(scatterings + 1, ctx.lights->group(ls.light), lit,
-                                    Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0});
+        const PathClass k =
+            classOf(scatterings + 1, ctx.lights->group(ls.light), ctx.lights->source(ls.light), lit,
+                    Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0});
         if constexpr (kMedia) {
           const auto visible = [&](const Ray& r) {
             return shadowTransmittance(scene, r, media, lit, counters);
@@ -372,7 +384,7 @@ SampledSpectrum traceWhiteReference(const IntegratorContext& ctx, Ray ray,
     static const ComponentLayout none;
     RelightSink sink;
     sink.components.layout = &none;
-    sink.spectra = &ctx.scene->relight.ofGroup;
+    sink.spectra = &ctx.scene->relight.ofSource;
     traceVariant<true>(ctx, ray, lambda, rng, counters, sink);
     return sink.components.L;
   }

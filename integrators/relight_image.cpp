@@ -23,15 +23,19 @@ void requireTransport(const SpectralImage& image) {
                 "relight channels");
 }
 
-int groupOf(const SpectralImage& image, const std::string& group) {
+// The sources of light group `group` (its emitters' spectra), or an error listing the groups.
+std::vector<size_t> sourcesOf(const SpectralImage& image, const std::string& group) {
   requireTransport(image);
-  const int g = image.relight.groupIndex(group);
-  if (g < 0) {
+  const RelightLayers& rl = image.relight;
+  std::vector<size_t> out;
+  for (size_t s = 0; s < rl.sources.size(); ++s)
+    if (rl.groupOf(s) == group) out.push_back(s);
+  if (out.empty()) {
     std::string list;
-    for (const std::string& n : image.relight.groups) list += (list.empty() ? "" : ", ") + n;
+    for (const std::string& n : rl.groups()) list += (list.empty() ? "" : ", ") + n;
     throw Error("expected a light group of the image (" + list + "), found '" + group + "'");
   }
-  return g;
+  return out;
 }
 
 } // namespace
@@ -39,7 +43,7 @@ int groupOf(const SpectralImage& image, const std::string& group) {
 GroupSpectrum groupSpectrum(const SpectralImage& image, const std::string& group, const Spectrum& s,
                             double tableLoNm, double tableHiNm, const std::string& source,
                             std::vector<std::string>& warnings) {
-  const int g = groupOf(image, group);
+  const std::vector<size_t> ofGroup = sourcesOf(image, group);
   const RelightLayers& rl = image.relight;
   GroupSpectrum out{group, binAverages(s, rl.grid), source};
   for (size_t j = 0; j < out.binned.size(); ++j)
@@ -51,13 +55,14 @@ GroupSpectrum groupSpectrum(const SpectralImage& image, const std::string& group
   // The bins the group's transport reaches: where a table that ends early is 0.
   const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
   int lo = rl.grid.bins, hi = -1;
-  for (size_t e = 0; e < rl.size(); ++e) {
-    const float* v = rl.values.data() + (static_cast<size_t>(g) * rl.size() + e) * pixels;
-    if (std::any_of(v, v + pixels, [](float x) { return x != 0; })) {
-      lo = std::min(lo, rl.entries[e].bin);
-      hi = std::max(hi, rl.entries[e].bin);
+  for (const size_t g : ofGroup)
+    for (size_t e = 0; e < rl.size(); ++e) {
+      const float* v = rl.values.data() + (g * rl.size() + e) * pixels;
+      if (std::any_of(v, v + pixels, [](float x) { return x != 0; })) {
+        lo = std::min(lo, rl.entries[e].bin);
+        hi = std::max(hi, rl.entries[e].bin);
+      }
     }
-  }
   if (hi >= lo && (tableLoNm > rl.grid.lo(lo) || tableHiNm < rl.grid.lo(hi + 1)))
     warnings.push_back(source + ": warning: tabulated over " + numberText(tableLoNm) + "-" +
                        numberText(tableHiNm) + " nm and the transport of light group '" + group +
@@ -69,7 +74,7 @@ GroupSpectrum groupSpectrum(const SpectralImage& image, const std::string& group
 
 GroupSpectrum groupSpectrumFromCsv(const SpectralImage& image, const std::string& group,
                                    const std::string& path, std::vector<std::string>& warnings) {
-  groupOf(image, group); // an unknown group before reading the file
+  sourcesOf(image, group); // an unknown group before reading the file
   TabulatedSpectrum t = readSpectrumCsv(path);
   const double lo = t.nm.front(), hi = t.nm.back();
   for (size_t i = 0; i < t.value.size(); ++i)
@@ -84,7 +89,7 @@ GroupSpectrum groupSpectrumFromText(const SpectralImage& image, const std::strin
                                     const std::string& text, std::vector<std::string>& warnings) {
   std::error_code ec;
   if (std::filesystem::exists(text, ec)) return groupSpectrumFromCsv(image, group, text, warnings);
-  groupOf(image, group);
+  sourcesOf(image, group);
   const std::optional<Spectrum> named = namedEmission(text);
   if (!named)
     throw Error("expected a CSV file (nm,value) or a built-in emission name (A, D65, F1-F12, "
@@ -100,19 +105,19 @@ GroupSpectrum groupSpectrumFromText(const SpectralImage& image, const std::strin
 SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSpectrum>& spectra) {
   requireTransport(image);
   const RelightLayers& rl = image.relight;
-  // Each group's spectrum: the one given, else the one it was rendered with.
+  // Each source's spectrum: its group's new one, else the one it was rendered with.
   std::vector<const std::vector<double>*> use;
   for (const std::vector<double>& s : rl.spectra) use.push_back(&s);
-  std::vector<bool> given(rl.groups.size(), false);
+  std::vector<bool> given(rl.sources.size(), false);
   std::string relit;
   for (const GroupSpectrum& s : spectra) {
-    const int g = groupOf(image, s.group);
-    if (given[static_cast<size_t>(g)])
-      throw Error("expected each light group once, found '" + s.group + "' twice");
     if (s.binned.size() != static_cast<size_t>(rl.grid.bins))
       throw Error("internal error: a spectrum binned on another grid");
-    given[static_cast<size_t>(g)] = true;
-    use[static_cast<size_t>(g)] = &s.binned;
+    for (const size_t g : sourcesOf(image, s.group)) {
+      if (given[g]) throw Error("expected each light group once, found '" + s.group + "' twice");
+      given[g] = true;
+      use[g] = &s.binned;
+    }
     relit += (relit.empty() ? "" : ";") + s.group + "=" + s.source;
   }
 
@@ -159,7 +164,7 @@ SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSp
   const BandColour colour(nm);
   tbb::parallel_for(size_t{0}, pixels, [&](size_t i) {
     std::vector<double> mean(static_cast<size_t>(nb), 0.0), half(static_cast<size_t>(nb), 0.0);
-    for (size_t g = 0; g < rl.groups.size(); ++g) {
+    for (size_t g = 0; g < rl.sources.size(); ++g) {
       const std::vector<double>& s = *use[g];
       for (size_t e = 0; e < entries; ++e) {
         const size_t k = (g * entries + e) * pixels + i;

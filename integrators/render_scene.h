@@ -85,6 +85,10 @@ struct LightGroups {
   std::vector<uint16_t> ofLight;    ///< group of each RenderScene::lights
   std::vector<uint16_t> ofMedium;   ///< group of each RenderScene::media (its emission)
   uint16_t ofBackground = 0;        ///< group of the background
+  /// Relight source (RelightSpectra) of each emission, light and the background: filled by a
+  /// relightable build (every emitter of one group with one spectrum shares a source), else 0.
+  std::vector<uint16_t> sourceOfEmission, sourceOfLight;
+  uint16_t sourceOfBackground = 0;
   /// The id of group `name`, added when new.
   uint16_t idOf(const std::string& name) {
     const std::string n = name.empty() ? "default" : name;
@@ -97,13 +101,23 @@ struct LightGroups {
 
 /// The emitters' spectra of a relightable render (--relightable, docs/relighting.md): every
 /// emitter is built as its factor kappa (its scale=, the measuring geometry of at= and flux=)
-/// times a flat unit spectrum, and the spectrum written in the scene for it, one per light
-/// group, is applied to each contribution at the wavelengths it left the emitter with. The
-/// transport per unit spectrum is then what the film keeps.
+/// times a flat unit spectrum, and the spectrum written in the scene for it is applied to each
+/// contribution at the wavelengths it left the emitter with. The transport per unit spectrum is
+/// then what the film keeps, per source: the emitters of one light group with one spectrum.
 struct RelightSpectra {
   bool enabled = false;
-  std::vector<Spectrum> ofGroup;       ///< per light group id: its emitters' spectrum
-  std::vector<std::string> whereGroup; ///< "file:line" of the group's first emitter
+  std::vector<Spectrum> ofSource;       ///< per source: its emitters' spectrum
+  std::vector<uint16_t> groupOfSource;  ///< per source: its light group
+  std::vector<std::string> whereSource; ///< "file:line" of the source's first emitter
+  /// The name of source s: its group's, and ".2", ".3", ... for a group's further spectra (a
+  /// group name holds no dot).
+  std::string name(size_t s, const LightGroups& groups) const {
+    int n = 1;
+    for (size_t t = 0; t < s; ++t) n += groupOfSource[t] == groupOfSource[s];
+    std::string out = groups.names[groupOfSource[s]];
+    if (n > 1) out.append(".").append(std::to_string(n));
+    return out;
+  }
 };
 
 /// Everything an integrator needs, immutable after building.

@@ -87,28 +87,33 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
     if (options.resumeFrom)
       throw Error("--relightable: continuing a relightable render (--resume) is not supported; "
                   "render it again, or split it by --spp-range parts and merge them");
-    if (scene.lightGroups.names.empty())
+    if (scene.relight.ofSource.empty())
       throw Error("--relightable: the scene has no emitter to relight");
     checkRelightStep(options.relightStepNm, "--relight-step");
     const RelightGrid grid = RelightGrid::withStep(options.relightStepNm);
+    // One transport per source: the emitters of a light group that share a spectrum.
     std::vector<std::vector<double>> spectra;
-    for (size_t g = 0; g < scene.lightGroups.names.size(); ++g) {
-      if (g >= scene.relight.ofGroup.size() || scene.relight.whereGroup[g].empty())
-        throw Error("internal error: light group '" + scene.lightGroups.names[g] +
-                    "' has no spectrum to relight");
-      spectra.push_back(binAverages(scene.relight.ofGroup[g], grid));
+    std::vector<std::string> sources;
+    for (size_t s = 0; s < scene.relight.ofSource.size(); ++s) {
+      spectra.push_back(binAverages(scene.relight.ofSource[s], grid));
+      sources.push_back(scene.relight.name(s, scene.lightGroups));
     }
     auto pattern = std::make_shared<const RelightPattern>(grid, bands, scene);
     // The film's two sums and the image's mean and half-difference per entry, group and pixel
     // (4 bytes each), and half as much again for the EXR writer's buffers and the tiles' sums.
-    const double planes = static_cast<double>(pattern->size()) * spectra.size();
+    const double planes =
+        static_cast<double>(pattern->size()) * static_cast<double>(spectra.size());
+    std::string found = std::to_string(pattern->size());
+    found += " entries per light source x ";
+    found += std::to_string(spectra.size());
+    found += " sources x ";
+    found += std::to_string(rect.width());
+    found += "x";
+    found += std::to_string(rect.height());
+    found += " pixels (a coarser --relight-step, fewer bands or a --crop per part need less)";
     requireMemory(planes * rect.width() * rect.height() * 24.0, "--relightable", "a transport",
-                  std::to_string(pattern->size()) + " entries per light group x " +
-                      std::to_string(spectra.size()) + " groups x " + std::to_string(rect.width()) +
-                      "x" + std::to_string(rect.height()) +
-                      " pixels (a coarser --relight-step, fewer bands or a --crop per part "
-                      "need less)");
-    out.film.setRelight(std::move(pattern), scene.lightGroups.names, std::move(spectra));
+                  found);
+    out.film.setRelight(std::move(pattern), std::move(sources), std::move(spectra));
   }
   out.samplesPerPixel = options.samples > 0 ? options.samples : settings.samples;
   out.seed = options.seed ? *options.seed : settings.seed;
@@ -181,7 +186,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           RelightRecorder recorder;
           uint64_t missed = 0;
           if (relightable) {
-            recorder.spectra = &scene.relight.ofGroup;
+            recorder.spectra = &scene.relight.ofSource;
             recorder.grid = out.film.relightPattern()->grid();
             recorder.contributions.reserve(256);
           }
@@ -418,9 +423,9 @@ SpectralImage toSpectralImage(const Film& film) {
     RelightLayers& rl = img.relight;
     rl.grid = pattern->grid();
     rl.entries = pattern->entries();
-    rl.groups = film.relightGroupNames();
-    rl.spectra = film.relightGroupSpectra();
-    const size_t n = static_cast<size_t>(film.relightGroups()) * rl.size() * pixels;
+    rl.sources = film.relightSourceNames();
+    rl.spectra = film.relightSourceSpectra();
+    const size_t n = static_cast<size_t>(film.relightSources()) * rl.size() * pixels;
     rl.values.resize(n);
     rl.halfDifferences.resize(n);
   }
@@ -444,7 +449,7 @@ SpectralImage toSpectralImage(const Film& film) {
       setPixelColour(img, i, film.xyzMean(x, y));
       img.sampleCount[i] = film.samples(x, y);
       RelightLayers& rl = img.relight;
-      for (int g = 0; g < film.relightGroups(); ++g)
+      for (int g = 0; g < film.relightSources(); ++g)
         for (size_t e = 0; e < rl.size(); ++e) {
           const size_t k = (static_cast<size_t>(g) * rl.size() + e) * pixels + i;
           const int entry = static_cast<int>(e);

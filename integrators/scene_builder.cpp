@@ -64,7 +64,8 @@ public:
     if (s.background) {
       scene.lightGroups.ofBackground = scene.lightGroups.idOf(s.backgroundGroup);
       scene.background = traced(refs_.resolve(*s.background, SpectrumRole::Emission), 1.0,
-                                scene.lightGroups.ofBackground, s.background->loc, scene);
+                                scene.lightGroups.ofBackground, s.background->loc, scene,
+                                scene.lightGroups.sourceOfBackground);
     }
 
     std::vector<SphereShape> spheres;
@@ -129,8 +130,11 @@ public:
       if (auto e = emission(o, spectral, geometry)) {
         app.emission = static_cast<int32_t>(scene.emission.size());
         const uint16_t group = scene.lightGroups.idOf(o.group);
-        scene.emission.push_back(traced(e->shape, e->factor, group, o.emission->loc, scene));
+        uint16_t source = 0;
+        scene.emission.push_back(
+            traced(e->shape, e->factor, group, o.emission->loc, scene, source));
         scene.lightGroups.ofEmission.push_back(group);
+        scene.lightGroups.sourceOfEmission.push_back(source);
       }
       double extent = 0; // how far from the origin it reaches (a medium's float resolution)
       std::visit(
@@ -174,9 +178,10 @@ public:
                       ": --relightable: expected lights of one spectrum each, found an "
                       "environment map (each texel has its own; use <background> for a uniform "
                       "sky, or render without --relightable)");
-        if (shape) keepGroupSpectrum(*shape, group, l.loc, scene);
       }
       scene.lightGroups.ofLight.push_back(group);
+      scene.lightGroups.sourceOfLight.push_back(
+          desc_.relightable && shape ? relightSource(*shape, group, l.loc, scene) : uint16_t{0});
     }
     if (!triangles.empty()) {
       meshes.push_back(TriangleMesh::fromTriangles(triangles));
@@ -649,38 +654,38 @@ private:
 
   // What an emitter of spectrum `shape` (as written in the scene) times `factor` traces:
   // forRendering(shape.scaled(factor)); in a relightable build the factor alone (flat), the
-  // shape kept for its light group.
+  // shape kept for its relight source (set in `source`).
   Spectrum traced(const Spectrum& shape, double factor, uint16_t group, const SourceLocation& loc,
-                  RenderScene& scene) const {
+                  RenderScene& scene, uint16_t& source) const {
+    source = 0;
     if (!desc_.relightable) return forRendering(shape.scaled(factor));
-    keepGroupSpectrum(forRendering(shape), group, loc, scene);
+    source = relightSource(forRendering(shape), group, loc, scene);
     return Spectrum(ConstantSpectrum{1.0}, factor);
   }
 
-  // Keeps the spectrum of light group `group` in a relightable build: every emitter of a group
-  // must have the same one (the group is relit as one spectrum).
-  static void keepGroupSpectrum(const Spectrum& shape, uint16_t group, const SourceLocation& loc,
+  // The relight source of an emitter of light group `group` with spectrum `shape` in a
+  // relightable build: the group's source of the same spectrum (equal at every nm of the traced
+  // range, to 1e-6), or a new one.
+  static uint16_t relightSource(const Spectrum& shape, uint16_t group, const SourceLocation& loc,
                                 RenderScene& scene) {
     RelightSpectra& r = scene.relight;
-    if (r.ofGroup.size() <= group) {
-      r.ofGroup.resize(group + 1u);
-      r.whereGroup.resize(group + 1u);
+    for (size_t s = 0; s < r.ofSource.size(); ++s) {
+      if (r.groupOfSource[s] != group) continue;
+      bool same = true;
+      for (int nm = static_cast<int>(kTraceMinNm); same && nm <= static_cast<int>(kTraceMaxNm);
+           ++nm) {
+        const double a = shape(nm), b = r.ofSource[s](nm);
+        same = std::abs(a - b) <= 1e-6 * std::max(std::abs(a), std::abs(b));
+      }
+      if (same) return static_cast<uint16_t>(s);
     }
-    if (r.whereGroup[group].empty()) {
-      r.ofGroup[group] = shape;
-      r.whereGroup[group] = loc.str();
-      return;
-    }
-    for (int nm = static_cast<int>(kTraceMinNm); nm <= static_cast<int>(kTraceMaxNm); ++nm) {
-      const double a = shape(nm), b = r.ofGroup[group](nm);
-      if (std::abs(a - b) > 1e-6 * std::max(std::abs(a), std::abs(b)))
-        throw Error(loc.str() + ": --relightable: expected the emitters of light group '" +
-                    scene.lightGroups.names[group] +
-                    "' to share one spectrum (a group is relit as one), found another one "
-                    "than at " +
-                    r.whereGroup[group] + " (" + numberText(a) + " against " + numberText(b) +
-                    " at " + std::to_string(nm) + " nm); give them different group=\"...\"");
-    }
+    if (r.ofSource.size() >= 4096)
+      throw Error(loc.str() + ": --relightable: expected at most 4096 emission spectra to relight, "
+                              "found more");
+    r.ofSource.push_back(shape);
+    r.groupOfSource.push_back(group);
+    r.whereSource.push_back(loc.str());
+    return static_cast<uint16_t>(r.ofSource.size() - 1);
   }
 
   const SceneDesc& desc_;

@@ -47,7 +47,7 @@ std::vector<std::string> splitCommas(const std::string& s) {
 std::string relightChannelName(const RelightLayers& rl, size_t g, size_t e,
                                const std::vector<std::string>& bandText) {
   const RelightEntry& en = rl.entries[e];
-  const std::string base = "relight." + rl.groups[g] + ".";
+  const std::string base = "relight." + rl.sources[g] + ".";
   const std::string excitation = wavelengthText(rl.grid.centre(en.bin));
   return base + "T." + excitation + "." + bandText[static_cast<size_t>(en.row)];
 }
@@ -55,20 +55,21 @@ std::string relightChannelName(const RelightLayers& rl, size_t g, size_t e,
 std::map<std::string, std::string> relightAttributes(const RelightLayers& rl) {
   std::map<std::string, std::string> out;
   std::string groups;
-  for (const std::string& g : rl.groups) groups += (groups.empty() ? "" : ",") + g;
-  out[kRelightGroupsAttribute] = groups;
+  for (const std::string& g : rl.sources) groups += (groups.empty() ? "" : ",") + g;
+  out[kRelightSourcesAttribute] = groups;
   char grid[96];
   std::snprintf(grid, sizeof grid, "%.9g:%.9g:%.9g", rl.grid.firstNm, rl.grid.lo(rl.grid.bins),
                 rl.grid.stepNm);
   out[kRelightGridAttribute] = grid;
-  for (size_t g = 0; g < rl.groups.size(); ++g) {
+  for (size_t g = 0; g < rl.sources.size(); ++g) {
     std::string values;
     for (double v : rl.spectra[g]) {
       char buf[32];
       std::snprintf(buf, sizeof buf, "%.9g", v);
-      values += (values.empty() ? "" : ",") + std::string(buf);
+      if (!values.empty()) values += ',';
+      values += buf;
     }
-    out[kRelightSpectrumAttribute + rl.groups[g]] = values;
+    out[kRelightSpectrumAttribute + rl.sources[g]] = values;
   }
   return out;
 }
@@ -77,14 +78,14 @@ std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>
                                               const std::vector<std::string>& channels,
                                               const std::vector<std::string>& bandText,
                                               const std::string& path, RelightLayers& rl) {
-  const auto groupsIt = attributes.find(kRelightGroupsAttribute);
+  const auto groupsIt = attributes.find(kRelightSourcesAttribute);
   if (groupsIt == attributes.end()) return {};
-  rl.groups = splitCommas(groupsIt->second);
+  rl.sources = splitCommas(groupsIt->second);
   attributes.erase(groupsIt);
   const auto gridIt = attributes.find(kRelightGridAttribute);
   if (gridIt == attributes.end())
     throw Error(path + ": expected the attribute " + std::string(kRelightGridAttribute) +
-                " beside " + kRelightGroupsAttribute + ", found none");
+                " beside " + kRelightSourcesAttribute + ", found none");
   double first = 0, end = 0, step = 0;
   char tail = 0;
   if (std::sscanf(gridIt->second.c_str(), "%lf:%lf:%lf%c", &first, &end, &step, &tail) != 3)
@@ -97,11 +98,11 @@ std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>
     throw Error(path + ": expected " + kRelightGridAttribute + " from " +
                 std::to_string(static_cast<int>(rl.grid.firstNm)) + " nm, found '" +
                 std::to_string(first) + "'");
-  for (const std::string& g : rl.groups) {
+  for (const std::string& g : rl.sources) {
     const auto it = attributes.find(kRelightSpectrumAttribute + g);
     if (it == attributes.end())
       throw Error(path + ": expected the attribute " + kRelightSpectrumAttribute + g +
-                  " (the group's spectrum), found none");
+                  " (the source's spectrum), found none");
     std::vector<double> values;
     for (const std::string& v : splitCommas(it->second))
       values.push_back(parseNumber(v, path + ": " + it->first, "a number"));
@@ -111,20 +112,21 @@ std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>
     rl.spectra.push_back(std::move(values));
     attributes.erase(it);
   }
-  // The entries of each group from its channel names; every group has the same ones.
+  // The entries of each source from its channel names; every source has the same ones.
   const int bands = static_cast<int>(bandText.size());
-  std::vector<std::set<std::pair<int, int>>> ofGroup(rl.groups.size());
+  std::vector<std::set<std::pair<int, int>>> ofGroup(rl.sources.size());
   for (const std::string& c : channels) {
     if (c.rfind("relight.", 0) != 0) continue;
     size_t g = 0;
-    for (; g < rl.groups.size(); ++g)
-      if (c.rfind("relight." + rl.groups[g] + ".", 0) == 0) break;
-    if (g == rl.groups.size())
-      throw Error(path + ": expected relight channels of the groups " + groupsIt->first +
+    // (a source's name is a prefix of its group's further sources': the rest must start "T.")
+    for (; g < rl.sources.size(); ++g)
+      if (c.rfind("relight." + rl.sources[g] + ".T.", 0) == 0) break;
+    if (g == rl.sources.size())
+      throw Error(path + ": expected relight channels of the sources " + kRelightSourcesAttribute +
                   " lists, found " + c);
-    const std::string rest = c.substr(("relight." + rl.groups[g] + ".").size());
+    const std::string rest = c.substr(("relight." + rl.sources[g] + ".").size());
     if (rest.rfind("T.", 0) != 0 || rest.find('.', 2) == std::string::npos)
-      throw Error(path + ": expected relight." + rl.groups[g] +
+      throw Error(path + ": expected relight." + rl.sources[g] +
                   ".T.<excitation>nm.<band>nm, found " + c);
     const size_t dot = rest.find('.', 2);
     const std::string excitation = rest.substr(2, dot - 2), band = rest.substr(dot + 1);
@@ -143,11 +145,11 @@ std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>
   for (size_t g = 1; g < ofGroup.size(); ++g)
     if (ofGroup[g] != ofGroup[0])
       throw Error(path + ": expected the same transport channels for every light group, found " +
-                  std::to_string(ofGroup[0].size()) + " for " + rl.groups[0] + " and " +
-                  std::to_string(ofGroup[g].size()) + " for " + rl.groups[g]);
+                  std::to_string(ofGroup[0].size()) + " for " + rl.sources[0] + " and " +
+                  std::to_string(ofGroup[g].size()) + " for " + rl.sources[g]);
   for (const auto& [row, bin] : ofGroup[0]) rl.entries.push_back({row, bin});
   std::vector<std::string> out;
-  for (size_t g = 0; g < rl.groups.size(); ++g)
+  for (size_t g = 0; g < rl.sources.size(); ++g)
     for (size_t e = 0; e < rl.entries.size(); ++e) {
       out.push_back(relightChannelName(rl, g, e, bandText));
       if (std::find(channels.begin(), channels.end(), kHalfDifferencePrefix + out.back()) ==

@@ -2,9 +2,9 @@
 // How a relightable render's transport is stored in its EXR (docs/relighting.md): one float
 // channel per light group and pattern entry, named by both wavelengths in the bispectral
 // spirit of Fichet et al. 2021 ("T.<excitation>.<emission>" within a layer per group):
-//   relight.<group>.T.<excitation bin centre>nm.<band>nm
+//   relight.<source>.T.<excitation bin centre>nm.<band>nm
 // each with HalfDifference.<channel> (the replicates' signed half-difference), and the
-// attributes nxrender.relightGroups, nxrender.relightGrid and nxrender.relightSpectrum.<group>.
+// attributes nxrender.relightSources, nxrender.relightGrid and nxrender.relightSpectrum.<source>.
 
 #include <map>
 #include <string>
@@ -16,8 +16,9 @@ namespace nx {
 
 /// Prefix of the half-difference channels of the transport.
 inline constexpr const char* kHalfDifferencePrefix = "HalfDifference.";
-/// The attribute listing the transport's light groups (comma-separated, in layer order).
-inline constexpr const char* kRelightGroupsAttribute = "nxrender.relightGroups";
+/// The attribute listing the transport's sources (comma-separated, in layer order): light
+/// groups, NAME.2, NAME.3 for a group's further spectra.
+inline constexpr const char* kRelightSourcesAttribute = "nxrender.relightSources";
 /// The attribute giving the excitation grid: "FIRST:END:STEP" in nm.
 inline constexpr const char* kRelightGridAttribute = "nxrender.relightGrid";
 /// The attribute prefix of each group's rendered spectrum (bin averages, comma-separated).

@@ -1,5 +1,6 @@
 #include "io/relight_layers.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -21,10 +22,17 @@ void checkRelightStep(double stepNm, const std::string& option) {
                 numberText(stepNm));
 }
 
-int RelightLayers::groupIndex(const std::string& name) const {
-  for (size_t i = 0; i < groups.size(); ++i)
-    if (groups[i] == name) return static_cast<int>(i);
+int RelightLayers::sourceIndex(const std::string& name) const {
+  for (size_t i = 0; i < sources.size(); ++i)
+    if (sources[i] == name) return static_cast<int>(i);
   return -1;
+}
+
+std::vector<std::string> RelightLayers::groups() const {
+  std::vector<std::string> out;
+  for (size_t s = 0; s < sources.size(); ++s)
+    if (std::find(out.begin(), out.end(), groupOf(s)) == out.end()) out.push_back(groupOf(s));
+  return out;
 }
 
 } // namespace nx

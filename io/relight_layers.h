@@ -1,8 +1,9 @@
 #pragma once
 // The transport of a relightable render (--relightable, docs/relighting.md): per pixel and light
-// group, what one unit of the group's emission spectrum in each excitation bin puts into each
-// band, on the sparse pattern of (band, bin) pairs the scene can reach. The image under new group
-// spectra S_g is sum over groups and bins of T S_g(bin).
+// source (the emitters of a light group that share a spectrum), what one unit of the source's
+// emission spectrum in each excitation bin puts into each band, on the sparse pattern of (band,
+// bin) pairs the scene can reach. The image under new spectra S_s is the sum over sources and
+// bins of T S_s(bin).
 
 #include <cstdint>
 #include <string>
@@ -45,21 +46,27 @@ struct RelightEntry {
 struct RelightLayers {
   RelightGrid grid;
   std::vector<RelightEntry> entries; ///< the pattern, ordered by row then bin
-  std::vector<std::string> groups;   ///< light group names, in layer order
-  /// Per group, the bin averages (over the grid) of the spectrum its emitters were rendered
+  /// The sources, in layer order: a light group's name, and NAME.2, NAME.3, ... for its further
+  /// spectra (group names hold no dot)
+  std::vector<std::string> sources;
+  /// Per source, the bin averages (over the grid) of the spectrum its emitters were rendered
   /// with: relighting a group not given a new spectrum uses these.
   std::vector<std::vector<double>> spectra;
-  /// [group][entry][pixel] transport means per unit emission spectrum
+  /// [source][entry][pixel] transport means per unit emission spectrum
   std::vector<float> values;
-  /// [group][entry][pixel] signed half-differences (A - B) / 2 of the two replicates' means:
+  /// [source][entry][pixel] signed half-differences (A - B) / 2 of the two replicates' means:
   /// the variance of any linear combination c of the means is (c . d)^2
   std::vector<float> halfDifferences;
 
   /// True when the image holds a transport.
-  bool present() const { return !groups.empty(); }
-  /// Index of group `name`, or -1.
-  int groupIndex(const std::string& name) const;
-  /// Entries per group.
+  bool present() const { return !sources.empty(); }
+  /// Index of source `name`, or -1.
+  int sourceIndex(const std::string& name) const;
+  /// The light group source s belongs to (its name up to a dot).
+  std::string groupOf(size_t s) const { return sources[s].substr(0, sources[s].find('.')); }
+  /// The light groups, in order of their first source.
+  std::vector<std::string> groups() const;
+  /// Entries per source.
   size_t size() const { return entries.size(); }
 };
 

@@ -10,7 +10,7 @@ RelightLayers mergeRelight(const std::vector<ImagePart>& parts, int width, int h
   const RelightLayers& a = first.image.relight;
   for (const ImagePart& p : parts) {
     const RelightLayers& r = p.image.relight;
-    const bool same = r.present() == a.present() && r.groups == a.groups &&
+    const bool same = r.present() == a.present() && r.sources == a.sources &&
                       r.grid.stepNm == a.grid.stepNm && r.spectra == a.spectra &&
                       r.entries.size() == a.entries.size() &&
                       std::equal(r.entries.begin(), r.entries.end(), a.entries.begin(),
@@ -20,11 +20,11 @@ RelightLayers mergeRelight(const std::vector<ImagePart>& parts, int width, int h
     if (!same)
       throw Error(p.name + ": does not belong with " + first.name +
                   ": their relight transports differ (" +
-                  (r.present() ? std::to_string(r.groups.size()) + " groups, " +
+                  (r.present() ? std::to_string(r.sources.size()) + " groups, " +
                                      std::to_string(r.entries.size()) + " entries"
                                : std::string("none")) +
                   " against " +
-                  (a.present() ? std::to_string(a.groups.size()) + " groups, " +
+                  (a.present() ? std::to_string(a.sources.size()) + " groups, " +
                                      std::to_string(a.entries.size()) + " entries"
                                : std::string("none")) +
                   "; render every part with the same --relightable and --relight-step)");
@@ -33,10 +33,10 @@ RelightLayers mergeRelight(const std::vector<ImagePart>& parts, int width, int h
   if (!a.present()) return out;
   out.grid = a.grid;
   out.entries = a.entries;
-  out.groups = a.groups;
+  out.sources = a.sources;
   out.spectra = a.spectra;
   const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
-  const size_t planes = a.groups.size() * a.entries.size();
+  const size_t planes = a.sources.size() * a.entries.size();
   std::vector<double> sum(planes * pixels, 0.0), half(planes * pixels, 0.0);
   for (const ImagePart& part : parts) {
     const SpectralImage& p = part.image;

@@ -189,9 +189,9 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
                            l.name.empty() || l.name.find(',') != std::string::npos;
                   }) ||
       image.relight.values.size() !=
-          image.relight.groups.size() * image.relight.entries.size() * pixels ||
+          image.relight.sources.size() * image.relight.entries.size() * pixels ||
       image.relight.halfDifferences.size() != image.relight.values.size() ||
-      image.relight.spectra.size() != image.relight.groups.size() || image.originX < 0 ||
+      image.relight.spectra.size() != image.relight.sources.size() || image.originX < 0 ||
       image.originY < 0 || image.originX + image.width > image.displayWidth() ||
       image.originY + image.height > image.displayHeight())
     throw Error(path + ": internal error: image buffers do not match its size");
@@ -233,7 +233,7 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
     // half when writing).
     std::vector<std::vector<half>> halves;
     halves.reserve((2 + 2 * image.layers.size()) * static_cast<size_t>(nBands) + 8 +
-                   2 * image.relight.groups.size() * image.relight.entries.size());
+                   2 * image.relight.sources.size() * image.relight.entries.size());
     auto addChannel = [&](const std::string& name, const float* first, size_t stride) {
       header.channels().insert(name, Imf::Channel(stored));
       if (stored == Imf::FLOAT) {
@@ -275,7 +275,7 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
         bandChannels.push_back(spectralChannelName(image.bands.channelNm(b)));
       const std::vector<std::string> bandText = bandWavelengthTexts(bandChannels);
       const RelightLayers& rl = image.relight;
-      for (size_t g = 0; g < rl.groups.size(); ++g)
+      for (size_t g = 0; g < rl.sources.size(); ++g)
         for (size_t e = 0; e < rl.size(); ++e) {
           const std::string channel = relightChannelName(rl, g, e, bandText);
           const size_t plane = (g * rl.size() + e) * pixels;

@@ -76,7 +76,7 @@ void bindRelight(py::module_& m) {
          "rendered relightable=True (docs/relighting.md). Returns an ordinary Image with "
          "variances.")
       .def_property_readonly(
-          "relight_groups", [](const PyImage& self) { return self.image.relight.groups; },
+          "relight_groups", [](const PyImage& self) { return self.image.relight.groups(); },
           "The light groups a relightable image can relight (empty for another image)");
 }
 

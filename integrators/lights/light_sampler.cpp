@@ -124,34 +124,41 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
   }
   if (selection_ == LightSelection::Local && count() > kMaxLocalLights)
     selection_ = LightSelection::Power;
-  // Each light's group (light groups): an emitting shape's by its emission, a <light>'s by its
-  // place in the list.
+  // Each light's group (light groups) and relight source: an emitting shape's by its emission,
+  // a <light>'s by its place in the list, the background's its own.
   const LightGroups& groups = scene.lightGroups;
-  auto groupOf = [&](int32_t emission) {
-    return emission >= 0 && static_cast<size_t>(emission) < groups.ofEmission.size()
-               ? groups.ofEmission[static_cast<size_t>(emission)]
-               : uint16_t{0};
-  };
   for (const Light& l : lights_) {
-    uint16_t g = 0;
+    // Which of the tables and which entry: emission index, light index, or the background.
+    int32_t emission = -1, light = -1;
     switch (l.kind) {
     case LightKind::Sphere:
-      g = groupOf(scene.spheres[l.shape].emission);
+      emission = scene.spheres[l.shape].emission;
       break;
     case LightKind::Mesh:
-      g = groupOf(scene.meshes[l.shape]
-                      .of(l.triangle < 0 ? 0u : static_cast<uint32_t>(l.triangle))
-                      .emission);
+      emission = scene.meshes[l.shape]
+                     .of(l.triangle < 0 ? 0u : static_cast<uint32_t>(l.triangle))
+                     .emission;
       break;
     case LightKind::Point:
     case LightKind::Environment:
-      g = l.shape < groups.ofLight.size() ? groups.ofLight[l.shape] : uint16_t{0};
+      light = static_cast<int32_t>(l.shape);
       break;
     case LightKind::Background:
-      g = groups.ofBackground;
       break;
     }
-    group_.push_back(g);
+    auto of = [&](const std::vector<uint16_t>& ofEmission, const std::vector<uint16_t>& ofLight,
+                  uint16_t ofBackground) -> uint16_t {
+      if (emission >= 0)
+        return static_cast<size_t>(emission) < ofEmission.size()
+                   ? ofEmission[static_cast<size_t>(emission)]
+                   : uint16_t{0};
+      if (light >= 0)
+        return static_cast<size_t>(light) < ofLight.size() ? ofLight[static_cast<size_t>(light)]
+                                                           : uint16_t{0};
+      return ofBackground;
+    };
+    group_.push_back(of(groups.ofEmission, groups.ofLight, groups.ofBackground));
+    source_.push_back(of(groups.sourceOfEmission, groups.sourceOfLight, groups.sourceOfBackground));
   }
 
   // Choice probabilities: by power (uniform when every power is zero or not finite).

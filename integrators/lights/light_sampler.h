@@ -43,6 +43,8 @@ public:
   size_t triangleCount(int k) const;
   /// The light group (RenderScene::lightGroups) light k belongs to.
   uint16_t group(int k) const { return group_[static_cast<size_t>(k)]; }
+  /// The relight source (RelightSpectra) light k belongs to (0 unless relightable).
+  uint16_t source(int k) const { return source_[static_cast<size_t>(k)]; }
   /// The light group of environment light i.
   uint16_t environmentGroup(int i) const {
     return group_[static_cast<size_t>(environments_[static_cast<size_t>(i)])];
@@ -110,6 +112,7 @@ private:
   int32_t background_ = -1;
   std::vector<int32_t> environments_; ///< light numbers of the environment lights
   std::vector<uint16_t> group_;       ///< light group per light
+  std::vector<uint16_t> source_;      ///< relight source per light
 };
 
 } // namespace nx
