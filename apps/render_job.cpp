@@ -137,7 +137,6 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
   options_.adaptiveMinSamples = choices.adaptiveMinSamples;
   if (choices.relightable != scene.relight.enabled)
     throw Error("internal error: --relightable needs the scene built relightable");
-  if (choices.relightable) checkRelightStep(choices.relightStepNm, "--relight-step");
   options_.relightStepNm = choices.relightStepNm;
 
   renderKey_ = hex(fnv1a64(

@@ -106,9 +106,8 @@ struct LightGroups {
 /// then what the film keeps, per source: the emitters of one light group with one spectrum.
 struct RelightSpectra {
   bool enabled = false;
-  std::vector<Spectrum> ofSource;       ///< per source: its emitters' spectrum
-  std::vector<uint16_t> groupOfSource;  ///< per source: its light group
-  std::vector<std::string> whereSource; ///< "file:line" of the source's first emitter
+  std::vector<Spectrum> ofSource;      ///< per source: its emitters' spectrum
+  std::vector<uint16_t> groupOfSource; ///< per source: its light group
   /// The name of source s: its group's, and ".2", ".3", ... for a group's further spectra (a
   /// group name holds no dot).
   std::string name(size_t s, const LightGroups& groups) const {

@@ -684,7 +684,6 @@ private:
                               "found more");
     r.ofSource.push_back(shape);
     r.groupOfSource.push_back(group);
-    r.whereSource.push_back(loc.str());
     return static_cast<uint16_t>(r.ofSource.size() - 1);
   }
 

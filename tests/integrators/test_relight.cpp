@@ -13,6 +13,7 @@
 #include "integrators/relight_pattern.h"
 #include "integrators/renderer.h"
 #include "io/part_merge.h"
+#include "io/relight_channels.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 
@@ -413,6 +414,51 @@ TEST(Relight, GroupsWithSeveralSpectraRelightAsOne) {
   std::filesystem::remove(path);
   EXPECT_EQ(back.relight.sources, img.relight.sources);
   EXPECT_EQ(back.relight.values, img.relight.values);
+}
+
+// A file's transport that is not what nxrender writes is refused, naming the file and what was
+// expected: the grid, a source's spectrum, a channel's band or bin, a missing half-difference.
+TEST(Relight, MalformedTransportChannelsAreRefused) {
+  const std::vector<std::string> bands = {"400,000000nm", "420,000000nm"};
+  const std::string t = "relight.lamp.T.402,500000nm.400,000000nm";
+  auto parse = [&](std::map<std::string, std::string> attributes,
+                   std::vector<std::string> channels) {
+    RelightLayers rl;
+    return test::errorMessage(
+        [&] { parseRelightChannels(attributes, channels, bands, "f.exr", rl); });
+  };
+  std::string flat;
+  for (int j = 0; j < 160; ++j) flat += j ? ",1" : "1";
+  const std::map<std::string, std::string> good = {{"nxrender.relightSources", "lamp"},
+                                                   {"nxrender.relightGrid", "300:1100:5"},
+                                                   {"nxrender.relightSpectrum.lamp", flat}};
+  EXPECT_EQ(parse(good, {t, "HalfDifference." + t}), "no error");
+  auto with = [&](const std::string& key, const std::string& value) {
+    auto a = good;
+    if (value.empty())
+      a.erase(key);
+    else
+      a[key] = value;
+    return a;
+  };
+  EXPECT_EQ(parse(with("nxrender.relightGrid", ""), {t}),
+            "f.exr: expected the attribute nxrender.relightGrid beside nxrender.relightSources, "
+            "found none");
+  EXPECT_EQ(parse(with("nxrender.relightGrid", "300:1100:3"), {t}),
+            "f.exr: nxrender.relightGrid: expected a step in nm that divides 5 (1, 2.5, 5) or is a "
+            "multiple of 5 up to 100 (its bins nest with the 5 nm re-radiation grid), found 3");
+  EXPECT_EQ(parse(with("nxrender.relightSpectrum.lamp", "1,2"), {t}),
+            "f.exr: expected 160 values in nxrender.relightSpectrum.lamp (one per bin), found 2");
+  EXPECT_EQ(parse(good, {"relight.lamp.T.402,500000nm.410,000000nm"}),
+            "f.exr: expected a band of the image in the channel "
+            "relight.lamp.T.402,500000nm.410,000000nm, found 410,000000nm");
+  EXPECT_EQ(parse(good, {"relight.lamp.T.403,000000nm.400,000000nm"}),
+            "f.exr: expected an excitation bin centre of the grid in the channel "
+            "relight.lamp.T.403,000000nm.400,000000nm, found 403,000000nm");
+  EXPECT_EQ(parse(good, {t}), "f.exr: expected a channel HalfDifference." + t + ", found none");
+  EXPECT_EQ(parse(good, {"relight.sky.T.402,500000nm.400,000000nm"}),
+            "f.exr: expected relight channels of the sources nxrender.relightSources lists, found "
+            "relight.sky.T.402,500000nm.400,000000nm");
 }
 
 // What a relightable build cannot relight is refused by name: emitting media, environment
