@@ -107,6 +107,16 @@ void Film::addLayerSamples(Pixel& pixel, const SampledWavelengths& lambda,
   }
 }
 
+SampledSpectrum Film::adjointWeights(const SampledWavelengths& lambda, const float* adjoint) const {
+  SampledSpectrum out;
+  for (int i = 0; i < kLanes; ++i) {
+    float sum = 0;
+    responses_.forEach(lambda.lambda[i], [&](int b, float w) { sum += adjoint[b] * w; });
+    out[i] = sum * WavelengthSampler::laneWeight(lambda, i);
+  }
+  return out;
+}
+
 uint64_t Film::addRelightSamples(Pixel& pixel, const SampledWavelengths& lambda,
                                  const std::vector<RelightContribution>& contributions,
                                  bool odd) const {

@@ -121,6 +121,11 @@ public:
   void addLayerSamples(Pixel& pixel, const SampledWavelengths& lambda,
                        const SampledSpectrum* layers, bool odd) const;
 
+  /// The weight of each lane of a sample in sum_b adjoint[b] * (the pixel's band b), per unit
+  /// radiance of the lane: sum_b adjoint[b] R_b(lambda) / integral(R_b) / (kLanes pdf) (as
+  /// addSample weighs it; the mean's 1 / N not included).
+  SampledSpectrum adjointWeights(const SampledWavelengths& lambda, const float* adjoint) const;
+
   /// Adds the transport of a sample that addSample accepted (a relightable render), each
   /// contribution weighted like the radiance into the bands responding at its lane's
   /// wavelength. Returns the contributions that fell outside the pattern (none, unless the

@@ -11,6 +11,9 @@
 
 namespace nx {
 
+struct GradientContext;
+struct GradientTape;
+
 /// How direct light reaches diffuse surfaces in the path tracer.
 enum class LightSampling : uint8_t {
   Mis,      ///< next-event estimation and BSDF sampling, combined by the power heuristic
@@ -38,6 +41,8 @@ struct IntegratorContext {
   const LightSampler* lights;
   LightSampling lightSampling = LightSampling::Mis;
   bool fluorescence = false; ///< run the fluorescent variant (scenes with fluorescent materials)
+  /// The tangents of a differentiated render (tracePathGradients), else null.
+  const GradientContext* gradients = nullptr;
 };
 
 /// Most rays one camera sample of Whitted ray tracing may trace (its tree branches at every
@@ -65,6 +70,13 @@ SampledSpectrum tracePathComponents(const IntegratorContext& ctx, Ray ray,
                                     const SampledWavelengths& lambda, PixelSampleStream& rng,
                                     TraceCounters& counters, const ComponentLayout& layout,
                                     SampledSpectrum* layers);
+
+/// tracePath that also records on `tape` (cleared by the caller) the log-derivatives of the
+/// path's vertices with respect to ctx.gradients' slots, and its contributions
+/// (integrators/gradients/path_gradients.h): the same random numbers and radiance as tracePath.
+SampledSpectrum tracePathGradients(const IntegratorContext& ctx, Ray ray,
+                                   const SampledWavelengths& lambda, PixelSampleStream& rng,
+                                   TraceCounters& counters, GradientTape& tape);
 
 /// tracePathComponents for a scene built relightable (RelightSpectra): the radiance and layers
 /// with the groups' spectra applied, and every contribution per unit spectrum appended to

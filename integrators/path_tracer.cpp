@@ -2,6 +2,8 @@
 
 #include "core/ray_offset.h"
 #include "integrators/fluorescent_vertex.h"
+#include "integrators/gradients/gradient_context.h"
+#include "integrators/gradients/path_gradients.h"
 #include "integrators/integrator.h"
 #include "integrators/lights/direct_lighting.h"
 #include "integrators/materials/bsdf.h"
@@ -36,6 +38,16 @@ uint16_t relightSourceOf(const LightGroups& groups, int32_t e) {
              : uint16_t{0};
 }
 
+// True for sinks that differentiate the path (GradientSink): the path tracer then records
+// the log-derivatives of its vertices (integrators/gradients/path_gradients.h).
+template <class Sink>
+constexpr bool recordsGradients() {
+  if constexpr (requires { Sink::kGradients; })
+    return Sink::kGradients;
+  else
+    return false;
+}
+
 // The white reference's surface: a Lambertian reflector of reflectance 1.
 const Material& whiteLambertian() {
   static const Material white = [] {
@@ -61,6 +73,17 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
                    PixelSampleStream& rng, TraceCounters& counters, Sink& sink) {
   const RenderScene& scene = *ctx.scene;
   const int rouletteStart = scene.settings.depth;
+  // Differentiated renders: the tangents, and the two ways an event enters the tape (scaling
+  // every later contribution, or the next one only).
+  constexpr bool kGradients = recordsGradients<Sink>();
+  [[maybe_unused]] const SceneTangents* tangents =
+      ctx.gradients ? ctx.gradients->tangents : nullptr;
+  [[maybe_unused]] auto event = [&](uint32_t slot, int lane, float g) {
+    if constexpr (kGradients) sink.event(slot, lane, g);
+  };
+  [[maybe_unused]] auto local = [&](uint32_t slot, int lane, float g) {
+    if constexpr (kGradients) sink.local(slot, lane, g);
+  };
   // lambda: the sensor wavelengths (where the film accumulates); current: what lights and
   // materials are evaluated at (they differ after a fluorescent shift).
   SampledWavelengths current = lambda;
@@ -202,10 +225,13 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       }
     }
     if (!found) {
-      if (scene.background)
-        sink.add(weighted() * evaluate(*scene.background, current) *
+      if (scene.background) {
+        const SampledSpectrum le = evaluate(*scene.background, current);
+        if constexpr (kGradients) ratioEvents(tangents->background, current, le, sink, local);
+        sink.add(weighted() * le *
                      (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP))),
                  classOf(scatterings, groups.ofBackground, groups.sourceOfBackground, current));
+      }
       for (int e = 0; e < ctx.lights->environmentCount(); ++e)
         sink.add(weighted() * ctx.lights->environmentRadiance(e, ray.d, current) *
                      (specular ? 1.0f : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d))),
@@ -232,11 +258,16 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     const bool whiteHere = kWhite && scatterings == 0;
     if (app.emission >= 0 && !whiteHere) {
       const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d));
-      if (w > 0)
-        sink.add(weighted() * evaluate(scene.emission[static_cast<size_t>(app.emission)], current) *
-                     w,
+      if (w > 0) {
+        const SampledSpectrum le =
+            evaluate(scene.emission[static_cast<size_t>(app.emission)], current);
+        if constexpr (kGradients)
+          ratioEvents(tangents->emission[static_cast<size_t>(app.emission)], current, le, sink,
+                      local);
+        sink.add(weighted() * le * w,
                  classOf(scatterings, groups.ofEmission[static_cast<size_t>(app.emission)],
                          relightSourceOf(groups, app.emission), current));
+      }
     }
     if (bounce >= kMaxPathBounces) {
       ++counters.bounceLimited; // still carrying light: counted, reported
@@ -275,6 +306,20 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         const PathClass k =
             classOf(scatterings + 1, ctx.lights->group(ls.light), ctx.lights->source(ls.light), lit,
                     Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0});
+        if constexpr (kGradients) {
+          if (!whiteHere) {
+            if (fluorescent)
+              reradiationEvents(tangents->reradiation[app.material],
+                                tangents->reflectance[app.material], *material.reradiation, current,
+                                shift.excited, rho, sink, local);
+            reflectanceEvents(tangents->reflectance[app.material], material, current, rho, false,
+                              !fluorescent, sink, local);
+          }
+          const size_t l = static_cast<size_t>(ls.light);
+          if (const Spectrum* emitted = ctx.gradients->spectrumOfSampledLight[l])
+            ratioEvents(*ctx.gradients->ofSampledLight[l], lit, evaluate(*emitted, lit), sink,
+                        local);
+        }
         if constexpr (kMedia) {
           const auto visible = [&](const Ray& r) {
             return shadowTransmittance(scene, r, media, lit, counters);
@@ -291,6 +336,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       }
     }
 
+    [[maybe_unused]] const SampledWavelengths lambdaBefore = current; // before a re-radiation
     BsdfSample bs;
     const float uLobe = rng.next1D();
     const Sample2 uDir = rng.next2D();
@@ -299,7 +345,22 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       if (fluorescent && !bs.specular) { // the diffuse lobe re-radiates; the mirror lobe does not
         bs.weight = shift.albedo * bs.diffuseScale;
         if constexpr (Sink::kClasses) shifted |= shiftedLanes(shift.excited, current);
+        if constexpr (kGradients) {
+          if (!whiteHere)
+            reradiationEvents(tangents->reradiation[app.material],
+                              tangents->reflectance[app.material], *material.reradiation, current,
+                              shift.excited, rho, sink, event);
+        }
         current = shift.excited;
+      }
+    }
+    if constexpr (kGradients) {
+      // The lobe taken scales the rest of the path (a fluorescent diffuse lobe's albedo came
+      // from the matrix above; rho's other shares, a coat's, from here).
+      if (!whiteHere) {
+        const bool reradiated = fluorescent && !bs.specular;
+        reflectanceEvents(tangents->reflectance[app.material], material, lambdaBefore, rho,
+                          bs.specular, !reradiated, sink, event);
       }
     }
     if constexpr (kMedia) {
@@ -361,6 +422,16 @@ void traceVariant(const IntegratorContext& ctx, const Ray& ray, const SampledWav
 SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
                           PixelSampleStream& rng, TraceCounters& counters) {
   RadianceSink sink;
+  traceVariant<false>(ctx, ray, lambda, rng, counters, sink);
+  return sink.L;
+}
+
+SampledSpectrum tracePathGradients(const IntegratorContext& ctx, Ray ray,
+                                   const SampledWavelengths& lambda, PixelSampleStream& rng,
+                                   TraceCounters& counters, GradientTape& tape) {
+  GradientSink sink;
+  sink.tape = &tape;
+  sink.tangents = ctx.gradients->tangents;
   traceVariant<false>(ctx, ray, lambda, rng, counters, sink);
   return sink.L;
 }

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <cmath>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -11,6 +12,8 @@
 #include "core/float_mode.h"
 #include "core/matrix3.h"
 #include "core/memory.h"
+#include "integrators/gradients/gradient_context.h"
+#include "integrators/gradients/path_gradients.h"
 #include "integrators/sampling.h"
 #include "spectra/colour.h"
 #include "spectra/tonemap.h"
@@ -33,6 +36,9 @@ std::vector<std::string> componentLayerNames(const RenderScene& scene,
   if (options.components) names = {"reflected", "fluoresced", "direct", "indirect"};
   if (options.lightGroups)
     for (const std::string& g : scene.lightGroups.names) names.push_back("light." + g);
+  if (options.gradients && !options.adjoint)
+    for (uint32_t k = 0; k < options.gradients->slots(); ++k)
+      names.push_back("gradient." + std::to_string(k));
   return names;
 }
 
@@ -60,7 +66,9 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                    {},
                    options.firstSample,
                    0,
-                   0};
+                   0,
+                   {},
+                   {}};
   // Component layers: set on a new film, the same names on a resumed one.
   const std::vector<std::string> layerNames = componentLayerNames(scene, options);
   ComponentLayout layout;
@@ -70,6 +78,34 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   if (layout.any() && settings.mode == RenderMode::Rt)
     throw Error("component images (--aov components, lightgroups) need a path-traced mode "
                 "(spectral_mcpt or mcpt), found rt (Whitted ray tracing has no path classes)");
+  const bool differentiated = options.gradients != nullptr;
+  const bool reverse = differentiated && options.adjoint;
+  if (differentiated) {
+    const SceneTangents& t = *options.gradients;
+    if (settings.mode == RenderMode::Rt)
+      throw Error("gradients need a path-traced mode (spectral_mcpt or mcpt), found rt");
+    if (scene.relight.enabled || options.components || options.lightGroups)
+      throw Error("gradients cannot be combined with component, light-group or relightable "
+                  "outputs: render those separately");
+    if (options.resumeFrom || options.adaptive || options.adaptivePlan)
+      throw Error("gradients need a uniform render from its first sample (no --resume, no "
+                  "adaptive sampling)");
+    if (t.reflectance.size() != scene.materials.size() ||
+        t.emission.size() != scene.emission.size() || t.lights.size() != scene.lights.size())
+      throw Error("internal error: gradient tangents made for another scene");
+    if (!reverse && t.slots() > kMaxForwardSlots)
+      throw Error("forward-mode gradients keep one spectral image per parameter: at most " +
+                  std::to_string(kMaxForwardSlots) + ", found " + std::to_string(t.slots()) +
+                  " (use reverse mode, nxrender.backward, for many parameters)");
+    if (reverse) {
+      const size_t expected = static_cast<size_t>(rect.width()) * rect.height() * bands.count();
+      if (options.adjoint->size() != expected)
+        throw Error("the adjoint image holds " + std::to_string(options.adjoint->size()) +
+                    " values, expected " + std::to_string(expected) + " (" +
+                    std::to_string(rect.width()) + "x" + std::to_string(rect.height()) + " x " +
+                    std::to_string(bands.count()) + " bands)");
+    }
+  }
   if (!options.resumeFrom) {
     out.film.setLayers(layerNames);
   } else {
@@ -121,8 +157,11 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const int begin = options.firstSample, end = options.firstSample + out.samplesPerPixel;
 
   const LightSampler lights(scene, options.lightSelection);
+  std::optional<GradientContext> gradientContext;
+  if (differentiated) gradientContext.emplace(scene, lights, *options.gradients);
   const IntegratorContext ctx{&scene, &lights, options.lightSampling,
-                              scene.hasFluorescence || options.forceFluorescencePath};
+                              scene.hasFluorescence || options.forceFluorescencePath,
+                              gradientContext ? &*gradientContext : nullptr};
   const WavelengthSampler wavelengths =
       options.wavelengthDensity == WavelengthDensity::Visible
           ? WavelengthSampler(out.film.tracedMinNm(), out.film.tracedMaxNm())
@@ -139,7 +178,23 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const int passSize = std::max(1, options.passSamples);
   const int passes = (out.samplesPerPixel + passSize - 1) / passSize;
   std::atomic<uint64_t> rays{0}, nonFinite{0}, samples{0}, truncated{0}, bounceLimited{0},
-      relightMissed{0};
+      relightMissed{0}, gradientZeros{0};
+  // Reverse mode: each tile's sums per replicate (its non-zero slots), added up in tile order
+  // after each pass, so the gradient does not depend on which thread ran which tile.
+  const uint32_t slots = differentiated ? options.gradients->slots() : 0;
+  struct TileGradient {
+    uint32_t slot;
+    double even, odd; ///< the replicates' sums
+  };
+  std::vector<std::vector<TileGradient>> tileGradients;
+  // The gradient, and the variance of its estimate: the sum over tiles (independent) of the
+  // squared differences of their replicates' sums.
+  std::vector<double> gradientSum, gradientVarianceSum;
+  if (reverse) {
+    tileGradients.resize(static_cast<size_t>(tiles));
+    gradientSum.assign(slots, 0.0);
+    gradientVarianceSum.assign(slots, 0.0);
+  }
   std::atomic<int64_t> finished{0};
   // Progress counts tiles of passes; an adaptive render's passes are not known in advance
   // (its count is capped at the uniform render's).
@@ -185,6 +240,10 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
           std::vector<SampledSpectrum> layers(static_cast<size_t>(layout.count));
           RelightRecorder recorder;
           uint64_t missed = 0;
+          GradientTape tape;
+          std::vector<SampledSpectrum> forward(reverse ? 0 : slots);
+          std::vector<double> tileSums[2];
+          if (reverse) tileSums[0].assign(slots, 0.0), tileSums[1].assign(slots, 0.0);
           if (relightable) {
             recorder.spectra = &scene.relight.ofSource;
             recorder.grid = out.film.relightPattern()->grid();
@@ -230,7 +289,35 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                 const Ray ray =
                     scene.camera.generateRay(static_cast<double>(x) + jitter.u,
                                              static_cast<double>(y) + jitter.v, lensX, lensY);
-                if (relightable) {
+                if (differentiated) {
+                  tape.clear();
+                  const SampledSpectrum L =
+                      tracePathGradients(ctx, ray, lambda, rng, counters, tape);
+                  if (!out.film.addSample(pixel, lambda, L, odd)) {
+                    ++dropped;
+                  } else if (reverse) {
+                    // d loss / d slot: each term weighted as the film weighs the lane, times
+                    // d loss / d band, over the pixel's sample count (uniform: the render's).
+                    const size_t p = static_cast<size_t>(y - rect.y0) * rect.width() +
+                                     static_cast<size_t>(x - rect.x0);
+                    const SampledSpectrum a =
+                        out.film.adjointWeights(lambda,
+                                                options.adjoint->data() +
+                                                    p * static_cast<size_t>(bands.count())) *
+                        (1.0f / static_cast<float>(out.samplesPerPixel));
+                    double* sums = tileSums[odd].data();
+                    tape.sweep([&](uint32_t slot, int lane, float v) {
+                      sums[slot] += static_cast<double>(v * a[lane]);
+                    });
+                  } else {
+                    std::fill(forward.begin(), forward.end(), SampledSpectrum());
+                    tape.sweep([&](uint32_t slot, int lane, float v) { forward[slot][lane] += v; });
+                    bool finite = true;
+                    for (const SampledSpectrum& f : forward)
+                      for (int i = 0; i < kLanes; ++i) finite = finite && std::isfinite(f[i]);
+                    if (finite) out.film.addLayerSamples(pixel, lambda, forward.data(), odd);
+                  }
+                } else if (relightable) {
                   std::fill(layers.begin(), layers.end(), SampledSpectrum());
                   recorder.contributions.clear();
                   const SampledSpectrum L = tracePathRelightable(ctx, ray, lambda, rng, counters,
@@ -266,6 +353,13 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
               out.film.add(x, y, pixel);
             }
           }
+          if (reverse) {
+            auto& kept = tileGradients[static_cast<size_t>(tile)];
+            for (uint32_t k = 0; k < slots; ++k)
+              if (tileSums[0][k] != 0 || tileSums[1][k] != 0)
+                kept.push_back({k, tileSums[0][k], tileSums[1][k]});
+          }
+          gradientZeros += tape.zeroValues;
           rays += counters.rays;
           truncated += counters.truncated;
           bounceLimited += counters.bounceLimited;
@@ -280,6 +374,13 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
         },
         tileContext);
     if (options.stop && options.stop->load()) out.stats.stopped = true;
+    for (auto& kept : tileGradients) {
+      for (const TileGradient& t : kept) {
+        gradientSum[t.slot] += t.even + t.odd;
+        gradientVarianceSum[t.slot] += (t.even - t.odd) * (t.even - t.odd);
+      }
+      kept.clear();
+    }
     lastPassSeconds = now() - passStart;
     anyPass = true;
     if (options.afterPass) options.afterPass(out.film);
@@ -356,6 +457,13 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   out.stats.truncated = truncated;
   out.stats.bounceLimited = bounceLimited;
   out.stats.relightMissed = relightMissed;
+  out.stats.gradientZeroValues = gradientZeros;
+  if (reverse) {
+    // Each replicate's sum estimates half the gradient; per tile, their difference squared
+    // estimates the variance of the tile's share (the film's (A - B)^2 / 4 for the means).
+    out.gradient = std::move(gradientSum);
+    out.gradientVariance = std::move(gradientVarianceSum);
+  }
   return out;
 }
 
@@ -384,6 +492,11 @@ std::vector<std::string> warningsOf(const RenderStats& stats) {
                   " contributions of the relightable transport fell outside its pattern and "
                   "were dropped from it (the radiance keeps them): relit images miss that light; "
                   "this is a defect, please report the scene");
+  if (stats.gradientZeroValues > 0)
+    out.push_back(count(stats.gradientZeroValues) +
+                  " path vertices met a differentiated value of 0 (a reflectance, an emission) "
+                  "whose derivative is not 0: the estimator divides by the value, so their "
+                  "share of the gradient is missed; start a fit from values above 0");
   if (stats.nonFinite > 0)
     out.push_back(count(stats.nonFinite) +
                   " samples with a NaN or infinite value were counted as zero (black)");

@@ -10,6 +10,7 @@
 #include "integrators/adaptive_plan.h"
 #include "integrators/error_measure.h"
 #include "integrators/film.h"
+#include "integrators/gradients/scene_tangents.h"
 #include "integrators/integrator.h"
 #include "integrators/render_scene.h"
 #include "io/spectral_exr.h"
@@ -74,6 +75,13 @@ struct RenderOptions {
   /// Called after each finished tile with (finished, total); may be called from any thread,
   /// never concurrently.
   std::function<void(int64_t, int64_t)> progress;
+  /// A differentiated render (docs/inverse.md): the derivatives of the scene's appearance data
+  /// per slot. Forward mode (adjoint null): the film keeps one layer "gradient.<slot>" per slot,
+  /// d radiance / d slot per band with its variance. Reverse mode: RenderOutput::gradient.
+  const SceneTangents* gradients = nullptr;
+  /// Reverse mode: d loss / d image, [pixel of the render's rectangle, row by row][band]; the
+  /// output is then d loss / d slot for every slot (RenderOutput::gradient).
+  const std::vector<float>* adjoint = nullptr;
   /// Called on the calling thread after each pass with the film so far (checkpoints).
   std::function<void(const Film&)> afterPass;
 };
@@ -81,12 +89,15 @@ struct RenderOptions {
 /// Counters of a finished render.
 struct RenderStats {
   double seconds = 0;
-  uint64_t samples = 0;          ///< pixel samples taken by this run
-  uint64_t rays = 0;             ///< camera, scattered and shadow rays
-  uint64_t nonFinite = 0;        ///< samples with a NaN or infinite value (counted as zero)
-  uint64_t truncated = 0;        ///< rt samples that reached kWhittedRayBudget
-  uint64_t bounceLimited = 0;    ///< paths ended by kMaxPathBounces still carrying light
-  uint64_t relightMissed = 0;    ///< relightable contributions outside the pattern (dropped)
+  uint64_t samples = 0;       ///< pixel samples taken by this run
+  uint64_t rays = 0;          ///< camera, scattered and shadow rays
+  uint64_t nonFinite = 0;     ///< samples with a NaN or infinite value (counted as zero)
+  uint64_t truncated = 0;     ///< rt samples that reached kWhittedRayBudget
+  uint64_t bounceLimited = 0; ///< paths ended by kMaxPathBounces still carrying light
+  uint64_t relightMissed = 0; ///< relightable contributions outside the pattern (dropped)
+  /// Differentiated renders: path events whose differentiated value was 0 where its derivative
+  /// is not (their share of the derivative is missed; warningsOf reports it)
+  uint64_t gradientZeroValues = 0;
   bool stopped = false;          ///< ended early by the stop flag
   bool reachedTarget = false;    ///< ended because the error target was met
   bool reachedTimeLimit = false; ///< ended because the next pass would pass the time limit
@@ -101,7 +112,14 @@ struct RenderOutput {
   RenderStats stats;
   int firstSample = 0, samplesPerPixel = 0; ///< the requested sample range
   uint32_t seed = 0;
+  /// Reverse mode: d loss / d slot, and the variance of each estimate (from the two
+  /// replicates); empty otherwise.
+  std::vector<double> gradient, gradientVariance;
 };
+
+/// Most slots a forward-mode render keeps (each is a spectral layer of the film); reverse mode
+/// has no such limit.
+inline constexpr uint32_t kMaxForwardSlots = 64;
 
 /// The warnings a finished render's counts call for, one sentence each (without a program
 /// prefix): rt samples cut at the ray budget, paths cut at kMaxPathBounces still carrying light

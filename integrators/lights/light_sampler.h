@@ -49,6 +49,16 @@ public:
   uint16_t environmentGroup(int i) const {
     return group_[static_cast<size_t>(environments_[static_cast<size_t>(i)])];
   }
+  /// The radiance spectrum light k emits (emitting shapes, the background), or null for a
+  /// light of the scene's list (sceneLightOf).
+  const Spectrum* emissionOf(int k) const { return lights_[static_cast<size_t>(k)].emission; }
+  /// The index in RenderScene::lights of light k, or -1 when it is not one of them.
+  int sceneLightOf(int k) const {
+    const Light& l = lights_[static_cast<size_t>(k)];
+    return l.kind == LightKind::Point || l.kind == LightKind::Environment
+               ? static_cast<int>(l.shape)
+               : -1;
+  }
   /// Emitted power of light k over the traced range (W; the selection's weights).
   double power(int k) const { return lights_[static_cast<size_t>(k)].power; }
 

@@ -44,6 +44,12 @@ public:
   /// Reflectance at (u, v) for the lanes of lambda.
   SampledSpectrum evaluate(float u, float v, const SampledWavelengths& lambda) const;
 
+  /// True when `o` holds the same texels (kind, size, band centroids, values).
+  bool sameAs(const ReflectanceTexture& o) const {
+    return kind_ == o.kind_ && width_ == o.width_ && height_ == o.height_ &&
+           centroids_ == o.centroids_ && values_ == o.values_ && holdEnds_ == o.holdEnds_;
+  }
+
   /// Texels across and down (the chart: 6 x 4).
   int width() const { return width_; }
   int height() const { return height_; }

@@ -1,0 +1,29 @@
+#include "integrators/gradients/gradient_context.h"
+
+namespace nx {
+
+GradientContext::GradientContext(const RenderScene& scene, const LightSampler& lights,
+                                 const SceneTangents& t)
+    : tangents(&t) {
+  static const std::vector<SpectrumTangent> none;
+  for (int k = 0; k < lights.count(); ++k) {
+    const std::vector<SpectrumTangent>* found = &none;
+    const Spectrum* value = nullptr;
+    if (const int l = lights.sceneLightOf(k); l >= 0) {
+      const SceneLight& light = scene.lights[static_cast<size_t>(l)];
+      if (const auto* p = std::get_if<PointLight>(&light)) value = &p->intensity;
+      if (const auto* q = std::get_if<SpotLight>(&light)) value = &q->intensity;
+      if (value) found = &t.lights[static_cast<size_t>(l)];
+    } else {
+      // An emitting shape or the background: the sampler refers to the scene's own spectrum.
+      value = lights.emissionOf(k);
+      for (size_t e = 0; e < scene.emission.size(); ++e)
+        if (value == &scene.emission[e]) found = &t.emission[e];
+      if (scene.background && value == &*scene.background) found = &t.background;
+    }
+    ofSampledLight.push_back(found);
+    spectrumOfSampledLight.push_back(found->empty() ? nullptr : value);
+  }
+}
+
+} // namespace nx

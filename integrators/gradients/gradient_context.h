@@ -1,0 +1,25 @@
+#pragma once
+// What the path tracer needs to differentiate a render: the scene's tangents and, per light
+// the light sampler can choose, the tangents of the spectrum it emits.
+
+#include <vector>
+
+#include "integrators/gradients/scene_tangents.h"
+#include "integrators/lights/light_sampler.h"
+
+namespace nx {
+
+/// The tangents in the form the render loop reads them (no lookup per vertex).
+struct GradientContext {
+  const SceneTangents* tangents = nullptr;
+  /// Per LightSampler light: the tangents of its emission (empty for none) and the spectrum
+  /// they are derivatives of (its radiance or intensity; null when not differentiated).
+  std::vector<const std::vector<SpectrumTangent>*> ofSampledLight;
+  std::vector<const Spectrum*> spectrumOfSampledLight;
+
+  /// The context for `scene` rendered with `lights`.
+  GradientContext(const RenderScene& scene, const LightSampler& lights,
+                  const SceneTangents& tangents);
+};
+
+} // namespace nx

@@ -1,0 +1,229 @@
+#pragma once
+// Derivatives of a path's contributions with respect to the scene's parameters, estimated along
+// the path with its sampling detached from the parameters (Vicini et al. 2021, "Path replay
+// backpropagation"; Zeltner et al. 2021 on detached sampling). A contribution is
+// c = prod_i f_i / p_i: its derivative is c sum_i (d f_i / d theta) / f_i, the densities p_i held
+// at their sampled values. The path records each vertex's log-derivatives g_i = f_i' / f_i
+// (per slot and lane) on a tape; each contribution records where on the tape it arrived. At the
+// path's end one backward sweep gives every slot's derivative: sum_i g_i (sum of the
+// contributions after event i) - forward mode per lane, reverse mode weighted by the adjoint.
+
+#include <cstdint>
+#include <vector>
+
+#include "integrators/gradients/scene_tangents.h"
+#include "integrators/materials/material.h"
+#include "integrators/path_contributions.h"
+
+namespace nx {
+
+/// One log-derivative on a path: d log f / d slot at one lane.
+struct TapeEntry {
+  uint32_t slot;
+  uint8_t lane;
+  float g;
+};
+
+/// The events and contributions of one path (cleared per sample; reused without allocating).
+struct GradientTape {
+  /// A contribution: its value, how many path events precede it, its own (local) events.
+  struct Record {
+    SampledSpectrum c;
+    uint32_t prefix, localBegin, localEnd;
+  };
+  std::vector<TapeEntry> events;  ///< events that scale everything after them
+  std::vector<TapeEntry> locals;  ///< local events of the recorded contributions
+  std::vector<TapeEntry> pending; ///< local events of the next contribution
+  std::vector<Record> records;
+  /// Events skipped because the differentiated value was 0 where its derivative is not (the
+  /// estimator divides by the value: such a path's derivative is missed, and reported).
+  uint64_t zeroValues = 0;
+
+  /// Empties it for the next sample (keeps the capacity).
+  void clear() {
+    events.clear();
+    locals.clear();
+    pending.clear();
+    records.clear();
+  }
+
+  /// Calls out(slot, lane, v) with every (slot, lane) derivative term of the path's radiance:
+  /// v = g_i * (the contributions after event i at the lane), and each contribution's local
+  /// events times it.
+  template <class Out>
+  void sweep(Out&& out) const {
+    SampledSpectrum after;
+    size_t j = records.size();
+    for (size_t i = events.size(); i-- > 0;) {
+      while (j > 0 && records[j - 1].prefix > i) after += records[--j].c;
+      const TapeEntry& e = events[i];
+      const float v = e.g * after[e.lane];
+      if (v != 0) out(e.slot, e.lane, v);
+    }
+    for (const Record& r : records)
+      for (uint32_t k = r.localBegin; k < r.localEnd; ++k) {
+        const TapeEntry& e = locals[k];
+        const float v = e.g * r.c[e.lane];
+        if (v != 0) out(e.slot, e.lane, v);
+      }
+  }
+};
+
+/// The sink of a differentiated render: the radiance, and every contribution on the tape.
+struct GradientSink {
+  static constexpr bool kClasses = false;  ///< no path classes
+  static constexpr bool kGradients = true; ///< the path tracer records its events
+  SampledSpectrum L;                       ///< radiance of the sample
+  GradientTape* tape = nullptr;
+  const SceneTangents* tangents = nullptr;
+
+  /// Adds contribution c with the pending local events.
+  void add(const SampledSpectrum& c, const PathClass&) {
+    L += c;
+    GradientTape& t = *tape;
+    if (!c.isBlack()) {
+      const uint32_t begin = static_cast<uint32_t>(t.locals.size());
+      t.locals.insert(t.locals.end(), t.pending.begin(), t.pending.end());
+      t.records.push_back({c, static_cast<uint32_t>(t.events.size()), begin,
+                           static_cast<uint32_t>(t.locals.size())});
+    }
+    t.pending.clear();
+  }
+  /// An event scaling every later contribution.
+  void event(uint32_t slot, int lane, float g) {
+    tape->events.push_back({slot, static_cast<uint8_t>(lane), g});
+  }
+  /// An event of the next contribution only.
+  void local(uint32_t slot, int lane, float g) {
+    tape->pending.push_back({slot, static_cast<uint8_t>(lane), g});
+  }
+  /// The value of a differentiated quantity was 0 where its derivative was not.
+  void zeroValue() { ++tape->zeroValues; }
+};
+
+/// Log-derivative events of spectra with derivatives `ts` and values `value` at the lanes:
+/// emit(slot, lane, d / value) (an emitter's radiance, a light's intensity).
+template <class Sink, class Emit>
+void ratioEvents(const std::vector<SpectrumTangent>& ts, const SampledWavelengths& lambda,
+                 const SampledSpectrum& value, Sink& sink, Emit&& emit) {
+  for (const SpectrumTangent& t : ts) {
+    SampledSpectrum d;
+    t.d.evaluate(lambda, d);
+    for (int i = 0; i < kLanes; ++i) {
+      if (d[i] == 0) continue;
+      if (value[i] != 0)
+        emit(t.slot, i, d[i] / value[i]);
+      else
+        sink.zeroValue();
+    }
+  }
+}
+
+/// How the lobe a path took (or next-event estimation evaluated) at a surface depends on the
+/// reflectance rho at one lane: d log f / d rho, with the albedo's share 1/rho counted only when
+/// `albedo` (a fluorescent lobe's albedo comes from the matrix instead).
+/// Mixture and dielectrics (rho a tint): 1/rho; coated diffuse: its diffuse lobe
+/// rho t / (1 - rho F_i) gives 1/rho + F_i / (1 - rho F_i), its coat reflection nothing;
+/// conductors and interfaces do not use rho.
+inline float rhoLogSlope(const Material& m, float rho, bool specular, bool albedo, bool& zero) {
+  zero = false;
+  auto inverse = [&] {
+    if (!albedo) return 0.0f;
+    if (rho > 0) return 1.0f / rho;
+    zero = true;
+    return 0.0f;
+  };
+  switch (m.kind) {
+  case MaterialKind::Mixture:
+  case MaterialKind::Dielectric:
+  case MaterialKind::ThinDielectric:
+    return inverse();
+  case MaterialKind::CoatedDiffuse: {
+    if (specular) return 0.0f;
+    const float fi = m.coatInternalReflectance;
+    return inverse() + fi / (1 - rho * fi);
+  }
+  default:
+    return 0.0f;
+  }
+}
+
+/// Reflectance events at a surface of material m (tangents ts) for its lobe: emit(slot, lane,
+/// slope * d rho).
+template <class Sink, class Emit>
+void reflectanceEvents(const std::vector<SpectrumTangent>& ts, const Material& m,
+                       const SampledWavelengths& lambda, const SampledSpectrum& rho, bool specular,
+                       bool albedo, Sink& sink, Emit&& emit) {
+  for (const SpectrumTangent& t : ts) {
+    SampledSpectrum d;
+    t.d.evaluate(lambda, d);
+    for (int i = 0; i < kLanes; ++i) {
+      if (d[i] == 0) continue;
+      bool zero = false;
+      const float slope = rhoLogSlope(m, rho[i], specular, albedo, zero);
+      if (zero)
+        sink.zeroValue();
+      else if (slope != 0)
+        emit(t.slot, i, slope * d[i]);
+    }
+  }
+}
+
+/// The re-radiation choice's events at a fluorescent vertex (fluorescent_vertex.h): per lane,
+/// from `before` (its wavelength there) to `excited`, the chosen event's value f is the elastic
+/// part D(o) = s(o) rho + k(o) or a cell M[i][o] (outside the matrix's grid, rho), and the event
+/// is weighted f / p with p held: g = f' / f, f' from the matrix's tangents `ms` and the
+/// reflectance's `rs`.
+template <class Sink, class Emit>
+void reradiationEvents(const std::vector<MatrixTangent>& ms, const std::vector<SpectrumTangent>& rs,
+                       const ReradiationMatrix& matrix, const SampledWavelengths& before,
+                       const SampledWavelengths& excited, const SampledSpectrum& rho, Sink& sink,
+                       Emit&& emit) {
+  constexpr int n = ReradiationMatrix::kBins;
+  int bins[kLanes], from[kLanes];
+  for (int i = 0; i < kLanes; ++i) {
+    from[i] = ReradiationMatrix::binOf(before.lambda[i]);
+    bins[i] =
+        excited.lambda[i] == before.lambda[i] ? -1 : ReradiationMatrix::binOf(excited.lambda[i]);
+  }
+  auto elastic = [&](int i, double r) { return matrix.elastic(from[i], r); };
+  for (const MatrixTangent& t : ms)
+    for (int i = 0; i < kLanes; ++i) {
+      const int o = from[i];
+      if (o < 0) continue;
+      float value = 0, d = 0;
+      if (bins[i] < 0) {
+        value = static_cast<float>(elastic(i, rho[i]));
+        d = t.elasticScale[static_cast<size_t>(o)] * rho[i] +
+            t.elasticConstant[static_cast<size_t>(o)];
+      } else {
+        value = static_cast<float>(matrix(bins[i], o));
+        d = t.cells[static_cast<size_t>(bins[i]) * n + o];
+      }
+      if (d == 0) continue;
+      if (value != 0)
+        emit(t.slot, i, d / value);
+      else
+        sink.zeroValue();
+    }
+  for (const SpectrumTangent& t : rs) {
+    SampledSpectrum d;
+    t.d.evaluate(before, d);
+    for (int i = 0; i < kLanes; ++i) {
+      if (d[i] == 0 || bins[i] >= 0) continue; // a re-radiated event does not use rho
+      const int o = from[i];
+      // outside the grid the surface reflects rho (or nothing, for a measured matrix)
+      const float scale =
+          o < 0 ? (matrix.measured() && !matrix.elasticFromReflectance() ? 0.0f : 1.0f)
+                : static_cast<float>(elastic(i, 1.0) - elastic(i, 0.0));
+      const float value = o < 0 ? scale * rho[i] : static_cast<float>(elastic(i, rho[i]));
+      if (scale == 0) continue;
+      if (value != 0)
+        emit(t.slot, i, scale * d[i] / value);
+      else
+        sink.zeroValue();
+    }
+  }
+}
+
+} // namespace nx

@@ -1,0 +1,225 @@
+#include "integrators/gradients/scene_tangents.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace nx {
+namespace {
+
+constexpr int kGridPoints =
+    static_cast<int>((kTraceMaxNm - kTraceMinNm) / DenseSpectrum::stepNm) + 1;
+
+double gridNm(int i) {
+  return kTraceMinNm + i * DenseSpectrum::stepNm;
+}
+
+// sum_i w_i s_i(nm) on the tangents' grid; `changed` when some value differs from 0 by more
+// than rounding (relative to the spectra's size).
+DenseSpectrum stencil(std::span<const Spectrum* const> spectra, std::span<const double> w,
+                      bool& changed) {
+  DenseSpectrum out;
+  out.value.resize(kGridPoints);
+  changed = false;
+  for (int g = 0; g < kGridPoints; ++g) {
+    const double nm = gridNm(g);
+    double sum = 0, size = 0;
+    for (size_t i = 0; i < spectra.size(); ++i) {
+      const double v = (*spectra[i])(nm);
+      sum += w[i] * v;
+      size = std::max(size, std::abs(w[i] * v));
+    }
+    if (std::abs(sum) > 1e-9 * size && sum != 0) changed = true;
+    out.value[static_cast<size_t>(g)] = static_cast<float>(sum);
+  }
+  return out;
+}
+
+// True when the spectra agree everywhere on the grid (to rounding).
+bool sameSpectrum(const Spectrum& a, const Spectrum& b) {
+  for (int g = 0; g < kGridPoints; g += 4) {
+    const double x = a(gridNm(g)), y = b(gridNm(g));
+    if (std::abs(x - y) > 1e-12 * std::max(std::abs(x), std::abs(y))) return false;
+  }
+  return true;
+}
+
+[[noreturn]] void notDifferentiated(const std::string& name, const std::string& what) {
+  throw Error(name + ": not differentiable: it changes " + what +
+              " (docs/inverse.md lists what is differentiated)");
+}
+
+// What of material m besides its reflectance and matrix differs between a and b, or "".
+std::string otherMaterialChange(const Material& a, const Material& b) {
+  if (a.kind != b.kind) return "the material's kind";
+  if (a.roughness != b.roughness) return "the mixture's roughness";
+  if (a.alphaU != b.alphaU || a.alphaV != b.alphaV) return "the microfacet roughness";
+  if (a.coatInternalReflectance != b.coatInternalReflectance) return "the coat";
+  if (a.coatingNm != b.coatingNm) return "the thin-film coating";
+  for (double nm = kTraceMinNm; nm <= kTraceMaxNm; nm += 10) {
+    if (a.ior.at(nm) != b.ior.at(nm) || a.coatingIor.at(nm) != b.coatingIor.at(nm))
+      return "an index of refraction";
+  }
+  if (!sameSpectrum(a.conductorEta, b.conductorEta) || !sameSpectrum(a.conductorK, b.conductorK))
+    return "a conductor's complex index";
+  if ((a.texture == nullptr) != (b.texture == nullptr)) return "whether a texture is used";
+  if (a.texture && !a.texture->sameAs(*b.texture)) return "a texture's texels";
+  if ((a.reradiation == nullptr) != (b.reradiation == nullptr))
+    return "whether the surface fluoresces";
+  return "";
+}
+
+bool sameMedium(const HomogeneousMedium& a, const HomogeneousMedium& b) {
+  if (a.g != b.g || a.dyePeak != b.dyePeak || (a.dye == nullptr) != (b.dye == nullptr) ||
+      a.emission.has_value() != b.emission.has_value())
+    return false;
+  if (!sameSpectrum(a.sigmaA, b.sigmaA) || !sameSpectrum(a.sigmaS, b.sigmaS)) return false;
+  if (a.emission && !sameSpectrum(*a.emission, *b.emission)) return false;
+  if (a.dye)
+    for (int o = 0; o < ReradiationMatrix::kBins; ++o)
+      if (a.dye->columnSum(o) != b.dye->columnSum(o) ||
+          a.dye->absorptance(o) != b.dye->absorptance(o))
+        return false;
+  return true;
+}
+
+// A light's spectrum (its intensity; null for kinds not differentiated) and whether two
+// lights are the same apart from it.
+const Spectrum* lightSpectrum(const SceneLight& l) {
+  if (const auto* p = std::get_if<PointLight>(&l)) return &p->intensity;
+  if (const auto* s = std::get_if<SpotLight>(&l)) return &s->intensity;
+  return nullptr;
+}
+
+bool sameLightPlacement(const SceneLight& a, const SceneLight& b) {
+  if (a.index() != b.index()) return false;
+  if (const auto* p = std::get_if<PointLight>(&a)) {
+    const auto& q = std::get<PointLight>(b);
+    return p->position.x == q.position.x && p->position.y == q.position.y &&
+           p->position.z == q.position.z;
+  }
+  if (const auto* s = std::get_if<SpotLight>(&a)) {
+    const auto& t = std::get<SpotLight>(b);
+    return s->position.x == t.position.x && s->position.y == t.position.y &&
+           s->position.z == t.position.z && s->axis.x == t.axis.x && s->axis.y == t.axis.y &&
+           s->axis.z == t.axis.z && s->cosEdge == t.cosEdge &&
+           s->cosFalloffStart == t.cosFalloffStart;
+  }
+  return true; // environment maps: compared by their spectra below (refused when changed)
+}
+
+// The stencil over one spectrum of every scene; appended to `out` as slot's tangent when it
+// changes.
+template <class Get>
+bool addSpectrumTangent(std::vector<SpectrumTangent>& out, uint32_t slot,
+                        std::span<const RenderScene* const> scenes, std::span<const double> w,
+                        Get&& get) {
+  std::vector<const Spectrum*> spectra;
+  for (const RenderScene* s : scenes) spectra.push_back(&get(*s));
+  bool changed = false;
+  DenseSpectrum d = stencil(spectra, w, changed);
+  if (changed) out.push_back({slot, Spectrum(std::move(d))});
+  return changed;
+}
+
+} // namespace
+
+SceneTangents SceneTangents::sizedFor(const RenderScene& scene) {
+  SceneTangents t;
+  t.reflectance.resize(scene.materials.size());
+  t.reradiation.resize(scene.materials.size());
+  t.emission.resize(scene.emission.size());
+  t.lights.resize(scene.lights.size());
+  return t;
+}
+
+uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderScene& base,
+                        std::span<const RenderScene* const> scenes,
+                        std::span<const double> weights) {
+  const uint32_t slot = t.slots();
+  bool any = false;
+  for (const RenderScene* s : scenes) {
+    if (s->materials.size() != base.materials.size() ||
+        s->emission.size() != base.emission.size() || s->lights.size() != base.lights.size() ||
+        s->media.size() != base.media.size() ||
+        s->background.has_value() != base.background.has_value())
+      notDifferentiated(name, "the scene's structure (what emits, what is a light or a medium)");
+    if (s->settings.width != base.settings.width || s->settings.height != base.settings.height ||
+        s->settings.depth != base.settings.depth)
+      notDifferentiated(name, "the scene's settings");
+    for (size_t m = 0; m < base.materials.size(); ++m) {
+      const std::string other = otherMaterialChange(base.materials[m], s->materials[m]);
+      if (!other.empty()) notDifferentiated(name, other);
+    }
+    for (size_t k = 0; k < base.media.size(); ++k)
+      if (!sameMedium(base.media[k], s->media[k]))
+        notDifferentiated(name, "a medium (media are not differentiated yet)");
+    for (size_t l = 0; l < base.lights.size(); ++l) {
+      if (!sameLightPlacement(base.lights[l], s->lights[l]))
+        notDifferentiated(name, "where a light is or how it is aimed");
+      if (!lightSpectrum(base.lights[l]) && std::get<EnvironmentLight>(base.lights[l]).integral !=
+                                                std::get<EnvironmentLight>(s->lights[l]).integral)
+        notDifferentiated(name, "an environment map");
+    }
+  }
+  for (size_t m = 0; m < base.materials.size(); ++m) {
+    const bool changed = addSpectrumTangent(
+        t.reflectance[m], slot, scenes, weights,
+        [m](const RenderScene& s) -> const Spectrum& { return s.materials[m].reflectance; });
+    if (changed && base.materials[m].texture)
+      notDifferentiated(name, "the reflectance of a textured material (its texture replaces it)");
+    any |= changed;
+    if (!base.materials[m].reradiation) continue;
+    MatrixTangent mt;
+    mt.slot = slot;
+    mt.cells.assign(static_cast<size_t>(ReradiationMatrix::kBins) * ReradiationMatrix::kBins, 0.0f);
+    bool matrixChanged = false;
+    constexpr int n = ReradiationMatrix::kBins;
+    for (int i = 0; i < n; ++i)
+      for (int o = i + 1; o < n; ++o) {
+        double sum = 0, size = 0;
+        for (size_t k = 0; k < scenes.size(); ++k) {
+          const double v = (*scenes[k]->materials[m].reradiation)(i, o);
+          sum += weights[k] * v;
+          size = std::max(size, std::abs(weights[k] * v));
+        }
+        if (std::abs(sum) > 1e-9 * size && sum != 0) matrixChanged = true;
+        mt.cells[static_cast<size_t>(i) * n + o] = static_cast<float>(sum);
+      }
+    for (int o = 0; o < n; ++o) {
+      double scale = 0, constant = 0, size = 0;
+      for (size_t k = 0; k < scenes.size(); ++k) {
+        const ReradiationMatrix& r = *scenes[k]->materials[m].reradiation;
+        const double c = r.elastic(o, 0.0), s1 = r.elastic(o, 1.0) - c;
+        scale += weights[k] * s1;
+        constant += weights[k] * c;
+        size = std::max({size, std::abs(weights[k] * s1), std::abs(weights[k] * c)});
+      }
+      if ((std::abs(scale) > 1e-9 * size && scale != 0) ||
+          (std::abs(constant) > 1e-9 * size && constant != 0))
+        matrixChanged = true;
+      mt.elasticScale[static_cast<size_t>(o)] = static_cast<float>(scale);
+      mt.elasticConstant[static_cast<size_t>(o)] = static_cast<float>(constant);
+    }
+    if (matrixChanged) t.reradiation[m].push_back(std::move(mt));
+    any |= matrixChanged;
+  }
+  for (size_t e = 0; e < base.emission.size(); ++e)
+    any |=
+        addSpectrumTangent(t.emission[e], slot, scenes, weights,
+                           [e](const RenderScene& s) -> const Spectrum& { return s.emission[e]; });
+  for (size_t l = 0; l < base.lights.size(); ++l)
+    if (lightSpectrum(base.lights[l]))
+      any |= addSpectrumTangent(
+          t.lights[l], slot, scenes, weights,
+          [l](const RenderScene& s) -> const Spectrum& { return *lightSpectrum(s.lights[l]); });
+  if (base.background)
+    any |=
+        addSpectrumTangent(t.background, slot, scenes, weights,
+                           [](const RenderScene& s) -> const Spectrum& { return *s.background; });
+  t.slotNames.push_back(name);
+  if (!any) t.inert.push_back(slot);
+  return slot;
+}
+
+} // namespace nx

@@ -1,0 +1,345 @@
+// Differentiated renders (docs/inverse.md): for every kind of differentiable parameter, the
+// forward-mode gradient agrees with a central finite difference of renders with common random
+// numbers (same seed) within the noise of their per-pixel difference, with power; reverse mode
+// gives the adjoint-weighted sum of the forward images; the tape's sweep; the refusals.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "integrators/gradients/path_gradients.h"
+#include "integrators/renderer.h"
+#include "support/errors.h"
+#include "support/statistics.h"
+
+namespace nx {
+namespace {
+
+// A floor, a sphere and a sphere lamp; `floor`, `sphere` and `extra` are the floor's material
+// elements, the sphere's and anything more (lights, a background).
+std::string scene(const std::string& floor, const std::string& sphere, const std::string& lamp,
+                  const std::string& extra = "", int samples = 64,
+                  const std::string& camera = "0,1,-5") {
+  return "<scene><settings><xres>24</xres><yres>24</yres><mode>spectral_mcpt</mode><depth>8</"
+         "depth><sampl>" +
+         std::to_string(samples) +
+         "</sampl><bands>400:700:50</bands></settings><camera><position>" + camera +
+         "</position><look_at>0,0.5,0</look_at><fov>40</fov></camera><plane><normal>0,1,0</"
+         "normal><distance>0</distance>" +
+         floor + "</plane><sphere><center>0,0.7,0</center><radius>0.7</radius>" + sphere +
+         "</sphere><sphere><center>-1.5,2.5,-1</center><radius>0.5</radius><material>matte</"
+         "material><reflectance>0</reflectance>" +
+         lamp + "</sphere>" + extra + "</scene>";
+}
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  return b;
+}
+
+const std::string kLamp = "<emission scale=\"2e-3\">blackbody:5000</emission>";
+const std::string kMatte = "<material>matte</material><reflectance>0.6</reflectance>";
+
+// One differentiable parameter: the scene at a value, the value and the difference step.
+struct Family {
+  std::function<std::string(double)> text;
+  double at, step;
+  int samples = 0; ///< samples per pixel (0: the scene's)
+  /// The largest standard error of the comparison allowed, as a share of the gradient.
+  double power = 0.03;
+};
+
+RenderScene built(const std::string& text) {
+  return buildRenderScene(parseScene(text, "t.scn"));
+}
+
+// The tangents of the family's parameter at `at` (one slot, a central difference of
+// resolved scenes).
+SceneTangents tangentsOf(const Family& f, const RenderScene& base) {
+  const RenderScene plus = resolveRenderScene(parseScene(f.text(f.at + f.step), "t.scn"));
+  const RenderScene minus = resolveRenderScene(parseScene(f.text(f.at - f.step), "t.scn"));
+  SceneTangents t = SceneTangents::sizedFor(base);
+  const RenderScene* scenes[] = {&plus, &minus};
+  const double w[] = {0.5 / f.step, -0.5 / f.step};
+  addTangentSlot(t, "p", base, scenes, w);
+  return t;
+}
+
+// Forward mode against the central difference of two renders with the same seed: per band,
+// the mean over pixels of (gradient - difference) within 5 standard errors, and the test has
+// power: in the band where the gradient is largest, that standard error is below f.power of it
+// (3%: a gradient 15% off fails).
+// Returns the image-mean gradient per band.
+std::vector<double> expectGradientMatchesDifference(const Family& f,
+                                                    const RenderOptions& base = {}) {
+  const RenderScene s = built(f.text(f.at));
+  const SceneTangents t = tangentsOf(f, s);
+  EXPECT_TRUE(t.inert.empty()) << "the parameter changes nothing";
+  RenderOptions plain = base;
+  plain.samples = f.samples;
+  RenderOptions o = plain;
+  o.gradients = &t;
+  const RenderOutput g = render(s, o);
+  EXPECT_EQ(g.stats.gradientZeroValues, 0u);
+  const RenderOutput plus = render(built(f.text(f.at + f.step)), plain);
+  const RenderOutput minus = render(built(f.text(f.at - f.step)), plain);
+  const int nb = g.film.bands().count();
+  std::vector<double> means;
+  double strongest = 0, strongestError = 0;
+  for (int b = 0; b < nb; ++b) {
+    test::RunningStats d, grad, radiance;
+    for (int y = 0; y < 24; ++y)
+      for (int x = 0; x < 24; ++x) {
+        radiance.add(g.film.bandMean(x, y, b));
+        const double fd =
+            (plus.film.bandMean(x, y, b) - minus.film.bandMean(x, y, b)) / (2 * f.step);
+        const double gr = g.film.layerMean(x, y, 0, b);
+        d.add(gr - fd);
+        grad.add(gr);
+      }
+    // Beyond the noise: the renders' single-precision rounding, which common random numbers
+    // do not cancel (about 1e-6 of the radiance per render).
+    const double rounding = 1e-5 * radiance.mean / (2 * f.step);
+    EXPECT_LE(std::abs(d.mean), 5 * d.standardError() + rounding)
+        << "band " << b << ": gradient " << grad.mean << ", difference " << grad.mean - d.mean
+        << " +- " << d.standardError();
+    if (std::abs(grad.mean) > strongest)
+      strongest = std::abs(grad.mean), strongestError = d.standardError();
+    means.push_back(grad.mean);
+  }
+  EXPECT_GT(strongest, 0.0);
+  EXPECT_LT(strongestError, f.power * strongest) << "the test cannot resolve the gradient";
+  return means;
+}
+
+TEST(Gradients, TapeSweepSumsEachEventOverTheContributionsAfterIt) {
+  GradientTape tape;
+  GradientSink sink;
+  sink.tape = &tape;
+  SampledSpectrum c1 = SampledSpectrum::filled(1.0f), c2 = SampledSpectrum::filled(2.0f);
+  sink.event(0, 1, 0.5f); // before both contributions
+  sink.local(1, 2, 3.0f); // the first contribution's own
+  sink.add(c1, PathClass{});
+  sink.event(0, 1, 0.25f);                  // before the second only
+  sink.add(SampledSpectrum(), PathClass{}); // a black one records nothing
+  sink.add(c2, PathClass{});
+  float d[2][kLanes] = {};
+  tape.sweep([&](uint32_t slot, int lane, float v) { d[slot][lane] += v; });
+  EXPECT_FLOAT_EQ(d[0][1], 0.5f * (1 + 2) + 0.25f * 2);
+  EXPECT_FLOAT_EQ(d[1][2], 3.0f * 1);
+  EXPECT_FLOAT_EQ(d[0][0], 0.0f);
+  EXPECT_FLOAT_EQ(sink.L[0], 3.0f);
+}
+
+TEST(Gradients, MatteReflectanceMatchesDifference) {
+  expectGradientMatchesDifference({[](double p) {
+                                     return scene("<material>matte</material><reflectance>" +
+                                                      num(p) + "</reflectance>",
+                                                  kMatte, kLamp);
+                                   },
+                                   0.5, 0.02});
+}
+
+TEST(Gradients, ReflectanceKnotMatchesDifference) {
+  // A knot of a tabulated reflectance: its derivative is a hat function over the knot.
+  expectGradientMatchesDifference(
+      {[](double p) {
+         return scene("<material>matte</material><reflectance>400:0.3, 550:" + num(p) +
+                          ", 700:0.8</reflectance>",
+                      kMatte, kLamp);
+       },
+       0.5, 0.02});
+}
+
+TEST(Gradients, CoatedDiffuseReflectanceMatchesDifference) {
+  // rho enters the coat's internal reflections too: f ~ rho / (1 - rho F_i).
+  expectGradientMatchesDifference(
+      {[](double p) {
+         return scene(
+             kMatte, "<material>coated</material><reflectance>" + num(p) + "</reflectance>", kLamp);
+       },
+       0.7, 0.02});
+}
+
+TEST(Gradients, GlassTintMatchesDifference) {
+  expectGradientMatchesDifference(
+      {[](double p) {
+         return scene(kMatte, "<material>glass</material><reflectance>" + num(p) + "</reflectance>",
+                      kLamp);
+       },
+       0.8, 0.02});
+}
+
+TEST(Gradients, AreaLampScaleMatchesDifference) {
+  expectGradientMatchesDifference({[](double p) {
+                                     return scene(kMatte, kMatte,
+                                                  "<emission scale=\"" + num(p) +
+                                                      "\">blackbody:5000</emission>");
+                                   },
+                                   2e-3, 1e-4});
+}
+
+TEST(Gradients, PointLightAndBackgroundMatchDifference) {
+  expectGradientMatchesDifference(
+      {[](double p) {
+         return scene(kMatte, kMatte, kLamp,
+                      "<light><position>1,3,-2</position><color>1,1,1</color><emission scale=\"" +
+                          num(p) + "\">D65</emission></light>");
+       },
+       0.02, 0.002});
+  expectGradientMatchesDifference({[](double p) {
+                                     std::string t = scene(kMatte, kMatte, kLamp);
+                                     t.insert(t.find("</settings>"),
+                                              "<background>" + num(p) + "</background>");
+                                     return t;
+                                   },
+                                   0.002, 0.0002});
+}
+
+// The sphere fluoresces (model parameters); `field` is the one varied.
+std::string fluorescent(const std::string& material, const std::string& field, double p) {
+  std::string fields = "<absorption>460</absorption><stokes>90</stokes><width>25</width>"
+                       "<skew>5</skew><yield>0.8</yield><peak>0.9</peak>";
+  const std::string open = "<" + field + ">", close = "</" + field + ">";
+  const size_t a = fields.find(open), b = fields.find(close);
+  fields.replace(a, b + close.size() - a, open + num(p) + close);
+  return "<material>" + material + "</material><reflectance>0.4</reflectance><fluorescence>" +
+         fields + "</fluorescence>";
+}
+
+TEST(Gradients, FluorescenceModelParametersMatchDifferences) {
+  // Under a blue-heavy lamp so the dye's emission is well lit.
+  const std::string lamp = "<emission scale=\"5e-3\">380:1, 480:1, 520:0.1, 800:0.1</emission>";
+  // Steps: wide where the matrix is linear in the parameter (yield, peak), else a compromise
+  // between the difference's truncation error (h^2) and its noise (the re-radiation choice
+  // moves with the parameter, so common random numbers decorrelate, ~1/h).
+  for (const auto& [field, at, step] :
+       std::vector<std::tuple<std::string, double, double>>{{"yield", 0.8, 0.15},
+                                                            {"stokes", 90, 1},
+                                                            {"absorption", 460, 1},
+                                                            {"width", 25, 0.5},
+                                                            {"skew", 5, 0.25},
+                                                            {"peak", 0.9, 0.08}}) {
+    SCOPED_TRACE(field);
+    const std::string f = field;
+    const double a = at, h = step;
+    expectGradientMatchesDifference({[f, lamp](double p) {
+                                       return scene(kMatte, fluorescent("matte", f, p), lamp, "",
+                                                    64, "0,0.9,-2.2");
+                                     },
+                                     a, h, 1024, 0.04});
+  }
+}
+
+TEST(Gradients, CoatedFluorescenceMatchesDifference) {
+  const std::string lamp = "<emission scale=\"5e-3\">380:1, 480:1, 520:0.1, 800:0.1</emission>";
+  expectGradientMatchesDifference({[lamp](double p) {
+                                     return scene(kMatte, fluorescent("coated", "stokes", p), lamp,
+                                                  "", 64, "0,0.9,-2.2");
+                                   },
+                                   90, 1, 1024, 0.04});
+  // rho of a fluorescent surface: its elastic part (1 - a) rho
+  expectGradientMatchesDifference({[lamp](double p) {
+                                     std::string m = fluorescent("coated", "yield", 0.8);
+                                     m.replace(m.find("0.4"), 3, num(p));
+                                     return scene(kMatte, m, lamp);
+                                   },
+                                   0.4, 0.02, 512});
+}
+
+TEST(Gradients, ReverseModeIsTheAdjointWeightedForwardImage) {
+  const Family f{[](double p) {
+                   return scene("<material>matte</material><reflectance>" + num(p) +
+                                    "</reflectance>",
+                                kMatte, kLamp, "", 16);
+                 },
+                 0.5, 0.02};
+  const RenderScene s = built(f.text(f.at));
+  const SceneTangents t = tangentsOf(f, s);
+  RenderOptions o;
+  o.gradients = &t;
+  const RenderOutput forward = render(s, o);
+  const int nb = forward.film.bands().count();
+  // A loss weighing band 2 by 1 and band 4 by -0.5 in the left half of the image.
+  std::vector<float> adjoint(24 * 24 * static_cast<size_t>(nb), 0.0f);
+  double expected = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 12; ++x) {
+      adjoint[(static_cast<size_t>(y) * 24 + x) * nb + 2] = 1.0f;
+      adjoint[(static_cast<size_t>(y) * 24 + x) * nb + 4] = -0.5f;
+      expected += forward.film.layerMean(x, y, 0, 2) - 0.5 * forward.film.layerMean(x, y, 0, 4);
+    }
+  o.adjoint = &adjoint;
+  const RenderOutput reverse = render(s, o);
+  ASSERT_EQ(reverse.gradient.size(), 1u);
+  EXPECT_NEAR(reverse.gradient[0], expected, 1e-4 * std::abs(expected));
+  EXPECT_GT(reverse.gradientVariance[0], 0.0);
+  EXPECT_LT(std::sqrt(reverse.gradientVariance[0]), 0.2 * std::abs(expected));
+  // the same for every thread count (tiles summed in their order)
+  RenderOptions one = o;
+  one.tileSize = 8;
+  EXPECT_NEAR(render(s, one).gradient[0], reverse.gradient[0], 1e-9 * std::abs(expected));
+}
+
+TEST(Gradients, RefusesWhatIsNotDifferentiated) {
+  const Family rough{[](double p) {
+                       return scene(kMatte,
+                                    "<material>conductor</material><metal>gold</metal><alpha>" +
+                                        num(p) + "</alpha>",
+                                    kLamp);
+                     },
+                     0.2, 0.01};
+  const RenderScene s = built(rough.text(rough.at));
+  EXPECT_NE(test::errorMessage([&] {
+              tangentsOf(rough, s);
+            }).find("p: not differentiable: it changes the microfacet roughness"),
+            std::string::npos);
+  // An adjoint of the wrong size, too many forward slots, a whitted render.
+  const Family f{[](double p) {
+                   return scene("<material>matte</material><reflectance>" + num(p) +
+                                    "</reflectance>",
+                                kMatte, kLamp, "", 4);
+                 },
+                 0.5, 0.02};
+  const RenderScene m = built(f.text(f.at));
+  const SceneTangents t = tangentsOf(f, m);
+  RenderOptions o;
+  o.gradients = &t;
+  std::vector<float> adjoint(10, 0.0f);
+  o.adjoint = &adjoint;
+  EXPECT_NE(
+      test::errorMessage([&] { render(m, o); }).find("the adjoint image holds 10 values, expected"),
+      std::string::npos);
+  o.adjoint = nullptr;
+  o.components = true;
+  EXPECT_NE(test::errorMessage([&] { render(m, o); }).find("gradients cannot be combined"),
+            std::string::npos);
+}
+
+TEST(Gradients, ZeroReflectanceIsReported) {
+  // d f / d rho exists at rho = 0, but the estimator divides by rho: counted and warned.
+  const Family f{[](double p) {
+                   return scene("<material>matte</material><reflectance>" + num(p) +
+                                    "</reflectance>",
+                                kMatte, kLamp, "", 4);
+                 },
+                 0.0, 0.02};
+  const RenderScene s = built(f.text(f.at));
+  const RenderScene plus = resolveRenderScene(parseScene(f.text(0.02), "t.scn"));
+  SceneTangents t = SceneTangents::sizedFor(s);
+  const RenderScene* scenes[] = {&plus, &s};
+  const double w[] = {50.0, -50.0};
+  addTangentSlot(t, "p", s, scenes, w);
+  RenderOptions o;
+  o.gradients = &t;
+  const RenderOutput out = render(s, o);
+  EXPECT_GT(out.stats.gradientZeroValues, 0u);
+  const std::vector<std::string> w2 = warningsOf(out.stats);
+  ASSERT_FALSE(w2.empty());
+  EXPECT_NE(w2.front().find("differentiated value of 0"), std::string::npos);
+}
+
+} // namespace
+} // namespace nx
