@@ -48,6 +48,12 @@ constexpr bool recordsGradients() {
     return false;
 }
 
+// The tangents of a medium in a render that is not differentiated: none.
+const std::vector<MediumTangent>& noMediumTangents() {
+  static const std::vector<MediumTangent> none;
+  return none;
+}
+
 // The white reference's surface: a Lambertian reflector of reflectance 1.
 const Material& whiteLambertian() {
   static const Material white = [] {
@@ -83,6 +89,23 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
   };
   [[maybe_unused]] auto local = [&](uint32_t slot, int lane, float g) {
     if constexpr (kGradients) sink.local(slot, lane, g);
+  };
+  // Where a shadow ray records what it passed through (differentiated renders), else null.
+  [[maybe_unused]] auto shadowCrossings = [&]() -> ShadowCrossings* {
+    if constexpr (kGradients) {
+      sink.tape->crossings.clear();
+      return &sink.tape->crossings;
+    } else {
+      return nullptr;
+    }
+  };
+  // The local events of a sampled light's emission (its radiance or intensity at `lit`).
+  [[maybe_unused]] auto lightEvents = [&](const LightSample& ls, const SampledWavelengths& lit) {
+    if constexpr (kGradients) {
+      const size_t l = static_cast<size_t>(ls.light);
+      if (const Spectrum* emitted = ctx.gradients->spectrumOfSampledLight[l])
+        ratioEvents(*ctx.gradients->ofSampledLight[l], lit, evaluate(*emitted, lit), sink, local);
+    }
   };
   // lambda: the sensor wavelengths (where the film accumulates); current: what lights and
   // materials are evaluated at (they differ after a fluorescent shift).
@@ -160,6 +183,11 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         if (medium.emission)
           sink.add(before * glow,
                    classOf(scatterings, groups.ofMedium[static_cast<size_t>(m)], 0, current));
+        if constexpr (kGradients)
+          freeFlightEvents(tangents->media[static_cast<size_t>(m)], medium, current, flight.event,
+                           flight.event == MediumEvent::None ? (found ? hit.t : INFINITY)
+                                                             : flight.t,
+                           sink, event);
         // beta_i / mean(ratios) is all that counts, so both are divided by the mean after each
         // flight: the products stay near 1 on long chromatic paths (ratios' mean 1; the hero's
         // own ratio, once 1, becomes 1 / (the product of these means)).
@@ -188,19 +216,30 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
             return reemitted ? static_cast<float>(1 / (4 * kPi))
                              : henyeyGreenstein(dot(ray.d, wi), medium.g);
           };
+          [[maybe_unused]] const std::vector<MediumTangent>& mediumTangents =
+              tangents ? tangents->media[static_cast<size_t>(m)] : noMediumTangents();
+          if constexpr (kGradients)
+            if (reemitted) reemissionEvents(mediumTangents, medium, current, lit, sink, event);
           if (ctx.lightSampling != LightSampling::BsdfOnly && ctx.lights->count() > 0) {
             const float uChoice = rng.next1D();
             const Sample2 uLight = rng.next2D();
             LightSample ls;
             if (ctx.lights->sample(p, uChoice, uLight, lit, ls)) {
               const auto visible = [&](const Ray& r) {
-                return shadowTransmittance(scene, r, media, lit, counters);
+                return shadowTransmittance(scene, r, media, lit, counters, shadowCrossings());
               };
-              sink.add(weighted() *
-                           directLightAt(
-                               p, Vec3(), Vec3(), ls,
-                               [&](const Vec3& wi) { return SampledSpectrum::filled(phaseTo(wi)); },
-                               phaseTo, ctx.lightSampling != LightSampling::NeeOnly, visible),
+              const SampledSpectrum direct = directLightAt(
+                  p, Vec3(), Vec3(), ls,
+                  [&](const Vec3& wi) { return SampledSpectrum::filled(phaseTo(wi)); }, phaseTo,
+                  ctx.lightSampling != LightSampling::NeeOnly, visible);
+              if constexpr (kGradients) {
+                if (!direct.isBlack()) {
+                  if (!reemitted) phaseEvents(mediumTangents, medium.g, dot(ray.d, ls.wi), local);
+                  lightEvents(ls, lit);
+                  shadowEvents(*tangents, scene, sink.tape->crossings, lit, sink, local);
+                }
+              }
+              sink.add(weighted() * direct,
                        classOf(scatterings + 1, ctx.lights->group(ls.light),
                                ctx.lights->source(ls.light), lit,
                                Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0}));
@@ -210,6 +249,8 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
           const Vec3 wi =
               reemitted ? sampleUniformSphere(uDir) : sampleHenyeyGreenstein(ray.d, medium.g, uDir);
           if constexpr (Sink::kClasses) shifted |= shiftedLanes(lit, current);
+          if constexpr (kGradients)
+            if (!reemitted) phaseEvents(mediumTangents, medium.g, dot(ray.d, wi), event);
           current = lit;
           specular = false;
           prevPdf = phaseTo(wi);
@@ -315,19 +356,18 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
             reflectanceEvents(tangents->reflectance[app.material], material, current, rho, false,
                               !fluorescent, sink, local);
           }
-          const size_t l = static_cast<size_t>(ls.light);
-          if (const Spectrum* emitted = ctx.gradients->spectrumOfSampledLight[l])
-            ratioEvents(*ctx.gradients->ofSampledLight[l], lit, evaluate(*emitted, lit), sink,
-                        local);
+          lightEvents(ls, lit);
         }
         if constexpr (kMedia) {
           const auto visible = [&](const Ray& r) {
-            return shadowTransmittance(scene, r, media, lit, counters);
+            return shadowTransmittance(scene, r, media, lit, counters, shadowCrossings());
           };
-          sink.add(weighted() * directLightThrough(hit, ray.d, ls, f, pdf,
-                                                   ctx.lightSampling != LightSampling::NeeOnly,
-                                                   visible),
-                   k);
+          const SampledSpectrum direct = directLightThrough(
+              hit, ray.d, ls, f, pdf, ctx.lightSampling != LightSampling::NeeOnly, visible);
+          if constexpr (kGradients)
+            if (!direct.isBlack())
+              shadowEvents(*tangents, scene, sink.tape->crossings, lit, sink, local);
+          sink.add(weighted() * direct, k);
         } else {
           sink.add(beta * directLight(scene, hit, ray.d, ls, f, pdf,
                                       ctx.lightSampling != LightSampling::NeeOnly, counters),

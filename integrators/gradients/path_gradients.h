@@ -13,6 +13,8 @@
 
 #include "integrators/gradients/scene_tangents.h"
 #include "integrators/materials/material.h"
+#include "integrators/media/free_flight.h"
+#include "integrators/media/transmittance.h"
 #include "integrators/path_contributions.h"
 
 namespace nx {
@@ -35,6 +37,7 @@ struct GradientTape {
   std::vector<TapeEntry> locals;  ///< local events of the recorded contributions
   std::vector<TapeEntry> pending; ///< local events of the next contribution
   std::vector<Record> records;
+  ShadowCrossings crossings; ///< scratch for the shadow rays of media scenes
   /// Events skipped because the differentiated value was 0 where its derivative is not (the
   /// estimator divides by the value: such a path's derivative is missed, and reported).
   uint64_t zeroValues = 0;
@@ -223,6 +226,120 @@ void reradiationEvents(const std::vector<MatrixTangent>& ms, const std::vector<S
       else
         sink.zeroValue();
     }
+  }
+}
+
+/// The lanes' derivatives of a medium's coefficients for tangent t: all absorption
+/// (sigma_a + the dye's peak a), scattering sigma_s and the dye's in-scattering peak c.
+inline void mediumTangentAt(const MediumTangent& t, const HomogeneousMedium& m,
+                            const SampledWavelengths& lambda, SampledSpectrum& dAbsorption,
+                            SampledSpectrum& dScattering, SampledSpectrum& dFluorescent) {
+  t.sigmaA.evaluate(lambda, dAbsorption);
+  t.sigmaS.evaluate(lambda, dScattering);
+  dFluorescent = SampledSpectrum();
+  if (!m.dye) return;
+  for (int i = 0; i < kLanes; ++i) {
+    const int bin = ReradiationMatrix::binOf(lambda.lambda[i]);
+    if (bin < 0) continue;
+    const size_t b = static_cast<size_t>(bin);
+    dAbsorption[i] +=
+        t.dyePeak * static_cast<float>(m.dye->absorptance(bin)) + m.dyePeak * t.dyeAbsorptance[b];
+    dFluorescent[i] =
+        t.dyePeak * static_cast<float>(m.dye->columnSum(bin)) + m.dyePeak * t.dyeColumnSum[b];
+  }
+}
+
+/// A free flight's events (free_flight.h): lane i's weight is rate_i exp(-sigma_t,i t) (rate
+/// sigma_s, the dye's sigma_fl, or 1 when the flight reached the surface), its density held:
+/// g = rate' / rate - t sigma_t'.
+template <class Sink, class Emit>
+void freeFlightEvents(const std::vector<MediumTangent>& ts, const HomogeneousMedium& m,
+                      const SampledWavelengths& lambda, MediumEvent event, float t, Sink& sink,
+                      Emit&& emit) {
+  if (ts.empty() || !std::isfinite(t)) return; // an endless flight carries nothing
+  SampledSpectrum sa, ss, sfl;
+  m.coefficients(lambda, sa, ss, sfl);
+  for (const MediumTangent& tangent : ts) {
+    SampledSpectrum da, ds, dfl;
+    mediumTangentAt(tangent, m, lambda, da, ds, dfl);
+    for (int i = 0; i < kLanes; ++i) {
+      float g = -t * (da[i] + ds[i]);
+      const float rate = event == MediumEvent::Scatter     ? ss[i]
+                         : event == MediumEvent::Fluoresce ? sfl[i]
+                                                           : 1.0f;
+      const float dRate = event == MediumEvent::Scatter     ? ds[i]
+                          : event == MediumEvent::Fluoresce ? dfl[i]
+                                                            : 0.0f;
+      if (dRate != 0) {
+        if (rate > 0)
+          g += dRate / rate;
+        else
+          sink.zeroValue();
+      }
+      if (g != 0) emit(tangent.slot, i, g);
+    }
+  }
+}
+
+/// The excitation bin chosen at a dye's re-emission (from `before` to `excited`): the flight's
+/// rate held peak c(o); the event's value is peak M[j][o], so g = M' / M - c' / c.
+template <class Sink, class Emit>
+void reemissionEvents(const std::vector<MediumTangent>& ts, const HomogeneousMedium& m,
+                      const SampledWavelengths& before, const SampledWavelengths& excited,
+                      Sink& sink, Emit&& emit) {
+  constexpr int n = ReradiationMatrix::kBins;
+  for (const MediumTangent& t : ts) {
+    if (t.dyeCells.empty()) continue;
+    for (int i = 0; i < kLanes; ++i) {
+      const int o = ReradiationMatrix::binOf(before.lambda[i]);
+      if (o < 0 || excited.lambda[i] == before.lambda[i]) continue;
+      const int j = ReradiationMatrix::binOf(excited.lambda[i]);
+      const float cell = static_cast<float>((*m.dye)(j, o));
+      const float column = static_cast<float>(m.dye->columnSum(o));
+      if (!(cell > 0) || !(column > 0)) {
+        sink.zeroValue();
+        continue;
+      }
+      const float g = t.dyeCells[static_cast<size_t>(j) * n + o] / cell -
+                      t.dyeColumnSum[static_cast<size_t>(o)] / column;
+      if (g != 0) emit(t.slot, i, g);
+    }
+  }
+}
+
+/// The Henyey-Greenstein lobe's events for a scattering by cos theta (its value over the held
+/// density): d log p / d g = -2 g / (1 - g^2) - 3 (g - cos) / (1 + g^2 - 2 g cos).
+template <class Emit>
+void phaseEvents(const std::vector<MediumTangent>& ts, float g, float cosTheta, Emit&& emit) {
+  for (const MediumTangent& t : ts) {
+    if (t.g == 0) continue;
+    const float d = -2 * g / (1 - g * g) - 3 * (g - cosTheta) / (1 + g * g - 2 * g * cosTheta);
+    for (int i = 0; i < kLanes; ++i) emit(t.slot, i, t.g * d);
+  }
+}
+
+/// A shadow ray's events: each medium segment's transmittance exp(-sigma_t l) gives
+/// -l sigma_t', each thin wall's tint rho gives rho' / rho.
+template <class Sink, class Emit>
+void shadowEvents(const SceneTangents& tangents, const RenderScene& scene,
+                  const ShadowCrossings& crossings, const SampledWavelengths& lambda, Sink& sink,
+                  Emit&& emit) {
+  for (const auto& [medium, length] : crossings.media) {
+    const auto& ts = tangents.media[static_cast<size_t>(medium)];
+    for (const MediumTangent& t : ts) {
+      SampledSpectrum da, ds, dfl;
+      mediumTangentAt(t, scene.media[static_cast<size_t>(medium)], lambda, da, ds, dfl);
+      for (int i = 0; i < kLanes; ++i)
+        if (const float g = -length * (da[i] + ds[i]); g != 0 && std::isfinite(g))
+          emit(t.slot, i, g);
+    }
+  }
+  for (uint32_t material : crossings.walls) {
+    const auto& ts = tangents.reflectance[material];
+    if (ts.empty()) continue;
+    SampledSpectrum tint;
+    scene.materials[material].reflectance.evaluate(lambda, tint);
+    ratioEvents(ts, lambda, tint, sink, emit);
   }
 }
 

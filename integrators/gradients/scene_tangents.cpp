@@ -69,18 +69,16 @@ std::string otherMaterialChange(const Material& a, const Material& b) {
   return "";
 }
 
-bool sameMedium(const HomogeneousMedium& a, const HomogeneousMedium& b) {
-  if (a.g != b.g || a.dyePeak != b.dyePeak || (a.dye == nullptr) != (b.dye == nullptr) ||
-      a.emission.has_value() != b.emission.has_value())
-    return false;
-  if (!sameSpectrum(a.sigmaA, b.sigmaA) || !sameSpectrum(a.sigmaS, b.sigmaS)) return false;
-  if (a.emission && !sameSpectrum(*a.emission, *b.emission)) return false;
-  if (a.dye)
-    for (int o = 0; o < ReradiationMatrix::kBins; ++o)
-      if (a.dye->columnSum(o) != b.dye->columnSum(o) ||
-          a.dye->absorptance(o) != b.dye->absorptance(o))
-        return false;
-  return true;
+// What of a medium that is not differentiated differs between a and b, or "".
+std::string otherMediumChange(const HomogeneousMedium& a, const HomogeneousMedium& b) {
+  if ((a.dye == nullptr) != (b.dye == nullptr)) return "whether a medium holds a dye";
+  if (a.emission.has_value() != b.emission.has_value() ||
+      (a.emission && !sameSpectrum(*a.emission, *b.emission)))
+    return "a medium's emission";
+  if (a.emission && (!sameSpectrum(a.sigmaA, b.sigmaA) || !sameSpectrum(a.sigmaS, b.sigmaS) ||
+                     a.g != b.g || a.dyePeak != b.dyePeak))
+    return "an emitting medium (its glow along a flight is not differentiated)";
+  return "";
 }
 
 // A light's spectrum (its intensity; null for kinds not differentiated) and whether two
@@ -130,6 +128,7 @@ SceneTangents SceneTangents::sizedFor(const RenderScene& scene) {
   t.reradiation.resize(scene.materials.size());
   t.emission.resize(scene.emission.size());
   t.lights.resize(scene.lights.size());
+  t.media.resize(scene.media.size());
   return t;
 }
 
@@ -151,9 +150,10 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
       const std::string other = otherMaterialChange(base.materials[m], s->materials[m]);
       if (!other.empty()) notDifferentiated(name, other);
     }
-    for (size_t k = 0; k < base.media.size(); ++k)
-      if (!sameMedium(base.media[k], s->media[k]))
-        notDifferentiated(name, "a medium (media are not differentiated yet)");
+    for (size_t k = 0; k < base.media.size(); ++k) {
+      const std::string other = otherMediumChange(base.media[k], s->media[k]);
+      if (!other.empty()) notDifferentiated(name, other);
+    }
     for (size_t l = 0; l < base.lights.size(); ++l) {
       if (!sameLightPlacement(base.lights[l], s->lights[l]))
         notDifferentiated(name, "where a light is or how it is aimed");
@@ -203,6 +203,47 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
     }
     if (matrixChanged) t.reradiation[m].push_back(std::move(mt));
     any |= matrixChanged;
+  }
+  for (size_t k = 0; k < base.media.size(); ++k) {
+    MediumTangent mt;
+    mt.slot = slot;
+    bool changed = false, part = false;
+    std::vector<const Spectrum*> spectra;
+    for (const RenderScene* sc : scenes) spectra.push_back(&sc->media[k].sigmaA);
+    mt.sigmaA = Spectrum(stencil(spectra, weights, part));
+    changed |= part;
+    spectra.clear();
+    for (const RenderScene* sc : scenes) spectra.push_back(&sc->media[k].sigmaS);
+    mt.sigmaS = Spectrum(stencil(spectra, weights, part));
+    changed |= part;
+    // Scalars and the dye's tables: sum_i w_i x_i, "changed" beyond rounding.
+    auto combine = [&](auto&& get) {
+      double sum = 0, size = 0;
+      for (size_t i = 0; i < scenes.size(); ++i) {
+        const double v = get(scenes[i]->media[k]);
+        sum += weights[i] * v;
+        size = std::max(size, std::abs(weights[i] * v));
+      }
+      if (std::abs(sum) > 1e-9 * size && sum != 0) changed = true;
+      return static_cast<float>(sum);
+    };
+    mt.g = combine([](const HomogeneousMedium& m) { return m.g; });
+    mt.dyePeak = combine([](const HomogeneousMedium& m) { return m.dyePeak; });
+    if (base.media[k].dye) {
+      constexpr int n = ReradiationMatrix::kBins;
+      mt.dyeCells.assign(static_cast<size_t>(n) * n, 0.0f);
+      for (int o = 0; o < n; ++o) {
+        mt.dyeAbsorptance[static_cast<size_t>(o)] =
+            combine([o](const HomogeneousMedium& m) { return m.dye->absorptance(o); });
+        mt.dyeColumnSum[static_cast<size_t>(o)] =
+            combine([o](const HomogeneousMedium& m) { return m.dye->columnSum(o); });
+        for (int i = 0; i < o; ++i)
+          mt.dyeCells[static_cast<size_t>(i) * n + o] =
+              combine([i, o](const HomogeneousMedium& m) { return (*m.dye)(i, o); });
+      }
+    }
+    if (changed) t.media[k].push_back(std::move(mt));
+    any |= changed;
   }
   for (size_t e = 0; e < base.emission.size(); ++e)
     any |=

@@ -30,6 +30,16 @@ struct MatrixTangent {
   std::array<float, ReradiationMatrix::kBins> elasticScale{}, elasticConstant{};
 };
 
+/// d / d parameter of a homogeneous medium for one slot: its coefficients, its phase function's
+/// g, and its dye (peak and matrix: absorptance a, column sums c, cells M per peak 1).
+struct MediumTangent {
+  uint32_t slot = 0;
+  Spectrum sigmaA, sigmaS; ///< d sigma_a, d sigma_s
+  float g = 0, dyePeak = 0;
+  std::vector<float> dyeCells; ///< [i * kBins + o]; empty without a dye
+  std::array<float, ReradiationMatrix::kBins> dyeAbsorptance{}, dyeColumnSum{};
+};
+
 /// Every slot's derivatives, indexed like the scene's tables.
 struct SceneTangents {
   std::vector<std::string> slotNames; ///< what each slot is, e.g. "objects[1].reflectance[3]"
@@ -38,6 +48,7 @@ struct SceneTangents {
   std::vector<std::vector<SpectrumTangent>> emission;    ///< per RenderScene::emission
   std::vector<std::vector<SpectrumTangent>> lights;      ///< per RenderScene::lights (intensity)
   std::vector<SpectrumTangent> background;
+  std::vector<std::vector<MediumTangent>> media; ///< per RenderScene::media
   /// Slots whose parameter changes nothing the scene renders (their derivative is 0).
   std::vector<uint32_t> inert;
 
@@ -50,8 +61,9 @@ struct SceneTangents {
 /// Adds slot `name`: the derivative of `base`'s appearance data as sum_i weights[i] * scenes[i]
 /// (a finite-difference stencil over scenes resolved at nearby values of one parameter, e.g.
 /// (+1/2h, -1/2h)). Throws nx::Error naming `name` when the scenes differ in what is not
-/// differentiated (structure, geometry, roughness, indices of refraction, media, textures,
-/// environment maps) or when fluorescence appears or vanishes. Returns the new slot.
+/// differentiated (structure, geometry, roughness, indices of refraction, textures, environment
+/// maps, a medium's emission or an emitting medium's absorption) or when fluorescence appears or
+/// vanishes. Returns the new slot.
 uint32_t addTangentSlot(SceneTangents& tangents, const std::string& name, const RenderScene& base,
                         std::span<const RenderScene* const> scenes,
                         std::span<const double> weights);

@@ -24,7 +24,8 @@ SampledSpectrum mediumTransmittance(const RenderScene& scene, int medium,
 }
 
 SampledSpectrum shadowTransmittance(const RenderScene& scene, const Ray& ray, MediumStack media,
-                                    const SampledWavelengths& lambda, TraceCounters& counters) {
+                                    const SampledWavelengths& lambda, TraceCounters& counters,
+                                    ShadowCrossings* crossings) {
   SampledSpectrum T = SampledSpectrum::filled(1.0f);
   const bool infinite = std::isinf(ray.tMax);
   const Vec3 end = infinite ? Vec3() : ray.o + ray.d; // the segment ends near t = 1
@@ -34,10 +35,13 @@ SampledSpectrum shadowTransmittance(const RenderScene& scene, const Ray& ray, Me
     ++counters.rays;
     const bool found = scene.geometry->intersect(r, hit);
     const float t = found ? hit.t : r.tMax;
-    T *= mediumTransmittance(scene, media.current(), lambda, std::isinf(t) ? t : t * length(r.d));
+    const float segment = std::isinf(t) ? t : t * length(r.d);
+    T *= mediumTransmittance(scene, media.current(), lambda, segment);
+    if (crossings && media.current() >= 0) crossings->media.emplace_back(media.current(), segment);
     if (!found || T.isBlack()) return T;
     const Material& material = scene.materials[scene.appearance(hit).material];
     if (material.kind == MaterialKind::ThinDielectric) {
+      if (crossings) crossings->walls.push_back(scene.appearance(hit).material);
       // A thin wall lets 1 - R through, tinted by its transmission colour.
       SampledSpectrum tint;
       material.reflectance.evaluate(lambda, tint);

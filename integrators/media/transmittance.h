@@ -4,6 +4,9 @@
 // the ray is in; any other surface blocks it. Homogeneous media attenuate exactly
 // (Beer-Lambert per lane), so no ratio tracking is needed.
 
+#include <utility>
+#include <vector>
+
 #include "core/ray.h"
 #include "integrators/integrator.h"
 #include "integrators/media/medium_stack.h"
@@ -16,10 +19,24 @@ namespace nx {
 SampledSpectrum mediumTransmittance(const RenderScene& scene, int medium,
                                     const SampledWavelengths& lambda, float length);
 
+/// What a shadow ray passed through (for differentiated renders): the lengths it ran in each
+/// medium and the thin walls it crossed (their materials).
+struct ShadowCrossings {
+  std::vector<std::pair<int, float>> media; ///< (medium index, length)
+  std::vector<uint32_t> walls;              ///< material indices
+  /// Empties it (keeps the capacity).
+  void clear() {
+    media.clear();
+    walls.clear();
+  }
+};
+
 /// Transmittance along a shadow ray (as shadowRayTo builds it: valid for t < tMax, direction
 /// not necessarily unit) that starts inside the media of `media`, at the lanes' wavelengths.
-/// Zero when a surface other than an interface lies in the way.
+/// Zero when a surface other than an interface lies in the way. `crossings`, when given,
+/// receives what the ray passed through.
 SampledSpectrum shadowTransmittance(const RenderScene& scene, const Ray& ray, MediumStack media,
-                                    const SampledWavelengths& lambda, TraceCounters& counters);
+                                    const SampledWavelengths& lambda, TraceCounters& counters,
+                                    ShadowCrossings* crossings = nullptr);
 
 } // namespace nx
