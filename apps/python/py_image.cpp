@@ -43,7 +43,27 @@ py::dict layerViews(const py::object& self, std::vector<float> nx::ImageLayer::*
   auto& image = self.cast<PyImage&>().image;
   py::dict out;
   for (nx::ImageLayer& l : image.layers)
-    out[py::str(l.name)] = view(self, l.*member, image.bands.count());
+    if (l.name.rfind("gradient.", 0) != 0)
+      out[py::str(l.name)] = view(self, l.*member, image.bands.count());
+  return out;
+}
+
+// A differentiated render's gradients by parameter name (their values or variances): the
+// layers "gradient.<slot>", one (H, W, bands) array per number, stacked (n, H, W, bands) for
+// a vector parameter.
+py::dict gradientViews(const py::object& self, std::vector<float> nx::ImageLayer::*member) {
+  auto& p = self.cast<PyImage&>();
+  py::dict out;
+  const py::object np = py::module_::import("numpy");
+  for (const GradientParameter& g : p.gradients) {
+    py::list parts;
+    for (uint32_t k = g.firstSlot; k < g.firstSlot + g.slots; ++k)
+      for (nx::ImageLayer& l : p.image.layers)
+        if (l.name == "gradient." + std::to_string(k))
+          parts.append(view(self, l.*member, p.image.bands.count()));
+    if (static_cast<uint32_t>(py::len(parts)) != g.slots) continue;
+    out[py::str(g.name)] = g.indexed ? np.attr("stack")(parts) : py::object(parts[0]);
+  }
   return out;
 }
 
@@ -261,6 +281,15 @@ void bindImage(py::module_& m) {
           "dict of component layer name ('reflected', 'fluoresced', 'direct', 'indirect', "
           "'light.NAME') -> (H, W, bands) float32 (aovs=['components', 'lightgroups']); empty "
           "without them")
+      .def_property_readonly(
+          "gradients", [](py::object self) { return gradientViews(self, &nx::ImageLayer::values); },
+          "dict parameter name -> d radiance / d parameter, (H, W, bands) float32, or "
+          "(components, H, W, bands) for a spectrum's values or a colour "
+          "(render(gradients=[...]), docs/inverse.md); empty otherwise")
+      .def_property_readonly(
+          "gradient_variances",
+          [](py::object self) { return gradientViews(self, &nx::ImageLayer::variances); },
+          "dict parameter name -> the variance of each gradient's estimate, shaped as it")
       .def_property_readonly(
           "component_variances",
           [](py::object self) { return layerViews(self, &nx::ImageLayer::variances); },

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "io/scene_values.h"
 #include "io/spectral_exr.h"
@@ -14,9 +15,18 @@ namespace nxpy {
 
 namespace py = pybind11;
 
+/// A parameter of a differentiated render: its name and its slots (GradientRequest).
+struct GradientParameter {
+  std::string name;
+  uint32_t firstSlot = 0, slots = 1;
+  bool indexed = false; ///< a vector: its gradient has a leading component axis
+};
+
 /// The Python object behind nxrender.Image.
 struct PyImage {
   nx::SpectralImage image;
+  /// A differentiated render's parameters: their slots are the layers "gradient.<slot>".
+  std::vector<GradientParameter> gradients;
 };
 
 /// A reflectance texture given as numbers: values of shape (height, width, bands), each a

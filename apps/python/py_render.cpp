@@ -2,12 +2,14 @@
 
 #include "apps/python/py_render.h"
 
+#include <pybind11/numpy.h>
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <filesystem>
 #include <mutex>
@@ -15,6 +17,7 @@
 #include <thread>
 
 #include "apps/python/py_arguments.h"
+#include "apps/python/py_gradients.h"
 #include "apps/python/py_image.h"
 #include "apps/python/py_scene.h"
 #include "apps/render_job.h"
@@ -82,7 +85,8 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
                   const py::object& lightSelection, const py::object& density, bool fluorescence,
                   const py::object& aovs, const py::object& targetError, const py::object& errorOf,
                   const py::object& timeLimit, bool adaptive, bool relightable,
-                  const py::object& relightStep) {
+                  const py::object& relightStep, const py::object& gradients,
+                  const py::object& adjoint) {
   // Every argument is checked before the (possibly long) scene build.
   nx::RenderChoices choices;
   if (!spp.is_none() && !sppRange.is_none())
@@ -193,6 +197,18 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
     choices.crop = nx::PixelRect{static_cast<int>(c[0]), static_cast<int>(c[1]),
                                  static_cast<int>(c[2]), static_cast<int>(c[3])};
   }
+  // A differentiated render: the slots of the parameters asked for, and their tangents.
+  std::optional<GradientRequest> request;
+  std::vector<float> adjointValues;
+  if (!gradients.is_none()) {
+    py::object pyScene = sceneArg;
+    if (!py::isinstance<PyScene>(sceneArg)) {
+      const py::object cls = py::module_::import("nxrender").attr("Scene");
+      pyScene =
+          src.name == "<string>" ? cls.attr("from_text")(sceneArg, "<string>") : cls(src.name);
+    }
+    request.emplace(gradientRequest(pyScene, gradients, *scene, fluorescence));
+  }
   std::optional<nx::RenderJob> jobHolder;
   try {
     jobHolder.emplace(*scene, src.name, choices);
@@ -218,6 +234,24 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   // released, and every 50 ms takes it to run Python's signal handlers (Ctrl-C) and the
   // progress callback, so both run on the caller's thread and never inside a TBB task.
   nx::RenderOptions& options = job.options();
+  if (request) {
+    options.gradients = &request->tangents;
+    if (!adjoint.is_none()) {
+      // d loss / d image: (H, W, bands) over the rendered pixels, as the radiance.
+      const py::array_t<float, py::array::c_style | py::array::forcecast> a =
+          py::module_::import("numpy").attr("asarray")(adjoint, "float32");
+      const int nb = job.bands().count();
+      if (a.ndim() != 3 || a.shape(0) != r.height() || a.shape(1) != r.width() || a.shape(2) != nb)
+        throw py::value_error("adjoint: expected an array of shape (" + std::to_string(r.height()) +
+                              ", " + std::to_string(r.width()) + ", " + std::to_string(nb) +
+                              ") like the image's radiance, found " +
+                              std::string(py::str(py::tuple(a.attr("shape")))));
+      adjointValues.assign(a.data(), a.data() + a.size());
+      for (float v : adjointValues)
+        if (!std::isfinite(v)) throw py::value_error("adjoint: expected finite numbers");
+      options.adjoint = &adjointValues;
+    }
+  }
   std::atomic<bool> stop{false};
   std::atomic<int64_t> done{0}, total{0};
   options.stop = &stop;
@@ -278,11 +312,37 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   if (!adaptive && (result->stats.reachedTarget || result->stats.reachedTimeLimit))
     job.setSamplesReached(result->stats.samplesReached);
   nx::requireSomeFiniteSamples(result->stats, src.name);
+  for (const std::string& w : nx::warningsOf(result->stats))
+    if (request) py::module_::import("warnings").attr("warn")(w);
+  if (request && !adjoint.is_none()) {
+    // Reverse mode: d loss / d parameter per name (a number, or one per component).
+    py::dict grads, variances;
+    for (const GradientRequest::Parameter& p : request->parameters) {
+      auto pick = [&](const std::vector<double>& v) -> py::object {
+        if (!p.indexed) return py::float_(v[p.firstSlot]);
+        py::array_t<double> a(static_cast<py::ssize_t>(p.slots));
+        std::copy(v.begin() + p.firstSlot, v.begin() + p.firstSlot + p.slots, a.mutable_data());
+        return a;
+      };
+      grads[py::str(p.name)] = pick(result->gradient);
+      variances[py::str(p.name)] = pick(result->gradientVariance);
+    }
+    return py::make_tuple(grads, variances);
+  }
   PyImage out;
   out.image = job.image(result->film, result->stats.seconds);
+  if (request) {
+    std::string list;
+    for (uint32_t k = 0; k < request->tangents.slots(); ++k)
+      list += (k ? ";" : "") + std::string("gradient.") + std::to_string(k) + "=" +
+              request->tangents.slotNames[k];
+    out.image.attributes["nxrender.gradients"] = list;
+    out.gradients = request->parameters;
+  }
   if (!src.edits.empty()) out.image.attributes["nxrender.sceneEdits"] = src.edits;
-  for (const std::string& w : nx::warningsOf(result->stats))
-    py::module_::import("warnings").attr("warn")(w);
+  if (!request)
+    for (const std::string& w : nx::warningsOf(result->stats))
+      py::module_::import("warnings").attr("warn")(w);
   return py::cast(std::move(out));
 }
 
@@ -299,11 +359,37 @@ void bindRender(py::module_& m) {
         py::arg("target_error") = py::none(), py::arg("error_of") = "luminance",
         py::arg("time_limit") = py::none(), py::arg("adaptive") = false,
         py::arg("relightable") = false, py::arg("relight_step") = py::none(),
+        py::arg("gradients") = py::none(), py::arg("adjoint") = py::none(),
         "Renders a scene (an nxrender.Scene, a scene file name, or scene XML text) and returns "
         "an nxrender.Image, the same bit for bit as nxrender's EXR for the same scene, seed and "
         "samples. The GIL is released while rendering; Ctrl-C raises KeyboardInterrupt after "
         "the worker threads stopped; progress(done, total) is called on the calling thread as "
-        "tiles finish. Options as nxrender's (docs/python.md).");
+        "tiles finish. Options as nxrender's (docs/python.md). gradients=[names]: also "
+        "d radiance / d parameter per name in image.gradients (forward mode, docs/inverse.md).");
+  m.def(
+      "backward",
+      [](const py::object& scene, const py::object& adjoint, const py::object& gradients,
+         const py::object& spp, const py::object& seed, const py::object& threads,
+         const py::object& bands, const py::object& sensor, const py::object& crop,
+         const py::object& sampler, const py::object& lightSampling,
+         const py::object& lightSelection, const py::object& density, bool fluorescence) {
+        if (adjoint.is_none()) throw py::value_error("adjoint: expected d loss / d image");
+        if (gradients.is_none()) throw py::value_error("gradients: expected parameter names");
+        return render(scene, spp, seed, threads, bands, sensor, crop, py::none(), py::none(),
+                      sampler, lightSampling, lightSelection, density, fluorescence, py::tuple(),
+                      py::none(), py::str("luminance"), py::none(), false, false, py::none(),
+                      gradients, adjoint);
+      },
+      py::arg("scene"), py::arg("adjoint"), py::arg("gradients"), py::arg("spp") = py::none(),
+      py::arg("seed") = py::none(), py::arg("threads") = py::none(), py::arg("bands") = py::none(),
+      py::arg("sensor") = py::none(), py::arg("crop") = py::none(), py::arg("sampler") = "sobol",
+      py::arg("light_sampling") = "mis", py::arg("light_selection") = "local",
+      py::arg("wavelength_density") = "sensor", py::arg("fluorescence") = true,
+      "Reverse mode (docs/inverse.md): the gradient of a scalar loss with respect to every "
+      "parameter named in `gradients`, given adjoint = d loss / d image (the shape of the "
+      "radiance), in one pass; returns (gradients, variances): dicts name -> a number, or an "
+      "array per component for spectra and colours. Use another seed than the image the loss "
+      "was computed from.");
 }
 
 } // namespace nxpy

@@ -116,8 +116,29 @@ bool addSpectrumTangent(std::vector<SpectrumTangent>& out, uint32_t slot,
   for (const RenderScene* s : scenes) spectra.push_back(&get(*s));
   bool changed = false;
   DenseSpectrum d = stencil(spectra, w, changed);
-  if (changed) out.push_back({slot, Spectrum(std::move(d))});
-  return changed;
+  if (!changed) return false;
+  // Tables on the same wavelengths: the stencil of their values, exact (a table's end stays
+  // where it is; the dense grid would smear it over 0.25 nm).
+  const auto* first = std::get_if<TabulatedSpectrum>(&spectra[0]->kind());
+  bool sameTables = first != nullptr;
+  for (const Spectrum* sp : spectra) {
+    const auto* t = std::get_if<TabulatedSpectrum>(&sp->kind());
+    sameTables = sameTables && t && t->nm == first->nm && t->holdEnds == first->holdEnds;
+  }
+  if (sameTables) {
+    TabulatedSpectrum table = *first;
+    for (size_t k = 0; k < table.value.size(); ++k) {
+      double sum = 0;
+      for (size_t i = 0; i < spectra.size(); ++i)
+        sum +=
+            w[i] * spectra[i]->scale() * std::get<TabulatedSpectrum>(spectra[i]->kind()).value[k];
+      table.value[k] = sum;
+    }
+    out.push_back({slot, Spectrum(std::move(table))});
+  } else {
+    out.push_back({slot, Spectrum(std::move(d))});
+  }
+  return true;
 }
 
 } // namespace

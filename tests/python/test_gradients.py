@@ -1,0 +1,134 @@
+"""Differentiated renders from Python: render(gradients=[names]) gives d radiance / d parameter
+per name (a number, or one image per knot or channel) agreeing with a central difference of
+renders with the same seed; backward(scene, adjoint, names) gives the adjoint-weighted sum of
+those images; what is not differentiated is refused by name."""
+
+import numpy as np
+import pytest
+
+import nxrender
+
+SCENE = """<scene><settings><xres>24</xres><yres>20</yres><mode>spectral_mcpt</mode>
+<depth>8</depth><sampl>64</sampl><bands>400:700:50</bands></settings>
+<camera><position>0,0.9,-2.6</position><look_at>0,0.5,0</look_at><fov>40</fov></camera>
+<plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>
+<reflectance>300:0.3, 550:0.5, 1100:0.8</reflectance></plane>
+<sphere><center>0,0.7,0</center><radius>0.7</radius><material>matte</material>
+<reflectance>0.4</reflectance><fluorescence><absorption>460</absorption><stokes>90</stokes>
+<width>25</width><yield>0.8</yield></fluorescence></sphere>
+<sphere><center>1.3,0.4,0.5</center><radius>0.4</radius><material>interface</material>
+<medium><sigma_a>0.5</sigma_a><sigma_s>1</sigma_s></medium></sphere>
+<sphere><center>-1.5,2.5,-1</center><radius>0.5</radius><material>matte</material>
+<reflectance>0</reflectance>
+<emission scale="5e-3" extrapolate="hold">380:1, 480:1, 520:0.1, 800:0.1</emission></sphere>
+<light><position>1,3,-2</position><color>1,1,1</color><emission scale="0.02">D65</emission></light>
+</scene>"""
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return nxrender.Scene.from_text(SCENE, "t.scn")
+
+
+def difference(scene, name, value, step, spp=64, seed=5):
+    """(I(value + step) - I(value - step)) / (2 step), same seed."""
+    images = []
+    for v in (value + step, value - step):
+        s = scene.copy()
+        s.set(name, v)
+        images.append(nxrender.render(s, spp=spp, seed=seed, threads=2).radiance.astype(np.float64))
+    return (images[0] - images[1]) / (2 * step)
+
+
+def expect_agrees(gradient, fd, power=0.05):
+    """Per band: the mean over pixels of gradient - difference within 5 standard errors, and
+    the strongest band resolved to `power` of its gradient."""
+    d = (gradient.astype(np.float64) - fd).reshape(-1, gradient.shape[-1])
+    g = gradient.reshape(-1, gradient.shape[-1]).mean(axis=0)
+    se = d.std(axis=0, ddof=1) / np.sqrt(d.shape[0])
+    rounding = 1e-5 * np.abs(fd).reshape(-1, fd.shape[-1]).mean(axis=0)
+    assert np.all(np.abs(d.mean(axis=0)) <= 5 * se + rounding), (d.mean(axis=0), se, g)
+    k = int(np.argmax(np.abs(g)))
+    assert se[k] < power * abs(g[k]), (se[k], g[k])
+
+
+@pytest.mark.parametrize(
+    "name, value, step, spp",
+    [
+        ("objects[1].fluorescence.quantum_yield", 0.8, 0.15, 256),
+        ("objects[3].emission_scale", 5e-3, 5e-4, 64),
+        ("lights[0].emission_scale", 0.02, 0.002, 64),
+        ("objects[2].medium.sigma_a", 0.5, 0.05, 64),
+    ],
+)
+def test_forward_matches_difference(scene, name, value, step, spp):
+    image = nxrender.render(scene, spp=spp, seed=5, threads=2, gradients=[name])
+    g = image.gradients[name]
+    assert g.shape == image.radiance.shape and g.dtype == np.float32
+    assert image.gradient_variances[name].shape == g.shape
+    expect_agrees(g, difference(scene, name, value, step, spp))
+    assert "gradient.0=" + name in image.attributes["nxrender.gradients"]
+    assert not image.components  # gradients are not component layers
+
+
+def test_spectrum_knots(scene):
+    # A tabulated reflectance: one gradient image per knot (a hat function each).
+    name = "objects[0].reflectance"
+    image = nxrender.render(scene, spp=64, seed=5, threads=2, gradients=[name])
+    g = image.gradients[name]
+    assert g.shape == (3,) + image.radiance.shape
+    nm, values = scene.get(name)
+    for j in (1, 2):
+        s_plus, s_minus = scene.copy(), scene.copy()
+        v = np.array(values, dtype=float)
+        v[j] += 0.02
+        s_plus.set(name, (nm, v))
+        v[j] -= 0.04
+        s_minus.set(name, (nm, v))
+        fd = (
+            nxrender.render(s_plus, spp=64, seed=5, threads=2).radiance.astype(np.float64)
+            - nxrender.render(s_minus, spp=64, seed=5, threads=2).radiance
+        ) / 0.04
+        expect_agrees(g[j], fd)
+
+
+def test_backward_is_the_adjoint_weighted_forward_sum(scene):
+    names = ["objects[1].fluorescence.stokes_nm", "objects[0].reflectance"]
+    image = nxrender.render(scene, spp=16, seed=9, threads=2, gradients=names)
+    rng = np.random.default_rng(1)
+    adjoint = rng.normal(size=image.radiance.shape).astype(np.float32)
+    grads, variances = nxrender.backward(scene, adjoint, names, spp=16, seed=9, threads=2)
+    for name in names:
+        expected = np.tensordot(image.gradients[name].astype(np.float64), adjoint, axes=3)
+        assert np.allclose(grads[name], expected, rtol=2e-4, atol=0), (name, grads[name], expected)
+        assert np.all(np.asarray(variances[name]) > 0)
+    assert isinstance(grads[names[0]], float) and grads[names[1]].shape == (3,)
+    # the thread count does not change it
+    again, _ = nxrender.backward(scene, adjoint, names, spp=16, seed=9, threads=1)
+    assert again[names[0]] == grads[names[0]]
+
+
+def test_refusals(scene):
+    with pytest.raises(ValueError, match=r"objects\[1\].radius: not differentiated"):
+        nxrender.render(scene, spp=1, gradients=["objects[1].radius"])
+    with pytest.raises(ValueError, match=r"camera.fov: not differentiated"):
+        nxrender.render(scene, spp=1, gradients=["camera.fov"])
+    with pytest.raises(KeyError, match="no scene parameter named"):
+        nxrender.render(scene, spp=1, gradients=["objects[9].reflectance"])
+    with pytest.raises(ValueError, match="lights\\[0\\].emission: not differentiable as given"):
+        nxrender.render(scene, spp=1, gradients=["lights[0].emission"])  # a named spectrum
+    held = nxrender.Scene.from_text(SCENE.replace(
+        "<reflectance>300:0.3, 550:0.5, 1100:0.8", '<reflectance extrapolate="hold">400:0.3, 550:0.5, 700:0.8'), "t.scn")
+    with pytest.raises(ValueError, match="renders differently"):
+        nxrender.render(held, spp=1, gradients=["objects[0].reflectance"])
+    with pytest.raises(ValueError, match="adjoint: expected an array of shape \\(20, 24, 7\\)"):
+        nxrender.backward(scene, np.zeros((3, 3, 7)), ["objects[1].reflectance"], spp=1)
+    with pytest.raises(Exception, match="gradients cannot be combined"):
+        nxrender.render(scene, spp=1, gradients=["objects[1].reflectance"], aovs=["components"])
+    # a roughness changes the sampling and is refused by the scene's tables
+    s = nxrender.Scene.from_text(
+        SCENE.replace("<material>interface</material>", "<material>conductor</material>"
+                      "<metal>gold</metal><alpha>0.2</alpha>").replace(
+            "<medium><sigma_a>0.5</sigma_a><sigma_s>1</sigma_s></medium>", ""), "t.scn")
+    with pytest.raises(ValueError, match="not differentiated"):
+        nxrender.render(s, spp=1, gradients=["objects[2].alpha"])
