@@ -5,9 +5,9 @@ namespace nx {
 GradientContext::GradientContext(const RenderScene& scene, const LightSampler& lights,
                                  const SceneTangents& t)
     : tangents(&t) {
-  static const std::vector<SpectrumTangent> none;
+  static const SpectrumTangents none;
   for (int k = 0; k < lights.count(); ++k) {
-    const std::vector<SpectrumTangent>* found = &none;
+    const SpectrumTangents* found = &none;
     const Spectrum* value = nullptr;
     if (const int l = lights.sceneLightOf(k); l >= 0) {
       const SceneLight& light = scene.lights[static_cast<size_t>(l)];

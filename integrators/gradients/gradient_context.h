@@ -14,7 +14,7 @@ struct GradientContext {
   const SceneTangents* tangents = nullptr;
   /// Per LightSampler light: the tangents of its emission (empty for none) and the spectrum
   /// they are derivatives of (its radiance or intensity; null when not differentiated).
-  std::vector<const std::vector<SpectrumTangent>*> ofSampledLight;
+  std::vector<const SpectrumTangents*> ofSampledLight;
   std::vector<const Spectrum*> spectrumOfSampledLight;
 
   /// The context for `scene` rendered with `lights`.

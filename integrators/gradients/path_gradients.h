@@ -104,22 +104,17 @@ struct GradientSink {
   void zeroValue() { ++tape->zeroValues; }
 };
 
-/// Log-derivative events of spectra with derivatives `ts` and values `value` at the lanes:
+/// Log-derivative events of a spectrum with derivatives `ts` and values `value` at the lanes:
 /// emit(slot, lane, d / value) (an emitter's radiance, a light's intensity).
 template <class Sink, class Emit>
-void ratioEvents(const std::vector<SpectrumTangent>& ts, const SampledWavelengths& lambda,
+void ratioEvents(const SpectrumTangents& ts, const SampledWavelengths& lambda,
                  const SampledSpectrum& value, Sink& sink, Emit&& emit) {
-  for (const SpectrumTangent& t : ts) {
-    SampledSpectrum d;
-    t.d.evaluate(lambda, d);
-    for (int i = 0; i < kLanes; ++i) {
-      if (d[i] == 0) continue;
-      if (value[i] != 0)
-        emit(t.slot, i, d[i] / value[i]);
-      else
-        sink.zeroValue();
-    }
-  }
+  ts.forEach(lambda, [&](uint32_t slot, int i, float d) {
+    if (value[i] != 0)
+      emit(slot, i, d / value[i]);
+    else
+      sink.zeroValue();
+  });
 }
 
 /// How the lobe a path took (or next-event estimation evaluated) at a surface depends on the
@@ -154,22 +149,18 @@ inline float rhoLogSlope(const Material& m, float rho, bool specular, bool albed
 /// Reflectance events at a surface of material m (tangents ts) for its lobe: emit(slot, lane,
 /// slope * d rho).
 template <class Sink, class Emit>
-void reflectanceEvents(const std::vector<SpectrumTangent>& ts, const Material& m,
+void reflectanceEvents(const SpectrumTangents& ts, const Material& m,
                        const SampledWavelengths& lambda, const SampledSpectrum& rho, bool specular,
                        bool albedo, Sink& sink, Emit&& emit) {
-  for (const SpectrumTangent& t : ts) {
-    SampledSpectrum d;
-    t.d.evaluate(lambda, d);
-    for (int i = 0; i < kLanes; ++i) {
-      if (d[i] == 0) continue;
-      bool zero = false;
-      const float slope = rhoLogSlope(m, rho[i], specular, albedo, zero);
-      if (zero)
-        sink.zeroValue();
-      else if (slope != 0)
-        emit(t.slot, i, slope * d[i]);
-    }
-  }
+  if (ts.empty()) return;
+  ts.forEach(lambda, [&](uint32_t slot, int i, float d) {
+    bool zero = false;
+    const float slope = rhoLogSlope(m, rho[i], specular, albedo, zero);
+    if (zero)
+      sink.zeroValue();
+    else if (slope != 0)
+      emit(slot, i, slope * d);
+  });
 }
 
 /// The re-radiation choice's events at a fluorescent vertex (fluorescent_vertex.h): per lane,
@@ -178,7 +169,7 @@ void reflectanceEvents(const std::vector<SpectrumTangent>& ts, const Material& m
 /// is weighted f / p with p held: g = f' / f, f' from the matrix's tangents `ms` and the
 /// reflectance's `rs`.
 template <class Sink, class Emit>
-void reradiationEvents(const std::vector<MatrixTangent>& ms, const std::vector<SpectrumTangent>& rs,
+void reradiationEvents(const std::vector<MatrixTangent>& ms, const SpectrumTangents& rs,
                        const ReradiationMatrix& matrix, const SampledWavelengths& before,
                        const SampledWavelengths& excited, const SampledSpectrum& rho, Sink& sink,
                        Emit&& emit) {
@@ -209,24 +200,20 @@ void reradiationEvents(const std::vector<MatrixTangent>& ms, const std::vector<S
       else
         sink.zeroValue();
     }
-  for (const SpectrumTangent& t : rs) {
-    SampledSpectrum d;
-    t.d.evaluate(before, d);
-    for (int i = 0; i < kLanes; ++i) {
-      if (d[i] == 0 || bins[i] >= 0) continue; // a re-radiated event does not use rho
-      const int o = from[i];
-      // outside the grid the surface reflects rho (or nothing, for a measured matrix)
-      const float scale =
-          o < 0 ? (matrix.measured() && !matrix.elasticFromReflectance() ? 0.0f : 1.0f)
-                : static_cast<float>(elastic(i, 1.0) - elastic(i, 0.0));
-      const float value = o < 0 ? scale * rho[i] : static_cast<float>(elastic(i, rho[i]));
-      if (scale == 0) continue;
-      if (value != 0)
-        emit(t.slot, i, scale * d[i] / value);
-      else
-        sink.zeroValue();
-    }
-  }
+  rs.forEach(before, [&](uint32_t slot, int i, float d) {
+    if (bins[i] >= 0) return; // a re-radiated event does not use rho
+    const int o = from[i];
+    // outside the grid the surface reflects rho (or nothing, for a measured matrix)
+    const float scale = o < 0
+                            ? (matrix.measured() && !matrix.elasticFromReflectance() ? 0.0f : 1.0f)
+                            : static_cast<float>(elastic(i, 1.0) - elastic(i, 0.0));
+    const float value = o < 0 ? scale * rho[i] : static_cast<float>(elastic(i, rho[i]));
+    if (scale == 0) return;
+    if (value != 0)
+      emit(slot, i, scale * d / value);
+    else
+      sink.zeroValue();
+  });
 }
 
 /// The lanes' derivatives of a medium's coefficients for tangent t: all absorption

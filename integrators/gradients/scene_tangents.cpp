@@ -109,7 +109,7 @@ bool sameLightPlacement(const SceneLight& a, const SceneLight& b) {
 // The stencil over one spectrum of every scene; appended to `out` as slot's tangent when it
 // changes.
 template <class Get>
-bool addSpectrumTangent(std::vector<SpectrumTangent>& out, uint32_t slot,
+bool addSpectrumTangent(SpectrumTangents& out, uint32_t slot,
                         std::span<const RenderScene* const> scenes, std::span<const double> w,
                         Get&& get) {
   std::vector<const Spectrum*> spectra;
@@ -134,14 +134,38 @@ bool addSpectrumTangent(std::vector<SpectrumTangent>& out, uint32_t slot,
             w[i] * spectra[i]->scale() * std::get<TabulatedSpectrum>(spectra[i]->kind()).value[k];
       table.value[k] = sum;
     }
-    out.push_back({slot, Spectrum(std::move(table))});
+    out.add(slot, Spectrum(std::move(table)));
   } else {
-    out.push_back({slot, Spectrum(std::move(d))});
+    out.add(slot, Spectrum(std::move(d)));
   }
   return true;
 }
 
 } // namespace
+
+void SpectrumTangents::add(uint32_t slot, Spectrum d) {
+  if (const auto* t = std::get_if<TabulatedSpectrum>(&d.kind())) {
+    size_t nonZero = 0, at = 0;
+    for (size_t j = 0; j < t->value.size(); ++j)
+      if (t->value[j] != 0) ++nonZero, at = j;
+    if (nonZero == 1) {
+      Knots* k = nullptr;
+      for (Knots& existing : knots_)
+        if (existing.nm == t->nm && existing.holdEnds == t->holdEnds) k = &existing;
+      if (!k) {
+        knots_.push_back({t->nm, t->holdEnds, std::vector<int64_t>(t->nm.size(), -1),
+                          std::vector<float>(t->nm.size(), 0.0f)});
+        k = &knots_.back();
+      }
+      if (k->slotOf[at] < 0) {
+        k->slotOf[at] = slot;
+        k->valueOf[at] = static_cast<float>(d.scale() * t->value[at]);
+        return;
+      }
+    }
+  }
+  dense_.push_back({slot, std::move(d)});
+}
 
 SceneTangents SceneTangents::sizedFor(const RenderScene& scene) {
   SceneTangents t;

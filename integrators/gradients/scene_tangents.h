@@ -6,6 +6,7 @@
 // smooth in every differentiable parameter), so every parameter of every kind is covered by
 // the same code; the render's derivative itself is estimated along the paths (path_gradients.h).
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -16,10 +17,68 @@
 
 namespace nx {
 
-/// d spectrum / d parameter for one slot, sampled every 0.25 nm over the traced range.
+/// d spectrum / d parameter for one slot: a table on the spectrum's own wavelengths, or
+/// sampled every 0.25 nm over the traced range.
 struct SpectrumTangent {
   uint32_t slot = 0;
   Spectrum d;
+};
+
+/// The tangents of one spectrum of the scene, by slot. The derivative with respect to one
+/// knot of a table is a hat function over its two neighbours: such slots are kept per table
+/// and evaluated sparsely (two knots per wavelength, whatever the table's size), so a render
+/// differentiated with respect to every knot of a long table costs little more than one.
+class SpectrumTangents {
+public:
+  /// Adds slot's derivative `d` (a hat function when d is a table with one non-zero value).
+  void add(uint32_t slot, Spectrum d);
+  /// True when no slot changes this spectrum.
+  bool empty() const { return dense_.empty() && knots_.empty(); }
+  /// Calls f(slot, lane, d) for every slot whose derivative d at a lane's wavelength is not 0.
+  template <class F>
+  void forEach(const SampledWavelengths& lambda, F&& f) const {
+    for (const SpectrumTangent& t : dense_) {
+      SampledSpectrum d;
+      t.d.evaluate(lambda, d);
+      for (int i = 0; i < kLanes; ++i)
+        if (d[i] != 0) f(t.slot, i, d[i]);
+    }
+    for (const Knots& k : knots_)
+      for (int i = 0; i < kLanes; ++i)
+        k.forEach(lambda.lambda[i], [&](uint32_t slot, float d) { f(slot, i, d); });
+  }
+
+private:
+  /// The slots of one table's knots: slot of knot j (or -1) and its derivative's value there.
+  struct Knots {
+    std::vector<double> nm;
+    bool holdEnds = false;
+    std::vector<int64_t> slotOf;
+    std::vector<float> valueOf;
+    template <class G>
+    void forEach(float x, G&& g) const {
+      const size_t n = nm.size();
+      auto at = [&](size_t j, double w) {
+        if (slotOf[j] >= 0 && w != 0)
+          g(static_cast<uint32_t>(slotOf[j]), static_cast<float>(w * valueOf[j]));
+      };
+      if (x < nm.front()) {
+        if (holdEnds) at(0, 1);
+        return;
+      }
+      if (x >= nm.back()) {
+        if (holdEnds || x == nm.back()) at(n - 1, 1);
+        return;
+      }
+      const size_t j = static_cast<size_t>(
+          std::upper_bound(nm.begin(), nm.end(), static_cast<double>(x)) - nm.begin() - 1);
+      const double t = (x - nm[j]) / (nm[j + 1] - nm[j]);
+      at(j, 1 - t);
+      at(j + 1, t);
+    }
+  };
+  std::vector<SpectrumTangent> dense_;
+  std::vector<Knots> knots_;
 };
 
 /// d M / d parameter of a re-radiation matrix for one slot: the cells, and the elastic part
@@ -43,11 +102,11 @@ struct MediumTangent {
 /// Every slot's derivatives, indexed like the scene's tables.
 struct SceneTangents {
   std::vector<std::string> slotNames; ///< what each slot is, e.g. "objects[1].reflectance[3]"
-  std::vector<std::vector<SpectrumTangent>> reflectance; ///< per RenderScene::materials
-  std::vector<std::vector<MatrixTangent>> reradiation;   ///< per RenderScene::materials
-  std::vector<std::vector<SpectrumTangent>> emission;    ///< per RenderScene::emission
-  std::vector<std::vector<SpectrumTangent>> lights;      ///< per RenderScene::lights (intensity)
-  std::vector<SpectrumTangent> background;
+  std::vector<SpectrumTangents> reflectance;           ///< per RenderScene::materials
+  std::vector<std::vector<MatrixTangent>> reradiation; ///< per RenderScene::materials
+  std::vector<SpectrumTangents> emission;              ///< per RenderScene::emission
+  std::vector<SpectrumTangents> lights;                ///< per RenderScene::lights (intensity)
+  SpectrumTangents background;
   std::vector<std::vector<MediumTangent>> media; ///< per RenderScene::media
   /// Slots whose parameter changes nothing the scene renders (their derivative is 0).
   std::vector<uint32_t> inert;

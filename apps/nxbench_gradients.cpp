@@ -1,0 +1,159 @@
+// nxbench-gradients: what a differentiated render costs against a plain one.
+//
+//   nxbench-gradients [--spp N] [--width W] [--threads N]
+//
+// A fluorescent sphere on a tabulated floor under a blue-heavy lamp (docs/inverse.md). Prints
+// render seconds (fastest of repeats) for a plain render, forward mode with 1 and 4 parameters
+// (the dye's Stokes shift, quantum yield, the lamp's scale, the sphere's reflectance), reverse
+// mode with those 4 and with the floor table's K knots added, and the finite-difference route
+// (two renders per parameter); then the process's peak memory after reverse renders of
+// increasing samples per pixel (it must not grow with them).
+
+#include <CLI/CLI.hpp>
+#include <sys/resource.h>
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <functional>
+
+#include "apps/bench_util.h"
+#include "apps/command_line.h"
+#include "apps/program_main.h"
+#include "integrators/gradients/scene_tangents.h"
+#include "integrators/renderer.h"
+
+namespace {
+
+using namespace nx;
+
+// The scene's parameters, in the order of `values`.
+struct Values {
+  double stokes = 90, yield = 0.8, lampScale = 5e-3, rho = 0.4;
+  std::vector<double> floor; ///< the floor table's knot values (400-700 nm, evenly)
+};
+
+std::string text(const Values& v, int width, int spp) {
+  std::string floor;
+  for (size_t k = 0; k < v.floor.size(); ++k) {
+    const double nm =
+        400 + 300.0 * static_cast<double>(k) / static_cast<double>(v.floor.size() - 1);
+    floor += (k ? ", " : "") + std::to_string(nm) + ":" + std::to_string(v.floor[k]);
+  }
+  return "<scene><settings><xres>" + std::to_string(width) + "</xres><yres>" +
+         std::to_string(width * 3 / 4) +
+         "</yres><mode>spectral_mcpt</mode><depth>5</depth><sampl>" + std::to_string(spp) +
+         "</sampl><bands>400:700:10</bands></settings><camera><position>0,0.9,-2.6</"
+         "position><look_at>0,0.5,0</look_at><fov>40</fov></camera><plane><normal>0,1,0</"
+         "normal><distance>0</distance><material>matte</material><reflectance>" +
+         floor +
+         "</reflectance></plane><sphere><center>0,0.7,0</center><radius>0.7</radius><material>"
+         "matte</material><reflectance>" +
+         std::to_string(v.rho) +
+         "</reflectance><fluorescence><absorption>460</absorption><stokes>" +
+         std::to_string(v.stokes) + "</stokes><width>25</width><yield>" + std::to_string(v.yield) +
+         "</yield></fluorescence></sphere><sphere><center>-1.5,2.5,-1</center><radius>0.5</"
+         "radius><material>matte</material><reflectance>0</reflectance><emission scale=\"" +
+         std::to_string(v.lampScale) +
+         "\">380:1, 480:1, 520:0.1, 800:0.1</emission></sphere></scene>";
+}
+
+RenderScene resolved(const std::string& t) {
+  return resolveRenderScene(parseScene(t, "bench.scn"));
+}
+
+// Adds one slot per parameter moved by `move` (central differences of resolved scenes).
+void addSlot(SceneTangents& t, const RenderScene& base, const Values& v, int width, int spp,
+             const std::string& name, double step,
+             const std::function<void(Values&, double)>& move) {
+  Values plus = v, minus = v;
+  move(plus, step);
+  move(minus, -step);
+  const RenderScene a = resolved(text(plus, width, spp)), b = resolved(text(minus, width, spp));
+  const RenderScene* scenes[] = {&a, &b};
+  const double w[] = {0.5 / step, -0.5 / step};
+  addTangentSlot(t, name, base, scenes, w);
+}
+
+long peakKilobytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"nxbench-gradients: the cost of forward- and reverse-mode gradients"};
+  int spp = 32, width = 96, threads = 2, knots = 31;
+  app.add_option("--spp", spp, "Samples per pixel (default 32)")->check(numberIn(1, 1 << 20));
+  app.add_option("--width", width, "Image width (default 96)")->check(numberIn(8, 4096));
+  app.add_option("--threads", threads, "Worker threads (default 2)")->check(numberIn(1, 4096));
+  app.add_option("--knots", knots, "Knots of the floor's table (default 31)")
+      ->check(numberIn(2, 100000));
+  if (const int status = parseCommandLine(app, argc, argv, "nxbench-gradients"); status >= 0)
+    return status;
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                            static_cast<size_t>(threads));
+  Values v;
+  for (int k = 0; k < knots; ++k) v.floor.push_back(0.3 + 0.5 * k / (knots - 1.0));
+  const RenderScene scene = buildRenderScene(parseScene(text(v, width, spp), "bench.scn"));
+  SceneTangents four = SceneTangents::sizedFor(scene);
+  addSlot(four, scene, v, width, spp, "stokes", 0.01, [](Values& x, double d) { x.stokes += d; });
+  addSlot(four, scene, v, width, spp, "yield", 1e-3, [](Values& x, double d) { x.yield += d; });
+  addSlot(four, scene, v, width, spp, "lamp", 1e-6, [](Values& x, double d) { x.lampScale += d; });
+  addSlot(four, scene, v, width, spp, "rho", 1e-4, [](Values& x, double d) { x.rho += d; });
+  SceneTangents one = SceneTangents::sizedFor(scene);
+  addSlot(one, scene, v, width, spp, "stokes", 0.01, [](Values& x, double d) { x.stokes += d; });
+  // The floor table's knots: d rho / d value_k is the table with 1 at knot k (as differences
+  // of resolved scenes give it, without resolving 2K scenes).
+  SceneTangents many = four;
+  const auto& table = std::get<TabulatedSpectrum>(scene.materials[0].reflectance.kind());
+  for (int k = 0; k < knots; ++k) {
+    TabulatedSpectrum unit = table;
+    std::fill(unit.value.begin(), unit.value.end(), 0.0);
+    unit.value[static_cast<size_t>(k)] = 1;
+    many.reflectance[0].add(many.slots(), Spectrum(std::move(unit)));
+    many.slotNames.push_back("floor" + std::to_string(k));
+  }
+  std::printf("scene: %dx%d, %d spp, %d threads, 31 bands\n", scene.settings.width,
+              scene.settings.height, spp, threads);
+  RenderOptions plain;
+  const double t0 = bench::fastestSeconds(3, [&] { render(scene, plain); });
+  std::printf("%-34s %9s %8s\n", "render", "seconds", "x plain");
+  auto row = [&](const char* what, double t) {
+    std::printf("%-34s %9.3f %8.2f\n", what, t, t / t0);
+  };
+  row("plain", t0);
+  auto forward = [&](const SceneTangents& t) {
+    RenderOptions o;
+    o.gradients = &t;
+    return bench::fastestSeconds(3, [&] { render(scene, o); });
+  };
+  row("forward, 1 parameter", forward(one));
+  row("forward, 4 parameters", forward(four));
+  const std::vector<float> adjoint(static_cast<size_t>(scene.settings.width) *
+                                       scene.settings.height * scene.settings.bands.count(),
+                                   1.0f);
+  auto reverse = [&](const SceneTangents& t, int samples) {
+    RenderOptions o;
+    o.gradients = &t;
+    o.adjoint = &adjoint;
+    o.samples = samples;
+    return bench::fastestSeconds(3, [&] { render(scene, o); });
+  };
+  row("reverse, 4 parameters", reverse(four, spp));
+  const std::string label = "reverse, 4 + " + std::to_string(knots) + " knots";
+  row(label.c_str(), reverse(many, spp));
+  const std::string fd = "differences, " + std::to_string(4 + knots) + " parameters";
+  row(fd.c_str(), 2.0 * (4 + knots) * t0);
+  std::printf("\npeak memory of reverse renders (%u slots):\n", many.slots());
+  for (int s : {spp / 4 > 0 ? spp / 4 : 1, spp, spp * 4}) {
+    reverse(many, s);
+    std::printf("  %6d spp: %8.1f MB\n", s, static_cast<double>(peakKilobytes()) / 1024.0);
+  }
+  return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  return mainReportingErrors("nxbench-gradients", run, argc, argv);
+}
