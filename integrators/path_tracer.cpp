@@ -318,6 +318,13 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     const Material& material = whiteHere ? whiteLambertian() : scene.materials[app.material];
     const Vec3 wo = -ray.d;
     const SampledSpectrum rho = scene.reflectanceAt(material, hit, current);
+    // A differentiated render: what rho's derivatives are here (its texture's at the hit's uv).
+    [[maybe_unused]] RhoTangents rhoTangents;
+    if constexpr (kGradients) {
+      if (!whiteHere)
+        rhoTangents = {&tangents->reflectance[app.material], material.texture.get(),
+                       tangents->textureFirstSlot[app.material], hit.u, hit.v};
+    }
     SurfaceBsdf bsdf(material, current, rho, hit.ng, hit.ns, wo);
     bsdf.orient(hit.dpdu);
     bsdf.setHeroAlone(heroAlone);
@@ -350,11 +357,10 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         if constexpr (kGradients) {
           if (!whiteHere) {
             if (fluorescent)
-              reradiationEvents(tangents->reradiation[app.material],
-                                tangents->reflectance[app.material], *material.reradiation, current,
-                                shift.excited, rho, sink, local);
-            reflectanceEvents(tangents->reflectance[app.material], material, current, rho, false,
-                              !fluorescent, sink, local);
+              reradiationEvents(tangents->reradiation[app.material], rhoTangents,
+                                *material.reradiation, current, shift.excited, rho, sink, local);
+            reflectanceEvents(rhoTangents, material, current, rho, false, !fluorescent, sink,
+                              local);
           }
           lightEvents(ls, lit);
         }
@@ -387,9 +393,8 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         if constexpr (Sink::kClasses) shifted |= shiftedLanes(shift.excited, current);
         if constexpr (kGradients) {
           if (!whiteHere)
-            reradiationEvents(tangents->reradiation[app.material],
-                              tangents->reflectance[app.material], *material.reradiation, current,
-                              shift.excited, rho, sink, event);
+            reradiationEvents(tangents->reradiation[app.material], rhoTangents,
+                              *material.reradiation, current, shift.excited, rho, sink, event);
         }
         current = shift.excited;
       }
@@ -399,8 +404,8 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       // from the matrix above; rho's other shares, a coat's, from here).
       if (!whiteHere) {
         const bool reradiated = fluorescent && !bs.specular;
-        reflectanceEvents(tangents->reflectance[app.material], material, lambdaBefore, rho,
-                          bs.specular, !reradiated, sink, event);
+        reflectanceEvents(rhoTangents, material, lambdaBefore, rho, bs.specular, !reradiated, sink,
+                          event);
       }
     }
     if constexpr (kMedia) {

@@ -30,6 +30,8 @@ struct Numbers {
   std::vector<double> values;
   bool indexed = false;
   py::object wavelengths; ///< a tabulated spectrum's, else None
+  bool texture = false;   ///< a texture's texels (values in textureValues)
+  py::object textureValues;
   py::object valueOf(const std::vector<double>& v) const {
     if (!indexed) return py::float_(v[0]);
     py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
@@ -62,9 +64,14 @@ Numbers numbersOf(const py::object& value, const std::string& name) {
     // a tabulated spectrum: (wavelengths_nm, values), or a texture (values of 3 axes)
     const py::tuple t = value.cast<py::tuple>();
     const py::array v = np.attr("asarray")(t[1]);
-    if (v.ndim() != 1)
-      throw py::value_error(name + ": not differentiable yet: a texture's texels (a later step; "
-                                   "docs/inverse.md)");
+    if (v.ndim() == 3) { // a texture: (height, width, bands)
+      n.texture = true;
+      n.indexed = true;
+      n.wavelengths = np.attr("asarray")(t[0], "float64");
+      n.textureValues = np.attr("asarray")(t[1], "float64");
+      return n;
+    }
+    if (v.ndim() != 1) throw py::value_error(name + ": not differentiable: expected numbers");
     n.values = floats(t[1]);
     n.indexed = true;
     n.wavelengths = np.attr("asarray")(t[0], "float64");
@@ -147,6 +154,30 @@ GradientRequest gradientRequest(const py::object& scene, const py::handle& names
     for (const auto& p : r.parameters)
       if (p.name == name) throw py::value_error("gradients: '" + name + "' given twice");
     const Numbers numbers = numbersOf(scene.attr("get")(name), name);
+    if (numbers.texture) {
+      // Its texels: located by resolving the scene with every value moved (towards the middle
+      // of [0, 1]); one slot per value, evaluated bilinearly along the paths.
+      const py::object np = py::module_::import("numpy");
+      const py::object moved = numbers.textureValues.attr("__add__")(
+          np.attr("where")(numbers.textureValues.attr("__lt__")(0.5), 1e-3, -1e-3));
+      std::optional<nx::RenderScene> changed;
+      if (!resolvedWith(scene, name, py::make_tuple(numbers.wavelengths, moved), fluorescence,
+                        changed))
+        throw py::value_error(name + ": not differentiable: its texels cannot be moved");
+      GradientRequest::Parameter param;
+      param.name = name;
+      param.indexed = true;
+      try {
+        param.firstSlot = nx::addTextureSlots(r.tangents, name, base, *changed);
+      } catch (const nx::Error& e) {
+        throw py::value_error(e.what());
+      }
+      param.slots = r.tangents.slots() - param.firstSlot;
+      for (const py::handle d : numbers.textureValues.attr("shape"))
+        param.shape.push_back(d.cast<long>());
+      r.parameters.push_back(param);
+      continue;
+    }
     GradientRequest::Parameter param{name, r.tangents.slots(),
                                      static_cast<uint32_t>(numbers.values.size()), numbers.indexed};
     if (numbers.indexed) {

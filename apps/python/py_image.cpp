@@ -62,7 +62,14 @@ py::dict gradientViews(const py::object& self, std::vector<float> nx::ImageLayer
         if (l.name == "gradient." + std::to_string(k))
           parts.append(view(self, l.*member, p.image.bands.count()));
     if (static_cast<uint32_t>(py::len(parts)) != g.slots) continue;
-    out[py::str(g.name)] = g.indexed ? np.attr("stack")(parts) : py::object(parts[0]);
+    py::object value = g.indexed ? np.attr("stack")(parts) : py::object(parts[0]);
+    if (!g.shape.empty()) {
+      py::list shape;
+      for (long n : g.shape) shape.append(n);
+      for (const py::handle n : value.attr("shape")[py::slice(1, 4, 1)]) shape.append(n);
+      value = value.attr("reshape")(py::tuple(shape));
+    }
+    out[py::str(g.name)] = value;
   }
   return out;
 }

@@ -20,6 +20,8 @@ struct GradientParameter {
   std::string name;
   uint32_t firstSlot = 0, slots = 1;
   bool indexed = false; ///< a vector: its gradient has a leading component axis
+  /// The component axes' shape (a texture's (height, width, bands)); empty: (slots,)
+  std::vector<long> shape;
 };
 
 /// The Python object behind nxrender.Image.

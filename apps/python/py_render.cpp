@@ -322,7 +322,10 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
         if (!p.indexed) return py::float_(v[p.firstSlot]);
         py::array_t<double> a(static_cast<py::ssize_t>(p.slots));
         std::copy(v.begin() + p.firstSlot, v.begin() + p.firstSlot + p.slots, a.mutable_data());
-        return a;
+        if (p.shape.empty()) return a;
+        py::list shape;
+        for (long n : p.shape) shape.append(n);
+        return a.attr("reshape")(py::tuple(shape));
       };
       grads[py::str(p.name)] = pick(result->gradient);
       variances[py::str(p.name)] = pick(result->gradientVariance);

@@ -117,6 +117,26 @@ void ratioEvents(const SpectrumTangents& ts, const SampledWavelengths& lambda,
   });
 }
 
+/// The reflectance tangents at a vertex: its material's spectrum's and, for a material whose
+/// image texture is differentiated, its texels' at the hit's (u, v).
+struct RhoTangents {
+  const SpectrumTangents* spectrum = nullptr;
+  const ReflectanceTexture* texture = nullptr;
+  int64_t firstSlot = -1; ///< the texture's first slot, or -1
+  float u = 0, v = 0;
+  /// Calls f(slot, lane, d rho / d slot) for every non-zero derivative at the lanes.
+  template <class F>
+  void forEach(const SampledWavelengths& lambda, F&& f) const {
+    if (spectrum) spectrum->forEach(lambda, f);
+    if (texture && firstSlot >= 0)
+      texture->forEachValueWeight(u, v, lambda, [&](size_t q, int lane, float w) {
+        f(static_cast<uint32_t>(firstSlot + static_cast<int64_t>(q)), lane, w);
+      });
+  }
+  /// True when nothing here is differentiated.
+  bool empty() const { return (!spectrum || spectrum->empty()) && firstSlot < 0; }
+};
+
 /// How the lobe a path took (or next-event estimation evaluated) at a surface depends on the
 /// reflectance rho at one lane: d log f / d rho, with the albedo's share 1/rho counted only when
 /// `albedo` (a fluorescent lobe's albedo comes from the matrix instead).
@@ -149,9 +169,9 @@ inline float rhoLogSlope(const Material& m, float rho, bool specular, bool albed
 /// Reflectance events at a surface of material m (tangents ts) for its lobe: emit(slot, lane,
 /// slope * d rho).
 template <class Sink, class Emit>
-void reflectanceEvents(const SpectrumTangents& ts, const Material& m,
-                       const SampledWavelengths& lambda, const SampledSpectrum& rho, bool specular,
-                       bool albedo, Sink& sink, Emit&& emit) {
+void reflectanceEvents(const RhoTangents& ts, const Material& m, const SampledWavelengths& lambda,
+                       const SampledSpectrum& rho, bool specular, bool albedo, Sink& sink,
+                       Emit&& emit) {
   if (ts.empty()) return;
   ts.forEach(lambda, [&](uint32_t slot, int i, float d) {
     bool zero = false;
@@ -169,7 +189,7 @@ void reflectanceEvents(const SpectrumTangents& ts, const Material& m,
 /// is weighted f / p with p held: g = f' / f, f' from the matrix's tangents `ms` and the
 /// reflectance's `rs`.
 template <class Sink, class Emit>
-void reradiationEvents(const std::vector<MatrixTangent>& ms, const SpectrumTangents& rs,
+void reradiationEvents(const std::vector<MatrixTangent>& ms, const RhoTangents& rs,
                        const ReradiationMatrix& matrix, const SampledWavelengths& before,
                        const SampledWavelengths& excited, const SampledSpectrum& rho, Sink& sink,
                        Emit&& emit) {

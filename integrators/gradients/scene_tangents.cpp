@@ -50,7 +50,7 @@ bool sameSpectrum(const Spectrum& a, const Spectrum& b) {
 }
 
 // What of material m besides its reflectance and matrix differs between a and b, or "".
-std::string otherMaterialChange(const Material& a, const Material& b) {
+std::string otherMaterialChange(const Material& a, const Material& b, bool texture = false) {
   if (a.kind != b.kind) return "the material's kind";
   if (a.roughness != b.roughness) return "the mixture's roughness";
   if (a.alphaU != b.alphaU || a.alphaV != b.alphaV) return "the microfacet roughness";
@@ -63,7 +63,7 @@ std::string otherMaterialChange(const Material& a, const Material& b) {
   if (!sameSpectrum(a.conductorEta, b.conductorEta) || !sameSpectrum(a.conductorK, b.conductorK))
     return "a conductor's complex index";
   if ((a.texture == nullptr) != (b.texture == nullptr)) return "whether a texture is used";
-  if (a.texture && !a.texture->sameAs(*b.texture)) return "a texture's texels";
+  if (!texture && a.texture && !a.texture->sameAs(*b.texture)) return "a texture's texels";
   if ((a.reradiation == nullptr) != (b.reradiation == nullptr))
     return "whether the surface fluoresces";
   return "";
@@ -174,6 +174,7 @@ SceneTangents SceneTangents::sizedFor(const RenderScene& scene) {
   t.emission.resize(scene.emission.size());
   t.lights.resize(scene.lights.size());
   t.media.resize(scene.media.size());
+  t.textureFirstSlot.assign(scene.materials.size(), -1);
   return t;
 }
 
@@ -306,6 +307,30 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
   t.slotNames.push_back(name);
   if (!any) t.inert.push_back(slot);
   return slot;
+}
+
+uint32_t addTextureSlots(SceneTangents& t, const std::string& name, const RenderScene& base,
+                         const RenderScene& changed) {
+  if (changed.materials.size() != base.materials.size())
+    notDifferentiated(name, "the scene's structure");
+  const uint32_t first = t.slots();
+  bool any = false;
+  for (size_t m = 0; m < base.materials.size(); ++m) {
+    const Material &a = base.materials[m], &b = changed.materials[m];
+    const std::string other = otherMaterialChange(a, b, true);
+    if (!other.empty()) notDifferentiated(name, other);
+    if (!a.texture || a.texture->sameAs(*b.texture)) continue;
+    const size_t n = a.texture->valueCount();
+    if (n == 0 || b.texture->valueCount() != n)
+      notDifferentiated(name, "a texture that is not a spectral image of the same size (an sRGB "
+                              "texture's or the chart's texels are not differentiated)");
+    if (any) notDifferentiated(name, "more than one material's texture");
+    t.textureFirstSlot[m] = t.slots();
+    for (size_t q = 0; q < n; ++q) t.slotNames.push_back(name + "[" + std::to_string(q) + "]");
+    any = true;
+  }
+  if (!any) notDifferentiated(name, "no texture the scene renders");
+  return first;
 }
 
 } // namespace nx

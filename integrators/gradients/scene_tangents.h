@@ -102,7 +102,10 @@ struct MediumTangent {
 /// Every slot's derivatives, indexed like the scene's tables.
 struct SceneTangents {
   std::vector<std::string> slotNames; ///< what each slot is, e.g. "objects[1].reflectance[3]"
-  std::vector<SpectrumTangents> reflectance;           ///< per RenderScene::materials
+  std::vector<SpectrumTangents> reflectance; ///< per RenderScene::materials
+  /// Per material: the first of its image texture's valueCount() slots (value q: slot
+  /// first + q), or -1 when its texels are not differentiated.
+  std::vector<int64_t> textureFirstSlot;
   std::vector<std::vector<MatrixTangent>> reradiation; ///< per RenderScene::materials
   std::vector<SpectrumTangents> emission;              ///< per RenderScene::emission
   std::vector<SpectrumTangents> lights;                ///< per RenderScene::lights (intensity)
@@ -126,5 +129,12 @@ struct SceneTangents {
 uint32_t addTangentSlot(SceneTangents& tangents, const std::string& name, const RenderScene& base,
                         std::span<const RenderScene* const> scenes,
                         std::span<const double> weights);
+
+/// Adds one slot per value of the image textures that differ between `base` and `changed` (a
+/// scene resolved with the parameter's texture altered), named name[q] (q: texel * bands + band,
+/// texels row by row from the top). Throws nx::Error naming `name` when anything else differs,
+/// when no texture or a texture of another kind or size changed. Returns the first slot.
+uint32_t addTextureSlots(SceneTangents& tangents, const std::string& name, const RenderScene& base,
+                         const RenderScene& changed);
 
 } // namespace nx

@@ -1,6 +1,7 @@
 #pragma once
 // Reflectance that varies over a surface: looked up by the hit's (u, v) for all lanes at once.
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -43,6 +44,40 @@ public:
 
   /// Reflectance at (u, v) for the lanes of lambda.
   SampledSpectrum evaluate(float u, float v, const SampledWavelengths& lambda) const;
+
+  /// Values an image texture holds (texels x bands); 0 for the other kinds.
+  size_t valueCount() const { return kind_ == Kind::Image ? values_.size() : 0; }
+
+  /// For an image texture: calls f(index, lane, weight) for each value (index texel * bands +
+  /// band, texels row by row from the top) the reflectance at (u, v) depends on at a lane, with
+  /// weight d reflectance / d value (bilinear in space, linear between bands, as evaluate).
+  template <class F>
+  void forEachValueWeight(float u, float v, const SampledWavelengths& lambda, F&& f) const {
+    if (kind_ != Kind::Image) return;
+    const Bilinear b = bilinear(u, v);
+    const size_t bands = centroids_.size();
+    for (int i = 0; i < kLanes; ++i) {
+      const double nm = lambda.lambda[i];
+      const size_t hi = static_cast<size_t>(
+          std::upper_bound(centroids_.begin(), centroids_.end(), nm) - centroids_.begin());
+      size_t band[2] = {0, 0};
+      float w[2] = {0, 0};
+      if (nm < centroids_.front() || nm > centroids_.back()) {
+        if (!holdEnds_) continue;
+        band[0] = hi == 0 ? 0 : bands - 1, w[0] = 1;
+      } else if (hi == bands) {
+        band[0] = bands - 1, w[0] = 1;
+      } else {
+        const double t = (nm - centroids_[hi - 1]) / (centroids_[hi] - centroids_[hi - 1]);
+        band[0] = hi - 1, w[0] = static_cast<float>(1 - t);
+        band[1] = hi, w[1] = static_cast<float>(t);
+      }
+      for (int k = 0; k < 4; ++k)
+        for (int j = 0; j < 2; ++j)
+          if (const float weight = b.weight[k] * w[j]; weight != 0)
+            f(b.texel[k] * bands + band[j], i, weight);
+    }
+  }
 
   /// True when `o` holds the same texels (kind, size, band centroids, values).
   bool sameAs(const ReflectanceTexture& o) const {

@@ -132,3 +132,41 @@ def test_refusals(scene):
             "<medium><sigma_a>0.5</sigma_a><sigma_s>1</sigma_s></medium>", ""), "t.scn")
     with pytest.raises(ValueError, match="not differentiated"):
         nxrender.render(s, spp=1, gradients=["objects[2].alpha"])
+
+
+CARD = """<scene><settings><xres>24</xres><yres>20</yres><mode>spectral_mcpt</mode>
+<depth>5</depth><sampl>32</sampl><bands>400:700:50</bands></settings>
+<camera><position>0,0.5,-2.4</position><look_at>0,0.5,0</look_at><fov>40</fov></camera>
+<quad><origin>-0.6,0,0</origin><edge_u>1.2,0,0</edge_u><edge_v>0,1.2,0</edge_v>
+<material>matte</material><reflectance>0.5</reflectance></quad>
+<sphere><center>-1.5,2.5,-1</center><radius>0.5</radius><material>matte</material>
+<reflectance>0</reflectance>
+<emission scale="5e-3" extrapolate="hold">380:1, 480:1, 520:0.1, 800:0.1</emission></sphere>
+</scene>"""
+
+
+def test_texture_texels():
+    # A spectral texture's every value (texel x band): bilinear in space, linear between bands.
+    s = nxrender.Scene.from_text(CARD, "t.scn")
+    rng = np.random.default_rng(3)
+    texels = rng.uniform(0.2, 0.8, size=(4, 4, 3))
+    nm = np.array([400.0, 550, 700])
+    name = "objects[0].reflectance"
+    s.set(name, (nm, texels))
+    image = nxrender.render(s, spp=32, seed=4, threads=2, gradients=[name])
+    g = image.gradients[name]
+    assert g.shape == (4, 4, 3) + image.radiance.shape
+    for ty, tx, b in [(1, 2, 1), (3, 0, 0), (0, 3, 2)]:
+        images = []
+        for d in (0.02, -0.02):
+            t = texels.copy()
+            t[ty, tx, b] += d
+            s2 = s.copy()
+            s2.set(name, (nm, t))
+            images.append(nxrender.render(s2, spp=32, seed=4, threads=2).radiance.astype(np.float64))
+        expect_agrees(g[ty, tx, b], (images[0] - images[1]) / 0.04)
+    adjoint = rng.normal(size=image.radiance.shape).astype(np.float32)
+    grads, _ = nxrender.backward(s, adjoint, [name], spp=32, seed=4, threads=2)
+    expected = np.tensordot(g.astype(np.float64), adjoint, axes=([3, 4, 5], [0, 1, 2]))
+    assert grads[name].shape == (4, 4, 3)
+    assert np.allclose(grads[name], expected, rtol=1e-4, atol=1e-6 * np.abs(expected).max())
