@@ -28,9 +28,12 @@ inline float rotateUnit(float x, float shift) {
 /// (i / kLanes, frac(i phi)) (a Cranley-Patterson rotation), so each lane's sample is
 /// uniform on its own (the estimate of every lane is unbiased) while the lanes' choices are
 /// stratified among themselves, like the hero wavelengths.
+/// `concentration`: the dye's relative concentration at the vertex (a concentration map), or
+/// null for the matrix as it is.
 inline FluorescentShift sampleFluorescentShift(const ReradiationMatrix& matrix,
                                                const SampledWavelengths& current,
-                                               const SampledSpectrum& rho, PixelSampleStream& rng) {
+                                               const SampledSpectrum& rho, PixelSampleStream& rng,
+                                               const float* concentration = nullptr) {
   FluorescentShift s{current, SampledSpectrum::filled(1.0f)};
   const Sample2 u = rng.next2D();
   constexpr float kGoldenFraction = 0.6180339887f;
@@ -38,7 +41,10 @@ inline FluorescentShift sampleFluorescentShift(const ReradiationMatrix& matrix,
     const float shiftV = static_cast<float>(i) * kGoldenFraction;
     const float ui = rotateUnit(u.u, static_cast<float>(i) / static_cast<float>(kLanes));
     const float vi = rotateUnit(u.v, shiftV - std::floor(shiftV));
-    s.excited.lambda[i] = matrix.sampleExcitation(current.lambda[i], rho[i], ui, vi, s.albedo[i]);
+    s.excited.lambda[i] =
+        concentration ? matrix.sampleExcitationScaled(current.lambda[i], rho[i], *concentration, ui,
+                                                      vi, s.albedo[i])
+                      : matrix.sampleExcitation(current.lambda[i], rho[i], ui, vi, s.albedo[i]);
   }
   return s;
 }

@@ -333,9 +333,21 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     // next-event estimation and the continuation through the diffuse lobe.
     [[maybe_unused]] FluorescentShift shift;
     [[maybe_unused]] bool fluorescent = false;
+    [[maybe_unused]] float concentration = 1; // of the dye here (a concentration map)
+    [[maybe_unused]] ConcentrationTangents concentrationTangents;
     if constexpr (kFluorescence) {
       if (material.reradiation && bsdf.hasNonSpecular()) {
-        shift = sampleFluorescentShift(*material.reradiation, current, rho, rng);
+        if (material.concentration) {
+          // The dye's concentration here (textured materials' spheres have their uv already).
+          if (hit.kind == ShapeKind::Sphere && !material.texture) sphereUv(hit);
+          concentration = material.concentration->at(hit.u, hit.v);
+          if constexpr (kGradients)
+            concentrationTangents = {material.concentration.get(),
+                                     tangents->concentrationFirstSlot[app.material], hit.u, hit.v};
+          shift = sampleFluorescentShift(*material.reradiation, current, rho, rng, &concentration);
+        } else {
+          shift = sampleFluorescentShift(*material.reradiation, current, rho, rng);
+        }
         fluorescent = true;
       }
     }
@@ -358,7 +370,8 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
           if (!whiteHere) {
             if (fluorescent)
               reradiationEvents(tangents->reradiation[app.material], rhoTangents,
-                                *material.reradiation, current, shift.excited, rho, sink, local);
+                                *material.reradiation, current, shift.excited, rho, sink, local,
+                                concentration, concentrationTangents);
             reflectanceEvents(rhoTangents, material, current, rho, false, !fluorescent, sink,
                               local);
           }
@@ -394,7 +407,8 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         if constexpr (kGradients) {
           if (!whiteHere)
             reradiationEvents(tangents->reradiation[app.material], rhoTangents,
-                              *material.reradiation, current, shift.excited, rho, sink, event);
+                              *material.reradiation, current, shift.excited, rho, sink, event,
+                              concentration, concentrationTangents);
         }
         current = shift.excited;
       }

@@ -432,6 +432,19 @@ private:
     std::shared_ptr<const ReflectanceTexture> texture(const SpectrumDesc& d) const override {
       return b_.texture(d);
     }
+    std::shared_ptr<const ConcentrationMap>
+    concentrationMap(const FluorescenceDesc& d) const override {
+      if (d.concentration) { // given as numbers (Python): its content in the render key
+        b_.refs_.fold(std::to_string(d.concentration->digest), "the concentration map");
+        return d.concentration;
+      }
+      try {
+        return std::make_shared<const ConcentrationMap>(parseConcentrationCsv(
+            b_.refs_.readFile(*d.concentrationCsv, 64u << 20, "table file"), *d.concentrationCsv));
+      } catch (const Error& e) {
+        throw Error(d.loc.str() + ": " + e.what());
+      }
+    }
     Spectrum srgbReflectance(const std::array<double, 3>& rgb) const override {
       try {
         return upsampleSrgbReflectance({rgb[0], rgb[1], rgb[2]});

@@ -73,7 +73,7 @@ namespace {
 #if defined(__x86_64__) && defined(__GLIBCXX__)
 static_assert(sizeof(SpectrumDesc) == 256, "a SpectrumDesc field was added: write it below");
 static_assert(sizeof(IorDesc) == 112, "an IorDesc field was added: write it below");
-static_assert(sizeof(FluorescenceDesc) == 248, "a FluorescenceDesc field was added: write it");
+static_assert(sizeof(FluorescenceDesc) == 304, "a FluorescenceDesc field was added: write it");
 static_assert(sizeof(EemDesc) == 448, "an EemDesc field was added: write it below");
 static_assert(sizeof(EemLayout) == 48, "an EemLayout field was added: write it below");
 static_assert(sizeof(CoatingDesc) == 160, "a CoatingDesc field was added: write it below");
@@ -124,6 +124,8 @@ struct CanonicalWriter {
             fnv1a64(std::to_string(v->size()), h));
       t << "matrix:" << h;
     }
+    text(f.concentrationCsv);
+    if (f.concentration) t << "concentration:" << f.concentration->digest << ',';
     if (f.eem) { // the files' bytes join the render key when they are read
       const EemDesc& e = *f.eem;
       const EemLayout& l = e.layout;

@@ -37,6 +37,8 @@ inline constexpr ParameterRange kStokesRange{0, 1000, false, "a Stokes shift in 
 inline constexpr ParameterRange kWidthRange{0, 500, true, "a width in nm"};
 inline constexpr ParameterRange kSkewRange{0, 1000, false, "a skew magnitude"};
 inline constexpr ParameterRange kYieldRange{0, 1, false, "a quantum yield"};
+/// A surface dye's relative concentration (a share of its peak absorptance).
+inline constexpr ParameterRange kConcentrationRange{0, 1, false, "a relative concentration"};
 inline constexpr ParameterRange kPeakRange{0, 1, false, "a peak absorptance"};
 /// An EEM's scatter bands: full widths in nm (0: none removed) and a Raman shift in cm^-1.
 inline constexpr ParameterRange kScatterWidthRange{0, 200, false, "a band's full width in nm"};

@@ -1099,10 +1099,28 @@ private:
   // the dye's peak absorption coefficient per unit length, required).
   FluorescenceDesc fluorescence(const pugi::xml_node& n, bool inMedium = false) const {
     checkAttributes(n, {});
-    const auto c = uniqueChildren(n, {"absorption", "stokes", "width", "skew", "yield", "peak",
-                                      "matrix", "eem", "absorptance", "reference"});
+    const auto c =
+        uniqueChildren(n, {"absorption", "stokes", "width", "skew", "yield", "peak", "matrix",
+                           "eem", "absorptance", "reference", "concentration"});
     FluorescenceDesc f;
     f.loc = loc(n);
+    if (c.count("concentration")) {
+      const pugi::xml_node k = c.at("concentration");
+      if (inMedium)
+        fail(k,
+             "no <concentration> in a medium's <fluorescence> (its <peak> is the dye's "
+             "concentration)",
+             "<concentration>");
+      if (c.count("matrix"))
+        fail(k,
+             "a <concentration> map only with the parametric model or an <eem> (a measured "
+             "matrix's elastic part is not the dye's)",
+             "<concentration> with a <matrix>");
+      checkAttributes(k, {});
+      const std::string p = text(k);
+      if (p.empty()) fail(k, "a CSV file of concentrations in <concentration>", "nothing");
+      f.concentrationCsv = relativeToScene(p);
+    }
     for (const char* measured : {"matrix", "eem"})
       if (inMedium && c.count(measured))
         fail(c.at(measured),

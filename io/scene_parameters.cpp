@@ -48,6 +48,9 @@ const FixedParameter kFixed[] = {
      "absorptance at the peak (None: default)"},
     {"fluorescence.matrix", "matrix", "1", nullptr,
      "measured matrix (excitation_nm, emission_nm, values[excitation, emission])"},
+    {"fluorescence.concentration", "concentration map", "1", &kConcentrationRange,
+     "the dye's relative concentration over the surface: values[height, width] in [0, 1] "
+     "scaling its absorptance (row 0 at the top), or None (1 everywhere)"},
 };
 
 } // namespace

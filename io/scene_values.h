@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/vec3.h"
+#include "io/concentration_map.h"
 #include "spectra/eem_layout.h"
 
 namespace nx {
@@ -91,6 +92,11 @@ struct FluorescenceDesc {
   std::shared_ptr<const MeasuredMatrix> matrix;
   /// Or an instrument EEM (quantumYield and peakAbsorptance are then its yield and a_max)
   std::shared_ptr<const EemDesc> eem;
+  /// A surface dye's relative concentration over the surface (<concentration>FILE</...>, a CSV
+  /// grid), scaling its absorptance per place (io/concentration_map.h); or the map itself
+  /// (given from Python as numbers)
+  std::optional<std::string> concentrationCsv;
+  std::shared_ptr<const ConcentrationMap> concentration;
   SourceLocation loc;
 };
 

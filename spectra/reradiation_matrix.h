@@ -106,6 +106,35 @@ public:
            (static_cast<float>(excitationBin(o, target)) + v) * static_cast<float>(kBinNm);
   }
 
+  /// sampleExcitation for a dye at relative concentration k in [0, 1] (a concentration map):
+  /// absorptance k a, so the cells k M[i][o] and the elastic part (1 - k a_o) rho (an imported
+  /// EEM's elastic part is rho whatever k). Kept apart from sampleExcitation so that surfaces
+  /// without a map run its exact arithmetic.
+  float sampleExcitationScaled(float nm, float rhoValue, float k, float u, float v,
+                               float& weight) const {
+    const float x = (nm - static_cast<float>(kMinNm)) * static_cast<float>(1.0 / kBinNm);
+    if (!(x >= 0 && x < static_cast<float>(kBins))) {
+      weight *= rhoValue;
+      return nm;
+    }
+    const int o = static_cast<int>(x);
+    const ColumnSampling& col = columns_[o];
+    const float d = (1 - k * (1 - col.elasticScale)) * rhoValue;
+    const float sum = k * col.sum;
+    const float total = d + sum;
+    weight *= total;
+    const float target = u * total - d;
+    if (!(target >= 0) || !(sum > 0)) return nm; // elastic
+    return static_cast<float>(kMinNm) +
+           (static_cast<float>(excitationBin(o, target / k)) + v) * static_cast<float>(kBinNm);
+  }
+  /// The elastic part at bin o for a dye at relative concentration k (see
+  /// sampleExcitationScaled).
+  double elastic(int o, double rhoValue, double k) const {
+    if (elasticFromRho_) return rhoValue;
+    return (1 - k * absorptance_[o]) * rhoValue;
+  }
+
   /// Writes the matrix as a CSV file (first row: emission bin centres; then per excitation
   /// bin its centre and the cells; the diagonal holds the elastic part for rho = 1).
   std::string toCsv() const;

@@ -122,7 +122,7 @@ const std::vector<std::string>& differentiableLeaves() {
       "background",  "absorption_nm", "stokes_nm",        "width_nm",
       "skew",        "quantum_yield", "peak_absorptance", "sigma_a",
       "sigma_s",     "sigma_a_scale", "sigma_s_scale",    "g",
-      "dye_peak",    "value"};
+      "dye_peak",    "value",         "concentration"};
   return leaves;
 }
 
@@ -153,6 +153,33 @@ GradientRequest gradientRequest(const py::object& scene, const py::handle& names
                             "settings and visibility need edge sampling or reparameterisation");
     for (const auto& p : r.parameters)
       if (p.name == name) throw py::value_error("gradients: '" + name + "' given twice");
+    if (leaf == "concentration") {
+      // A concentration map's values: located by resolving the scene with every value moved
+      // (towards the middle of [0, 1]); one slot per value, bilinear along the paths.
+      const py::object np = py::module_::import("numpy");
+      const py::object values = scene.attr("get")(name);
+      if (values.is_none())
+        throw py::value_error(name + ": not differentiable: the surface has no concentration "
+                                     "map (set one, e.g. numpy.ones((32, 32)))");
+      const py::object a = np.attr("asarray")(values, "float64");
+      const py::object moved =
+          a.attr("__add__")(np.attr("where")(a.attr("__lt__")(0.5), 1e-3, -1e-3));
+      std::optional<nx::RenderScene> changed;
+      if (!resolvedWith(scene, name, moved, fluorescence, changed))
+        throw py::value_error(name + ": not differentiable: its values cannot be moved");
+      GradientRequest::Parameter param;
+      param.name = name;
+      param.indexed = true;
+      try {
+        param.firstSlot = nx::addConcentrationSlots(r.tangents, name, base, *changed);
+      } catch (const nx::Error& e) {
+        throw py::value_error(e.what());
+      }
+      param.slots = r.tangents.slots() - param.firstSlot;
+      for (const py::handle d : a.attr("shape")) param.shape.push_back(d.cast<long>());
+      r.parameters.push_back(param);
+      continue;
+    }
     const Numbers numbers = numbersOf(scene.attr("get")(name), name);
     if (numbers.texture) {
       // Its texels: located by resolving the scene with every value moved (towards the middle
@@ -178,8 +205,11 @@ GradientRequest gradientRequest(const py::object& scene, const py::handle& names
       r.parameters.push_back(param);
       continue;
     }
-    GradientRequest::Parameter param{name, r.tangents.slots(),
-                                     static_cast<uint32_t>(numbers.values.size()), numbers.indexed};
+    GradientRequest::Parameter param{name,
+                                     r.tangents.slots(),
+                                     static_cast<uint32_t>(numbers.values.size()),
+                                     numbers.indexed,
+                                     {}};
     if (numbers.indexed) {
       // Written back as numbers, the parameter must give the scene it is (a table's
       // extrapolate="..." is not part of its numbers): else the derivative would be another

@@ -493,6 +493,64 @@ void bindScene(py::module_& m) {
       },
       "The measured matrix (excitation_nm, emission_nm, values[excitation, emission]) as numpy "
       "arrays, or None for the parametric model; set it the same way (checked like a CSV's)");
+  fl.def_property(
+      "concentration",
+      [](const FluorescenceView& f) -> py::object {
+        const auto& d = f.get();
+        std::shared_ptr<const nx::ConcentrationMap> map = d.concentration;
+        if (!map && d.concentrationCsv) {
+          try {
+            map = std::make_shared<const nx::ConcentrationMap>(nx::parseConcentrationCsv(
+                nx::readRegularFile(*d.concentrationCsv, 64u << 20, "table file"),
+                *d.concentrationCsv));
+          } catch (const nx::Error& e) {
+            throw py::value_error(f.prefix() + ".concentration: " + e.what());
+          }
+        }
+        if (!map) return py::none();
+        py::array_t<float> a({map->height, map->width});
+        std::copy(map->values.begin(), map->values.end(), a.mutable_data());
+        return std::move(a);
+      },
+      [](const FluorescenceView& f, const py::object& value) {
+        const std::string param = f.prefix() + ".concentration";
+        const nx::FluorescenceDesc& current = f.get();
+        if (current.matrixCsv || current.matrix)
+          throw py::value_error(param + ": a concentration map needs the parametric model or an "
+                                        "imported EEM, found a measured matrix");
+        if (value.is_none()) {
+          nx::FluorescenceDesc& d = f.get();
+          (void)f.m.editable();
+          d.concentration.reset();
+          d.concentrationCsv.reset();
+          record(f.state(), param, value);
+          return;
+        }
+        const py::array_t<double, py::array::c_style | py::array::forcecast> a =
+            py::module_::import("numpy").attr("asarray")(value, "float64");
+        if (a.ndim() != 2)
+          throw py::value_error(param + ": expected values[height, width], found an array of " +
+                                std::to_string(a.ndim()) + " axes");
+        std::vector<float> values(a.data(), a.data() + a.size());
+        std::shared_ptr<const nx::ConcentrationMap> map;
+        try {
+          map = std::make_shared<const nx::ConcentrationMap>(
+              nx::makeConcentrationMap(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)),
+                                       std::move(values), param));
+        } catch (const nx::Error& e) {
+          throw py::value_error(e.what());
+        }
+        nx::FluorescenceDesc& d = f.get();
+        (void)f.m.editable();
+        d.concentration = map;
+        d.concentrationCsv.reset();
+        f.state().edits.push_back(param + " = <map " + std::to_string(map->height) + "x" +
+                                  std::to_string(map->width) + " digest " +
+                                  std::to_string(map->digest) + ">");
+      },
+      "The dye's relative concentration over the surface: values[height, width] in [0, 1] "
+      "(row 0 at the top; bilinear by the hit's uv) scaling its absorptance, or None (1 "
+      "everywhere); read from a <concentration> CSV file or set as numbers");
   fl.def("__repr__", [](const FluorescenceView& f) {
     const auto& d = f.get();
     if (d.matrixCsv) return "<nxrender.Fluorescence matrix=" + *d.matrixCsv + ">";

@@ -45,12 +45,14 @@ void addFluorescence(std::vector<Entry>& out, const std::string& prefix,
       addFixed(out, prefix + ".quantum_yield", "fluorescence.quantum_yield");
     if (!f.eem->absorptance)
       addFixed(out, prefix + ".peak_absorptance", "fluorescence.peak_absorptance");
+    addFixed(out, prefix + ".concentration", "fluorescence.concentration");
     return;
   }
   for (const char* field :
        {"absorption_nm", "stokes_nm", "width_nm", "skew", "quantum_yield", "peak_absorptance"})
     if (!(dye && std::string(field) == "peak_absorptance"))
       addFixed(out, prefix + "." + field, std::string("fluorescence.") + field);
+  if (!dye) addFixed(out, prefix + ".concentration", "fluorescence.concentration");
 }
 
 // Every parameter a material's kind takes (given or not), named `label.<parameter>`.

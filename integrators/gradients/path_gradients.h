@@ -183,16 +183,25 @@ void reflectanceEvents(const RhoTangents& ts, const Material& m, const SampledWa
   });
 }
 
+/// Where a fluorescent vertex's dye concentration comes from (a concentration map whose values
+/// are differentiated), for reradiationEvents.
+struct ConcentrationTangents {
+  const ConcentrationMap* map = nullptr;
+  int64_t firstSlot = -1; ///< the map's first slot, or -1: not differentiated
+  float u = 0, v = 0;     ///< the hit's
+};
+
 /// The re-radiation choice's events at a fluorescent vertex (fluorescent_vertex.h): per lane,
 /// from `before` (its wavelength there) to `excited`, the chosen event's value f is the elastic
-/// part D(o) = s(o) rho + k(o) or a cell M[i][o] (outside the matrix's grid, rho), and the event
-/// is weighted f / p with p held: g = f' / f, f' from the matrix's tangents `ms` and the
-/// reflectance's `rs`.
+/// part D(o) = (1 - k a_o) rho (the measured diagonal; an EEM's rho) or a cell k M[i][o]
+/// (outside the matrix's grid, rho), k the dye's concentration there (1 without a map); the
+/// event is weighted f / p with p held: g = f' / f, f' from the matrix's tangents `ms`, the
+/// reflectance's `rs` and the concentration map's `cs`.
 template <class Sink, class Emit>
 void reradiationEvents(const std::vector<MatrixTangent>& ms, const RhoTangents& rs,
                        const ReradiationMatrix& matrix, const SampledWavelengths& before,
                        const SampledWavelengths& excited, const SampledSpectrum& rho, Sink& sink,
-                       Emit&& emit) {
+                       Emit&& emit, float k = 1, const ConcentrationTangents& cs = {}) {
   constexpr int n = ReradiationMatrix::kBins;
   int bins[kLanes], from[kLanes];
   for (int i = 0; i < kLanes; ++i) {
@@ -200,7 +209,7 @@ void reradiationEvents(const std::vector<MatrixTangent>& ms, const RhoTangents& 
     bins[i] =
         excited.lambda[i] == before.lambda[i] ? -1 : ReradiationMatrix::binOf(excited.lambda[i]);
   }
-  auto elastic = [&](int i, double r) { return matrix.elastic(from[i], r); };
+  auto elastic = [&](int i, double r) { return matrix.elastic(from[i], r, k); };
   for (const MatrixTangent& t : ms)
     for (int i = 0; i < kLanes; ++i) {
       const int o = from[i];
@@ -208,7 +217,7 @@ void reradiationEvents(const std::vector<MatrixTangent>& ms, const RhoTangents& 
       float value = 0, d = 0;
       if (bins[i] < 0) {
         value = static_cast<float>(elastic(i, rho[i]));
-        d = t.elasticScale[static_cast<size_t>(o)] * rho[i] +
+        d = k * t.elasticScale[static_cast<size_t>(o)] * rho[i] +
             t.elasticConstant[static_cast<size_t>(o)];
       } else {
         value = static_cast<float>(matrix(bins[i], o));
@@ -234,6 +243,34 @@ void reradiationEvents(const std::vector<MatrixTangent>& ms, const RhoTangents& 
     else
       sink.zeroValue();
   });
+  if (cs.map && cs.firstSlot >= 0) {
+    // d f / d k: -a_o rho for the elastic part (0 for an EEM's), M[i][o] for a cell: so
+    // g = -a_o rho / D or 1 / k, times each map value's bilinear weight.
+    size_t index[4];
+    float weight[4];
+    cs.map->bilinear(cs.u, cs.v, index, weight);
+    for (int i = 0; i < kLanes; ++i) {
+      const int o = from[i];
+      if (o < 0) continue;
+      float g = 0;
+      if (bins[i] >= 0) {
+        g = 1 / k; // k > 0: a cell is chosen only where k c(o) > 0
+      } else {
+        const double slope = matrix.elastic(o, rho[i], 0.0) - matrix.elastic(o, rho[i], 1.0);
+        const float value = static_cast<float>(elastic(i, rho[i]));
+        if (slope == 0) continue;
+        if (value == 0) {
+          sink.zeroValue();
+          continue;
+        }
+        g = static_cast<float>(-slope) / value;
+      }
+      for (int c = 0; c < 4; ++c)
+        if (weight[c] != 0)
+          emit(static_cast<uint32_t>(cs.firstSlot + static_cast<int64_t>(index[c])), i,
+               g * weight[c]);
+    }
+  }
 }
 
 /// The lanes' derivatives of a medium's coefficients for tangent t: all absorption

@@ -50,7 +50,15 @@ bool sameSpectrum(const Spectrum& a, const Spectrum& b) {
 }
 
 // What of material m besides its reflectance and matrix differs between a and b, or "".
-std::string otherMaterialChange(const Material& a, const Material& b, bool texture = false) {
+// Whether two materials' concentration maps differ.
+bool concentrationDiffers(const Material& a, const Material& b) {
+  if ((a.concentration == nullptr) != (b.concentration == nullptr)) return true;
+  return a.concentration && a.concentration->digest != b.concentration->digest;
+}
+
+std::string otherMaterialChange(const Material& a, const Material& b, bool texture = false,
+                                bool concentration = false) {
+  if (!concentration && concentrationDiffers(a, b)) return "a concentration map";
   if (a.kind != b.kind) return "the material's kind";
   if (a.roughness != b.roughness) return "the mixture's roughness";
   if (a.alphaU != b.alphaU || a.alphaV != b.alphaV) return "the microfacet roughness";
@@ -175,6 +183,7 @@ SceneTangents SceneTangents::sizedFor(const RenderScene& scene) {
   t.lights.resize(scene.lights.size());
   t.media.resize(scene.media.size());
   t.textureFirstSlot.assign(scene.materials.size(), -1);
+  t.concentrationFirstSlot.assign(scene.materials.size(), -1);
   return t;
 }
 
@@ -330,6 +339,30 @@ uint32_t addTextureSlots(SceneTangents& t, const std::string& name, const Render
     any = true;
   }
   if (!any) notDifferentiated(name, "no texture the scene renders");
+  return first;
+}
+
+uint32_t addConcentrationSlots(SceneTangents& t, const std::string& name, const RenderScene& base,
+                               const RenderScene& changed) {
+  if (changed.materials.size() != base.materials.size())
+    notDifferentiated(name, "the scene's structure");
+  const uint32_t first = t.slots();
+  bool any = false;
+  for (size_t m = 0; m < base.materials.size(); ++m) {
+    const Material &a = base.materials[m], &b = changed.materials[m];
+    const std::string other = otherMaterialChange(a, b, false, true);
+    if (!other.empty()) notDifferentiated(name, other);
+    if (!concentrationDiffers(a, b)) continue;
+    if (!a.concentration || !b.concentration || a.concentration->width != b.concentration->width ||
+        a.concentration->height != b.concentration->height)
+      notDifferentiated(name, "whether a concentration map is used, or its size");
+    if (any) notDifferentiated(name, "more than one material's concentration map");
+    t.concentrationFirstSlot[m] = t.slots();
+    for (size_t q = 0; q < a.concentration->values.size(); ++q)
+      t.slotNames.push_back(name + "[" + std::to_string(q) + "]");
+    any = true;
+  }
+  if (!any) notDifferentiated(name, "no concentration map the scene renders");
   return first;
 }
 

@@ -106,6 +106,8 @@ struct SceneTangents {
   /// Per material: the first of its image texture's valueCount() slots (value q: slot
   /// first + q), or -1 when its texels are not differentiated.
   std::vector<int64_t> textureFirstSlot;
+  /// Per material: the first of its concentration map's values' slots, or -1.
+  std::vector<int64_t> concentrationFirstSlot;
   std::vector<std::vector<MatrixTangent>> reradiation; ///< per RenderScene::materials
   std::vector<SpectrumTangents> emission;              ///< per RenderScene::emission
   std::vector<SpectrumTangents> lights;                ///< per RenderScene::lights (intensity)
@@ -136,5 +138,11 @@ uint32_t addTangentSlot(SceneTangents& tangents, const std::string& name, const 
 /// when no texture or a texture of another kind or size changed. Returns the first slot.
 uint32_t addTextureSlots(SceneTangents& tangents, const std::string& name, const RenderScene& base,
                          const RenderScene& changed);
+
+/// Adds one slot per value of the concentration map that differs between `base` and `changed`
+/// (a scene resolved with the map altered), named name[q] (q: row * width + column). Throws
+/// nx::Error naming `name` when anything else differs or no map changed. Returns the first slot.
+uint32_t addConcentrationSlots(SceneTangents& tangents, const std::string& name,
+                               const RenderScene& base, const RenderScene& changed);
 
 } // namespace nx

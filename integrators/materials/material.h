@@ -9,6 +9,7 @@
 
 #include "integrators/ior_model.h"
 #include "integrators/materials/reflectance_texture.h"
+#include "io/concentration_map.h"
 #include "spectra/reradiation_matrix.h"
 #include "spectra/spectrum.h"
 
@@ -43,6 +44,9 @@ struct Material {
   std::optional<FluorescenceModel> fluorescenceModel; ///< the parameters, if not measured
   std::shared_ptr<const ReradiationMatrix>
       reradiation; ///< fluorescence of the diffuse lobe, or null
+  /// The dye's relative concentration over the surface (by the hit's uv), scaling the matrix's
+  /// absorptance there (ReradiationMatrix::sampleExcitationScaled); or null: 1 everywhere
+  std::shared_ptr<const ConcentrationMap> concentration;
   /// A reflectance varying over the surface (by the hit's uv), replacing `reflectance`; or null
   std::shared_ptr<const ReflectanceTexture> texture;
 };

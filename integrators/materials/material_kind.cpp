@@ -106,6 +106,12 @@ void setSurfaceReflectance(Material& m, const ParameterSet& p, const MaterialInp
 void setFluorescence(Material& m, const ParameterSet& p, const MaterialInputs& in) {
   const FluorescenceDesc* f = p.get<FluorescenceDesc>("fluorescence");
   if (!f) return;
+  if (f->concentrationCsv || f->concentration) {
+    if (f->matrixCsv || f->matrix)
+      throw Error(f->loc.str() + ": expected a concentration map only with the parametric model "
+                                 "or an imported EEM, found one with a measured matrix");
+    m.concentration = in.concentrationMap(*f);
+  }
   if (f->matrixCsv || f->matrix || f->eem) {
     m.reradiation = in.measuredMatrix(*f, m.texture ? nullptr : &m.reflectance);
     if (f->eem) return; // an imported EEM is fluorescence only by nature (the import notes it)

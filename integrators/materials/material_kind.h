@@ -37,6 +37,10 @@ public:
   /// reflectance, the elastic part of a matrix without a diagonal (null: a texture's).
   virtual std::shared_ptr<const ReradiationMatrix> measuredMatrix(const FluorescenceDesc& d,
                                                                   const Spectrum* rho) const = 0;
+  /// A surface dye's concentration map read from its CSV file (or given as numbers), its
+  /// content in the render key.
+  virtual std::shared_ptr<const ConcentrationMap>
+  concentrationMap(const FluorescenceDesc& d) const = 0;
   /// Records a warning ("file:line: warning: ...") the render prints.
   virtual void warn(const std::string& message) const = 0;
   /// A reflectance texture read from its file (or the built-in chart).

@@ -170,3 +170,33 @@ def test_texture_texels():
     expected = np.tensordot(g.astype(np.float64), adjoint, axes=([3, 4, 5], [0, 1, 2]))
     assert grads[name].shape == (4, 4, 3)
     assert np.allclose(grads[name], expected, rtol=1e-4, atol=1e-6 * np.abs(expected).max())
+
+
+def test_concentration_map():
+    # A surface dye's concentration map: set and read as numbers, checked, recorded; its
+    # gradient (one value per texel) by reverse mode equals the adjoint-weighted forward images.
+    text = CARD.replace(
+        "<reflectance>0.5</reflectance></quad>",
+        "<reflectance>0.4</reflectance><fluorescence><absorption>460</absorption><stokes>90"
+        "</stokes><yield>0.8</yield></fluorescence></quad>")
+    s = nxrender.Scene.from_text(text, "t.scn")
+    name = "objects[0].fluorescence.concentration"
+    assert name in s.parameters() and s.get(name) is None
+    k = np.linspace(0.1, 0.9, 12).reshape(3, 4)
+    s.set(name, k)
+    assert np.allclose(s.get(name), k) and s.get(name).dtype == np.float32
+    assert any(e.startswith(name + " = <map 3x4") for e in s.edits)
+    with pytest.raises(ValueError, match=r"expected concentrations in \[0, 1\].*found 1.5 at row 0, column 1"):
+        s.set(name, [[0.5, 1.5]])
+    with pytest.raises(ValueError, match="expected values\\[height, width\\]"):
+        s.set(name, [0.5, 0.5])
+    image = nxrender.render(s, spp=8, seed=2, threads=2, gradients=[name])
+    g = image.gradients[name]
+    assert g.shape == (3, 4) + image.radiance.shape
+    rng = np.random.default_rng(5)
+    adjoint = rng.normal(size=image.radiance.shape).astype(np.float32)
+    grads, _ = nxrender.backward(s, adjoint, [name], spp=8, seed=2, threads=2)
+    expected = np.tensordot(g.astype(np.float64), adjoint, axes=([2, 3, 4], [0, 1, 2]))
+    assert np.allclose(grads[name], expected, rtol=1e-4, atol=1e-6 * np.abs(expected).max())
+    s.set(name, None)
+    assert s.get(name) is None
