@@ -132,7 +132,7 @@ public:
   /// sampleExcitationScaled).
   double elastic(int o, double rhoValue, double k) const {
     if (elasticFromRho_) return rhoValue;
-    return (1 - k * absorptance_[o]) * rhoValue;
+    return measured_ ? diagonal_[o] : (1 - k * absorptance_[o]) * rhoValue;
   }
 
   /// Writes the matrix as a CSV file (first row: emission bin centres; then per excitation

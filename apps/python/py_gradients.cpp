@@ -32,10 +32,16 @@ struct Numbers {
   py::object wavelengths; ///< a tabulated spectrum's, else None
   bool texture = false;   ///< a texture's texels (values in textureValues)
   py::object textureValues;
+  /// A measured matrix's (excitation_nm, emission_nm): its cells are the numbers, row by row
+  py::object excitation, emission;
+  std::vector<long> shape; ///< the numbers' shape when not a flat list
   py::object valueOf(const std::vector<double>& v) const {
     if (!indexed) return py::float_(v[0]);
     py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
     std::copy(v.begin(), v.end(), a.mutable_data());
+    if (!excitation.is_none())
+      return py::make_tuple(excitation, emission,
+                            a.attr("reshape")(py::make_tuple(shape[0], shape[1])));
     if (!wavelengths.is_none()) return py::make_tuple(wavelengths, a);
     return py::tuple(a.attr("tolist")());
   }
@@ -49,6 +55,8 @@ bool isNumber(const py::handle& v) {
 Numbers numbersOf(const py::object& value, const std::string& name) {
   Numbers n;
   n.wavelengths = py::none();
+  n.excitation = py::none();
+  n.emission = py::none();
   if (isNumber(value)) {
     n.values = {value.cast<double>()};
     return n;
@@ -59,6 +67,19 @@ Numbers numbersOf(const py::object& value, const std::string& name) {
     if (a.ndim() != 1) throw py::value_error(name + ": not differentiable: expected numbers");
     return std::vector<double>(a.data(), a.data() + a.size());
   };
+  if (py::isinstance<py::tuple>(value) && py::len(value) == 3) {
+    // a measured matrix: (excitation_nm, emission_nm, values[excitation, emission])
+    const py::tuple t = value.cast<py::tuple>();
+    const py::array_t<double> v = np.attr("asarray")(t[2], "float64");
+    if (v.ndim() == 2) {
+      n.values.assign(v.data(), v.data() + v.size());
+      n.indexed = true;
+      n.excitation = t[0];
+      n.emission = t[1];
+      n.shape = {static_cast<long>(v.shape(0)), static_cast<long>(v.shape(1))};
+      return n;
+    }
+  }
   if (py::isinstance<py::tuple>(value) && py::len(value) == 2 &&
       !isNumber(value.cast<py::tuple>()[0])) {
     // a tabulated spectrum: (wavelengths_nm, values), or a texture (values of 3 axes)
@@ -122,7 +143,7 @@ const std::vector<std::string>& differentiableLeaves() {
       "background",  "absorption_nm", "stokes_nm",        "width_nm",
       "skew",        "quantum_yield", "peak_absorptance", "sigma_a",
       "sigma_s",     "sigma_a_scale", "sigma_s_scale",    "g",
-      "dye_peak",    "value",         "concentration"};
+      "dye_peak",    "value",         "concentration",    "matrix"};
   return leaves;
 }
 
@@ -205,11 +226,9 @@ GradientRequest gradientRequest(const py::object& scene, const py::handle& names
       r.parameters.push_back(param);
       continue;
     }
-    GradientRequest::Parameter param{name,
-                                     r.tangents.slots(),
-                                     static_cast<uint32_t>(numbers.values.size()),
-                                     numbers.indexed,
-                                     {}};
+    GradientRequest::Parameter param{name, r.tangents.slots(),
+                                     static_cast<uint32_t>(numbers.values.size()), numbers.indexed,
+                                     numbers.shape};
     if (numbers.indexed) {
       // Written back as numbers, the parameter must give the scene it is (a table's
       // extrapolate="..." is not part of its numbers): else the derivative would be another

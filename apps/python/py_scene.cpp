@@ -510,7 +510,7 @@ void bindScene(py::module_& m) {
         if (!map) return py::none();
         py::array_t<float> a({map->height, map->width});
         std::copy(map->values.begin(), map->values.end(), a.mutable_data());
-        return std::move(a);
+        return a;
       },
       [](const FluorescenceView& f, const py::object& value) {
         const std::string param = f.prefix() + ".concentration";

@@ -198,11 +198,10 @@ struct ConcentrationTangents {
 /// event is weighted f / p with p held: g = f' / f, f' from the matrix's tangents `ms`, the
 /// reflectance's `rs` and the concentration map's `cs`.
 template <class Sink, class Emit>
-void reradiationEvents(const std::vector<MatrixTangent>& ms, const RhoTangents& rs,
+void reradiationEvents(const MatrixTangents& ms, const RhoTangents& rs,
                        const ReradiationMatrix& matrix, const SampledWavelengths& before,
                        const SampledWavelengths& excited, const SampledSpectrum& rho, Sink& sink,
                        Emit&& emit, float k = 1, const ConcentrationTangents& cs = {}) {
-  constexpr int n = ReradiationMatrix::kBins;
   int bins[kLanes], from[kLanes];
   for (int i = 0; i < kLanes; ++i) {
     from[i] = ReradiationMatrix::binOf(before.lambda[i]);
@@ -210,24 +209,26 @@ void reradiationEvents(const std::vector<MatrixTangent>& ms, const RhoTangents& 
         excited.lambda[i] == before.lambda[i] ? -1 : ReradiationMatrix::binOf(excited.lambda[i]);
   }
   auto elastic = [&](int i, double r) { return matrix.elastic(from[i], r, k); };
-  for (const MatrixTangent& t : ms)
+  if (!ms.empty())
     for (int i = 0; i < kLanes; ++i) {
       const int o = from[i];
       if (o < 0) continue;
-      float value = 0, d = 0;
+      auto ratio = [&](uint32_t slot, float d, float value) {
+        if (d == 0) return;
+        if (value != 0)
+          emit(slot, i, d / value);
+        else
+          sink.zeroValue();
+      };
       if (bins[i] < 0) {
-        value = static_cast<float>(elastic(i, rho[i]));
-        d = k * t.elasticScale[static_cast<size_t>(o)] * rho[i] +
-            t.elasticConstant[static_cast<size_t>(o)];
+        const float value = static_cast<float>(elastic(i, rho[i]));
+        ms.forEachElastic(o, [&](uint32_t slot, float scale, float constant) {
+          ratio(slot, k * scale * rho[i] + constant, value);
+        });
       } else {
-        value = static_cast<float>(matrix(bins[i], o));
-        d = t.cells[static_cast<size_t>(bins[i]) * n + o];
+        const float value = static_cast<float>(matrix(bins[i], o));
+        ms.forEachCell(bins[i], o, [&](uint32_t slot, float d) { ratio(slot, d, value); });
       }
-      if (d == 0) continue;
-      if (value != 0)
-        emit(t.slot, i, d / value);
-      else
-        sink.zeroValue();
     }
   rs.forEach(before, [&](uint32_t slot, int i, float d) {
     if (bins[i] >= 0) return; // a re-radiated event does not use rho

@@ -175,6 +175,29 @@ void SpectrumTangents::add(uint32_t slot, Spectrum d) {
   dense_.push_back({slot, std::move(d)});
 }
 
+void MatrixTangents::add(MatrixTangent t) {
+  constexpr int n = ReradiationMatrix::kBins;
+  size_t changed = 0;
+  for (float d : t.cells) changed += d != 0;
+  for (int o = 0; o < n; ++o)
+    changed += t.elasticScale[static_cast<size_t>(o)] != 0 ||
+               t.elasticConstant[static_cast<size_t>(o)] != 0;
+  if (changed > kSparseCells) {
+    dense_.push_back(std::move(t));
+    return;
+  }
+  if (!sparse_) {
+    cells_.resize(static_cast<size_t>(n) * n);
+    elastic_.resize(static_cast<size_t>(n));
+    sparse_ = true;
+  }
+  for (size_t c = 0; c < t.cells.size(); ++c)
+    if (t.cells[c] != 0) cells_[c].push_back({t.slot, t.cells[c]});
+  for (size_t o = 0; o < static_cast<size_t>(n); ++o)
+    if (t.elasticScale[o] != 0 || t.elasticConstant[o] != 0)
+      elastic_[o].push_back({t.slot, t.elasticScale[o], t.elasticConstant[o]});
+}
+
 SceneTangents SceneTangents::sizedFor(const RenderScene& scene) {
   SceneTangents t;
   t.reflectance.resize(scene.materials.size());
@@ -256,7 +279,7 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
       mt.elasticScale[static_cast<size_t>(o)] = static_cast<float>(scale);
       mt.elasticConstant[static_cast<size_t>(o)] = static_cast<float>(constant);
     }
-    if (matrixChanged) t.reradiation[m].push_back(std::move(mt));
+    if (matrixChanged) t.reradiation[m].add(std::move(mt));
     any |= matrixChanged;
   }
   for (size_t k = 0; k < base.media.size(); ++k) {

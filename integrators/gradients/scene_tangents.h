@@ -89,6 +89,52 @@ struct MatrixTangent {
   std::array<float, ReradiationMatrix::kBins> elasticScale{}, elasticConstant{};
 };
 
+/// The matrix tangents of one material, by slot. A tangent touching few cells (a measured
+/// matrix's cell: its bilinear resampling reaches a few grid cells) is kept per cell, so a
+/// vertex looks up the slots of the cell it chose, not every slot's matrix.
+class MatrixTangents {
+public:
+  /// Adds a slot's tangent (sparse when it changes at most kSparseCells cells).
+  void add(MatrixTangent t);
+  /// True when no slot changes the matrix.
+  bool empty() const { return dense_.empty() && !sparse_; }
+  /// Calls f(slot, d M[i][o]) for every slot changing cell (i, o).
+  template <class F>
+  void forEachCell(int i, int o, F&& f) const {
+    const size_t c = static_cast<size_t>(i) * ReradiationMatrix::kBins + static_cast<size_t>(o);
+    for (const MatrixTangent& t : dense_)
+      if (const float d = t.cells[c]; d != 0) f(t.slot, d);
+    if (sparse_)
+      for (const CellEntry& e : cells_[c]) f(e.slot, e.d);
+  }
+  /// Calls f(slot, d scale, d constant) for every slot changing the elastic part of bin o.
+  template <class F>
+  void forEachElastic(int o, F&& f) const {
+    const size_t b = static_cast<size_t>(o);
+    for (const MatrixTangent& t : dense_)
+      if (t.elasticScale[b] != 0 || t.elasticConstant[b] != 0)
+        f(t.slot, t.elasticScale[b], t.elasticConstant[b]);
+    if (sparse_)
+      for (const ElasticEntry& e : elastic_[b]) f(e.slot, e.scale, e.constant);
+  }
+  /// Most cells a sparse tangent may change.
+  static constexpr size_t kSparseCells = 512;
+
+private:
+  struct CellEntry {
+    uint32_t slot;
+    float d;
+  };
+  struct ElasticEntry {
+    uint32_t slot;
+    float scale, constant;
+  };
+  std::vector<MatrixTangent> dense_;
+  bool sparse_ = false;
+  std::vector<std::vector<CellEntry>> cells_;      ///< [i * kBins + o], once a sparse one came
+  std::vector<std::vector<ElasticEntry>> elastic_; ///< [o]
+};
+
 /// d / d parameter of a homogeneous medium for one slot: its coefficients, its phase function's
 /// g, and its dye (peak and matrix: absorptance a, column sums c, cells M per peak 1).
 struct MediumTangent {
@@ -108,9 +154,9 @@ struct SceneTangents {
   std::vector<int64_t> textureFirstSlot;
   /// Per material: the first of its concentration map's values' slots, or -1.
   std::vector<int64_t> concentrationFirstSlot;
-  std::vector<std::vector<MatrixTangent>> reradiation; ///< per RenderScene::materials
-  std::vector<SpectrumTangents> emission;              ///< per RenderScene::emission
-  std::vector<SpectrumTangents> lights;                ///< per RenderScene::lights (intensity)
+  std::vector<MatrixTangents> reradiation; ///< per RenderScene::materials
+  std::vector<SpectrumTangents> emission;  ///< per RenderScene::emission
+  std::vector<SpectrumTangents> lights;    ///< per RenderScene::lights (intensity)
   SpectrumTangents background;
   std::vector<std::vector<MediumTangent>> media; ///< per RenderScene::media
   /// Slots whose parameter changes nothing the scene renders (their derivative is 0).

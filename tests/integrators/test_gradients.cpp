@@ -197,6 +197,24 @@ TEST(Gradients, AreaLampScaleMatchesDifference) {
                                    2e-3, 1e-4});
 }
 
+TEST(Gradients, EmissionKnotAndSpotLightMatchDifference) {
+  // A knot of a lamp's tabulated spectrum (sparse: two knots per wavelength), and a spot's scale.
+  expectGradientMatchesDifference({[](double p) {
+                                     return scene(kMatte, kMatte,
+                                                  "<emission scale=\"5e-3\">380:1, 480:" + num(p) +
+                                                      ", 520:0.1, 800:0.1</emission>");
+                                   },
+                                   1, 0.05});
+  expectGradientMatchesDifference(
+      {[](double p) {
+         return scene(kMatte, kMatte, kLamp,
+                      "<light type=\"spot\"><position>1,3,-2</position><look_at>0,0,0</look_at>"
+                      "<cone_angle>30</cone_angle><emission scale=\"" +
+                          num(p) + "\">D65</emission></light>");
+       },
+       0.05, 0.005});
+}
+
 TEST(Gradients, PointLightAndBackgroundMatchDifference) {
   expectGradientMatchesDifference(
       {[](double p) {

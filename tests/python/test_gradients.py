@@ -200,3 +200,29 @@ def test_concentration_map():
     assert np.allclose(grads[name], expected, rtol=1e-4, atol=1e-6 * np.abs(expected).max())
     s.set(name, None)
     assert s.get(name) is None
+
+
+def test_measured_matrix_cells(scene):
+    # A measured Donaldson matrix's cells (its diagonal: the elastic reflectance; above it:
+    # re-radiation), each resampled bilinearly onto the 5 nm grid: sparse tangents per cell.
+    s = scene.copy()
+    ex = np.array([400.0, 430, 460, 490])
+    em = np.array([400.0, 430, 460, 490, 520, 550, 580, 610])
+    v = np.zeros((4, 8))
+    for i in range(4):
+        v[i, i] = 0.3
+        v[i, i + 1:] = 0.02 * np.exp(-((em[i + 1:] - ex[i] - 90) / 40) ** 2)
+    s.objects[1].material.set_fluorescence_matrix(ex, em, v)
+    name = "objects[1].fluorescence.matrix"
+    image = nxrender.render(s, spp=64, seed=5, threads=2, gradients=[name])
+    g = image.gradients[name]
+    assert g.shape == (4, 8) + image.radiance.shape
+    for i, j in [(1, 5), (2, 2)]:
+        images = []
+        for d in (0.005, -0.005):
+            v2 = v.copy()
+            v2[i, j] += d
+            s2 = s.copy()
+            s2.objects[1].material.set_fluorescence_matrix(ex, em, v2)
+            images.append(nxrender.render(s2, spp=64, seed=5, threads=2).radiance.astype(np.float64))
+        expect_agrees(g[i, j], (images[0] - images[1]) / 0.01)
