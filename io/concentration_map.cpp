@@ -6,21 +6,13 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/texel_grid.h"
 
 namespace nx {
 
 void ConcentrationMap::bilinear(float u, float v, size_t (&index)[4], float (&weight)[4]) const {
-  const float x = u * static_cast<float>(width) - 0.5f;
-  const float y = (1 - v) * static_cast<float>(height) - 0.5f;
-  const float fx0 = std::floor(x), fy0 = std::floor(y);
-  const float ax = x - fx0, ay = y - fy0;
-  auto cx = [&](float c) { return std::clamp(static_cast<int>(c), 0, width - 1); };
-  auto cy = [&](float c) { return std::clamp(static_cast<int>(c), 0, height - 1); };
-  const int x0 = cx(fx0), x1 = cx(fx0 + 1), y0 = cy(fy0), y1 = cy(fy0 + 1);
-  auto at = [&](int tx, int ty) { return static_cast<size_t>(ty) * width + tx; };
-  index[0] = at(x0, y0), index[1] = at(x1, y0), index[2] = at(x0, y1), index[3] = at(x1, y1);
-  weight[0] = (1 - ax) * (1 - ay), weight[1] = ax * (1 - ay);
-  weight[2] = (1 - ax) * ay, weight[3] = ax * ay;
+  const BilinearTexels b = bilinearTexels(u, v, width, height);
+  for (int k = 0; k < 4; ++k) index[k] = b.texel[k], weight[k] = b.weight[k];
 }
 
 ConcentrationMap makeConcentrationMap(int width, int height, std::vector<float> values,

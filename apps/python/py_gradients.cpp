@@ -174,56 +174,46 @@ GradientRequest gradientRequest(const py::object& scene, const py::handle& names
                             "settings and visibility need edge sampling or reparameterisation");
     for (const auto& p : r.parameters)
       if (p.name == name) throw py::value_error("gradients: '" + name + "' given twice");
-    if (leaf == "concentration") {
-      // A concentration map's values: located by resolving the scene with every value moved
-      // (towards the middle of [0, 1]); one slot per value, bilinear along the paths.
+    // A grid of values (a concentration map; a texture's texels): located by resolving the
+    // scene with every value moved towards the middle of [0, 1]; one slot per value.
+    auto addGrid = [&](const py::object& values, auto&& valueOf, auto&& add) {
       const py::object np = py::module_::import("numpy");
-      const py::object values = scene.attr("get")(name);
-      if (values.is_none())
-        throw py::value_error(name + ": not differentiable: the surface has no concentration "
-                                     "map (set one, e.g. numpy.ones((32, 32)))");
       const py::object a = np.attr("asarray")(values, "float64");
       const py::object moved =
           a.attr("__add__")(np.attr("where")(a.attr("__lt__")(0.5), 1e-3, -1e-3));
       std::optional<nx::RenderScene> changed;
-      if (!resolvedWith(scene, name, moved, fluorescence, changed))
+      if (!resolvedWith(scene, name, valueOf(moved), fluorescence, changed))
         throw py::value_error(name + ": not differentiable: its values cannot be moved");
       GradientRequest::Parameter param;
       param.name = name;
       param.indexed = true;
       try {
-        param.firstSlot = nx::addConcentrationSlots(r.tangents, name, base, *changed);
+        param.firstSlot = add(*changed);
       } catch (const nx::Error& e) {
         throw py::value_error(e.what());
       }
       param.slots = r.tangents.slots() - param.firstSlot;
       for (const py::handle d : a.attr("shape")) param.shape.push_back(d.cast<long>());
       r.parameters.push_back(param);
+    };
+    if (leaf == "concentration") {
+      const py::object values = scene.attr("get")(name);
+      if (values.is_none())
+        throw py::value_error(name + ": not differentiable: the surface has no concentration "
+                                     "map (set one, e.g. numpy.ones((32, 32)))");
+      addGrid(
+          values, [](const py::object& v) { return v; },
+          [&](const nx::RenderScene& c) {
+            return nx::addConcentrationSlots(r.tangents, name, base, c);
+          });
       continue;
     }
     const Numbers numbers = numbersOf(scene.attr("get")(name), name);
     if (numbers.texture) {
-      // Its texels: located by resolving the scene with every value moved (towards the middle
-      // of [0, 1]); one slot per value, evaluated bilinearly along the paths.
-      const py::object np = py::module_::import("numpy");
-      const py::object moved = numbers.textureValues.attr("__add__")(
-          np.attr("where")(numbers.textureValues.attr("__lt__")(0.5), 1e-3, -1e-3));
-      std::optional<nx::RenderScene> changed;
-      if (!resolvedWith(scene, name, py::make_tuple(numbers.wavelengths, moved), fluorescence,
-                        changed))
-        throw py::value_error(name + ": not differentiable: its texels cannot be moved");
-      GradientRequest::Parameter param;
-      param.name = name;
-      param.indexed = true;
-      try {
-        param.firstSlot = nx::addTextureSlots(r.tangents, name, base, *changed);
-      } catch (const nx::Error& e) {
-        throw py::value_error(e.what());
-      }
-      param.slots = r.tangents.slots() - param.firstSlot;
-      for (const py::handle d : numbers.textureValues.attr("shape"))
-        param.shape.push_back(d.cast<long>());
-      r.parameters.push_back(param);
+      addGrid(
+          numbers.textureValues,
+          [&](const py::object& v) { return py::object(py::make_tuple(numbers.wavelengths, v)); },
+          [&](const nx::RenderScene& c) { return nx::addTextureSlots(r.tangents, name, base, c); });
       continue;
     }
     GradientRequest::Parameter param{name, r.tangents.slots(),

@@ -341,52 +341,72 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
   return slot;
 }
 
-uint32_t addTextureSlots(SceneTangents& t, const std::string& name, const RenderScene& base,
-                         const RenderScene& changed) {
+namespace {
+
+// Adds one slot per value of the one per-material grid of values (a texture's texels, a
+// concentration map) that differs between base and changed. `grid` describes it for a
+// material: how many values it holds (0: none differentiable), whether the two materials
+// differ in it, and the first-slot table it is recorded in; `what` names it in messages.
+struct GridOfValues {
+  const char* what;     ///< "texture", "concentration map"
+  const char* mismatch; ///< why two grids cannot be differenced
+  bool texture;         ///< otherMaterialChange's allowance
+  std::vector<int64_t> SceneTangents::*firstSlot;
+  size_t (*count)(const Material&);
+  bool (*differs)(const Material&, const Material&);
+};
+
+uint32_t addGridSlots(SceneTangents& t, const std::string& name, const RenderScene& base,
+                      const RenderScene& changed, const GridOfValues& grid) {
   if (changed.materials.size() != base.materials.size())
     notDifferentiated(name, "the scene's structure");
   const uint32_t first = t.slots();
   bool any = false;
   for (size_t m = 0; m < base.materials.size(); ++m) {
     const Material &a = base.materials[m], &b = changed.materials[m];
-    const std::string other = otherMaterialChange(a, b, true);
+    const std::string other = otherMaterialChange(a, b, grid.texture, !grid.texture);
     if (!other.empty()) notDifferentiated(name, other);
-    if (!a.texture || a.texture->sameAs(*b.texture)) continue;
-    const size_t n = a.texture->valueCount();
-    if (n == 0 || b.texture->valueCount() != n)
-      notDifferentiated(name, "a texture that is not a spectral image of the same size (an sRGB "
-                              "texture's or the chart's texels are not differentiated)");
-    if (any) notDifferentiated(name, "more than one material's texture");
-    t.textureFirstSlot[m] = t.slots();
+    if (!grid.differs(a, b)) continue;
+    const size_t n = grid.count(a);
+    if (n == 0 || grid.count(b) != n) notDifferentiated(name, grid.mismatch);
+    if (any) notDifferentiated(name, std::string("more than one material's ") + grid.what);
+    (t.*grid.firstSlot)[m] = t.slots();
     for (size_t q = 0; q < n; ++q) t.slotNames.push_back(name + "[" + std::to_string(q) + "]");
     any = true;
   }
-  if (!any) notDifferentiated(name, "no texture the scene renders");
+  if (!any) notDifferentiated(name, std::string("no ") + grid.what + " the scene renders");
   return first;
+}
+
+} // namespace
+
+uint32_t addTextureSlots(SceneTangents& t, const std::string& name, const RenderScene& base,
+                         const RenderScene& changed) {
+  static const GridOfValues grid{
+      "texture",
+      "a texture that is not a spectral image of the same size (an sRGB texture's or the "
+      "chart's texels are not differentiated)",
+      true,
+      &SceneTangents::textureFirstSlot,
+      [](const Material& m) { return m.texture ? m.texture->valueCount() : size_t{0}; },
+      [](const Material& a, const Material& b) {
+        return a.texture && b.texture && !a.texture->sameAs(*b.texture);
+      }};
+  return addGridSlots(t, name, base, changed, grid);
 }
 
 uint32_t addConcentrationSlots(SceneTangents& t, const std::string& name, const RenderScene& base,
                                const RenderScene& changed) {
-  if (changed.materials.size() != base.materials.size())
-    notDifferentiated(name, "the scene's structure");
-  const uint32_t first = t.slots();
-  bool any = false;
-  for (size_t m = 0; m < base.materials.size(); ++m) {
-    const Material &a = base.materials[m], &b = changed.materials[m];
-    const std::string other = otherMaterialChange(a, b, false, true);
-    if (!other.empty()) notDifferentiated(name, other);
-    if (!concentrationDiffers(a, b)) continue;
-    if (!a.concentration || !b.concentration || a.concentration->width != b.concentration->width ||
-        a.concentration->height != b.concentration->height)
-      notDifferentiated(name, "whether a concentration map is used, or its size");
-    if (any) notDifferentiated(name, "more than one material's concentration map");
-    t.concentrationFirstSlot[m] = t.slots();
-    for (size_t q = 0; q < a.concentration->values.size(); ++q)
-      t.slotNames.push_back(name + "[" + std::to_string(q) + "]");
-    any = true;
-  }
-  if (!any) notDifferentiated(name, "no concentration map the scene renders");
-  return first;
+  static const GridOfValues grid{
+      "concentration map",
+      "whether a concentration map is used, or its size",
+      false,
+      &SceneTangents::concentrationFirstSlot,
+      [](const Material& m) {
+        return m.concentration ? m.concentration->values.size() : size_t{0};
+      },
+      [](const Material& a, const Material& b) { return concentrationDiffers(a, b); }};
+  return addGridSlots(t, name, base, changed, grid);
 }
 
 } // namespace nx

@@ -1,5 +1,7 @@
 #include "integrators/materials/reflectance_texture.h"
 
+#include "core/texel_grid.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -89,17 +91,9 @@ SampledSpectrum ReflectanceTexture::chartAt(float u, float v,
 }
 
 ReflectanceTexture::Bilinear ReflectanceTexture::bilinear(float u, float v) const {
-  // Texel centres at (i + 1/2) / width; bilinear between the four nearest, edges clamped.
-  const float x = u * static_cast<float>(width_) - 0.5f;
-  const float y = (1 - v) * static_cast<float>(height_) - 0.5f;
-  const float fx0 = std::floor(x), fy0 = std::floor(y);
-  const float ax = x - fx0, ay = y - fy0;
-  auto clampX = [&](float c) { return std::clamp(static_cast<int>(c), 0, width_ - 1); };
-  auto clampY = [&](float c) { return std::clamp(static_cast<int>(c), 0, height_ - 1); };
-  const int x0 = clampX(fx0), x1 = clampX(fx0 + 1), y0 = clampY(fy0), y1 = clampY(fy0 + 1);
-  auto at = [&](int tx, int ty) { return static_cast<size_t>(ty) * width_ + tx; };
-  return {{at(x0, y0), at(x1, y0), at(x0, y1), at(x1, y1)},
-          {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay}};
+  const BilinearTexels b = bilinearTexels(u, v, width_, height_);
+  return {{b.texel[0], b.texel[1], b.texel[2], b.texel[3]},
+          {b.weight[0], b.weight[1], b.weight[2], b.weight[3]}};
 }
 
 SampledSpectrum ReflectanceTexture::imageAt(float u, float v,
