@@ -456,13 +456,17 @@ TEST(Gradients, ConcentrationMapValuesMatchDifferences) {
   }
 }
 
+// The floor's reflectance as the parameter (at `at`), at `samples` per pixel.
+Family matteFloor(int samples, double at) {
+  return {[samples](double p) {
+            return scene("<material>matte</material><reflectance>" + num(p) + "</reflectance>",
+                         kMatte, kLamp, "", samples);
+          },
+          at, 0.02};
+}
+
 TEST(Gradients, ReverseModeIsTheAdjointWeightedForwardImage) {
-  const Family f{[](double p) {
-                   return scene("<material>matte</material><reflectance>" + num(p) +
-                                    "</reflectance>",
-                                kMatte, kLamp, "", 16);
-                 },
-                 0.5, 0.02};
+  const Family f = matteFloor(16, 0.5);
   const RenderScene s = built(f.text(f.at));
   const SceneTangents t = tangentsOf(f, s);
   RenderOptions o;
@@ -484,7 +488,8 @@ TEST(Gradients, ReverseModeIsTheAdjointWeightedForwardImage) {
   EXPECT_NEAR(reverse.gradient[0], expected, 1e-4 * std::abs(expected));
   EXPECT_GT(reverse.gradientVariance[0], 0.0);
   EXPECT_LT(std::sqrt(reverse.gradientVariance[0]), 0.2 * std::abs(expected));
-  // the same for every thread count (tiles summed in their order)
+  // another tiling groups the sums differently: the same to rounding (the thread count changes
+  // nothing at all: tests/python/test_gradients.py)
   RenderOptions one = o;
   one.tileSize = 8;
   EXPECT_NEAR(render(s, one).gradient[0], reverse.gradient[0], 1e-9 * std::abs(expected));
@@ -503,13 +508,8 @@ TEST(Gradients, RefusesWhatIsNotDifferentiated) {
               tangentsOf(rough, s);
             }).find("p: not differentiable: it changes the microfacet roughness"),
             std::string::npos);
-  // An adjoint of the wrong size, too many forward slots, a whitted render.
-  const Family f{[](double p) {
-                   return scene("<material>matte</material><reflectance>" + num(p) +
-                                    "</reflectance>",
-                                kMatte, kLamp, "", 4);
-                 },
-                 0.5, 0.02};
+  // An adjoint of the wrong size, gradients with component layers.
+  const Family f = matteFloor(4, 0.5);
   const RenderScene m = built(f.text(f.at));
   const SceneTangents t = tangentsOf(f, m);
   RenderOptions o;
@@ -527,12 +527,7 @@ TEST(Gradients, RefusesWhatIsNotDifferentiated) {
 
 TEST(Gradients, ZeroReflectanceIsReported) {
   // d f / d rho exists at rho = 0, but the estimator divides by rho: counted and warned.
-  const Family f{[](double p) {
-                   return scene("<material>matte</material><reflectance>" + num(p) +
-                                    "</reflectance>",
-                                kMatte, kLamp, "", 4);
-                 },
-                 0.0, 0.02};
+  const Family f = matteFloor(4, 0.0);
   const RenderScene s = built(f.text(f.at));
   const RenderScene plus = resolveRenderScene(parseScene(f.text(0.02), "t.scn"));
   SceneTangents t = SceneTangents::sizedFor(s);
