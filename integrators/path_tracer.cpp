@@ -328,6 +328,17 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     SurfaceBsdf bsdf(material, current, rho, hit.ng, hit.ns, wo);
     bsdf.orient(hit.dpdu);
     bsdf.setHeroAlone(heroAlone);
+    // A rough conductor's roughness: d ln f / d alpha at direction wi, for each slot moving it.
+    [[maybe_unused]] auto roughnessEvents = [&](const Vec3& wi, auto&& emit) {
+      if constexpr (kGradients) {
+        const auto& ts = tangents->roughness[app.material];
+        float du = 0, dv = 0;
+        if (ts.empty() || !bsdf.conductorRoughnessSlopes(wi, du, dv)) return;
+        for (const RoughnessTangent& t : ts)
+          if (const float g = t.alphaU * du + t.alphaV * dv; g != 0)
+            for (int i = 0; i < kLanes; ++i) emit(t.slot, i, g);
+      }
+    };
 
     // A fluorescent diffuse lobe: every lane's excitation wavelength is chosen once, for both
     // next-event estimation and the continuation through the diffuse lobe.
@@ -372,6 +383,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
               reradiationEvents(tangents->reradiation[app.material], rhoTangents,
                                 *material.reradiation, current, shift.excited, rho, sink, local,
                                 concentration, concentrationTangents);
+            roughnessEvents(ls.wi, local);
             reflectanceEvents(rhoTangents, material, current, rho, false, !fluorescent, sink,
                               local);
           }
@@ -417,6 +429,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       // The lobe taken scales the rest of the path (a fluorescent diffuse lobe's albedo came
       // from the matrix above; rho's other shares, a coat's, from here).
       if (!whiteHere) {
+        if (!bs.specular) roughnessEvents(bs.wi, event);
         const bool reradiated = fluorescent && !bs.specular;
         reflectanceEvents(rhoTangents, material, lambdaBefore, rho, bs.specular, !reradiated, sink,
                           event);

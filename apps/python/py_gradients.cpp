@@ -143,7 +143,8 @@ const std::vector<std::string>& differentiableLeaves() {
       "background",  "absorption_nm", "stokes_nm",        "width_nm",
       "skew",        "quantum_yield", "peak_absorptance", "sigma_a",
       "sigma_s",     "sigma_a_scale", "sigma_s_scale",    "g",
-      "dye_peak",    "value",         "concentration",    "matrix"};
+      "dye_peak",    "value",         "concentration",    "matrix",
+      "alpha",       "alpha_u",       "alpha_v"};
   return leaves;
 }
 

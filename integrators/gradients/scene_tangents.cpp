@@ -61,7 +61,14 @@ std::string otherMaterialChange(const Material& a, const Material& b, bool textu
   if (!concentration && concentrationDiffers(a, b)) return "a concentration map";
   if (a.kind != b.kind) return "the material's kind";
   if (a.roughness != b.roughness) return "the mixture's roughness";
-  if (a.alphaU != b.alphaU || a.alphaV != b.alphaV) return "the microfacet roughness";
+  // A rough conductor's roughness is differentiated (not at 0: a smooth metal's lobe is a
+  // delta); a rough dielectric's is not.
+  if ((a.alphaU != b.alphaU || a.alphaV != b.alphaV) &&
+      !(a.kind == MaterialKind::Conductor && a.alphaU > 0 && a.alphaV > 0))
+    return a.kind == MaterialKind::Conductor
+               ? "the microfacet roughness of a smooth metal (its lobe is a delta: differentiate "
+                 "from alpha > 0)"
+               : "the microfacet roughness of a dielectric (not differentiated)";
   if (a.coatInternalReflectance != b.coatInternalReflectance) return "the coat";
   if (a.coatingNm != b.coatingNm) return "the thin-film coating";
   for (double nm = kTraceMinNm; nm <= kTraceMaxNm; nm += 10) {
@@ -202,6 +209,7 @@ SceneTangents SceneTangents::sizedFor(const RenderScene& scene) {
   SceneTangents t;
   t.reflectance.resize(scene.materials.size());
   t.reradiation.resize(scene.materials.size());
+  t.roughness.resize(scene.materials.size());
   t.emission.resize(scene.emission.size());
   t.lights.resize(scene.lights.size());
   t.media.resize(scene.media.size());
@@ -247,6 +255,17 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
     if (changed && base.materials[m].texture)
       notDifferentiated(name, "the reflectance of a textured material (its texture replaces it)");
     any |= changed;
+    if (base.materials[m].kind == MaterialKind::Conductor) {
+      double du = 0, dv = 0;
+      for (size_t k = 0; k < scenes.size(); ++k) {
+        du += weights[k] * scenes[k]->materials[m].alphaU;
+        dv += weights[k] * scenes[k]->materials[m].alphaV;
+      }
+      if (du != 0 || dv != 0) {
+        t.roughness[m].push_back({slot, static_cast<float>(du), static_cast<float>(dv)});
+        any = true;
+      }
+    }
     if (!base.materials[m].reradiation) continue;
     MatrixTangent mt;
     mt.slot = slot;

@@ -135,6 +135,12 @@ private:
   std::vector<std::vector<ElasticEntry>> elastic_; ///< [o]
 };
 
+/// d alpha_u / d parameter and d alpha_v / d parameter of a rough conductor for one slot.
+struct RoughnessTangent {
+  uint32_t slot = 0;
+  float alphaU = 0, alphaV = 0;
+};
+
 /// d / d parameter of a homogeneous medium for one slot: its coefficients, its phase function's
 /// g, and its dye (peak and matrix: absorptance a, column sums c, cells M per peak 1).
 struct MediumTangent {
@@ -154,9 +160,10 @@ struct SceneTangents {
   std::vector<int64_t> textureFirstSlot;
   /// Per material: the first of its concentration map's values' slots, or -1.
   std::vector<int64_t> concentrationFirstSlot;
-  std::vector<MatrixTangents> reradiation; ///< per RenderScene::materials
-  std::vector<SpectrumTangents> emission;  ///< per RenderScene::emission
-  std::vector<SpectrumTangents> lights;    ///< per RenderScene::lights (intensity)
+  std::vector<MatrixTangents> reradiation;              ///< per RenderScene::materials
+  std::vector<std::vector<RoughnessTangent>> roughness; ///< per RenderScene::materials
+  std::vector<SpectrumTangents> emission;               ///< per RenderScene::emission
+  std::vector<SpectrumTangents> lights;                 ///< per RenderScene::lights (intensity)
   SpectrumTangents background;
   std::vector<std::vector<MediumTangent>> media; ///< per RenderScene::media
   /// Slots whose parameter changes nothing the scene renders (their derivative is 0).

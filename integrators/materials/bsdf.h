@@ -104,6 +104,9 @@ public:
   /// The diffuse lobe per unit albedo, per lane: diffuseFactor for the mixture; for a coated
   /// diffuse surface with the coat's transmissions and internal reflections.
   SampledSpectrum diffuseLobe(const Vec3& wi) const;
+  /// For a rough conductor: d ln f(wo, wi) / d alpha_u and / d alpha_v (its microfacet lobe's
+  /// dependence on its roughness, for gradients); false for other surfaces and smooth metals.
+  bool conductorRoughnessSlopes(const Vec3& wi, float& dAlphaU, float& dAlphaV) const;
   /// Density with which sample() returns wi through its non-specular lobes.
   float pdf(const Vec3& wi) const;
 

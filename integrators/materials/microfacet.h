@@ -34,6 +34,31 @@ struct GgxDistribution {
     return 0.5f * (std::sqrt(1 + a2) - 1);
   }
 
+  /// The derivatives of ln(D(h) G2(o, i)) with respect to ax and ay for a reflection from o to
+  /// i (local frame, both above; h their half vector): what a rough conductor's f depends on
+  /// its roughness by. ln D = -ln(pi ax ay) - 2 ln s, s = (hx/ax)^2 + (hy/ay)^2 + hz^2; G2 =
+  /// 1 / (1 + Lambda(o) + Lambda(i)), d Lambda / d ax = ax wx^2 / (2 wz^2 sqrt(1 + a^2)).
+  void logDerivatives(const Vec3& o, const Vec3& i, float& dax, float& day) const {
+    const Vec3 h = normalize(o + i);
+    const float x = h.x / ax, y = h.y / ay;
+    const float s = x * x + y * y + h.z * h.z;
+    dax = -1 / ax + 4 * x * x / (ax * s);
+    day = -1 / ay + 4 * y * y / (ay * s);
+    auto dLambda = [&](const Vec3& w, float& lx, float& ly) {
+      const float z2 = w.z * w.z;
+      const float a2 = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / z2;
+      const float r = 2 * z2 * std::sqrt(1 + a2);
+      lx = ax * w.x * w.x / r;
+      ly = ay * w.y * w.y / r;
+    };
+    float ox, oy, ix, iy;
+    dLambda(o, ox, oy);
+    dLambda(i, ix, iy);
+    const float g = 1 + lambda(o) + lambda(i);
+    dax -= (ox + ix) / g;
+    day -= (oy + iy) / g;
+  }
+
   /// Masking of micro-normals seen from w.
   float g1(const Vec3& w) const { return 1.0f / (1 + lambda(w)); }
 

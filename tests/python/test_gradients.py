@@ -125,13 +125,18 @@ def test_refusals(scene):
         nxrender.backward(scene, np.zeros((3, 3, 7)), ["objects[1].reflectance"], spp=1)
     with pytest.raises(Exception, match="gradients cannot be combined"):
         nxrender.render(scene, spp=1, gradients=["objects[1].reflectance"], aovs=["components"])
-    # a roughness changes the sampling and is refused by the scene's tables
-    s = nxrender.Scene.from_text(
-        SCENE.replace("<material>interface</material>", "<material>conductor</material>"
-                      "<metal>gold</metal><alpha>0.2</alpha>").replace(
-            "<medium><sigma_a>0.5</sigma_a><sigma_s>1</sigma_s></medium>", ""), "t.scn")
-    with pytest.raises(ValueError, match="not differentiated"):
-        nxrender.render(s, spp=1, gradients=["objects[2].alpha"])
+    # a rough dielectric's roughness is refused by the scene's tables; a rough metal's is not
+    for material, refused in (("<material>glass</material><alpha>0.2</alpha>", True),
+                              ("<material>conductor</material><metal>gold</metal><alpha>0.2</alpha>", False)):
+        s = nxrender.Scene.from_text(
+            SCENE.replace("<material>interface</material>", material).replace(
+                "<medium><sigma_a>0.5</sigma_a><sigma_s>1</sigma_s></medium>", ""), "t.scn")
+        if refused:
+            with pytest.raises(ValueError, match="roughness of a dielectric"):
+                nxrender.render(s, spp=1, gradients=["objects[2].alpha"])
+        else:
+            image = nxrender.render(s, spp=4, gradients=["objects[2].alpha"])
+            assert np.any(image.gradients["objects[2].alpha"] != 0)
 
 
 CARD = """<scene><settings><xres>24</xres><yres>20</yres><mode>spectral_mcpt</mode>

@@ -116,6 +116,14 @@ SampledSpectrum SurfaceBsdf::conductorF(const Vec3& wi) const {
   return conductorFresnel(dot(o, h)) * (d * alpha_.g2(o, i) / (4 * o.z));
 }
 
+bool SurfaceBsdf::conductorRoughnessSlopes(const Vec3& wi, float& dAlphaU, float& dAlphaV) const {
+  if (material_->kind != MaterialKind::Conductor || smoothConductor()) return false;
+  const Vec3 o = frame_.toLocal(wo_), i = frame_.toLocal(wi);
+  if (o.z <= 0 || i.z <= 0) return false;
+  alpha_.logDerivatives(o, i, dAlphaU, dAlphaV);
+  return std::isfinite(dAlphaU) && std::isfinite(dAlphaV);
+}
+
 // Visible-normal sampling: h from D_wo, wi = reflect(wo, h); the weight f cos / pdf is
 // F G2 / G1(wo) with pdf = G1(wo) D(h) / (4 cos(wo)) (Heitz 2018, sec. 2). A reflection below
 // the surface is lost (the single-scattering model's energy loss, docs/materials.md).
