@@ -349,9 +349,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     if constexpr (kFluorescence) {
       if (material.reradiation && bsdf.hasNonSpecular()) {
         if (material.concentration) {
-          // The dye's concentration here (textured materials' spheres have their uv already).
-          if (hit.kind == ShapeKind::Sphere && !material.texture) sphereUv(hit);
-          concentration = material.concentration->at(hit.u, hit.v);
+          concentration = scene.concentrationAt(material, hit);
           if constexpr (kGradients)
             concentrationTangents = {material.concentration.get(),
                                      tangents->concentrationFirstSlot[app.material], hit.u, hit.v};

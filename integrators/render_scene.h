@@ -168,6 +168,14 @@ struct RenderScene {
     return material.texture->evaluate(hit.u, hit.v, lambda);
   }
 
+  /// The relative concentration of `material`'s dye at a hit: its concentration map at the
+  /// hit's uv (filled in for spheres here), or 1 without a map.
+  float concentrationAt(const Material& material, SurfaceHit& hit) const {
+    if (!material.concentration) return 1;
+    if (hit.kind == ShapeKind::Sphere) sphereUv(hit);
+    return material.concentration->at(hit.u, hit.v);
+  }
+
   /// Appearance of the shape a hit is on.
   const ShapeAppearance& appearance(const SurfaceHit& hit) const {
     switch (hit.kind) {

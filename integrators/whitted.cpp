@@ -51,8 +51,10 @@ void traceNode(const IntegratorContext& ctx, const WhittedRay& node, int maxDept
   // sees the lights at its lanes' excitation wavelengths.
   if (bsdf.hasNonSpecular()) {
     const bool fluorescent = material.reradiation != nullptr;
+    const float concentration = scene.concentrationAt(material, hit);
     const FluorescentShift shift =
-        fluorescent ? sampleFluorescentShift(*material.reradiation, lambda, rho, rng)
+        fluorescent ? sampleFluorescentShift(*material.reradiation, lambda, rho, rng,
+                                             material.concentration ? &concentration : nullptr)
                     : FluorescentShift{lambda, rho};
     auto f = [&](const Vec3& wi) {
       return fluorescent ? shift.albedo * bsdf.diffuseLobe(wi) : bsdf.f(wi);

@@ -122,6 +122,38 @@ TEST(ReradiationMatrix, ExcitationSamplingMatchesTheMatrix) {
   EXPECT_FLOAT_EQ(w, 0.6f);
 }
 
+// The same for a dye at relative concentration k (sampleExcitationScaled): elastic with
+// probability (1 - k a_o) rho / total, bin i with probability k M[i][o] / total.
+TEST(ReradiationMatrix, ScaledExcitationSamplingMatchesTheScaledMatrix) {
+  const RM m = RM::fromModel(model(430, 90, 1));
+  const double rho = 0.6;
+  for (double k : {0.0, 0.3, 1.0})
+    for (double nm : {532.0, 601.0}) {
+      const int o = RM::binOf(nm);
+      const double d = m.elastic(o, rho, k), c = k * m.columnSum(o);
+      EXPECT_NEAR(d, (1 - k * m.absorptance(o)) * rho, 1e-12);
+      std::vector<double> obs(RM::kBins + 1, 0);
+      const int n = 200000;
+      for (int j = 0; j < n; ++j) {
+        float w = 1;
+        const double u = (j + 0.5) / n, v = std::fmod(j * 0.618033988749895, 1.0);
+        const double l = m.sampleExcitationScaled(static_cast<float>(nm), static_cast<float>(rho),
+                                                  static_cast<float>(k), static_cast<float>(u),
+                                                  static_cast<float>(v), w);
+        EXPECT_NEAR(w, d + c, 1e-6);
+        if (l == nm) {
+          obs[RM::kBins] += 1;
+        } else {
+          ASSERT_LT(RM::binOf(l), o);
+          obs[RM::binOf(l)] += 1;
+        }
+      }
+      for (int i = 0; i < RM::kBins; ++i)
+        EXPECT_NEAR(obs[i], n * k * m(i, o) / (d + c), 1.5) << k << ", " << nm << " nm, bin " << i;
+      EXPECT_NEAR(obs[RM::kBins], n * d / (d + c), 1.5) << k << ", " << nm << " nm, elastic";
+    }
+}
+
 TEST(ReradiationMatrix, CsvRoundTrip) {
   const RM m = RM::fromModel(model(460, 220, 0.75));
   const std::string path = ::testing::TempDir() + "matrix.csv";
