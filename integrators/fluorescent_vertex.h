@@ -24,6 +24,16 @@ inline float rotateUnit(float x, float shift) {
   return r >= 1.0f ? r - 1.0f : r;
 }
 
+/// Lane i's share of a 2D sample shared by the lanes: u rotated by (i / kLanes, frac(i phi))
+/// (a Cranley-Patterson rotation), so each lane's sample is uniform on its own while the
+/// lanes' samples are stratified among themselves, like the hero wavelengths.
+inline Sample2 laneSample(const Sample2& u, int i) {
+  constexpr float kGoldenFraction = 0.6180339887f;
+  const float shiftV = static_cast<float>(i) * kGoldenFraction;
+  return {rotateUnit(u.u, static_cast<float>(i) / static_cast<float>(kLanes)),
+          rotateUnit(u.v, shiftV - std::floor(shiftV))};
+}
+
 /// Draws the re-radiation choice of every lane from one 2D sample: lane i uses it rotated by
 /// (i / kLanes, frac(i phi)) (a Cranley-Patterson rotation), so each lane's sample is
 /// uniform on its own (the estimate of every lane is unbiased) while the lanes' choices are
@@ -36,17 +46,41 @@ inline FluorescentShift sampleFluorescentShift(const ReradiationMatrix& matrix,
                                                const float* concentration = nullptr) {
   FluorescentShift s{current, SampledSpectrum::filled(1.0f)};
   const Sample2 u = rng.next2D();
-  constexpr float kGoldenFraction = 0.6180339887f;
   for (int i = 0; i < kLanes; ++i) {
-    const float shiftV = static_cast<float>(i) * kGoldenFraction;
-    const float ui = rotateUnit(u.u, static_cast<float>(i) / static_cast<float>(kLanes));
-    const float vi = rotateUnit(u.v, shiftV - std::floor(shiftV));
+    const Sample2 ui = laneSample(u, i);
     s.excited.lambda[i] =
-        concentration ? matrix.sampleExcitationScaled(current.lambda[i], rho[i], *concentration, ui,
-                                                      vi, s.albedo[i])
-                      : matrix.sampleExcitation(current.lambda[i], rho[i], ui, vi, s.albedo[i]);
+        concentration ? matrix.sampleExcitationScaled(current.lambda[i], rho[i], *concentration,
+                                                      ui.u, ui.v, s.albedo[i])
+                      : matrix.sampleExcitation(current.lambda[i], rho[i], ui.u, ui.v, s.albedo[i]);
   }
   return s;
+}
+
+/// Next-event estimation's excitation at a fluorescent vertex towards one light: per lane the
+/// column's event (the vertex's shift) and one guided by the light's spectrum, with their MIS
+/// weights (ReradiationMatrix::guidedExcitation).
+struct GuidedShift {
+  SampledWavelengths guided;    ///< the guided events' excitation wavelengths
+  SampledSpectrum columnWeight; ///< weight of the light at shift.excited
+  SampledSpectrum guidedWeight; ///< weight of the light at `guided`
+};
+
+/// The guided events of every lane from one 2D sample (stratified across lanes as the shift's).
+inline GuidedShift guideFluorescentShift(const ReradiationMatrix& matrix,
+                                         const SampledWavelengths& current,
+                                         const FluorescentShift& shift, const SampledSpectrum& rho,
+                                         float concentration, const ExcitationGuide& guide,
+                                         Sample2 u) {
+  GuidedShift g{current, {}, {}};
+  for (int i = 0; i < kLanes; ++i) {
+    const Sample2 ui = laneSample(u, i);
+    const GuidedExcitation e = matrix.guidedExcitation(current.lambda[i], shift.excited.lambda[i],
+                                                       rho[i], concentration, guide, ui.u, ui.v);
+    g.guided.lambda[i] = e.nm[1];
+    g.columnWeight[i] = e.weight[0];
+    g.guidedWeight[i] = e.weight[1];
+  }
+  return g;
 }
 
 } // namespace nx

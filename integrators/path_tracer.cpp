@@ -361,7 +361,49 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       }
     }
 
-    if (bsdf.hasNonSpecular() && ctx.lightSampling != LightSampling::BsdfOnly &&
+    // Next-event estimation at a fluorescent vertex of a plain render: the excitation is also
+    // drawn guided by the chosen light's spectrum (fluorescent_vertex.h); differentiated,
+    // relightable and media renders keep the column's choice alone.
+    constexpr bool kGuidedExcitation =
+        kFluorescence && !kMedia && !kGradients && !std::is_same_v<Sink, RelightSink>;
+    bool guidedDone = false;
+    if constexpr (kGuidedExcitation) {
+      if (fluorescent && bsdf.hasNonSpecular() && ctx.lightSampling != LightSampling::BsdfOnly &&
+          ctx.lights->count() > 0) {
+        guidedDone = true;
+        const float uChoice = rng.next1D();
+        const Sample2 uLight = rng.next2D();
+        const Sample2 uGuide = rng.next2D();
+        float share = 0, uRest = 0;
+        const int l = ctx.lights->choose(hit.p, uChoice, share, uRest);
+        LightSample ls, lsGuided;
+        if (l >= 0 && ctx.lights->sampleChosen(l, share, hit.p, uRest, uLight, shift.excited, ls)) {
+          const GuidedShift g =
+              guideFluorescentShift(*material.reradiation, current, shift, rho, concentration,
+                                    *ctx.lights->excitationGuide(l), uGuide);
+          ctx.lights->sampleChosen(l, share, hit.p, uRest, uLight, g.guided, lsGuided);
+          // One shadow ray for both events: the light's geometry with unit radiance.
+          LightSample unit = ls;
+          unit.radiance = SampledSpectrum::filled(1.0f);
+          const SampledSpectrum geometric = directLight(
+              scene, hit, ray.d, unit, [&](const Vec3& wi) { return bsdf.diffuseLobe(wi); },
+              [&](const Vec3& wi) { return bsdf.pdf(wi); },
+              ctx.lightSampling != LightSampling::NeeOnly, counters);
+          if (!geometric.isBlack()) {
+            const uint16_t group = ctx.lights->group(l), source = ctx.lights->source(l);
+            const auto lanesOf = [&](const SampledWavelengths& lit) {
+              return Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0};
+            };
+            sink.add(
+                beta * geometric * g.columnWeight * ls.radiance,
+                classOf(scatterings + 1, group, source, shift.excited, lanesOf(shift.excited)));
+            sink.add(beta * geometric * g.guidedWeight * lsGuided.radiance,
+                     classOf(scatterings + 1, group, source, g.guided, lanesOf(g.guided)));
+          }
+        }
+      }
+    }
+    if (!guidedDone && bsdf.hasNonSpecular() && ctx.lightSampling != LightSampling::BsdfOnly &&
         ctx.lights->count() > 0) {
       const float uChoice = rng.next1D();
       const Sample2 uLight = rng.next2D();

@@ -32,6 +32,21 @@ struct MeasuredMatrix {
   bool fluorescenceOnly = false;
 };
 
+/// What next-event estimation knows of a light's spectrum on the matrix's grid: the mean of its
+/// emission over each 5 nm bin (any non-negative shape: only its proportions matter) and the
+/// bins [lo, hi) outside which it is zero.
+struct ExcitationGuide {
+  std::array<float, 160> mean{}; ///< per bin of ReradiationMatrix
+  int lo = 0, hi = 160;          ///< support
+};
+
+/// Two excitation events for one lane with their multi-sample MIS weights
+/// (ReradiationMatrix::guidedExcitation): [0] the column's, [1] the light-guided one.
+struct GuidedExcitation {
+  float nm[2];     ///< excitation wavelengths (the lane's own for an elastic event)
+  float weight[2]; ///< what each event's light is multiplied by
+};
+
 /// M[i][o] (energy re-radiated from excitation bin i into emission bin o, o > i), the
 /// absorptance a per bin, and per-column sampling tables.
 class ReradiationMatrix {
@@ -128,6 +143,67 @@ public:
     return static_cast<float>(kMinNm) +
            (static_cast<float>(excitationBin(o, target / k)) + v) * static_cast<float>(kBinNm);
   }
+  /// Next-event estimation's excitation choice for a lane at wavelength nm (bin o), towards a
+  /// light whose spectrum's bin means are `guide`: the column's event `columnNm` (what
+  /// sampleExcitation or sampleExcitationScaled returned for this lane) and a second event drawn
+  /// in proportion to the column times the guide, v(e) g(e) with v = D for the elastic event
+  /// and k M[i][o] for bin i (u picks it, v its position in the bin). Both carry their
+  /// balance-heuristic weight of multi-sample MIS (Veach & Guibas 1995):
+  /// w(e) = v(e) / (p_column(e) + p_guided(e)) = 1 / (1 / (D + k c) + g(e) / Z),
+  /// Z = sum over e of v(e) g(e), so E[w_c L(nm_c) + w_g L(nm_g)] = D L(nm) + sum_i k M[i][o]
+  /// Lbar_i for any light (the guide only moves samples towards where it shines). A dark column
+  /// (Z = 0) gives the guided event weight 0 and the column's its plain weight D + k c.
+  GuidedExcitation guidedExcitation(float nm, float columnNm, float rhoValue, float k,
+                                    const ExcitationGuide& guide, float u, float v) const {
+    GuidedExcitation out{{columnNm, nm}, {0, 0}};
+    const float x = (nm - static_cast<float>(kMinNm)) * static_cast<float>(1.0 / kBinNm);
+    if (!(x >= 0 && x < static_cast<float>(kBins))) { // an ordinary reflector (or black)
+      const float d = measured_ && !elasticFromRho_ ? 0.0f : rhoValue;
+      out.weight[0] = out.weight[1] = 0.5f * d;
+      return out;
+    }
+    const int o = static_cast<int>(x);
+    const ColumnSampling& col = columns_[o];
+    const float d = k == 1 ? col.elasticScale * rhoValue + col.elasticConstant
+                           : (1 - k * (1 - col.elasticScale)) * rhoValue;
+    const float columnTotal = d + k * col.sum;
+    if (!(columnTotal > 0)) return out;
+    // Running sums of M[i][o] g_i over the guide's support below o (no allocation).
+    const float* cdf = &cdf_[static_cast<size_t>(o) * kBins];
+    std::array<float, kBins> running;
+    const int lo = guide.lo, hi = std::min(guide.hi, o);
+    float sum = 0;
+    for (int i = lo; i < hi; ++i) {
+      const float cell = cdf[i] - (i > 0 ? cdf[i - 1] : 0.0f);
+      running[static_cast<size_t>(i - lo)] = sum += cell * guide.mean[static_cast<size_t>(i)];
+    }
+    const float elasticGuided = d * guide.mean[static_cast<size_t>(o)];
+    const float z = elasticGuided + k * sum;
+    const auto weightOf = [&](float g) { return 1 / (1 / columnTotal + g / z); };
+    if (!(z > 0)) {
+      out.weight[0] = columnTotal;
+      return out;
+    }
+    const int columnBin = columnNm == nm ? o : binOf(columnNm);
+    out.weight[0] = weightOf(columnBin >= 0 ? guide.mean[static_cast<size_t>(columnBin)] : 0.0f);
+    const float target = u * z - elasticGuided;
+    if (!(target >= 0) || !(sum > 0)) { // elastic
+      out.weight[1] = weightOf(guide.mean[static_cast<size_t>(o)]);
+      return out;
+    }
+    const int n = hi - lo;
+    const auto first = running.begin();
+    int i = lo + std::min(static_cast<int>(std::upper_bound(first, first + n, target / k) - first),
+                          n - 1);
+    while (i > lo &&
+           running[static_cast<size_t>(i - lo)] == running[static_cast<size_t>(i - lo - 1)])
+      --i; // only after the clamp: never an empty bin
+    out.nm[1] =
+        static_cast<float>(kMinNm) + (static_cast<float>(i) + v) * static_cast<float>(kBinNm);
+    out.weight[1] = weightOf(guide.mean[static_cast<size_t>(i)]);
+    return out;
+  }
+
   /// The elastic part at bin o for a dye at relative concentration k (see
   /// sampleExcitationScaled).
   double elastic(int o, double rhoValue, double k) const {

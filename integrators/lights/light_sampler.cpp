@@ -26,6 +26,28 @@ double sceneRadius(const RenderScene& scene) {
   return std::max(1e-3, 0.5 * length(b.hi - b.lo));
 }
 
+// A spectrum's mean over each 5 nm bin of the re-radiation grid (20 points per bin, at the
+// centres of 0.25 nm steps) and the bins where it is not zero; a flat guide without one.
+ExcitationGuide excitationGuideOf(const Spectrum* s) {
+  using RM = ReradiationMatrix;
+  ExcitationGuide g;
+  if (!s) {
+    g.mean.fill(1.0f);
+    return g;
+  }
+  constexpr int kSteps = 20;
+  g.lo = RM::kBins, g.hi = 0;
+  for (int i = 0; i < RM::kBins; ++i) {
+    double sum = 0;
+    for (int j = 0; j < kSteps; ++j)
+      sum += std::max(0.0, (*s)(RM::kMinNm + (i + (j + 0.5) / kSteps) * RM::kBinNm));
+    g.mean[static_cast<size_t>(i)] = static_cast<float>(sum / kSteps);
+    if (sum > 0) g.lo = std::min(g.lo, i), g.hi = i + 1;
+  }
+  if (g.hi <= g.lo) g.lo = g.hi = 0;
+  return g;
+}
+
 } // namespace
 
 LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
@@ -161,6 +183,22 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
     source_.push_back(of(groups.sourceOfEmission, groups.sourceOfLight, groups.sourceOfBackground));
   }
 
+  // Excitation guides, for scenes with a fluorescent surface only: the emission of shapes and
+  // the background, a point or spot light's intensity, a flat guide for environment maps.
+  if (std::any_of(scene.materials.begin(), scene.materials.end(),
+                  [](const Material& m) { return m.reradiation != nullptr; })) {
+    for (const Light& l : lights_) {
+      const Spectrum* s = l.emission;
+      if (l.kind == LightKind::Point)
+        std::visit(
+            [&](const auto& light) {
+              if constexpr (requires { light.intensity; }) s = &light.intensity;
+            },
+            scene.lights[l.shape]);
+      guides_.push_back(excitationGuideOf(s));
+    }
+  }
+
   // Choice probabilities: by power (uniform when every power is zero or not finite).
   double total = 0;
   for (const Light& l : lights_) total += l.power;
@@ -241,9 +279,8 @@ float LightSampler::pdfBackground(const Vec3& p) const {
   return background_ < 0 ? 0.0f : static_cast<float>(1.0 / (4 * kPi)) * probability(background_, p);
 }
 
-bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
-                          LightSample& out) const {
-  if (lights_.empty()) return false;
+int LightSampler::choose(const Vec3& p, float uChoice, float& shareOut, float& uRest) const {
+  if (lights_.empty()) return -1;
   // The first light whose running probability exceeds uChoice; uChoice is then rescaled to
   // [0, 1) within that light's share, for the light's own choice of triangle.
   const double uc = uChoice;
@@ -256,7 +293,7 @@ bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const Sampled
     std::array<float, kMaxLocalLights> weights;
     float total = 0;
     for (size_t i = 0; i < lights_.size(); ++i) total += weights[i] = localWeight(lights_[i], p);
-    if (!(total > 0)) return false;
+    if (!(total > 0)) return -1;
     const double target = uc * total;
     double running = 0;
     k = lights_.size() - 1;
@@ -275,14 +312,27 @@ bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const Sampled
     lo = k == 0 ? 0.0 : cdf_[k - 1];
     share = pmf_[k];
   }
-  const float uRest =
-      static_cast<float>(std::clamp((uc - lo) / std::max(share, 1e-300), 0.0, 0.99999994));
-  if (!(share > 0) || !sampleLight(static_cast<int>(k), p, uRest, u, lambda, out)) return false;
+  if (!(share > 0)) return -1;
+  uRest = static_cast<float>(std::clamp((uc - lo) / std::max(share, 1e-300), 0.0, 0.99999994));
+  shareOut = static_cast<float>(share);
+  return static_cast<int>(k);
+}
+
+bool LightSampler::sampleChosen(int k, float share, const Vec3& p, float uRest, Sample2 u,
+                                const SampledWavelengths& lambda, LightSample& out) const {
+  if (!sampleLight(k, p, uRest, u, lambda, out)) return false;
   if (!out.delta)
-    out.pdf *= static_cast<float>(share);
+    out.pdf *= share;
   else
-    out.pdf = static_cast<float>(share);
+    out.pdf = share;
   return true;
+}
+
+bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
+                          LightSample& out) const {
+  float share = 0, uRest = 0;
+  const int k = choose(p, uChoice, share, uRest);
+  return k >= 0 && sampleChosen(k, share, p, uRest, u, lambda, out);
 }
 
 size_t LightSampler::triangleCount(int k) const {

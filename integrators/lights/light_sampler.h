@@ -6,6 +6,7 @@
 #include "core/sampler.h"
 #include "integrators/lights/light_sample.h"
 #include "integrators/render_scene.h"
+#include "spectra/reradiation_matrix.h"
 
 namespace nx {
 
@@ -66,6 +67,19 @@ public:
   /// choice); false if there is no light or the configuration is degenerate.
   bool sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
               LightSample& out) const;
+  /// The light sample() chooses with uChoice for shading point p, its probability `share` and
+  /// uChoice rescaled to [0, 1) within its share (`uRest`, for the light's triangle); -1 if
+  /// none can be chosen.
+  int choose(const Vec3& p, float uChoice, float& share, float& uRest) const;
+  /// sample() for the light choose() gave: sampleLight with the choice's probability in pdf.
+  bool sampleChosen(int k, float share, const Vec3& p, float uRest, Sample2 u,
+                    const SampledWavelengths& lambda, LightSample& out) const;
+  /// Light k's spectrum on the re-radiation matrix's grid (for excitation sampling at
+  /// fluorescent vertices); built only for scenes with a fluorescent surface, else null. A
+  /// light whose spectrum varies over it (an environment map) has a flat guide.
+  const ExcitationGuide* excitationGuide(int k) const {
+    return guides_.empty() ? nullptr : &guides_[static_cast<size_t>(k)];
+  }
   /// A sample of light k itself (pdf without any choice probability); uChoice, in [0, 1),
   /// picks the triangle of a mesh light.
   bool sampleLight(int k, const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
@@ -120,9 +134,10 @@ private:
   std::vector<int32_t> meshLight_;   ///< light number per mesh (whole meshes), or -1
   std::vector<std::vector<int32_t>> triangleLight_; ///< per mesh with inline triangles
   int32_t background_ = -1;
-  std::vector<int32_t> environments_; ///< light numbers of the environment lights
-  std::vector<uint16_t> group_;       ///< light group per light
-  std::vector<uint16_t> source_;      ///< relight source per light
+  std::vector<int32_t> environments_;   ///< light numbers of the environment lights
+  std::vector<uint16_t> group_;         ///< light group per light
+  std::vector<uint16_t> source_;        ///< relight source per light
+  std::vector<ExcitationGuide> guides_; ///< per light, for fluorescent scenes only
 };
 
 } // namespace nx
