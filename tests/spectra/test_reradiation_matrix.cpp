@@ -275,12 +275,13 @@ TEST(ReradiationMatrix, GuidedExcitationSamplingMatchesColumnTimesGuide) {
       }
 }
 
-// The multi-sample MIS combination is unbiased for any light, not only the guide's: with the
-// light's bin means L (constant within a bin), E[w_c L(column event) + w_g L(guided event)]
-// over both samples equals D L_o + sum_i k M[i][o] L_i. Checked by stratified quadrature over
-// both samples for a light equal to the guide, a broadband light the guide does not describe,
-// and a light where the guide is dark (its column-only regime); with the guide flat the
-// weights halve the column's plain weight.
+// The multi-sample MIS combination is unbiased for any light, not only the guide's. Each event
+// e is drawn by the column with p_c = v(e) / (D + c) (tested above) and by the guide with
+// p_g = v(e) g(e) / Z (tested above), and carries the same weight w(e) either way (read back
+// from guidedExcitation with e as the column's event); the expectation of both samples is
+// then sum over e of (p_c + p_g) w L, which must equal D L_o + sum_i M[i][o] L_i exactly, for a
+// light equal to the guide, a broadband light the guide does not describe, and a light where
+// the guide is dark (the column's regime). With the guide flat the weights halve the column's.
 TEST(ReradiationMatrix, GuidedExcitationMisIsUnbiasedForAnyLight) {
   const RM m = RM::fromModel({440, 80, 20, 10, 0.9, 0.8});
   const ExcitationGuide led = guideOf(royalBlue);
@@ -290,28 +291,25 @@ TEST(ReradiationMatrix, GuidedExcitationMisIsUnbiasedForAnyLight) {
       [](double nm) { return nm > 500 && nm < 520 ? 1.0 : 0.0; }};
   for (size_t li = 0; li < lights.size(); ++li) {
     const ExcitationGuide lbar = guideOf(lights[li]);
-    const auto lightAt = [&](float nm) {
-      const int b = RM::binOf(nm);
-      return b < 0 ? 0.0 : static_cast<double>(lbar.mean[static_cast<size_t>(b)]);
-    };
     for (double nm : {452.0, 530.0, 601.0}) {
       const int o = RM::binOf(nm);
-      double expected = m.elastic(o, rho) * lightAt(static_cast<float>(nm));
-      for (int i = 0; i < o; ++i) expected += m(i, o) * lightAt(static_cast<float>(RM::centre(i)));
-      const int n = 20000;
-      double sum = 0;
-      for (int j = 0; j < n; ++j) {
-        const float u = static_cast<float>((j + 0.5) / n);
-        float w = 1;
-        const float column =
-            m.sampleExcitation(static_cast<float>(nm), static_cast<float>(rho), u, 0.5f, w);
-        const GuidedExcitation e = m.guidedExcitation(static_cast<float>(nm), column,
-                                                      static_cast<float>(rho), 1.0f, led, u, 0.5f);
-        EXPECT_GE(e.weight[0], 0);
-        EXPECT_LE(e.weight[0], w * (1 + 1e-6)); // never more than the column alone
-        sum += e.weight[0] * lightAt(e.nm[0]) + e.weight[1] * lightAt(e.nm[1]);
+      const double d = m.elastic(o, rho), total = d + m.columnSum(o);
+      double z = d * led.mean[static_cast<size_t>(o)];
+      for (int i = 0; i < o; ++i) z += m(i, o) * led.mean[static_cast<size_t>(i)];
+      double expected = 0, combined = 0;
+      for (int e = 0; e <= o; ++e) { // e = o: the elastic event
+        const double v = e == o ? d : m(e, o);
+        const double l = lbar.mean[static_cast<size_t>(e)];
+        const float eventNm = e == o ? static_cast<float>(nm) : static_cast<float>(RM::centre(e));
+        const float w = m.guidedExcitation(static_cast<float>(nm), eventNm, static_cast<float>(rho),
+                                           1.0f, led, 0.5f, 0.5f)
+                            .weight[0];
+        EXPECT_GE(w, 0);
+        EXPECT_LE(w, total * (1 + 1e-6)); // never more than the column alone
+        expected += v * l;
+        combined += (v / total + v * led.mean[static_cast<size_t>(e)] / z) * w * l;
       }
-      EXPECT_NEAR(sum / n, expected, 2e-3 * expected + 1e-9)
+      EXPECT_NEAR(combined, expected, 1e-5 * expected + 1e-12)
           << "light " << li << ", " << nm << " nm";
     }
   }
