@@ -6,11 +6,21 @@
 //    fluorescence removed: time per sample.
 // 2. A scene without fluorescent materials rendered by the plain path tracer and by the
 //    fluorescence-capable one (the feature present but unused): time per sample.
+// 3. Excitation guided by the light's spectrum against the matrix column alone, at equal spp
+//    (--repeats seeds each): scenes/led_cards.scn (a fluorescent card beside a plain one under a
+//    royal-blue LED: per-pixel relative noise of the fluorescent card in its emission bands,
+//    520-570 nm, against the plain card's in the lamp's bands, 440-460 nm), and the broadband
+//    thesis and lab_bench scenes (per-pixel relative noise over every lit pixel and band), with
+//    time per sample.
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <cstdio>
+#include <functional>
+#include <optional>
+#include <vector>
 
 #include "apps/bench_util.h"
 #include "apps/command_line.h"
@@ -26,13 +36,122 @@ double nsPerSample(const nx::RenderScene& scene, int spp, bool force) {
   return s * 1e9 / (static_cast<double>(scene.settings.width) * scene.settings.height * spp);
 }
 
+// Per-pixel, per-band mean and variance over renders with different seeds.
+struct SeedStatistics {
+  int width = 0, height = 0, bands = 0, renders = 0;
+  std::vector<double> sum, sumSquares; ///< per (pixel, band)
+  std::vector<double> centroids;       ///< per band (nm)
+  double secondsPerSample = 0;         ///< the fastest render's, per pixel sample (ns)
+  /// Mean of (x, y, band b).
+  double mean(int x, int y, int b) const { return sum[index(x, y, b)] / renders; }
+  /// Relative standard deviation of one render's value at (x, y, b); 0 where the mean is 0.
+  double relativeNoise(int x, int y, int b) const {
+    const double m = mean(x, y, b);
+    const double v = (sumSquares[index(x, y, b)] - renders * m * m) / (renders - 1);
+    return m > 0 ? std::sqrt(std::max(v, 0.0)) / m : 0;
+  }
+  size_t index(int x, int y, int b) const {
+    return (static_cast<size_t>(y) * width + x) * bands + b;
+  }
+};
+
+SeedStatistics seedStatistics(const nx::RenderScene& scene, int spp, bool columnOnly, int renders) {
+  SeedStatistics s;
+  s.renders = renders;
+  double fastest = 1e300;
+  for (int r = 0; r < renders; ++r) {
+    nx::RenderOptions o;
+    o.samples = spp;
+    o.seed = 1000u + static_cast<uint32_t>(r);
+    o.columnOnlyExcitation = columnOnly;
+    std::optional<nx::RenderOutput> out;
+    fastest = std::min(fastest, nx::bench::fastestSeconds(1, [&] { out = nx::render(scene, o); }));
+    const nx::Film& f = out->film;
+    if (r == 0) {
+      s.width = f.width();
+      s.height = f.height();
+      s.bands = f.bands().count();
+      s.sum.assign(static_cast<size_t>(s.width) * s.height * s.bands, 0);
+      s.sumSquares = s.sum;
+      for (int b = 0; b < s.bands; ++b) s.centroids.push_back(f.bands().centroid(b));
+    }
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x)
+        for (int b = 0; b < s.bands; ++b) {
+          const double v = f.bandMean(x, y, b);
+          s.sum[s.index(x, y, b)] += v;
+          s.sumSquares[s.index(x, y, b)] += v * v;
+        }
+  }
+  s.secondsPerSample = fastest * 1e9 / (static_cast<double>(s.width) * s.height * spp);
+  return s;
+}
+
+// Mean relative noise over the (pixel, band) pairs `take` selects.
+double meanRelativeNoise(const SeedStatistics& s,
+                         const std::function<bool(int x, int y, int b)>& take) {
+  double total = 0;
+  long n = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x)
+      for (int b = 0; b < s.bands; ++b)
+        if (take(x, y, b)) {
+          total += s.relativeNoise(x, y, b);
+          ++n;
+        }
+  return n ? total / static_cast<double>(n) : 0;
+}
+
+// Band index whose centroid is nearest nm.
+int bandNear(const SeedStatistics& s, double nm) {
+  int best = 0;
+  for (int b = 1; b < s.bands; ++b)
+    if (std::abs(s.centroids[b] - nm) < std::abs(s.centroids[best] - nm)) best = b;
+  return best;
+}
+
+// The LED cards: (fluorescent card's noise in 520-570 nm, plain card's in 440-460 nm). A pixel
+// belongs to the fluorescent card where its 540 nm band is above half the image's largest, to
+// the plain card where its 450 nm band is above half the largest and its 540 nm band below 1%
+// of the fluorescent card's.
+std::pair<double, double> ledCardNoise(const SeedStatistics& s) {
+  const int dye = bandNear(s, 540), lamp = bandNear(s, 450);
+  double dyeMax = 0, lampMax = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      dyeMax = std::max(dyeMax, s.mean(x, y, dye));
+      lampMax = std::max(lampMax, s.mean(x, y, lamp));
+    }
+  const auto fluorescentCard = [&](int x, int y) { return s.mean(x, y, dye) > 0.5 * dyeMax; };
+  const auto plainCard = [&](int x, int y) {
+    return s.mean(x, y, lamp) > 0.5 * lampMax && s.mean(x, y, dye) < 0.01 * dyeMax;
+  };
+  const double fl = meanRelativeNoise(s, [&](int x, int y, int b) {
+    return fluorescentCard(x, y) && s.centroids[b] >= 519 && s.centroids[b] <= 571;
+  });
+  const double plain = meanRelativeNoise(s, [&](int x, int y, int b) {
+    return plainCard(x, y) && s.centroids[b] >= 439 && s.centroids[b] <= 461;
+  });
+  return {fl, plain};
+}
+
+// Over every pixel and band whose mean is above 1% of the image's brightest value.
+double litNoise(const SeedStatistics& s) {
+  double brightest = 0;
+  for (double v : s.sum) brightest = std::max(brightest, v / s.renders);
+  return meanRelativeNoise(s,
+                           [&](int x, int y, int b) { return s.mean(x, y, b) > 0.01 * brightest; });
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Time per sample with and without fluorescence"};
-  int threads = 2, spp = 16;
+  int threads = 2, spp = 16, repeats = 8;
   app.add_option("--threads", threads, "Worker threads (default 2)")->check(nx::numberIn(1, 4096));
   app.add_option("--spp", spp, "Samples per pixel (default 16)")->check(nx::numberIn(1, 1 << 20));
+  app.add_option("--repeats", repeats, "Seeds per noise measurement (default 8)")
+      ->check(nx::numberIn(2, 1000));
   if (const int status = nx::parseCommandLine(app, argc, argv, "nxbench-fluorescence"); status >= 0)
     return status;
   try {
@@ -54,6 +173,32 @@ int main(int argc, char** argv) {
     std::printf("%-48s %12.0f\n", "materials (no fluorescence), plain path tracer", c);
     std::printf("%-48s %12.0f\n", "materials, fluorescence-capable path tracer", d);
     std::printf("%-48s %11.1f%%\n", "  cost of the feature present but unused", 100 * (d / c - 1));
+
+    std::printf("\nexcitation strategy at %d spp, %d seeds: per-pixel relative noise\n", spp,
+                repeats);
+    const nx::RenderScene cards =
+        nx::buildRenderScene(nx::loadScene(NX_SOURCE_DIR "/scenes/led_cards.scn"));
+    std::printf("%-34s %10s %10s %8s %10s\n", "led_cards", "dye card", "plain card", "ratio",
+                "ns/sample");
+    for (const bool columnOnly : {true, false}) {
+      const SeedStatistics st = seedStatistics(cards, spp, columnOnly, repeats);
+      const auto [fl, plainNoise] = ledCardNoise(st);
+      std::printf("%-34s %10.4f %10.4f %8.2f %10.0f\n",
+                  columnOnly ? "  column alone" : "  guided by the light + MIS", fl, plainNoise,
+                  fl / plainNoise, st.secondsPerSample);
+    }
+    std::printf("%-34s %10s %10s\n", "broadband scenes", "noise", "ns/sample");
+    for (const char* name : {"thesis", "lab_bench"}) {
+      const nx::RenderScene scene = nx::buildRenderScene(
+          nx::loadScene(std::string(NX_SOURCE_DIR "/scenes/") + name + ".scn"));
+      for (const bool columnOnly : {true, false}) {
+        const SeedStatistics st = seedStatistics(scene, spp, columnOnly, repeats);
+        std::printf(
+            "%-34s %10.4f %10.0f\n",
+            (std::string(name) + (columnOnly ? ", column alone" : ", guided + MIS")).c_str(),
+            litNoise(st), st.secondsPerSample);
+      }
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nxbench-fluorescence: error: %s\n", e.what());
     return 1;

@@ -41,6 +41,9 @@ struct IntegratorContext {
   const LightSampler* lights;
   LightSampling lightSampling = LightSampling::Mis;
   bool fluorescence = false; ///< run the fluorescent variant (scenes with fluorescent materials)
+  /// Draw excitation wavelengths from the matrix column alone (benchmarks: the strategy before
+  /// the light-guided one; RenderOptions::columnOnlyExcitation).
+  bool columnOnlyExcitation = false;
   /// The tangents of a differentiated render (tracePathGradients), else null.
   const GradientContext* gradients = nullptr;
 };

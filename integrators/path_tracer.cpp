@@ -368,8 +368,8 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         kFluorescence && !kMedia && !kGradients && !std::is_same_v<Sink, RelightSink>;
     bool guidedDone = false;
     if constexpr (kGuidedExcitation) {
-      if (fluorescent && bsdf.hasNonSpecular() && ctx.lightSampling != LightSampling::BsdfOnly &&
-          ctx.lights->count() > 0) {
+      if (fluorescent && !ctx.columnOnlyExcitation && bsdf.hasNonSpecular() &&
+          ctx.lightSampling != LightSampling::BsdfOnly && ctx.lights->count() > 0) {
         guidedDone = true;
         const float uChoice = rng.next1D();
         const Sample2 uLight = rng.next2D();

@@ -159,8 +159,11 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const LightSampler lights(scene, options.lightSelection);
   std::optional<GradientContext> gradientContext;
   if (differentiated) gradientContext.emplace(scene, lights, *options.gradients);
-  const IntegratorContext ctx{&scene, &lights, options.lightSampling,
+  const IntegratorContext ctx{&scene,
+                              &lights,
+                              options.lightSampling,
                               scene.hasFluorescence || options.forceFluorescencePath,
+                              options.columnOnlyExcitation,
                               gradientContext ? &*gradientContext : nullptr};
   const WavelengthSampler wavelengths =
       options.wavelengthDensity == WavelengthDensity::Visible

@@ -67,6 +67,9 @@ struct RenderOptions {
   /// Runs the fluorescence-capable path tracer even without fluorescent materials (to
   /// measure what the feature costs when present but unused).
   bool forceFluorescencePath = false;
+  /// Draws fluorescent vertices' excitation wavelengths from the matrix column alone, without
+  /// the light-guided strategy (to measure what guiding buys; nxbench-fluorescence).
+  bool columnOnlyExcitation = false;
   /// When set, no new tile is started once it becomes true (SIGINT, SIGTERM, time limit);
   /// the film then holds every finished tile's samples with their true counts.
   const std::atomic<bool>* stop = nullptr;

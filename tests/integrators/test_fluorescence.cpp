@@ -67,6 +67,33 @@ TEST(Fluorescence, FurnaceMatchesTheMatrixSolution) {
   }
 }
 
+// The same furnace emitting only a royal-blue LED's narrow band (450 nm, FWHM 20 nm) onto a dye
+// absorbing there (blue, Stokes 80): next-event estimation picks the emitting sphere, so the
+// excitation is drawn from the column and from the light's spectrum and combined by MIS; the
+// bands match L = (I - D - M^T)^-1 Le with Le the LED's 5 nm bin means, the LED's own bands and
+// the dye's emission bands alike.
+TEST(Fluorescence, FurnaceUnderANarrowBandEmitterMatchesTheMatrixSolution) {
+  const double rho = 0.5;
+  const RenderOutput out = renderText(
+      "<scene><settings><xres>12</xres><yres>12</yres><mode>spectral_mcpt</mode><depth>4</depth>"
+      "<sampl>256</sampl></settings><camera><position>0,0,0</position><look_at>0,0,1</look_at>"
+      "</camera><sphere><center>0,0,0</center><radius>1</radius><material>matte</material>"
+      "<reflectance>0.5</reflectance><emission>" +
+      test::royalBlueLedText() +
+      "</emission><fluorescence><absorption>blue</absorption><stokes>80</stokes></fluorescence>"
+      "</sphere></scene>");
+  const std::vector<double> L = test::furnaceRadiance(RM::fromModel({460, 80, 20, 10, 1, 1}), rho,
+                                                      test::binMeans(test::royalBlueLed));
+  // The dye's emission is a real share of the image (the test is not only the LED's reflection).
+  int dyeBand = 0;
+  for (int b = 0; b < out.film.bands().count(); ++b)
+    if (std::abs(out.film.bands().centroid(b) - 540) < 1) dyeBand = b;
+  EXPECT_GT(bandOfBins(L, out.film.bands(), dyeBand), 0.05);
+  expectBandsEqual(
+      out.film, [&](int b) { return bandOfBins(L, out.film.bands(), b); }, 0.02, "narrow LED");
+  EXPECT_EQ(out.stats.nonFinite, 0u);
+}
+
 // Quantum yield 0 is the plain material with rho replaced by (1 - a) rho: both furnaces
 // match L = Le / (1 - (1 - a) rho) per bin.
 TEST(Fluorescence, ZeroYieldEqualsReducedReflectance) {

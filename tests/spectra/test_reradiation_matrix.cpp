@@ -85,6 +85,17 @@ TEST(ReradiationMatrix, RowAndColumnSums) {
   }
 }
 
+// Counts an excitation event drawn for a lane at nm (bin o): the elastic event (l == nm) in
+// obs[kBins], a fluorescent one in its bin, which must lie below o.
+void countExcitationEvent(std::vector<double>& obs, double l, double nm, int o) {
+  if (l == nm) {
+    obs[RM::kBins] += 1;
+    return;
+  }
+  ASSERT_LT(RM::binOf(l), o);
+  obs[static_cast<size_t>(RM::binOf(l))] += 1;
+}
+
 // Stratified u over the outcomes of a lane at nm: elastic with probability D / (D + c), bin i
 // with probability M[i][o] / (D + c); the inverse CDF keeps the counts within one sample of
 // their expectation, and never picks an empty bin.
@@ -100,12 +111,7 @@ void expectExcitationSamplingMatches(const RM& m, double nm) {
     const double l = m.sampleExcitation(static_cast<float>(nm), static_cast<float>(rho),
                                         static_cast<float>(u), static_cast<float>(v), w);
     EXPECT_NEAR(w, d + c, 1e-6);
-    if (l == nm) {
-      obs[RM::kBins] += 1;
-    } else {
-      ASSERT_LT(RM::binOf(l), o);
-      obs[RM::binOf(l)] += 1;
-    }
+    countExcitationEvent(obs, l, nm, o);
   }
   for (int i = 0; i < RM::kBins; ++i) exp[i] = n * m(i, o) / (d + c);
   exp[RM::kBins] = n * d / (d + c);
@@ -144,12 +150,7 @@ TEST(ReradiationMatrix, ScaledExcitationSamplingMatchesTheScaledMatrix) {
                                                   static_cast<float>(k), static_cast<float>(u),
                                                   static_cast<float>(v), w);
         EXPECT_NEAR(w, d + c, 1e-6);
-        if (l == nm) {
-          obs[RM::kBins] += 1;
-        } else {
-          ASSERT_LT(RM::binOf(l), o);
-          obs[RM::binOf(l)] += 1;
-        }
+        countExcitationEvent(obs, l, nm, o);
       }
       for (int i = 0; i < RM::kBins; ++i)
         EXPECT_NEAR(obs[i], n * k * m(i, o) / (d + c), 1.5) << k << ", " << nm << " nm, bin " << i;
@@ -256,12 +257,7 @@ TEST(ReradiationMatrix, GuidedExcitationSamplingMatchesColumnTimesGuide) {
             const GuidedExcitation e =
                 m->guidedExcitation(static_cast<float>(nm), static_cast<float>(nm),
                                     static_cast<float>(rho), static_cast<float>(k), led, u, 0.5f);
-            if (e.nm[1] == static_cast<float>(nm)) {
-              obs[RM::kBins] += 1;
-            } else {
-              ASSERT_LT(RM::binOf(e.nm[1]), o);
-              obs[static_cast<size_t>(RM::binOf(e.nm[1]))] += 1;
-            }
+            countExcitationEvent(obs, e.nm[1], static_cast<float>(nm), o);
           }
           for (size_t i = 0; i < p.size(); ++i) exp[i] = n * p[i] / z;
           if (pass == 0) {

@@ -3,7 +3,10 @@
 // material emitting a flat Le), computed on the re-radiation matrix's grid, independently of
 // the renderer.
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -36,22 +39,61 @@ inline std::vector<double> solveLinear(std::vector<std::vector<double>> a, std::
   return x;
 }
 
-/// The furnace's radiance per 5 nm bin: L = (I - diag(D) - M^T)^-1 Le, D the elastic part
-/// for reflectance rho.
-inline std::vector<double> furnaceRadiance(const ReradiationMatrix& m, double rho, double le) {
+/// The furnace's radiance per 5 nm bin for an emission with bin means le: L = (I - diag(D) -
+/// M^T)^-1 Le, D the elastic part for reflectance rho.
+inline std::vector<double> furnaceRadiance(const ReradiationMatrix& m, double rho,
+                                           std::vector<double> le) {
   using RM = ReradiationMatrix;
   std::vector<std::vector<double>> a(RM::kBins, std::vector<double>(RM::kBins, 0));
   for (int o = 0; o < RM::kBins; ++o) {
     a[o][o] = 1 - m.elastic(o, rho);
     for (int i = 0; i < RM::kBins; ++i) a[o][i] -= m(i, o); // (M^T)[o][i]
   }
-  return solveLinear(a, std::vector<double>(RM::kBins, le));
+  return solveLinear(a, std::move(le));
+}
+
+/// The same for a flat emission le.
+inline std::vector<double> furnaceRadiance(const ReradiationMatrix& m, double rho, double le) {
+  return furnaceRadiance(m, rho, std::vector<double>(ReradiationMatrix::kBins, le));
+}
+
+/// Bin means of a spectrum on the matrix's 5 nm grid (midpoint rule, 1000 points per bin).
+inline std::vector<double> binMeans(const std::function<double(double)>& spectrum) {
+  using RM = ReradiationMatrix;
+  std::vector<double> means(RM::kBins, 0);
+  for (int o = 0; o < RM::kBins; ++o) {
+    const int n = 1000;
+    for (int j = 0; j < n; ++j) means[o] += spectrum(RM::kMinNm + (o + (j + 0.5) / n) * RM::kBinNm);
+    means[o] /= n;
+  }
+  return means;
 }
 
 /// Bands of 10 nm starting on the grid cover two 5 nm bins each: their average.
 inline double bandOfBins(const std::vector<double>& perBin, const Sensor& bands, int b) {
   const int first = ReradiationMatrix::binOf(bands.channel(b).lo + 0.1);
   return 0.5 * (perBin[static_cast<size_t>(first)] + perBin[static_cast<size_t>(first) + 1]);
+}
+
+/// A royal-blue LED's spectrum as a scene text: a Gaussian at 450 nm of FWHM 20 nm sampled every
+/// 2 nm over 420-480 nm (zero outside), and the same function for the closed forms.
+inline std::string royalBlueLedText() {
+  std::string text;
+  for (int nm = 420; nm <= 480; nm += 2)
+    text += (text.empty() ? "" : ", ") + std::to_string(nm) + ":" +
+            std::to_string(std::exp(-0.5 * std::pow((nm - 450) / (20 / 2.35482), 2)));
+  return text;
+}
+
+/// The spectrum royalBlueLedText() describes, interpolated as the scene reader does.
+inline double royalBlueLed(double nm) {
+  if (nm < 420 || nm > 480) return 0;
+  const double lo = 420 + 2 * std::floor((nm - 420) / 2), hi = std::min(lo + 2, 480.0);
+  const auto at = [](double x) {
+    return std::stod(std::to_string(std::exp(-0.5 * std::pow((x - 450) / (20 / 2.35482), 2))));
+  };
+  if (hi == lo) return at(lo);
+  return at(lo) + (at(hi) - at(lo)) * (nm - lo) / (hi - lo);
 }
 
 } // namespace nx::test
