@@ -19,11 +19,11 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <optional>
 #include <vector>
 
 #include "apps/bench_util.h"
 #include "apps/command_line.h"
+#include "apps/seed_statistics.h"
 #include "integrators/renderer.h"
 
 namespace {
@@ -36,70 +36,15 @@ double nsPerSample(const nx::RenderScene& scene, int spp, bool force) {
   return s * 1e9 / (static_cast<double>(scene.settings.width) * scene.settings.height * spp);
 }
 
-// Per-pixel, per-band mean and variance over renders with different seeds.
-struct SeedStatistics {
-  int width = 0, height = 0, bands = 0, renders = 0;
-  std::vector<double> sum, sumSquares; ///< per (pixel, band)
-  std::vector<double> centroids;       ///< per band (nm)
-  double secondsPerSample = 0;         ///< the fastest render's, per pixel sample (ns)
-  /// Mean of (x, y, band b).
-  double mean(int x, int y, int b) const { return sum[index(x, y, b)] / renders; }
-  /// Relative standard deviation of one render's value at (x, y, b); 0 where the mean is 0.
-  double relativeNoise(int x, int y, int b) const {
-    const double m = mean(x, y, b);
-    const double v = (sumSquares[index(x, y, b)] - renders * m * m) / (renders - 1);
-    return m > 0 ? std::sqrt(std::max(v, 0.0)) / m : 0;
-  }
-  size_t index(int x, int y, int b) const {
-    return (static_cast<size_t>(y) * width + x) * bands + b;
-  }
-};
+using nx::bench::meanRelativeNoise;
+using nx::bench::SeedStatistics;
 
+// Renders of scene at spp, the excitation drawn as columnOnly says.
 SeedStatistics seedStatistics(const nx::RenderScene& scene, int spp, bool columnOnly, int renders) {
-  SeedStatistics s;
-  s.renders = renders;
-  double fastest = 1e300;
-  for (int r = 0; r < renders; ++r) {
-    nx::RenderOptions o;
-    o.samples = spp;
-    o.seed = 1000u + static_cast<uint32_t>(r);
-    o.columnOnlyExcitation = columnOnly;
-    std::optional<nx::RenderOutput> out;
-    fastest = std::min(fastest, nx::bench::fastestSeconds(1, [&] { out = nx::render(scene, o); }));
-    const nx::Film& f = out->film;
-    if (r == 0) {
-      s.width = f.width();
-      s.height = f.height();
-      s.bands = f.bands().count();
-      s.sum.assign(static_cast<size_t>(s.width) * s.height * s.bands, 0);
-      s.sumSquares = s.sum;
-      for (int b = 0; b < s.bands; ++b) s.centroids.push_back(f.bands().centroid(b));
-    }
-    for (int y = 0; y < s.height; ++y)
-      for (int x = 0; x < s.width; ++x)
-        for (int b = 0; b < s.bands; ++b) {
-          const double v = f.bandMean(x, y, b);
-          s.sum[s.index(x, y, b)] += v;
-          s.sumSquares[s.index(x, y, b)] += v * v;
-        }
-  }
-  s.secondsPerSample = fastest * 1e9 / (static_cast<double>(s.width) * s.height * spp);
-  return s;
-}
-
-// Mean relative noise over the (pixel, band) pairs `take` selects.
-double meanRelativeNoise(const SeedStatistics& s,
-                         const std::function<bool(int x, int y, int b)>& take) {
-  double total = 0;
-  long n = 0;
-  for (int y = 0; y < s.height; ++y)
-    for (int x = 0; x < s.width; ++x)
-      for (int b = 0; b < s.bands; ++b)
-        if (take(x, y, b)) {
-          total += s.relativeNoise(x, y, b);
-          ++n;
-        }
-  return n ? total / static_cast<double>(n) : 0;
+  nx::RenderOptions o;
+  o.samples = spp;
+  o.columnOnlyExcitation = columnOnly;
+  return nx::bench::seedStatistics(scene, o, renders);
 }
 
 // Band index whose centroid is nearest nm.
@@ -133,14 +78,6 @@ std::pair<double, double> ledCardNoise(const SeedStatistics& s) {
     return plainCard(x, y) && s.centroids[b] >= 439 && s.centroids[b] <= 461;
   });
   return {fl, plain};
-}
-
-// Over every pixel and band whose mean is above 1% of the image's brightest value.
-double litNoise(const SeedStatistics& s) {
-  double brightest = 0;
-  for (double v : s.sum) brightest = std::max(brightest, v / s.renders);
-  return meanRelativeNoise(s,
-                           [&](int x, int y, int b) { return s.mean(x, y, b) > 0.01 * brightest; });
 }
 
 } // namespace
@@ -185,7 +122,7 @@ int main(int argc, char** argv) {
       const auto [fl, plainNoise] = ledCardNoise(st);
       std::printf("%-34s %10.4f %10.4f %8.2f %10.0f\n",
                   columnOnly ? "  column alone" : "  guided by the light + MIS", fl, plainNoise,
-                  fl / plainNoise, st.secondsPerSample);
+                  fl / plainNoise, st.nsPerSample);
     }
     std::printf("%-34s %10s %10s\n", "broadband scenes", "noise", "ns/sample");
     for (const char* name : {"thesis", "lab_bench"}) {
@@ -196,7 +133,7 @@ int main(int argc, char** argv) {
         std::printf(
             "%-34s %10.4f %10.0f\n",
             (std::string(name) + (columnOnly ? ", column alone" : ", guided + MIS")).c_str(),
-            litNoise(st), st.secondsPerSample);
+            nx::bench::litNoise(st), st.nsPerSample);
       }
     }
   } catch (const std::exception& e) {

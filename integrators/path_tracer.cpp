@@ -133,6 +133,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
   bool specular = true;         // the previous bounce was specular (or the camera)
   float prevPdf = 0;
   Vec3 prevP = ray.o;
+  Vec3 prevN; // shading normal at prevP (zero in a medium): light pdfs' cosine warp
   [[maybe_unused]] MediumStack media;
   // Spectral MIS through media: p_lane / p_hero of the path so far (free_flight.h); every
   // contribution is divided by their mean (1 while no medium event happened).
@@ -255,6 +256,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
           specular = false;
           prevPdf = phaseTo(wi);
           prevP = p;
+          prevN = Vec3();
           if (!survivesRoulette()) break;
           ray.o = p;
           ray.d = wi;
@@ -298,7 +300,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     }
     const bool whiteHere = kWhite && scatterings == 0;
     if (app.emission >= 0 && !whiteHere) {
-      const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d));
+      const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d, prevN));
       if (w > 0) {
         const SampledSpectrum le =
             evaluate(scene.emission[static_cast<size_t>(app.emission)], current);
@@ -377,11 +379,16 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         float share = 0, uRest = 0;
         const int l = ctx.lights->choose(hit.p, uChoice, share, uRest);
         LightSample ls, lsGuided;
-        if (l >= 0 && ctx.lights->sampleChosen(l, share, hit.p, uRest, uLight, shift.excited, ls)) {
+        if (l >= 0 &&
+            ctx.lights->sampleChosen(l, share, hit.p, uRest, uLight, shift.excited, ls, hit.ns)) {
+          // Where the light meets the column evenly the column's event alone, at its weight.
+          const bool guide = ctx.lights->guidanceHelps(l, app.material, current);
           const GuidedShift g =
-              guideFluorescentShift(*material.reradiation, current, shift, rho, concentration,
-                                    *ctx.lights->excitationGuide(l), uGuide);
-          ctx.lights->sampleChosen(l, share, hit.p, uRest, uLight, g.guided, lsGuided);
+              guide ? guideFluorescentShift(*material.reradiation, current, shift, rho,
+                                            concentration, *ctx.lights->excitationGuide(l), uGuide)
+                    : GuidedShift{current, shift.albedo, SampledSpectrum::filled(0.0f)};
+          if (guide)
+            ctx.lights->sampleChosen(l, share, hit.p, uRest, uLight, g.guided, lsGuided, hit.ns);
           // One shadow ray for both events: the light's geometry with unit radiance.
           LightSample unit = ls;
           unit.radiance = SampledSpectrum::filled(1.0f);
@@ -397,8 +404,9 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
             sink.add(
                 beta * geometric * g.columnWeight * ls.radiance,
                 classOf(scatterings + 1, group, source, shift.excited, lanesOf(shift.excited)));
-            sink.add(beta * geometric * g.guidedWeight * lsGuided.radiance,
-                     classOf(scatterings + 1, group, source, g.guided, lanesOf(g.guided)));
+            if (guide)
+              sink.add(beta * geometric * g.guidedWeight * lsGuided.radiance,
+                       classOf(scatterings + 1, group, source, g.guided, lanesOf(g.guided)));
           }
         }
       }
@@ -409,7 +417,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       const Sample2 uLight = rng.next2D();
       LightSample ls;
       const SampledWavelengths& lit = fluorescent ? shift.excited : current;
-      if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls)) {
+      if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls, hit.ns)) {
         auto f = [&](const Vec3& wi) {
           return fluorescent ? shift.albedo * bsdf.diffuseLobe(wi) : bsdf.f(wi);
         };
@@ -502,6 +510,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     specular = bs.specular;
     prevPdf = bs.pdf;
     prevP = hit.p;
+    prevN = hit.ns;
 
     if (!survivesRoulette()) break;
     ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, bs.wi);

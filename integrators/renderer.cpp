@@ -156,7 +156,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const uint32_t seed = out.seed;
   const int begin = options.firstSample, end = options.firstSample + out.samplesPerPixel;
 
-  const LightSampler lights(scene, options.lightSelection);
+  const LightSampler lights(scene, options.lightSelection, options.triangleLightSampling);
   std::optional<GradientContext> gradientContext;
   if (differentiated) gradientContext.emplace(scene, lights, *options.gradients);
   const IntegratorContext ctx{&scene,

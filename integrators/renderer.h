@@ -70,6 +70,9 @@ struct RenderOptions {
   /// Draws fluorescent vertices' excitation wavelengths from the matrix column alone, without
   /// the light-guided strategy (to measure what guiding buys; nxbench-fluorescence).
   bool columnOnlyExcitation = false;
+  /// How emitting triangles are sampled (Area: the strategy before solid-angle sampling, to
+  /// measure what it buys; nxbench-area-lights).
+  TriangleLightSampling triangleLightSampling = TriangleLightSampling::SolidAngle;
   /// When set, no new tile is started once it becomes true (SIGINT, SIGTERM, time limit);
   /// the film then holds every finished tile's samples with their true counts.
   const std::atomic<bool>* stop = nullptr;

@@ -120,6 +120,20 @@ ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm, cons
   return r;
 }
 
+double ReradiationMatrix::guideMismatch(const ExcitationGuide& guide, int o) const {
+  // Weights v(e) of the column's events and the guide's value g(e) at each.
+  double total = elastic(o, 1.0), first = total * guide.mean[static_cast<size_t>(o)];
+  double second = first * guide.mean[static_cast<size_t>(o)];
+  for (int i = 0; i < o; ++i) {
+    const double v = (*this)(i, o), g = guide.mean[static_cast<size_t>(i)];
+    total += v;
+    first += v * g;
+    second += v * g * g;
+  }
+  if (!(total > 0) || !(first > 0)) return 1;
+  return second * total / (first * first);
+}
+
 void ReradiationMatrix::finish() {
   cdf_.assign(static_cast<size_t>(kBins) * kBins, 0.0f);
   for (int o = 0; o < kBins; ++o) {

@@ -204,6 +204,13 @@ public:
     return out;
   }
 
+  /// How unevenly the light whose bin means are `guide` is met by column o's own sampling:
+  /// E[g^2] / E[g]^2 over the column's events (elastic with weight D at rho = 1, bin i with
+  /// M[i][o]), i.e. 1 + the relative variance of the light's value at the column's choice. 1
+  /// for a guide constant over the column, a column without events or a guide dark on it
+  /// (guiding cannot help there); next-event estimation guides only where this is large.
+  double guideMismatch(const ExcitationGuide& guide, int o) const;
+
   /// The elastic part at bin o for a dye at relative concentration k (see
   /// sampleExcitationScaled).
   double elastic(int o, double rhoValue, double k) const {

@@ -8,6 +8,7 @@
 #include "core/math_util.h"
 #include "core/ray_offset.h"
 #include "integrators/integrator.h"
+#include "integrators/lights/spherical_triangle.h"
 #include "integrators/lights/triangle_sampling.h"
 #include "integrators/sampling.h"
 
@@ -25,6 +26,11 @@ double sceneRadius(const RenderScene& scene) {
   b.add(scene.camera.position());
   return std::max(1e-3, 0.5 * length(b.hi - b.lo));
 }
+
+// A light's spectrum met by a column so unevenly (E[g^2] / E[g]^2 over the column's choice)
+// is worth the guided draw's cost: about a quarter of a sample's time
+// (docs/performance.md, "Fluorescence under a narrow lamp").
+constexpr double kGuidedMismatch = 1.25;
 
 // A spectrum's mean over each 5 nm bin of the re-radiation grid (20 points per bin, at the
 // centres of 0.25 nm steps) and the bins where it is not zero; a flat guide without one.
@@ -50,8 +56,9 @@ ExcitationGuide excitationGuideOf(const Spectrum* s) {
 
 } // namespace
 
-LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
-    : scene_(&scene), selection_(selection) {
+LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
+                           TriangleLightSampling triangles)
+    : scene_(&scene), selection_(selection), triangleSampling_(triangles) {
   const GeometryScene& geometry = *scene.geometry;
   auto emissionOf = [&](const ShapeAppearance& a) {
     return &scene.emission[static_cast<size_t>(a.emission)];
@@ -187,6 +194,7 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
   // the background, a point or spot light's intensity, a flat guide for environment maps.
   if (std::any_of(scene.materials.begin(), scene.materials.end(),
                   [](const Material& m) { return m.reradiation != nullptr; })) {
+    std::vector<const Spectrum*> spectra; // of guides_, to share one per spectrum
     for (const Light& l : lights_) {
       const Spectrum* s = l.emission;
       if (l.kind == LightKind::Point)
@@ -195,7 +203,27 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection)
               if constexpr (requires { light.intensity; }) s = &light.intensity;
             },
             scene.lights[l.shape]);
-      guides_.push_back(excitationGuideOf(s));
+      const auto known = std::find(spectra.begin(), spectra.end(), s);
+      guideOf_.push_back(static_cast<int32_t>(known - spectra.begin()));
+      if (known == spectra.end()) {
+        spectra.push_back(s);
+        guides_.push_back(excitationGuideOf(s));
+      }
+    }
+    // Where guiding pays, per fluorescent material and guide: emission bins whose column meets
+    // the light unevenly (ReradiationMatrix::guideMismatch above kGuidedMismatch).
+    for (const Material& m : scene.materials) {
+      if (!m.reradiation || guides_.empty()) {
+        fluorescentSlot_.push_back(-1);
+        continue;
+      }
+      fluorescentSlot_.push_back(static_cast<int32_t>(guideWorth_.size() / guides_.size()));
+      for (const ExcitationGuide& g : guides_) {
+        std::bitset<ReradiationMatrix::kBins> worth;
+        for (int o = 0; o < ReradiationMatrix::kBins; ++o)
+          worth[static_cast<size_t>(o)] = m.reradiation->guideMismatch(g, o) > kGuidedMismatch;
+        guideWorth_.push_back(worth);
+      }
     }
   }
 
@@ -319,8 +347,9 @@ int LightSampler::choose(const Vec3& p, float uChoice, float& shareOut, float& u
 }
 
 bool LightSampler::sampleChosen(int k, float share, const Vec3& p, float uRest, Sample2 u,
-                                const SampledWavelengths& lambda, LightSample& out) const {
-  if (!sampleLight(k, p, uRest, u, lambda, out)) return false;
+                                const SampledWavelengths& lambda, LightSample& out,
+                                const Vec3& n) const {
+  if (!sampleLight(k, p, uRest, u, lambda, out, n)) return false;
   if (!out.delta)
     out.pdf *= share;
   else
@@ -329,10 +358,10 @@ bool LightSampler::sampleChosen(int k, float share, const Vec3& p, float uRest, 
 }
 
 bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
-                          LightSample& out) const {
+                          LightSample& out, const Vec3& n) const {
   float share = 0, uRest = 0;
   const int k = choose(p, uChoice, share, uRest);
-  return k >= 0 && sampleChosen(k, share, p, uRest, u, lambda, out);
+  return k >= 0 && sampleChosen(k, share, p, uRest, u, lambda, out, n);
 }
 
 size_t LightSampler::triangleCount(int k) const {
@@ -342,7 +371,8 @@ size_t LightSampler::triangleCount(int k) const {
 }
 
 bool LightSampler::sampleLight(int k, const Vec3& p, float uChoice, Sample2 u,
-                               const SampledWavelengths& lambda, LightSample& out) const {
+                               const SampledWavelengths& lambda, LightSample& out,
+                               const Vec3& n) const {
   const Light& l = lights_[static_cast<size_t>(k)];
   out.delta = false;
   out.infinite = false;
@@ -356,7 +386,7 @@ bool LightSampler::sampleLight(int k, const Vec3& p, float uChoice, Sample2 u,
     if (!sampleSphere(l, p, u, out)) return false;
     break;
   case LightKind::Mesh:
-    if (!sampleMesh(l, p, uChoice, u, out)) return false;
+    if (!sampleMesh(l, p, n, uChoice, u, out)) return false;
     break;
   case LightKind::Background:
     out.wi = sampleUniformSphere(u);
@@ -410,34 +440,136 @@ bool LightSampler::sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightS
   return true;
 }
 
-bool LightSampler::sampleMesh(const Light& l, const Vec3& p, float uTriangle, Sample2 u,
-                              LightSample& out) const {
+int LightSampler::chooseTriangle(const Light& l, const Vec3d& p, float uTriangle,
+                                 double& probability,
+                                 std::array<double, kSolidAngleChoice>& solidAngles) const {
   const TriangleMesh& mesh = scene_->geometry->meshes()[l.shape];
-  size_t t = static_cast<size_t>(l.triangle);
-  if (l.triangle < 0) { // a triangle of the whole mesh, in proportion to its area
-    const auto first = areaCdf_.begin() + static_cast<std::ptrdiff_t>(l.firstCdf);
-    const auto last = first + static_cast<std::ptrdiff_t>(mesh.triangleCount());
-    const double target = static_cast<double>(uTriangle) * l.area;
-    t = std::min(static_cast<size_t>(std::upper_bound(first, last, target) - first),
-                 mesh.triangleCount() - 1);
+  probability = 1;
+  if (l.triangle >= 0) return l.triangle;
+  const size_t n = mesh.triangleCount();
+  if (triangleSampling_ == TriangleLightSampling::SolidAngle && n <= kSolidAngleChoice) {
+    // A small mesh (a quad, a few triangles): each triangle in proportion to its solid angle,
+    // so the whole mesh is sampled uniformly in solid angle where every triangle is.
+    double total = 0;
+    for (size_t t = 0; t < n; ++t)
+      total += solidAngles[t] = sphericalTriangle(mesh.corners(t), p).solidAngle;
+    if (!(total > 0)) return -1;
+    const double target = static_cast<double>(uTriangle) * total;
+    double running = 0;
+    for (size_t t = 0; t < n; ++t) {
+      running += solidAngles[t];
+      if (solidAngles[t] > 0 && (target < running || t + 1 == n)) {
+        probability = solidAngles[t] / total;
+        return static_cast<int>(t);
+      }
+    }
+    for (size_t t = n; t-- > 0;) // rounding left target past the last positive triangle
+      if (solidAngles[t] > 0) {
+        probability = solidAngles[t] / total;
+        return static_cast<int>(t);
+      }
+    return -1;
   }
+  // A triangle of the whole mesh in proportion to its area.
+  const auto first = areaCdf_.begin() + static_cast<std::ptrdiff_t>(l.firstCdf);
+  const auto last = first + static_cast<std::ptrdiff_t>(n);
+  const double target = static_cast<double>(uTriangle) * l.area;
+  const size_t t =
+      std::min(static_cast<size_t>(std::upper_bound(first, last, target) - first), n - 1);
+  probability = triangleArea(mesh.corners(t)) / l.area;
+  return static_cast<int>(t);
+}
+
+double LightSampler::trianglePdf(const Light& l, const Vec3d& p, const Vec3& n, uint32_t t,
+                                 const Vec3d& q, const Vec3d& wi) const {
+  const TriangleMesh& mesh = scene_->geometry->meshes()[l.shape];
   const TriangleShape tri = mesh.corners(t);
-  double b1, b2;
-  sampleUniformTriangle(u, b1, b2);
-  const Vec3d q = trianglePoint(tri, b1, b2);
+  double choice = 1;
+  if (l.triangle < 0) {
+    const size_t n = mesh.triangleCount();
+    if (triangleSampling_ == TriangleLightSampling::SolidAngle && n <= kSolidAngleChoice) {
+      double total = 0, own = 0;
+      for (size_t j = 0; j < n; ++j) {
+        const double o = sphericalTriangle(mesh.corners(j), p).solidAngle;
+        total += o;
+        if (j == t) own = o;
+      }
+      if (!(total > 0) || !(own > 0)) return 0;
+      choice = own / total;
+    } else {
+      choice = triangleArea(tri) / l.area;
+    }
+  }
+  SphericalTriangle st;
+  if (triangleSampling_ == TriangleLightSampling::SolidAngle &&
+      worthSphericalSampling(tri, p, st)) {
+    if (n == Vec3()) return choice / st.solidAngle;
+    // The warp's density at the square's point that maps to wi.
+    const Sample2 u = invertSphericalTriangleSample(st, wi);
+    return choice * cosineWarp(st, Vec3d(n)).pdf(u) / st.solidAngle;
+  }
+  // By area within the triangle: d^2 / (|cos| A_t) in solid angle.
   const Vec3d nd = cross(tri.b - tri.a, tri.c - tri.a);
-  const Vec3d toLight = q - Vec3d(p);
-  const double d2 = dot(toLight, toLight);
   const double nLen = length(nd);
-  if (!(d2 > 0) || !(nLen > 0)) return false;
+  const Vec3d toLight = q - p;
+  const double cosLight = std::abs(dot(nd, wi)) / nLen;
+  const double pdf = choice * dot(toLight, toLight) / (cosLight * 0.5 * nLen);
+  return std::isfinite(pdf) ? pdf : 0.0;
+}
+
+bool LightSampler::sampleMesh(const Light& l, const Vec3& p, const Vec3& n, float uTriangle,
+                              Sample2 u, LightSample& out) const {
+  const TriangleMesh& mesh = scene_->geometry->meshes()[l.shape];
+  const Vec3d pd(p);
+  std::array<double, kSolidAngleChoice> solidAngles;
+  double choice = 1;
+  const int chosen = chooseTriangle(l, pd, uTriangle, choice, solidAngles);
+  if (chosen < 0) return false;
+  const size_t t = static_cast<size_t>(chosen);
+  const TriangleShape tri = mesh.corners(t);
+  const Vec3d nd = cross(tri.b - tri.a, tri.c - tri.a);
+  const double nLen = length(nd);
+  if (!(nLen > 0)) return false;
+  SphericalTriangle st;
+  double b1, b2, pdf;
+  Vec3d wi;
+  if (triangleSampling_ == TriangleLightSampling::SolidAngle &&
+      worthSphericalSampling(tri, pd, st)) {
+    // Uniform in the solid angle it subtends (Arvo 1995); the point is where that direction
+    // meets the triangle (barycentrics by Moeller-Trumbore, clamped into it).
+    // With a receiver normal, the square's point first drawn in proportion to the cosines
+    // towards the corners (cosineWarp), so the direction roughly follows the projected solid
+    // angle.
+    double warp = 1;
+    if (!(n == Vec3())) {
+      const BilinearDensity density = cosineWarp(st, Vec3d(n));
+      u = density.sample(u);
+      warp = density.pdf(u);
+    }
+    if (!sampleSphericalTriangle(st, u, wi)) return false;
+    const Vec3d e1 = tri.b - tri.a, e2 = tri.c - tri.a, s = pd - tri.a;
+    const Vec3d pv = cross(wi, e2), qv = cross(s, e1);
+    const double det = dot(e1, pv);
+    if (!(std::abs(det) > 0)) return false;
+    b1 = std::clamp(dot(s, pv) / det, 0.0, 1.0);
+    b2 = std::clamp(dot(wi, qv) / det, 0.0, 1.0 - b1);
+    pdf = choice * warp / st.solidAngle;
+  } else {
+    sampleUniformTriangle(u, b1, b2);
+    pdf = -1; // from the point, below
+  }
+  const Vec3d q = trianglePoint(tri, b1, b2);
+  const Vec3d toLight = q - pd;
+  const double d2 = dot(toLight, toLight);
+  if (!(d2 > 0)) return false;
   const double d = std::sqrt(d2);
-  const Vec3d wi = toLight * (1.0 / d);
+  wi = toLight * (1.0 / d);
   const double cosLight = std::abs(dot(nd, wi)) / nLen;
   if (!(cosLight > 0)) return false;
-  // Area density 1 / A over the light (the triangle by area, then uniform in it), in solid
-  // angle: d^2 / (|cos| A).
-  const double pdf = d2 / (cosLight * l.area);
-  if (!std::isfinite(pdf)) return false;
+  // By area: the triangle's area density 1 / A_t (times its choice), in solid angle
+  // d^2 / (|cos| A_t) (a large mesh chose by area: choice / A_t = 1 / A).
+  if (pdf < 0) pdf = choice * d2 / (cosLight * 0.5 * nLen);
+  if (!std::isfinite(pdf) || !(pdf > 0)) return false;
   out.wi = Vec3(wi);
   out.distance = static_cast<float>(d);
   out.p = Vec3(q);
@@ -474,7 +606,8 @@ float LightSampler::spherePdf(uint32_t sphere, const Vec3& p, const Vec3& wi) co
   return static_cast<float>(uniformConePdf(oneMinusCosMax));
 }
 
-float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi) const {
+float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi,
+                        const Vec3& n) const {
   const int k = lightOf(lightHit);
   if (k < 0) return 0;
   const Light& l = lights_[static_cast<size_t>(k)];
@@ -482,9 +615,8 @@ float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& w
   if (l.kind == LightKind::Sphere) {
     pdf = spherePdf(l.shape, p, wi);
   } else {
-    const Vec3d toLight = Vec3d(lightHit.p) - Vec3d(p);
-    const double cosLight = std::abs(dot(Vec3d(lightHit.ng), Vec3d(wi)));
-    pdf = static_cast<float>(dot(toLight, toLight) / (cosLight * l.area));
+    pdf = static_cast<float>(
+        trianglePdf(l, Vec3d(p), n, lightHit.prim, Vec3d(lightHit.p), Vec3d(wi)));
     if (!std::isfinite(pdf)) return 0;
   }
   return pdf * probability(k, p);

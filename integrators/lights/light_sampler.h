@@ -1,6 +1,8 @@
 #pragma once
 // Next-event estimation: choosing a light by its power and a direction towards it.
 
+#include <array>
+#include <bitset>
 #include <vector>
 
 #include "core/sampler.h"
@@ -23,14 +25,28 @@ enum class LightSelection : uint8_t {
 /// Most lights for which LightSelection::Local weighs every light at every shading point.
 inline constexpr int kMaxLocalLights = 64;
 
+/// How emitting triangles (triangles, quads, meshes) are sampled from a shading point.
+enum class TriangleLightSampling : uint8_t {
+  /// Uniformly in the solid angle a triangle subtends (Arvo 1995), by area where that is tiny
+  /// or nearly a hemisphere; a mesh of at most kSolidAngleChoice triangles (a quad) chooses
+  /// its triangle by solid angle, a larger one by area - the default.
+  SolidAngle,
+  Area, ///< a triangle by area, a uniform point on it (the strategy before; benchmarks)
+};
+
+/// Meshes of at most this many triangles choose theirs by solid angle (a quad is two).
+inline constexpr size_t kSolidAngleChoice = 8;
+
 /// The lights next-event estimation can aim at: point lights, emitting spheres (sampled through
 /// the cone they subtend, or uniformly over directions from inside), emitting meshes and inline
-/// triangles (a triangle in proportion to its area, then a uniform point on it) and the uniform
-/// background (uniform directions). Emitting planes are infinite: BSDF sampling alone finds
-/// them. Nothing is allocated after construction.
+/// triangles (TriangleLightSampling) and the uniform background (uniform directions). Emitting
+/// planes are infinite: BSDF sampling alone finds them. Nothing is allocated after
+/// construction.
 class LightSampler {
 public:
-  explicit LightSampler(const RenderScene& scene, LightSelection selection = LightSelection::Local);
+  /// The scene's lights, chosen by `selection`, their triangles sampled as `triangles` says.
+  explicit LightSampler(const RenderScene& scene, LightSelection selection = LightSelection::Local,
+                        TriangleLightSampling triangles = TriangleLightSampling::SolidAngle);
 
   /// Number of lights it can choose from.
   int count() const { return static_cast<int>(lights_.size()); }
@@ -64,33 +80,52 @@ public:
   double power(int k) const { return lights_[static_cast<size_t>(k)].power; }
 
   /// A light chosen with uChoice, then a sample of it for shading point p (pdf includes the
-  /// choice); false if there is no light or the configuration is degenerate.
+  /// choice); false if there is no light or the configuration is degenerate. n: the shading
+  /// normal at p, for the cosine warp of triangle lights (zero: none, e.g. in a medium).
   bool sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
-              LightSample& out) const;
+              LightSample& out, const Vec3& n = Vec3()) const;
   /// The light sample() chooses with uChoice for shading point p, its probability `share` and
   /// uChoice rescaled to [0, 1) within its share (`uRest`, for the light's triangle); -1 if
   /// none can be chosen.
   int choose(const Vec3& p, float uChoice, float& share, float& uRest) const;
   /// sample() for the light choose() gave: sampleLight with the choice's probability in pdf.
   bool sampleChosen(int k, float share, const Vec3& p, float uRest, Sample2 u,
-                    const SampledWavelengths& lambda, LightSample& out) const;
+                    const SampledWavelengths& lambda, LightSample& out,
+                    const Vec3& n = Vec3()) const;
   /// Light k's spectrum on the re-radiation matrix's grid (for excitation sampling at
   /// fluorescent vertices); built only for scenes with a fluorescent surface, else null. A
   /// light whose spectrum varies over it (an environment map) has a flat guide.
   const ExcitationGuide* excitationGuide(int k) const {
-    return guides_.empty() ? nullptr : &guides_[static_cast<size_t>(k)];
+    return guides_.empty() ? nullptr
+                           : &guides_[static_cast<size_t>(guideOf_[static_cast<size_t>(k)])];
+  }
+  /// Whether drawing the excitation guided by light k's spectrum pays at a vertex of
+  /// `material` for some lane of lambda: its column meets the light unevenly there
+  /// (ReradiationMatrix::guideMismatch); false for a material that does not fluoresce.
+  bool guidanceHelps(int k, uint32_t material, const SampledWavelengths& lambda) const {
+    if (guides_.empty()) return false;
+    const int32_t slot = fluorescentSlot_[material];
+    if (slot < 0) return false;
+    const auto& worth = guideWorth_[static_cast<size_t>(slot) * guides_.size() +
+                                    static_cast<size_t>(guideOf_[static_cast<size_t>(k)])];
+    for (int i = 0; i < kLanes; ++i) {
+      const int o = ReradiationMatrix::binOf(lambda.lambda[i]);
+      if (o >= 0 && worth[static_cast<size_t>(o)]) return true;
+    }
+    return false;
   }
   /// A sample of light k itself (pdf without any choice probability); uChoice, in [0, 1),
-  /// picks the triangle of a mesh light.
+  /// picks the triangle of a mesh light; n as for sample().
   bool sampleLight(int k, const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
-                   LightSample& out) const;
+                   LightSample& out, const Vec3& n = Vec3()) const;
 
   /// Light number of the emitter a hit is on, or -1 if next-event estimation cannot sample it.
   int lightOf(const SurfaceHit& hit) const;
   /// Density (solid angle, with the choice probability) with which sample() returns direction
   /// wi from p towards the point `lightHit` (found by a ray from p along wi); 0 if that surface
-  /// is not a light it samples.
-  float pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi) const;
+  /// is not a light it samples. n: the shading normal sample() was given at p.
+  float pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi,
+            const Vec3& n = Vec3()) const;
   /// Density with which sample() returns direction wi from p towards the background; 0
   /// without one.
   float pdfBackground(const Vec3& p) const;
@@ -120,13 +155,22 @@ private:
   /// Weight of light l at p for LightSelection::Local (positive wherever it can shine).
   float localWeight(const Light& l, const Vec3& p) const;
   bool sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const;
-  bool sampleMesh(const Light& l, const Vec3& p, float uTriangle, Sample2 u,
+  bool sampleMesh(const Light& l, const Vec3& p, const Vec3& n, float uTriangle, Sample2 u,
                   LightSample& out) const;
   float spherePdf(uint32_t sphere, const Vec3& p, const Vec3& wi) const;
+  /// The triangle of mesh light l sampleMesh uses for uTriangle at p and its probability;
+  /// solidAngles holds a small mesh's per-triangle solid angles. -1 if none can be chosen.
+  int chooseTriangle(const Light& l, const Vec3d& p, float uTriangle, double& probability,
+                     std::array<double, kSolidAngleChoice>& solidAngles) const;
+  /// Density (solid angle, without the light's choice) of sampleMesh returning wi from p
+  /// towards point q of triangle t of mesh light l, for receiver normal n (zero: none).
+  double trianglePdf(const Light& l, const Vec3d& p, const Vec3& n, uint32_t t, const Vec3d& q,
+                     const Vec3d& wi) const;
 
   const RenderScene* scene_;
   std::vector<Light> lights_;
   LightSelection selection_;
+  TriangleLightSampling triangleSampling_;
   std::vector<float> pmf_;           ///< Power and Uniform: choice probabilities
   std::vector<double> cdf_;          ///< their running sum (cdf_[k] = P(light <= k))
   std::vector<double> areaCdf_;      ///< per whole-mesh light: running area of its triangles
@@ -134,10 +178,14 @@ private:
   std::vector<int32_t> meshLight_;   ///< light number per mesh (whole meshes), or -1
   std::vector<std::vector<int32_t>> triangleLight_; ///< per mesh with inline triangles
   int32_t background_ = -1;
-  std::vector<int32_t> environments_;   ///< light numbers of the environment lights
-  std::vector<uint16_t> group_;         ///< light group per light
-  std::vector<uint16_t> source_;        ///< relight source per light
-  std::vector<ExcitationGuide> guides_; ///< per light, for fluorescent scenes only
+  std::vector<int32_t> environments_;    ///< light numbers of the environment lights
+  std::vector<uint16_t> group_;          ///< light group per light
+  std::vector<uint16_t> source_;         ///< relight source per light
+  std::vector<ExcitationGuide> guides_;  ///< one per light spectrum, for fluorescent scenes only
+  std::vector<int32_t> guideOf_;         ///< per light: its guide in guides_
+  std::vector<int32_t> fluorescentSlot_; ///< per material: its row of guideWorth_, or -1
+  /// Per (fluorescent material, guide): the emission bins where guiding pays.
+  std::vector<std::bitset<ReradiationMatrix::kBins>> guideWorth_;
 };
 
 } // namespace nx

@@ -128,9 +128,9 @@ TEST(Meshes, PlyMeshRendersLikeTheSameTrianglesInline) {
 }
 
 // The irradiance a tessellated emitting sphere of radiance 1 gives a point facing it. Next-event
-// estimation (a triangle by area, a point on it, a shadow ray) agrees with the exact value for
-// the polyhedron (Lambert's formula over its front faces) at each tessellation, and that value
-// converges to the analytic sphere's pi (r / d)^2.
+// estimation (a triangle by area, a point on it by solid angle or by area, a shadow ray) agrees
+// with the exact value for the polyhedron (Lambert's formula over its front faces) at each
+// tessellation, and that value converges to the analytic sphere's pi (r / d)^2.
 TEST(Meshes, TessellatedSphereLightConvergesToTheAnalyticSphere) {
   const Vec3 p(0, 0, -3), n(0, 0, 1);
   const double sphere = kPi / 9;
@@ -153,22 +153,36 @@ TEST(Meshes, TessellatedSphereLightConvergesToTheAnalyticSphere) {
       if (dot(outward, c.a + c.b + c.c) < 0) outward = -outward;
       if (dot(outward, Vec3d(p) - c.a) > 0) exact += projectedSolidAngle(c, Vec3d(p), Vec3d(n));
     }
-    const LightSampler lights(s);
-    test::RunningStats e;
-    for (uint32_t i = 0; i < 100000; ++i) {
-      LightSample ls;
-      double v = 0;
-      if (lights.sample(p, sampleValue(SamplerKind::Independent, i, 0, 0, 9),
-                        samplePair(SamplerKind::Independent, i, 0, 1, 9), w, ls) &&
-          !s.geometry->occluded(shadowRayTo(p, Vec3(0, 0, 0), n, ls)))
-        v = ls.radiance[0] * std::max(0.0f, dot(ls.wi, n)) / ls.pdf;
-      e.add(v);
+    for (TriangleLightSampling strategy :
+         {TriangleLightSampling::SolidAngle, TriangleLightSampling::Area}) {
+      const LightSampler lights(s, LightSelection::Local, strategy);
+      test::RunningStats e;
+      for (uint32_t i = 0; i < 100000; ++i) {
+        LightSample ls;
+        double v = 0;
+        if (lights.sample(p, sampleValue(SamplerKind::Independent, i, 0, 0, 9),
+                          samplePair(SamplerKind::Independent, i, 0, 1, 9), w, ls) &&
+            !s.geometry->occluded(shadowRayTo(p, Vec3(0, 0, 0), n, ls)))
+          v = ls.radiance[0] * std::max(0.0f, dot(ls.wi, n)) / ls.pdf;
+        e.add(v);
+        if (i % 211 == 0 && ls.pdf > 0) { // the density pdf() gives the direction it sampled
+          Ray r;
+          r.o = p;
+          r.d = ls.wi;
+          SurfaceHit hit;
+          if (s.geometry->intersect(r, hit) && hit.prim == ls.prim)
+            EXPECT_NEAR(lights.pdf(p, hit, ls.wi), ls.pdf, 2e-3 * ls.pdf) << rings;
+        }
+      }
+      std::printf("%d rings, %s: NEE %.5f +- %.5f, polyhedron %.5f\n", rings,
+                  strategy == TriangleLightSampling::Area ? "by area" : "by solid angle", e.mean,
+                  e.standardError(), exact);
+      EXPECT_LT(std::abs(e.mean - exact), 4 * e.standardError()) << rings << " " << int(strategy);
+      EXPECT_LT(e.standardError(), 0.02 * exact);
     }
     const double err = std::abs(exact / sphere - 1);
-    std::printf("%d rings: NEE %.5f +- %.5f, polyhedron %.5f, sphere %.5f (relative %.5f)\n", rings,
-                e.mean, e.standardError(), exact, sphere, err);
-    EXPECT_LT(std::abs(e.mean - exact), 4 * e.standardError()) << rings;
-    EXPECT_LT(e.standardError(), 0.02 * exact);
+    std::printf("%d rings: polyhedron %.5f, sphere %.5f (relative %.5f)\n", rings, exact, sphere,
+                err);
     EXPECT_LT(err, previous) << rings;
     previous = err;
   }

@@ -90,12 +90,14 @@ void expectSameBands(const SpectralImage& a, const SpectralImage& b, const std::
       variances += a.bandVariance[i * nb + k] + b.bandVariance[i * nb + k];
     }
     EXPECT_LT(std::abs(d.mean), 5 * std::sqrt(variances) / pixels)
-        << what << " band " << a.bands.centroid(static_cast<int>(k)) << " (z from the variance channels)";
+        << what << " band " << a.bands.centroid(static_cast<int>(k))
+        << " (z from the variance channels)";
     EXPECT_GT(y.mean, 0.0) << what;
-    EXPECT_LT(d.standardError(), 0.05 * y.mean) << what << " band " << a.bands.centroid(static_cast<int>(k));
+    EXPECT_LT(d.standardError(), 0.05 * y.mean)
+        << what << " band " << a.bands.centroid(static_cast<int>(k));
     EXPECT_LT(std::abs(d.mean), 5 * d.standardError())
-        << what << " band " << a.bands.centroid(static_cast<int>(k)) << ": difference " << d.mean << " se "
-        << d.standardError() << " of " << y.mean;
+        << what << " band " << a.bands.centroid(static_cast<int>(k)) << ": difference " << d.mean
+        << " se " << d.standardError() << " of " << y.mean;
   }
 }
 

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "spectra/reradiation_matrix.h"
+#include "spectra/spectrum.h"
 #include "support/errors.h"
 #include "support/statistics.h"
 
@@ -316,6 +317,36 @@ TEST(ReradiationMatrix, GuidedExcitationMisIsUnbiasedForAnyLight) {
   const GuidedExcitation e = m.guidedExcitation(530, column, 0.5f, 1.0f, flat, 0.7f, 0.5f);
   EXPECT_NEAR(e.weight[0], 0.5 * w, 1e-6);
   EXPECT_NEAR(e.weight[1], 0.5 * w, 1e-6);
+}
+
+// guideMismatch is E[g^2] / E[g]^2 over the column's events: 1 for a flat guide; 1 / f for a
+// guide that is 1 on events of total column probability f and 0 elsewhere; small for a
+// daylight black body over the thesis' blue dye (no guidance: no cost under broadband light)
+// and large for a royal-blue LED over the same column at the dye's emission.
+TEST(ReradiationMatrix, GuideMismatchMeasuresHowUnevenlyTheColumnMeetsALight) {
+  const RM m = RM::fromModel({460, 80, 20, 10, 1, 1});
+  ExcitationGuide flat;
+  flat.mean.fill(1.0f);
+  for (double nm : {452.0, 540.0, 601.0})
+    EXPECT_NEAR(m.guideMismatch(flat, RM::binOf(nm)), 1.0, 1e-9) << nm;
+  const int o = RM::binOf(540), cut = RM::binOf(455);
+  ExcitationGuide below = flat;
+  for (int i = cut; i < RM::kBins; ++i) below.mean[static_cast<size_t>(i)] = 0;
+  double inside = 0, total = m.elastic(o, 1.0);
+  for (int i = 0; i < o; ++i) (i < cut ? inside : total) += m(i, o);
+  total += inside;
+  ASSERT_GT(inside, 0);
+  EXPECT_NEAR(m.guideMismatch(below, o), total / inside, 1e-6 * total / inside);
+  ExcitationGuide dark = flat;
+  dark.mean.fill(0.0f);
+  EXPECT_EQ(m.guideMismatch(dark, o), 1.0);
+
+  const ExcitationGuide daylight = guideOf([](double nm) { return BlackbodySpectrum{6504}(nm); });
+  const ExcitationGuide led = guideOf(royalBlue);
+  const RM thesisBlue = RM::fromModel({460, 220, 20, 10, 1, 1});
+  for (double nm : {540.0, 620.0, 680.0})
+    EXPECT_LT(thesisBlue.guideMismatch(daylight, RM::binOf(nm)), 1.25) << nm;
+  EXPECT_GT(m.guideMismatch(led, o), 2.0);
 }
 
 } // namespace
