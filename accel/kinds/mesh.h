@@ -2,7 +2,7 @@
 // A triangle mesh file, <mesh file="x.ply|x.obj"><transform>...</transform>: read by the mesh
 // reader (io/mesh_reader.h: assimp, checked before), moved by its transform, one Embree
 // triangle geometry reading its buffers; a closed one can hold a <medium>; as an emitter the
-// light sampler samples its area.
+// light sampler samples its triangles by solid angle.
 
 #include <optional>
 

@@ -1,6 +1,6 @@
 #pragma once
 // One triangle, <triangle><vA/><vB/><vC/>: the scene's inline triangles are gathered into one
-// Embree mesh; as an emitter the light sampler samples its area.
+// Embree mesh; as an emitter the light sampler samples it by solid angle.
 
 #include <optional>
 

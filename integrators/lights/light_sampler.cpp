@@ -442,7 +442,7 @@ bool LightSampler::sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightS
 
 int LightSampler::chooseTriangle(const Light& l, const Vec3d& p, float uTriangle,
                                  double& probability,
-                                 std::array<double, kSolidAngleChoice>& solidAngles) const {
+                                 std::array<SphericalTriangle, kSolidAngleChoice>& seen) const {
   const TriangleMesh& mesh = scene_->geometry->meshes()[l.shape];
   probability = 1;
   if (l.triangle >= 0) return l.triangle;
@@ -452,20 +452,20 @@ int LightSampler::chooseTriangle(const Light& l, const Vec3d& p, float uTriangle
     // so the whole mesh is sampled uniformly in solid angle where every triangle is.
     double total = 0;
     for (size_t t = 0; t < n; ++t)
-      total += solidAngles[t] = sphericalTriangle(mesh.corners(t), p).solidAngle;
+      total += (seen[t] = sphericalTriangle(mesh.corners(t), p)).solidAngle;
     if (!(total > 0)) return -1;
     const double target = static_cast<double>(uTriangle) * total;
     double running = 0;
     for (size_t t = 0; t < n; ++t) {
-      running += solidAngles[t];
-      if (solidAngles[t] > 0 && (target < running || t + 1 == n)) {
-        probability = solidAngles[t] / total;
+      running += seen[t].solidAngle;
+      if (seen[t].solidAngle > 0 && (target < running || t + 1 == n)) {
+        probability = seen[t].solidAngle / total;
         return static_cast<int>(t);
       }
     }
     for (size_t t = n; t-- > 0;) // rounding left target past the last positive triangle
-      if (solidAngles[t] > 0) {
-        probability = solidAngles[t] / total;
+      if (seen[t].solidAngle > 0) {
+        probability = seen[t].solidAngle / total;
         return static_cast<int>(t);
       }
     return -1;
@@ -485,24 +485,26 @@ double LightSampler::trianglePdf(const Light& l, const Vec3d& p, const Vec3& n, 
   const TriangleMesh& mesh = scene_->geometry->meshes()[l.shape];
   const TriangleShape tri = mesh.corners(t);
   double choice = 1;
+  SphericalTriangle seen; // triangle t from p, when a small mesh's choice saw it
+  const SphericalTriangle* known = nullptr;
   if (l.triangle < 0) {
     const size_t n = mesh.triangleCount();
     if (triangleSampling_ == TriangleLightSampling::SolidAngle && n <= kSolidAngleChoice) {
-      double total = 0, own = 0;
+      double total = 0;
       for (size_t j = 0; j < n; ++j) {
-        const double o = sphericalTriangle(mesh.corners(j), p).solidAngle;
-        total += o;
-        if (j == t) own = o;
+        const SphericalTriangle o = sphericalTriangle(mesh.corners(j), p);
+        total += o.solidAngle;
+        if (j == t) seen = o, known = &seen;
       }
-      if (!(total > 0) || !(own > 0)) return 0;
-      choice = own / total;
+      if (!(total > 0) || !(seen.solidAngle > 0)) return 0;
+      choice = seen.solidAngle / total;
     } else {
       choice = triangleArea(tri) / l.area;
     }
   }
   SphericalTriangle st;
   if (triangleSampling_ == TriangleLightSampling::SolidAngle &&
-      worthSphericalSampling(tri, p, st)) {
+      worthSphericalSampling(tri, p, st, known)) {
     if (n == Vec3()) return choice / st.solidAngle;
     // The warp's density at the square's point that maps to wi.
     const Sample2 u = invertSphericalTriangleSample(st, wi);
@@ -521,20 +523,22 @@ bool LightSampler::sampleMesh(const Light& l, const Vec3& p, const Vec3& n, floa
                               Sample2 u, LightSample& out) const {
   const TriangleMesh& mesh = scene_->geometry->meshes()[l.shape];
   const Vec3d pd(p);
-  std::array<double, kSolidAngleChoice> solidAngles;
+  std::array<SphericalTriangle, kSolidAngleChoice> seen;
   double choice = 1;
-  const int chosen = chooseTriangle(l, pd, uTriangle, choice, solidAngles);
+  const int chosen = chooseTriangle(l, pd, uTriangle, choice, seen);
   if (chosen < 0) return false;
   const size_t t = static_cast<size_t>(chosen);
   const TriangleShape tri = mesh.corners(t);
   const Vec3d nd = cross(tri.b - tri.a, tri.c - tri.a);
   const double nLen = length(nd);
   if (!(nLen > 0)) return false;
+  // A small mesh's choice has seen its triangles already.
+  const bool smallMesh = l.triangle < 0 && mesh.triangleCount() <= kSolidAngleChoice;
   SphericalTriangle st;
   double b1, b2, pdf;
   Vec3d wi;
   if (triangleSampling_ == TriangleLightSampling::SolidAngle &&
-      worthSphericalSampling(tri, pd, st)) {
+      worthSphericalSampling(tri, pd, st, smallMesh ? &seen[t] : nullptr)) {
     // Uniform in the solid angle it subtends (Arvo 1995); the point is where that direction
     // meets the triangle (barycentrics by Moeller-Trumbore, clamped into it).
     // With a receiver normal, the square's point first drawn in proportion to the cosines

@@ -7,6 +7,7 @@
 
 #include "core/sampler.h"
 #include "integrators/lights/light_sample.h"
+#include "integrators/lights/spherical_triangle.h"
 #include "integrators/render_scene.h"
 #include "spectra/reradiation_matrix.h"
 
@@ -34,8 +35,9 @@ enum class TriangleLightSampling : uint8_t {
   Area, ///< a triangle by area, a uniform point on it (the strategy before; benchmarks)
 };
 
-/// Meshes of at most this many triangles choose theirs by solid angle (a quad is two).
-inline constexpr size_t kSolidAngleChoice = 8;
+/// Meshes of at most this many triangles choose theirs by solid angle (a quad is two; each
+/// light sample keeps this many seen triangles on the stack).
+inline constexpr size_t kSolidAngleChoice = 4;
 
 /// The lights next-event estimation can aim at: point lights, emitting spheres (sampled through
 /// the cone they subtend, or uniformly over directions from inside), emitting meshes and inline
@@ -159,9 +161,9 @@ private:
                   LightSample& out) const;
   float spherePdf(uint32_t sphere, const Vec3& p, const Vec3& wi) const;
   /// The triangle of mesh light l sampleMesh uses for uTriangle at p and its probability;
-  /// solidAngles holds a small mesh's per-triangle solid angles. -1 if none can be chosen.
+  /// `seen` holds a small mesh's triangles seen from p. -1 if none can be chosen.
   int chooseTriangle(const Light& l, const Vec3d& p, float uTriangle, double& probability,
-                     std::array<double, kSolidAngleChoice>& solidAngles) const;
+                     std::array<SphericalTriangle, kSolidAngleChoice>& seen) const;
   /// Density (solid angle, without the light's choice) of sampleMesh returning wi from p
   /// towards point q of triangle t of mesh light l, for receiver normal n (zero: none).
   double trianglePdf(const Light& l, const Vec3d& p, const Vec3& n, uint32_t t, const Vec3d& q,

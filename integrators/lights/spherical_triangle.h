@@ -62,10 +62,12 @@ inline double estimatedSolidAngle(const TriangleShape& t, const Vec3d& p) {
 /// than it saves (docs/performance.md, "Triangle lights by solid angle").
 inline constexpr double kSphericalSamplingFrom = 0.01;
 
-/// Whether triangle t is sampled by solid angle from p; then st is it seen from p.
-inline bool worthSphericalSampling(const TriangleShape& t, const Vec3d& p, SphericalTriangle& st) {
+/// Whether triangle t is sampled by solid angle from p; then st is it seen from p (`known`, if
+/// given, is it already).
+inline bool worthSphericalSampling(const TriangleShape& t, const Vec3d& p, SphericalTriangle& st,
+                                   const SphericalTriangle* known = nullptr) {
   if (estimatedSolidAngle(t, p) < kSphericalSamplingFrom) return false;
-  st = sphericalTriangle(t, p);
+  st = known ? *known : sphericalTriangle(t, p);
   return sampledBySolidAngle(st.solidAngle);
 }
 
@@ -78,34 +80,30 @@ inline bool unitOrthogonal(const Vec3d& v, const Vec3d& n, Vec3d& out) {
   return true;
 }
 
-/// Angle at corner a between the great arcs to b and to c (unit vectors).
-inline double sphericalCornerAngle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  Vec3d tb, tc;
-  if (!unitOrthogonal(b, a, tb) || !unitOrthogonal(c, a, tc)) return 0;
-  return std::acos(std::clamp(dot(tb, tc), -1.0, 1.0));
-}
-
 /// A direction uniform in solid angle over the spherical triangle from u in [0, 1)^2 (Arvo
 /// 1995, "Stratified sampling of spherical triangles"): u.u picks the sub-triangle of area
 /// u.u Omega (its new corner c' on arc ac), u.v the point along the arc from b to c'. False
-/// for a degenerate triangle.
+/// for a degenerate triangle. Only the angle alpha at a enters, through its cosine and sine
+/// (no inverse trigonometry), and Omega is the Van Oosterom-Strackee value pdfs use.
 inline bool sampleSphericalTriangle(const SphericalTriangle& s, Sample2 u, Vec3d& w) {
-  const double alpha = sphericalCornerAngle(s.a, s.b, s.c);
-  const double beta = sphericalCornerAngle(s.b, s.c, s.a);
-  const double gamma = sphericalCornerAngle(s.c, s.a, s.b);
-  const double area = alpha + beta + gamma - kPi;
-  if (!(area > 0) || !(alpha > 0)) return false;
-  // The sub-triangle a b c' of area u.u * area: c' from Arvo's closed form for cos(arc a c').
-  const double subArea = static_cast<double>(u.u) * area;
-  const double sinPhi = std::sin(subArea - alpha), cosPhi = std::cos(subArea - alpha);
-  const double cosAlpha = std::cos(alpha), sinAlpha = std::sin(alpha);
+  Vec3d towardsB, towardsC;
+  if (!(s.solidAngle > 0) || !unitOrthogonal(s.b, s.a, towardsB) ||
+      !unitOrthogonal(s.c, s.a, towardsC))
+    return false;
+  const double cosAlpha = std::clamp(dot(towardsB, towardsC), -1.0, 1.0);
+  const double sinAlpha = length(cross(towardsB, towardsC));
+  if (!(sinAlpha > 0)) return false;
+  // The sub-triangle a b c' of area u.u Omega: c' from Arvo's closed form for cos(arc a c'),
+  // with phi = subArea - alpha expanded by the angle-difference identities.
+  const double subArea = static_cast<double>(u.u) * s.solidAngle;
+  const double sinS = std::sin(subArea), cosS = std::cos(subArea);
+  const double sinPhi = sinS * cosAlpha - cosS * sinAlpha;
+  const double cosPhi = cosS * cosAlpha + sinS * sinAlpha;
   const double cosC = dot(s.a, s.b);
   const double uu = cosPhi - cosAlpha, vv = sinPhi + sinAlpha * cosC;
   const double den = (vv * sinPhi + uu * cosPhi) * sinAlpha;
   double q = den != 0 ? ((vv * cosPhi - uu * sinPhi) * cosAlpha - vv) / den : 1.0;
   q = std::clamp(q, -1.0, 1.0);
-  Vec3d towardsC;
-  if (!unitOrthogonal(s.c, s.a, towardsC)) return false;
   const Vec3d cPrime = s.a * q + towardsC * std::sqrt(std::max(0.0, 1 - q * q));
   // The point at cos(angle to b) = z on the arc from b to c', z uniform in [cos(b c'), 1].
   const double z = 1 - static_cast<double>(u.v) * (1 - dot(cPrime, s.b));
