@@ -488,10 +488,10 @@ double LightSampler::trianglePdf(const Light& l, const Vec3d& p, const Vec3& n, 
   SphericalTriangle seen; // triangle t from p, when a small mesh's choice saw it
   const SphericalTriangle* known = nullptr;
   if (l.triangle < 0) {
-    const size_t n = mesh.triangleCount();
-    if (triangleSampling_ == TriangleLightSampling::SolidAngle && n <= kSolidAngleChoice) {
+    const size_t count = mesh.triangleCount();
+    if (triangleSampling_ == TriangleLightSampling::SolidAngle && count <= kSolidAngleChoice) {
       double total = 0;
-      for (size_t j = 0; j < n; ++j) {
+      for (size_t j = 0; j < count; ++j) {
         const SphericalTriangle o = sphericalTriangle(mesh.corners(j), p);
         total += o.solidAngle;
         if (j == t) seen = o, known = &seen;

@@ -170,8 +170,9 @@ TEST(Meshes, TessellatedSphereLightConvergesToTheAnalyticSphere) {
           r.o = p;
           r.d = ls.wi;
           SurfaceHit hit;
-          if (s.geometry->intersect(r, hit) && hit.prim == ls.prim)
+          if (s.geometry->intersect(r, hit) && hit.prim == ls.prim) {
             EXPECT_NEAR(lights.pdf(p, hit, ls.wi), ls.pdf, 2e-3 * ls.pdf) << rings;
+          }
         }
       }
       std::printf("%d rings, %s: NEE %.5f +- %.5f, polyhedron %.5f\n", rings,

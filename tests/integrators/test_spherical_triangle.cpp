@@ -72,6 +72,22 @@ int subTriangleOf(double b1, double b2, int n) {
   return (i * n + j) * 2 + (inverted ? 1 : 0);
 }
 
+// The sub-triangles of an n x n barycentric subdivision of t at the indices subTriangleOf
+// gives them, (i n + j) 2 + up (up = 1: the inverted one); indices without a cell hold a
+// degenerate triangle (all corners at t.a).
+std::vector<TriangleShape> subTriangles(const TriangleShape& t, int n) {
+  const Vec3d e1 = (t.b - t.a) * (1.0 / n), e2 = (t.c - t.a) * (1.0 / n);
+  std::vector<TriangleShape> cells(static_cast<size_t>(2 * n * n), {t.a, t.a, t.a});
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n - i; ++j) {
+      const Vec3d o = t.a + e1 * double(i) + e2 * double(j);
+      cells[static_cast<size_t>((i * n + j) * 2)] = {o, o + e1, o + e2};
+      if (i + j < n - 1)
+        cells[static_cast<size_t>((i * n + j) * 2 + 1)] = {o + e1, o + e1 + e2, o + e2};
+    }
+  return cells;
+}
+
 // Directions drawn by sampleSphericalTriangle land on each sub-triangle of a 6 x 6 subdivision
 // in proportion to its solid angle (the closed form the test above checks; the sub-triangles'
 // sum to the whole's): chi-square, for a point close to a large
@@ -88,21 +104,12 @@ TEST(SphericalTriangle, SamplesAreUniformInSolidAngle) {
   for (const Vec3d& p : points) {
     const SphericalTriangle s = sphericalTriangle(t, p);
     ASSERT_GT(s.solidAngle, 0);
-    // Expected share of each sub-triangle: its quadrature solid angle over the whole's.
-    std::vector<double> expected(static_cast<size_t>(2 * n * n), 0), observed = expected;
+    // Expected share of each sub-triangle: its solid angle over the whole's.
+    const std::vector<TriangleShape> cells = subTriangles(t, n);
+    std::vector<double> expected(cells.size(), 0), observed = expected;
     double total = 0;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n - i; ++j)
-        for (int up = 0; up < (i + j < n - 1 ? 2 : 1); ++up) {
-          const Vec3d o = t.a + e1 * (double(i) / n) + e2 * (double(j) / n);
-          const TriangleShape sub =
-              up == 0 ? TriangleShape{o, o + e1 * (1.0 / n), o + e2 * (1.0 / n)}
-                      : TriangleShape{o + e1 * (1.0 / n), o + e1 * (1.0 / n) + e2 * (1.0 / n),
-                                      o + e2 * (1.0 / n)};
-          const double w = sphericalTriangle(sub, p).solidAngle;
-          expected[static_cast<size_t>((i * n + j) * 2 + up)] = w;
-          total += w;
-        }
+    for (size_t k = 0; k < cells.size(); ++k)
+      total += expected[k] = sphericalTriangle(cells[k], p).solidAngle;
     EXPECT_NEAR(total, s.solidAngle, 1e-3 * s.solidAngle);
     for (double& e : expected) e *= samples / total;
     for (int k = 0; k < samples; ++k) {
@@ -189,32 +196,17 @@ TEST(SphericalTriangle, CosineWarpedSamplesFollowTheirDensity) {
     const auto density = [&](const Vec3d& w) {
       return warp.pdf(invertSphericalTriangleSample(s, w)) / s.solidAngle;
     };
-    std::vector<double> expected(static_cast<size_t>(2 * n * n), 0), observed = expected;
+    // Each sub-triangle's mass: the density at the centroids of its own q x q subdivision.
+    const std::vector<TriangleShape> cells = subTriangles(t, n);
+    std::vector<double> expected(cells.size(), 0), observed = expected;
     double total = 0;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n - i; ++j)
-        for (int up = 0; up < (i + j < n - 1 ? 2 : 1); ++up) {
-          const Vec3d o = t.a + e1 * (double(i) / n) + e2 * (double(j) / n);
-          const Vec3d a = up == 0 ? o : o + e1 * (1.0 / n);
-          const Vec3d b = up == 0 ? o + e1 * (1.0 / n) : o + e1 * (1.0 / n) + e2 * (1.0 / n);
-          const Vec3d c = o + e2 * (1.0 / n);
-          // Midpoint rule over the sub-triangle's own q x q subdivision (upright cells).
-          double mass = 0;
-          for (int x = 0; x < q; ++x)
-            for (int y = 0; y < q - x; ++y)
-              for (int f = 0; f < (x + y < q - 1 ? 2 : 1); ++f) {
-                const Vec3d cellA = a + (b - a) * (double(x + f) / q) + (c - a) * (double(y) / q);
-                const Vec3d cellB =
-                    f == 0 ? cellA + (b - a) * (1.0 / q) : cellA + (c - a) * (1.0 / q);
-                const Vec3d cellC = f == 0 ? cellA + (c - a) * (1.0 / q)
-                                           : cellA + (c - a) * (1.0 / q) - (b - a) * (1.0 / q);
-                const TriangleShape cell{cellA, cellB, cellC};
-                const Vec3d mid = normalize((cellA + cellB + cellC) * (1.0 / 3) - p);
-                mass += density(mid) * sphericalTriangle(cell, p).solidAngle;
-              }
-          expected[static_cast<size_t>((i * n + j) * 2 + up)] = mass;
-          total += mass;
-        }
+    for (size_t k = 0; k < cells.size(); ++k)
+      for (const TriangleShape& cell : subTriangles(cells[k], q)) {
+        const Vec3d mid = normalize((cell.a + cell.b + cell.c) * (1.0 / 3) - p);
+        const double mass = density(mid) * sphericalTriangle(cell, p).solidAngle;
+        expected[k] += mass;
+        total += mass;
+      }
     EXPECT_NEAR(total, 1.0, 2e-3);
     for (double& e : expected) e *= samples / total;
     for (int k = 0; k < samples; ++k) {
