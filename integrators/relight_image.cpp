@@ -81,7 +81,7 @@ GroupSpectrum groupSpectrumFromCsv(const SpectralImage& image, const std::string
     if (!(t.value[i] >= 0 && std::isfinite(t.value[i])))
       throw Error(path + ": expected an emission spectrum of values >= 0, found " +
                   numberText(t.value[i]) + " at " + numberText(t.nm[i]) + " nm");
-  t.indexUniformGrid();
+  t.buildIndex();
   return groupSpectrum(image, group, Spectrum(std::move(t)), lo, hi, path, warnings);
 }
 

@@ -36,11 +36,22 @@ double TabulatedSpectrum::operator()(double x) const {
   size_t i;
   if (invStep > 0 && !std::isnan(x)) {
     // The interval nm[i] <= x < nm[i + 1] that the search below finds: the grid's guess is
-    // within one interval of it (indexUniformGrid), and one step each way settles it.
+    // within one interval of it (buildIndex), and one step each way settles it.
     const size_t last = nm.size() - 1;
     i = std::min(static_cast<size_t>((x - nm.front()) * invStep), last);
     if (i > 0 && x < nm[i]) --i;
     if (i < last && x >= nm[i + 1]) ++i;
+    if (i == last) return value.back();
+  } else if (!cellFirst.empty() && !std::isnan(x)) {
+    // From the first interval of x's cell, forward past the wavelengths at or below x (a cell
+    // is at least as wide as the closest two, so it holds few); back one where rounding put x
+    // before its cell's start.
+    const size_t last = nm.size() - 1;
+    const size_t cell =
+        std::min(static_cast<size_t>((x - nm.front()) * invCell), cellFirst.size() - 1);
+    i = cellFirst[cell];
+    while (i > 0 && x < nm[i]) --i;
+    while (i < last && x >= nm[i + 1]) ++i;
     if (i == last) return value.back();
   } else {
     const auto it = std::upper_bound(nm.begin(), nm.end(), x);
@@ -58,19 +69,39 @@ double SigmoidPolynomialSpectrum::operator()(double nm) const {
   return 0.5 + p / (2.0 * std::sqrt(1.0 + p * p));
 }
 
-void TabulatedSpectrum::indexUniformGrid() {
+void TabulatedSpectrum::buildIndex() {
   invStep = 0;
+  invCell = 0;
+  cellFirst.clear();
   if (nm.size() < 3) return; // a single interval: the search is one comparison
-  const double step = (nm.back() - nm.front()) / static_cast<double>(nm.size() - 1);
-  for (size_t i = 0; i < nm.size(); ++i)
-    if (!(std::fabs(nm[i] - (nm.front() + step * static_cast<double>(i))) <= 0.5 * step)) return;
-  invStep = 1.0 / step;
+  const double range = nm.back() - nm.front();
+  const double step = range / static_cast<double>(nm.size() - 1);
+  bool even = true;
+  double closest = range;
+  for (size_t i = 0; i < nm.size(); ++i) {
+    even = even && std::fabs(nm[i] - (nm.front() + step * static_cast<double>(i))) <= 0.5 * step;
+    if (i > 0) closest = std::min(closest, nm[i] - nm[i - 1]);
+  }
+  if (even) {
+    invStep = 1.0 / step;
+    return;
+  }
+  const double width = std::max(closest, range / static_cast<double>(kIndexCells));
+  const size_t cells = std::min(kIndexCells, static_cast<size_t>(std::ceil(range / width)));
+  invCell = static_cast<double>(cells) / range;
+  cellFirst.resize(cells);
+  size_t i = 0;
+  for (size_t c = 0; c < cells; ++c) {
+    const double start = nm.front() + static_cast<double>(c) / invCell;
+    while (i + 1 < nm.size() - 1 && nm[i + 1] <= start) ++i;
+    cellFirst[c] = static_cast<uint32_t>(i);
+  }
 }
 
 Spectrum forRendering(const Spectrum& s) {
   if (const auto* t = std::get_if<TabulatedSpectrum>(&s.kind())) {
     TabulatedSpectrum indexed = *t;
-    indexed.indexUniformGrid();
+    indexed.buildIndex();
     return Spectrum(std::move(indexed), s.scale());
   }
   if (std::holds_alternative<ConstantSpectrum>(s.kind()) ||

@@ -2,6 +2,7 @@
 // Spectral distributions as a closed set of kinds, dispatched statically (no virtual calls).
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -47,12 +48,20 @@ struct TabulatedSpectrum {
   std::vector<double> nm;    ///< strictly increasing wavelengths
   std::vector<double> value; ///< one value per wavelength
   bool holdEnds = false;     ///< beyond the table: the end values instead of zero
-  /// 1 / the step of a (nearly) uniform grid, found by indexUniformGrid(); 0: binary search.
+  /// 1 / the step of a (nearly) uniform grid, found by buildIndex(); 0: not indexed so.
   double invStep = 0;
+  /// Unevenly spaced tables indexed by buildIndex(): 1 / the width of a cell of [nm.front(),
+  /// nm.back()], and per cell the interval its start lies in; empty: binary search.
+  double invCell = 0;
+  std::vector<uint32_t> cellFirst;
   double operator()(double nm) const;
-  /// Lets operator() find the interval by arithmetic when the wavelengths are evenly spaced
-  /// (each within half a step of the grid): the same interval and value as the search.
-  void indexUniformGrid();
+  /// Lets operator() find the interval by arithmetic, with the same interval and value as
+  /// the binary search: directly when the wavelengths are evenly spaced (each within half a
+  /// step of the grid), else through cells at least as wide as the closest two wavelengths
+  /// (at most kIndexCells of them), from whose first interval a step or two settles it.
+  void buildIndex();
+  /// Most cells of an unevenly spaced table's index.
+  static constexpr size_t kIndexCells = 4096;
 };
 
 /// The sigmoid polynomial's wavelength variable is x = (nm - kSigmoidStartNm) / kSigmoidSpanNm.

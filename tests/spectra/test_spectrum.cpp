@@ -55,52 +55,94 @@ TEST(Spectrum, TabulatedInterpolatesAndIsZeroOutside) {
   EXPECT_DOUBLE_EQ(t.scaled(2)(450), 4);
 }
 
-// The grid index of evenly spaced tables finds the interval the binary search finds: the same
-// value bit for bit at knots, next to knots, between them, at and beyond the ends, for exact
-// and jittered grids, with and without held ends; uneven tables keep the search.
+// A pseudo-random number in [0, 1) from a running state (fixed sequence).
+double nextUnit(uint32_t& state) {
+  state = state * 1664525u + 1013904223u;
+  return static_cast<double>(state >> 8) / static_cast<double>(1u << 24);
+}
+
+// The indexed copy of t (buildIndex) gives the binary search's value bit for bit at knots,
+// next to knots, between them, at and beyond the ends and at NaN.
+void expectIndexEqualsSearch(const TabulatedSpectrum& t, const TabulatedSpectrum& fast,
+                             uint32_t& state, const std::string& what) {
+  const double range = t.nm.back() - t.nm.front();
+  std::vector<double> xs{t.nm.front() - 1, t.nm.back() + 1, t.nm.front(), t.nm.back(), NAN};
+  for (double k : t.nm)
+    for (double x : {k, std::nextafter(k, 0.0), std::nextafter(k, 1e9)}) xs.push_back(x);
+  for (int i = 0; i < 2000; ++i)
+    xs.push_back(t.nm.front() - 0.1 * range + 1.2 * range * nextUnit(state));
+  for (double x : xs) {
+    const double a = t(x), b = fast(x);
+    if (std::isnan(x))
+      EXPECT_EQ(std::isnan(a), std::isnan(b)) << what;
+    else
+      ASSERT_EQ(a, b) << what << " at " << x;
+  }
+}
+
+// The grid index of evenly spaced tables finds the interval the binary search finds, for exact
+// and jittered grids, with and without held ends.
 TEST(Spectrum, UniformGridIndexEqualsTheSearch) {
   uint32_t state = 12345;
-  auto rnd = [&] {
-    state = state * 1664525u + 1013904223u;
-    return static_cast<double>(state >> 8) / static_cast<double>(1u << 24);
-  };
   int indexed = 0;
   for (int table = 0; table < 40; ++table) {
-    const double step = table % 4 == 0 ? 1.0 : table % 4 == 1 ? 5.0 : 0.1 + 20 * rnd();
+    const double step = table % 4 == 0 ? 1.0 : table % 4 == 1 ? 5.0 : 0.1 + 20 * nextUnit(state);
     const double jitter = table % 3 == 0 ? 0.0 : 0.2 * step; // within the half-step bound
-    const size_t n = 3 + static_cast<size_t>(rnd() * 400);
+    const size_t n = 3 + static_cast<size_t>(nextUnit(state) * 400);
     TabulatedSpectrum t;
     for (size_t i = 0; i < n; ++i) {
-      t.nm.push_back(350 + step * static_cast<double>(i) + (i > 0 ? jitter * (2 * rnd() - 1) : 0));
-      t.value.push_back(rnd());
+      t.nm.push_back(350 + step * static_cast<double>(i) +
+                     (i > 0 ? jitter * (2 * nextUnit(state) - 1) : 0));
+      t.value.push_back(nextUnit(state));
     }
     t.holdEnds = table % 2 == 0;
     TabulatedSpectrum fast = t;
-    fast.indexUniformGrid();
+    fast.buildIndex();
     ASSERT_GT(fast.invStep, 0) << "table " << table;
+    EXPECT_TRUE(fast.cellFirst.empty());
     ++indexed;
-    std::vector<double> xs{t.nm.front() - 1, t.nm.back() + 1, t.nm.front(), t.nm.back(), NAN};
-    for (double k : t.nm)
-      for (double x : {k, std::nextafter(k, 0.0), std::nextafter(k, 1e9)}) xs.push_back(x);
-    for (int i = 0; i < 2000; ++i)
-      xs.push_back(t.nm.front() - step + (t.nm.back() - t.nm.front() + 2 * step) * rnd());
-    for (double x : xs) {
-      const double a = t(x), b = fast(x);
-      if (std::isnan(x))
-        EXPECT_EQ(std::isnan(a), std::isnan(b));
-      else
-        ASSERT_EQ(a, b) << "table " << table << " at " << x;
-    }
+    expectIndexEqualsSearch(t, fast, state, "table " + std::to_string(table));
   }
   EXPECT_EQ(indexed, 40);
-  // A table whose spacing varies more than half a step keeps the binary search.
-  TabulatedSpectrum uneven{{400, 401, 410, 411}, {1, 2, 3, 4}};
-  uneven.indexUniformGrid();
-  EXPECT_EQ(uneven.invStep, 0);
   // And the renderer's copy of a tabulated spectrum is indexed.
   const Spectrum r = forRendering(Spectrum(TabulatedSpectrum{{400, 410, 420}, {1, 2, 3}}, 2));
   EXPECT_GT(std::get<TabulatedSpectrum>(r.kind()).invStep, 0);
   EXPECT_DOUBLE_EQ(r(415), 5.0);
+}
+
+// Unevenly spaced tables (an LED's CSV at 380, 430, 450, ... nm; gaps from 0.01 to 50 nm;
+// clusters of close wavelengths in wide gaps; one gap far below the range / kIndexCells) are
+// indexed by cells and give the search's values bit for bit; the renderer's copy is indexed.
+TEST(Spectrum, UnevenTableIndexEqualsTheSearch) {
+  uint32_t state = 777;
+  const std::vector<std::vector<double>> grids = {
+      {380, 430, 450, 455, 460, 470, 520, 780},
+      {400, 401, 410, 411},
+  };
+  std::vector<std::vector<double>> all = grids;
+  for (int table = 0; table < 30; ++table) {
+    std::vector<double> nm{300 + 100 * nextUnit(state)};
+    const size_t n = 3 + static_cast<size_t>(nextUnit(state) * 300);
+    for (size_t i = 1; i < n; ++i) // log-uniform gaps from 0.01 to 50 nm
+      nm.push_back(nm.back() + 0.01 * std::pow(5000.0, nextUnit(state)));
+    if (table % 5 == 0) nm.insert(nm.begin() + 1, nm[0] + 1e-6); // a gap of 1e-6 nm
+    all.push_back(nm);
+  }
+  for (size_t g = 0; g < all.size(); ++g) {
+    TabulatedSpectrum t;
+    t.nm = all[g];
+    for (size_t i = 0; i < t.nm.size(); ++i) t.value.push_back(nextUnit(state));
+    t.holdEnds = g % 2 == 0;
+    TabulatedSpectrum fast = t;
+    fast.buildIndex();
+    EXPECT_EQ(fast.invStep, 0) << g;
+    ASSERT_FALSE(fast.cellFirst.empty()) << g;
+    EXPECT_LE(fast.cellFirst.size(), TabulatedSpectrum::kIndexCells);
+    expectIndexEqualsSearch(t, fast, state, "uneven table " + std::to_string(g));
+  }
+  const Spectrum r = forRendering(Spectrum(TabulatedSpectrum{{400, 401, 410, 411}, {1, 2, 3, 4}}));
+  EXPECT_FALSE(std::get<TabulatedSpectrum>(r.kind()).cellFirst.empty());
+  EXPECT_DOUBLE_EQ(r(405.5), 2.5);
 }
 
 TEST(Spectrum, TabulatedRejectsBadPairs) {
