@@ -272,10 +272,13 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
               const PixelSequence replicates[2] = {
                   PixelSequence(options.sampler, pixelIndex, seed),
                   PixelSequence(options.sampler, pixelIndex, seed ^ kOddReplicateSalt)};
-              const PixelSequence whiteSequences[2] = {
-                  PixelSequence(options.sampler, pixelIndex, seed ^ kWhiteSalt),
-                  PixelSequence(options.sampler, pixelIndex,
-                                seed ^ kWhiteSalt ^ kOddReplicateSalt)};
+              // The white reference's own sequences, made only when it is rendered.
+              std::optional<PixelSequence> whiteSequences[2];
+              if (out.film.hasWhite()) {
+                whiteSequences[0].emplace(options.sampler, pixelIndex, seed ^ kWhiteSalt);
+                whiteSequences[1].emplace(options.sampler, pixelIndex,
+                                          seed ^ kWhiteSalt ^ kOddReplicateSalt);
+              }
               // Each pixel continues after the samples it already has (a resumed film or an
               // adaptive plan may hold more in some pixels than in others).
               for (int s = begin + held; s < sEnd; ++s) {
@@ -347,7 +350,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                 }
                 if (out.film.hasWhite()) {
                   // Its own random numbers (a salted seed): the same for every thread count.
-                  PixelSampleStream whiteRng(whiteSequences[odd], static_cast<uint32_t>(s) >> 1);
+                  PixelSampleStream whiteRng(*whiteSequences[odd], static_cast<uint32_t>(s) >> 1);
                   out.film.addWhiteSample(
                       pixel, lambda, traceWhiteReference(ctx, ray, lambda, whiteRng, counters));
                 }
