@@ -272,12 +272,13 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         const SampledSpectrum le = evaluate(*scene.background, current);
         if constexpr (kGradients) ratioEvents(tangents->background, current, le, sink, local);
         sink.add(weighted() * le *
-                     (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP))),
+                     (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP, prevN))),
                  classOf(scatterings, groups.ofBackground, groups.sourceOfBackground, current));
       }
       for (int e = 0; e < ctx.lights->environmentCount(); ++e)
         sink.add(weighted() * ctx.lights->environmentRadiance(e, ray.d, current) *
-                     (specular ? 1.0f : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d))),
+                     (specular ? 1.0f
+                               : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d, prevN))),
                  classOf(scatterings, ctx.lights->environmentGroup(e), 0, current));
       break;
     }
@@ -377,7 +378,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         const Sample2 uLight = rng.next2D();
         const Sample2 uGuide = rng.next2D();
         float share = 0, uRest = 0;
-        const int l = ctx.lights->choose(hit.p, uChoice, share, uRest);
+        const int l = ctx.lights->choose(hit.p, hit.ns, uChoice, share, uRest);
         LightSample ls, lsGuided;
         if (l >= 0 &&
             ctx.lights->sampleChosen(l, share, hit.p, uRest, uLight, shift.excited, ls, hit.ns)) {

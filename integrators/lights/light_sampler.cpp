@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "accel/closed_mesh.h"
 #include "core/frame.h"
 #include "core/math_util.h"
 #include "core/ray_offset.h"
@@ -17,6 +18,33 @@ namespace {
 
 double triangleArea(const TriangleShape& t) {
   return 0.5 * length(cross(t.b - t.a, t.c - t.a));
+}
+
+// Bounds of triangles of a mesh (both faces emit: the cone of their normals, taken as two-sided
+// when weighed), their area as power.
+template <class Triangles>
+LightBounds triangleBounds(const TriangleMesh& mesh, Triangles&& triangles) {
+  LightBounds b;
+  for (const size_t t : triangles) {
+    const TriangleShape c = mesh.corners(t);
+    const Vec3d nd = cross(c.b - c.a, c.c - c.a);
+    const double len = length(nd);
+    if (!(len > 0)) continue;
+    LightBounds one;
+    one.add(Vec3(c.a));
+    one.add(Vec3(c.b));
+    one.add(Vec3(c.c));
+    one.normals = {Vec3(nd * (1 / len)), 1.0f};
+    one.power = static_cast<float>(0.5 * len);
+    b = unionOf(b, one);
+  }
+  return b;
+}
+
+// The sign that turns mesh m's (b - a) x (c - a) outward when it is closed, else 0.
+int outwardSign(const TriangleMesh& m) {
+  const MeshClosure c = meshClosure(m);
+  return !c.closed ? 0 : (c.volume > 0 ? 1 : (c.volume < 0 ? -1 : 0));
 }
 
 // Radius of a sphere around the scene's bounded shapes and the camera: the uniform background's
@@ -70,9 +98,19 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
     const double r = geometry.spheres()[i].radius;
     const Spectrum* e = emissionOf(scene.spheres[i]);
     const double le = tracedIntegral(*e);
-    lights_.push_back({LightKind::Sphere, static_cast<uint32_t>(i), -1, e, 0, 0,
-                       kPi * 4 * kPi * r * r * le, le, Vec3(geometry.spheres()[i].center),
-                       static_cast<float>(r)});
+    lights_.push_back({LightKind::Sphere,
+                       static_cast<uint32_t>(i),
+                       -1,
+                       e,
+                       0,
+                       0,
+                       kPi * 4 * kPi * r * r * le,
+                       le,
+                       Vec3(geometry.spheres()[i].center),
+                       static_cast<float>(r),
+                       -1,
+                       -1,
+                       {}});
   }
   meshLight_.assign(scene.meshes.size(), -1);
   triangleLight_.resize(scene.meshes.size());
@@ -90,12 +128,35 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
               0,
               0,
               Vec3(),
-              0};
+              0,
+              -1,
+              -1,
+              {}};
       for (size_t t = 0; t < mesh.triangleCount(); ++t) {
         l.area += triangleArea(mesh.corners(t));
         areaCdf_.push_back(l.area);
       }
       if (!(l.area > 0)) continue;
+      // Rectangles sampled whole, large meshes through a light tree (solid-angle sampling).
+      std::optional<Rectangle> rectangle;
+      if (triangleSampling_ == TriangleLightSampling::SolidAngle) rectangle = rectangleOf(mesh);
+      if (rectangle) {
+        l.rectangle = static_cast<int32_t>(rectangles_.size());
+        RectangleLight r{*rectangle, frameOf(*rectangle), {}};
+        for (size_t t = 0; t < 2; ++t) {
+          const TriangleShape c = mesh.corners(t);
+          r.normal[t] = Vec3(normalize(cross(c.b - c.a, c.c - c.a)));
+        }
+        rectangles_.push_back(r);
+      } else if (triangleSampling_ == TriangleLightSampling::SolidAngle &&
+                 mesh.triangleCount() > kSolidAngleChoice) {
+        l.tree = static_cast<int32_t>(trees_.size());
+        trees_.emplace_back(mesh, outwardSign(mesh));
+      }
+      std::vector<size_t> all(mesh.triangleCount());
+      for (size_t t = 0; t < all.size(); ++t) all[t] = t;
+      l.bounds = l.tree >= 0 ? trees_[static_cast<size_t>(l.tree)].bounds()
+                             : LightCluster(triangleBounds(mesh, all));
       // Both faces emit: power 2 pi A integral(L).
       l.radiance = tracedIntegral(*l.emission);
       l.power = 2 * kPi * l.area * l.radiance;
@@ -119,11 +180,15 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
               0,
               0,
               Vec3(),
-              0};
+              0,
+              -1,
+              -1,
+              {}};
       if (!(l.area > 0)) continue;
       l.radiance = tracedIntegral(*l.emission);
       l.power = 2 * kPi * l.area * l.radiance;
       const TriangleShape c = mesh.corners(t);
+      l.bounds = LightCluster(triangleBounds(mesh, std::array<size_t, 1>{t}));
       l.center = Vec3((c.a + c.b + c.c) * (1.0 / 3));
       l.radius =
           static_cast<float>(std::max({length(c.a - Vec3d(l.center)), length(c.b - Vec3d(l.center)),
@@ -139,17 +204,37 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
           if constexpr (Kind::kInfinite)
             environments_.push_back(static_cast<int32_t>(lights_.size()));
           lights_.push_back({Kind::kInfinite ? LightKind::Environment : LightKind::Point,
-                             static_cast<uint32_t>(i), -1, nullptr, 0, 0,
+                             static_cast<uint32_t>(i),
+                             -1,
+                             nullptr,
+                             0,
+                             0,
                              light.power(Kind::kInfinite ? sceneRadius(scene) : 0.0),
-                             light.tracedPeak(), light.center(), 0});
+                             light.tracedPeak(),
+                             light.center(),
+                             0,
+                             -1,
+                             -1,
+                             {}});
         },
         scene.lights[i]);
   if (scene.background) {
     const double r = sceneRadius(scene);
     background_ = static_cast<int32_t>(lights_.size());
     const double le = tracedIntegral(*scene.background);
-    lights_.push_back({LightKind::Background, 0, -1, &*scene.background, 0, 0,
-                       4 * kPi * kPi * r * r * le, le, Vec3(0, 0, 0), 0});
+    lights_.push_back({LightKind::Background,
+                       0,
+                       -1,
+                       &*scene.background,
+                       0,
+                       0,
+                       4 * kPi * kPi * r * r * le,
+                       le,
+                       Vec3(0, 0, 0),
+                       0,
+                       -1,
+                       -1,
+                       {}});
   }
   if (selection_ == LightSelection::Local && count() > kMaxLocalLights)
     selection_ = LightSelection::Power;
@@ -241,26 +326,40 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
   if (!cdf_.empty()) cdf_.back() = 1.0;
 }
 
-float LightSampler::localWeight(const Light& l, const Vec3& p) const {
+float LightSampler::localWeight(const Light& l, const Vec3& p, const Vec3& n) const {
   const Vec3 toCenter = l.center - p;
   const float d2 = dot(toCenter, toCenter);
   const float r2 = l.radius * l.radius;
+  const bool receiver = !(n == Vec3());
+  // The receiver's |cos| towards a light seen within a cone of sin^2 = sin2 around the
+  // direction to its centre, at its largest over the cone (1 without a receiver).
+  const auto receiverCos = [&](float sin2) {
+    if (!receiver || !(d2 > 0)) return 1.0f;
+    const float cosI = std::min(1.0f, std::abs(dot(n, toCenter)) / std::sqrt(d2));
+    const float sinI = std::sqrt(std::max(0.0f, 1 - cosI * cosI));
+    const float sinU = std::sqrt(std::clamp(sin2, 0.0f, 1.0f)), cosU = std::sqrt(1 - sinU * sinU);
+    return cosOfClampedDifference(cosI, sinI, cosU, sinU);
+  };
   float solidAngle = 0;
   switch (l.kind) {
   case LightKind::Point:
-    solidAngle = 1 / std::max(d2, 1e-30f); // intensity / d^2
+    solidAngle = receiverCos(0) / std::max(d2, 1e-30f); // intensity |cos| / d^2
     break;
   case LightKind::Sphere:
     solidAngle = d2 <= r2 ? static_cast<float>(4 * kPi)
-                          : static_cast<float>(2 * kPi * oneMinusCosFromSin2(r2 / d2));
+                          : static_cast<float>(2 * kPi * oneMinusCosFromSin2(r2 / d2)) *
+                                receiverCos(r2 / d2);
     break;
-  case LightKind::Mesh: // at most a hemisphere of one face; A / d^2 when far
-    solidAngle = d2 <= r2 ? static_cast<float>(2 * kPi)
-                          : std::min(static_cast<float>(2 * kPi), static_cast<float>(l.area) / d2);
+  case LightKind::Mesh: // at most a hemisphere of one face; the bound of its emitters when far
+    solidAngle = d2 <= r2
+                     ? static_cast<float>(2 * kPi)
+                     : std::min(static_cast<float>(2 * kPi),
+                                l.tree >= 0 ? trees_[static_cast<size_t>(l.tree)].importance(p, n)
+                                            : l.bounds.importance(p, n, true));
     break;
-  case LightKind::Background:
+  case LightKind::Background: // |cos| over the sphere integrates to 2 pi
   case LightKind::Environment:
-    solidAngle = static_cast<float>(4 * kPi);
+    solidAngle = static_cast<float>((receiver ? 2 : 4) * kPi);
     break;
   }
   // Never zero for a light that emits: every light that can shine keeps a chance.
@@ -268,12 +367,12 @@ float LightSampler::localWeight(const Light& l, const Vec3& p) const {
          (l.radiance > 0 ? 1.0f : 0.0f);
 }
 
-float LightSampler::probability(int k, const Vec3& p) const {
+float LightSampler::probability(int k, const Vec3& p, const Vec3& n) const {
   if (selection_ != LightSelection::Local || lights_.size() == 1)
     return pmf_[static_cast<size_t>(k)];
   float total = 0;
-  for (const Light& l : lights_) total += localWeight(l, p);
-  return total > 0 ? localWeight(lights_[static_cast<size_t>(k)], p) / total : 0.0f;
+  for (const Light& l : lights_) total += localWeight(l, p, n);
+  return total > 0 ? localWeight(lights_[static_cast<size_t>(k)], p, n) / total : 0.0f;
 }
 
 SampledSpectrum LightSampler::environmentRadiance(int i, const Vec3& d,
@@ -289,7 +388,7 @@ SampledSpectrum LightSampler::environmentRadiance(int i, const Vec3& d,
       scene_->lights[l.shape]);
 }
 
-float LightSampler::pdfEnvironment(int i, const Vec3& p, const Vec3& d) const {
+float LightSampler::pdfEnvironment(int i, const Vec3& p, const Vec3& d, const Vec3& n) const {
   const int k = environments_[static_cast<size_t>(i)];
   const Light& l = lights_[static_cast<size_t>(k)];
   const float pdf = std::visit(
@@ -300,14 +399,16 @@ float LightSampler::pdfEnvironment(int i, const Vec3& p, const Vec3& d) const {
           return 0.0f; // unreachable: environments_ holds infinite lights only
       },
       scene_->lights[l.shape]);
-  return pdf * probability(k, p);
+  return pdf * probability(k, p, n);
 }
 
-float LightSampler::pdfBackground(const Vec3& p) const {
-  return background_ < 0 ? 0.0f : static_cast<float>(1.0 / (4 * kPi)) * probability(background_, p);
+float LightSampler::pdfBackground(const Vec3& p, const Vec3& n) const {
+  return background_ < 0 ? 0.0f
+                         : static_cast<float>(1.0 / (4 * kPi)) * probability(background_, p, n);
 }
 
-int LightSampler::choose(const Vec3& p, float uChoice, float& shareOut, float& uRest) const {
+int LightSampler::choose(const Vec3& p, const Vec3& n, float uChoice, float& shareOut,
+                         float& uRest) const {
   if (lights_.empty()) return -1;
   // The first light whose running probability exceeds uChoice; uChoice is then rescaled to
   // [0, 1) within that light's share, for the light's own choice of triangle.
@@ -320,7 +421,7 @@ int LightSampler::choose(const Vec3& p, float uChoice, float& shareOut, float& u
     // Each weight computed once, kept on the stack (at most kMaxLocalLights: no allocation).
     std::array<float, kMaxLocalLights> weights;
     float total = 0;
-    for (size_t i = 0; i < lights_.size(); ++i) total += weights[i] = localWeight(lights_[i], p);
+    for (size_t i = 0; i < lights_.size(); ++i) total += weights[i] = localWeight(lights_[i], p, n);
     if (!(total > 0)) return -1;
     const double target = uc * total;
     double running = 0;
@@ -360,7 +461,7 @@ bool LightSampler::sampleChosen(int k, float share, const Vec3& p, float uRest, 
 bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
                           LightSample& out, const Vec3& n) const {
   float share = 0, uRest = 0;
-  const int k = choose(p, uChoice, share, uRest);
+  const int k = choose(p, n, uChoice, share, uRest);
   return k >= 0 && sampleChosen(k, share, p, uRest, u, lambda, out, n);
 }
 
@@ -440,12 +541,14 @@ bool LightSampler::sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightS
   return true;
 }
 
-int LightSampler::chooseTriangle(const Light& l, const Vec3d& p, float uTriangle,
-                                 double& probability,
+int LightSampler::chooseTriangle(const Light& l, const Vec3d& p, const Vec3& normal,
+                                 float uTriangle, double& probability,
                                  std::array<SphericalTriangle, kSolidAngleChoice>& seen) const {
   const TriangleMesh& mesh = scene_->geometry->meshes()[l.shape];
   probability = 1;
   if (l.triangle >= 0) return l.triangle;
+  if (l.tree >= 0)
+    return trees_[static_cast<size_t>(l.tree)].choose(Vec3(p), normal, uTriangle, probability);
   const size_t n = mesh.triangleCount();
   if (triangleSampling_ == TriangleLightSampling::SolidAngle && n <= kSolidAngleChoice) {
     // A small mesh (a quad, a few triangles): each triangle in proportion to its solid angle,
@@ -487,7 +590,10 @@ double LightSampler::trianglePdf(const Light& l, const Vec3d& p, const Vec3& n, 
   double choice = 1;
   SphericalTriangle seen; // triangle t from p, when a small mesh's choice saw it
   const SphericalTriangle* known = nullptr;
-  if (l.triangle < 0) {
+  if (l.tree >= 0) {
+    choice = trees_[static_cast<size_t>(l.tree)].probability(t, Vec3(p), n);
+    if (!(choice > 0)) return 0;
+  } else if (l.triangle < 0) {
     const size_t count = mesh.triangleCount();
     if (triangleSampling_ == TriangleLightSampling::SolidAngle && count <= kSolidAngleChoice) {
       double total = 0;
@@ -521,11 +627,12 @@ double LightSampler::trianglePdf(const Light& l, const Vec3d& p, const Vec3& n, 
 
 bool LightSampler::sampleMesh(const Light& l, const Vec3& p, const Vec3& n, float uTriangle,
                               Sample2 u, LightSample& out) const {
+  if (l.rectangle >= 0) return sampleRectangle(l, p, n, u, out);
   const TriangleMesh& mesh = scene_->geometry->meshes()[l.shape];
   const Vec3d pd(p);
   std::array<SphericalTriangle, kSolidAngleChoice> seen;
   double choice = 1;
-  const int chosen = chooseTriangle(l, pd, uTriangle, choice, seen);
+  const int chosen = chooseTriangle(l, pd, n, uTriangle, choice, seen);
   if (chosen < 0) return false;
   const size_t t = static_cast<size_t>(chosen);
   const TriangleShape tri = mesh.corners(t);
@@ -533,7 +640,7 @@ bool LightSampler::sampleMesh(const Light& l, const Vec3& p, const Vec3& n, floa
   const double nLen = length(nd);
   if (!(nLen > 0)) return false;
   // A small mesh's choice has seen its triangles already.
-  const bool smallMesh = l.triangle < 0 && mesh.triangleCount() <= kSolidAngleChoice;
+  const bool smallMesh = l.triangle < 0 && l.tree < 0 && mesh.triangleCount() <= kSolidAngleChoice;
   SphericalTriangle st;
   double b1, b2, pdf;
   Vec3d wi;
@@ -587,6 +694,69 @@ bool LightSampler::sampleMesh(const Light& l, const Vec3& p, const Vec3& n, floa
   return true;
 }
 
+bool LightSampler::sampleRectangle(const Light& l, const Vec3& p, const Vec3& n, Sample2 u,
+                                   LightSample& out) const {
+  const RectangleLight& r = rectangles_[static_cast<size_t>(l.rectangle)];
+  const Vec3d pd(p);
+  SphericalRectangle sr;
+  Vec3d q;
+  double pdf = -1;
+  if (worthSphericalSampling(r.frame, pd, sr)) {
+    // Uniform in solid angle (Urena et al. 2013), after the receiver's cosine warp.
+    double warp = 1;
+    if (!(n == Vec3())) {
+      const BilinearDensity density = cosineWarp(sr, Vec3d(n));
+      u = density.sample(u);
+      warp = density.pdf(u);
+    }
+    if (!sampleSphericalRectangle(sr, u, q)) return false;
+    pdf = warp / sr.solidAngle;
+  } else {
+    q = r.shape.corner + r.shape.edgeX * static_cast<double>(u.u) +
+        r.shape.edgeY * static_cast<double>(u.v);
+  }
+  const Vec3d toLight = q - pd;
+  const double d2 = dot(toLight, toLight);
+  if (!(d2 > 0)) return false;
+  const double d = std::sqrt(d2);
+  const Vec3d wi = toLight * (1.0 / d);
+  const double cosLight = std::abs(dot(r.frame.z, wi));
+  if (!(cosLight > 0)) return false;
+  if (pdf < 0) pdf = d2 / (cosLight * r.frame.lengthX * r.frame.lengthY); // by area
+  if (!std::isfinite(pdf) || !(pdf > 0)) return false;
+  // The triangle the point lies on: the first holds the corner, the diagonal is s + t = 1.
+  const Vec3d fromCorner = q - r.frame.corner;
+  const uint32_t prim =
+      dot(fromCorner, r.frame.x) / r.frame.lengthX + dot(fromCorner, r.frame.y) / r.frame.lengthY <=
+              1.0
+          ? 0u
+          : 1u;
+  out.wi = Vec3(wi);
+  out.distance = static_cast<float>(d);
+  out.p = Vec3(q);
+  out.pError = roundingError(out.p);
+  out.n = r.normal[prim];
+  out.pdf = static_cast<float>(pdf);
+  out.kind = ShapeKind::Triangle;
+  out.shape = l.shape;
+  out.prim = prim;
+  return true;
+}
+
+double LightSampler::rectanglePdf(const Light& l, const Vec3d& p, const Vec3& n, const Vec3d& q,
+                                  const Vec3d& wi) const {
+  const RectangleLight& r = rectangles_[static_cast<size_t>(l.rectangle)];
+  SphericalRectangle sr;
+  if (worthSphericalSampling(r.frame, p, sr)) {
+    if (n == Vec3()) return 1 / sr.solidAngle;
+    return cosineWarp(sr, Vec3d(n)).pdf(invertSphericalRectangleSample(sr, q)) / sr.solidAngle;
+  }
+  const Vec3d toLight = q - p;
+  const double pdf =
+      dot(toLight, toLight) / (std::abs(dot(r.frame.z, wi)) * r.frame.lengthX * r.frame.lengthY);
+  return std::isfinite(pdf) ? pdf : 0.0; // d^2 / (|cos| A)
+}
+
 int LightSampler::lightOf(const SurfaceHit& hit) const {
   switch (hit.kind) {
   case ShapeKind::Sphere:
@@ -620,10 +790,12 @@ float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& w
     pdf = spherePdf(l.shape, p, wi);
   } else {
     pdf = static_cast<float>(
-        trianglePdf(l, Vec3d(p), n, lightHit.prim, Vec3d(lightHit.p), Vec3d(wi)));
+        l.rectangle >= 0
+            ? rectanglePdf(l, Vec3d(p), n, Vec3d(lightHit.p), Vec3d(wi))
+            : trianglePdf(l, Vec3d(p), n, lightHit.prim, Vec3d(lightHit.p), Vec3d(wi)));
     if (!std::isfinite(pdf)) return 0;
   }
-  return pdf * probability(k, p);
+  return pdf * probability(k, p, n);
 }
 
 } // namespace nx

@@ -6,7 +6,10 @@
 #include <vector>
 
 #include "core/sampler.h"
+#include "integrators/lights/light_bounds.h"
 #include "integrators/lights/light_sample.h"
+#include "integrators/lights/mesh_light_tree.h"
+#include "integrators/lights/spherical_rectangle.h"
 #include "integrators/lights/spherical_triangle.h"
 #include "integrators/render_scene.h"
 #include "spectra/reradiation_matrix.h"
@@ -15,9 +18,11 @@ namespace nx {
 
 /// How the light sampler chooses among the scene's lights.
 enum class LightSelection : uint8_t {
-  /// In proportion to the power each light sends towards the shading point: its radiance
+  /// In proportion to the power each light can send to the shading point: its radiance
   /// integrated over the traced range times the solid angle it subtends there (intensity / d^2
-  /// for point lights) - the default. Scenes with more than kMaxLocalLights lights use Power.
+  /// for point lights; for triangles and meshes the bound of their LightBounds, which is zero
+  /// where every emitter faces away), times the receiver's |cos| bounded over the light -
+  /// the default. Scenes with more than kMaxLocalLights lights use Power.
   Local,
   Power,   ///< in proportion to emitted power over the traced range, the same everywhere
   Uniform, ///< each light equally often
@@ -28,16 +33,18 @@ inline constexpr int kMaxLocalLights = 64;
 
 /// How emitting triangles (triangles, quads, meshes) are sampled from a shading point.
 enum class TriangleLightSampling : uint8_t {
-  /// Uniformly in the solid angle a triangle subtends (Arvo 1995), by area where that is tiny
-  /// or nearly a hemisphere; a mesh of at most kSolidAngleChoice triangles (a quad) chooses
-  /// its triangle by solid angle, a larger one by area - the default.
+  /// Uniformly in the solid angle a triangle subtends (Arvo 1995) or a rectangle subtends
+  /// (Urena et al. 2013), by area where that is tiny or nearly a hemisphere; a rectangle of
+  /// two triangles is sampled whole, another mesh of at most kSolidAngleChoice triangles
+  /// chooses its triangle by solid angle, a larger one through its MeshLightTree - the
+  /// default.
   SolidAngle,
   Area, ///< a triangle by area, a uniform point on it (the strategy before; benchmarks)
 };
 
 /// Meshes of at most this many triangles choose theirs by solid angle (a quad is two; each
-/// light sample keeps this many seen triangles on the stack).
-inline constexpr size_t kSolidAngleChoice = 4;
+/// light sample keeps this many seen triangles on the stack); larger ones have a light tree.
+inline constexpr size_t kSolidAngleChoice = kMeshLightTreeFrom;
 
 /// The lights next-event estimation can aim at: point lights, emitting spheres (sampled through
 /// the cone they subtend, or uniformly over directions from inside), emitting meshes and inline
@@ -54,8 +61,9 @@ public:
   int count() const { return static_cast<int>(lights_.size()); }
   /// The selection in use (Local falls back to Power beyond kMaxLocalLights lights).
   LightSelection selection() const { return selection_; }
-  /// Probability that sample() chooses light k for shading point p.
-  float probability(int k, const Vec3& p) const;
+  /// Probability that sample() chooses light k for shading point p of shading normal n (zero:
+  /// none, in a medium).
+  float probability(int k, const Vec3& p, const Vec3& n) const;
   /// The kind of light k.
   LightKind kind(int k) const { return lights_[static_cast<size_t>(k)].kind; }
   /// Triangles light k samples among (1 for points, spheres and the background).
@@ -86,10 +94,10 @@ public:
   /// normal at p, for the cosine warp of triangle lights (zero: none, e.g. in a medium).
   bool sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
               LightSample& out, const Vec3& n = Vec3()) const;
-  /// The light sample() chooses with uChoice for shading point p, its probability `share` and
-  /// uChoice rescaled to [0, 1) within its share (`uRest`, for the light's triangle); -1 if
-  /// none can be chosen.
-  int choose(const Vec3& p, float uChoice, float& share, float& uRest) const;
+  /// The light sample() chooses with uChoice for shading point p of shading normal n (zero:
+  /// none), its probability `share` and uChoice rescaled to [0, 1) within its share (`uRest`,
+  /// for the light's triangle); -1 if none can be chosen.
+  int choose(const Vec3& p, const Vec3& n, float uChoice, float& share, float& uRest) const;
   /// sample() for the light choose() gave: sampleLight with the choice's probability in pdf.
   bool sampleChosen(int k, float share, const Vec3& p, float uRest, Sample2 u,
                     const SampledWavelengths& lambda, LightSample& out,
@@ -128,9 +136,9 @@ public:
   /// is not a light it samples. n: the shading normal sample() was given at p.
   float pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi,
             const Vec3& n = Vec3()) const;
-  /// Density with which sample() returns direction wi from p towards the background; 0
-  /// without one.
-  float pdfBackground(const Vec3& p) const;
+  /// Density with which sample() returns direction wi from p (shading normal n) towards the
+  /// background; 0 without one.
+  float pdfBackground(const Vec3& p, const Vec3& n) const;
 
   /// Number of environment lights (infinite lights of the scene's list) a ray that leaves
   /// the scene sees.
@@ -138,8 +146,8 @@ public:
   /// Radiance environment light i sends from direction d (d points away from the scene).
   SampledSpectrum environmentRadiance(int i, const Vec3& d, const SampledWavelengths& lambda) const;
   /// Density (solid angle, with the choice probability) with which sample() returns
-  /// direction d from p through environment light i.
-  float pdfEnvironment(int i, const Vec3& p, const Vec3& d) const;
+  /// direction d from p (shading normal n) through environment light i.
+  float pdfEnvironment(int i, const Vec3& p, const Vec3& d, const Vec3& n) const;
 
 private:
   struct Light {
@@ -153,17 +161,28 @@ private:
     double radiance = 0; ///< integral of the emission over the traced range
     Vec3 center;         ///< bounding sphere (spheres, meshes) or position (points)
     float radius = 0;
+    int32_t tree = -1;      ///< whole meshes of more than kSolidAngleChoice triangles: trees_
+    int32_t rectangle = -1; ///< whole meshes forming a rectangle: rectangles_
+    LightCluster bounds;    ///< meshes and triangles: box, normals (both faces), area
   };
-  /// Weight of light l at p for LightSelection::Local (positive wherever it can shine).
-  float localWeight(const Light& l, const Vec3& p) const;
+  /// Weight of light l at p (shading normal n) for LightSelection::Local (positive wherever
+  /// it can shine).
+  float localWeight(const Light& l, const Vec3& p, const Vec3& n) const;
   bool sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const;
   bool sampleMesh(const Light& l, const Vec3& p, const Vec3& n, float uTriangle, Sample2 u,
                   LightSample& out) const;
   float spherePdf(uint32_t sphere, const Vec3& p, const Vec3& wi) const;
   /// The triangle of mesh light l sampleMesh uses for uTriangle at p and its probability;
   /// `seen` holds a small mesh's triangles seen from p. -1 if none can be chosen.
-  int chooseTriangle(const Light& l, const Vec3d& p, float uTriangle, double& probability,
+  int chooseTriangle(const Light& l, const Vec3d& p, const Vec3& n, float uTriangle,
+                     double& probability,
                      std::array<SphericalTriangle, kSolidAngleChoice>& seen) const;
+  /// sampleMesh for a rectangle light.
+  bool sampleRectangle(const Light& l, const Vec3& p, const Vec3& n, Sample2 u,
+                       LightSample& out) const;
+  /// Density (solid angle) of sampleRectangle returning wi from p towards point q.
+  double rectanglePdf(const Light& l, const Vec3d& p, const Vec3& n, const Vec3d& q,
+                      const Vec3d& wi) const;
   /// Density (solid angle, without the light's choice) of sampleMesh returning wi from p
   /// towards point q of triangle t of mesh light l, for receiver normal n (zero: none).
   double trianglePdf(const Light& l, const Vec3d& p, const Vec3& n, uint32_t t, const Vec3d& q,
@@ -176,8 +195,16 @@ private:
   std::vector<float> pmf_;           ///< Power and Uniform: choice probabilities
   std::vector<double> cdf_;          ///< their running sum (cdf_[k] = P(light <= k))
   std::vector<double> areaCdf_;      ///< per whole-mesh light: running area of its triangles
-  std::vector<int32_t> sphereLight_; ///< light number per sphere, or -1
-  std::vector<int32_t> meshLight_;   ///< light number per mesh (whole meshes), or -1
+  std::vector<MeshLightTree> trees_; ///< light trees of large mesh lights
+  /// A rectangle light: its frame, and its two triangles' unit normals (the mesh's winding).
+  struct RectangleLight {
+    Rectangle shape;
+    RectangleFrame frame;
+    Vec3 normal[2];
+  };
+  std::vector<RectangleLight> rectangles_;          ///< rectangle lights
+  std::vector<int32_t> sphereLight_;                ///< light number per sphere, or -1
+  std::vector<int32_t> meshLight_;                  ///< light number per mesh (whole meshes), or -1
   std::vector<std::vector<int32_t>> triangleLight_; ///< per mesh with inline triangles
   int32_t background_ = -1;
   std::vector<int32_t> environments_;    ///< light numbers of the environment lights

@@ -177,8 +177,9 @@ TEST(AreaLights, QuadSamplesFollowTheirDensityAndMatchPdf) {
     }
 }
 
-// The light chosen for a shading point follows probability(k, p) in each selection (chi-square
-// over the lights), for a point light, a sphere, a quad, inline triangles and the background.
+// The light chosen for a shading point follows probability(k, p, n) in each selection
+// (chi-square over the lights), for a point light, a sphere, a quad, inline triangles and the
+// background, with and without a receiver normal.
 TEST(AreaLights, LightChoiceFollowsItsProbabilities) {
   const RenderScene scene =
       sceneOf("<light><position>0,3,0</position><color>1,1,1</color></light>"
@@ -189,27 +190,28 @@ TEST(AreaLights, LightChoiceFollowsItsProbabilities) {
               "<triangle><vA>3,0,0</vA><vB>3,1,0</vB><vC>3,0,1</vC><material>matte</material>"
               "<emission>A</emission></triangle>",
               "<background>0.1</background>");
-  for (LightSelection sel :
-       {LightSelection::Local, LightSelection::Power, LightSelection::Uniform}) {
-    const LightSampler lights(scene, sel);
-    ASSERT_EQ(lights.count(), 5);
-    const Vec3 p(0.5f, 0, 0.2f);
-    const int n = 50000;
-    std::vector<double> obs(5, 0), exp(5, 0);
-    double total = 0;
-    for (int k = 0; k < 5; ++k) total += lights.probability(k, p);
-    EXPECT_NEAR(total, 1.0, 1e-5);
-    for (int k = 0; k < 5; ++k) exp[static_cast<size_t>(k)] = n * lights.probability(k, p);
-    for (int i = 0; i < n; ++i) {
-      LightSample ls;
-      if (lights.sample(p, sampleValue(SamplerKind::Independent, i, 0, 0, 5),
-                        samplePair(SamplerKind::Independent, i, 0, 1, 5),
-                        test::flatWavelengths(550), ls))
-        obs[static_cast<size_t>(ls.light)] += 1;
+  for (LightSelection sel : {LightSelection::Local, LightSelection::Power, LightSelection::Uniform})
+    for (const Vec3 normal : {Vec3(), normalize(Vec3(0.3f, 1, 0.2f))}) {
+      const LightSampler lights(scene, sel);
+      ASSERT_EQ(lights.count(), 5);
+      const Vec3 p(0.5f, 0, 0.2f);
+      const int n = 50000;
+      std::vector<double> obs(5, 0), exp(5, 0);
+      double total = 0;
+      for (int k = 0; k < 5; ++k) total += lights.probability(k, p, normal);
+      EXPECT_NEAR(total, 1.0, 1e-5);
+      for (int k = 0; k < 5; ++k)
+        exp[static_cast<size_t>(k)] = n * lights.probability(k, p, normal);
+      for (int i = 0; i < n; ++i) {
+        LightSample ls;
+        if (lights.sample(p, sampleValue(SamplerKind::Independent, i, 0, 0, 5),
+                          samplePair(SamplerKind::Independent, i, 0, 1, 5),
+                          test::flatWavelengths(550), ls, normal))
+          obs[static_cast<size_t>(ls.light)] += 1;
+      }
+      const auto [stat, dof] = test::chiSquare(obs, exp);
+      EXPECT_LT(test::chiSquareZ(stat, dof), 4.0) << int(sel);
     }
-    const auto [stat, dof] = test::chiSquare(obs, exp);
-    EXPECT_LT(test::chiSquareZ(stat, dof), 4.0) << int(sel);
-  }
 }
 
 // Variance of band `nm` (luminance Y for nm = 0) over an image: half the mean squared

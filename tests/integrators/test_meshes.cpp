@@ -13,6 +13,7 @@
 #include "integrators/lights/measured_emitter.h"
 #include "integrators/renderer.h"
 #include "support/flat_wavelengths.h"
+#include "support/icosphere.h"
 #include "support/statistics.h"
 
 namespace nx {
@@ -241,6 +242,89 @@ TEST(Meshes, ClosedEmittingMeshIsAFurnace) {
       }
     EXPECT_LT(std::abs(px.mean - 2.0), 5 * px.standardError() + 1e-3) << int(s);
     EXPECT_LT(px.standardError(), 0.02) << int(s); // power: 5 se < 5% of the value
+  }
+}
+
+// Writes the icosphere of test::icosphereData as a PLY file; `drop` faces from the start are
+// left out (an open mesh).
+void writeIcosphere(const std::string& path, int levels, double r, const Vec3d& c,
+                    size_t drop = 0) {
+  test::IcosphereData d = test::icosphereData(levels, r, c);
+  d.faces.erase(d.faces.begin(), d.faces.begin() + static_cast<std::ptrdiff_t>(drop));
+  writePly(path, d.vertices, {}, d.faces);
+}
+
+// Mesh lights through their light trees: a closed icosphere (its back faces never chosen from
+// the floor, outside its box; both faces from its own surface) and an open one (a bowl: both
+// faces always), over a floor. Next-event estimation alone, BSDF sampling alone, their MIS
+// combination and the choice by area (the strategy before the trees) estimate the same image
+// (z-test of the mean difference, per-pixel variances). (Directions next-event estimation
+// never draws are left to BSDF sampling, whose weight is then 1, so a pruning mistake costs
+// noise, not bias: test_mesh_light_tree.cpp checks the pruning itself.)
+TEST(Meshes, MeshLightTreesAgreeWithEveryStrategy) {
+  writeIcosphere(tempPath("closed_lamp.ply"), 2, 0.3, Vec3d(-0.45, 0.45, 0.1));
+  writeIcosphere(tempPath("bowl_lamp.ply"), 2, 0.3, Vec3d(0.45, 0.35, 0.1), 40);
+  const RenderScene scene = buildRenderScene(parseScene(
+      "<scene><settings><xres>24</xres><yres>16</yres><mode>spectral_mcpt</mode><sampl>32"
+      "</sampl><depth>3</depth></settings><camera><position>0,1.2,-2</position><look_at>0,0.2,0"
+      "</look_at><fov>45</fov></camera><plane><normal>0,1,0</normal><distance>0</distance>"
+      "<material>matte</material><reflectance>0.6</reflectance></plane>"
+      "<mesh file=\"closed_lamp.ply\"><material>matte</material><emission>2</emission></mesh>"
+      "<mesh file=\"bowl_lamp.ply\"><material>matte</material><emission>A</emission></mesh>"
+      "</scene>",
+      tempPath("lamps.scn")));
+  struct Strategy {
+    LightSampling sampling;
+    TriangleLightSampling triangles;
+  };
+  const Strategy strategies[] = {{LightSampling::Mis, TriangleLightSampling::SolidAngle},
+                                 {LightSampling::NeeOnly, TriangleLightSampling::SolidAngle},
+                                 {LightSampling::BsdfOnly, TriangleLightSampling::SolidAngle},
+                                 {LightSampling::Mis, TriangleLightSampling::Area}};
+  std::vector<RenderOutput> outs;
+  for (size_t i = 0; i < 4; ++i) {
+    RenderOptions o;
+    o.lightSampling = strategies[i].sampling;
+    o.triangleLightSampling = strategies[i].triangles;
+    o.seed = 40 + static_cast<uint32_t>(i);
+    outs.push_back(render(scene, o));
+  }
+  for (size_t i = 1; i < 4; ++i) {
+    double diff = 0, var = 0, sum = 0;
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 24; ++x) {
+        diff += outs[i].film.xyzMean(x, y).y - outs[0].film.xyzMean(x, y).y;
+        var += outs[i].film.yVariance(x, y) + outs[0].film.yVariance(x, y);
+        sum += outs[0].film.xyzMean(x, y).y;
+      }
+    EXPECT_LT(std::abs(diff), 5 * std::sqrt(var) + 1e-9 * sum) << i;
+    EXPECT_LT(std::sqrt(var), 0.01 * sum) << i; // power: 5 se within 5% of the image
+  }
+}
+
+// The closed icosphere furnace: a welded, consistently wound mesh (its light tree knows it is
+// closed) seen from inside, where every triangle lights the others from its inner face: L = 2.
+TEST(Meshes, ClosedIcosphereFurnace) {
+  writeIcosphere(tempPath("ico_furnace.ply"), 2, 1, Vec3d(0, 0, 0));
+  const RenderScene scene = buildRenderScene(parseScene(
+      "<scene><settings><xres>12</xres><yres>12</yres><mode>spectral_mcpt</mode><sampl>32"
+      "</sampl><depth>3</depth></settings><camera><position>0,0,0</position><look_at>0,0,1"
+      "</look_at></camera><mesh file=\"ico_furnace.ply\"><material>matte</material>"
+      "<reflectance>0.5</reflectance><emission>1</emission></mesh></scene>",
+      tempPath("ico_furnace.scn")));
+  for (LightSampling s : {LightSampling::Mis, LightSampling::NeeOnly}) {
+    RenderOptions o;
+    o.lightSampling = s;
+    const RenderOutput out = render(scene, o);
+    test::RunningStats px;
+    for (int y = 0; y < 12; ++y)
+      for (int x = 0; x < 12; ++x) {
+        double v = 0;
+        for (int b = 0; b < out.film.bands().count(); ++b) v += out.film.bandMean(x, y, b);
+        px.add(v / out.film.bands().count());
+      }
+    EXPECT_LT(std::abs(px.mean - 2.0), 5 * px.standardError() + 1e-3) << int(s);
+    EXPECT_LT(px.standardError(), 0.02) << int(s);
   }
 }
 
