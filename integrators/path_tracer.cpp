@@ -138,11 +138,14 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
   // Spectral MIS through media: p_lane / p_hero of the path so far (free_flight.h); every
   // contribution is divided by their mean (1 while no medium event happened).
   [[maybe_unused]] SampledSpectrum misRatios = SampledSpectrum::filled(1.0f);
+  // 1 / spectralMisDivisor(misRatios, heroAlone), kept up to date where either changes (after
+  // each free flight, when the hero goes alone) rather than summed at every contribution.
+  [[maybe_unused]] float invMisDivisor = 1.0f;
   if constexpr (kMedia) media = scene.cameraMedia;
   // beta for contributions: with media, divided by the spectral MIS divisor
   auto weighted = [&]() {
     if constexpr (kMedia)
-      return beta * (1.0f / spectralMisDivisor(misRatios, heroAlone));
+      return beta * invMisDivisor;
     else
       return beta;
   };
@@ -199,6 +202,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
             beta *= 1.0f / mean;
           }
         }
+        invMisDivisor = 1.0f / spectralMisDivisor(misRatios, heroAlone);
         if (flight.event != MediumEvent::None) {
           if (bounce >= kMaxPathBounces) {
             ++counters.bounceLimited; // still carrying light: counted, reported
@@ -507,6 +511,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       if constexpr (kMedia) beta *= misRatios[0] > 0 ? 1.0f / misRatios[0] : 0.0f;
       rrScale *= 1.0f / static_cast<float>(kLanes);
       heroAlone = true;
+      if constexpr (kMedia) invMisDivisor = 1.0f;
     }
     specular = bs.specular;
     prevPdf = bs.pdf;
