@@ -15,7 +15,8 @@ enum class LightKind : uint8_t {
   Point,       ///< a light of the scene's <light> list: a point or spot light (a delta, never
                ///< hit by BSDF sampling)
   Sphere,      ///< an emitting sphere (cone sampling from outside, uniform from inside)
-  Mesh,        ///< an emitting mesh or inline triangle (a triangle by area, a point on it)
+  Mesh,        ///< an emitting mesh or inline triangle (sampled by solid angle or by area:
+               ///< TriangleLightSampling)
   Background,  ///< the uniform environment (uniform directions)
   Environment, ///< an infinite light of the scene's <light> list (an environment map: its
                ///< kind samples it)

@@ -41,6 +41,34 @@ LightBounds triangleBounds(const TriangleMesh& mesh, Triangles&& triangles) {
   return b;
 }
 
+// Completes a sample at point q of a flat emitter (unit normal `normal`, of its triangle
+// `prim`) seen from pd: direction, distance, point and normal; `pdf` in solid angle, or
+// negative for a point drawn with density `areaDensity` per unit area (d^2 / |cos| times it in
+// solid angle). False where the configuration is degenerate.
+bool finishFlatSample(const Vec3d& pd, const Vec3d& q, const Vec3d& normal, double pdf,
+                      double areaDensity, uint32_t shape, uint32_t prim, LightSample& out) {
+  const Vec3d toLight = q - pd;
+  const double d2 = dot(toLight, toLight);
+  if (!(d2 > 0)) return false;
+  const double d = std::sqrt(d2);
+  const Vec3d wi = toLight * (1.0 / d);
+  const double cosLight = std::abs(dot(normal, wi));
+  if (!(cosLight > 0)) return false;
+  if (pdf < 0) pdf = areaDensity * d2 / cosLight;
+  if (!std::isfinite(pdf) || !(pdf > 0)) return false;
+  out.wi = Vec3(wi);
+  out.distance = static_cast<float>(d);
+  out.p = Vec3(q);
+  // Error of the point's combination in double, then rounding to float.
+  out.pError = roundingError(out.p);
+  out.n = Vec3(normal);
+  out.pdf = static_cast<float>(pdf);
+  out.kind = ShapeKind::Triangle;
+  out.shape = shape;
+  out.prim = prim;
+  return true;
+}
+
 // The sign that turns mesh m's (b - a) x (c - a) outward when it is closed, else 0.
 int outwardSign(const TriangleMesh& m) {
   const MeshClosure c = meshClosure(m);
@@ -143,9 +171,9 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
       if (rectangle) {
         l.rectangle = static_cast<int32_t>(rectangles_.size());
         RectangleLight r{*rectangle, frameOf(*rectangle), {}};
-        for (size_t t = 0; t < 2; ++t) {
+        for (size_t t = 0; t < 2; ++t) { // the frame's normal, turned as the triangle winds
           const TriangleShape c = mesh.corners(t);
-          r.normal[t] = Vec3(normalize(cross(c.b - c.a, c.c - c.a)));
+          r.normal[t] = dot(cross(c.b - c.a, c.c - c.a), r.frame.z) < 0 ? -r.frame.z : r.frame.z;
         }
         rectangles_.push_back(r);
       } else if (triangleSampling_ == TriangleLightSampling::SolidAngle &&
@@ -669,29 +697,10 @@ bool LightSampler::sampleMesh(const Light& l, const Vec3& p, const Vec3& n, floa
     sampleUniformTriangle(u, b1, b2);
     pdf = -1; // from the point, below
   }
-  const Vec3d q = trianglePoint(tri, b1, b2);
-  const Vec3d toLight = q - pd;
-  const double d2 = dot(toLight, toLight);
-  if (!(d2 > 0)) return false;
-  const double d = std::sqrt(d2);
-  wi = toLight * (1.0 / d);
-  const double cosLight = std::abs(dot(nd, wi)) / nLen;
-  if (!(cosLight > 0)) return false;
-  // By area: the triangle's area density 1 / A_t (times its choice), in solid angle
-  // d^2 / (|cos| A_t) (a large mesh chose by area: choice / A_t = 1 / A).
-  if (pdf < 0) pdf = choice * d2 / (cosLight * 0.5 * nLen);
-  if (!std::isfinite(pdf) || !(pdf > 0)) return false;
-  out.wi = Vec3(wi);
-  out.distance = static_cast<float>(d);
-  out.p = Vec3(q);
-  // Error of the barycentric combination in double, then rounding to float.
-  out.pError = roundingError(out.p);
-  out.n = Vec3(nd * (1.0 / nLen));
-  out.pdf = static_cast<float>(pdf);
-  out.kind = ShapeKind::Triangle;
-  out.shape = l.shape;
-  out.prim = static_cast<uint32_t>(t);
-  return true;
+  // By area: the triangle's area density 1 / A_t times its choice (a large mesh chose by
+  // area: choice / A_t = 1 / A).
+  return finishFlatSample(pd, trianglePoint(tri, b1, b2), nd * (1.0 / nLen), pdf,
+                          choice / (0.5 * nLen), l.shape, static_cast<uint32_t>(t), out);
 }
 
 bool LightSampler::sampleRectangle(const Light& l, const Vec3& p, const Vec3& n, Sample2 u,
@@ -715,15 +724,6 @@ bool LightSampler::sampleRectangle(const Light& l, const Vec3& p, const Vec3& n,
     q = r.shape.corner + r.shape.edgeX * static_cast<double>(u.u) +
         r.shape.edgeY * static_cast<double>(u.v);
   }
-  const Vec3d toLight = q - pd;
-  const double d2 = dot(toLight, toLight);
-  if (!(d2 > 0)) return false;
-  const double d = std::sqrt(d2);
-  const Vec3d wi = toLight * (1.0 / d);
-  const double cosLight = std::abs(dot(r.frame.z, wi));
-  if (!(cosLight > 0)) return false;
-  if (pdf < 0) pdf = d2 / (cosLight * r.frame.lengthX * r.frame.lengthY); // by area
-  if (!std::isfinite(pdf) || !(pdf > 0)) return false;
   // The triangle the point lies on: the first holds the corner, the diagonal is s + t = 1.
   const Vec3d fromCorner = q - r.frame.corner;
   const uint32_t prim =
@@ -731,16 +731,8 @@ bool LightSampler::sampleRectangle(const Light& l, const Vec3& p, const Vec3& n,
               1.0
           ? 0u
           : 1u;
-  out.wi = Vec3(wi);
-  out.distance = static_cast<float>(d);
-  out.p = Vec3(q);
-  out.pError = roundingError(out.p);
-  out.n = r.normal[prim];
-  out.pdf = static_cast<float>(pdf);
-  out.kind = ShapeKind::Triangle;
-  out.shape = l.shape;
-  out.prim = prim;
-  return true;
+  return finishFlatSample(pd, q, r.normal[prim], pdf, 1 / (r.frame.lengthX * r.frame.lengthY),
+                          l.shape, prim, out);
 }
 
 double LightSampler::rectanglePdf(const Light& l, const Vec3d& p, const Vec3& n, const Vec3d& q,

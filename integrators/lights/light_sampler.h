@@ -200,7 +200,7 @@ private:
   struct RectangleLight {
     Rectangle shape;
     RectangleFrame frame;
-    Vec3 normal[2];
+    Vec3d normal[2];
   };
   std::vector<RectangleLight> rectangles_;          ///< rectangle lights
   std::vector<int32_t> sphereLight_;                ///< light number per sphere, or -1
