@@ -2,7 +2,7 @@
 // A triangle mesh file, <mesh file="x.ply|x.obj"><transform>...</transform>: read by the mesh
 // reader (io/mesh_reader.h: assimp, checked before), moved by its transform, one Embree
 // triangle geometry reading its buffers; a closed one can hold a <medium>; as an emitter the
-// light sampler samples its triangles by solid angle.
+// light sampler samples its triangles by solid angle (more than 4 through its light tree).
 
 #include <optional>
 

@@ -1,7 +1,8 @@
 #pragma once
 // A parallelogram, <quad><origin/><edge_u/><edge_v/>: two triangles of a mesh of its own, with
 // uv (0, 0) at the origin and (1, 1) at the opposite corner (textures map onto it whole); as an
-// emitter the light sampler samples it by solid angle.
+// emitter the light sampler samples it by solid angle (a rectangle whole, by its spherical
+// rectangle).
 
 #include <optional>
 

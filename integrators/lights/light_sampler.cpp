@@ -679,12 +679,7 @@ bool LightSampler::sampleMesh(const Light& l, const Vec3& p, const Vec3& n, floa
     // With a receiver normal, the square's point first drawn in proportion to the cosines
     // towards the corners (cosineWarp), so the direction roughly follows the projected solid
     // angle.
-    double warp = 1;
-    if (!(n == Vec3())) {
-      const BilinearDensity density = cosineWarp(st, Vec3d(n));
-      u = density.sample(u);
-      warp = density.pdf(u);
-    }
+    const double warp = applyCosineWarp(st, n, u);
     if (!sampleSphericalTriangle(st, u, wi)) return false;
     const Vec3d e1 = tri.b - tri.a, e2 = tri.c - tri.a, s = pd - tri.a;
     const Vec3d pv = cross(wi, e2), qv = cross(s, e1);
@@ -712,12 +707,7 @@ bool LightSampler::sampleRectangle(const Light& l, const Vec3& p, const Vec3& n,
   double pdf = -1;
   if (worthSphericalSampling(r.frame, pd, sr)) {
     // Uniform in solid angle (Urena et al. 2013), after the receiver's cosine warp.
-    double warp = 1;
-    if (!(n == Vec3())) {
-      const BilinearDensity density = cosineWarp(sr, Vec3d(n));
-      u = density.sample(u);
-      warp = density.pdf(u);
-    }
+    const double warp = applyCosineWarp(sr, n, u);
     if (!sampleSphericalRectangle(sr, u, q)) return false;
     pdf = warp / sr.solidAngle;
   } else {

@@ -34,9 +34,11 @@ public:
   const LightCluster& bounds() const { return root_; }
   /// Whether only outer faces can be seen from p: a closed mesh and p outside its box.
   bool oneSidedAt(const Vec3& p) const;
-  /// Importance of the whole mesh at (p, n) (LightCluster::importance, area as power).
+  /// Importance of the whole mesh at (p, n) (LightCluster::importance, area as power); seen
+  /// from outside, a closed mesh shows on average a quarter of its area (Cauchy's formula for
+  /// convex bodies, at most that for any closed surface), so its area counts a quarter there.
   float importance(const Vec3& p, const Vec3& n) const {
-    return root_.importance(p, n, !oneSidedAt(p));
+    return oneSidedAt(p) ? 0.25f * root_.importance(p, n, false) : root_.importance(p, n, true);
   }
 
   /// A triangle chosen by walking down from the root with u in [0, 1), each child in proportion

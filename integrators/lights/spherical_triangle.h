@@ -170,4 +170,15 @@ inline BilinearDensity cosineWarp(const SphericalTriangle& s, const Vec3d& n) {
   return {c(s.b), c(s.b), c(s.a), c(s.c)};
 }
 
+/// The cosine warp of a receiver of shading normal n over the square of spherical shape s (a
+/// SphericalTriangle or SphericalRectangle): draws u through it and returns its density there;
+/// without a receiver (n zero) u is kept and the density is 1.
+template <class Spherical>
+double applyCosineWarp(const Spherical& s, const Vec3& n, Sample2& u) {
+  if (n == Vec3()) return 1;
+  const BilinearDensity density = cosineWarp(s, Vec3d(n));
+  u = density.sample(u);
+  return density.pdf(u);
+}
+
 } // namespace nx

@@ -218,6 +218,19 @@ TEST(Meshes, TessellatedSphereImageConvergesToTheAnalyticSphere) {
   }
 }
 
+// The mesh file `ply` (in the test's temporary folder) as a furnace: reflectance 0.5, emitting
+// 1, seen by a camera at the origin.
+RenderScene furnaceScene(const std::string& ply) {
+  return buildRenderScene(parseScene(
+      "<scene><settings><xres>12</xres><yres>12</yres><mode>spectral_mcpt</mode><sampl>32"
+      "</sampl><depth>3</depth></settings><camera><position>0,0,0</position><look_at>0,0,1"
+      "</look_at></camera><mesh file=\"" +
+          ply +
+          "\"><material>matte</material><reflectance>0.5</reflectance><emission>1</emission>"
+          "</mesh></scene>",
+      tempPath("furnace.scn")));
+}
+
 // A furnace of reflectance 0.5 emitting 1 seen from inside renders L = 2 in every pixel with
 // each strategy (z-test of the image mean, with power: 5 se < 5% of the value).
 void expectFurnaceOfTwo(const RenderScene& scene, std::initializer_list<LightSampling> strategies) {
@@ -242,13 +255,8 @@ void expectFurnaceOfTwo(const RenderScene& scene, std::initializer_list<LightSam
 // light each other by next-event estimation, found by BSDF sampling, or both with MIS).
 TEST(Meshes, ClosedEmittingMeshIsAFurnace) {
   writeSphere(tempPath("furnace.ply"), 12, 1, Vec3(0, 0, 0));
-  const RenderScene scene = buildRenderScene(parseScene(
-      "<scene><settings><xres>12</xres><yres>12</yres><mode>spectral_mcpt</mode><sampl>32"
-      "</sampl><depth>3</depth></settings><camera><position>0,0,0</position><look_at>0,0,1"
-      "</look_at></camera><mesh file=\"furnace.ply\"><material>matte</material><reflectance>0.5"
-      "</reflectance><emission>1</emission></mesh></scene>",
-      tempPath("furnace.scn")));
-  expectFurnaceOfTwo(scene, {LightSampling::Mis, LightSampling::NeeOnly, LightSampling::BsdfOnly});
+  expectFurnaceOfTwo(furnaceScene("furnace.ply"),
+                     {LightSampling::Mis, LightSampling::NeeOnly, LightSampling::BsdfOnly});
 }
 
 // Writes the icosphere of test::icosphereData as a PLY file; `drop` faces from the start are
@@ -312,13 +320,7 @@ TEST(Meshes, MeshLightTreesAgreeWithEveryStrategy) {
 // closed) seen from inside, where every triangle lights the others from its inner face: L = 2.
 TEST(Meshes, ClosedIcosphereFurnace) {
   writeIcosphere(tempPath("ico_furnace.ply"), 2, 1, Vec3d(0, 0, 0));
-  const RenderScene scene = buildRenderScene(parseScene(
-      "<scene><settings><xres>12</xres><yres>12</yres><mode>spectral_mcpt</mode><sampl>32"
-      "</sampl><depth>3</depth></settings><camera><position>0,0,0</position><look_at>0,0,1"
-      "</look_at></camera><mesh file=\"ico_furnace.ply\"><material>matte</material>"
-      "<reflectance>0.5</reflectance><emission>1</emission></mesh></scene>",
-      tempPath("ico_furnace.scn")));
-  expectFurnaceOfTwo(scene, {LightSampling::Mis, LightSampling::NeeOnly});
+  expectFurnaceOfTwo(furnaceScene("ico_furnace.ply"), {LightSampling::Mis, LightSampling::NeeOnly});
 }
 
 } // namespace
