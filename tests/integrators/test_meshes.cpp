@@ -316,6 +316,69 @@ TEST(Meshes, MeshLightTreesAgreeWithEveryStrategy) {
   }
 }
 
+// The choice among lights with light trees (a closed icosphere, an open bowl) beside a
+// rectangle follows the probabilities probability(k, p, n) reports (chi-square over the
+// lights), and every light sample's density is the one pdf() gives its direction (receiver
+// normal given: the rectangle's and the triangles' cosine warps, the trees' walks), from points
+// outside every lamp's box and one inside the closed lamp's box.
+TEST(Meshes, LightChoiceAndDensitiesWithLightTrees) {
+  writeIcosphere(tempPath("choice_closed.ply"), 2, 0.3, Vec3d(-0.45, 0.45, 0.1));
+  writeIcosphere(tempPath("choice_bowl.ply"), 2, 0.3, Vec3d(0.45, 0.35, 0.1), 40);
+  const RenderScene scene = buildRenderScene(parseScene(
+      "<scene><settings><xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode></settings>"
+      "<camera><position>0,1.2,-2</position><look_at>0,0.2,0</look_at></camera>"
+      "<mesh file=\"choice_closed.ply\"><material>matte</material><emission>2</emission></mesh>"
+      "<mesh file=\"choice_bowl.ply\"><material>matte</material><emission>A</emission></mesh>"
+      "<quad><origin>-0.3,1.2,-0.3</origin><edge_u>0.6,0,0</edge_u><edge_v>0,0,0.6</edge_v>"
+      "<material>matte</material><emission>3</emission></quad></scene>",
+      tempPath("choice.scn")));
+  const LightSampler lights(scene);
+  ASSERT_EQ(lights.count(), 3);
+  const struct {
+    Vec3 p, n;
+  } points[] = {{Vec3(0.1f, 0, -0.2f), Vec3(0, 1, 0)},
+                {Vec3(0.6f, 0.9f, -0.5f), normalize(Vec3(-1, 0.3f, 0.2f))},
+                {Vec3(-0.45f, 0.2f, -0.12f), Vec3()}, // inside the closed lamp's box
+                {Vec3(0.3f, 0.5f, 0.9f), normalize(Vec3(0.1f, -1, -0.4f))}};
+  const SampledWavelengths w = test::flatWavelengths(550);
+  for (const auto& [p, n] : points) {
+    std::vector<double> expected(3, 0), observed(3, 0);
+    double total = 0;
+    for (int k = 0; k < 3; ++k)
+      total += expected[static_cast<size_t>(k)] = lights.probability(k, p, n);
+    EXPECT_NEAR(total, 1.0, 1e-5);
+    const int samples = 60000;
+    for (double& e : expected) e *= samples;
+    int checked = 0;
+    for (uint32_t i = 0; i < samples; ++i) {
+      const float u = sampleValue(SamplerKind::Independent, i, 0, 0, 4);
+      float share = 0, rest = 0;
+      const int k = lights.choose(p, n, u, share, rest);
+      ASSERT_GE(k, 0);
+      EXPECT_NEAR(share, lights.probability(k, p, n), 1e-6);
+      observed[static_cast<size_t>(k)] += 1;
+      LightSample ls;
+      if (i % 7 != 0 ||
+          !lights.sample(p, u, samplePair(SamplerKind::Independent, i, 0, 1, 4), w, ls, n))
+        continue;
+      // The density pdf() gives the direction, where the ray finds the sampled point on its
+      // triangle (not a neighbour's edge: the density jumps there).
+      Ray r;
+      r.o = p;
+      r.d = ls.wi;
+      SurfaceHit hit;
+      if (scene.geometry->intersect(r, hit) && hit.index == ls.shape && hit.prim == ls.prim &&
+          std::abs(hit.t - ls.distance) < 1e-4f) {
+        EXPECT_NEAR(lights.pdf(p, hit, ls.wi, n), ls.pdf, 2e-3 * ls.pdf) << ls.light;
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 1000);
+    const auto [stat, dof] = test::chiSquare(observed, expected);
+    EXPECT_LT(test::chiSquareZ(stat, dof), 4.0) << p.x << " " << p.y;
+  }
+}
+
 // The closed icosphere furnace: a welded, consistently wound mesh (its light tree knows it is
 // closed) seen from inside, where every triangle lights the others from its inner face: L = 2.
 TEST(Meshes, ClosedIcosphereFurnace) {
