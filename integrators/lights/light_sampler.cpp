@@ -181,10 +181,13 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
         l.tree = static_cast<int32_t>(trees_.size());
         trees_.emplace_back(mesh, outwardSign(mesh));
       }
-      std::vector<size_t> all(mesh.triangleCount());
-      for (size_t t = 0; t < all.size(); ++t) all[t] = t;
-      l.bounds = l.tree >= 0 ? trees_[static_cast<size_t>(l.tree)].bounds()
-                             : LightCluster(triangleBounds(mesh, all));
+      if (l.tree >= 0) {
+        l.bounds = trees_[static_cast<size_t>(l.tree)].bounds();
+      } else {
+        std::vector<size_t> all(mesh.triangleCount());
+        for (size_t t = 0; t < all.size(); ++t) all[t] = t;
+        l.bounds = LightCluster(triangleBounds(mesh, all));
+      }
       // Both faces emit: power 2 pi A integral(L).
       l.radiance = tracedIntegral(*l.emission);
       l.power = 2 * kPi * l.area * l.radiance;

@@ -17,13 +17,15 @@ namespace nx {
 namespace {
 
 // The orientation measure M_Omega of a normals' cone of half-angle theta_o with diffuse
-// emission (theta_e = pi / 2): Conty Estevez & Kulla 2018, section 4.4.
+// emission (theta_e = pi / 2): Conty Estevez & Kulla 2018, section 4.4,
+// 2 pi (1 - cos theta_o) + pi / 2 (2 theta_w sin theta_o - cos(theta_o - 2 theta_w)
+// - 2 theta_o sin theta_o + cos theta_o), theta_w = min(theta_o + pi / 2, pi), simplified on
+// each side of theta_o = pi / 2 (no inverse cosine on the narrow side).
 double orientationMeasure(float cosSpread) {
-  const double thetaO = std::acos(std::clamp(static_cast<double>(cosSpread), -1.0, 1.0));
-  const double thetaW = std::min(thetaO + 0.5 * kPi, kPi);
-  const double sinO = std::sin(thetaO), cosO = std::cos(thetaO);
-  return 2 * kPi * (1 - cosO) +
-         0.5 * kPi * (2 * thetaW * sinO - std::cos(thetaO - 2 * thetaW) - 2 * thetaO * sinO + cosO);
+  const double cosO = std::clamp(static_cast<double>(cosSpread), -1.0, 1.0);
+  const double sinO = std::sqrt(std::max(0.0, 1 - cosO * cosO));
+  if (cosO >= 0) return 2 * kPi - kPi * cosO + 0.5 * kPi * kPi * sinO;
+  return 2 * kPi * (1 - cosO) + kPi * (kPi - std::acos(cosO)) * sinO;
 }
 
 double surfaceArea(const LightBounds& b) {
@@ -67,30 +69,43 @@ int32_t BinaryTree::build(size_t begin, size_t end, int depth) {
   bounds.emplace_back();
   second.push_back(-1);
   triangle.push_back(-1);
-  // The planes' least offset (LightBounds::planeOffset), exact, from the better of two
-  // anchors: the mesh's centroid (deep behind every plane of a convex mesh) and the node's
-  // box centre.
-  const auto anchorPlanes = [&](LightBounds& b) {
-    const auto least = [&](const Vec3d& o) {
-      double l = INFINITY;
-      for (size_t i = begin; i < end; ++i)
-        l = std::min(l, dot(Vec3d(prims[i].bounds.normals.axis), prims[i].corner - o));
-      return l;
-    };
-    const double fromCentroid = least(Vec3d(anchor)), fromBox = least(Vec3d(b.center()));
-    b.planeAnchor = fromCentroid >= fromBox ? anchor : b.center();
-    b.planeOffset = static_cast<float>(std::max(fromCentroid, fromBox));
+  // One pass over the node's triangles, given the mean of their normals (zero: none): the
+  // spread of the normals about it, and the planes' least offset (LightBounds::planeOffset)
+  // from the better of two anchors, the mesh's centroid (deep behind every plane of a convex
+  // mesh) and the node's box centre.
+  const auto finish = [&](LightBounds& b, const Vec3d& meanNormal) {
+    const Vec3d fromBox(b.center()), fromCentroid(anchor);
+    double spread = 1, leastBox = INFINITY, leastCentroid = INFINITY;
+    for (size_t i = begin; i < end; ++i) {
+      const Vec3d normal(prims[i].bounds.normals.axis);
+      spread = std::min(spread, dot(meanNormal, normal));
+      leastBox = std::min(leastBox, dot(normal, prims[i].corner - fromBox));
+      leastCentroid = std::min(leastCentroid, dot(normal, prims[i].corner - fromCentroid));
+    }
+    b.planeAnchor = leastCentroid >= leastBox ? anchor : b.center();
+    b.planeOffset = static_cast<float>(std::max(leastCentroid, leastBox));
+    // The normals' cone from the normals themselves where it is tighter than the union of the
+    // children's (which widens with every level: two quarter-sphere cones make a 140 degree
+    // cone for a hemisphere's 90).
+    const double cosSpread = spread - 1e-6; // rounded outward
+    if (!(meanNormal == Vec3d()) && cosSpread > b.normals.cosSpread)
+      b.normals = {Vec3(meanNormal), static_cast<float>(std::max(-1.0, cosSpread))};
   };
   if (end - begin == 1) {
     bounds[static_cast<size_t>(index)] = prims[begin].bounds;
-    anchorPlanes(bounds[static_cast<size_t>(index)]);
+    finish(bounds[static_cast<size_t>(index)], Vec3d());
     triangle[static_cast<size_t>(index)] = static_cast<int32_t>(prims[begin].triangle);
     return index;
   }
-  LightBounds all, centroids;
+  LightBounds all, centroids; // boxes only
+  Vec3d normalSum;            // area-weighted
+  double area = 0;
   for (size_t i = begin; i < end; ++i) {
-    all = unionOf(all, prims[i].bounds);
+    all.add(prims[i].bounds.lo);
+    all.add(prims[i].bounds.hi);
     centroids.add(prims[i].centroid);
+    normalSum += Vec3d(prims[i].bounds.normals.axis) * static_cast<double>(prims[i].bounds.power);
+    area += prims[i].bounds.power;
   }
   // The split of least cost Phi M_A M_Omega summed over both sides, times the box's longest
   // extent over its extent along the axis (Conty Estevez & Kulla's regularisation against
@@ -104,22 +119,65 @@ int32_t BinaryTree::build(size_t begin, size_t end, int depth) {
     for (int axis = 0; axis < 3; ++axis) {
       const float lo = centroids.lo[axis], hi = centroids.hi[axis];
       if (!(hi > lo)) continue;
+      // Each bucket's box, area, the area-weighted sum of its normals and its normals' cone
+      // about their mean, spread to the farthest (dot products only: merging cone by cone
+      // takes inverse cosines, most of the build's time).
       std::array<LightBounds, kBuckets> buckets;
+      std::array<Vec3d, kBuckets> normalSum, meanNormal;
+      std::array<double, kBuckets> spread; // cos(theta_o) about the mean normal
       for (size_t i = begin; i < end; ++i) {
-        LightBounds& b = buckets[static_cast<size_t>(bucketOf(prims[i].centroid[axis], lo, hi))];
-        b = unionOf(b, prims[i].bounds);
+        const size_t k = static_cast<size_t>(bucketOf(prims[i].centroid[axis], lo, hi));
+        buckets[k].add(prims[i].bounds.lo);
+        buckets[k].add(prims[i].bounds.hi);
+        buckets[k].power += prims[i].bounds.power;
+        normalSum[k] += Vec3d(prims[i].bounds.normals.axis) * double(prims[i].bounds.power);
       }
+      for (size_t k = 0; k < kBuckets; ++k) {
+        const double l = length(normalSum[k]);
+        meanNormal[k] = l > 0 ? normalSum[k] * (1 / l) : Vec3d(0, 0, 1);
+        spread[k] = l > 1e-6 * buckets[k].power ? 1.0 : -1.0; // opposite normals: all
+      }
+      for (size_t i = begin; i < end; ++i) {
+        const size_t k = static_cast<size_t>(bucketOf(prims[i].centroid[axis], lo, hi));
+        spread[k] = std::min(spread[k], dot(meanNormal[k], Vec3d(prims[i].bounds.normals.axis)));
+      }
+      // The cone of buckets [first, last) about their mean normal: each bucket's cone reaches
+      // the angle to its mean plus its spread (cosines added, no inverse cosine).
+      const auto sideOf = [&](size_t first, size_t last) {
+        LightBounds side;
+        Vec3d sum;
+        for (size_t k = first; k < last; ++k) {
+          if (!(buckets[k].power > 0)) continue;
+          side.add(buckets[k].lo);
+          side.add(buckets[k].hi);
+          side.power += buckets[k].power;
+          sum += normalSum[k];
+        }
+        const double l = length(sum);
+        if (!(l > 1e-6 * side.power)) {
+          side.normals = DirectionCone::all();
+          return side;
+        }
+        const Vec3d mean = sum * (1 / l);
+        double cosSpread = 1;
+        for (size_t k = first; k < last; ++k) {
+          if (!(buckets[k].power > 0)) continue;
+          const double cosA = std::clamp(dot(mean, meanNormal[k]), -1.0, 1.0);
+          const double sinA = std::sqrt(1 - cosA * cosA), cosB = spread[k];
+          const double sinB = std::sqrt(std::max(0.0, 1 - cosB * cosB));
+          // cos(a + b), or -1 where a + b passes pi (sin(a + b) < 0 with both in [0, pi]).
+          const double sinSum = sinA * cosB + cosA * sinB;
+          cosSpread = std::min(cosSpread, sinSum < 0 && cosA * cosB - sinA * sinB < 0
+                                              ? -1.0
+                                              : cosA * cosB - sinA * sinB);
+        }
+        side.normals = {Vec3(mean), static_cast<float>(cosSpread - 1e-6)};
+        return side;
+      };
       const double regular = extent[axis] > 0 ? longest / extent[axis] : 1.0;
-      // The buckets from k on, then sweeps from the first bucket (each union built once).
-      std::array<LightBounds, kBuckets> fromBucket;
-      fromBucket[kBuckets - 1] = buckets[kBuckets - 1];
-      for (int k = kBuckets - 2; k >= 0; --k)
-        fromBucket[static_cast<size_t>(k)] =
-            unionOf(buckets[static_cast<size_t>(k)], fromBucket[static_cast<size_t>(k) + 1]);
-      LightBounds below;
       for (int split = 1; split < kBuckets; ++split) {
-        below = unionOf(below, buckets[static_cast<size_t>(split) - 1]);
-        const LightBounds& above = fromBucket[static_cast<size_t>(split)];
+        const LightBounds below = sideOf(0, static_cast<size_t>(split));
+        const LightBounds above = sideOf(static_cast<size_t>(split), kBuckets);
         if (!(below.power > 0) || !(above.power > 0)) continue;
         const double cost =
             regular *
@@ -155,25 +213,8 @@ int32_t BinaryTree::build(size_t begin, size_t end, int depth) {
   second[static_cast<size_t>(index)] = other;
   LightBounds& node = bounds[static_cast<size_t>(index)];
   node = unionOf(bounds[static_cast<size_t>(index) + 1], bounds[static_cast<size_t>(other)]);
-  // The normals' cone from the normals themselves: unions of the children's cones widen with
-  // every level (two quarter-sphere cones make a 140 degree cone for a hemisphere's 90). The
-  // tighter of the union's axis and the mean normal, spread to the farthest normal.
-  Vec3d mean;
-  for (size_t i = begin; i < end; ++i)
-    mean += Vec3d(prims[i].bounds.normals.axis) * static_cast<double>(prims[i].bounds.power);
-  const auto spreadAbout = [&](const Vec3d& axis) {
-    double least = 1;
-    for (size_t i = begin; i < end; ++i)
-      least = std::min(least, dot(axis, Vec3d(prims[i].bounds.normals.axis)));
-    return least;
-  };
-  if (length(mean) > 1e-6 * static_cast<double>(node.power)) {
-    const Vec3d axis = normalize(mean);
-    const double cosSpread = spreadAbout(axis) - 1e-6; // rounded outward
-    if (cosSpread > node.normals.cosSpread)
-      node.normals = {Vec3(axis), static_cast<float>(std::max(-1.0, cosSpread))};
-  }
-  anchorPlanes(node);
+  const double sumLength = length(normalSum);
+  finish(node, sumLength > 1e-6 * area ? normalSum * (1 / sumLength) : Vec3d());
   return index;
 }
 
