@@ -12,18 +12,28 @@
 //    520-570 nm, against the plain card's in the lamp's bands, 440-460 nm), and the broadband
 //    thesis and lab_bench scenes (per-pixel relative noise over every lit pixel and band), with
 //    time per sample.
+// 4. The plain card under a lamp whose spectrum is the dye card's emission (its 5 nm bin
+//    values): the plain card's noise in 520-570 nm against the dye card's in the same bands.
+//    The two spectra then have the same shape, so whatever the dye card adds is the excitation
+//    sampling's own noise (a steep emission spectrum is noisier per band than the lamp's
+//    smooth peak whatever the excitation strategy: wavelengths fall unevenly into a band).
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <regex>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "apps/bench_util.h"
 #include "apps/command_line.h"
 #include "apps/seed_statistics.h"
+#include "core/file_text.h"
 #include "integrators/renderer.h"
 
 namespace {
@@ -55,11 +65,13 @@ int bandNear(const SeedStatistics& s, double nm) {
   return best;
 }
 
-// The LED cards: (fluorescent card's noise in 520-570 nm, plain card's in 440-460 nm). A pixel
-// belongs to the fluorescent card where its 540 nm band is above half the image's largest, to
-// the plain card where its 450 nm band is above half the largest and its 540 nm band below 1%
-// of the fluorescent card's.
-std::pair<double, double> ledCardNoise(const SeedStatistics& s) {
+// Which pixels of the LED cards' render hold which card: the fluorescent card where its 540 nm
+// band is above half the image's largest, the plain card where its 450 nm band is above half
+// the largest and its 540 nm band below 1% of the fluorescent card's.
+struct CardPixels {
+  std::function<bool(int, int)> fluorescent, plain;
+};
+CardPixels cardPixels(const SeedStatistics& s) {
   const int dye = bandNear(s, 540), lamp = bandNear(s, 450);
   double dyeMax = 0, lampMax = 0;
   for (int y = 0; y < s.height; ++y)
@@ -67,17 +79,66 @@ std::pair<double, double> ledCardNoise(const SeedStatistics& s) {
       dyeMax = std::max(dyeMax, s.mean(x, y, dye));
       lampMax = std::max(lampMax, s.mean(x, y, lamp));
     }
-  const auto fluorescentCard = [&](int x, int y) { return s.mean(x, y, dye) > 0.5 * dyeMax; };
-  const auto plainCard = [&](int x, int y) {
-    return s.mean(x, y, lamp) > 0.5 * lampMax && s.mean(x, y, dye) < 0.01 * dyeMax;
-  };
-  const double fl = meanRelativeNoise(s, [&](int x, int y, int b) {
-    return fluorescentCard(x, y) && s.centroids[b] >= 519 && s.centroids[b] <= 571;
+  return {[&s, dye, dyeMax](int x, int y) { return s.mean(x, y, dye) > 0.5 * dyeMax; },
+          [&s, dye, lamp, dyeMax, lampMax](int x, int y) {
+            return s.mean(x, y, lamp) > 0.5 * lampMax && s.mean(x, y, dye) < 0.01 * dyeMax;
+          }};
+}
+
+// Relative noise of `s` over the pixels where `card` holds, in the bands within [lo, hi] nm.
+double noiseOver(const SeedStatistics& s, const std::function<bool(int, int)>& card, double lo,
+                 double hi) {
+  return meanRelativeNoise(s, [&](int x, int y, int b) {
+    return card(x, y) && s.centroids[b] >= lo && s.centroids[b] <= hi;
   });
-  const double plain = meanRelativeNoise(s, [&](int x, int y, int b) {
-    return plainCard(x, y) && s.centroids[b] >= 439 && s.centroids[b] <= 461;
-  });
-  return {fl, plain};
+}
+
+// The LED cards: (fluorescent card's noise in 520-570 nm, plain card's in 440-460 nm).
+std::pair<double, double> ledCardNoise(const SeedStatistics& s) {
+  const CardPixels cards = cardPixels(s);
+  return {noiseOver(s, cards.fluorescent, 519, 571), noiseOver(s, cards.plain, 439, 461)};
+}
+
+// The dye card's emitted spectrum under the cards' lamp, per 5 nm bin of the matrix: Z(o) =
+// sum over excitation bins i of M[i][o] times the lamp's mean over bin i (the emission's shape;
+// the elastic part is 0 where the lamp is dark, above 480 nm).
+std::vector<double> dyeEmission(const nx::RenderScene& cards) {
+  using RM = nx::ReradiationMatrix;
+  const RM* m = nullptr;
+  for (const nx::Material& material : cards.materials)
+    if (material.reradiation) m = material.reradiation.get();
+  const nx::Spectrum* lamp = nullptr;
+  for (const nx::Spectrum& e : cards.emission)
+    if (e(450) > 0) lamp = &e;
+  if (!m || !lamp) throw std::runtime_error("led_cards: expected a dye and a blue lamp");
+  std::vector<double> mean(RM::kBins, 0.0), z(RM::kBins, 0.0);
+  for (int i = 0; i < RM::kBins; ++i)
+    for (int j = 0; j < 20; ++j)
+      mean[static_cast<size_t>(i)] += (*lamp)(RM::kMinNm + (i + (j + 0.5) / 20) * RM::kBinNm) / 20;
+  for (int o = 0; o < RM::kBins; ++o)
+    for (int i = 0; i < o; ++i)
+      z[static_cast<size_t>(o)] += (*m)(i, o) * mean[static_cast<size_t>(i)];
+  return z;
+}
+
+// The cards' scene with the lamp's spectrum replaced by the dye card's emission above 485 nm (a
+// table stepping at the matrix's bin ends) and the dye removed.
+nx::RenderScene matchedLampScene(const nx::RenderScene& cards, const std::string& path) {
+  using RM = nx::ReradiationMatrix;
+  const std::vector<double> z = dyeEmission(cards);
+  double peak = 0;
+  for (double v : z) peak = std::max(peak, v);
+  std::string table;
+  for (int o = RM::binOf(487.5); o < RM::binOf(717.5); ++o) {
+    const double lo = RM::kMinNm + o * RM::kBinNm, v = z[static_cast<size_t>(o)] / peak;
+    table += (table.empty() ? "" : ", ") + std::to_string(lo + 0.01) + ":" + std::to_string(v) +
+             ", " + std::to_string(lo + RM::kBinNm - 0.01) + ":" + std::to_string(v);
+  }
+  std::string text = nx::readRegularFile(path, 64u << 20, "scene file");
+  text = std::regex_replace(text, std::regex("<emission scale=\"4\">[^<]*</emission>"),
+                            "<emission scale=\"0.2\">" + table + "</emission>");
+  text = std::regex_replace(text, std::regex("<fluorescence>.*</fluorescence>"), "");
+  return nx::buildRenderScene(nx::parseScene(text, path));
 }
 
 } // namespace
@@ -113,17 +174,27 @@ int main(int argc, char** argv) {
 
     std::printf("\nexcitation strategy at %d spp, %d seeds: per-pixel relative noise\n", spp,
                 repeats);
-    const nx::RenderScene cards =
-        nx::buildRenderScene(nx::loadScene(NX_SOURCE_DIR "/scenes/led_cards.scn"));
+    const std::string cardsPath = NX_SOURCE_DIR "/scenes/led_cards.scn";
+    const nx::RenderScene cards = nx::buildRenderScene(nx::loadScene(cardsPath));
     std::printf("%-34s %10s %10s %8s %10s\n", "led_cards", "dye card", "plain card", "ratio",
                 "ns/sample");
+    SeedStatistics guided;
     for (const bool columnOnly : {true, false}) {
       const SeedStatistics st = seedStatistics(cards, spp, columnOnly, repeats);
       const auto [fl, plainNoise] = ledCardNoise(st);
       std::printf("%-34s %10.4f %10.4f %8.2f %10.0f\n",
                   columnOnly ? "  column alone" : "  guided by the light + MIS", fl, plainNoise,
                   fl / plainNoise, st.nsPerSample);
+      if (!columnOnly) guided = st;
     }
+    // The same spectral shape on both cards: the plain card under the dye's emission.
+    const SeedStatistics matched =
+        seedStatistics(matchedLampScene(cards, cardsPath), spp, false, repeats);
+    const CardPixels pixels = cardPixels(guided);
+    const double dyeNoise = noiseOver(guided, pixels.fluorescent, 519, 571);
+    const double matchedNoise = noiseOver(matched, pixels.plain, 519, 571);
+    std::printf("%-34s %10.4f %10.4f %8.2f\n", "  plain card, lamp = dye's emission", dyeNoise,
+                matchedNoise, dyeNoise / matchedNoise);
     std::printf("%-34s %10s %10s\n", "broadband scenes", "noise", "ns/sample");
     for (const char* name : {"thesis", "lab_bench"}) {
       const nx::RenderScene scene = nx::buildRenderScene(

@@ -148,11 +148,16 @@ public:
   /// sampleExcitation or sampleExcitationScaled returned for this lane) and a second event drawn
   /// in proportion to the column times the guide, v(e) g(e) with v = D for the elastic event
   /// and k M[i][o] for bin i (u picks it, v its position in the bin). Both carry their
-  /// balance-heuristic weight of multi-sample MIS (Veach & Guibas 1995):
-  /// w(e) = v(e) / (p_column(e) + p_guided(e)) = 1 / (1 / (D + k c) + g(e) / Z),
-  /// Z = sum over e of v(e) g(e), so E[w_c L(nm_c) + w_g L(nm_g)] = D L(nm) + sum_i k M[i][o]
-  /// Lbar_i for any light (the guide only moves samples towards where it shines). A dark column
-  /// (Z = 0) gives the guided event weight 0 and the column's its plain weight D + k c.
+  /// power-heuristic weight of multi-sample MIS (Veach & Guibas 1995, beta = 2): with
+  /// C = D + k c, Z = sum over e of v(e) g(e) and r(e) = p_guided / p_column = g(e) C / Z, the
+  /// column's event multiplies its light by C / (1 + r^2), the guided one by C / (r + 1 / r),
+  /// so E[w_c L(nm_c) + w_g L(nm_g)] = D L(nm) + sum_i k M[i][o] Lbar_i for any light (the
+  /// guide only moves samples towards where it shines; where it is dark the column's event
+  /// keeps its plain weight). The power heuristic, not the balance one: where the guide
+  /// describes the light, the column's events in the light's bins count next to nothing
+  /// instead of half, which lowers the dye card's noise under a narrow lamp
+  /// (docs/performance.md). A dark column (Z = 0) gives the guided event weight 0 and the
+  /// column's its plain weight C.
   GuidedExcitation guidedExcitation(float nm, float columnNm, float rhoValue, float k,
                                     const ExcitationGuide& guide, float u, float v) const {
     GuidedExcitation out{{columnNm, nm}, {0, 0}};
@@ -179,13 +184,25 @@ public:
     }
     const float elasticGuided = d * guide.mean[static_cast<size_t>(o)];
     const float z = elasticGuided + k * sum;
-    const auto weightOf = [&](float g) { return 1 / (1 / columnTotal + g / z); };
+    // Power heuristic (beta = 2), with r = p_guided / p_column = g C / Z (C = D + k c): the
+    // column's event multiplies its light by C w_c = C / (1 + r^2), the guided one by
+    // (Z / g) w_g = C / (r + 1 / r); written in r so that no square overflows.
+    const auto ratioOf = [&](float g) { return g * columnTotal / z; };
+    const auto columnWeightOf = [&](float g) {
+      const float r = ratioOf(g);
+      return columnTotal / (1 + r * r);
+    };
+    const auto weightOf = [&](float g) {
+      const float r = ratioOf(g);
+      return columnTotal / (r + 1 / r);
+    };
     if (!(z > 0)) {
       out.weight[0] = columnTotal;
       return out;
     }
     const int columnBin = columnNm == nm ? o : binOf(columnNm);
-    out.weight[0] = weightOf(columnBin >= 0 ? guide.mean[static_cast<size_t>(columnBin)] : 0.0f);
+    out.weight[0] =
+        columnWeightOf(columnBin >= 0 ? guide.mean[static_cast<size_t>(columnBin)] : 0.0f);
     const float target = u * z - elasticGuided;
     if (!(target >= 0) || !(sum > 0)) { // elastic
       out.weight[1] = weightOf(guide.mean[static_cast<size_t>(o)]);

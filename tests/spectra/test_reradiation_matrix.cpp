@@ -274,9 +274,10 @@ TEST(ReradiationMatrix, GuidedExcitationSamplingMatchesColumnTimesGuide) {
 
 // The multi-sample MIS combination is unbiased for any light, not only the guide's. Each event
 // e is drawn by the column with p_c = v(e) / (D + c) (tested above) and by the guide with
-// p_g = v(e) g(e) / Z (tested above), and carries the same weight w(e) either way (read back
-// from guidedExcitation with e as the column's event); the expectation of both samples is
-// then sum over e of (p_c + p_g) w L, which must equal D L_o + sum_i M[i][o] L_i exactly, for a
+// p_g = v(e) g(e) / Z (tested above); its weight as the column's event is read back from
+// guidedExcitation with e as the column's event, its weight as the guided event by drawing the
+// guided event at the middle of e's share of u. The expectation of both samples,
+// sum over e of p_c w_c L + p_g w_g L, must equal D L_o + sum_i M[i][o] L_i exactly, for a
 // light equal to the guide, a broadband light the guide does not describe, and a light where
 // the guide is dark (the column's regime). With the guide flat the weights halve the column's.
 TEST(ReradiationMatrix, GuidedExcitationMisIsUnbiasedForAnyLight) {
@@ -293,10 +294,18 @@ TEST(ReradiationMatrix, GuidedExcitationMisIsUnbiasedForAnyLight) {
       const double d = m.elastic(o, rho), total = d + m.columnSum(o);
       double z = d * led.mean[static_cast<size_t>(o)];
       for (int i = 0; i < o; ++i) z += m(i, o) * led.mean[static_cast<size_t>(i)];
+      // The guided draw's events in its order (elastic first, then bins upwards): event e is
+      // drawn for u in [before(e), before(e) + v g) / z, so its middle lands on it.
+      std::vector<double> before(static_cast<size_t>(o) + 1, 0.0);
+      double running = d * led.mean[static_cast<size_t>(o)];
+      for (int e = 0; e < o; ++e) {
+        before[static_cast<size_t>(e)] = running;
+        running += m(e, o) * led.mean[static_cast<size_t>(e)];
+      }
       double expected = 0, combined = 0;
       for (int e = 0; e <= o; ++e) { // e = o: the elastic event
         const double v = e == o ? d : m(e, o);
-        const double l = lbar.mean[static_cast<size_t>(e)];
+        const double l = lbar.mean[static_cast<size_t>(e)], g = led.mean[static_cast<size_t>(e)];
         const float eventNm = e == o ? static_cast<float>(nm) : static_cast<float>(RM::centre(e));
         const float w = m.guidedExcitation(static_cast<float>(nm), eventNm, static_cast<float>(rho),
                                            1.0f, led, 0.5f, 0.5f)
@@ -304,7 +313,16 @@ TEST(ReradiationMatrix, GuidedExcitationMisIsUnbiasedForAnyLight) {
         EXPECT_GE(w, 0);
         EXPECT_LE(w, total * (1 + 1e-6)); // never more than the column alone
         expected += v * l;
-        combined += (v / total + v * led.mean[static_cast<size_t>(e)] / z) * w * l;
+        combined += v / total * w * l;
+        if (v * g > 1e-6 * z) { // the guided technique draws e: its own weight there
+          const double u = (before[static_cast<size_t>(e)] + 0.5 * v * g) / z;
+          const GuidedExcitation ge =
+              m.guidedExcitation(static_cast<float>(nm), eventNm, static_cast<float>(rho), 1.0f,
+                                 led, static_cast<float>(u), 0.5f);
+          ASSERT_NEAR(ge.nm[1], e == o ? nm : RM::centre(e), 1e-3) << "event " << e;
+          EXPECT_LE(ge.weight[1], z / g * (1 + 1e-5)); // never more than the guide alone
+          combined += v * g / z * ge.weight[1] * l;
+        }
       }
       EXPECT_NEAR(combined, expected, 1e-5 * expected + 1e-12)
           << "light " << li << ", " << nm << " nm";
