@@ -6,7 +6,8 @@
 // Each strategy renders the scene (default scenes/area_lights.scn) --repeats times with
 // different seeds; per lit pixel and band (and per pixel in luminance) the relative variance of
 // one render is measured about the mean. Time to equal error is variance times time per
-// sample: the ratio of the two strategies' is what the faster-converging one saves.
+// sample: the ratio of the two strategies' is what the faster-converging one saves. A third
+// row draws the wavelengths with stratified lanes (RenderOptions::stratifiedLanes).
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
@@ -36,22 +37,26 @@ int main(int argc, char** argv) {
     std::printf("%s, %d spp, %d seeds, %d threads\n", scenePath.c_str(), spp, repeats, threads);
     std::printf("%-18s %14s %14s %10s\n", "triangle lights", "band noise", "luminance noise",
                 "ns/sample");
-    double work[2][2] = {}; // [strategy][band, luminance]: variance x time
-    for (const nx::TriangleLightSampling s :
-         {nx::TriangleLightSampling::Area, nx::TriangleLightSampling::SolidAngle}) {
+    // [strategy][band, luminance]: variance x time; strategies: by area, by solid angle, by
+    // solid angle with stratified lanes (RenderOptions::stratifiedLanes).
+    double work[3][2] = {};
+    const char* names[3] = {"by area", "by solid angle", "+ stratified lanes"};
+    for (int i = 0; i < 3; ++i) {
       nx::RenderOptions o;
       o.samples = spp;
-      o.triangleLightSampling = s;
+      o.triangleLightSampling =
+          i == 0 ? nx::TriangleLightSampling::Area : nx::TriangleLightSampling::SolidAngle;
+      o.stratifiedLanes = i == 2;
       const nx::bench::SeedStatistics st = nx::bench::seedStatistics(scene, o, repeats);
       const double band = nx::bench::litNoise(st), luminance = nx::bench::litNoiseY(st);
-      const int i = s == nx::TriangleLightSampling::Area ? 0 : 1;
       work[i][0] = band * band * st.nsPerSample;
       work[i][1] = luminance * luminance * st.nsPerSample;
-      std::printf("%-18s %14.4f %14.4f %10.0f\n", i == 0 ? "by area" : "by solid angle", band,
-                  luminance, st.nsPerSample);
+      std::printf("%-18s %14.4f %14.4f %10.0f\n", names[i], band, luminance, st.nsPerSample);
     }
     std::printf("time to equal error, solid angle / area: %.3f per band, %.3f in luminance\n",
                 work[1][0] / work[0][0], work[1][1] / work[0][1]);
+    std::printf("time to equal error, stratified lanes / not: %.3f per band, %.3f in luminance\n",
+                work[2][0] / work[1][0], work[2][1] / work[1][1]);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nxbench-area-lights: error: %s\n", e.what());
     return 1;

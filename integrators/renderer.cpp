@@ -21,6 +21,15 @@
 
 namespace nx {
 namespace {
+
+// A sample's wavelengths from both coordinates of its next Sobol pair
+// (RenderOptions::stratifiedLanes).
+SampledWavelengths sampleStratifiedLanes(const WavelengthSampler& wavelengths,
+                                         PixelSampleStream& rng) {
+  const Sample2 u = rng.next2D();
+  return wavelengths.sample(u.u, u.v);
+}
+
 constexpr uint32_t kOddReplicateSalt = 0x68e31da4U;
 constexpr uint32_t kWhiteSalt = 0x1b56c4e9U;
 
@@ -288,7 +297,11 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                 }
                 const bool odd = (s & 1) != 0;
                 PixelSampleStream rng(replicates[odd], static_cast<uint32_t>(s) >> 1);
-                const SampledWavelengths lambda = wavelengths.sample(rng.next1D());
+                // With stratified lanes, the offset within the lanes' strata and the hero's
+                // stratum from one Sobol pair (stratified jointly).
+                const SampledWavelengths lambda = options.stratifiedLanes
+                                                      ? sampleStratifiedLanes(wavelengths, rng)
+                                                      : wavelengths.sample(rng.next1D());
                 const Sample2 jitter = rng.next2D();
                 float lensX = 0, lensY = 0; // a point of the aperture, for a thin lens only
                 if (scene.camera.hasLens()) sampleConcentricDisk(rng.next2D(), lensX, lensY);

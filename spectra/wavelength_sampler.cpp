@@ -146,13 +146,24 @@ double WavelengthSampler::pdf(double nm) const {
 }
 
 SampledWavelengths WavelengthSampler::sample(float u) const {
+  const float scaled = u * static_cast<float>(kLanes);
+  const float stratum = std::min(std::floor(scaled), static_cast<float>(kLanes - 1));
+  return sample(scaled - stratum, stratum / static_cast<float>(kLanes));
+}
+
+SampledWavelengths WavelengthSampler::sample(float offset, float heroStratum) const {
   SampledWavelengths w;
+  const int hero =
+      std::clamp(static_cast<int>(heroStratum * static_cast<float>(kLanes)), 0, kLanes - 1);
+  const float within = std::clamp(offset, 0.0f, 0x1.fffffep-1f);
   for (int i = 0; i < kLanes; ++i) {
-    float ui = u + static_cast<float>(i) / static_cast<float>(kLanes);
-    if (ui >= 1.0f) ui -= 1.0f;
-    const float x = ui * static_cast<float>(kSegments);
+    int stratum = hero + i;
+    if (stratum >= kLanes) stratum -= kLanes;
+    // Segment index and position within it, in double: (stratum + within) / kLanes * kSegments.
+    const double x =
+        (static_cast<double>(stratum) + within) * (static_cast<double>(kSegments) / kLanes);
     const int j = std::min(static_cast<int>(x), kSegments - 1);
-    const double f = static_cast<double>(x) - j;
+    const double f = x - j;
     w.lambda[i] = static_cast<float>(knotNm_[j] + f * (knotNm_[j + 1] - knotNm_[j]));
     w.pdf[i] = segmentPdf_[j];
   }

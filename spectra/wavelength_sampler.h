@@ -37,8 +37,18 @@ public:
   /// The visible density's value (unnormalised) at nm.
   static double visibleShape(double nm);
 
-  /// The kLanes wavelengths for primary sample u in [0, 1), with their pdfs.
+  /// The kLanes wavelengths for primary sample u in [0, 1), with their pdfs: lane i at
+  /// u + i / kLanes (mod 1). The same as sample(frac(kLanes u), floor(kLanes u) / kLanes).
   SampledWavelengths sample(float u) const;
+  /// The kLanes wavelengths for two primary samples: every lane at the same offset `offset`
+  /// within its own stratum [j / kLanes, (j + 1) / kLanes) of primary sample space, the hero
+  /// (lane 0) in stratum h = floor(kLanes heroStratum), lane i in stratum (h + i) mod kLanes.
+  /// The lanes of all samples of a pixel are as stratified as the offsets are: with offsets
+  /// from a stratified sequence (one per stratum of 1 / n over n samples) the n kLanes
+  /// wavelengths fall one per stratum of 1 / (n kLanes), whereas sample(u) stratifies only
+  /// frac(kLanes u), digits of u a short sequence leaves random. The hero is uniform when
+  /// heroStratum is uniform and independent of offset.
+  SampledWavelengths sample(float offset, float heroStratum) const;
 
   /// Wavelength for primary sample u (the inverse CDF).
   double wavelength(double u) const;

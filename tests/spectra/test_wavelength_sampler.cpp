@@ -54,6 +54,55 @@ TEST(WavelengthSampler, HeroLanesAreRotatedInPrimarySampleSpace) {
   }
 }
 
+// Two primary samples: lane i at the offset within stratum (h + i) mod kLanes, h the hero's
+// stratum; one sample u is the same as (frac(kLanes u), floor(kLanes u) / kLanes).
+TEST(WavelengthSampler, LanesShareOneOffsetInStrataFromTheHeros) {
+  const WavelengthSampler s(360, 830);
+  for (const float offset : {0.0123f, 0.3f, 0.987f}) // away from the segments' ends
+    for (int h = 0; h < kLanes; ++h) {
+      const float heroStratum = (static_cast<float>(h) + 0.5f) / kLanes;
+      const SampledWavelengths w = s.sample(offset, heroStratum);
+      for (int i = 0; i < kLanes; ++i) {
+        const double u = (offset + (h + i) % kLanes) / kLanes;
+        EXPECT_NEAR(w.lambda[i], s.wavelength(u), 1e-3) << offset << " " << h << " " << i;
+        EXPECT_NEAR(w.pdf[i], s.pdf(w.lambda[i]), 1e-6);
+      }
+    }
+  for (const float u : {0.0f, 0.1f, 0.37f, 0.8f}) {
+    const SampledWavelengths a = s.sample(u);
+    const float scaled = u * kLanes;
+    const SampledWavelengths b = s.sample(scaled - std::floor(scaled), std::floor(scaled) / kLanes);
+    for (int i = 0; i < kLanes; ++i) EXPECT_EQ(a.lambda[i], b.lambda[i]) << u;
+  }
+}
+
+// Every lane's wavelength follows the density when the offset and the hero's stratum come from
+// one scrambled Sobol pair, as in the renderer (chi-square of each lane's primary sample,
+// recovered from its wavelength, over 64 equal-probability bins).
+TEST(WavelengthSampler, LanesFromASobolPairFollowTheDensity) {
+  const WavelengthSampler s(380, 780);
+  constexpr int kBinsOfU = 64;
+  for (int lane : {0, kLanes - 1}) {
+    std::vector<double> observed(kBinsOfU, 0.0), expected(kBinsOfU, 0.0);
+    constexpr uint32_t kPixels = 4000, kSamples = 8;
+    for (uint32_t p = 0; p < kPixels; ++p) {
+      const PixelSequence sequence(SamplerKind::SobolOwen, p, 3);
+      for (uint32_t i = 0; i < kSamples; ++i) {
+        const Sample2 u = sequence.pair(sequence.sample(i), 0);
+        const float nm = s.sample(u.u, u.v).lambda[lane];
+        // The bin of the wavelength's CDF value: the first knot of j / kBinsOfU above it.
+        int bin = 0;
+        while (bin + 1 < kBinsOfU && s.wavelength(static_cast<double>(bin + 1) / kBinsOfU) <= nm)
+          ++bin;
+        observed[static_cast<size_t>(bin)] += 1;
+      }
+    }
+    for (double& e : expected) e = static_cast<double>(kPixels * kSamples) / kBinsOfU;
+    const auto [stat, dof] = test::chiSquare(observed, expected);
+    EXPECT_LT(test::chiSquareZ(stat, dof), 4.0) << "lane " << lane;
+  }
+}
+
 // The lanes agree with the inverse CDF and carry the density of the segment they fall in:
 // the smooth visible density averaged over the segment (closed form through its CDF).
 TEST(WavelengthSampler, LanesMatchInverseCdfOverTheBandRange) {
