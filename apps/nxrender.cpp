@@ -205,8 +205,10 @@ int run(int argc, char** argv) {
                  "local (default: by the power each light sends to the shading point), power "
                  "(by emitted power) or uniform: how next-event estimation chooses a light")
       ->check(CLI::IsMember({"local", "power", "uniform"}));
-  app.add_option("--sampler", sampler, "sobol (Owen-scrambled, default) or independent")
-      ->check(CLI::IsMember({"sobol", "independent"}));
+  app.add_option("--sampler", sampler,
+                 "sobol (Owen-scrambled, default), stratified (sobol with each pixel's "
+                 "wavelengths stratified over its samples: less noise per band) or independent")
+      ->check(CLI::IsMember({"sobol", "stratified", "independent"}));
   app.add_flag("--no-fluorescence", noFluorescence,
                "Render fluorescent materials as their ordinary reflectance (for comparisons)");
   app.add_flag("--no-variance", noVariance,

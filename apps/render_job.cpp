@@ -52,7 +52,7 @@ ErrorMeasure errorMeasureFrom(const std::string& text) {
 
 const std::vector<StrategyOption>& strategyOptions() {
   static const std::vector<StrategyOption> options{
-      {&RenderChoices::sampler, "--sampler", {"sobol", "independent"}},
+      {&RenderChoices::sampler, "--sampler", {"sobol", "stratified", "independent"}},
       {&RenderChoices::lightSampling, "--light-sampling", {"mis", "bsdf", "nee"}},
       {&RenderChoices::lightSelection, "--light-selection", {"local", "power", "uniform"}},
       {&RenderChoices::density, "--wavelength-density", {"sensor", "visible"}}};
@@ -115,6 +115,7 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
                                                                   : LightSelection::Local;
   options_.sampler =
       choices.sampler == "independent" ? SamplerKind::Independent : SamplerKind::SobolOwen;
+  options_.stratifiedLanes = choices.sampler == "stratified";
   options_.wavelengthDensity =
       choices.density == "visible" ? WavelengthDensity::Visible : WavelengthDensity::Sensor;
   options_.whiteReference = choices.aovWhite;

@@ -21,7 +21,7 @@ struct RenderChoices {
   std::optional<Sensor> bands;          ///< default: the scene's <bands>/<sensor>
   std::optional<PixelRect> crop;        ///< default: the whole image
   bool sampleRange = false;             ///< firstSample/samples came from a sample range
-  std::string sampler = "sobol";        ///< sobol or independent
+  std::string sampler = "sobol";        ///< sobol, stratified or independent
   std::string lightSampling = "mis";    ///< mis, bsdf or nee
   std::string lightSelection = "local"; ///< local, power or uniform
   std::string density = "sensor";       ///< sensor or visible

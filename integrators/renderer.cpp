@@ -129,6 +129,10 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   // A relightable scene: the transport per light group on the excitation grid.
   const bool relightable = scene.relight.enabled;
   if (relightable) {
+    if (options.stratifiedLanes)
+      throw Error("--relightable with --sampler stratified: the relit variances add the excitation "
+                  "bins' layers as independent, which stratified lanes make anticorrelated; use "
+                  "--sampler sobol or independent for a relightable render");
     if (options.resumeFrom)
       throw Error("--relightable: continuing a relightable render (--resume) is not supported; "
                   "render it again, or split it by --spp-range parts and merge them");

@@ -75,9 +75,10 @@ struct RenderOptions {
   TriangleLightSampling triangleLightSampling = TriangleLightSampling::SolidAngle;
   /// Draws each sample's wavelengths from both coordinates of the first Sobol pair
   /// (WavelengthSampler::sample(offset, heroStratum)), so that a pixel's lanes are stratified
-  /// over its samples: 1.8-3.4x less variance per band on the area-light scenes, but not the
-  /// default yet (docs/performance.md, "Stratified lanes": the relit variance channels and
-  /// some statistical tests move with it). Off: one coordinate, u + i / kLanes.
+  /// over its samples (`--sampler stratified`): 1.8-3.4x less variance per band on the
+  /// area-light scenes, but not the default yet (docs/performance.md, "Stratified lanes": the
+  /// relit variance channels and some statistical tests move with it; refused with a
+  /// relightable scene). Off: one coordinate, u + i / kLanes.
   bool stratifiedLanes = false;
   /// When set, no new tile is started once it becomes true (SIGINT, SIGTERM, time limit);
   /// the film then holds every finished tile's samples with their true counts.

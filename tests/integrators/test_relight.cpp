@@ -494,5 +494,16 @@ TEST(Relight, RefusalsNameWhatCannotBeRelit) {
             "it again, or split it by --spp-range parts and merge them");
 }
 
+// A relightable render refuses stratified lanes (its relit variances add the excitation bins'
+// layers as independent; stratified lanes make them anticorrelated), naming both options.
+TEST(Relight, RefusesStratifiedLanes) {
+  RenderOptions o;
+  o.stratifiedLanes = true;
+  const std::string message =
+      test::errorMessage([&] { renderRelightable(benchScene(kLampS1, "", 2), 5, o); });
+  for (const char* part : {"--relightable", "--sampler stratified", "anticorrelated"})
+    EXPECT_NE(message.find(part), std::string::npos) << message;
+}
+
 } // namespace
 } // namespace nx

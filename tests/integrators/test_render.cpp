@@ -574,5 +574,37 @@ TEST(Render, ReflectiveEmitterDoesNotLightItself) {
     }
 }
 
+// Stratified lanes (--sampler stratified) seen end to end: an emitting quad filling the view,
+// radiance 1 + (nm - 400) / 300 (linear, so each 10 nm band's average is its value at the
+// band's centre) and nothing else, so each pixel's band noise is the wavelengths' alone. Both
+// samplers match the closed form in every band (z-test over 24 x 24 pixels); the stratified
+// one's mean relative variance per band is at most a third of the default's (measured: 0.21
+// against 0.044 at 16 spp).
+TEST(Render, StratifiedLanesMatchTheClosedFormWithLessBandNoise) {
+  const std::string text = sceneText(
+      "<xres>24</xres><yres>24</yres><mode>spectral_mcpt</mode><depth>1</depth><sampl>16</sampl>"
+      "<bands>400:700:10</bands>",
+      "<position>0,0,-1</position><look_at>0,0,0</look_at><fov>30</fov>",
+      "<quad><origin>-2,-2,0</origin><edge_u>4,0,0</edge_u><edge_v>0,4,0</edge_v><material>matte"
+      "</material><reflectance>0</reflectance><emission>395:0.98333, 705:2.01667</emission>"
+      "</quad>");
+  double meanVariance[2] = {};
+  for (const bool stratified : {false, true}) {
+    RenderOptions o;
+    o.stratifiedLanes = stratified;
+    const RenderOutput out = renderText(text, o);
+    const Sensor& bands = out.film.bands();
+    expectBands(
+        out.film, [&](int b) { return 1 + (bands.centroid(b) - 400) / 300; }, 0.05, {},
+        stratified ? "stratified" : "sobol");
+    for (int b = 0; b < bands.count(); ++b) {
+      const test::RunningStats s = bandStats(out.film, b);
+      meanVariance[stratified] += s.variance() / (s.mean * s.mean) / bands.count();
+    }
+  }
+  EXPECT_LT(3 * meanVariance[1], meanVariance[0])
+      << "sobol " << meanVariance[0] << ", stratified " << meanVariance[1];
+}
+
 } // namespace
 } // namespace nx
