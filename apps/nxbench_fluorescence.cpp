@@ -111,13 +111,11 @@ std::vector<double> dyeEmission(const nx::RenderScene& cards) {
   for (const nx::Spectrum& e : cards.emission)
     if (e(450) > 0) lamp = &e;
   if (!m || !lamp) throw std::runtime_error("led_cards: expected a dye and a blue lamp");
-  std::vector<double> mean(RM::kBins, 0.0), z(RM::kBins, 0.0);
-  for (int i = 0; i < RM::kBins; ++i)
-    for (int j = 0; j < 20; ++j)
-      mean[static_cast<size_t>(i)] += (*lamp)(RM::kMinNm + (i + (j + 0.5) / 20) * RM::kBinNm) / 20;
+  const nx::ExcitationGuide guide = nx::excitationGuideOf(lamp);
+  std::vector<double> z(RM::kBins, 0.0);
   for (int o = 0; o < RM::kBins; ++o)
     for (int i = 0; i < o; ++i)
-      z[static_cast<size_t>(o)] += (*m)(i, o) * mean[static_cast<size_t>(i)];
+      z[static_cast<size_t>(o)] += (*m)(i, o) * guide.mean[static_cast<size_t>(i)];
   return z;
 }
 
@@ -134,9 +132,12 @@ nx::RenderScene matchedLampScene(const nx::RenderScene& cards, const std::string
     table += (table.empty() ? "" : ", ") + std::to_string(lo + 0.01) + ":" + std::to_string(v) +
              ", " + std::to_string(lo + RM::kBinNm - 0.01) + ":" + std::to_string(v);
   }
-  std::string text = nx::readRegularFile(path, 64u << 20, "scene file");
-  text = std::regex_replace(text, std::regex("<emission scale=\"4\">[^<]*</emission>"),
-                            "<emission scale=\"0.2\">" + table + "</emission>");
+  const std::string original = nx::readRegularFile(path, 64u << 20, "scene file");
+  std::string text =
+      std::regex_replace(original, std::regex("<emission scale=\"4\">[^<]*</emission>"),
+                         "<emission scale=\"0.2\">" + table + "</emission>");
+  if (text == original)
+    throw std::runtime_error(path + ": expected the lamp's <emission scale=\"4\"> to replace");
   text = std::regex_replace(text, std::regex("<fluorescence>.*</fluorescence>"), "");
   return nx::buildRenderScene(nx::parseScene(text, path));
 }

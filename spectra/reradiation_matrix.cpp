@@ -10,6 +10,26 @@
 
 namespace nx {
 
+ExcitationGuide excitationGuideOf(const Spectrum* s) {
+  using RM = ReradiationMatrix;
+  ExcitationGuide g;
+  if (!s) {
+    g.mean.fill(1.0f);
+    return g;
+  }
+  constexpr int kSteps = 20;
+  g.lo = RM::kBins, g.hi = 0;
+  for (int i = 0; i < RM::kBins; ++i) {
+    double sum = 0;
+    for (int j = 0; j < kSteps; ++j)
+      sum += std::max(0.0, (*s)(RM::kMinNm + (i + (j + 0.5) / kSteps) * RM::kBinNm));
+    g.mean[static_cast<size_t>(i)] = static_cast<float>(sum / kSteps);
+    if (sum > 0) g.lo = std::min(g.lo, i), g.hi = i + 1;
+  }
+  if (g.hi <= g.lo) g.lo = g.hi = 0;
+  return g;
+}
+
 ReradiationMatrix ReradiationMatrix::fromModel(const FluorescenceModel& p) {
   ReradiationMatrix r;
   const SkewCauchySpectrum absorption{p.absorptionPeakNm, p.widthNm, -p.skew};

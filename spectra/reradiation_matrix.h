@@ -40,6 +40,10 @@ struct ExcitationGuide {
   int lo = 0, hi = 160;          ///< support
 };
 
+/// The guide of a light whose spectrum is s: its mean over each 5 nm bin (20 points per bin, at
+/// the centres of 0.25 nm steps) and the bins where it is not zero; a flat guide for null.
+ExcitationGuide excitationGuideOf(const Spectrum* s);
+
 /// Two excitation events for one lane with their multi-sample MIS weights
 /// (ReradiationMatrix::guidedExcitation): [0] the column's, [1] the light-guided one.
 struct GuidedExcitation {

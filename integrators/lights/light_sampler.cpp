@@ -88,28 +88,6 @@ double sceneRadius(const RenderScene& scene) {
 // (docs/performance.md, "Fluorescence under a narrow lamp").
 constexpr double kGuidedMismatch = 1.25;
 
-// A spectrum's mean over each 5 nm bin of the re-radiation grid (20 points per bin, at the
-// centres of 0.25 nm steps) and the bins where it is not zero; a flat guide without one.
-ExcitationGuide excitationGuideOf(const Spectrum* s) {
-  using RM = ReradiationMatrix;
-  ExcitationGuide g;
-  if (!s) {
-    g.mean.fill(1.0f);
-    return g;
-  }
-  constexpr int kSteps = 20;
-  g.lo = RM::kBins, g.hi = 0;
-  for (int i = 0; i < RM::kBins; ++i) {
-    double sum = 0;
-    for (int j = 0; j < kSteps; ++j)
-      sum += std::max(0.0, (*s)(RM::kMinNm + (i + (j + 0.5) / kSteps) * RM::kBinNm));
-    g.mean[static_cast<size_t>(i)] = static_cast<float>(sum / kSteps);
-    if (sum > 0) g.lo = std::min(g.lo, i), g.hi = i + 1;
-  }
-  if (g.hi <= g.lo) g.lo = g.hi = 0;
-  return g;
-}
-
 } // namespace
 
 LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
