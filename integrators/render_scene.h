@@ -71,6 +71,9 @@ struct EmissionWindow {
   std::string file;  ///< the EEM file
   double loNm = 0, hiNm = 0;
   double shareAtLo = 0, shareAtHi = 0; ///< the profile at each end over its peak
+  /// Photons the imported matrix emits into each of its 5 nm bins, per unit excitation in
+  /// every bin (ReradiationMatrix grid).
+  std::vector<double> photonsPerBin;
 };
 
 /// Share of its peak an EEM's emission may keep at the end of its window before a render

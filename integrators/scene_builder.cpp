@@ -586,11 +586,21 @@ private:
         for (size_t c = 0; c < cols; ++c) profile[c] += std::max(0.0, sample.counts[r * cols + c]);
       const double peak = *std::max_element(profile.begin(), profile.end());
       if (peak > 0)
-        emissionWindows_.push_back({e.loc.str(), e.file, sample.emissionNm.front(),
-                                    sample.emissionNm.back(), profile.front() / peak,
-                                    profile.back() / peak});
+        emissionWindows_.push_back({e.loc.str(),
+                                    e.file,
+                                    sample.emissionNm.front(),
+                                    sample.emissionNm.back(),
+                                    profile.front() / peak,
+                                    profile.back() / peak,
+                                    {}});
     }
     auto r = std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromMeasured(m, rho));
+    if (!emissionWindows_.empty() && emissionWindows_.back().where == e.loc.str())
+      emissionWindows_.back().photonsPerBin = emittedPhotonsPerBin(*r);
+    if (summary.modelledFraction < kEemWarnModelledFraction)
+      warnings_.push_back(e.loc.str() + ": warning: the EEM " + e.file +
+                          " is mostly outside what the matrix models: " + summary.coverageText() +
+                          " (the dye's light there is missing from the render)");
     warnings_.push_back(
         e.loc.str() + ": note: the EEM " + e.file + " imported (" + summary.text() +
         "); absorptance " +
@@ -728,7 +738,23 @@ std::vector<std::string> extrapolationWarnings(const RenderScene& scene, double 
                     "extrapolate=\"hold\" on the element to choose)";
     if (std::find(out.begin(), out.end(), w) == out.end()) out.push_back(std::move(w));
   }
-  for (const EmissionWindow& w : scene.emissionWindows)
+  for (const EmissionWindow& w : scene.emissionWindows) {
+    // Most of the dye's photons beyond the traced range: its light is not in the image.
+    double inside = 0, total = 0;
+    for (int o = 0; o < static_cast<int>(w.photonsPerBin.size()); ++o) {
+      total += w.photonsPerBin[static_cast<size_t>(o)];
+      const double nm = ReradiationMatrix::centre(o);
+      if (nm >= loNm && nm <= hiNm) inside += w.photonsPerBin[static_cast<size_t>(o)];
+    }
+    if (total > 0 && inside < 0.5 * total) {
+      char pct[32];
+      std::snprintf(pct, sizeof pct, "%.3g%%", 100 * (1 - inside / total));
+      out.push_back(w.where + ": warning: the EEM " + w.file + " emits " + pct +
+                    " of its modelled photons outside the " + numberText(loNm) + "-" +
+                    numberText(hiNm) +
+                    " nm this render traces (that light is not in the image: "
+                    "render bands that cover the dye's emission)");
+    }
     for (const bool high : {false, true}) {
       const double end = high ? w.hiNm : w.loNm, share = high ? w.shareAtHi : w.shareAtLo;
       if ((high ? end >= hiNm : end <= loNm) || share <= kEmissionWindowEdgeShare) continue;
@@ -741,6 +767,7 @@ std::vector<std::string> extrapolationWarnings(const RenderScene& scene, double 
                     (high ? "beyond" : "below") +
                     " it (the dye's light there is missing: measure a wider emission window)");
     }
+  }
   return out;
 }
 

@@ -100,8 +100,17 @@ std::string EemSummary::text() const {
   if (meanShapeFit >= 0)
     s << "; one emission shape (Kasha's rule) explains " << num(100 * meanShapeFit)
       << "% of the counts outside the bands";
-  s << "; " << num(100 * antiStokesFraction)
-    << "% of the emitted photons at or below their excitation wavelength (not modelled)";
+  s << "; " << coverageText();
+  return s.str();
+}
+
+std::string EemSummary::coverageText() const {
+  std::ostringstream s;
+  s << num(100 * modelledFraction) << "% of the emitted photons modelled, "
+    << num(100 * antiStokesFraction)
+    << "% below their excitation wavelength (anti-Stokes, not modelled), "
+    << num(100 * outsideGridFraction) << "% outside " << num(ReradiationMatrix::kMinNm) << "-"
+    << num(ReradiationMatrix::kMaxNm) << " nm";
   return s.str();
 }
 
@@ -130,6 +139,14 @@ EemTable parseEemCsv(const std::string& text, const std::string& source, const E
         throw Error(source + ": expected " + axis +
                     " wavelengths in nm within [100, 2000], found " + num(x) +
                     (layout.emissionRows ? " (layout=\"emission_rows\")" : ""));
+  // Scale-free: counts near the float range's end (1e308) would overflow the row integrals,
+  // subnormal ones (1e-318) lose digits; only their proportions matter.
+  double largest = 0;
+  for (double c : t.counts) largest = std::max(largest, std::abs(c));
+  if (largest > 0) {
+    t.scale = largest;
+    for (double& c : t.counts) c /= largest;
+  }
   return t;
 }
 
@@ -239,11 +256,25 @@ MeasuredMatrix donaldsonFromEem(const EemTable& clean, const EemLayout& layout,
                   num(ref.excitationNm.front()) + "-" + num(ref.excitationNm.back()) + " nm in " +
                   ref.source + "), found outside");
     const double a = sampleAbsorptance(nm, *ss);
-    if (!(*sr > 0) || !(a > 0))
+    if (!(*sr > 0) || !(*ss > 0) || !(a > 0))
       throw Error(clean.source +
                   ": expected emission and absorptance at the reference excitation " + num(nm) +
-                  " nm, found " + (*sr > 0 ? "an absorptance of 0" : "no reference emission"));
-    q = yield.referenceYield * (*ss / a) / (*sr / yield.referenceAbsorptance);
+                  " nm, found " +
+                  (!(*sr > 0)   ? "no emission in the reference " + ref.source
+                   : !(*ss > 0) ? std::string("no emission in the sample")
+                                : std::string("an absorptance of 0")));
+    // Both tables were divided by their own largest count: their ratio restores the scale
+    // they share (an overflowing ratio gives an infinite yield, refused below).
+    q = yield.referenceYield * (*ss / a) / (*sr / yield.referenceAbsorptance) *
+        (clean.scale / ref.scale);
+    // Below this, the sample's light is nothing beside the reference's: most likely the two
+    // were not measured alike (a 1e308-count reference beside a plain sample).
+    constexpr double kLeastYield = 1e-6;
+    if (!(q >= kLeastYield))
+      throw Error(clean.source + ": expected a quantum yield of at least " + num(kLeastYield) +
+                  " from the reference dye " + ref.source + ", found " + num(q) +
+                  " (the sample's emission is negligible beside the reference's: check that both "
+                  "EEMs were measured with the same settings and in the same units)");
     if (!(q <= 1))
       throw Error(clean.source + ": expected a quantum yield at most 1 from the reference dye " +
                   ref.source + ", found " + num(q) +
@@ -268,7 +299,10 @@ MeasuredMatrix donaldsonFromEem(const EemTable& clean, const EemLayout& layout,
   m.emissionNm = clean.emissionNm;
   m.cells.assign(nEx * nEm, 0.0);
   constexpr double kWeakRow = 1e-3; // a row below this share of the strongest: no own shape
-  double emitted = 0, antiStokes = 0;
+  // Photons emitted per nm of excitation (rows weighed by their excitation cells), sorted by
+  // what the matrix makes of them.
+  const std::vector<double> exWidth = gridCellWidths(clean.excitationNm);
+  double emitted = 0, antiStokes = 0, outsideGrid = 0, kept = 0;
   for (size_t r = 0; r < nEx; ++r) {
     const double ex = clean.excitationNm[r];
     const bool ownShape = s[r] > kWeakRow * sMax;
@@ -281,12 +315,32 @@ MeasuredMatrix donaldsonFromEem(const EemTable& clean, const EemLayout& layout,
         photons = q * absorptance.spectrum(ex) *
                   (ownShape ? counts.counts[r * nEm + c] / s[r] : meanShape[c]);
       const double em = clean.emissionNm[c];
-      emitted += photons * width[c];
-      if (em <= ex) antiStokes += photons * width[c];
+      const double share = photons * width[c] * exWidth[r];
+      const int exBin = ReradiationMatrix::binOf(ex), emBin = ReradiationMatrix::binOf(em);
+      if (em == ex) continue; // the elastic line (Rayleigh, when not removed) emits nothing
+      emitted += share;
+      if (em < ex)
+        antiStokes += share;
+      else if (exBin < 0 || emBin < 0)
+        outsideGrid += share;
+      else if (emBin > exBin)
+        kept += share;
       m.cells[r * nEm + c] = photons * width[c] * ex / em; // energy per cell
     }
   }
   summary.antiStokesFraction = emitted > 0 ? antiStokes / emitted : 0.0;
+  summary.outsideGridFraction = emitted > 0 ? outsideGrid / emitted : 0.0;
+  summary.modelledFraction = emitted > 0 ? kept / emitted : 0.0;
+  // An EEM the matrix cannot model imports to (nearly) nothing: the render would equal the
+  // plain surface's. Refused with what became of its photons.
+  if (summary.modelledFraction < kEemMinModelledFraction)
+    throw Error(clean.source + ": expected an EEM whose emission the matrix models (emission " +
+                "longer than its excitation, both within " + num(ReradiationMatrix::kMinNm) + "-" +
+                num(ReradiationMatrix::kMaxNm) + " nm), found " + summary.coverageText() +
+                (summary.antiStokesFraction > 0.5
+                     ? std::string(" (a transposed table? rows are excitation wavelengths unless "
+                                   "layout=\"emission_rows\")")
+                     : std::string()));
   return m;
 }
 

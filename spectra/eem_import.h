@@ -18,6 +18,9 @@ struct EemTable {
   std::vector<double> excitationNm, emissionNm, counts;
   std::vector<char> removed; ///< per cell: inside a scatter band (set by withoutScatter)
   std::string source;        ///< file name for messages
+  /// The counts as written were these times larger: parseEemCsv divides them by their largest
+  /// magnitude, so that any finite scale (1e308 or 1e-318) imports to the same matrix.
+  double scale = 1;
 };
 
 /// What the absolute scale comes from: a quantum yield, or a reference dye of known yield
@@ -43,17 +46,27 @@ struct EemSummary {
   size_t negativeCells = 0;      ///< negative cells outside the bands, set to 0
   size_t meanShapeRows = 0;      ///< rows too weak for their own shape (the mean one used)
   double quantumYield = 0;       ///< the yield used (given or from the reference)
-  double antiStokesFraction = 0; ///< share of the emitted photons at or below the excitation
+  double antiStokesFraction = 0; ///< share of the emitted photons below the excitation
+  /// Share of the emitted photons whose excitation or emission lies outside the matrix's grid
+  /// (300-1100 nm).
+  double outsideGridFraction = 0;
+  /// Share of the emitted photons the matrix models: both wavelengths on its grid and the
+  /// emission in a longer 5 nm bin than the excitation (1 - the two shares above, but for
+  /// emission inside the excitation's own bin). Cells at equal wavelengths (the elastic line)
+  /// count in none of the shares.
+  double modelledFraction = 0;
   /// emission_shape="mean": share of the counts outside the bands the one shape explains,
   /// 1 - |residual|^2 / |counts|^2 (near 1 when Kasha's rule holds); -1 otherwise
   double meanShapeFit = -1;
   /// One line saying all of the above (and what the elastic part is).
   std::string text() const;
+  /// What became of the emitted photons: the modelled, anti-Stokes and off-grid shares.
+  std::string coverageText() const;
 };
 
 /// Reads an EEM CSV (first row: a label cell and the column wavelengths; then per row its
-/// wavelength and counts, any finite numbers), transposed when layout.emissionRows. Errors
-/// name source:line.
+/// wavelength and counts, any finite numbers), transposed when layout.emissionRows, and divides
+/// the counts by their largest magnitude (kept in EemTable::scale). Errors name source:line.
 EemTable parseEemCsv(const std::string& text, const std::string& source, const EemLayout& layout);
 
 /// The EEM with its scatter bands and negative cells handled (Zepp et al. 2004; Bahram et al.
@@ -71,7 +84,16 @@ EemTable withoutScatter(const EemTable& t, const EemLayout& layout, EemSummary& 
 /// meanEmissionShape the counts are first replaced by the rank-1 model I = s(ex) p(em) fitted
 /// by alternating least squares to the cells outside the bands only (Kasha's rule; a
 /// one-component PARAFAC, Bro 1997), so a band over the emission peak biases nothing. Throws
-/// nx::Error for a yield above 1, an EEM without emission, or a missing reference row.
+/// nx::Error for a yield above 1, an EEM without emission, a missing reference row, or an EEM
+/// of which under kEemMinModelledFraction of the emitted photons can be modelled (wholly
+/// outside 300-1100 nm, transposed, anti-Stokes).
+/// Below this share of its emitted photons modelled (EemSummary::modelledFraction) an EEM is
+/// refused: what it describes is not what the matrix can render.
+inline constexpr double kEemMinModelledFraction = 0.01;
+
+/// Below this share modelled, an import warns (most of the dye's light is missing).
+inline constexpr double kEemWarnModelledFraction = 0.5;
+
 MeasuredMatrix donaldsonFromEem(const EemTable& clean, const EemLayout& layout,
                                 const EemYield& yield, const EemAbsorptance& absorptance,
                                 EemSummary& summary);

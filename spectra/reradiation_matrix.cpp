@@ -82,6 +82,15 @@ std::vector<double> gridCellWidths(const std::vector<double>& nm) {
   return width;
 }
 
+std::vector<double> emittedPhotonsPerBin(const ReradiationMatrix& m) {
+  std::vector<double> out(ReradiationMatrix::kBins, 0.0);
+  for (int o = 0; o < ReradiationMatrix::kBins; ++o)
+    for (int i = 0; i < o; ++i)
+      out[static_cast<size_t>(o)] +=
+          m(i, o) * ReradiationMatrix::centre(o) / ReradiationMatrix::centre(i);
+  return out;
+}
+
 ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm, const Spectrum* rho) {
   ReradiationMatrix r;
   r.measured_ = true;
@@ -114,7 +123,12 @@ ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm, cons
         diagNm.push_back(mm.emissionNm[col]);
         diagValue.push_back(cell(row, col));
       }
-  r.elasticFromRho_ = mm.fluorescenceOnly || diagNm.size() < 2;
+  // A diagonal of zeros is a fluorescence-only measurement written as a full matrix: like a
+  // missing one, the elastic part is the surface's reflectance (else it reflected nothing and
+  // its <reflectance> was ignored without a word).
+  r.zeroDiagonal_ = diagNm.size() >= 2 && std::all_of(diagValue.begin(), diagValue.end(),
+                                                      [](double v) { return v == 0; });
+  r.elasticFromRho_ = mm.fluorescenceOnly || diagNm.size() < 2 || r.zeroDiagonal_;
   for (int o = 0; o < kBins && !r.elasticFromRho_; ++o) {
     size_t k;
     double t;
@@ -130,12 +144,15 @@ ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm, cons
     for (int o = 0; o < kBins; ++o) out += r(i, o);
     const double elastic = r.elasticFromRho_ ? (rho ? (*rho)(centre(i)) : 0.0) : r.diagonal_[i];
     if (elastic + out > 1.0 + 1e-9)
-      throw Error(mm.source + ": expected a matrix whose reflectance (" +
-                  (r.elasticFromRho_ ? "the surface's <reflectance>: the matrix has no diagonal"
-                                     : "diagonal") +
-                  ") plus re-radiated energy is at most 1 at every excitation wavelength, found " +
-                  numberText(elastic + out) + " at " + numberText(centre(i)) + " nm (reflectance " +
-                  numberText(elastic) + ", re-radiated " + numberText(out) + ")");
+      throw Error(
+          mm.source + ": expected a matrix whose reflectance (" +
+          (r.elasticFromRho_
+               ? (r.zeroDiagonal_ ? "the surface's <reflectance>: the matrix's diagonal is all zero"
+                                  : "the surface's <reflectance>: the matrix has no diagonal")
+               : "diagonal") +
+          ") plus re-radiated energy is at most 1 at every excitation wavelength, found " +
+          numberText(elastic + out) + " at " + numberText(centre(i)) + " nm (reflectance " +
+          numberText(elastic) + ", re-radiated " + numberText(out) + ")");
   }
   return r;
 }

@@ -60,6 +60,8 @@ public:
   /// 910 nm emission into its last bin).
   static constexpr int kBins = 160;
   static constexpr double kMinNm = 300, kBinNm = 5;
+  /// End of the grid (nm): kMinNm + kBins kBinNm.
+  static constexpr double kMaxNm = kMinNm + kBins * kBinNm;
 
   /// Bin containing nm, or -1 outside [300, 1100).
   static int binOf(double nm) {
@@ -85,6 +87,8 @@ public:
   static ReradiationMatrix fromMeasured(const MeasuredMatrix& m, const Spectrum* rho = nullptr);
   /// A measured matrix whose elastic part is the surface's reflectance (it has no diagonal).
   bool elasticFromReflectance() const { return elasticFromRho_; }
+  /// A measured matrix whose diagonal is there but all zero (taken as missing).
+  bool zeroDiagonal() const { return zeroDiagonal_; }
 
   /// Absorptance of bin i (parametric model; 0 for measured matrices, whose D is explicit).
   double absorptance(int i) const { return absorptance_[i]; }
@@ -269,7 +273,7 @@ private:
   std::vector<float> cdf_;     ///< [o][i]: running sums of M[.][o] over i
   std::vector<uint8_t> guide_; ///< [o][j]: first bin whose running sum exceeds j/kGuide of c(o)
 
-  bool measured_ = false, elasticFromRho_ = false;
+  bool measured_ = false, elasticFromRho_ = false, zeroDiagonal_ = false;
   std::array<double, kBins> absorptance_{}, diagonal_{}, columnSum_{};
   std::vector<double> m_ = std::vector<double>(static_cast<size_t>(kBins) * kBins, 0.0);
 };
@@ -292,6 +296,10 @@ MeasuredMatrix parseWavelengthGrid(const std::string& text, const std::string& s
 /// Widths (nm) of the cells of a wavelength grid: half the distance between a cell's
 /// neighbours (one-sided at the ends), so that a fraction per cell / width is a density per nm.
 std::vector<double> gridCellWidths(const std::vector<double>& nm);
+
+/// Photons re-radiated into each emission bin o for one unit of photons in every excitation
+/// bin: sum over i of M[i][o] centre(o) / centre(i) (M holds energy fractions).
+std::vector<double> emittedPhotonsPerBin(const ReradiationMatrix& m);
 
 /// Checks a matrix given as numbers (not read from a CSV file): at least two increasing
 /// excitation and emission wavelengths within the traced range's neighbourhood, one finite

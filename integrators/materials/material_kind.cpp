@@ -120,8 +120,11 @@ void setFluorescence(Material& m, const ParameterSet& p, const MaterialInputs& i
     if (m.reradiation->elasticFromReflectance())
       in.warn(f->loc.str() + ": warning: the measured matrix " +
               (f->matrixCsv ? *f->matrixCsv : std::string("given as numbers")) +
-              " has no diagonal (no excitation wavelength equals an emission one): its elastic "
-              "reflectance is the material's " +
+              (m.reradiation->zeroDiagonal()
+                   ? " has a diagonal of zeros (a fluorescence-only measurement), taken as no "
+                     "diagonal: its elastic reflectance is the material's "
+                   : " has no diagonal (no excitation wavelength equals an emission one): its "
+                     "elastic reflectance is the material's ") +
               (p.has("reflectance") ? "<reflectance>"
                : p.has("color")     ? "<color>"
                                     : "reflectance") +

@@ -237,6 +237,28 @@ TEST(Fluorescence, MatrixWithoutDiagonalTakesItsElasticPartFromTheReflectance) {
   std::string text = scene("<reflectance>0.86</reflectance>");
   text.replace(text.find(csv), csv.size(), withDiagonal);
   EXPECT_TRUE(buildRenderScene(parseScene(text, "t.scn")).warnings.empty());
+  // A diagonal of zeros (a fluorescence-only measurement written as a full matrix) is taken
+  // as none: the elastic part is the <reflectance> (it was 0, the reflectance ignored), said.
+  const std::string zeroDiagonal = ::testing::TempDir() + "/eem_zero_diagonal.csv";
+  std::ofstream(zeroDiagonal) << "ex,350,400,590,600,650,700\n350,0,0,0,0.02,0.04,0.02\n"
+                                 "400,0,0,0,0.02,0.04,0.02\n";
+  text = scene("<reflectance>0.86</reflectance>");
+  text.replace(text.find(csv), csv.size(), zeroDiagonal);
+  const RenderScene z = buildRenderScene(parseScene(text, "t.scn"));
+  ASSERT_EQ(z.warnings.size(), 1u);
+  EXPECT_NE(z.warnings[0].find("has a diagonal of zeros (a fluorescence-only measurement), taken "
+                               "as no diagonal: its elastic reflectance is the material's "
+                               "<reflectance>"),
+            std::string::npos)
+      << z.warnings[0];
+  ASSERT_TRUE(z.materials[0].reradiation->zeroDiagonal());
+  const RenderOutput zOut = render(z, RenderOptions{});
+  for (int b = 0; b < zOut.film.bands().count(); ++b) {
+    test::RunningStats st;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) st.add(zOut.film.bandMean(x, y, b));
+    EXPECT_NEAR(st.mean, 0.86, 5 * st.standardError() + 1e-3) << "band " << b;
+  }
 }
 
 // An instrument EEM (Rayleigh and Raman lines, instrument grids, counts) imported from the
@@ -314,6 +336,54 @@ TEST(Fluorescence, EemEmissionWindowEndingInsideTheTracedRangeWarns) {
   const double share = std::stod(w[0].substr(w[0].find("still ") + 6));
   EXPECT_GT(share, 5.0); // per cent: the tail at 580 nm of a dye emitting around 540 nm
   EXPECT_TRUE(extrapolationWarnings(s, 400, 560).empty()); // traced within the window
+}
+
+// Most of a dye's photons where the render does not look: an EEM emitting mostly beyond the
+// matrix's 1100 nm warns at the build (it was a note that read like a good import), and one
+// emitting mostly beyond the traced bands warns for that render.
+TEST(Fluorescence, EemMostlyOutsideWhatIsRenderedWarns) {
+  auto sceneWith = [](const std::string& csv) {
+    return "<scene><settings><xres>2</xres><yres>2</yres><mode>spectral_mcpt</mode></settings>"
+           "<camera><position>0,0,-1</position><look_at>0,0,0</look_at></camera><quad><origin>"
+           "-1,-1,0</origin><edge_u>2,0,0</edge_u><edge_v>0,2,0</edge_v><material>matte"
+           "</material><reflectance>0.2</reflectance><fluorescence>\n<eem file=\"" +
+           csv +
+           "\" rayleigh_width=\"0\"/><yield>0.6</yield><peak>0.9</peak></fluorescence></quad>"
+           "</scene>";
+  };
+  test::Dye infrared;
+  infrared.la = 1000, infrared.stokes = 100, infrared.skew = 0;
+  test::Synthetic syn;
+  syn.ex = test::grid(950, 1050, 5);
+  syn.em = test::grid(960, 1300, 5);
+  syn.rayleigh = syn.raman = 0;
+  const std::string far = ::testing::TempDir() + "/dye_eem_infrared.csv";
+  std::ofstream(far) << syn.csv(infrared);
+  const RenderScene s = buildRenderScene(parseScene(sceneWith(far), "t.scn"));
+  bool warned = false;
+  for (const std::string& w : s.warnings)
+    warned |= w.find("t.scn:2: warning: the EEM " + far +
+                     " is mostly outside what the matrix models: ") == 0 &&
+              w.find("% outside 300-1100 nm (the dye's light there is missing from the render)") !=
+                  std::string::npos;
+  EXPECT_TRUE(warned) << testing::PrintToString(s.warnings);
+  // A visible dye (emission around 540 nm) rendered in the near infrared only.
+  const test::Dye visible;
+  test::Synthetic vis;
+  vis.ex = test::grid(300, 600, 5);
+  vis.em = test::grid(300, 1100, 5);
+  vis.rayleigh = vis.raman = 0;
+  const std::string near = ::testing::TempDir() + "/dye_eem_visible.csv";
+  std::ofstream(near) << vis.csv(visible);
+  const RenderScene v = buildRenderScene(parseScene(sceneWith(near), "t.scn"));
+  for (const std::string& w : v.warnings) EXPECT_EQ(w.find("warning"), std::string::npos) << w;
+  EXPECT_TRUE(extrapolationWarnings(v, 400, 700).empty());
+  const std::vector<std::string> w = extrapolationWarnings(v, 700, 1000);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].find("t.scn:2: warning: the EEM " + near + " emits 9"), 0u) << w[0];
+  EXPECT_NE(w[0].find("% of its modelled photons outside the 700-1000 nm this render traces"),
+            std::string::npos)
+      << w[0];
 }
 
 } // namespace

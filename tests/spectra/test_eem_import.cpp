@@ -268,5 +268,130 @@ TEST(EemImport, NegativeCellsAndEmptyEems) {
               "increasing excitation wavelengths");
 }
 
+TEST(EemImport, AnyFiniteScaleImportsTheSameMatrix) {
+  // Counts reaching 1e308 overflowed the row integrals (the matrix became 0 and the image the
+  // plain surface's); subnormal counts lost digits. Only their proportions matter.
+  const Dye d;
+  Synthetic s;
+  s.ex = grid(300, 600, 5);
+  s.em = grid(300, 1100, 2);
+  s.raman = 0;
+  const EemLayout l = scatterLayout(8, false);
+  const RM base = import(s.csv(d), l, given(d.yield), peak(d.aMax));
+  for (const double f : {1.7e302, 1e-314}) { // largest cell 1.7e308, smallest subnormal
+    Synthetic scaled = s;
+    scaled.k *= f, scaled.rayleigh *= f, scaled.raman *= f;
+    const double tolerance = f < 1 ? 1e-4 : 1e-9; // subnormals keep about 5 digits
+    EXPECT_LT(worstError(import(scaled.csv(d), l, given(d.yield), peak(d.aMax)), base, 300, 600),
+              tolerance)
+        << f;
+    EemAbsorptance a;
+    a.spectrum = [&](double nm) { return d.absorptance(nm); };
+    EXPECT_LT(worstError(import(scaled.csv(d), l, given(d.yield), a),
+                         import(s.csv(d), l, given(d.yield), a), 300, 600),
+              tolerance)
+        << f;
+  }
+  // The relative method: a reference measured alike keeps the yield at any common scale; a
+  // reference of 1e308 counts was "found no reference emission".
+  Dye ref;
+  ref.la = 490, ref.stokes = 25, ref.yield = 0.95, ref.aMax = 0.05;
+  auto yieldWith = [&](double sampleScale, double refScale) {
+    Synthetic a = s, b = s;
+    a.k *= sampleScale, a.rayleigh *= sampleScale, a.raman *= sampleScale;
+    b.k *= refScale, b.rayleigh *= refScale, b.raman *= refScale;
+    EemSummary tmp, sum;
+    const EemTable refTable = withoutScatter(parseEemCsv(b.csv(ref), "ref.csv", l), l, tmp);
+    EemYield y;
+    y.reference = &refTable;
+    y.referenceYield = ref.yield;
+    y.referenceAbsorptance = ref.absorptance(500);
+    y.referenceExcitationNm = 500;
+    EemAbsorptance abs;
+    abs.spectrum = [&](double nm) { return d.absorptance(nm); };
+    import(a.csv(d), l, y, abs, &sum);
+    return sum.quantumYield;
+  };
+  const double q = yieldWith(1, 1);
+  EXPECT_NEAR(q, d.yield, 0.02);
+  EXPECT_NEAR(yieldWith(1.7e302, 1.7e302), q, 1e-9 * q);
+  EXPECT_NEAR(yieldWith(1e-314, 1e-314), q, 1e-4 * q);
+  EXPECT_NEAR(yieldWith(1.0, 2.0), q / 2, 1e-9 * q); // a stronger reference: a lower yield
+  // A reference 1e302 times stronger than the sample: a yield of ~1e-302 models nothing.
+  expectError([&] { yieldWith(1, 1.7e302); },
+              "dye.csv: expected a quantum yield of at least 1e-06 from the reference dye ref.csv, "
+              "found 3");
+}
+
+TEST(EemImport, EemsTheMatrixCannotModelAreRefused) {
+  // Each imported to (nearly) nothing with at most a note.
+  const Dye d;
+  Synthetic s;
+  s.ex = grid(300, 600, 5);
+  s.em = grid(300, 900, 2);
+  const EemLayout l = scatterLayout();
+  // A transposed table read without layout="emission_rows": its cells with emission longer
+  // than excitation are the anti-Stokes side of the real table.
+  Synthetic transposed = s;
+  transposed.emissionRows = true;
+  try {
+    import(transposed.csv(d), l, given(d.yield), peak(d.aMax));
+    ADD_FAILURE() << "a transposed table was imported";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("dye.csv: expected an EEM whose emission the matrix models (emission longer "
+                     "than its excitation, both within 300-1100 nm), found "),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("a transposed table? rows are excitation wavelengths unless "
+                     "layout=\"emission_rows\""),
+              std::string::npos)
+        << m;
+  }
+  // Read as what it is, it imports.
+  EemLayout rows = l;
+  rows.emissionRows = true;
+  EemSummary sum;
+  import(transposed.csv(d), rows, given(d.yield), peak(d.aMax), &sum);
+  EXPECT_GT(sum.modelledFraction, 0.95);
+  EXPECT_NEAR(sum.modelledFraction + sum.antiStokesFraction + sum.outsideGridFraction, 1, 0.01);
+  // Wholly outside 300-1100 nm (a short-wave infrared dye).
+  Dye infrared;
+  infrared.la = 1250, infrared.stokes = 150;
+  Synthetic far;
+  far.ex = grid(1150, 1400, 5);
+  far.em = grid(1200, 1700, 5);
+  far.rayleigh = far.raman = 0;
+  expectError([&] { import(far.csv(infrared), EemLayout{}, given(0.5), peak(0.5)); },
+              "found 0% of the emitted photons modelled, 0.00");
+  expectError([&] { import(far.csv(infrared), EemLayout{}, given(0.5), peak(0.5)); },
+              "% below their excitation wavelength (anti-Stokes, not modelled), 99.99");
+  // Anti-Stokes only: every emission column below every excitation row.
+  std::ostringstream anti;
+  anti << "ex\\em";
+  for (int em = 300; em <= 480; em += 10) anti << "," << em;
+  anti << "\n";
+  for (int ex = 500; ex <= 600; ex += 10) {
+    anti << ex;
+    for (int em = 300; em <= 480; em += 10) anti << "," << 1 + (em - 300) / 10;
+    anti << "\n";
+  }
+  expectError([&] { import(anti.str(), EemLayout{}, given(0.5), peak(0.5)); },
+              "found 0% of the emitted photons modelled, 100% below");
+  // Half modelled, half beyond 1100 nm: imported (the scene build warns: see the fluorescence
+  // tests), with the shares in its summary.
+  Dye edge;
+  edge.la = 1000, edge.stokes = 100, edge.skew = 0;
+  Synthetic half;
+  half.ex = grid(950, 1050, 5);
+  half.em = grid(960, 1300, 5);
+  half.rayleigh = half.raman = 0;
+  EemSummary edgeSum;
+  import(half.csv(edge), EemLayout{}, given(0.5), peak(0.5), &edgeSum);
+  EXPECT_GT(edgeSum.outsideGridFraction, 0.5);
+  EXPECT_LT(edgeSum.modelledFraction, kEemWarnModelledFraction);
+  EXPECT_GT(edgeSum.modelledFraction, kEemMinModelledFraction);
+}
+
 } // namespace
 } // namespace nx

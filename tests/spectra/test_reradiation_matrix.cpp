@@ -192,8 +192,12 @@ TEST(ReradiationMatrix, MalformedCsvIsRefusedWithFileAndLine) {
   EXPECT_EQ(csvError("ex,4o0,500\n350,0.1,0.2\n"),
             ":1: expected an emission wavelength, found '4o0'");
   EXPECT_EQ(csvError("ex,400,500\n350,0.1,0.2\n"), ": expected at least two excitation rows");
-  EXPECT_EQ(csvError("ex,400,410,420\n400,0,1,1\n410,0,0,1\n").substr(0, 60),
+  EXPECT_EQ(csvError("ex,400,410,420\n400,0.1,1,1\n410,0,0.1,1\n").substr(0, 60),
             ": expected a matrix whose reflectance (diagonal) plus re-rad");
+  // A diagonal of zeros is no diagonal: the elastic part is the surface's reflectance.
+  EXPECT_NE(csvError("ex,400,410,420\n400,0,1,1\n410,0,0,1\n")
+                .find("(the surface's <reflectance>: the matrix's diagonal is all zero)"),
+            std::string::npos);
   // Each part within [0, 1], their sum above 1: a diagonal of 0.9 and 0.79 re-radiated.
   EXPECT_EQ(csvError("ex,400,500,600\n400,0.9,0.79,0\n500,0,0.9,0.79\n600,0,0,0.9\n").substr(0, 72),
             ": expected a matrix whose reflectance (diagonal) plus re-radiated energy");
