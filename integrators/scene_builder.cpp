@@ -563,6 +563,11 @@ private:
       yield.referenceAbsorptance = e.referenceAbsorptance;
       yield.referenceExcitationNm = e.referenceExcitationNm;
     }
+    // What the loader requires, checked again for scenes built otherwise (Python edits).
+    if (!f.quantumYield && e.referenceFile.empty())
+      throw Error(f.loc.str() + ": expected <yield> or <reference> with an <eem>, found neither");
+    if (!f.peakAbsorptance && !e.absorptance)
+      throw Error(f.loc.str() + ": expected <peak> or <absorptance> with an <eem>, found neither");
     EemAbsorptance absorptance;
     std::optional<Spectrum> a;
     if (e.absorptance) {
@@ -612,6 +617,12 @@ private:
 
   FluorescenceModel fluorescence(const FluorescenceDesc& f) const {
     FluorescenceModel p;
+    // What the loader requires, checked again for scenes built otherwise (Python edits).
+    if (!f.stokesNm || (!f.absorptionName && !f.absorptionNm))
+      throw Error(f.loc.str() +
+                  ": expected <absorption> and <stokes> in a fluorescence model, "
+                  "found " +
+                  (f.stokesNm ? "no <absorption>" : "no <stokes>"));
     if (f.absorptionName) {
       const auto peak = namedAbsorptionPeak(*f.absorptionName);
       if (!peak)

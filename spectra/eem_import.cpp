@@ -299,8 +299,8 @@ MeasuredMatrix donaldsonFromEem(const EemTable& clean, const EemLayout& layout,
   m.emissionNm = clean.emissionNm;
   m.cells.assign(nEx * nEm, 0.0);
   constexpr double kWeakRow = 1e-3; // a row below this share of the strongest: no own shape
-  // Photons emitted per nm of excitation (rows weighed by their excitation cells), sorted by
-  // what the matrix makes of them.
+  // The counts (photons) per nm of excitation (rows weighed by their excitation cells), sorted
+  // by what the matrix makes of them.
   const std::vector<double> exWidth = gridCellWidths(clean.excitationNm);
   double emitted = 0, antiStokes = 0, outsideGrid = 0, kept = 0;
   for (size_t r = 0; r < nEx; ++r) {
@@ -315,16 +315,19 @@ MeasuredMatrix donaldsonFromEem(const EemTable& clean, const EemLayout& layout,
         photons = q * absorptance.spectrum(ex) *
                   (ownShape ? counts.counts[r * nEm + c] / s[r] : meanShape[c]);
       const double em = clean.emissionNm[c];
-      const double share = photons * width[c] * exWidth[r];
+      // What the table describes, whatever the yield and absorptance (a yield of 0 is an
+      // off switch, not an EEM that models nothing).
+      const double share = counts.counts[r * nEm + c] * width[c] * exWidth[r];
       const int exBin = ReradiationMatrix::binOf(ex), emBin = ReradiationMatrix::binOf(em);
-      if (em == ex) continue; // the elastic line (Rayleigh, when not removed) emits nothing
-      emitted += share;
-      if (em < ex)
-        antiStokes += share;
-      else if (exBin < 0 || emBin < 0)
-        outsideGrid += share;
-      else if (emBin > exBin)
-        kept += share;
+      if (em != ex) { // the elastic line (Rayleigh, when not removed) emits nothing
+        emitted += share;
+        if (em < ex)
+          antiStokes += share;
+        else if (exBin < 0 || emBin < 0)
+          outsideGrid += share;
+        else if (emBin > exBin)
+          kept += share;
+      }
       m.cells[r * nEm + c] = photons * width[c] * ex / em; // energy per cell
     }
   }

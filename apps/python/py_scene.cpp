@@ -372,6 +372,15 @@ void bindFluorescenceField(py::class_<View>& c, const char* name,
       [field, name, range](const View& f, const py::object& value) {
         nx::FluorescenceDesc& d = f.editable(name);
         const std::string param = f.prefix() + "." + name;
+        // None means "the default" only where there is one: the Stokes shift has none, and an
+        // imported EEM's yield and peak absorptance are what make it absolute (a None was
+        // recorded, then the build read an empty value).
+        const bool required = std::string(name) == "stokes_nm" || d.eem;
+        if (value.is_none() && required)
+          throw py::type_error(param + ": expected a number (" +
+                               (d.eem ? "the EEM " + d.eem->file + " is made absolute with it"
+                                      : std::string("the model has no default")) +
+                               "), found None");
         if (value.is_none())
           d.*field = std::nullopt;
         else

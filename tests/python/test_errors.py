@@ -121,6 +121,39 @@ def test_bad_edits(scenes):
     assert scene.edits == []  # refused edits change nothing
 
 
+def test_required_fields_refuse_none(scenes, tmp_path):
+    # None was recorded, then the build read an empty value: a stale Stokes shift, a yield of 0.
+    scene = nxrender.Scene(scenes / "blacklight.scn")
+    f = scene.objects[1].material.fluorescence
+    f.stokes_nm = 200
+    with pytest.raises(TypeError, match=r"^objects\[1\]\.fluorescence\.stokes_nm: expected a "
+                                        r"number \(the model has no default\), found None"):
+        f.stokes_nm = None
+    with pytest.raises(TypeError, match=r"stokes_nm: expected a number"):
+        scene.set("objects[1].fluorescence.stokes_nm", None)
+    assert f.stokes_nm == 200
+    f.quantum_yield = None  # the model's default: allowed
+    assert len(scene.edits) == 2
+    eem = tmp_path / "eem.csv"
+    eem.write_text("ex\\em,400,450,500,550\n350,1,5,3,1\n400,0,2,6,2\n")
+    text = ("<scene><settings><xres>4</xres><yres>4</yres><mode>spectral_mcpt</mode><sampl>1</sampl>"
+            "</settings><camera><position>0,0,-1</position><look_at>0,0,0</look_at></camera>"
+            "<quad><origin>-1,-1,0</origin><edge_u>2,0,0</edge_u><edge_v>0,2,0</edge_v>"
+            "<material>matte</material><reflectance>0.2</reflectance><fluorescence>"
+            f"<eem file=\"{eem}\" rayleigh_width=\"0\"/><yield>0.6</yield><peak>0.9</peak>"
+            "</fluorescence></quad></scene>")
+    scene = nxrender.Scene.from_text(text, "eem.scn")
+    f = scene.objects[0].material.fluorescence
+    for field in ("quantum_yield", "peak_absorptance"):
+        with pytest.raises(TypeError, match=rf"^objects\[0\]\.fluorescence\.{field}: expected a "
+                                            rf"number \(the EEM .*eem\.csv is made absolute with "
+                                            r"it\), found None"):
+            setattr(f, field, None)
+    assert f.quantum_yield == 0.6 and f.peak_absorptance == 0.9
+    assert scene.edits == []
+    nxrender.render(scene, spp=1)
+
+
 def test_unknown_spectrum_name_fails_at_render(scenes):
     scene = nxrender.Scene(scenes / "blacklight.scn")
     scene.objects[2].material.reflectance = "no_such_spectrum"
