@@ -14,6 +14,7 @@
 #include "core/memory.h"
 #include "integrators/gradients/gradient_context.h"
 #include "integrators/gradients/path_gradients.h"
+#include "integrators/light_layer_name.h"
 #include "integrators/sampling.h"
 #include "spectra/colour.h"
 #include "spectra/tonemap.h"
@@ -44,7 +45,7 @@ std::vector<std::string> componentLayerNames(const RenderScene& scene,
   std::vector<std::string> names;
   if (options.components) names = {"reflected", "fluoresced", "direct", "indirect"};
   if (options.lightGroups)
-    for (const std::string& g : scene.lightGroups.names) names.push_back("light." + g);
+    for (const std::string& g : scene.lightGroups.names) names.push_back(lightLayerName(g));
   if (options.gradients && !options.adjoint)
     for (uint32_t k = 0; k < options.gradients->slots(); ++k)
       names.push_back("gradient." + std::to_string(k));

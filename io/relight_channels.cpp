@@ -44,12 +44,16 @@ std::vector<std::string> splitCommas(const std::string& s) {
 
 } // namespace
 
+std::string relightChannelText(const std::string& source, const std::string& excitation,
+                               const std::string& band) {
+  return "relight." + source + ".T." + excitation + "." + band;
+}
+
 std::string relightChannelName(const RelightLayers& rl, size_t g, size_t e,
                                const std::vector<std::string>& bandText) {
   const RelightEntry& en = rl.entries[e];
-  const std::string base = "relight." + rl.sources[g] + ".";
-  const std::string excitation = wavelengthText(rl.grid.centre(en.bin));
-  return base + "T." + excitation + "." + bandText[static_cast<size_t>(en.row)];
+  return relightChannelText(rl.sources[g], wavelengthText(rl.grid.centre(en.bin)),
+                            bandText[static_cast<size_t>(en.row)]);
 }
 
 std::map<std::string, std::string> relightAttributes(const RelightLayers& rl) {

@@ -24,6 +24,11 @@ inline constexpr const char* kRelightGridAttribute = "nxrender.relightGrid";
 /// The attribute prefix of each group's rendered spectrum (bin averages, comma-separated).
 inline constexpr const char* kRelightSpectrumAttribute = "nxrender.relightSpectrum.";
 
+/// relight.<source>.T.<excitation>.<band>: the channel of a source's transport from the
+/// excitation wavelength to the band, both as the spectral channels write them.
+std::string relightChannelText(const std::string& source, const std::string& excitation,
+                               const std::string& band);
+
 /// The channel of group g's entry e; `bandText` gives each band row's wavelength as its
 /// spectral channel names it ("550,000000nm").
 std::string relightChannelName(const RelightLayers& rl, size_t g, size_t e,

@@ -25,6 +25,7 @@
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
 #include "io/camera_checks.h"
+#include "io/exr_names.h"
 #include "io/material_parameters.h"
 #include "io/opencv_calibration.h"
 #include "io/scene_desc.h"
@@ -698,6 +699,15 @@ private:
            "a light group name of letters, digits, '_' and '-' in group=\"...\" on <" +
                std::string(n.name()) + ">",
            g.empty() ? "an empty one" : shownText(g));
+    // Its channels' and attributes' names must fit OpenEXR's (longer ones are cut, and two
+    // groups then share one channel).
+    if (longestExrNameOfLightGroup(g) > kMaxExrNameBytes)
+      fail(n,
+           "a light group name of at most " + std::to_string(longestLightGroupName()) +
+               " bytes in group=\"...\" (its EXR channel names, up to " +
+               std::to_string(longestExrNameOfLightGroup(g) - g.size()) +
+               " bytes longer, must fit OpenEXR's " + std::to_string(kMaxExrNameBytes) + ")",
+           "one of " + std::to_string(g.size()) + " bytes");
     return g;
   }
 

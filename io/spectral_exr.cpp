@@ -16,12 +16,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/memory.h"
 #include "io/atomic_file.h"
 #include "io/exr_header_check.h"
+#include "io/exr_names.h"
 #include "io/fichet_channels.h"
 #include "io/relight_channels.h"
 #include "spectra/band_colour.h"
@@ -198,6 +200,9 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
   checkExrOutputName(path);
   checkFiniteValues(path, image);
 
+  // The names a caller gives (Python's attributes) are checked before anything is written;
+  // those derived from them again as they are inserted.
+  for (const auto& [key, value] : image.attributes) checkExrName(path, key, "attribute");
   writeAtomically(path, [&](const std::string& temp) {
     const Imath::Box2i display({0, 0}, {image.displayWidth() - 1, image.displayHeight() - 1});
     const Imath::Box2i data({image.originX, image.originY},
@@ -210,22 +215,26 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
       throw Error(path + ": expected a zip level from 1 to 9, found " +
                   std::to_string(encoding.zipLevel));
     header.zipCompressionLevel() = encoding.zipLevel;
-    header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
-    header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
-    for (const auto& [key, value] : image.attributes)
+    // OpenEXR cuts names beyond 255 bytes without a word (two long names then share one
+    // channel): every name is checked before it is inserted.
+    std::set<std::string> channelNames;
+    auto insertAttribute = [&](const std::string& key, const std::string& value) {
+      checkExrName(path, key, "attribute");
       header.insert(key, Imf::StringAttribute(value));
+    };
+    insertAttribute("spectralLayoutVersion", "1.0");
+    insertAttribute("emissiveUnits", "W.m^-2.sr^-1");
+    for (const auto& [key, value] : image.attributes) insertAttribute(key, value);
     // What each band is, beside the wavelength its channel is named by: its own name (a
     // measured sensor's band list), centroid and FWHM, comma-separated in channel order.
-    for (const auto& [key, value] : bandAttributes(image.bands))
-      header.insert(key, Imf::StringAttribute(value));
+    for (const auto& [key, value] : bandAttributes(image.bands)) insertAttribute(key, value);
     if (!image.layers.empty()) {
       std::string names;
       for (const ImageLayer& l : image.layers) names += (names.empty() ? "" : ",") + l.name;
-      header.insert(kComponentLayersAttribute, Imf::StringAttribute(names));
+      insertAttribute(kComponentLayersAttribute, names);
     }
     if (image.relight.present())
-      for (const auto& [key, value] : relightAttributes(image.relight))
-        header.insert(key, Imf::StringAttribute(value));
+      for (const auto& [key, value] : relightAttributes(image.relight)) insertAttribute(key, value);
 
     Imf::FrameBuffer fb;
     // A float channel: `first` is its value in the first pixel, `stride` floats apart. Half
@@ -235,6 +244,9 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
     halves.reserve((2 + 2 * image.layers.size()) * static_cast<size_t>(nBands) + 8 +
                    2 * image.relight.sources.size() * image.relight.entries.size());
     auto addChannel = [&](const std::string& name, const float* first, size_t stride) {
+      checkExrName(path, name, "channel");
+      if (!channelNames.insert(name).second)
+        throw Error(path + ": expected distinct channel names, found '" + name + "' twice");
       header.channels().insert(name, Imf::Channel(stored));
       if (stored == Imf::FLOAT) {
         fb.insert(name, Imf::Slice::Make(Imf::FLOAT, first, data, sizeof(float) * stride,

@@ -12,6 +12,7 @@
 #include "integrators/relight_image.h"
 #include "integrators/relight_pattern.h"
 #include "integrators/renderer.h"
+#include "io/exr_names.h"
 #include "io/part_merge.h"
 #include "io/relight_channels.h"
 #include "support/errors.h"
@@ -276,6 +277,55 @@ TEST(Relight, PatternHoldsCascadesOfDyesForAnySensor) {
     // render has mean 0 (a paired z-test over the pixels).
     expectSameBands(relightImage(img, {}), img, sensor);
   }
+}
+
+// Light groups of the longest name whose channels OpenEXR stores whole: two such names
+// differing in their last byte keep two layers and two transports through the file, at the
+// longest wavelength text (two 250-byte names wrote 4 light channels instead of 124 and the
+// transport collapsed); a name one byte longer is refused at its line, and the writer refuses
+// any name OpenEXR would cut.
+TEST(Relight, LongestGroupNamesKeepTheirChannels) {
+  const size_t n = longestLightGroupName();
+  EXPECT_EQ(longestExrNameOfLightGroup(std::string(n, 'g')), kMaxExrNameBytes);
+  const std::string a = std::string(n - 1, 'g') + "a", b = std::string(n - 1, 'g') + "b";
+  std::string text = benchScene(kLampS1, kLampS1, 1, "1000:1090:10");
+  text.replace(text.find("group=\"lamp\""), 12, "group=\"" + a + "\"");
+  text.replace(text.find("group=\"fill\""), 12, "group=\"" + b + "\"");
+  RenderOptions o;
+  o.lightGroups = true;
+  const SpectralImage img = toSpectralImage(renderRelightable(text, 5, o).film);
+  ASSERT_EQ(img.relight.sources, (std::vector<std::string>{a, b}));
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "nx_relight_long_groups.exr").string();
+  writeSpectralExr(path, img);
+  const SpectralImage back = readSpectralExr(path);
+  std::filesystem::remove(path);
+  EXPECT_EQ(back.relight.sources, img.relight.sources);
+  EXPECT_EQ(back.relight.entries.size(), img.relight.entries.size());
+  EXPECT_EQ(back.relight.values, img.relight.values);
+  ASSERT_EQ(back.layers.size(), img.layers.size());
+  for (size_t k = 0; k < img.layers.size(); ++k) {
+    EXPECT_EQ(back.layers[k].name, img.layers[k].name);
+    EXPECT_EQ(back.layers[k].values, img.layers[k].values) << img.layers[k].name;
+    EXPECT_EQ(back.layers[k].variances, img.layers[k].variances) << img.layers[k].name;
+  }
+  // One byte more: refused at the emitter's line, before anything is rendered.
+  std::string longer = text;
+  longer.replace(longer.find(a), a.size(), a + "x");
+  EXPECT_EQ(test::errorMessage([&] { (void)parseScene(longer, "t.scn"); }),
+            "t.scn:1: expected a light group name of at most " + std::to_string(n) +
+                " bytes in group=\"...\" (its EXR channel names, up to " +
+                std::to_string(kMaxExrNameBytes - n) +
+                " bytes longer, must fit OpenEXR's 255), found one of " + std::to_string(n + 1) +
+                " bytes");
+  // The writer's own check, for names that do not come from a scene (Python's attributes).
+  SpectralImage tagged = img;
+  tagged.attributes[std::string(256, 'k')] = "v";
+  const std::string m = test::errorMessage([&] { writeSpectralExr(path, tagged); });
+  EXPECT_EQ(m.substr(0, m.find(": 'kkk")),
+            path + ": expected attribute names of 1-255 bytes (what OpenEXR stores), found one of "
+                   "256 bytes");
+  EXPECT_FALSE(std::filesystem::exists(path));
 }
 
 // An image written and read back relights as the image in memory; a file without a transport
