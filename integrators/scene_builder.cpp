@@ -370,8 +370,8 @@ private:
       }
     }
     void tabulated(const SourceLocation& where, const std::string& what, double loNm,
-                   double hiNm) const override {
-      b_.refs_.noteTable({where.str(), what, loNm, hiNm});
+                   double hiNm, const std::string& choice) const override {
+      b_.refs_.noteTable({where.str(), what, loNm, hiNm, choice});
     }
 
   private:
@@ -502,7 +502,7 @@ private:
         range && d.extrapolate == SpectrumDesc::Extrapolation::Unset)
       refs_.noteTable({d.loc.str(),
                        "texture " + (d.texels ? std::string("given as numbers") : d.texture),
-                       range->first, range->second});
+                       range->first, range->second, ""});
     return t;
   }
 
@@ -745,8 +745,11 @@ std::vector<std::string> extrapolationWarnings(const RenderScene& scene, double 
     std::string w = t.where + ": warning: spectrum '" + t.what + "' is tabulated over " +
                     numberText(t.loNm) + "-" + numberText(t.hiNm) + " nm and this render traces " +
                     numberText(loNm) + "-" + numberText(hiNm) +
-                    " nm: it is 0 beyond its table (write extrapolate=\"zero\" or "
-                    "extrapolate=\"hold\" on the element to choose)";
+                    " nm: it is 0 beyond its table (" +
+                    (t.choice.empty() ? std::string("write extrapolate=\"zero\" or "
+                                                    "extrapolate=\"hold\" on the element")
+                                      : t.choice) +
+                    " to choose)";
     if (std::find(out.begin(), out.end(), w) == out.end()) out.push_back(std::move(w));
   }
   for (const EmissionWindow& w : scene.emissionWindows) {

@@ -47,9 +47,10 @@ public:
   /// A spectral EXR read (its bytes in the render key); errors name `loc` and the file.
   virtual std::shared_ptr<const SpectralImage> spectralImage(const std::string& path,
                                                              const SourceLocation& loc) const = 0;
-  /// Notes data tabulated over [loNm, hiNm] only (0 beyond): a render tracing beyond warns.
+  /// Notes data tabulated over [loNm, hiNm] only (0 beyond): a render tracing beyond warns,
+  /// saying how to choose (`choice`, e.g. "write <extrapolate>hold</extrapolate> in the <light>").
   virtual void tabulated(const SourceLocation& loc, const std::string& what, double loNm,
-                         double hiNm) const = 0;
+                         double hiNm, const std::string& choice) const = 0;
 
   bool spectral = true; ///< spectral_mcpt (else rt or mcpt: <color> preferred)
   SourceLocation loc;   ///< the <light> element

@@ -6,6 +6,10 @@
 //     = rho / pi * Lt * (2 pi / W) * (sin^2 theta_b - sin^2 theta_a) / 2
 // for a floor whose normal is the map's zenith (+y), theta_a..theta_b the texel's row.
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -163,10 +167,88 @@ TEST(EnvironmentLight, BandsEndingInsideTheTracedRangeWarn) {
       "t.scn"));
   const std::vector<std::string> w = extrapolationWarnings(scene, 400, 700);
   ASSERT_EQ(w.size(), 1u);
-  EXPECT_NE(w[0].find("t.scn:1: warning: spectrum '" + map + "' is tabulated over 500-600 nm"),
+  // Its bands cover 475-625 nm (each 50 nm wide); the advice is what the light takes.
+  EXPECT_NE(w[0].find("t.scn:1: warning: spectrum '" + map + "' is tabulated over 475-625 nm"),
             std::string::npos)
       << w[0];
-  EXPECT_TRUE(extrapolationWarnings(scene, 520, 580).empty());
+  EXPECT_NE(w[0].find("(write <extrapolate>zero</extrapolate> or <extrapolate>hold</extrapolate> "
+                      "in the <light> to choose)"),
+            std::string::npos)
+      << w[0];
+  EXPECT_TRUE(extrapolationWarnings(scene, 480, 620).empty());
+  // Taking the advice: no warning. Seen directly (1 per band where the map covers), hold
+  // renders the edge bands' radiance beyond; zero renders nothing there, so a band of the
+  // render (100 nm wide) gets the share of it within 475-625 nm.
+  const std::string sky = "<position>0,0,0</position><look_at>0,0,1</look_at><fov>40</fov>";
+  RenderOptions o;
+  o.samples = 64;
+  for (const std::string choice : {"hold", "zero"}) {
+    const std::string text =
+        sceneWith("", sky,
+                  "<light type=\"environment\"><file>" + map + "</file><extrapolate>" + choice +
+                      "</extrapolate></light>");
+    EXPECT_TRUE(
+        extrapolationWarnings(resolveRenderScene(parseScene(text, "t.scn")), 400, 700).empty())
+        << choice;
+    const Film f = renderText(text, o).film;
+    for (int band = 0; band < f.bands().count(); ++band) {
+      const double c = f.bands().centroid(band);
+      const double want =
+          choice == "hold" ? 1.0
+                           : std::max(0.0, std::min(c + 50, 625.0) - std::max(c - 50, 475.0)) / 100;
+      const test::RunningStats st = bandStats(f, band);
+      if (want == 0) {
+        EXPECT_EQ(st.mean, 0.0) << choice << " band " << c;
+        continue;
+      }
+      EXPECT_LT(std::abs(st.mean - want), 5 * st.standardError() + 1e-6)
+          << choice << " band " << c << ": " << st.mean << " expected " << want;
+      EXPECT_LT(st.standardError(), 0.05 * want) << choice << " band " << c;
+    }
+  }
+}
+
+// A map written with the render's own bands covers each band's support: seen directly, its
+// edge bands are its value (they were half: the map was 0 from their centroid out), and a
+// sphere it lights matches the equal uniform background.
+TEST(EnvironmentLight, EdgeBandsOfTheMapCoverTheirSupport) {
+  SpectralImage img;
+  img.width = 8, img.height = 4;
+  img.bands = Sensor(SpectralBands::parse("400:700:10"));
+  img.radiance.assign(static_cast<size_t>(32 * img.bands.count()), 0.7f);
+  img.rgb.assign(96, 0.5f);
+  img.attributes["nxrender.bands"] = img.bands.toString();
+  const std::string map = ::testing::TempDir() + "/env_own_bands.exr";
+  writeSpectralExr(map, img);
+  const std::string light = "<light type=\"environment\"><file>" + map + "</file></light>";
+  auto scene = [&](const std::string& settings, const std::string& camera,
+                   const std::string& body) {
+    return sceneText("<xres>8</xres><yres>8</yres><mode>spectral_mcpt</mode>"
+                     "<bands>400:700:10</bands>" +
+                         settings,
+                     camera, body);
+  };
+  const std::string sky = "<position>0,0,0</position><look_at>0,0,1</look_at><fov>40</fov>";
+  EXPECT_TRUE(extrapolationWarnings(resolveRenderScene(parseScene(scene("", sky, light), "t.scn")),
+                                    395, 705)
+                  .empty());
+  RenderOptions o;
+  o.samples = 64; // the lanes land on a band a few times per sample: noise of their count
+  expectBands(
+      renderText(scene("", sky, light), o).film, [](int) { return 0.7; }, 0.05);
+  const std::string sphere = "<sphere><center>0,0,0</center><radius>1</radius><material>matte"
+                             "</material><reflectance>0.5</reflectance></sphere>";
+  const std::string camera = "<position>0,0,-2</position><look_at>0,0,0</look_at><fov>40</fov>";
+  o.samples = 64;
+  const Film a = renderText(scene("", camera, light + sphere), o).film;
+  const Film b = renderText(scene("<background>0.7</background>", camera, sphere), o).film;
+  for (int band : {0, 1, a.bands().count() - 2, a.bands().count() - 1}) {
+    test::RunningStats d; // paired over pixels: the same pixel in both renders
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) d.add(a.bandMean(x, y, band) - b.bandMean(x, y, band));
+    EXPECT_LT(std::abs(d.mean), 5 * d.standardError()) << "band " << a.bands().centroid(band);
+    EXPECT_LT(d.standardError(), 0.05 * 0.35) << "band " << a.bands().centroid(band);
+  }
 }
 
 TEST(EnvironmentLight, SceneErrors) {
@@ -189,6 +271,30 @@ TEST(EnvironmentLight, SceneErrors) {
             std::string::npos);
   EXPECT_NE(error("<light type=\"environment\"></light>").find("expected <file> inside <light>"),
             std::string::npos);
+  const std::string lit = writeMap("env_lit.exr", 4, 2, [](int, int, int) { return 1.0f; });
+  EXPECT_EQ(error("<light type=\"environment\"><file>" + lit +
+                  "</file><extrapolate>clamp</extrapolate></light>"),
+            "t.scn:1: expected <extrapolate> zero or hold, found 'clamp'");
+  // A reflective file (T.<wavelength> channels, Fichet et al. 2021) holds reflectances.
+  const std::string reflective = ::testing::TempDir() + "/env_reflective.exr";
+  {
+    Imf::Header header(4, 2);
+    std::vector<float> values(8, 0.5f);
+    Imf::FrameBuffer fb;
+    for (const char* c : {"T.450nm", "T.550nm"}) {
+      header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+      fb.insert(c, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), sizeof(float),
+                              4 * sizeof(float)));
+    }
+    Imf::OutputFile file(reflective.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(2);
+  }
+  EXPECT_EQ(error("<light type=\"environment\"><file>" + reflective + "</file></light>"),
+            "t.scn:1: " + reflective +
+                ": expected an emissive spectral EXR (S0.<wavelength> channels: radiance), found "
+                "a reflective one (T.<wavelength> channels: reflectances, for a <reflectance "
+                "texture=\"...\">)");
 }
 
 } // namespace

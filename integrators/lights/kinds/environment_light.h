@@ -23,6 +23,9 @@ namespace nx {
 struct EnvironmentLight {
   int width = 0, height = 0;
   std::vector<double> bandNm;                        ///< the map's band centroids, increasing
+  /// What its bands cover: from the first band's lower edge to the last's upper one (a band's
+  /// value holds over its support, not from its centroid); beyond, 0 or held (extrapolate).
+  double supportLoNm = 0, supportHiNm = 0;
   std::shared_ptr<const std::vector<float>> texels;  ///< [texel][band] radiance (times its scale)
   std::shared_ptr<const std::vector<double>> rowCdf; ///< [height + 1] marginal over rows
   std::shared_ptr<const std::vector<double>> columnCdf; ///< [height][width + 1] per row
@@ -44,6 +47,11 @@ struct EnvironmentLight {
          true},
         {{"scale", ParamType::Number, "1", &kPositiveScaleRange, "the factor on its radiance", "1"},
          "1"},
+        {{"extrapolate", ParamType::Name, "-", nullptr,
+          "beyond the wavelengths its bands cover: zero, or hold the edge bands' radiance "
+          "(unset: zero, and a render tracing beyond warns)",
+          "hold"},
+         ""},
     };
     return p;
   }
@@ -54,6 +62,14 @@ struct EnvironmentLight {
     const std::string& file = *p.get<std::string>("file");
     const SourceLocation& where = p.locOf("file", in.loc);
     const std::shared_ptr<const SpectralImage> img = in.spectralImage(file, where);
+    // A reflective file (T.<wavelength> channels: reflectances, Fichet et al. 2021) holds no
+    // radiance: its values are not W m^-2 sr^-1 nm^-1.
+    if (const auto it = img->attributes.find("nxrender.spectralChannels");
+        it != img->attributes.end() && it->second == "T")
+      throw Error(where.str() + ": " + file +
+                  ": expected an emissive spectral EXR (S0.<wavelength> channels: radiance), "
+                  "found a reflective one (T.<wavelength> channels: reflectances, for a "
+                  "<reflectance texture=\"...\">)");
     const double scale = p.number("scale").value_or(1.0);
     EnvironmentLight e;
     e.width = img->width, e.height = img->height;
@@ -63,7 +79,22 @@ struct EnvironmentLight {
     std::sort(order.begin(), order.end(),
               [&](int a, int b) { return img->bands.centroid(a) < img->bands.centroid(b); });
     for (int b : order) e.bandNm.push_back(img->bands.centroid(b));
-    in.tabulated(where, file, e.bandNm.front(), e.bandNm.back());
+    // Every band's radiance holds over its support (a map written with bands 400:700:10
+    // covers 395-705 nm; it rendered its edge bands at half).
+    e.supportLoNm = std::min(e.bandNm.front(), img->bands.minNm());
+    e.supportHiNm = std::max(e.bandNm.back(), img->bands.maxNm());
+    const std::string* extrapolate = p.get<std::string>("extrapolate");
+    if (extrapolate && *extrapolate != "zero" && *extrapolate != "hold")
+      throw Error(p.locOf("extrapolate", in.loc).str() +
+                  ": expected <extrapolate> zero or hold, found '" + *extrapolate + "'");
+    if (extrapolate && *extrapolate == "hold") {
+      e.supportLoNm = -INFINITY;
+      e.supportHiNm = INFINITY;
+    }
+    if (!extrapolate)
+      in.tabulated(where, file, e.supportLoNm, e.supportHiNm,
+                   "write <extrapolate>zero</extrapolate> or <extrapolate>hold</extrapolate> in "
+                   "the <light>");
     const size_t n = static_cast<size_t>(e.width) * static_cast<size_t>(e.height);
     // Its tables beside the image just read: radiance per band, weights, both CDFs, the pdf.
     requireMemory(static_cast<double>(n) * (4.0 * nb + 8 + 8 + 4), where.str(),
@@ -105,7 +136,7 @@ struct EnvironmentLight {
       total += cdf[e.width];
       (*rowCdf)[static_cast<size_t>(j) + 1] = total;
     }
-    e.integral *= e.bandNm.back() > e.bandNm.front() ? (e.bandNm.back() - e.bandNm.front()) : 1.0;
+    e.integral *= std::min(e.supportHiNm, kTraceMaxNm) - std::max(e.supportLoNm, kTraceMinNm);
     if (!(total > 0))
       throw Error(where.str() + ": expected an environment map that emits somewhere, found " +
                   file + " black everywhere");
@@ -139,7 +170,12 @@ struct EnvironmentLight {
     SampledSpectrum out;
     for (int k = 0; k < kLanes; ++k) {
       const double nm = lambda.lambda[k];
-      if (nm < bandNm.front() || nm > bandNm.back()) continue; // 0 beyond its bands (warned)
+      if (!(nm >= supportLoNm && nm <= supportHiNm)) continue; // 0 beyond its bands (warned)
+      // Between the edge bands' centroids and their edges: the edge band's value.
+      if (nm <= bandNm.front() || nm >= bandNm.back()) {
+        out[k] = v[nm <= bandNm.front() ? 0 : bandNm.size() - 1];
+        continue;
+      }
       const size_t hi = std::min(
           bandNm.size() - 1,
           static_cast<size_t>(std::upper_bound(bandNm.begin(), bandNm.end(), nm) - bandNm.begin()));
