@@ -79,6 +79,12 @@ void checkCameraDesc(const CameraDesc& c, int width, int height) {
                   ", fy >= " + numberText(shortestFocal(height)) + " pixels), found fx " +
                   numberText(k[0]) + ", fy " + numberText(k[1]));
   }
+  for (size_t i = 0; i < c.distortion.size(); ++i)
+    if (!(std::abs(c.distortion[i]) <= kMaxDistortionCoefficient))
+      throw Error(c.distortionLoc.str() + ": expected distortion coefficients within [-" +
+                  numberText(kMaxDistortionCoefficient) + ", " +
+                  numberText(kMaxDistortionCoefficient) + "], found " +
+                  numberText(c.distortion[i]) + " as coefficient " + std::to_string(i + 1));
   if (c.thinLens) {
     const auto& l = *c.thinLens;
     if (!(l[0] >= 0 && l[0] <= kMaxSceneCoordinate && l[1] > 0 && l[1] <= kMaxSceneCoordinate))

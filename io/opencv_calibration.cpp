@@ -2,10 +2,12 @@
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "core/error.h"
+#include "io/camera_checks.h"
 
 namespace nx {
 namespace {
@@ -45,18 +47,27 @@ std::vector<double> numbersOf(const cv::FileNode& node, const std::string& what,
       for (int c = 0; c < d.cols; ++c) out.push_back(d.at<double>(r, c));
   } else if (node.isSeq()) {
     rows = static_cast<int>(node.size());
+    int row = 0;
     for (const cv::FileNode& item : node) {
+      ++row;
+      int length = 1;
       if (item.isSeq() || item.isMap()) {
         int r = 0, c = 0;
         const std::vector<double> inner = numbersOf(item, what, path, r, c);
-        cols = static_cast<int>(inner.size());
+        length = static_cast<int>(inner.size());
         out.insert(out.end(), inner.begin(), inner.end());
       } else if (item.isReal() || item.isInt()) {
         out.push_back(static_cast<double>(item));
-        cols = 1;
       } else {
         throw Error(path + ": expected numbers in " + what + ", found text");
       }
+      // Every row as long as the first: a ragged table was read past its end by the view.
+      if (row == 1)
+        cols = length;
+      else if (length != cols)
+        throw Error(path + ": expected every row of " + what + " to hold " + std::to_string(cols) +
+                    " numbers (as row 1 does), found " + std::to_string(length) + " in row " +
+                    std::to_string(row));
     }
   } else if (node.isReal() || node.isInt()) {
     out.push_back(static_cast<double>(node));
@@ -74,6 +85,46 @@ std::vector<double> numbersOf(const cv::FileNode& node, const std::string& what,
                               const std::string& path) {
   int r = 0, c = 0;
   return numbersOf(node, what, path, r, c);
+}
+
+// A size in pixels: a whole number from 1 to 1e6 (a text, 8.7 or 1e20 is no size).
+int pixelsOf(const cv::FileNode& node, const std::string& what, const std::string& path) {
+  const double v = node.isInt() || node.isReal() ? static_cast<double>(node) : NAN;
+  if (!(v >= 1 && v <= 1e6 && v == std::floor(v)))
+    throw Error(path + ": expected " + what + " as a whole number of pixels from 1 to 1000000, " +
+                "found " +
+                (node.isString()    ? "'" + static_cast<std::string>(node) + "'"
+                 : std::isfinite(v) ? numberText(v)
+                                    : std::string("no number")));
+  return static_cast<int>(v);
+}
+
+// The file's top-level names, each at most once, and at most one of each group of names for
+// the same quantity (a second camera_matrix was ignored).
+void requireOneOfEach(const cv::FileStorage& fs, const std::string& path) {
+  const std::initializer_list<std::initializer_list<const char*>> aliases = {
+      {"camera_matrix", "cameraMatrix", "K", "Camera_Matrix"},
+      {"distortion_coefficients", "dist_coeffs", "distCoeffs", "D", "Distortion_Coefficients"},
+      {"R", "rotation", "rotation_matrix"},
+      {"T", "translation", "translation_vector"}};
+  std::vector<std::string> names;
+  const cv::FileNode root = fs.root();
+  for (auto it = root.begin(); it != root.end(); ++it) {
+    const std::string name = (*it).name();
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      throw Error(path + ": expected each name once, found " + name + " twice");
+    names.push_back(name);
+  }
+  for (const auto& group : aliases) {
+    std::string first;
+    for (const char* a : group)
+      if (std::find(names.begin(), names.end(), a) != names.end()) {
+        if (!first.empty())
+          throw Error(path + ": expected one of " + first + " and " + a +
+                      " (two names for the same quantity), found both");
+        first = a;
+      }
+  }
 }
 
 // R from a rotation vector (Rodrigues' formula: R = cos t I + sin t [k]x + (1 - cos t) k k^T,
@@ -109,6 +160,7 @@ OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::st
   }
   OpenCvCalibration out;
   try {
+    requireOneOfEach(fs, path);
     const cv::FileNode k = firstOf(fs, {"camera_matrix", "cameraMatrix", "K", "Camera_Matrix"});
     if (k.empty())
       throw Error(path +
@@ -135,15 +187,35 @@ OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::st
                       ": expected at most 5 non-zero distortion coefficients (k1, k2, p1, "
                       "p2, k3: the rational and thin-prism terms are not modelled), found " +
                       numberText(v[i]) + " as coefficient " + std::to_string(i + 1));
-      for (size_t i = 0; i < 5 && i < v.size(); ++i) out.distortion[i] = v[i];
+      for (size_t i = 0; i < 5 && i < v.size(); ++i) {
+        if (!(std::abs(v[i]) <= kMaxDistortionCoefficient))
+          throw Error(path + ": expected distortion coefficients within [-" +
+                      numberText(kMaxDistortionCoefficient) + ", " +
+                      numberText(kMaxDistortionCoefficient) + "] (as <distortion>), found " +
+                      numberText(v[i]) + " as coefficient " + std::to_string(i + 1));
+        out.distortion[i] = v[i];
+      }
     }
+    // The image the intrinsics are in pixels of: required, so that a render at another
+    // resolution is refused rather than silently wrong.
     const cv::FileNode w = fs["image_width"], h = fs["image_height"], size = fs["image_size"];
-    if (!w.empty() && !h.empty()) {
-      out.imageSize = std::array<int, 2>{static_cast<int>(w), static_cast<int>(h)};
+    if (!size.empty() && (!w.empty() || !h.empty()))
+      throw Error(path + ": expected either image_size or image_width and image_height, found "
+                         "both");
+    if (!w.empty() || !h.empty()) {
+      if (w.empty() || h.empty())
+        throw Error(path + ": expected image_width and image_height together, found only " +
+                    (w.empty() ? "image_height" : "image_width"));
+      out.imageSize =
+          std::array<int, 2>{pixelsOf(w, "image_width", path), pixelsOf(h, "image_height", path)};
     } else if (!size.empty()) {
-      const std::vector<double> s = numbersOf(size, "image_size", path);
-      if (s.size() != 2) throw Error(path + ": expected image_size as width, height");
-      out.imageSize = std::array<int, 2>{static_cast<int>(s[0]), static_cast<int>(s[1])};
+      if (!size.isSeq() || size.size() != 2)
+        throw Error(path + ": expected image_size as 2 numbers, width and height");
+      out.imageSize = std::array<int, 2>{pixelsOf(size[0], "image_size's width", path),
+                                         pixelsOf(size[1], "image_size's height", path)};
+    } else {
+      throw Error(path + ": expected the calibrated image's size (image_width and image_height, "
+                         "or image_size: the camera matrix is in its pixels), found none");
     }
     // The pose: per view (rvecs / tvecs, extrinsic_parameters) or one (R / T).
     const cv::FileNode rv = fs["rvecs"], tv = fs["tvecs"], ep = fs["extrinsic_parameters"];
@@ -205,6 +277,12 @@ OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::st
                     ": expected poses (rvecs/tvecs, extrinsic_parameters or R/T) for "
                     "view=\"" +
                     std::to_string(*view) + "\", found none");
+      if (view && *view != 0)
+        throw Error(path +
+                    ": expected view=\"0\" or none (the file holds one pose, R and T), "
+                    "found " +
+                    std::to_string(*view));
+      if (out.extrinsics) out.views = 1;
     }
   } catch (const cv::Exception& e) {
     throw Error(path +

@@ -657,8 +657,11 @@ private:
       const pugi::xml_node d = c.at("distortion");
       const auto v = numbers(d, 4, 5, "k1, k2, p1, p2[, k3]");
       for (size_t i = 0; i < v.size(); ++i) {
-        if (std::abs(v[i]) > 1e4)
-          fail(d, "distortion coefficients within [-1e4, 1e4]", shownText(text(d)));
+        if (std::abs(v[i]) > kMaxDistortionCoefficient)
+          fail(d,
+               "distortion coefficients within [-" + numberText(kMaxDistortionCoefficient) + ", " +
+                   numberText(kMaxDistortionCoefficient) + "]",
+               shownText(text(d)));
         cam.distortion[i] = v[i];
       }
       cam.distortionLoc = loc(d);

@@ -7,6 +7,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include "io/opencv_calibration.h"
 #include "io/scene_desc.h"
@@ -156,6 +159,99 @@ TEST(OpenCvCalibration, BadFilesAndMismatchesAreRefused) {
   EXPECT_NE(
       error(scene("<camera calibration=\"/nonexistent/calib.yml\"/>")).find("calibration file"),
       std::string::npos);
+}
+
+// A calibration file's text: an image size and camera matrix, then `rest`.
+std::string calibration(const std::string& rest,
+                        const std::string& size = "image_width: 64\nimage_height: 48\n") {
+  return "%YAML:1.0\n---\n" + size + "K: [70., 0., 31.5, 0., 72., 23.5, 0., 0., 1.]\n" + rest;
+}
+
+std::string calibrationError(const std::string& text, std::optional<int> view = 1) {
+  return test::errorMessage([&] { parseOpenCvCalibration(text, "c.yml", view); });
+}
+
+// Ragged rows were read past their heap block (view 1 of [[0.1, 0.2], [0, 0, 0, -0.5, -0.5, 3]]
+// read 4 doubles beyond 8; valgrind: invalid read) or gave a view another's numbers: every
+// table's rows must be as long as its first, named by file and row.
+TEST(OpenCvCalibration, RaggedRowsAreRefusedWithTheRow) {
+  EXPECT_EQ(calibrationError(calibration("extrinsic_parameters: [[0.1, 0.2], [0, 0, 0, -0.5, "
+                                         "-0.5, 3]]\n")),
+            "c.yml: expected every row of extrinsic_parameters to hold 2 numbers (as row 1 does), "
+            "found 6 in row 2");
+  EXPECT_EQ(calibrationError(calibration("extrinsic_parameters: [[0, 0, 0, 0, 0, 5, 0, 0, 0], [0, "
+                                         "0, 0, -0.5, -0.5, 3]]\n")),
+            "c.yml: expected every row of extrinsic_parameters to hold 9 numbers (as row 1 does), "
+            "found 6 in row 2");
+  EXPECT_EQ(calibrationError(calibration("rvecs: [[0.1, 0.2, 0.3, 0.4], [0.5, 0.6]]\n"
+                                         "tvecs: [[0, 0, 5], [0, 0, 6]]\n")),
+            "c.yml: expected every row of rvecs to hold 4 numbers (as row 1 does), found 2 in row "
+            "2");
+  EXPECT_EQ(calibrationError("%YAML:1.0\n---\nimage_width: 64\nimage_height: 48\nK: [[70., 0., "
+                             "31.5], [0., 72., 23.5, 0.], [0., 1.]]\n",
+                             std::nullopt),
+            "c.yml: expected every row of the camera matrix to hold 3 numbers (as row 1 does), "
+            "found 4 in row 2");
+  // Whole tables still read: a sequence of rows and one of 3 x 1 matrices.
+  const OpenCvCalibration c = parseOpenCvCalibration(
+      calibration("extrinsic_parameters: [[0, 0, 0, 0, 0, 5], [0, 0, 0, -0.5, -0.5, 3]]\n"),
+      "c.yml", 1);
+  EXPECT_EQ(c.views, 2);
+  EXPECT_EQ((*c.extrinsics)[9], -0.5);
+  EXPECT_EQ((*c.extrinsics)[11], 3.0);
+}
+
+// What the file says is checked like the scene's own elements: its image size is required
+// (its camera matrix is in that image's pixels), whole and positive as written; a view beyond
+// a single R/T pose, a name given twice or under two aliases, and a distortion <distortion>
+// refuses are refused.
+TEST(OpenCvCalibration, EverythingTheFileSaysIsChecked) {
+  EXPECT_EQ(calibrationError(calibration("", ""), std::nullopt),
+            "c.yml: expected the calibrated image's size (image_width and image_height, or "
+            "image_size: the camera matrix is in its pixels), found none");
+  EXPECT_EQ(calibrationError(calibration("", "image_width: 64\n"), std::nullopt),
+            "c.yml: expected image_width and image_height together, found only image_width");
+  for (const auto& [written, shown] : std::vector<std::pair<std::string, std::string>>{
+           {"abc", "'abc'"}, {"1e20", "1e+20"}, {"8.7", "8.7"}, {"-640", "-640"}, {"0", "0"}})
+    EXPECT_EQ(calibrationError(calibration("", "image_width: " + written + "\nimage_height: 48\n"),
+                               std::nullopt),
+              "c.yml: expected image_width as a whole number of pixels from 1 to 1000000, found " +
+                  shown)
+        << written;
+  EXPECT_EQ(calibrationError(calibration("", "image_size: [64, 48.5]\n"), std::nullopt),
+            "c.yml: expected image_size's height as a whole number of pixels from 1 to 1000000, "
+            "found 48.5");
+  EXPECT_EQ(
+      (*parseOpenCvCalibration(calibration("", "image_size: [64, 48]\n"), "c.yml", std::nullopt)
+            .imageSize)[1],
+      48);
+  // One R/T pose: view 0 or none.
+  const std::string rt = calibration("R: [0., 0., 0.]\nT: [0., 0., 5.]\n");
+  EXPECT_EQ(calibrationError(rt, 5),
+            "c.yml: expected view=\"0\" or none (the file holds one pose, R and T), found 5");
+  EXPECT_EQ(parseOpenCvCalibration(rt, "c.yml", 0).views, 1);
+  EXPECT_EQ(calibrationError(calibration("K: [70., 0., 31.5, 0., 72., 23.5, 0., 0., 1.]\n"),
+                             std::nullopt),
+            "c.yml: expected each name once, found K twice");
+  EXPECT_EQ(calibrationError(calibration("camera_matrix: [70., 0., 31.5, 0., 72., 23.5, 0., 0., "
+                                         "1.]\n"),
+                             std::nullopt),
+            "c.yml: expected one of camera_matrix and K (two names for the same quantity), found "
+            "both");
+  EXPECT_EQ(calibrationError(calibration("D: [1e5, 0., 0., 0.]\n"), std::nullopt),
+            "c.yml: expected distortion coefficients within [-10000, 10000] (as <distortion>), "
+            "found 100000 as coefficient 1");
+  // A render at another resolution than the file's is refused (it was used at any resolution
+  // when the file gave no size).
+  const std::string path = written("sized.yml", calibration(""));
+  EXPECT_NE(test::errorMessage([&] {
+              parseScene(scene("<camera calibration=\"" + path +
+                                   "\"><position>0,0,-5</position><look_at>0,0,0</look_at>"
+                                   "</camera>",
+                               8, 6),
+                         "t.scn");
+            }).find("expected <xres>, <yres> of the calibration's image (64x48"),
+            std::string::npos);
 }
 
 } // namespace
