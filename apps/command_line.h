@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/input_files.h"
 
 namespace nx {
 
@@ -31,9 +32,12 @@ inline CLI::Validator numberIn(double lo, double hi) {
 
 /// Parses the command line. Returns -1 when the program should go on; otherwise the status to
 /// exit with: 0 after --help, else `usageStatus` after printing "<program>: error: <message>".
-/// Every floating-point option is checked to be finite, whether or not it has a range.
+/// Every floating-point option is checked to be finite, whether or not it has a range. From
+/// here on, every file the program reads is recorded as an input that no output may replace
+/// (core/input_files.h).
 inline int parseCommandLine(CLI::App& app, int argc, char** argv, const char* program,
                             int usageStatus = 1) {
+  recordInputFiles();
   try {
     app.parse(argc, argv);
     for (const CLI::Option* option : app.get_options()) {

@@ -16,6 +16,7 @@
 
 #include "apps/command_line.h"
 #include "core/error.h"
+#include "core/input_files.h"
 #include "core/text_table.h"
 #include "io/atomic_file.h"
 #include "io/envi_export.h"
@@ -54,6 +55,7 @@ int main(int argc, char** argv) {
       cam.quantumEfficiency.push_back(nx::parseNumber(cell, "--qe", "a quantum efficiency"));
     // Every output is checked before any is written (the EXR was left behind when --envi
     // was refused after it).
+    nx::noteInputFile(input); // no output may replace it (core/input_files.h)
     nx::checkExrOutputName(output);
     nx::checkWritable(output);
     if (!envi.empty()) nx::checkEnviOutputName(envi);

@@ -29,6 +29,7 @@
 #include "apps/compare_figure.h"
 #include "core/error.h"
 #include "core/file_text.h"
+#include "core/input_files.h"
 #include "core/text_table.h"
 #include "io/atomic_file.h"
 #include "io/float_tiff.h"
@@ -167,6 +168,9 @@ int main(int argc, char** argv) {
                   illuminantName + "'");
     if (!plot.empty() && !nx::isPreviewPath(plot))
       throw Error("--plot: expected a .png or .bmp file name, found '" + plot + "'");
+    // No output may replace an input (core/input_files.h).
+    for (const std::string& in : {renderPath, capturePath, srf, mask})
+      if (!in.empty()) nx::noteInputFile(in);
     for (const std::string& out : {csv, regionCsv, plot, samMap})
       if (!out.empty()) nx::checkWritable(out);
     nx::CubeReadOptions captureOptions;

@@ -12,6 +12,7 @@
 
 #include "apps/command_line.h"
 #include "core/error.h"
+#include "core/input_files.h"
 #include "core/memory.h"
 #include "integrators/renderer.h"
 #include "io/atomic_file.h"
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
   if (const int status = nx::parseCommandLine(app, argc, argv, "nxmerge"); status >= 0)
     return status;
   try {
+    for (const auto& path : inputs) nx::noteInputFile(path); // no output may replace one
     nx::checkExrOutputName(output);
     const std::string preview = std::filesystem::path(output).replace_extension(".png").string();
     nx::checkWritable(output);

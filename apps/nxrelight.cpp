@@ -15,6 +15,7 @@
 #include "apps/command_line.h"
 #include "apps/program_main.h"
 #include "core/error.h"
+#include "core/input_files.h"
 #include "integrators/relight_image.h"
 #include "integrators/renderer.h"
 #include "io/atomic_file.h"
@@ -40,6 +41,10 @@ int run(int argc, char** argv) {
       ->required();
   if (const int status = nx::parseCommandLine(app, argc, argv, "nxrelight"); status >= 0)
     return status;
+  // The inputs first: no output may replace one (core/input_files.h).
+  nx::noteInputFile(input);
+  for (const std::string& l : lights)
+    if (const size_t eq = l.find('='); eq != std::string::npos) nx::noteInputFile(l.substr(eq + 1));
   nx::checkExrOutputName(output);
   const std::string preview = std::filesystem::path(output).replace_extension(".png").string();
   nx::checkWritable(output);

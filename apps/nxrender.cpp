@@ -22,6 +22,7 @@
 #include "apps/program_main.h"
 #include "apps/render_job.h"
 #include "core/error.h"
+#include "core/input_files.h"
 #include "core/memory.h"
 #include "core/text_table.h"
 #include "integrators/renderer.h"
@@ -386,6 +387,11 @@ int run(int argc, char** argv) {
   }
   // A part of an image (crop or sample range) gets no preview: the merged image does.
   const bool wholeImage = !options.crop && rangeText.empty();
+  // No output may replace an input (the scene's files were read above), but for the render a
+  // resume continues: the output then holds all it held.
+  for (const std::string& in : {resumePath, adaptiveFrom})
+    if (!in.empty()) nx::noteInputFile(in);
+  if (!resumePath.empty()) nx::allowReplacingInput(resumePath);
   nx::checkWritable(exrPath);
   if (wholeImage) nx::checkWritable(previewPath);
   const std::string enviPath = envi ? replaceExtension(exrPath, ".img") : std::string();

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/input_files.h"
 
 namespace nx {
 namespace {
@@ -32,6 +33,7 @@ void requireRegularFile(const std::string& path, std::uintmax_t maxBytes, const 
                 " (a regular file), found a FIFO, socket or device");
   if (fs::file_size(path, ec) > maxBytes)
     throw Error(path + ": expected " + withArticle(what) + " of at most " + limitText(maxBytes));
+  noteInputFile(path); // no output of this program may replace it
 }
 
 std::string readRegularFile(const std::string& path, std::uintmax_t maxBytes,

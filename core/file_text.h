@@ -9,6 +9,7 @@ namespace nx {
 /// Checks, without opening it, that `path` is a regular file of at most maxBytes bytes: the
 /// same refusals as readRegularFile (missing, directory, FIFO, socket, device, too large). For
 /// inputs that a library opens itself (EXR, TIFF, ENVI): a FIFO never reaches the library.
+/// The file is noted as an input (core/input_files.h): no output may replace it.
 void requireRegularFile(const std::string& path, std::uintmax_t maxBytes, const std::string& what);
 
 /// The content of the regular file at `path`, of at most maxBytes bytes. `what` names the

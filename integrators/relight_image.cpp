@@ -134,6 +134,7 @@ SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSp
   out.materialId = image.materialId;
   out.depth = image.depth;
   out.attributes = image.attributes;
+  out.sourceFiles = image.sourceFiles;
   out.attributes["nxrender.relit"] = relit.empty() ? "(the rendered spectra)" : relit;
   // What the image estimates changed: a relit image is not a part of the render it came from.
   uint64_t digest = fnv1a64("relit");

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/input_files.h"
 
 namespace nx {
 namespace fs = std::filesystem;
@@ -115,8 +116,16 @@ thread_local AtomicFileGroup* gOpenGroup = nullptr;
 
 } // namespace
 
+void refuseReplacingAnInput(const std::string& path) {
+  if (const std::optional<std::string> input = inputFileAt(path))
+    throw Error(path + ": expected an output that is none of the inputs, found the input " +
+                (*input == path ? std::string("itself") : *input) +
+                " (writing would destroy it: choose another output name)");
+}
+
 void writeAtomically(const std::string& path,
                      const std::function<void(const std::string&)>& write) {
+  refuseReplacingAnInput(path); // an input read after the outputs were checked
   const fs::path target = finalTarget(path);
   const std::string temp = tempNameFor(target).string();
   try {
@@ -155,6 +164,7 @@ void checkWritable(const std::string& path) {
   // read-only one is somebody's wish not to overwrite it.
   if (fs::exists(target, ec) && ::access(target.c_str(), W_OK) != 0)
     throw Error(path + ": exists and cannot be replaced (" + std::strerror(errno) + ")");
+  refuseReplacingAnInput(path);
   removeStaleTemporaries(target);
 }
 

@@ -9,16 +9,21 @@
 
 namespace nx {
 
+/// Throws nx::Error if the file at `path` (through links, hard links or another spelling) is
+/// one of the program's inputs (core/input_files.h) that it may not replace.
+void refuseReplacingAnInput(const std::string& path);
+
 /// Calls write(tempPath) for a short temporary name in the target's directory
 /// (".nxtmp-<pid>-<hash of the name>"), then renames it onto `path` (onto the file a symlink
-/// points to, if `path` is one). If writing fails, the temporary file is removed and an
-/// nx::Error names the path and the cause; if only the final rename fails, the finished file
-/// is kept and the error says where it is.
+/// points to, if `path` is one). Refused first if `path` is an input (refuseReplacingAnInput). If
+/// writing fails, the temporary file is removed and an nx::Error names the path and the cause; if
+/// only the final rename fails, the finished file is kept and the error says where it is.
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write);
 
 /// Throws nx::Error unless `path` can be written before any work starts: its directory exists
 /// and accepts new files (a probe file is created and removed), and an existing target (or
-/// the file its symlink points to) can be replaced (not immutable or read-only). Also removes
+/// the file its symlink points to) can be replaced (not immutable or read-only) and is none of
+/// the program's inputs (refuseReplacingAnInput; writeAtomically checks again). Also removes
 /// temporary files for this target left by processes that no longer run (SIGKILL during a
 /// write), after completing any AtomicFileGroup such a process left half committed in that
 /// directory.

@@ -50,6 +50,8 @@ void writeEnvi(const std::string& dataPath, const SpectralImage& image) {
   const int nb = sensor.count(), w = image.width, h = image.height;
   checkEnviOutputName(dataPath);
   const std::string hdrPath = enviHeaderPath(dataPath);
+  refuseOverwritingASource(dataPath, image);
+  refuseOverwritingASource(hdrPath, image);
   // Written under temporary names in the target's directory (with the data file's
   // extension, so that GDAL names the header alike), then renamed: header, then data.
   const std::filesystem::path target(dataPath);

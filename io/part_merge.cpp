@@ -124,6 +124,9 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
   out.height = height;
   out.bands = first.image.bands;
   out.attributes = first.image.attributes;
+  for (const ImagePart& p : parts)
+    out.sourceFiles.insert(out.sourceFiles.end(), p.image.sourceFiles.begin(),
+                           p.image.sourceFiles.end());
   const size_t pixels = static_cast<size_t>(width) * height;
   std::vector<double> bandSum(pixels * nb, 0.0), xyzSum(pixels * 3, 0.0);
   // Variances of the merged means: sum over parts of (n_k / N)^2 var_k (independent parts).
@@ -392,6 +395,9 @@ SpectralImage stitchBands(const std::vector<ImagePart>& images) {
   for (size_t i : order) sortedChannels.push_back(channels[i]), sortedSources.push_back(sources[i]);
 
   SpectralImage out = a;
+  for (size_t k = 1; k < images.size(); ++k)
+    out.sourceFiles.insert(out.sourceFiles.end(), images[k].image.sourceFiles.begin(),
+                           images[k].image.sourceFiles.end());
   out.bands = Sensor::fromChannels(std::move(sortedChannels), "stitched bands");
   try {
     out.attributes["nxrender.bands"] = out.bands.toString();

@@ -20,6 +20,7 @@
 
 #include "core/error.h"
 #include "core/file_text.h"
+#include "core/input_files.h"
 #include "core/memory.h"
 #include "io/atomic_file.h"
 #include "io/exr_header_check.h"
@@ -70,6 +71,15 @@ void checkFiniteValues(const std::string& path, const SpectralImage& image);
 void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored,
               const ExrEncoding& encoding);
 } // namespace
+
+void refuseOverwritingASource(const std::string& path, const SpectralImage& image) {
+  for (const std::string& source : image.sourceFiles)
+    if (sameFile(path, source))
+      throw Error(path + ": expected an output other than the file the image was read from (" +
+                  source + "), found " + (path == source ? std::string("that file") : "it again") +
+                  " (writing would destroy the image's own source: choose another name)");
+  refuseReplacingAnInput(path);
+}
 
 void setPixelColour(SpectralImage& image, size_t i, const Xyz& xyz) {
   const Rgb c = xyzToLinearSrgb(xyz);
@@ -172,6 +182,7 @@ std::vector<std::string> bandWavelengthTexts(const std::vector<std::string>& ban
 // buffers); SampleCount always as UINT.
 void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelType stored,
               const ExrEncoding& encoding) {
+  refuseOverwritingASource(path, image);
   const int nBands = image.bands.count();
   const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
   if (image.width <= 0 || image.height <= 0 || image.radiance.size() != pixels * nBands ||
@@ -332,6 +343,7 @@ SpectralImage readSpectralExr(const std::string& path) {
     Imf::InputFile file(path.c_str());
     const Imf::Header& h = file.header();
     SpectralImage img;
+    img.sourceFiles = {path};
     const Imath::Box2i dw = h.dataWindow(), disp = h.displayWindow();
     if (disp.min.x != 0 || disp.min.y != 0)
       throw Error(path + ": expected a display window starting at 0,0");

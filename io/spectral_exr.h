@@ -49,11 +49,18 @@ struct SpectralImage {
   /// relight.<group>.T.<excitation>nm.<band>nm (and .X, .Y, .Z) with HalfDifference.<...>
   RelightLayers relight;
   std::map<std::string, std::string> attributes; ///< provenance, written as string attributes
+  /// The files it was read from (kept by what is made of it: a relit image, a merge); never
+  /// written, and no writer replaces one of them with it (it would destroy its own source).
+  std::vector<std::string> sourceFiles;
 
   /// Full image size (the region's when fullWidth/fullHeight are 0).
   int displayWidth() const { return fullWidth > 0 ? fullWidth : width; }
   int displayHeight() const { return fullHeight > 0 ? fullHeight : height; }
 };
+
+/// Throws nx::Error if writing `image` to `path` would replace a file the image was read from
+/// (through a link, a hard link or another spelling) or an input of the program.
+void refuseOverwritingASource(const std::string& path, const SpectralImage& image);
 
 /// Sets pixel i's X, Y, Z to `xyz` and its R, G, B to linear sRGB from it, negatives clamped to
 /// 0 (the buffers sized by the caller).

@@ -422,6 +422,7 @@ void bindImage(py::module_& m) {
         im.objectId = std::move(cube.objectId);
         nx::BandColour(centroids(im.bands)).fill(im.radiance, im.xyz, im.rgb);
         im.attributes["nxrender.cubeFormat"] = cube.format;
+        im.sourceFiles = {p}; // no writer replaces it with this image
         im.attributes["nxrender.bands"] = im.bands.toString();
         return out;
       },

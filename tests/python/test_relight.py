@@ -88,3 +88,31 @@ def test_refusals(relightable, tmp_path):
         nxrender.render(SCENE, relightable=True, relight_step=3)
     with pytest.raises(ValueError, match="relight_step: only with relightable=True"):
         nxrender.render(SCENE, relight_step=5)
+
+
+def test_an_image_is_never_written_over_its_own_source(relightable, tmp_path):
+    # image.relight(...) written over the relightable file it came from destroyed the transport.
+    src = tmp_path / "in.exr"
+    nxrender.write_exr(src, relightable)
+    before = src.read_bytes()
+    image = nxrender.read_exr(src)
+    (tmp_path / "link.exr").symlink_to(src)
+    os.link(src, tmp_path / "hard.exr")
+    for target in (src, tmp_path / "link.exr", tmp_path / "hard.exr", tmp_path / "." / "in.exr"):
+        for written in (image, image.relight({"lamp": "D65"})):
+            with pytest.raises(nxrender.Error, match="expected an output other than the file the "
+                                                     r"image was read from \(.*in\.exr\)"):
+                nxrender.write_exr(target, written)
+        with pytest.raises(nxrender.Error, match="expected an output other than the file"):
+            nxrender.write_exr(target, image, half=True)
+    assert src.read_bytes() == before
+    # An ENVI cube read back is not written over its header or data file either.
+    header = nxrender.write_envi(tmp_path / "cube.img", image)
+    cube = nxrender.read_cube(header)
+    with pytest.raises(nxrender.Error, match=r"expected an output other than the file the image "
+                                             r"was read from \(.*cube\.hdr\)"):
+        nxrender.write_envi(tmp_path / "cube.img", cube)
+    assert not [p for p in os.listdir(tmp_path) if "nxtmp" in p]
+    # Anywhere else it is written, and a fresh render may replace the file.
+    nxrender.write_exr(tmp_path / "relit.exr", image.relight({"lamp": "D65"}))
+    nxrender.write_exr(src, nxrender.render(SCENE, spp=1))
