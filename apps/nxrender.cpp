@@ -499,6 +499,9 @@ int run(int argc, char** argv) {
     encoding.compression = nx::parseExrCompression(compression, "--compression");
   else if (relightable) // mostly zeros (paths that do not reach a pattern's pair): zip, lossless
     encoding.compression = nx::ExrCompression::Zip;
+  // The render's memory check counts the EXR's writer too (a relightable render passed it and
+  // was lost at the write).
+  options.output = nx::RenderFileOutput{encoding, halfFloat, noVariance};
   // (A copy only without the variances: a relightable image can take gigabytes.)
   auto writeImage = [&](const nx::SpectralImage& rendered) {
     std::optional<nx::SpectralImage> stripped;

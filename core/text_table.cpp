@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/file_text.h"
+#include "core/memory.h"
 
 namespace nx {
 namespace {
@@ -72,11 +73,31 @@ double parseNumber(const std::string& text, const std::string& where, const std:
     throw Error(where + ": expected " + what + ", found '" + text + "'");
   if (!std::isfinite(value) || (errno == ERANGE && std::abs(value) > 1.0))
     throw Error(where + ": expected " + what + ", found '" + text + "' (not a finite value)");
+  // A non-zero number below the smallest a double holds (1e-400) would read as 0: refused
+  // rather than changed (subnormal values, down to 4.9e-324, are kept).
+  if (errno == ERANGE && value == 0)
+    throw Error(where + ": expected " + what + ", found '" + text +
+                "' (below the smallest non-zero number a double holds, 4.9e-324: write 0)");
   return value;
 }
 
 NumberTable parseNumberTable(const std::string& rawText, const std::string& source,
-                             bool allowHeader) {
+                             bool allowHeader, double bytesPerValue) {
+  // The cells (runs of characters between separators) and lines, counted before any is
+  // stored: their doubles, each row's vector and what the caller makes of them must fit.
+  size_t cells = 0, lines = 1;
+  bool inCell = false;
+  for (const char c : rawText) {
+    const bool separator = c == ',' || c == ';' || c == ' ' || c == '\t' || c == '\n' || c == '\r';
+    cells += !separator && !inCell;
+    inCell = !separator;
+    lines += c == '\n';
+  }
+  const double bytes = static_cast<double>(cells) * (8.0 + bytesPerValue) +
+                       static_cast<double>(lines) * 64.0 +
+                       2.0 * static_cast<double>(rawText.size());
+  if (bytes > 16.0 * (1 << 20))
+    requireMemory(bytes, source, "a table", std::to_string(cells) + " values");
   NumberTable table;
   table.source = source;
   // A UTF-8 byte-order mark (spreadsheet exports) is skipped: it made the first row look like

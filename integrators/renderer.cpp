@@ -1,5 +1,6 @@
 #include "integrators/renderer.h"
 
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <chrono>
@@ -15,6 +16,7 @@
 #include "integrators/gradients/gradient_context.h"
 #include "integrators/gradients/path_gradients.h"
 #include "integrators/light_layer_name.h"
+#include "integrators/render_memory.h"
 #include "integrators/sampling.h"
 #include "spectra/colour.h"
 #include "spectra/tonemap.h"
@@ -116,9 +118,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                     std::to_string(bands.count()) + " bands)");
     }
   }
-  if (!options.resumeFrom) {
-    out.film.setLayers(layerNames);
-  } else {
+  if (options.resumeFrom) {
     std::vector<std::string> held;
     for (int l = 0; l < out.film.layerCount(); ++l) held.push_back(out.film.layerName(l));
     if (held != layerNames)
@@ -129,6 +129,9 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   }
   // A relightable scene: the transport per light group on the excitation grid.
   const bool relightable = scene.relight.enabled;
+  std::shared_ptr<const RelightPattern> pattern;
+  std::vector<std::vector<double>> sourceSpectra;
+  std::vector<std::string> sources;
   if (relightable) {
     if (options.stratifiedLanes)
       throw Error("--relightable with --sampler stratified: the relit variances add the excitation "
@@ -142,29 +145,29 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
     checkRelightStep(options.relightStepNm, "--relight-step");
     const RelightGrid grid = RelightGrid::withStep(options.relightStepNm);
     // One transport per source: the emitters of a light group that share a spectrum.
-    std::vector<std::vector<double>> spectra;
-    std::vector<std::string> sources;
     for (size_t s = 0; s < scene.relight.ofSource.size(); ++s) {
-      spectra.push_back(binAverages(scene.relight.ofSource[s], grid));
+      sourceSpectra.push_back(binAverages(scene.relight.ofSource[s], grid));
       sources.push_back(scene.relight.name(s, scene.lightGroups));
     }
-    auto pattern = std::make_shared<const RelightPattern>(grid, bands, scene);
-    // The film's two sums and the image's mean and half-difference per entry, group and pixel
-    // (4 bytes each), and half as much again for the EXR writer's buffers and the tiles' sums.
-    const double planes =
-        static_cast<double>(pattern->size()) * static_cast<double>(spectra.size());
-    std::string found = std::to_string(pattern->size());
-    found += " entries per light source x ";
-    found += std::to_string(spectra.size());
-    found += " sources x ";
-    found += std::to_string(rect.width());
-    found += "x";
-    found += std::to_string(rect.height());
-    found += " pixels (a coarser --relight-step, fewer bands or a --crop per part need less)";
-    requireMemory(planes * rect.width() * rect.height() * 24.0, "--relightable", "a transport",
-                  found);
-    out.film.setRelight(std::move(pattern), std::move(sources), std::move(spectra));
+    pattern = std::make_shared<const RelightPattern>(grid, bands, scene);
   }
+  // Everything that scales with the layers and the transport, counted before it is allocated
+  // (the film's sums, the image, the tasks' accumulators and the file's writer).
+  RenderExtras extras;
+  extras.width = rect.width(), extras.height = rect.height(), extras.bands = bands.count();
+  extras.layers = layout.count;
+  extras.lightGroupLayers =
+      options.lightGroups ? static_cast<int>(scene.lightGroups.names.size()) : 0;
+  extras.relightEntries = pattern ? pattern->size() : 0;
+  extras.relightSources = sources.size();
+  extras.relightBins = pattern ? static_cast<size_t>(pattern->grid().bins) : 0;
+  extras.whiteReference = options.whiteReference;
+  extras.threads = static_cast<int>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  requireRenderExtrasMemory(extras, options.output);
+  if (!options.resumeFrom) out.film.setLayers(layerNames);
+  if (relightable)
+    out.film.setRelight(std::move(pattern), std::move(sources), std::move(sourceSpectra));
   out.samplesPerPixel = options.samples > 0 ? options.samples : settings.samples;
   out.seed = options.seed ? *options.seed : settings.seed;
   const uint32_t seed = out.seed;

@@ -13,12 +13,20 @@
 #include "integrators/gradients/scene_tangents.h"
 #include "integrators/integrator.h"
 #include "integrators/render_scene.h"
+#include "io/exr_compression.h"
 #include "io/spectral_exr.h"
 
 namespace nx {
 
 /// The density wavelengths are drawn from (see WavelengthSampler).
 enum class WavelengthDensity { Sensor, Visible };
+
+/// The EXR a render will be written to, as far as its memory goes.
+struct RenderFileOutput {
+  ExrEncoding encoding;
+  bool halfFloats = false;
+  bool withoutVariance = false; ///< written from a copy without the variance channels
+};
 
 /// What to render beyond the scene itself.
 struct RenderOptions {
@@ -97,6 +105,10 @@ struct RenderOptions {
   const std::vector<float>* adjoint = nullptr;
   /// Called on the calling thread after each pass with the film so far (checkpoints).
   std::function<void(const Film&)> afterPass;
+  /// How the caller will write the image (nxrender's EXR), so that the memory check made before
+  /// the layers and the transport are allocated counts the writer's buffers too; unset for an
+  /// image kept in memory (Python).
+  std::optional<RenderFileOutput> output;
 };
 
 /// Counters of a finished render.

@@ -9,19 +9,24 @@ namespace nx {
 
 namespace {
 
-// Each method's name and whether it stores float channels bit for bit, in the enum's order.
+// Each method's name, whether it stores float channels bit for bit, the scan lines of its
+// chunks (the file format's) and the buffers its OpenEXR compressor allocates in multiples of
+// a chunk's raw bytes (ImfZipCompressor: a temporary and an output bound; RLE's output is
+// 1.5 times; DWA keeps several planes), in the enum's order.
 struct MethodInfo {
   ExrCompression method;
   const char* name;
   bool keepsFloats;
+  int chunkLines;
+  double compressorBuffers;
 };
 constexpr MethodInfo kMethods[] = {
-    {ExrCompression::None, "none", true},  {ExrCompression::Rle, "rle", true},
-    {ExrCompression::Zips, "zips", true},  {ExrCompression::Zip, "zip", true},
-    {ExrCompression::Piz, "piz", true},    {ExrCompression::Pxr24, "pxr24", false},
-    {ExrCompression::B44, "b44", true}, // compresses half channels only; floats stay as they are
-    {ExrCompression::B44a, "b44a", true},  {ExrCompression::Dwaa, "dwaa", false},
-    {ExrCompression::Dwab, "dwab", false},
+    {ExrCompression::None, "none", true, 1, 0},    {ExrCompression::Rle, "rle", true, 1, 2.5},
+    {ExrCompression::Zips, "zips", true, 1, 2.1},  {ExrCompression::Zip, "zip", true, 16, 2.1},
+    {ExrCompression::Piz, "piz", true, 32, 2.1},   {ExrCompression::Pxr24, "pxr24", false, 16, 2.1},
+    {ExrCompression::B44, "b44", true, 32, 2.1}, // compresses half channels only; floats stay
+    {ExrCompression::B44a, "b44a", true, 32, 2.1}, {ExrCompression::Dwaa, "dwaa", false, 32, 4},
+    {ExrCompression::Dwab, "dwab", false, 256, 4},
 };
 
 static_assert(
@@ -54,6 +59,14 @@ ExrCompression defaultExrCompression(bool halfFloats) {
 
 bool keepsFloatsExactly(ExrCompression c) {
   return info(c).keepsFloats;
+}
+
+int exrChunkLines(ExrCompression c) {
+  return info(c).chunkLines;
+}
+
+double exrCompressorBuffers(ExrCompression c) {
+  return info(c).compressorBuffers;
 }
 
 ExrCompression parseExrCompression(const std::string& text, const std::string& what) {

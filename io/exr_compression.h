@@ -33,6 +33,11 @@ std::vector<ExrCompression> allExrCompressions();
 /// True when the method stores float channels bit for bit (none, rle, zips, zip, piz; B44
 /// keeps floats too but compresses only half channels).
 bool keepsFloatsExactly(ExrCompression c);
+/// Scan lines per chunk of the method (1 for none, rle, zips; 16 for zip; 32 for piz; ...).
+int exrChunkLines(ExrCompression c);
+/// The buffers OpenEXR's compressor for the method allocates, in multiples of a chunk's raw
+/// bytes (0 for none).
+double exrCompressorBuffers(ExrCompression c);
 /// The method named `text` (see exrCompressionName); throws nx::Error naming `what` and the
 /// accepted names otherwise.
 ExrCompression parseExrCompression(const std::string& text, const std::string& what);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/exr_compression.h"
 
 namespace nx {
 namespace {
@@ -205,11 +206,10 @@ ExrHeaderSummary checkExrHeader(const std::string& path) {
       (data ? summary.dataHeight : summary.displayHeight) = h;
       (data ? haveData : haveDisplay) = true;
     } else { // compression
-      static const int kChunkLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
       const auto c = static_cast<unsigned char>(value[0]);
       if (c > 9)
         throw Error(path + ": expected a compression method 0-9, found " + std::to_string(c));
-      summary.chunkLines = kChunkLines[c];
+      summary.chunkLines = exrChunkLines(static_cast<ExrCompression>(c));
     }
   }
 }

@@ -25,6 +25,7 @@
 #include "io/atomic_file.h"
 #include "io/exr_header_check.h"
 #include "io/exr_names.h"
+#include "io/exr_write_cost.h"
 #include "io/fichet_channels.h"
 #include "io/relight_channels.h"
 #include "spectra/band_colour.h"
@@ -316,9 +317,13 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
     addUint(kObjectIdChannel, image.objectId);
     addUint(kMaterialIdChannel, image.materialId);
     // Compress line blocks on as many threads as the render may use (the zlib compression
-    // of ~70 float channels otherwise takes longer than a short render).
-    const int threads = static_cast<int>(
-        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    // of ~70 float channels otherwise takes longer than a short render), but with one line
+    // buffer where a chunk is huge (exr_write_cost.h counts the same).
+    double channels = 0;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channels;
+    const int threads =
+        exrWriterThreads(exrChunkLines(static_cast<ExrCompression>(header.compression())) *
+                         image.width * (stored == Imf::HALF ? 2.0 : 4.0) * channels);
     if (Imf::globalThreadCount() != threads) Imf::setGlobalThreadCount(threads);
     Imf::OutputFile file(temp.c_str(), header, threads);
     file.setFrameBuffer(fb);

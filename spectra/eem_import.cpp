@@ -117,7 +117,11 @@ std::string EemSummary::coverageText() const {
 EemTable parseEemCsv(const std::string& text, const std::string& source, const EemLayout& layout) {
   const char* rows = layout.emissionRows ? "emission" : "excitation";
   const char* cols = layout.emissionRows ? "excitation" : "emission";
-  const MeasuredMatrix g = parseWavelengthGrid(text, source, false, rows, cols);
+  // Per cell beyond the table's own 8 bytes, at the import's peak: the grid (8), the counts
+  // (8), the scatter-free copy and its flags (9), a rank-1 model (9) and the matrix (8).
+  constexpr double kImportBytesPerCell = 42;
+  const MeasuredMatrix g =
+      parseWavelengthGrid(text, source, false, rows, cols, kImportBytesPerCell);
   EemTable t;
   t.source = source;
   const size_t nr = g.excitationNm.size(), nc = g.emissionNm.size();

@@ -223,8 +223,8 @@ MeasuredMatrix parseMeasuredMatrixCsv(const std::string& text, const std::string
 
 MeasuredMatrix parseWavelengthGrid(const std::string& text, const std::string& source,
                                    bool fractions, const std::string& rowAxis,
-                                   const std::string& columnAxis) {
-  const NumberTable t = parseNumberTable(text, source, true);
+                                   const std::string& columnAxis, double bytesPerCell) {
+  const NumberTable t = parseNumberTable(text, source, true, bytesPerCell);
   const std::string& path = source;
   MeasuredMatrix m;
   m.source = path;

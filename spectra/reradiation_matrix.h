@@ -289,9 +289,11 @@ MeasuredMatrix parseMeasuredMatrixCsv(const std::string& text, const std::string
 /// rows of a wavelength and its cells): cells in [0, 1] when `fractions`, else any finite
 /// number (instrument counts). Errors name source:line and the axes by rowAxis / columnAxis
 /// ("excitation", "emission"); the result's excitationNm holds the rows' wavelengths.
+/// `bytesPerCell`: the memory the caller will hold per cell beyond the table's own (checked
+/// before parsing, parseNumberTable).
 MeasuredMatrix parseWavelengthGrid(const std::string& text, const std::string& source,
                                    bool fractions, const std::string& rowAxis,
-                                   const std::string& columnAxis);
+                                   const std::string& columnAxis, double bytesPerCell = 8);
 
 /// Widths (nm) of the cells of a wavelength grid: half the distance between a cell's
 /// neighbours (one-sided at the ends), so that a fraction per cell / width is a density per nm.

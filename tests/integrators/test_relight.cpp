@@ -4,6 +4,9 @@
 // transport, per-light images sum to the total and match the light groups' layers, the
 // pattern misses no path of a cascade of dyes, the EXR round trip and the refusals.
 
+#include <ImfChannelList.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +16,7 @@
 #include "integrators/relight_pattern.h"
 #include "integrators/renderer.h"
 #include "io/exr_names.h"
+#include "io/exr_write_cost.h"
 #include "io/part_merge.h"
 #include "io/relight_channels.h"
 #include "support/errors.h"
@@ -298,6 +302,15 @@ TEST(Relight, LongestGroupNamesKeepTheirChannels) {
   const std::string path =
       (std::filesystem::temp_directory_path() / "nx_relight_long_groups.exr").string();
   writeSpectralExr(path, img);
+  {
+    // Every channel is there: as many as the image's shape says (the memory check counts them).
+    Imf::InputFile in(path.c_str());
+    size_t channels = 0;
+    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
+      ++channels;
+    EXPECT_EQ(channels, exrChannelCount(shapeOf(img)));
+    EXPECT_GT(channels, 2 * 2 * img.relight.entries.size());
+  }
   const SpectralImage back = readSpectralExr(path);
   std::filesystem::remove(path);
   EXPECT_EQ(back.relight.sources, img.relight.sources);

@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "io/camera_attributes.h"
+#include "io/exr_write_cost.h"
 #include "io/spectral_exr.h"
 #include "support/errors.h"
 
@@ -45,6 +46,46 @@ TEST(SpectralExr, ChannelNamesFollowTheLayout) {
       R"(^((S([0-3]))|T)\.(\d*,?\d*([Ee][+-]?\d+)?)(Y|Z|E|P|T|G|M|k|h|da|d|c|m|u|n|p)?(m|Hz)$)");
   EXPECT_TRUE(std::regex_match(spectralChannelName(700), ref));
   EXPECT_FALSE(std::regex_match(std::string("R"), ref));
+}
+
+// The channels a file of an image's shape holds are known before the image exists (the
+// memory check before a render counts its writer): exactly those written, for every optional
+// part.
+TEST(SpectralExr, ChannelCountOfAShapeIsTheFilesCount) {
+  const std::string path = ::testing::TempDir() + "channels.exr";
+  auto channelsIn = [&](const SpectralImage& img) {
+    writeSpectralExr(path, img);
+    Imf::InputFile in(path.c_str());
+    size_t n = 0;
+    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) ++n;
+    return n;
+  };
+  SpectralImage img = testImage();
+  const size_t pixels = 15, nb = static_cast<size_t>(img.bands.count());
+  EXPECT_EQ(exrChannelCount(shapeOf(img)), channelsIn(img));
+  img.xyz.assign(pixels * 3, 0.1f);
+  img.bandVariance.assign(pixels * nb, 0.01f);
+  img.yVariance.assign(pixels, 0.01f);
+  img.sampleCount.assign(pixels, 4);
+  EXPECT_EQ(exrChannelCount(shapeOf(img)), channelsIn(img));
+  img.white.assign(pixels * nb, 1.0f);
+  img.objectId.assign(pixels, 1);
+  img.materialId.assign(pixels, 2);
+  img.depth.assign(pixels, 3.0f);
+  for (const char* name : {"reflected", "light.lamp"})
+    img.layers.push_back(
+        {name, std::vector<float>(pixels * nb, 0.5f), std::vector<float>(pixels * nb, 0.01f)});
+  EXPECT_EQ(exrChannelCount(shapeOf(img)), channelsIn(img));
+  for (ImageLayer& l : img.layers) l.variances.clear();
+  EXPECT_EQ(exrChannelCount(shapeOf(img)), channelsIn(img));
+  // The writer's buffers grow with the channels and with the compression's chunk of lines.
+  const ExrImageShape shape = shapeOf(img);
+  ExrEncoding none, zip;
+  zip.compression = ExrCompression::Zip;
+  EXPECT_GT(exrWriteBytes(shape, zip, false), exrWriteBytes(shape, none, false));
+  ExrImageShape more = shape;
+  more.layers *= 10;
+  EXPECT_GT(exrWriteBytes(more, none, false), exrWriteBytes(shape, none, false));
 }
 
 TEST(SpectralExr, RoundTripThroughOpenExr) {
