@@ -77,6 +77,25 @@ TEST(TextTable, ParseNumber) {
   EXPECT_THROW(parseNumber("2.5x", "w", "a radius"), Error);
   EXPECT_THROW(parseNumber("", "w", "a radius"), Error);
   EXPECT_THROW(parseNumber("inf", "w", "a radius"), Error);
+  // Below the smallest double, a non-zero number would read as 0: refused; subnormal numbers
+  // and zero in any spelling are kept.
+  EXPECT_EQ(errorOf("400,1e-400\n"),
+            "t.csv:1: expected a number, found '1e-400' (below the smallest non-zero number a "
+            "double holds, 4.9e-324: write 0)");
+  EXPECT_EQ(parseNumber("1e-310", "w", "a number"), 1e-310);
+  EXPECT_EQ(parseNumber("0e-400", "w", "a number"), 0.0);
+  EXPECT_EQ(parseNumber("-0.0", "w", "a number"), 0.0);
+}
+
+// A table's cells are counted before any is stored, with what its reader keeps per cell: one
+// beyond what the process may use is refused with figures, naming the file.
+TEST(TextTable, CellsAreCountedAgainstMemoryBeforeStoring) {
+  std::string text = "nm,a,b\n";
+  for (int i = 0; i < 1000; ++i) text += std::to_string(400 + i) + ",0.5,0.25\n";
+  EXPECT_EQ(parseNumberTable(text, "t.csv", true).rows.size(), 1000u);
+  const std::string m = test::errorMessage([&] { parseNumberTable(text, "t.csv", true, 1e15); });
+  EXPECT_EQ(m.substr(0, m.find(" (needs")),
+            "t.csv: expected a table whose buffers fit in memory, found 3003 values");
 }
 
 } // namespace
