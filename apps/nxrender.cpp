@@ -531,7 +531,18 @@ int run(int argc, char** argv) {
       lastCheckpoint = now;
     };
   clock.mark("set up the render");
-  const nx::RenderOutput result = nx::render(scene, options);
+  std::optional<nx::RenderOutput> rendered;
+  try {
+    rendered.emplace(nx::render(scene, options));
+  } catch (const nx::StoppedBeforeRendering&) {
+    progress.finish();
+    std::fprintf(stderr,
+                 "nxrender: stopped by signal %d while preparing the render; nothing "
+                 "was rendered or written\n",
+                 gSignal.load());
+    return 3;
+  }
+  const nx::RenderOutput& result = *rendered;
   clock.mark("render");
   progress.finish();
   if (options.adaptive) {

@@ -62,6 +62,11 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   tbb::task_group_context tileContext;
   tileContext.capture_fp_settings();
   const RenderSettings& settings = scene.settings;
+  // The stop flag raised while the render is being prepared: nothing to write yet.
+  const auto stopIfAsked = [&] {
+    if (options.stop && options.stop->load()) throw StoppedBeforeRendering();
+  };
+  stopIfAsked();
   const Sensor bands = options.bands ? *options.bands : settings.bands;
   if (options.targetRelativeError > 0) options.errorMeasure.requireBandsIn(bands);
   const PixelRect rect =
@@ -146,11 +151,14 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
     const RelightGrid grid = RelightGrid::withStep(options.relightStepNm);
     // One transport per source: the emitters of a light group that share a spectrum.
     for (size_t s = 0; s < scene.relight.ofSource.size(); ++s) {
+      stopIfAsked(); // thousands of sources at a fine step take a while
       sourceSpectra.push_back(binAverages(scene.relight.ofSource[s], grid));
       sources.push_back(scene.relight.name(s, scene.lightGroups));
     }
+    stopIfAsked();
     pattern = std::make_shared<const RelightPattern>(grid, bands, scene);
   }
+  stopIfAsked();
   // Everything that scales with the layers and the transport, counted before it is allocated
   // (the film's sums, the image, the tasks' accumulators and the file's writer).
   RenderExtras extras;
@@ -174,8 +182,10 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const int begin = options.firstSample, end = options.firstSample + out.samplesPerPixel;
 
   const LightSampler lights(scene, options.lightSelection, options.triangleLightSampling);
+  stopIfAsked();
   std::optional<GradientContext> gradientContext;
   if (differentiated) gradientContext.emplace(scene, lights, *options.gradients);
+  stopIfAsked();
   const IntegratorContext ctx{&scene,
                               &lights,
                               options.lightSampling,

@@ -21,6 +21,14 @@ namespace nx {
 /// The density wavelengths are drawn from (see WavelengthSampler).
 enum class WavelengthDensity { Sensor, Visible };
 
+/// What render() throws when its stop flag is raised while the render is being prepared
+/// (before its first sample: the relight pattern, the sources' spectra, the light sampler):
+/// nothing was rendered.
+class StoppedBeforeRendering : public Error {
+public:
+  StoppedBeforeRendering() : Error("stopped before rendering began") {}
+};
+
 /// The EXR a render will be written to, as far as its memory goes.
 struct RenderFileOutput {
   ExrEncoding encoding;

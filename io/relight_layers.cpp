@@ -16,9 +16,12 @@ RelightGrid RelightGrid::withStep(double stepNm) {
 
 void checkRelightStep(double stepNm, const std::string& option) {
   const auto whole = [](double x) { return std::abs(x - std::round(x)) < 1e-9 && x >= 1; };
-  if (!(stepNm > 0 && stepNm <= 100 && (whole(5 / stepNm) || whole(stepNm / 5))))
-    throw Error(option + ": expected a step in nm that divides 5 (1, 2.5, 5) or is a multiple " +
-                "of 5 up to 100 (its bins nest with the 5 nm re-radiation grid), found " +
+  // From 0.1 nm (8000 bins over the traced range: a laser line's width) to 100 nm; 1e-6 built
+  // for minutes at 12 GiB and 1e-300 overflowed the bin count.
+  if (!(stepNm >= kMinRelightStepNm && stepNm <= 100 && (whole(5 / stepNm) || whole(stepNm / 5))))
+    throw Error(option + ": expected a step in nm from " + numberText(kMinRelightStepNm) +
+                " to 100 that divides 5 (0.1, 0.25, 0.5, 1, 2.5, 5) or is a multiple of 5 (its "
+                "bins nest with the 5 nm re-radiation grid), found " +
                 numberText(stepNm));
 }
 

@@ -32,8 +32,12 @@ struct RelightGrid {
   }
 };
 
-/// Checks a relight step (nm): a divisor of 5 nm (1, 2.5, 5) or a multiple of it up to 100, so
-/// that the bins nest with the 5 nm re-radiation grid. Throws nx::Error naming `option`.
+/// The finest relight step (nm).
+inline constexpr double kMinRelightStepNm = 0.1;
+
+/// Checks a relight step (nm): from kMinRelightStepNm to 100, a divisor of 5 nm (0.1, 0.25, 1,
+/// 2.5, ...) or a multiple of it, so that the bins nest with the 5 nm re-radiation grid.
+/// Throws nx::Error naming `option`.
 void checkRelightStep(double stepNm, const std::string& option);
 
 /// One pair of the pattern: output row (a band) and excitation bin.

@@ -59,8 +59,13 @@ check 1 "nxcamera: error: c.hdr: expected an ENVI data file name with an extensi
 check 1 "nxcamera: error: /nonexistent-dir/c.img: the output directory '/nonexistent-dir' does not exist" \
   nxcamera -o c.exr --envi /nonexistent-dir/c.img inputs/in.exr
 # Relighting: the grid step, a file without a transport, groups, spectra and the --light form.
-check 1 "nxrender: error: --relight-step: expected a step in nm that divides 5 (1, 2.5, 5) or is a multiple of 5 up to 100 (its bins nest with the 5 nm re-radiation grid), found 3" \
+check 1 "nxrender: error: --relight-step: expected a step in nm from 0.1 to 100 that divides 5 (0.1, 0.25, 0.5, 1, 2.5, 5) or is a multiple of 5 (its bins nest with the 5 nm re-radiation grid), found 3" \
   nxrender --relightable --relight-step 3 -o x.exr "$scene"
+# A step too fine to build (1e-6 took minutes and 12 GiB; 1e-300 overflowed the bin count).
+for step in 1e-06 1e-300 0.05; do
+  check 1 "nxrender: error: --relight-step: expected a step in nm from 0.1 to 100 that divides 5 (0.1, 0.25, 0.5, 1, 2.5, 5) or is a multiple of 5 (its bins nest with the 5 nm re-radiation grid), found $step" \
+    nxrender --relightable --relight-step $step -o x.exr "$scene"
+done
 check 1 "nxrender: error: --relight-step: only with --relightable (the excitation grid it keeps)" \
   nxrender --relight-step 5 -o x.exr "$scene"
 check 1 "nxrelight: error: inputs/in.exr: expected a relightable image (rendered with --relightable), found one without relight channels" \

@@ -9,6 +9,7 @@
 #include <ImfInputFile.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 
@@ -509,9 +510,11 @@ TEST(Relight, MalformedTransportChannelsAreRefused) {
   EXPECT_EQ(parse(with("nxrender.relightGrid", ""), {t}),
             "f.exr: expected the attribute nxrender.relightGrid beside nxrender.relightSources, "
             "found none");
-  EXPECT_EQ(parse(with("nxrender.relightGrid", "300:1100:3"), {t}),
-            "f.exr: nxrender.relightGrid: expected a step in nm that divides 5 (1, 2.5, 5) or is a "
-            "multiple of 5 up to 100 (its bins nest with the 5 nm re-radiation grid), found 3");
+  EXPECT_EQ(
+      parse(with("nxrender.relightGrid", "300:1100:3"), {t}),
+      "f.exr: nxrender.relightGrid: expected a step in nm from 0.1 to 100 that divides 5 (0.1, "
+      "0.25, 0.5, 1, 2.5, 5) or is a multiple of 5 (its bins nest with the 5 nm re-radiation "
+      "grid), found 3");
   EXPECT_EQ(parse(with("nxrender.relightSpectrum.lamp", "1,2"), {t}),
             "f.exr: expected 160 values in nxrender.relightSpectrum.lamp (one per bin), found 2");
   EXPECT_EQ(parse(good, {"relight.lamp.T.402,500000nm.410,000000nm"}),
@@ -547,14 +550,36 @@ TEST(Relight, RefusalsNameWhatCannotBeRelit) {
   RenderOptions o;
   o.relightStepNm = 3;
   EXPECT_EQ(test::errorMessage([&] { render(scene, o); }),
-            "--relight-step: expected a step in nm that divides 5 (1, 2.5, 5) or is a multiple of "
-            "5 up to 100 (its bins nest with the 5 nm re-radiation grid), found 3");
+            "--relight-step: expected a step in nm from 0.1 to 100 that divides 5 (0.1, 0.25, 0.5, "
+            "1, 2.5, 5) or is a multiple of 5 (its bins nest with the 5 nm re-radiation grid), "
+            "found 3");
+  for (const double fine : {1e-6, 1e-300, 0.05}) {
+    o.relightStepNm = fine;
+    EXPECT_NE(test::errorMessage([&] { render(scene, o); }).find("expected a step in nm from 0.1"),
+              std::string::npos)
+        << fine;
+  }
   const Film stored = render(scene, {}).film;
   RenderOptions resume;
   resume.resumeFrom = &stored;
   EXPECT_EQ(test::errorMessage([&] { render(scene, resume); }),
             "--relightable: continuing a relightable render (--resume) is not supported; render "
             "it again, or split it by --spp-range parts and merge them");
+}
+
+// A stop raised while a render is being prepared (the sources' spectra, the pattern, the light
+// sampler: minutes for a fine grid before its step was bounded) ends it before its first
+// sample, with nothing rendered; raised later, the render stops between samples as before.
+TEST(Relight, StopWhilePreparingEndsBeforeRendering) {
+  const RenderScene scene = relightableScene(benchScene(kLampS1, kLampS2, 2));
+  std::atomic<bool> stop{true};
+  RenderOptions o;
+  o.stop = &stop;
+  EXPECT_THROW(render(scene, o), StoppedBeforeRendering);
+  o.relightStepNm = 0.1;
+  EXPECT_THROW(render(scene, o), StoppedBeforeRendering);
+  stop = false;
+  EXPECT_FALSE(render(scene, o).stats.stopped);
 }
 
 // A relightable render refuses stratified lanes (its relit variances add the excitation bins'

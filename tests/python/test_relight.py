@@ -84,7 +84,7 @@ def test_refusals(relightable, tmp_path):
     plain = nxrender.render(SCENE, spp=2)
     with pytest.raises(ValueError, match="expected a relightable image"):
         plain.relight({"lamp": 1})
-    with pytest.raises(ValueError, match="relight_step: expected a step in nm that divides 5"):
+    with pytest.raises(ValueError, match="relight_step: expected a step in nm from 0.1 to 100 that divides 5"):
         nxrender.render(SCENE, relightable=True, relight_step=3)
     with pytest.raises(ValueError, match="relight_step: only with relightable=True"):
         nxrender.render(SCENE, relight_step=5)
