@@ -13,6 +13,7 @@
 #include "spectra/band_colour.h"
 #include "spectra/colour.h"
 #include "spectra/illuminants.h"
+#include "spectra/spectrum_bounds.h"
 
 namespace nx {
 namespace {
@@ -45,6 +46,10 @@ GroupSpectrum groupSpectrum(const SpectralImage& image, const std::string& group
                             std::vector<std::string>& warnings) {
   const std::vector<size_t> ofGroup = sourcesOf(image, group);
   const RelightLayers& rl = image.relight;
+  // The scene's own check of an emission (blackbody:100 and values beyond 1e12 overflowed
+  // only at the write).
+  if (const std::string problem = emissionProblem(s); !problem.empty())
+    throw Error(source + ": " + problem);
   GroupSpectrum out{group, binAverages(s, rl.grid), source};
   for (size_t j = 0; j < out.binned.size(); ++j)
     if (!(out.binned[j] >= 0 && std::isfinite(out.binned[j])))
@@ -188,6 +193,22 @@ SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSp
     const double halfY = colour.xyz(sortedHalf.data()).y;
     out.yVariance[i] = static_cast<float>(halfY * halfY);
   });
+  // Every value a float holds (the new spectra times the transport, and their squares in the
+  // variances): what overflowed was found only at the write, or returned as inf to Python.
+  for (const auto* v : {&out.radiance, &out.bandVariance, &out.xyz, &out.yVariance})
+    for (size_t k = 0; k < v->size(); ++k)
+      if (!std::isfinite((*v)[k])) {
+        const size_t per = v->size() / pixels, i = k / per;
+        throw Error(
+            "expected a relit image whose values and variances a float holds (3.4e38), "
+            "found an overflow at pixel " +
+            std::to_string(i % static_cast<size_t>(image.width)) + "," +
+            std::to_string(i / static_cast<size_t>(image.width)) +
+            (v == &out.radiance || v == &out.bandVariance
+                 ? " in band " + numberText(image.bands.centroid(static_cast<int>(k % per))) + " nm"
+                 : std::string()) +
+            (relit.empty() ? std::string(" (its rendered spectra)") : " relit with " + relit));
+      }
   return out;
 }
 

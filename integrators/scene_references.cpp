@@ -132,15 +132,8 @@ TabulatedSpectrum SceneReferences::clamped(TabulatedSpectrum t, const SpectrumDe
 
 // Emission (radiance, or a point light's intensity) within [0, kMaxEmission] everywhere.
 void SceneReferences::checkEmission(const Spectrum& s, const SourceLocation& loc) {
-  const SpectrumExtremes e = spectrumExtremes(s, kTraceMinNm, kTraceMaxNm);
-  if (e.min >= 0 && e.max <= kMaxEmission) return;
-  const bool low = !(e.min >= 0);
-  throw Error(loc.str() + ": expected an emission within [0, " + numberText(kMaxEmission) +
-              "] (W m^-2 sr^-1 nm^-1; W sr^-1 nm^-1 for point lights) at every wavelength of " +
-              tracedRange() + ", found " +
-              (std::isnan(e.min) ? std::string("a non-finite value")
-                                 : numberText(low ? e.min : e.max) + " at " +
-                                       numberText(low ? e.minNm : e.maxNm) + " nm"));
+  if (const std::string problem = emissionProblem(s); !problem.empty())
+    throw Error(loc.str() + ": " + problem);
 }
 
 } // namespace nx

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/text_table.h"
+#include "spectra/spectrum.h"
 
 namespace nx {
 namespace {
@@ -54,6 +55,25 @@ std::string relightChannelName(const RelightLayers& rl, size_t g, size_t e,
   const RelightEntry& en = rl.entries[e];
   return relightChannelText(rl.sources[g], wavelengthText(rl.grid.centre(en.bin)),
                             bandText[static_cast<size_t>(en.row)]);
+}
+
+void checkRelightValues(const RelightLayers& rl, const std::vector<std::string>& channels,
+                        int width, int height, const std::string& path) {
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  for (size_t k = 0; k < channels.size(); ++k)
+    for (const bool half : {false, true}) {
+      const float* v = (half ? rl.halfDifferences : rl.values).data() + k * pixels;
+      for (size_t i = 0; i < pixels; ++i) {
+        const double x = v[i];
+        if (half ? std::abs(x) <= kMaxTransportValue : x >= 0 && x <= kMaxTransportValue) continue;
+        throw Error(
+            path + ": channel " + (half ? kHalfDifferencePrefix : "") + channels[k] +
+            ": expected " + (half ? "half-differences within +-" : "transport values within [0, ") +
+            numberText(kMaxTransportValue) + (half ? "" : "]") +
+            " (what an emission at the 1e12 limit relights into a float), found " + numberText(x) +
+            " at pixel " + std::to_string(i % width) + "," + std::to_string(i / width));
+      }
+    }
 }
 
 std::map<std::string, std::string> relightAttributes(const RelightLayers& rl) {
@@ -108,8 +128,13 @@ std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>
       throw Error(path + ": expected the attribute " + kRelightSpectrumAttribute + g +
                   " (the source's spectrum), found none");
     std::vector<double> values;
-    for (const std::string& v : splitCommas(it->second))
+    for (const std::string& v : splitCommas(it->second)) {
       values.push_back(parseNumber(v, path + ": " + it->first, "a number"));
+      // The spectrum it was rendered with: an emission, as a scene's would be checked.
+      if (!(values.back() >= 0 && values.back() <= kMaxEmission))
+        throw Error(path + ": " + it->first + ": expected bin averages of an emission within [0, " +
+                    numberText(kMaxEmission) + "], found " + numberText(values.back()));
+    }
     if (values.size() != static_cast<size_t>(rl.grid.bins))
       throw Error(path + ": expected " + std::to_string(rl.grid.bins) + " values in " + it->first +
                   " (one per bin), found " + std::to_string(values.size()));

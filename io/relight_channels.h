@@ -34,6 +34,17 @@ std::string relightChannelText(const std::string& source, const std::string& exc
 std::string relightChannelName(const RelightLayers& rl, size_t g, size_t e,
                                const std::vector<std::string>& bandText);
 
+/// Largest transport value a relightable file may hold: what a spectrum at the emission limit
+/// (kMaxEmission) relights into a float (3.4e38 / 1e12). A render never comes near it.
+inline constexpr double kMaxTransportValue = 3.4e26;
+
+/// Throws nx::Error naming `path`, the channel and the pixel unless every transport value of
+/// rl (width x height pixels per channel) is within [0, kMaxTransportValue] and every
+/// half-difference within +-kMaxTransportValue (a file tampered with: negative or 3e38 values
+/// were relit silently).
+void checkRelightValues(const RelightLayers& rl, const std::vector<std::string>& channels,
+                        int width, int height, const std::string& path);
+
 /// The attributes describing rl (groups, grid, spectra).
 std::map<std::string, std::string> relightAttributes(const RelightLayers& rl);
 

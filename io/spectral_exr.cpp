@@ -485,12 +485,13 @@ SpectralImage readSpectralExr(const std::string& path) {
       }
     }
     // The transport of a relightable render: planes per group and entry.
+    std::vector<std::string> relightChannels;
     {
       std::vector<std::string> names;
       for (auto it = h.channels().begin(); it != h.channels().end(); ++it)
         names.push_back(it.name());
-      const std::vector<std::string> relightChannels = parseRelightChannels(
-          img.attributes, names, bandWavelengthTexts(bandChannels), path, img.relight);
+      relightChannels = parseRelightChannels(img.attributes, names,
+                                             bandWavelengthTexts(bandChannels), path, img.relight);
       img.relight.values.assign(relightChannels.size() * pixels, 0.0f);
       img.relight.halfDifferences.assign(relightChannels.size() * pixels, 0.0f);
       for (size_t k = 0; k < relightChannels.size(); ++k) {
@@ -523,6 +524,7 @@ SpectralImage readSpectralExr(const std::string& path) {
     readUint(kMaterialIdChannel, "material ids", img.materialId);
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
+    checkRelightValues(img.relight, relightChannels, img.width, img.height, path);
     if (!haveRgb) {
       // A file without an RGB preview: colour from its bands.
       std::vector<double> nm;

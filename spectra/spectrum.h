@@ -16,6 +16,12 @@ inline constexpr double kTraceMinNm = 300;
 /// Longest wavelength that can be traced (nm).
 inline constexpr double kTraceMaxNm = 1100;
 
+/// Largest emitted radiance (W m^-2 sr^-1 nm^-1) or point-light intensity (W sr^-1 nm^-1) a
+/// scene may hold: the Sun's spectral radiance is about 2.6e4, so this leaves seven orders of
+/// magnitude while every sample value, and its square in the error estimate, stays finite in
+/// single precision (an emission of 1e21 made every Variance channel infinite; 1e39 every sample).
+inline constexpr double kMaxEmission = 1e12;
+
 /// The same value at every wavelength.
 struct ConstantSpectrum {
   double value = 0;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.h"
+
 namespace nx {
 namespace {
 
@@ -106,6 +108,18 @@ SpectrumExtremes spectrumExtremes(const Spectrum& s, double lo, double hi) {
   if (scale < 0) std::swap(e.min, e.max), std::swap(e.minNm, e.maxNm);
   if (x.bad || !std::isfinite(scale)) e.min = e.max = NAN;
   return e;
+}
+
+std::string emissionProblem(const Spectrum& s) {
+  const SpectrumExtremes e = spectrumExtremes(s, kTraceMinNm, kTraceMaxNm);
+  if (e.min >= 0 && e.max <= kMaxEmission) return "";
+  const bool low = !(e.min >= 0);
+  return "expected an emission within [0, " + numberText(kMaxEmission) +
+         "] (W m^-2 sr^-1 nm^-1; W sr^-1 nm^-1 for point lights) at every wavelength of " +
+         numberText(kTraceMinNm) + "-" + numberText(kTraceMaxNm) + " nm, found " +
+         (std::isnan(e.min) ? std::string("a non-finite value")
+                            : numberText(low ? e.min : e.max) + " at " +
+                                  numberText(low ? e.minNm : e.maxNm) + " nm");
 }
 
 } // namespace nx

@@ -2,6 +2,8 @@
 // The exact range of a spectrum's values over a wavelength interval, for validating scenes
 // over every wavelength that can be traced (not only at whole nanometres).
 
+#include <string>
+
 #include "spectra/spectrum.h"
 
 namespace nx {
@@ -19,5 +21,10 @@ struct SpectrumExtremes {
 /// spectra the minimum is exact (they are never negative) and the maximum is found by a
 /// sampled search refined to 1e-6 nm. A non-finite value anywhere makes both extremes NaN.
 SpectrumExtremes spectrumExtremes(const Spectrum& s, double loNm, double hiNm);
+
+/// "" for an emission within [0, kMaxEmission] at every traceable wavelength (300-1100 nm,
+/// exactly), else "expected an emission within [0, 1e12] ..., found X at Y nm": the one check
+/// of emitted spectra (scenes, relighting).
+std::string emissionProblem(const Spectrum& s);
 
 } // namespace nx

@@ -20,12 +20,6 @@
 
 namespace nx {
 
-/// Largest emitted radiance (W m^-2 sr^-1 nm^-1) or point-light intensity (W sr^-1 nm^-1) a
-/// scene may hold: the Sun's spectral radiance is about 2.6e4, so this leaves seven orders of
-/// magnitude while every sample value, and its square in the error estimate, stays finite in
-/// single precision (an emission of 1e21 made every Variance channel infinite; 1e39 every sample).
-inline constexpr double kMaxEmission = 1e12;
-
 /// One parameter a light kind takes: its declaration and its default.
 using LightParameter = TakenParameter;
 

@@ -12,6 +12,8 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 
 #include "integrators/relight_image.h"
 #include "integrators/relight_pattern.h"
@@ -527,6 +529,72 @@ TEST(Relight, MalformedTransportChannelsAreRefused) {
   EXPECT_EQ(parse(good, {"relight.sky.T.402,500000nm.400,000000nm"}),
             "f.exr: expected relight channels of the sources nxrender.relightSources lists, found "
             "relight.sky.T.402,500000nm.400,000000nm");
+}
+
+// Every spectrum and transport value that enters a relight passes the scene's checks: a new
+// spectrum beyond the 1e12 emission limit or a blackbody the limit refuses (they overflowed
+// only at the write, or came back to Python as inf), a tampered file's negative or 3e38
+// transport values and its rendered spectra beyond the limit (relit silently), and a relit
+// image a float cannot hold, each named by its group, key, channel or pixel.
+TEST(Relight, SpectraAndTransportAreCheckedLikeAScenes) {
+  const SpectralImage img = toSpectralImage(renderRelightable(benchScene(kLampS1, "", 2)).film);
+  std::vector<std::string> warnings;
+  EXPECT_EQ(test::errorMessage([&] {
+              groupSpectrum(img, "lamp", Spectrum(ConstantSpectrum{2e12}), 300, 1100,
+                            "lights['lamp']", warnings);
+            }).substr(0, 50),
+            "lights['lamp']: expected an emission within [0, 1e");
+  EXPECT_NE(test::errorMessage([&] {
+              groupSpectrumFromText(img, "lamp", "blackbody:100", warnings);
+            }).find("blackbody:100: expected an emission within [0, 1e+12]"),
+            std::string::npos);
+  const std::string csv = ::testing::TempDir() + "/bright_lamp.csv";
+  std::ofstream(csv) << "nm,value\n300,1\n700,5e12\n1100,1\n";
+  EXPECT_NE(test::errorMessage([&] {
+              groupSpectrumFromText(img, "lamp", csv, warnings);
+            }).find("found 5e+12 at 700 nm"),
+            std::string::npos);
+  // A tampered file: each value read back is checked, naming what holds it.
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "nx_relight_tampered.exr").string();
+  auto readError = [&](const std::function<void(SpectralImage&)>& tamper) {
+    SpectralImage t = img;
+    tamper(t);
+    writeSpectralExr(path, t);
+    const std::string m = test::errorMessage([&] { (void)readSpectralExr(path); });
+    std::filesystem::remove(path);
+    return m;
+  };
+  const std::string first = relightChannelName(img.relight, 0, 0, [&] {
+    std::vector<std::string> names;
+    for (int b = 0; b < img.bands.count(); ++b)
+      names.push_back(spectralChannelName(img.bands.channelNm(b)).substr(3));
+    return names;
+  }());
+  EXPECT_EQ(readError([](SpectralImage& t) { t.relight.values[5] = -1; }),
+            path + ": channel " + first +
+                ": expected transport values within [0, 3.4e+26] (what an emission at the 1e12 "
+                "limit relights into a float), found -1 at pixel 5,0");
+  EXPECT_NE(readError([](SpectralImage& t) { t.relight.values[0] = 3e38f; }).find("found 3e+38"),
+            std::string::npos);
+  EXPECT_NE(readError([](SpectralImage& t) {
+              t.relight.halfDifferences[0] = -3e38f;
+            }).find(": expected half-differences within +-3.4e+26"),
+            std::string::npos);
+  EXPECT_EQ(readError([](SpectralImage& t) { t.relight.spectra[0][3] = 2e12; }),
+            path + ": nxrender.relightSpectrum.lamp: expected bin averages of an emission within "
+                   "[0, 1e+12], found 2e+12");
+  // Within every bound, a relit image can still pass a float: refused, naming the pixel.
+  SpectralImage big = img;
+  for (float& v : big.relight.values) v = 3e26f;
+  GroupSpectrum bright{"lamp",
+                       std::vector<double>(static_cast<size_t>(big.relight.grid.bins), 1e12),
+                       "blackbody:3000"};
+  const std::string m = test::errorMessage([&] { relightImage(big, {bright}); });
+  EXPECT_EQ(m.substr(0, m.find(" in band")),
+            "expected a relit image whose values and variances a float holds (3.4e38), found an "
+            "overflow at pixel 0,0");
+  EXPECT_NE(m.find("relit with lamp=blackbody:3000"), std::string::npos) << m;
 }
 
 // What a relightable build cannot relight is refused by name: emitting media, environment

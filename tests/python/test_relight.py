@@ -81,6 +81,12 @@ def test_refusals(relightable, tmp_path):
         relightable.relight({"lamp": (np.array([500.0, 400]), np.array([1.0, 1]))})
     with pytest.raises(ValueError, match="expected values >= 0"):
         relightable.relight({"lamp": (np.array([400.0, 500]), np.array([1.0, -1]))})
+    # The scene's emission limit (the relit image was returned with inf in it).
+    with pytest.raises(ValueError, match=r"^lights\['lamp'\]: expected an emission within \[0, "
+                                         r"1e\+12\] .* found 5e\+12 at 500 nm"):
+        relightable.relight({"lamp": (np.array([400.0, 500, 600]), np.array([1.0, 5e12, 1]))})
+    with pytest.raises(ValueError, match=r"blackbody:100: expected an emission within"):
+        relightable.relight({"lamp": "blackbody:100"})
     plain = nxrender.render(SCENE, spp=2)
     with pytest.raises(ValueError, match="expected a relightable image"):
         plain.relight({"lamp": 1})
