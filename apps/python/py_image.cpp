@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "apps/python/py_arguments.h"
+#include "apps/python/py_arrays.h"
 #include "core/error.h"
 #include "core/hash.h"
 #include "integrators/render_scene.h"
@@ -70,74 +71,6 @@ py::dict gradientViews(const py::object& self, std::vector<float> nx::ImageLayer
       value = value.attr("reshape")(py::tuple(shape));
     }
     out[py::str(g.name)] = value;
-  }
-  return out;
-}
-
-// Copies a numpy-convertible array of shape (H, W, depth) (or (H, W) when depth is 0) into a
-// pixel-interleaved vector. Every value must be a real number that T holds as it is: finite,
-// within [lo, hi], and whole for an integer T. Nothing is coerced (a complex array lost its
-// imaginary part, 1e300 became inf in float32, -1 became 4294967295 in uint32).
-// numpy.asarray(value), refused unless it holds real numbers (ints or floats).
-py::array realArray(const py::handle& value, const char* param) {
-  py::object asArray;
-  try {
-    asArray = py::module_::import("numpy").attr("asarray")(value);
-  } catch (const py::error_already_set&) {
-    throw py::type_error(std::string(param) + ": expected an array of numbers, found " +
-                         typeName(value));
-  }
-  const std::string kind = py::str(asArray.attr("dtype").attr("kind"));
-  if (kind == "c")
-    throw py::type_error(std::string(param) +
-                         ": expected an array of real numbers, found complex numbers");
-  if (kind != "f" && kind != "i" && kind != "u")
-    throw py::type_error(std::string(param) + ": expected an array of numbers, found " +
-                         typeName(value));
-  return asArray.cast<py::array>();
-}
-
-template <typename T>
-std::vector<T> pixelsArgument(const py::handle& value, const char* param, py::ssize_t h,
-                              py::ssize_t w, py::ssize_t depth, double lo, double hi) {
-  const py::array asArray = realArray(value, param);
-  py::array_t<double, py::array::c_style | py::array::forcecast> a;
-  try {
-    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(asArray);
-  } catch (const py::error_already_set&) {
-  }
-  if (!a) {
-    PyErr_Clear();
-    throw py::type_error(std::string(param) + ": expected an array of numbers, found " +
-                         typeName(value));
-  }
-  const bool shapeOk =
-      depth == 0 ? a.ndim() == 2 && a.shape(0) == h && a.shape(1) == w
-                 : a.ndim() == 3 && a.shape(0) == h && a.shape(1) == w && a.shape(2) == depth;
-  if (!shapeOk) {
-    std::string found = "(";
-    for (py::ssize_t i = 0; i < a.ndim(); ++i)
-      found += (i ? ", " : "") + std::to_string(a.shape(i));
-    found += a.ndim() == 1 ? ",)" : ")";
-    throw py::value_error(
-        std::string(param) + ": expected shape (" + std::to_string(h) + ", " + std::to_string(w) +
-        (depth ? ", " + std::to_string(depth) : std::string()) + "), found " + found);
-  }
-  std::vector<T> out(static_cast<size_t>(a.size()));
-  const double* v = a.data();
-  for (size_t i = 0; i < out.size(); ++i) {
-    const bool whole = !std::is_integral_v<T> || v[i] == std::floor(v[i]);
-    if (!(std::isfinite(v[i]) && v[i] >= lo && v[i] <= hi && whole)) {
-      const size_t perPixel = depth ? static_cast<size_t>(depth) : 1;
-      const size_t p = i / perPixel;
-      throw py::value_error(std::string(param) + ": expected " +
-                            (std::is_integral_v<T> ? "whole numbers" : "finite numbers") + " in [" +
-                            nx::exactNumberText(lo) + ", " + nx::exactNumberText(hi) + "], found " +
-                            nx::numberText(v[i]) + " at row " +
-                            std::to_string(p / static_cast<size_t>(w)) + ", column " +
-                            std::to_string(p % static_cast<size_t>(w)));
-    }
-    out[i] = static_cast<T>(v[i]);
   }
   return out;
 }

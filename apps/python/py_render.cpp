@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cfloat>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -17,6 +18,7 @@
 #include <thread>
 
 #include "apps/python/py_arguments.h"
+#include "apps/python/py_arrays.h"
 #include "apps/python/py_gradients.h"
 #include "apps/python/py_image.h"
 #include "apps/python/py_scene.h"
@@ -198,6 +200,9 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
                                  static_cast<int>(c[2]), static_cast<int>(c[3])};
   }
   // A differentiated render: the slots of the parameters asked for, and their tangents.
+  if (!adjoint.is_none() && gradients.is_none())
+    throw py::value_error("adjoint: only with gradients=[names] (d loss / d image for reverse "
+                          "mode, as nxrender.backward takes it), found an adjoint without them");
   std::optional<GradientRequest> request;
   std::vector<float> adjointValues;
   if (!gradients.is_none()) {
@@ -237,18 +242,11 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   if (request) {
     options.gradients = &request->tangents;
     if (!adjoint.is_none()) {
-      // d loss / d image: (H, W, bands) over the rendered pixels, as the radiance.
-      const py::array_t<float, py::array::c_style | py::array::forcecast> a =
-          py::module_::import("numpy").attr("asarray")(adjoint, "float32");
-      const int nb = job.bands().count();
-      if (a.ndim() != 3 || a.shape(0) != r.height() || a.shape(1) != r.width() || a.shape(2) != nb)
-        throw py::value_error("adjoint: expected an array of shape (" + std::to_string(r.height()) +
-                              ", " + std::to_string(r.width()) + ", " + std::to_string(nb) +
-                              ") like the image's radiance, found " +
-                              std::string(py::str(py::tuple(a.attr("shape")))));
-      adjointValues.assign(a.data(), a.data() + a.size());
-      for (float v : adjointValues)
-        if (!std::isfinite(v)) throw py::value_error("adjoint: expected finite numbers");
+      // d loss / d image: (H, W, bands) over the rendered pixels, as the radiance; real numbers
+      // float32 keeps, as an image's arrays (complex, str, bool and object arrays were cast,
+      // 1e-50 became 0).
+      adjointValues = pixelsArgument<float>(adjoint, "adjoint", r.height(), r.width(),
+                                            job.bands().count(), -FLT_MAX, FLT_MAX);
       options.adjoint = &adjointValues;
     }
   }

@@ -121,8 +121,27 @@ def test_refusals(scene):
         "<reflectance>300:0.3, 550:0.5, 1100:0.8", '<reflectance extrapolate="hold">400:0.3, 550:0.5, 700:0.8'), "t.scn")
     with pytest.raises(ValueError, match="renders differently"):
         nxrender.render(held, spp=1, gradients=["objects[0].reflectance"])
-    with pytest.raises(ValueError, match="adjoint: expected an array of shape \\(20, 24, 7\\)"):
+    with pytest.raises(ValueError, match="adjoint: expected shape \\(20, 24, 7\\), found \\(3, 3, 7\\)"):
         nxrender.backward(scene, np.zeros((3, 3, 7)), ["objects[1].reflectance"], spp=1)
+    # The adjoint as image arrays are taken: real numbers float32 keeps, or refused (complex
+    # lost its imaginary part; str, bool and object arrays were cast; 1e-50 became 0; 1e39 was
+    # "not finite").
+    names = ["objects[1].reflectance"]
+    ones = np.ones((20, 24, 7))
+    for bad, error, pattern in (
+            (ones * (1 + 1j), TypeError, "adjoint: expected an array of real numbers, found complex"),
+            (ones.astype(str), TypeError, "adjoint: expected an array of numbers, found"),
+            (ones.astype(bool), TypeError, "adjoint: expected an array of numbers, found"),
+            (ones.astype(object), TypeError, "adjoint: expected an array of numbers, found"),
+            (np.where(np.arange(20 * 24 * 7).reshape(20, 24, 7) == 8, 1e-50, 1.0), ValueError,
+             r"adjoint: expected finite numbers in .* and 0 or of magnitude at least 1.4e-45 "
+             r"\(what float32 stores\), found 1e-50 at row 0, column 1"),
+            (ones * 1e39, ValueError, r"adjoint: expected finite numbers in \[-3.40282\d*e\+38, "
+             r"3.40282\d*e\+38\].*found 1e\+39 at row 0, column 0")):
+        with pytest.raises(error, match=pattern):
+            nxrender.backward(scene, bad, names, spp=1)
+    with pytest.raises(ValueError, match=r"adjoint: only with gradients=\[names\]"):
+        nxrender.render(scene, spp=1, adjoint=ones)
     with pytest.raises(Exception, match="gradients cannot be combined"):
         nxrender.render(scene, spp=1, gradients=["objects[1].reflectance"], aovs=["components"])
     # a rough dielectric's roughness is refused by the scene's tables; a rough metal's is not
