@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/texel_grid.h"
+#include "core/text_table.h"
 
 namespace nx {
 
@@ -40,41 +41,29 @@ ConcentrationMap makeConcentrationMap(int width, int height, std::vector<float> 
 }
 
 ConcentrationMap parseConcentrationCsv(const std::string& text, const std::string& source) {
+  // The shared table reader: hexadecimal numbers, empty cells (a trailing comma), byte-order
+  // marks and numbers beyond a double's range are refused or handled as in every table.
+  const NumberTable t = parseNumberTable(text, source, false, sizeof(float));
+  const size_t width = t.rows.front().values.size();
   std::vector<float> values;
-  int width = -1, height = 0, line = 0;
-  std::istringstream in(text);
-  std::string row;
-  while (std::getline(in, row)) {
-    ++line;
-    if (!row.empty() && row.back() == '\r') row.pop_back();
-    if (row.find_first_not_of(" \t") == std::string::npos) continue;
-    int count = 0;
-    std::istringstream cells(row);
-    std::string cell;
-    const std::string where = source + ":" + std::to_string(line);
-    while (std::getline(cells, cell, ',')) {
-      const size_t a = cell.find_first_not_of(" \t"), b = cell.find_last_not_of(" \t");
-      const std::string t = a == std::string::npos ? "" : cell.substr(a, b - a + 1);
-      char* end = nullptr;
-      const double v = std::strtod(t.c_str(), &end);
-      if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v))
-        throw Error(where + ": expected a concentration (a number in [0, 1]), found '" + t + "'");
+  values.reserve(width * t.rows.size());
+  for (const TableRow& row : t.rows) {
+    const std::string where = source + ":" + std::to_string(row.line);
+    if (row.values.size() != width)
+      throw Error(where + ": expected " + std::to_string(width) +
+                  " values in every row (as the first), found " +
+                  std::to_string(row.values.size()));
+    for (const double v : row.values) {
       if (!(v >= 0 && v <= 1))
         throw Error(where +
                     ": expected concentrations in [0, 1] (shares of the dye's peak "
                     "absorptance), found " +
-                    t);
+                    numberText(v));
       values.push_back(static_cast<float>(v));
-      ++count;
     }
-    if (width >= 0 && count != width)
-      throw Error(where + ": expected " + std::to_string(width) +
-                  " values in every row (as the first), found " + std::to_string(count));
-    width = count;
-    ++height;
   }
-  if (height == 0) throw Error(source + ": expected rows of concentrations, found none");
-  return makeConcentrationMap(width, height, std::move(values), source);
+  return makeConcentrationMap(static_cast<int>(width), static_cast<int>(t.rows.size()),
+                              std::move(values), source);
 }
 
 } // namespace nx

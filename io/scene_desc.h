@@ -128,8 +128,9 @@ struct SettingsDesc {
 /// Everything a scene file says.
 struct SceneDesc {
   std::string file; ///< the scene file as given
-  uint64_t textDigest =
-      0; ///< FNV-1a of the scene text (with the referenced files' bytes, the render key)
+  /// FNV-1a of the scene's state (sceneStateText), then of the referenced files' bytes as the
+  /// build reads them: the render key's scene part
+  uint64_t textDigest = 0;
   SettingsDesc settings;
   CameraDesc camera;
   std::vector<LightDesc> lights;

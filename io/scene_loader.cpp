@@ -30,6 +30,7 @@
 #include "io/opencv_calibration.h"
 #include "io/scene_desc.h"
 #include "io/scene_limits.h"
+#include "io/scene_state_text.h"
 
 namespace nx {
 namespace {
@@ -1300,9 +1301,9 @@ double renderBufferBytes(int width, int height, int bands) {
 
 SceneDesc parseScene(const std::string& text, const std::string& file) {
   SceneDesc d = SceneParser(text, file).parse();
-  d.textDigest = fnv1a64(text);
-  if (!d.camera.calibrationFile.empty()) // the calibration file's bytes join the render key
-    d.textDigest = fnv1a64(std::to_string(d.camera.calibrationDigest), d.textDigest);
+  // The key of the scene's state (with the calibration file's bytes), not of its text: the
+  // same scene written otherwise, or edited into it from Python, renders under the same key.
+  d.textDigest = sceneStateDigest(d);
   return d;
 }
 

@@ -71,14 +71,21 @@ double numberArgument(const py::handle& value, const char* param, double lo, dou
   return v;
 }
 
+bool isSequence(const py::handle& value) {
+  // A list, a tuple or a numpy array: indexed by position. Text is not, and a mapping (a dict
+  // has a length and items too) is read by its keys: a dict gave "KeyError: 0".
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) ||
+      py::isinstance<py::dict>(value) || py::hasattr(value, "keys"))
+    return false;
+  return py::isinstance<py::sequence>(value) ||
+         (py::hasattr(value, "__len__") && py::hasattr(value, "__getitem__"));
+}
+
 std::vector<double> numberListArgument(const py::handle& value, const char* param,
                                        size_t minCount) {
-  if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value)) {
-    // numpy arrays are sequences too; anything else is not a list of numbers
-    if (!py::hasattr(value, "__len__") || !py::hasattr(value, "__getitem__"))
-      throw py::type_error(std::string(param) + ": expected a sequence of numbers, found " +
-                           typeName(value));
-  }
+  if (!isSequence(value))
+    throw py::type_error(std::string(param) + ": expected a sequence of numbers, found " +
+                         typeName(value));
   std::vector<double> out;
   const size_t n = py::len(value);
   for (size_t i = 0; i < n; ++i)
@@ -99,7 +106,7 @@ std::vector<double> numbersArgument(const py::handle& value, const char* param, 
 }
 
 std::vector<long long> integersArgument(const py::handle& value, const char* param, size_t n) {
-  if (py::isinstance<py::str>(value) || !py::hasattr(value, "__len__"))
+  if (!isSequence(value))
     throw py::type_error(std::string(param) + ": expected a sequence of " + std::to_string(n) +
                          " ints, found " + typeName(value));
   if (py::len(value) != n)

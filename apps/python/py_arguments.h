@@ -21,6 +21,9 @@ std::string stringArgument(const py::handle& value, const char* param);
 long long integerArgument(const py::handle& value, const char* param, long long lo, long long hi);
 /// A real number (int or float, not bool), finite, in [lo, hi].
 double numberArgument(const py::handle& value, const char* param, double lo, double hi);
+/// True for a list, tuple or array read by position (not text, not a mapping such as a dict).
+bool isSequence(const py::handle& value);
+
 /// A sequence of exactly n real numbers (finite).
 std::vector<double> numbersArgument(const py::handle& value, const char* param, size_t n);
 /// A sequence of at least `minCount` finite real numbers.

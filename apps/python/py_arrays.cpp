@@ -63,15 +63,15 @@ std::vector<T> pixelsArgument(const py::handle& value, const char* param, py::ss
     if (!(std::isfinite(v[i]) && v[i] >= lo && v[i] <= hi && whole && kept)) {
       const size_t perPixel = depth ? static_cast<size_t>(depth) : 1;
       const size_t p = i / perPixel;
+      const std::string at = " at row " + std::to_string(p / static_cast<size_t>(w)) + ", column " +
+                             std::to_string(p % static_cast<size_t>(w));
+      if (!kept)
+        throw py::value_error(std::string(param) + ": expected 0 or a magnitude of at least " +
+                              "1.4e-45 (what float32 stores), found " + nx::numberText(v[i]) + at);
       throw py::value_error(std::string(param) + ": expected " +
                             (std::is_integral_v<T> ? "whole numbers" : "finite numbers") + " in [" +
-                            nx::exactNumberText(lo) + ", " + nx::exactNumberText(hi) + "]" +
-                            (std::is_integral_v<T> ? ""
-                                                   : " and 0 or of magnitude at least 1.4e-45 "
-                                                     "(what float32 stores)") +
-                            ", found " + nx::numberText(v[i]) + " at row " +
-                            std::to_string(p / static_cast<size_t>(w)) + ", column " +
-                            std::to_string(p % static_cast<size_t>(w)));
+                            nx::exactNumberText(lo) + ", " + nx::exactNumberText(hi) + "], found " +
+                            nx::numberText(v[i]) + at);
     }
     out[i] = static_cast<T>(v[i]);
   }

@@ -214,8 +214,7 @@ nx::ParamValue parameterFromPython(const nx::ParamSpec& spec, const py::handle& 
   }
   case nx::ParamType::Transform: {
     // Rows [m | t] of the affine map: 3 rows, or 4 with the last 0, 0, 0, 1.
-    if (py::isinstance<py::str>(value) || !py::hasattr(value, "__len__") ||
-        (py::len(value) != 3 && py::len(value) != 4))
+    if (!isSequence(value) || (py::len(value) != 3 && py::len(value) != 4))
       throw py::type_error(param +
                            ": expected 3 or 4 rows of 4 numbers (the matrix [m | t]), found " +
                            typeName(value));

@@ -19,6 +19,7 @@
 #include "io/camera_checks.h"
 #include "io/material_parameters.h"
 #include "io/scene_limits.h"
+#include "io/scene_state_text.h"
 #include "spectra/reradiation_matrix.h"
 
 namespace nxpy {
@@ -451,7 +452,9 @@ SceneState loadState(const std::string& text, const std::string& name) {
 
 nx::SceneDesc sceneForRendering(const SceneState& state) {
   nx::SceneDesc d = state.desc;
-  if (!state.edits.empty()) d.textDigest = nx::fnv1a64(editsText(state), d.textDigest);
+  // The key follows the state: a no-op edit, or 0.4 -> 0.3 -> 0.4, keeps the file's key, and a
+  // scene edited into another file's state takes that file's.
+  d.textDigest = nx::sceneStateDigest(d);
   return d;
 }
 
@@ -877,8 +880,9 @@ void bindScene(py::module_& m) {
           [](const ObjectView& o) {
             return o.get().emissionAt ? "irradiance" : o.get().emissionFlux ? "flux" : "radiance";
           },
-          [](const ObjectView& o, const std::string& value) {
+          [](const ObjectView& o, const py::object& given) {
             const std::string param = o.label() + ".emission_quantity";
+            const std::string value = stringArgument(given, param.c_str());
             if (!o.get().emission) throw py::value_error(param + ": the object emits no light");
             if (value == "irradiance" && !o.get().emissionAt)
               throw py::value_error(param + ": 'irradiance' needs a distance: set emission_at");

@@ -27,7 +27,8 @@ struct PyScene {
   std::shared_ptr<SceneState> state;
 };
 
-/// The description to render: a copy of the scene's with its edits folded into its digest.
+/// The description to render: a copy of the scene's with the digest of its state (the render
+/// key follows the state, as a file's does, not the edit log).
 nx::SceneDesc sceneForRendering(const SceneState& state);
 
 /// The edits as one attribute value ("" when there are none).

@@ -265,7 +265,14 @@ TEST(SceneBuilder, ContentDigestCoversReferencedFiles) {
   const uint64_t b = build(text).contentDigest;
   EXPECT_EQ(a, again);
   EXPECT_NE(a, b);
-  EXPECT_NE(build(text + " ").contentDigest, b); // and the scene text itself
+  // And the scene's state, not its spelling: a value changes it, white space does not.
+  std::string other = text;
+  other.replace(other.find("<radius>1<"), 10, "<radius>2<");
+  EXPECT_NE(build(other).contentDigest, b);
+  EXPECT_EQ(build(text + " ").contentDigest, b);
+  std::string spaced = text;
+  spaced.replace(spaced.find("<radius>1<"), 10, "<radius> 1.0 <");
+  EXPECT_EQ(build(spaced).contentDigest, b);
 }
 
 // A point light's <emission> takes scale="..." like an object's.

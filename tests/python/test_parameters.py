@@ -85,6 +85,20 @@ def test_every_parameter_is_settable_by_name_and_renders(path):
     assert changed >= 5
 
 
+@pytest.mark.parametrize("path", sorted(SCENES.glob("*.scn")), ids=lambda p: p.stem)
+def test_values_of_the_wrong_kind_are_refused_by_type(path):
+    # A mapping is no sequence (a dict gave "KeyError: 0"), whatever it holds; each parameter
+    # refuses it with TypeError or ValueError naming it, and nothing is recorded.
+    scene = nxrender.Scene(path)
+    for name in scene.parameters():
+        for bad in ({0: 1.0, 1: 2.0, 2: 3.0}, {"a": 1}):
+            with pytest.raises((TypeError, ValueError)) as info:
+                scene.set(name, bad)
+            assert not isinstance(info.value, KeyError), (name, info.value)
+            assert name.split(".")[-1].split("[")[0] in str(info.value) or "dict" in str(info.value), (name, info.value)
+    assert scene.edits == []
+
+
 def test_shape_parameters_come_from_the_kinds_and_are_checked_like_the_file(tmp_path):
     scene = nxrender.Scene(SCENES / "lab_bench.scn")
     params = scene.parameters()

@@ -112,6 +112,34 @@ def test_edits_equal_the_edited_file(scenes):
     assert image.attributes["nxrender.renderKey"] != plain.attributes["nxrender.renderKey"]
 
 
+def test_render_key_follows_the_state(scenes):
+    """The render key is made from the scene's state, not its edit log: a no-op edit or
+    0.4 -> 0.3 -> 0.4 keeps the file's key (nxmerge and --resume refused equal scenes), a scene
+    edited into another file's state takes that file's key, and two textures differing in one
+    texel (their repr the same) have different keys."""
+    path = scenes / "blacklight.scn"
+    key = lambda image: image.attributes["nxrender.renderKey"]
+    plain = key(nxrender.render(path, spp=1))
+    scene = nxrender.Scene(path)
+    scene.camera.fov = scene.camera.fov
+    assert key(nxrender.render(scene, spp=1)) == plain
+    for value in (0.4, 0.3, 0.9):
+        scene.objects[3].material.reflectance = value
+    assert scene.edits and key(nxrender.render(scene, spp=1)) == plain
+    scene.objects[3].material.reflectance = 0.4
+    edited = path.read_text().replace("<reflectance>0.9</reflectance>", "<reflectance>0.4</reflectance>")
+    other = nxrender.Scene.from_text(edited, str(path))
+    assert key(nxrender.render(scene, spp=1)) == key(nxrender.render(other, spp=1)) != plain
+    texels = np.full((64, 64, 3), 0.5)
+    nm = np.array([400.0, 550, 700])
+    scene.set("objects[3].reflectance", (nm, texels))
+    first = key(nxrender.render(scene, spp=1))
+    texels[30, 30, 1] = 0.25
+    assert repr(texels) == repr(np.full((64, 64, 3), 0.5))  # the log's text could not tell
+    scene.set("objects[3].reflectance", (nm, texels))
+    assert key(nxrender.render(scene, spp=1)) != first
+
+
 def test_set_fluorescence_equals_file(scenes):
     path = scenes / "blacklight.scn"
     text = path.read_text().replace(
