@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "apps/python/py_image.h"
+#include "apps/python/py_readonly.h"
 #include "apps/python/py_relight.h"
 #include "apps/python/py_render.h"
 #include "apps/python/py_scene.h"
@@ -18,6 +19,7 @@ PYBIND11_MODULE(nxrender, m) {
   pybind11::register_exception<nx::Error>(m, "Error", PyExc_ValueError);
   nxpy::bindImage(m);
   nxpy::bindRelight(m);
+  nxpy::bindReadOnlyContainers(m);
   nxpy::bindScene(m);
   nxpy::bindSceneParameters(m);
   nxpy::bindRender(m);

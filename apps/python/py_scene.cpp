@@ -10,6 +10,7 @@
 #include "accel/shape_kinds.h"
 #include "apps/python/py_arguments.h"
 #include "apps/python/py_parameters.h"
+#include "apps/python/py_readonly.h"
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/hash.h"
@@ -1180,24 +1181,26 @@ void bindScene(py::module_& m) {
             py::dict d;
             for (size_t i = 0; i < s.state->desc.spectra.size(); ++i)
               d[py::str(s.state->desc.spectra[i].name)] = NamedSpectrumView{s.state, i};
-            return d;
+            return ReadOnlyMapping{d, "scene.spectra"};
           },
           "The named spectra (<spectrum name=...>) by name")
       .def_property_readonly("camera", [](const PyScene& s) { return CameraView{s.state}; })
       .def_property_readonly(
           "objects",
           [](const PyScene& s) {
-            std::vector<ObjectView> v;
-            for (size_t i = 0; i < s.state->desc.objects.size(); ++i) v.push_back({s.state, i});
-            return v;
+            py::list v;
+            for (size_t i = 0; i < s.state->desc.objects.size(); ++i)
+              v.append(ObjectView{s.state, i});
+            return ReadOnlyList{py::tuple(v), "scene.objects"};
           },
           "The objects in file order")
       .def_property_readonly(
           "lights",
           [](const PyScene& s) {
-            std::vector<LightView> v;
-            for (size_t i = 0; i < s.state->desc.lights.size(); ++i) v.push_back({s.state, i});
-            return v;
+            py::list v;
+            for (size_t i = 0; i < s.state->desc.lights.size(); ++i)
+              v.append(LightView{s.state, i});
+            return ReadOnlyList{py::tuple(v), "scene.lights"};
           },
           "The point lights in file order")
       .def_property_readonly(
@@ -1206,7 +1209,7 @@ void bindScene(py::module_& m) {
             py::dict d;
             for (size_t i = 0; i < s.state->desc.materials.size(); ++i)
               d[py::str(s.state->desc.materials[i].id)] = MaterialView{s.state, true, i};
-            return d;
+            return ReadOnlyMapping{d, "scene.materials"};
           },
           "The named materials (<material id=...>) by id")
       .def(

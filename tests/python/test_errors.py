@@ -154,6 +154,34 @@ def test_required_fields_refuse_none(scenes, tmp_path):
     nxrender.render(scene, spp=1)
 
 
+def test_scene_lists_refuse_changes(scenes):
+    # They were copies: scene.objects.append(o) succeeded and did nothing (a user lost time).
+    scene = nxrender.Scene(scenes / "lab_bench.scn")
+    objects, lights = scene.objects, scene.lights
+    n = len(objects)
+    assert n > 0 and objects[0].shape and [o.shape for o in objects] == [o.shape for o in scene.objects]
+    refusals = [
+        lambda: objects.append(objects[0]), lambda: objects.pop(), lambda: objects.extend([]),
+        lambda: objects.insert(0, objects[0]), lambda: objects.remove(objects[0]),
+        lambda: objects.clear(), lambda: objects.__setitem__(0, objects[1]),
+        lambda: objects.__delitem__(0), lambda: lights.append(None),
+        lambda: scene.materials.__setitem__("new", 1), lambda: scene.materials.pop("x", None),
+        lambda: scene.spectra.update({}), lambda: scene.spectra.__delitem__("x"),
+    ]
+    for change in refusals:
+        with pytest.raises(TypeError, match=r"^scene\.(objects|lights|materials|spectra)\.\w+: "
+                                            r"scene\.\w+ cannot be changed from Python"):
+            change()
+    with pytest.raises(TypeError, match="cannot be changed"):
+        scene.objects += [scene.objects[0]]
+    assert len(scene.objects) == n and scene.edits == []
+    # Reading them works as before: index, iterate, names, membership.
+    assert list(scene.materials) == list(scene.materials.keys())
+    assert scene.materials.get("no such id") is None
+    with pytest.raises(KeyError, match="scene.materials has no item 'no such id'"):
+        scene.materials["no such id"]
+
+
 def test_unknown_spectrum_name_fails_at_render(scenes):
     scene = nxrender.Scene(scenes / "blacklight.scn")
     scene.objects[2].material.reflectance = "no_such_spectrum"
