@@ -1,5 +1,7 @@
 #include "integrators/gradients/gradient_context.h"
 
+#include "integrators/gradients/light_gradients.h"
+
 namespace nx {
 
 GradientContext::GradientContext(const RenderScene& scene, const LightSampler& lights,
@@ -10,9 +12,7 @@ GradientContext::GradientContext(const RenderScene& scene, const LightSampler& l
     const SpectrumTangents* found = &none;
     const Spectrum* value = nullptr;
     if (const int l = lights.sceneLightOf(k); l >= 0) {
-      const SceneLight& light = scene.lights[static_cast<size_t>(l)];
-      if (const auto* p = std::get_if<PointLight>(&light)) value = &p->intensity;
-      if (const auto* q = std::get_if<SpotLight>(&light)) value = &q->intensity;
+      value = differentiatedLightSpectrum(scene.lights[static_cast<size_t>(l)]);
       if (value) found = &t.lights[static_cast<size_t>(l)];
     } else {
       // An emitting shape or the background: the sampler refers to the scene's own spectrum.

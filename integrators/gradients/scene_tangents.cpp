@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "integrators/gradients/light_gradients.h"
 
 namespace nx {
 namespace {
@@ -94,31 +95,6 @@ std::string otherMediumChange(const HomogeneousMedium& a, const HomogeneousMediu
                      a.g != b.g || a.dyePeak != b.dyePeak))
     return "an emitting medium (its glow along a flight is not differentiated)";
   return "";
-}
-
-// A light's spectrum (its intensity; null for kinds not differentiated) and whether two
-// lights are the same apart from it.
-const Spectrum* lightSpectrum(const SceneLight& l) {
-  if (const auto* p = std::get_if<PointLight>(&l)) return &p->intensity;
-  if (const auto* s = std::get_if<SpotLight>(&l)) return &s->intensity;
-  return nullptr;
-}
-
-bool sameLightPlacement(const SceneLight& a, const SceneLight& b) {
-  if (a.index() != b.index()) return false;
-  if (const auto* p = std::get_if<PointLight>(&a)) {
-    const auto& q = std::get<PointLight>(b);
-    return p->position.x == q.position.x && p->position.y == q.position.y &&
-           p->position.z == q.position.z;
-  }
-  if (const auto* s = std::get_if<SpotLight>(&a)) {
-    const auto& t = std::get<SpotLight>(b);
-    return s->position.x == t.position.x && s->position.y == t.position.y &&
-           s->position.z == t.position.z && s->axis.x == t.axis.x && s->axis.y == t.axis.y &&
-           s->axis.z == t.axis.z && s->cosEdge == t.cosEdge &&
-           s->cosFalloffStart == t.cosFalloffStart;
-  }
-  return true; // environment maps: compared by their spectra below (refused when changed)
 }
 
 // The stencil over one spectrum of every scene; appended to `out` as slot's tangent when it
@@ -243,9 +219,8 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
     for (size_t l = 0; l < base.lights.size(); ++l) {
       if (!sameLightPlacement(base.lights[l], s->lights[l]))
         notDifferentiated(name, "where a light is or how it is aimed");
-      if (!lightSpectrum(base.lights[l]) && std::get<EnvironmentLight>(base.lights[l]).integral !=
-                                                std::get<EnvironmentLight>(s->lights[l]).integral)
-        notDifferentiated(name, "an environment map");
+      if (const std::string other = otherLightChange(base.lights[l], s->lights[l]); !other.empty())
+        notDifferentiated(name, other);
     }
   }
   for (size_t m = 0; m < base.materials.size(); ++m) {
@@ -347,10 +322,11 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
         addSpectrumTangent(t.emission[e], slot, scenes, weights,
                            [e](const RenderScene& s) -> const Spectrum& { return s.emission[e]; });
   for (size_t l = 0; l < base.lights.size(); ++l)
-    if (lightSpectrum(base.lights[l]))
-      any |= addSpectrumTangent(
-          t.lights[l], slot, scenes, weights,
-          [l](const RenderScene& s) -> const Spectrum& { return *lightSpectrum(s.lights[l]); });
+    if (differentiatedLightSpectrum(base.lights[l]))
+      any |= addSpectrumTangent(t.lights[l], slot, scenes, weights,
+                                [l](const RenderScene& s) -> const Spectrum& {
+                                  return *differentiatedLightSpectrum(s.lights[l]);
+                                });
   if (base.background)
     any |=
         addSpectrumTangent(t.background, slot, scenes, weights,

@@ -11,6 +11,7 @@
 #include <functional>
 #include <optional>
 
+#include "integrators/gradients/light_gradients.h"
 #include "integrators/gradients/path_gradients.h"
 #include "integrators/renderer.h"
 #include "support/errors.h"
@@ -566,6 +567,53 @@ TEST(Gradients, RefusesWhatIsNotDifferentiated) {
   o.adjoint = nullptr;
   o.components = true;
   EXPECT_NE(test::errorMessage([&] { render(m, o); }).find("gradients cannot be combined"),
+            std::string::npos);
+}
+
+// Every light kind is declared to the gradient code (a kind it did not list threw
+// std::bad_variant_access; a new one now fails to compile: build.light_kind_needs_...): beside
+// a point, a spot and an environment light a reflectance is differentiated, the point's and
+// the spot's intensities are the differentiated spectra, and a change of the environment map
+// between the builds is refused by name.
+TEST(Gradients, EveryLightKindIsHandledOrRefusedByName) {
+  SpectralImage sky;
+  sky.width = 4, sky.height = 2;
+  sky.bands = Sensor(SpectralBands::parse("350:1050:100"));
+  sky.radiance.assign(static_cast<size_t>(8 * sky.bands.count()), 0.05f);
+  sky.rgb.assign(24, 0.05f);
+  sky.attributes["nxrender.bands"] = sky.bands.toString();
+  const std::string map = ::testing::TempDir() + "/gradient_sky.exr";
+  writeSpectralExr(map, sky);
+  auto text = [&](double reflectance, double skyScale) {
+    return scene(
+        "<material>matte</material><reflectance>" + num(reflectance) + "</reflectance>", kMatte,
+        kLamp,
+        "<light><position>1,3,-1</position><color>1,1,1</color><emission>1</emission></light>"
+        "<light type=\"spot\"><position>-1,3,-2</position><look_at>0,0,0</look_at>"
+        "<cone_angle>30</cone_angle><color>1,1,1</color><emission>2</emission></light>"
+        "<light type=\"environment\"><file>" +
+            map + "</file><scale>" + num(skyScale) + "</scale></light>",
+        4);
+  };
+  const RenderScene base = built(text(0.5, 1));
+  ASSERT_EQ(base.lights.size(), 3u);
+  EXPECT_NE(differentiatedLightSpectrum(base.lights[0]), nullptr);
+  EXPECT_NE(differentiatedLightSpectrum(base.lights[1]), nullptr);
+  EXPECT_EQ(differentiatedLightSpectrum(base.lights[2]), nullptr);
+  const RenderScene plus = resolveRenderScene(parseScene(text(0.51, 1), "t.scn"));
+  SceneTangents t = SceneTangents::sizedFor(base);
+  const RenderScene* scenes[] = {&plus, &base};
+  const double w[] = {100.0, -100.0};
+  (void)addTangentSlot(t, "objects[0].reflectance", base, scenes, w);
+  RenderOptions o;
+  o.gradients = &t;
+  EXPECT_EQ(render(base, o).film.layerCount(), 1);
+  const RenderScene brighter = resolveRenderScene(parseScene(text(0.5, 2), "t.scn"));
+  const RenderScene* changed[] = {&brighter, &base};
+  SceneTangents t2 = SceneTangents::sizedFor(base);
+  EXPECT_NE(test::errorMessage([&] {
+              addTangentSlot(t2, "lights[2].scale", base, changed, w);
+            }).find("lights[2].scale: not differentiable: it changes an environment map"),
             std::string::npos);
 }
 
