@@ -85,19 +85,19 @@ NumberTable parseNumberTable(const std::string& rawText, const std::string& sour
                              bool allowHeader, double bytesPerValue) {
   // The cells (runs of characters between separators) and lines, counted before any is
   // stored: their doubles, each row's vector and what the caller makes of them must fit.
-  size_t cells = 0, lines = 1;
+  size_t cellCount = 0, lines = 1;
   bool inCell = false;
   for (const char c : rawText) {
     const bool separator = c == ',' || c == ';' || c == ' ' || c == '\t' || c == '\n' || c == '\r';
-    cells += !separator && !inCell;
+    cellCount += !separator && !inCell;
     inCell = !separator;
     lines += c == '\n';
   }
-  const double bytes = static_cast<double>(cells) * (8.0 + bytesPerValue) +
+  const double bytes = static_cast<double>(cellCount) * (8.0 + bytesPerValue) +
                        static_cast<double>(lines) * 64.0 +
                        2.0 * static_cast<double>(rawText.size());
   if (bytes > 16.0 * (1 << 20))
-    requireMemory(bytes, source, "a table", std::to_string(cells) + " values");
+    requireMemory(bytes, source, "a table", std::to_string(cellCount) + " values");
   NumberTable table;
   table.source = source;
   // A UTF-8 byte-order mark (spreadsheet exports) is skipped: it made the first row look like

@@ -62,7 +62,7 @@ struct TabulatedRange {
   std::string what;  ///< its name, file or "nm:value pairs"
   double loNm = 0, hiNm = 0;
   /// How the scene chooses what it does beyond ("": extrapolate="zero|hold" on the element).
-  std::string choice;
+  std::string choice{};
 };
 
 /// An imported EEM's emission window and the emission its ends still hold (shares of the

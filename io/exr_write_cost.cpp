@@ -45,9 +45,9 @@ double exrWriteBytes(const ExrImageShape& s, const ExrEncoding& encoding, bool h
   const ExrCompression c = encoding.compression.value_or(defaultExrCompression(halfFloats));
   const size_t channels = exrChannelCount(s);
   const size_t uints = (s.sampleCount ? 1 : 0) + (s.ids ? 2 : 0);
-  const double lineBytes =
-      static_cast<double>(s.width) *
-      (static_cast<double>(channels - uints) * (halfFloats ? 2.0 : 4.0) + 4.0 * uints);
+  const double lineBytes = static_cast<double>(s.width) *
+                           (static_cast<double>(channels - uints) * (halfFloats ? 2.0 : 4.0) +
+                            4.0 * static_cast<double>(uints));
   const double chunkBytes = lineBytes * exrChunkLines(c);
   const int buffers = std::max(1, 2 * exrWriterThreads(chunkBytes));
   // Per channel: the header's channel list and OpenEXR's copy of it, the frame buffer (a map

@@ -59,7 +59,7 @@ struct TabulatedSpectrum {
   /// Unevenly spaced tables indexed by buildIndex(): 1 / the width of a cell of [nm.front(),
   /// nm.back()], and per cell the interval its start lies in; empty: binary search.
   double invCell = 0;
-  std::vector<uint32_t> cellFirst;
+  std::vector<uint32_t> cellFirst{};
   double operator()(double nm) const;
   /// Lets operator() find the interval by arithmetic, with the same interval and value as
   /// the binary search: directly when the wavelengths are evenly spaced (each within half a

@@ -244,9 +244,11 @@ nx::ParamValue parameterFromPython(const nx::ParamSpec& spec, const py::handle& 
     return a;
   }
   case nx::ParamType::Fluorescence:
-    break;
+    throw py::type_error(param + ": set with set_fluorescence(...) or by its fields");
+  case nx::ParamType::Dye:
+    throw py::type_error(param + ": set with set_dye(...) or by its fields");
   }
-  throw py::type_error(param + ": set with set_fluorescence(...) or by its fields");
+  throw py::type_error(param + ": a parameter type without a Python form");
 }
 
 } // namespace nxpy

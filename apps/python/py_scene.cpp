@@ -1160,11 +1160,11 @@ void bindScene(py::module_& m) {
       .def_property(
           "mode", [](const PyScene& s) { return nx::renderModeName(s.state->desc.settings.mode); },
           [](const PyScene& s, const py::object& value) {
-            const auto m = nx::parseRenderMode(stringArgument(value, "mode"));
-            if (!m)
+            const auto mode = nx::parseRenderMode(stringArgument(value, "mode"));
+            if (!mode)
               throw py::value_error("mode: expected rt, mcpt or spectral_mcpt, found " +
                                     py::repr(value).cast<std::string>());
-            s.state->desc.settings.mode = *m;
+            s.state->desc.settings.mode = *mode;
             record(*s.state, "mode", value);
           },
           "The rendering mode (<mode>): rt, mcpt or spectral_mcpt")

@@ -123,18 +123,18 @@ int32_t BinaryTree::build(size_t begin, size_t end, int depth) {
       // about their mean, spread to the farthest (dot products only: merging cone by cone
       // takes inverse cosines, most of the build's time).
       std::array<LightBounds, kBuckets> buckets;
-      std::array<Vec3d, kBuckets> normalSum, meanNormal;
+      std::array<Vec3d, kBuckets> bucketNormalSum, meanNormal;
       std::array<double, kBuckets> spread; // cos(theta_o) about the mean normal
       for (size_t i = begin; i < end; ++i) {
         const size_t k = static_cast<size_t>(bucketOf(prims[i].centroid[axis], lo, hi));
         buckets[k].add(prims[i].bounds.lo);
         buckets[k].add(prims[i].bounds.hi);
         buckets[k].power += prims[i].bounds.power;
-        normalSum[k] += Vec3d(prims[i].bounds.normals.axis) * double(prims[i].bounds.power);
+        bucketNormalSum[k] += Vec3d(prims[i].bounds.normals.axis) * double(prims[i].bounds.power);
       }
       for (size_t k = 0; k < kBuckets; ++k) {
-        const double l = length(normalSum[k]);
-        meanNormal[k] = l > 0 ? normalSum[k] * (1 / l) : Vec3d(0, 0, 1);
+        const double l = length(bucketNormalSum[k]);
+        meanNormal[k] = l > 0 ? bucketNormalSum[k] * (1 / l) : Vec3d(0, 0, 1);
         spread[k] = l > 1e-6 * buckets[k].power ? 1.0 : -1.0; // opposite normals: all
       }
       for (size_t i = begin; i < end; ++i) {
@@ -151,7 +151,7 @@ int32_t BinaryTree::build(size_t begin, size_t end, int depth) {
           side.add(buckets[k].lo);
           side.add(buckets[k].hi);
           side.power += buckets[k].power;
-          sum += normalSum[k];
+          sum += bucketNormalSum[k];
         }
         const double l = length(sum);
         if (!(l > 1e-6 * side.power)) {

@@ -2,11 +2,13 @@
 # Builds the libFuzzer targets with clang (AddressSanitizer + UndefinedBehaviorSanitizer) and
 # runs one: the scene target (scene files, CSV tables, matrices, bands; seeds: the malformed-
 # scene corpus and the example scenes, with the scene dictionary) or the input target for one
-# kind of lab file (ply, obj, sensor, envi, exr; seeds: the project's files of that kind).
+# kind of lab file (ply, obj, sensor, envi, exr, eem, calibration, concentration, relight;
+# seeds: the project's files of that kind, tests/fuzz/seeds/<kind> for the last four).
 # Findings are written as crash-*/leak-*/timeout-*/oom-* files in the work directory; add each
 # to the tests after fixing it.
 #
-#   tests/fuzz/run_fuzzer.sh [--kind scene|ply|obj|sensor|envi|exr] [--seconds S | --runs N] [--jobs J]
+#   tests/fuzz/run_fuzzer.sh [--kind scene|ply|obj|sensor|envi|exr|eem|calibration|concentration|relight]
+#                            [--seconds S | --runs N] [--jobs J]
 set -euo pipefail
 src="$(cd "$(dirname "$0")/../.." && pwd)"
 kind=scene seconds=600 runs="" jobs=1
@@ -55,10 +57,13 @@ for name, chans, comp in [("s0.exr", ["S0.500nm", "S0.600nm", "R", "G", "B"], "n
     out.close()
 PY
   ;;
+eem | calibration | concentration | relight) cp "$src/tests/fuzz/seeds/$kind"/* "$work/corpus/" ;;
 *) echo "run_fuzzer.sh: unknown kind '$kind'" >&2; exit 2 ;;
 esac
 cd "$work"
 limit=$([ -n "$runs" ] && echo "-runs=$runs" || echo "-max_total_time=$seconds")
 dict=$([ "$kind" = scene ] && echo "-dict=$src/tests/fuzz/scene.dict" || echo "")
-NX_FUZZ_KIND="$kind" "$build/tests/fuzz/$target" $dict "$limit" -max_len=8192 -timeout=10 \
+# A relightable EXR holds a transport's channels: its seeds are 4-7 kB.
+maxlen=$([ "$kind" = relight ] && echo 16384 || echo 8192)
+NX_FUZZ_KIND="$kind" "$build/tests/fuzz/$target" $dict "$limit" -max_len="$maxlen" -timeout=10 \
   -rss_limit_mb=2048 -jobs="$jobs" -workers="$jobs" -print_final_stats=1 corpus

@@ -106,7 +106,9 @@ TEST(LightBounds, ZeroOnlyWhereNothingFaces) {
     bool faces = false;
     for (const TriangleShape& m : members)
       faces = faces || dot(cross(m.b - m.a, m.c - m.a), p - (m.a + m.b + m.c) * (1.0 / 3)) > 0;
-    if (faces) EXPECT_GT(LightCluster(all).importance(Vec3(p), Vec3(), false), 0.0f) << k;
+    if (faces) {
+      EXPECT_GT(LightCluster(all).importance(Vec3(p), Vec3(), false), 0.0f) << k;
+    }
   }
 }
 
@@ -157,9 +159,10 @@ TEST(MeshLightTree, ChoicesFollowTheirProbabilities) {
         observed[320] += 1;
         continue;
       }
-      if (k % 101 == 0)
+      if (k % 101 == 0) {
         EXPECT_NEAR(probability, tree.probability(static_cast<uint32_t>(t), p, n),
                     1e-9 * probability);
+      }
       observed[static_cast<size_t>(t)] += 1;
     }
     const auto [stat, dof] = test::chiSquare(observed, expected);
@@ -194,12 +197,15 @@ TEST(MeshLightTree, ClosedMeshesSeenFromOutsideSkipTheirBackFaces) {
     const Vec3d outward = cross(c.b - c.a, c.c - c.a) * double(sign);
     const bool facing = dot(outward, Vec3d(p) - c.a) > 0;
     away += facing ? 0 : 1;
-    if (facing)
+    if (facing) {
       EXPECT_GT(tree.probability(t, p, Vec3()), 0) << t;
-    else
+    } else {
       EXPECT_EQ(tree.probability(t, p, Vec3()), 0) << t;
+    }
     EXPECT_GT(tree.probability(t, Vec3(0.9f, 0, 0), Vec3()), 0) << t;
-    if (t > 0) EXPECT_GT(openTree.probability(static_cast<uint32_t>(t - 1), p, Vec3()), 0) << t;
+    if (t > 0) {
+      EXPECT_GT(openTree.probability(static_cast<uint32_t>(t - 1), p, Vec3()), 0) << t;
+    }
   }
   EXPECT_GT(away, 100);
 }

@@ -258,7 +258,7 @@ TEST(MeshReader, ObjMaterialLibrariesAreNotOpened) {
   std::filesystem::remove(fifo);
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
   const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
-  for (const std::string lib : {fifo, std::string("fifo.mtl"), dir + "/lib.mtl.d"}) {
+  for (const std::string& lib : {fifo, std::string("fifo.mtl"), dir + "/lib.mtl.d"}) {
     std::ofstream(dir + "/m.obj") << "mtllib " << lib << "\n" << body;
     EXPECT_EQ(readMeshFile(dir + "/m.obj").mesh.triangleCount(), 1u) << lib;
   }

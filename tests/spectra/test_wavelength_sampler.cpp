@@ -63,7 +63,7 @@ TEST(WavelengthSampler, LanesShareOneOffsetInStrataFromTheHeros) {
       const float heroStratum = (static_cast<float>(h) + 0.5f) / kLanes;
       const SampledWavelengths w = s.sample(offset, heroStratum);
       for (int i = 0; i < kLanes; ++i) {
-        const double u = (offset + (h + i) % kLanes) / kLanes;
+        const double u = (offset + static_cast<float>((h + i) % kLanes)) / kLanes;
         EXPECT_NEAR(w.lambda[i], s.wavelength(u), 1e-3) << offset << " " << h << " " << i;
         EXPECT_NEAR(w.pdf[i], s.pdf(w.lambda[i]), 1e-6);
       }
