@@ -28,6 +28,9 @@ cv::FileNode firstOf(const cv::FileStorage& fs, std::initializer_list<const char
   return {};
 }
 
+// Most numbers a table of a calibration file may hold (a million views' poses).
+constexpr double kMaxCalibrationNumbers = 6e6;
+
 // A node's numbers, row by row: an opencv-matrix, a sequence (of numbers or of sequences), or
 // one number; `rows`/`cols` get its shape (a sequence of sequences: its length and the first's).
 std::vector<double> numbersOf(const cv::FileNode& node, const std::string& what,
@@ -35,6 +38,21 @@ std::vector<double> numbersOf(const cv::FileNode& node, const std::string& what,
   std::vector<double> out;
   rows = cols = 0;
   if (node.isMap()) {
+    // OpenCV allocates the rows x cols the file declares before it reads the data (a fuzzed
+    // file asked for 48 GB): the declaration must be small, whole and match its data first.
+    const cv::FileNode rowsNode = node["rows"], colsNode = node["cols"], data = node["data"];
+    if (!rowsNode.isInt() || !colsNode.isInt() || !data.isSeq())
+      throw Error(path + ": expected " + what +
+                  " as an opencv-matrix with whole rows and cols and a data sequence, found "
+                  "another map");
+    const int declaredRows = static_cast<int>(rowsNode), declaredCols = static_cast<int>(colsNode);
+    const double declared = static_cast<double>(declaredRows) * declaredCols;
+    if (!(declaredRows >= 1 && declaredCols >= 1 && declared <= kMaxCalibrationNumbers &&
+          declared == static_cast<double>(data.size())))
+      throw Error(path + ": expected " + what + " as an opencv-matrix of rows x cols numbers (at " +
+                  "most " + numberText(kMaxCalibrationNumbers) + "), found " +
+                  std::to_string(declaredRows) + " x " + std::to_string(declaredCols) +
+                  " declared and " + std::to_string(data.size()) + " numbers given");
     cv::Mat m;
     node >> m;
     if (m.empty() || m.channels() != 1)

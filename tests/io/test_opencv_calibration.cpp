@@ -192,6 +192,18 @@ TEST(OpenCvCalibration, RaggedRowsAreRefusedWithTheRow) {
                              std::nullopt),
             "c.yml: expected every row of the camera matrix to hold 3 numbers (as row 1 does), "
             "found 4 in row 2");
+  // An opencv-matrix is allocated by OpenCV as declared before its data are read (a fuzzed
+  // file asked for 48 GB): the declaration must match its data and stay small.
+  EXPECT_EQ(calibrationError(calibration("D: !!opencv-matrix\n   rows: 100000\n   cols: 100000\n"
+                                         "   dt: d\n   data: [ 0.1, 0.2, 0.0, 0.0 ]\n"),
+                             std::nullopt),
+            "c.yml: expected the distortion coefficients as an opencv-matrix of rows x cols "
+            "numbers (at most 6000000), found 100000 x 100000 declared and 4 numbers given");
+  EXPECT_NE(calibrationError(calibration("D: !!opencv-matrix\n   rows: x\n   cols: 4\n   dt: d\n"
+                                         "   data: [ 0.1, 0.2, 0.0, 0.0 ]\n"),
+                             std::nullopt)
+                .find("with whole rows and cols and a data sequence"),
+            std::string::npos);
   // Whole tables still read: a sequence of rows and one of 3 x 1 matrices.
   const OpenCvCalibration c = parseOpenCvCalibration(
       calibration("extrinsic_parameters: [[0, 0, 0, 0, 0, 5], [0, 0, 0, -0.5, -0.5, 3]]\n"),
