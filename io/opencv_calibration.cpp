@@ -175,6 +175,13 @@ OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::st
   } catch (const cv::Exception& e) {
     throw Error(path + ": expected an OpenCV FileStorage file (YAML or XML), found an error: " +
                 messageOf(e));
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) { // OpenCV's parser lets the standard library's through
+    throw Error(path +
+                ": expected an OpenCV FileStorage file (YAML or XML), found data its "
+                "reader fails on (" +
+                e.what() + ")");
   }
   OpenCvCalibration out;
   try {
@@ -305,6 +312,11 @@ OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::st
   } catch (const cv::Exception& e) {
     throw Error(path +
                 ": expected an OpenCV calibration, found an error reading it: " + messageOf(e));
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(path + ": expected an OpenCV calibration, found data its reader fails on (" +
+                e.what() + ")");
   }
   return out;
 }

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -204,6 +205,17 @@ TEST(OpenCvCalibration, RaggedRowsAreRefusedWithTheRow) {
                              std::nullopt)
                 .find("with whole rows and cols and a data sequence"),
             std::string::npos);
+  // A file on which OpenCV's reader throws the standard library's exceptions (a fuzzed one:
+  // std::length_error) is refused like any unreadable calibration, naming the file.
+  {
+    std::ifstream in(std::string(NX_SOURCE_DIR) +
+                         "/tests/fuzz/seeds/calibration/finding_length_error.yml",
+                     std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    ASSERT_GT(bytes.size(), 100u);
+    const std::string m = calibrationError(bytes.substr(1), std::nullopt);
+    EXPECT_EQ(m.rfind("c.yml: expected ", 0), 0u) << m;
+  }
   // Whole tables still read: a sequence of rows and one of 3 x 1 matrices.
   const OpenCvCalibration c = parseOpenCvCalibration(
       calibration("extrinsic_parameters: [[0, 0, 0, 0, 0, 5], [0, 0, 0, -0.5, -0.5, 3]]\n"),
