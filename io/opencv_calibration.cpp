@@ -167,6 +167,13 @@ void setPose(OpenCvCalibration& out, const std::array<double, 9>& R, const std::
 
 OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::string& path,
                                          std::optional<int> view) {
+  // OpenCV's readers take the text as a C string in places: a NUL byte inside made them read
+  // past its end (a fuzzed file crashed FileStorage::open). YAML and XML hold none.
+  if (const size_t nul = bytes.find('\0'); nul != std::string::npos)
+    throw Error(path + ":" +
+                std::to_string(
+                    1 + std::count(bytes.begin(), bytes.begin() + static_cast<long>(nul), '\n')) +
+                ": expected text (YAML or XML), found a NUL byte (a binary file?)");
   cv::FileStorage fs;
   try {
     if (!fs.open(bytes, cv::FileStorage::READ | cv::FileStorage::MEMORY))

@@ -205,8 +205,8 @@ TEST(OpenCvCalibration, RaggedRowsAreRefusedWithTheRow) {
                              std::nullopt)
                 .find("with whole rows and cols and a data sequence"),
             std::string::npos);
-  // A file on which OpenCV's reader throws the standard library's exceptions (a fuzzed one:
-  // std::length_error) is refused like any unreadable calibration, naming the file.
+  // Fuzzed files on which OpenCV's reader threw std::length_error or crashed: NUL bytes in
+  // their text, refused before OpenCV reads them.
   {
     std::ifstream in(std::string(NX_SOURCE_DIR) +
                          "/tests/fuzz/seeds/calibration/finding_length_error.yml",
@@ -214,8 +214,13 @@ TEST(OpenCvCalibration, RaggedRowsAreRefusedWithTheRow) {
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
     ASSERT_GT(bytes.size(), 100u);
     const std::string m = calibrationError(bytes.substr(1), std::nullopt);
-    EXPECT_EQ(m.rfind("c.yml: expected ", 0), 0u) << m;
+    EXPECT_EQ(m.rfind("c.yml:", 0), 0u) << m;
+    EXPECT_NE(m.find(": expected text (YAML or XML), found a NUL byte"), std::string::npos) << m;
   }
+  // A NUL byte made OpenCV's XML reader read past its text (a segmentation fault): refused.
+  EXPECT_EQ(calibrationError(std::string("<?xml version=\"1.0\"?>\n<opencv_storage>\n\0<K>", 41),
+                             std::nullopt),
+            "c.yml:3: expected text (YAML or XML), found a NUL byte (a binary file?)");
   // Whole tables still read: a sequence of rows and one of 3 x 1 matrices.
   const OpenCvCalibration c = parseOpenCvCalibration(
       calibration("extrinsic_parameters: [[0, 0, 0, 0, 0, 5], [0, 0, 0, -0.5, -0.5, 3]]\n"),
