@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
 #include <vector>
 
 #include "core/error.h"
 #include "io/camera_checks.h"
+#include "io/isolated_call.h"
 
 namespace nx {
 namespace {
@@ -165,15 +168,8 @@ void setPose(OpenCvCalibration& out, const std::array<double, 9>& R, const std::
 
 } // namespace
 
-OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::string& path,
-                                         std::optional<int> view) {
-  // OpenCV's readers take the text as a C string in places: a NUL byte inside made them read
-  // past its end (a fuzzed file crashed FileStorage::open). YAML and XML hold none.
-  if (const size_t nul = bytes.find('\0'); nul != std::string::npos)
-    throw Error(path + ":" +
-                std::to_string(
-                    1 + std::count(bytes.begin(), bytes.begin() + static_cast<long>(nul), '\n')) +
-                ": expected text (YAML or XML), found a NUL byte (a binary file?)");
+OpenCvCalibration readOpenCvCalibrationHere(const std::string& bytes, const std::string& path,
+                                            std::optional<int> view) {
   cv::FileStorage fs;
   try {
     if (!fs.open(bytes, cv::FileStorage::READ | cv::FileStorage::MEMORY))
@@ -326,6 +322,62 @@ OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::st
                 e.what() + ")");
   }
   return out;
+}
+
+namespace {
+
+// The calibration as text the parent reads back exactly (hexadecimal floats).
+std::string calibrationText(const OpenCvCalibration& c) {
+  std::ostringstream t;
+  t << std::hexfloat;
+  for (double v : c.intrinsics) t << v << ' ';
+  for (double v : c.distortion) t << v << ' ';
+  t << (c.imageSize ? 1 : 0) << ' ';
+  if (c.imageSize) t << (*c.imageSize)[0] << ' ' << (*c.imageSize)[1] << ' ';
+  t << (c.extrinsics ? 1 : 0) << ' ';
+  if (c.extrinsics)
+    for (double v : *c.extrinsics) t << v << ' ';
+  t << c.views;
+  return t.str();
+}
+
+OpenCvCalibration calibrationFromText(const std::string& text) {
+  std::istringstream t(text);
+  std::string word;
+  auto next = [&] {
+    t >> word;
+    return std::strtod(word.c_str(), nullptr);
+  };
+  OpenCvCalibration c;
+  for (double& v : c.intrinsics) v = next();
+  for (double& v : c.distortion) v = next();
+  if (next() != 0)
+    c.imageSize = std::array<int, 2>{static_cast<int>(next()), static_cast<int>(next())};
+  if (next() != 0) {
+    std::array<double, 12> e{};
+    for (double& v : e) v = next();
+    c.extrinsics = e;
+  }
+  c.views = static_cast<int>(next());
+  return c;
+}
+
+} // namespace
+
+OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::string& path,
+                                         std::optional<int> view) {
+  // OpenCV's readers take the text as a C string in places: a NUL byte inside made them read
+  // past its end (a fuzzed file crashed FileStorage::open). YAML and XML hold none.
+  if (const size_t nul = bytes.find('\0'); nul != std::string::npos)
+    throw Error(path + ":" +
+                std::to_string(
+                    1 + std::count(bytes.begin(), bytes.begin() + static_cast<long>(nul), '\n')) +
+                ": expected text (YAML or XML), found a NUL byte (a binary file?)");
+  // OpenCV 4.6's reader loops forever on some malformed files (a fuzzed YAML with a line
+  // "e---"): it reads in a child process that is killed after 5 s.
+  return calibrationFromText(
+      runIsolated([&] { return calibrationText(readOpenCvCalibrationHere(bytes, path, view)); },
+                  5.0, path + ": OpenCV's calibration reader"));
 }
 
 } // namespace nx

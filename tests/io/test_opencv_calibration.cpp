@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -221,6 +222,13 @@ TEST(OpenCvCalibration, RaggedRowsAreRefusedWithTheRow) {
   EXPECT_EQ(calibrationError(std::string("<?xml version=\"1.0\"?>\n<opencv_storage>\n\0<K>", 41),
                              std::nullopt),
             "c.yml:3: expected text (YAML or XML), found a NUL byte (a binary file?)");
+  // OpenCV 4.6's reader loops forever on some malformed YAML (a fuzzed file: a line "e---"):
+  // it reads in a child process, killed after 5 s, and the file is refused.
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(calibrationError("%YAML:1.0\n---\n [70., 0., 1.]\ne---\n [1.]\n", std::nullopt),
+            "c.yml: OpenCV's calibration reader: did not finish within 5 s (the library loops on "
+            "some malformed input; check the file)");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
   // Whole tables still read: a sequence of rows and one of 3 x 1 matrices.
   const OpenCvCalibration c = parseOpenCvCalibration(
       calibration("extrinsic_parameters: [[0, 0, 0, 0, 0, 5], [0, 0, 0, -0.5, -0.5, 3]]\n"),
