@@ -2,11 +2,13 @@
 
 #include <poll.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 
 #include "core/error.h"
@@ -14,76 +16,137 @@
 namespace nx {
 namespace {
 
-// Writes all of `data` (the child's reply) to `fd`.
-void writeAll(int fd, const std::string& data) {
-  size_t done = 0;
-  while (done < data.size()) {
-    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+using Clock = std::chrono::steady_clock;
+
+// Sends all of `data` (MSG_NOSIGNAL: a dead peer is an error, not SIGPIPE).
+bool sendAll(int fd, const char* data, size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::send(fd, data, size, MSG_NOSIGNAL);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return;
-    done += static_cast<size_t>(n);
+    if (n <= 0) return false;
+    data += n, size -= static_cast<size_t>(n);
   }
+  return true;
+}
+
+// A message: its length (8 bytes) and its bytes.
+bool sendMessage(int fd, const std::string& m) {
+  const uint64_t n = m.size();
+  return sendAll(fd, reinterpret_cast<const char*>(&n), sizeof n) &&
+         sendAll(fd, m.data(), m.size());
+}
+
+// Receives `size` bytes before `deadline` (none: wait as long as it takes); false on EOF, an
+// error or the deadline.
+bool receiveAll(int fd, char* data, size_t size, const Clock::time_point* deadline,
+                bool& timedOut) {
+  while (size > 0) {
+    if (deadline) {
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(*deadline - Clock::now()).count();
+      if (left <= 0) {
+        timedOut = true;
+        return false;
+      }
+      pollfd p{fd, POLLIN, 0};
+      const int ready = ::poll(&p, 1, static_cast<int>(left));
+      if (ready < 0 && errno == EINTR) continue;
+      if (ready == 0) continue; // the deadline is checked above
+    }
+    const ssize_t n = ::recv(fd, data, size, 0);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    data += n, size -= static_cast<size_t>(n);
+  }
+  return true;
+}
+
+bool receiveMessage(int fd, std::string& m, const Clock::time_point* deadline, bool& timedOut) {
+  uint64_t n = 0;
+  if (!receiveAll(fd, reinterpret_cast<char*>(&n), sizeof n, deadline, timedOut)) return false;
+  if (n > (uint64_t{1} << 32)) return false;
+  m.assign(static_cast<size_t>(n), '\0');
+  return receiveAll(fd, m.data(), m.size(), deadline, timedOut);
 }
 
 } // namespace
 
-std::string runIsolated(const std::function<std::string()>& work, double seconds,
-                        const std::string& what) {
+IsolatedWorker::IsolatedWorker(std::function<std::string(const std::string&)> work)
+    : work_(std::move(work)) {}
+
+IsolatedWorker::~IsolatedWorker() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  stop();
+}
+
+void IsolatedWorker::start() {
   int fds[2];
-  if (::pipe(fds) != 0)
-    throw Error(what + ": cannot start a reader process (" + std::strerror(errno) + ")");
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
+    throw Error(std::string("cannot start a reader process (") + std::strerror(errno) + ")");
   const pid_t pid = ::fork();
   if (pid < 0) {
     ::close(fds[0]), ::close(fds[1]);
-    throw Error(what + ": cannot start a reader process (" + std::strerror(errno) + ")");
+    throw Error(std::string("cannot start a reader process (") + std::strerror(errno) + ")");
   }
-  if (pid == 0) { // the child: its reply is 'O' and the result, or 'E' and the message
+  if (pid == 0) { // the child: each request answered with 'O' and the reply, or 'E' and a message
     ::close(fds[0]);
-    std::string reply;
-    try {
-      reply = "O" + work();
-    } catch (const Error& e) {
-      reply = std::string("E") + e.what();
-    } catch (const std::exception& e) {
-      reply = std::string("E") + what + ": " + e.what();
+    for (;;) {
+      std::string request;
+      bool unused = false;
+      if (!receiveMessage(fds[1], request, nullptr, unused)) ::_exit(0); // the parent is gone
+      std::string reply;
+      try {
+        reply = "O" + work_(request);
+      } catch (const Error& e) {
+        reply = std::string("E") + e.what();
+      } catch (const std::exception& e) {
+        reply = std::string("X") + e.what();
+      }
+      if (!sendMessage(fds[1], reply)) ::_exit(0);
     }
-    writeAll(fds[1], reply);
-    ::_exit(0); // no destructors or exit handlers of the parent's state
   }
   ::close(fds[1]);
+  pid_ = pid;
+  fd_ = fds[0];
+}
+
+void IsolatedWorker::stop() {
+  if (pid_ < 0) return;
+  ::close(fd_);
+  ::kill(pid_, SIGKILL);
+  while (::waitpid(pid_, nullptr, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = -1, fd_ = -1;
+}
+
+std::string IsolatedWorker::call(const std::string& request, const std::string& what,
+                                 double seconds) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (pid_ < 0) start();
+  const Clock::time_point deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                        std::chrono::duration<double>(seconds));
   std::string reply;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   bool timedOut = false;
-  for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) {
-      timedOut = true;
-      break;
+  if (!sendMessage(fd_, request) || !receiveMessage(fd_, reply, &deadline, timedOut) ||
+      reply.empty()) {
+    int status = 0;
+    if (!timedOut && ::waitpid(pid_, &status, WNOHANG) == pid_) pid_ = -1; // it died
+    if (pid_ >= 0)
+      stop();
+    else {
+      ::close(fd_);
+      fd_ = -1;
     }
-    pollfd p{fds[0], POLLIN, 0};
-    const int ready = ::poll(&p, 1, static_cast<int>(left.count()));
-    if (ready < 0 && errno == EINTR) continue;
-    if (ready <= 0) continue; // the deadline is checked above
-    char buf[1 << 14];
-    const ssize_t n = ::read(fds[0], buf, sizeof buf);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break; // the child closed its end: done (or dead)
-    reply.append(buf, static_cast<size_t>(n));
+    if (timedOut)
+      throw Error(what + ": did not finish within " + numberText(seconds) +
+                  " s (the library loops on some malformed input; check the file)");
+    throw Error(what + ": the library's reader crashed on this file" +
+                (WIFSIGNALED(status) ? " (signal " + std::to_string(WTERMSIG(status)) + ")"
+                                     : std::string()) +
+                "; a malformed file?");
   }
-  ::close(fds[0]);
-  if (timedOut) ::kill(pid, SIGKILL);
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (timedOut)
-    throw Error(what + ": did not finish within " + std::to_string(static_cast<int>(seconds)) +
-                " s (the library loops on some malformed input; check the file)");
-  if (WIFSIGNALED(status) || reply.empty())
-    throw Error(what + ": the library's reader crashed on this file (signal " +
-                std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0) +
-                "; a malformed file?)");
   if (reply[0] == 'E') throw Error(reply.substr(1));
+  if (reply[0] == 'X') throw Error(what + ": " + reply.substr(1));
   return reply.substr(1);
 }
 

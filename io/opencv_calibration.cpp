@@ -365,7 +365,7 @@ OpenCvCalibration calibrationFromText(const std::string& text) {
 } // namespace
 
 OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::string& path,
-                                         std::optional<int> view) {
+                                         std::optional<int> view, double seconds) {
   // OpenCV's readers take the text as a C string in places: a NUL byte inside made them read
   // past its end (a fuzzed file crashed FileStorage::open). YAML and XML hold none.
   if (const size_t nul = bytes.find('\0'); nul != std::string::npos)
@@ -374,10 +374,23 @@ OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::st
                     1 + std::count(bytes.begin(), bytes.begin() + static_cast<long>(nul), '\n')) +
                 ": expected text (YAML or XML), found a NUL byte (a binary file?)");
   // OpenCV 4.6's reader loops forever on some malformed files (a fuzzed YAML with a line
-  // "e---"): it reads in a child process that is killed after 5 s.
-  return calibrationFromText(
-      runIsolated([&] { return calibrationText(readOpenCvCalibrationHere(bytes, path, view)); },
-                  5.0, path + ": OpenCV's calibration reader"));
+  // "e---"): it reads in a child process, killed after `seconds`. A request: the view (or -1), the
+  // path's length and the path, then the bytes.
+  static IsolatedWorker reader([](const std::string& request) {
+    std::istringstream in(request);
+    long long v = -1;
+    size_t n = 0;
+    in >> v >> n;
+    in.get();
+    std::string file(n, '\0');
+    in.read(file.data(), static_cast<std::streamsize>(n));
+    const std::string text = request.substr(static_cast<size_t>(in.tellg()));
+    return calibrationText(readOpenCvCalibrationHere(
+        text, file, v < 0 ? std::nullopt : std::optional<int>(static_cast<int>(v))));
+  });
+  const std::string request =
+      std::to_string(view ? *view : -1) + " " + std::to_string(path.size()) + " " + path + bytes;
+  return calibrationFromText(reader.call(request, path + ": OpenCV's calibration reader", seconds));
 }
 
 } // namespace nx

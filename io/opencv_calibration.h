@@ -25,10 +25,10 @@ struct OpenCvCalibration {
 /// extrinsic_parameters (N x 6, OpenCV's calibration sample), or R (3 x 3, or a 3 x 1 rotation
 /// vector) and T (3 x 1). Throws nx::Error "path: expected ..., found ..." for anything else.
 /// Text holding a NUL byte is refused before OpenCV sees it, and OpenCV reads in a child
-/// process killed after 5 s (OpenCV 4.6 loops forever on some malformed files: an nx::Error
-/// says so).
+/// process killed after `seconds` (OpenCV 4.6 loops forever on some malformed files: an
+/// nx::Error says so; the largest file read, 16 MB, takes a fraction of the default 5 s).
 OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::string& path,
-                                         std::optional<int> view);
+                                         std::optional<int> view, double seconds = 5);
 
 /// The same read in this process, without the NUL check or the child (the fuzzer's way to see
 /// its coverage, after parseOpenCvCalibration found the input safe): hangs where OpenCV hangs.
