@@ -19,6 +19,7 @@
 #include "integrators/render_scene.h"
 #include "integrators/sampling.h"
 #include "io/spectral_exr.h"
+#include "support/constant_map.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 #include "support/statistics.h"
@@ -154,14 +155,7 @@ TEST(EnvironmentLight, OneBrightTexelIsADistantLightsClosedForm) {
 // A map whose bands end inside the traced range is 0 beyond them, and a render tracing there
 // says so (the extrapolation warning names the map and its range).
 TEST(EnvironmentLight, BandsEndingInsideTheTracedRangeWarn) {
-  SpectralImage img;
-  img.width = 4, img.height = 2;
-  img.bands = Sensor(SpectralBands::parse("500:600:50"));
-  img.radiance.assign(static_cast<size_t>(8 * img.bands.count()), 1.0f);
-  img.rgb.assign(24, 0.5f);
-  img.attributes["nxrender.bands"] = img.bands.toString();
-  const std::string map = ::testing::TempDir() + "/env_narrow.exr";
-  writeSpectralExr(map, img);
+  const std::string map = test::writeConstantMap("env_narrow.exr", 4, 2, "500:600:50", 1.0f);
   const RenderScene scene = resolveRenderScene(parseScene(
       sceneWith("", kLookDown, "<light type=\"environment\"><file>" + map + "</file></light>"),
       "t.scn"));
@@ -212,14 +206,7 @@ TEST(EnvironmentLight, BandsEndingInsideTheTracedRangeWarn) {
 // edge bands are its value (they were half: the map was 0 from their centroid out), and a
 // sphere it lights matches the equal uniform background.
 TEST(EnvironmentLight, EdgeBandsOfTheMapCoverTheirSupport) {
-  SpectralImage img;
-  img.width = 8, img.height = 4;
-  img.bands = Sensor(SpectralBands::parse("400:700:10"));
-  img.radiance.assign(static_cast<size_t>(32 * img.bands.count()), 0.7f);
-  img.rgb.assign(96, 0.5f);
-  img.attributes["nxrender.bands"] = img.bands.toString();
-  const std::string map = ::testing::TempDir() + "/env_own_bands.exr";
-  writeSpectralExr(map, img);
+  const std::string map = test::writeConstantMap("env_own_bands.exr", 8, 4, "400:700:10", 0.7f);
   const std::string light = "<light type=\"environment\"><file>" + map + "</file></light>";
   auto scene = [&](const std::string& settings, const std::string& camera,
                    const std::string& body) {

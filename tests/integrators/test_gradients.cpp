@@ -14,6 +14,7 @@
 #include "integrators/gradients/light_gradients.h"
 #include "integrators/gradients/path_gradients.h"
 #include "integrators/renderer.h"
+#include "support/constant_map.h"
 #include "support/errors.h"
 #include "support/statistics.h"
 
@@ -576,14 +577,7 @@ TEST(Gradients, RefusesWhatIsNotDifferentiated) {
 // the spot's intensities are the differentiated spectra, and a change of the environment map
 // between the builds is refused by name.
 TEST(Gradients, EveryLightKindIsHandledOrRefusedByName) {
-  SpectralImage sky;
-  sky.width = 4, sky.height = 2;
-  sky.bands = Sensor(SpectralBands::parse("350:1050:100"));
-  sky.radiance.assign(static_cast<size_t>(8 * sky.bands.count()), 0.05f);
-  sky.rgb.assign(24, 0.05f);
-  sky.attributes["nxrender.bands"] = sky.bands.toString();
-  const std::string map = ::testing::TempDir() + "/gradient_sky.exr";
-  writeSpectralExr(map, sky);
+  const std::string map = test::writeConstantMap("gradient_sky.exr", 4, 2, "350:1050:100", 0.05f);
   auto text = [&](double reflectance, double skyScale) {
     return scene(
         "<material>matte</material><reflectance>" + num(reflectance) + "</reflectance>", kMatte,

@@ -8,6 +8,7 @@
 
 #include "integrators/render_scene.h"
 #include "io/spectral_exr.h"
+#include "support/constant_map.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 
@@ -24,15 +25,7 @@ std::string lightScene(const std::string& light) {
 
 // A spectral EXR (a constant one) where a file parameter's example names one.
 std::string exampleFile(const std::string& example) {
-  const std::string path = ::testing::TempDir() + "/" + example;
-  SpectralImage img;
-  img.width = 4, img.height = 2;
-  img.bands = Sensor(SpectralBands::parse("350:1050:100"));
-  img.radiance.assign(static_cast<size_t>(8 * img.bands.count()), 0.5f);
-  img.rgb.assign(24, 0.5f);
-  img.attributes["nxrender.bands"] = img.bands.toString();
-  writeSpectralExr(path, img);
-  return path;
+  return test::writeConstantMap(example, 4, 2, "350:1050:100", 0.5f);
 }
 
 // Every parameter the kind declares, at its example (a scale as its spectrum's attribute).
