@@ -89,6 +89,7 @@ void IsolatedWorker::start() {
     throw Error(std::string("cannot start a reader process (") + std::strerror(errno) + ")");
   }
   if (pid == 0) { // the child: each request answered with 'O' and the reply, or 'E' and a message
+    if (childStarted) childStarted();
     ::close(fds[0]);
     for (;;) {
       std::string request;

@@ -30,6 +30,11 @@ public:
   /// did not answer (`what` names the reader: "calib.yml: OpenCV's calibration reader").
   std::string call(const std::string& request, const std::string& what, double seconds);
 
+  /// Called first in every child process (null: nothing). The fuzzer sets it so that a
+  /// library crash the child contains is not also written as a finding of the fuzzed process
+  /// (the child inherits the fuzzer's crash handler with its memory).
+  static inline void (*childStarted)() = nullptr;
+
 private:
   void start();
   void stop();
