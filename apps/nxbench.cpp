@@ -80,7 +80,7 @@ double rawRaysPerSecond(const RenderScene& scene) {
 int main(int argc, char** argv) {
   CLI::App app{"nxbench: speed against error for one scene"};
   std::string scenePath, referencePath, csvPath = "nxbench.csv", plotPath = "nxbench.png",
-                                        sampler = "sobol", bandsText, density = "sensor";
+                                        sampler = "stratified", bandsText, density = "sensor";
   int referenceSpp = 1024, maxSpp = 64, threads = 2;
   app.add_option("scene", scenePath, "Scene file")->required();
   app.add_option("--reference", referencePath, "Reference EXR (else rendered)");
@@ -90,8 +90,8 @@ int main(int argc, char** argv) {
   app.add_option("--max-spp", maxSpp, "Largest spp of the doubling series (default 64)")
       ->check(nx::numberIn(1, 1 << 20));
   app.add_option("--threads", threads, "Threads (default 2)")->check(nx::numberIn(1, 4096));
-  app.add_option("--sampler", sampler, "sobol or independent")
-      ->check(CLI::IsMember({"sobol", "independent"}));
+  app.add_option("--sampler", sampler, "stratified (default), sobol or independent, as nxrender's")
+      ->check(CLI::IsMember({"stratified", "sobol", "independent"}));
   app.add_option("--bands", bandsText, "Bands START:END:STEP in nm (default: the scene's)");
   app.add_option("--wavelength-density", density, "sensor (default) or visible")
       ->check(CLI::IsMember({"sensor", "visible"}));
@@ -113,6 +113,7 @@ int main(int argc, char** argv) {
       o.samples = spp;
       o.seed = seed;
       o.sampler = kind;
+      o.stratifiedLanes = sampler == "stratified";
       o.bands = bands;
       o.wavelengthDensity =
           density == "visible" ? WavelengthDensity::Visible : WavelengthDensity::Sensor;

@@ -168,9 +168,8 @@ int run(int argc, char** argv) {
   long long seed = -1;
   double checkpointSeconds = 0, targetError = 0, timeLimit = 0;
   std::string output, bandsText, sensorText, sensorCentres,
-      density = "sensor", errorOf = "luminance", aovText, lightSampling = "mis",
-      lightSelection = "local", sampler = "sobol", compression, adaptiveFrom, scenePath, cropText,
-      rangeText, resumePath;
+      errorOf = "luminance", aovText, compression, adaptiveFrom, scenePath, cropText, rangeText,
+      resumePath;
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false,
        envi = false, timings = false, adaptive = false, relightable = false;
   double relightStep = 5;
@@ -192,24 +191,12 @@ int run(int argc, char** argv) {
   app.add_option("--sensor-centres", sensorCentres,
                  "Nominal centres naming the --sensor CSV's bands (a,b,c or START:END:STEP, one "
                  "per band), when its header does not name them by wavelength");
-  app.add_option("--wavelength-density", density,
-                 "sensor (default: half the lanes over the bands, each band the same share, half "
-                 "over the visible range for XYZ and the preview) or visible (the eye's density "
-                 "alone, as earlier versions)")
-      ->check(CLI::IsMember({"sensor", "visible"}));
   app.add_option("--seed", seed, "Random seed (default: the scene's <seed>, else 0)")
       ->check(nx::numberIn(0LL, 2147483647LL));
-  app.add_option("--light-sampling", lightSampling,
-                 "mis (default), bsdf or nee: how diffuse surfaces find lights")
-      ->check(CLI::IsMember({"mis", "bsdf", "nee"}));
-  app.add_option("--light-selection", lightSelection,
-                 "local (default: by the power each light sends to the shading point), power "
-                 "(by emitted power) or uniform: how next-event estimation chooses a light")
-      ->check(CLI::IsMember({"local", "power", "uniform"}));
-  app.add_option("--sampler", sampler,
-                 "sobol (Owen-scrambled, default), stratified (sobol with each pixel's "
-                 "wavelengths stratified over its samples: less noise per band) or independent")
-      ->check(CLI::IsMember({"sobol", "stratified", "independent"}));
+  // The strategies from their one table (values, default, help): RenderChoices' fields.
+  nx::RenderChoices strategies;
+  for (const nx::StrategyOption& o : nx::strategyOptions())
+    app.add_option(o.option, strategies.*o.field, o.help)->check(CLI::IsMember(o.values));
   app.add_flag("--no-fluorescence", noFluorescence,
                "Render fluorescent materials as their ordinary reflectance (for comparisons)");
   app.add_flag("--no-variance", noVariance,
@@ -302,10 +289,7 @@ int run(int argc, char** argv) {
     if (sensorText.empty()) throw nx::Error("--sensor-centres: expected a --sensor CSV to name");
     choices.bands = choices.bands->withNominalCentres(sensorCentres, "--sensor-centres");
   }
-  choices.sampler = sampler;
-  choices.lightSampling = lightSampling;
-  choices.lightSelection = lightSelection;
-  choices.density = density;
+  for (const nx::StrategyOption& o : nx::strategyOptions()) choices.*o.field = strategies.*o.field;
   choices.noFluorescence = noFluorescence;
   choices.relightable = relightable;
   choices.relightStepNm = relightStep;
@@ -426,6 +410,11 @@ int run(int argc, char** argv) {
     const nx::SpectralImage prev = nx::readSpectralExr(resumePath);
     auto attr = [&](const char* k) { return attributeOf(prev, k); };
     const nx::PixelRect want = job.rect();
+    if (attr("nxrender.sampler") != job.choices().sampler)
+      throw nx::Error(resumePath + ": was rendered with --sampler " + attr("nxrender.sampler") +
+                      ", this render uses " + job.choices().sampler +
+                      " (stratified is the default now, sobol was before; give --sampler " +
+                      attr("nxrender.sampler") + " to continue it)");
     if (attr("nxrender.renderKey") != job.renderKey())
       throw nx::Error(resumePath +
                       ": was rendered from another scene, other data files (CSV spectra, "
@@ -454,6 +443,11 @@ int run(int argc, char** argv) {
   if (!adaptiveFrom.empty()) {
     const nx::SpectralImage from = nx::readSpectralExr(adaptiveFrom);
     auto attr = [&](const char* k) { return attributeOf(from, k); };
+    if (attr("nxrender.sampler") != job.choices().sampler)
+      throw nx::Error(adaptiveFrom + ": was rendered with --sampler " + attr("nxrender.sampler") +
+                      ", this render uses " + job.choices().sampler +
+                      " (stratified is the default now, sobol was before; give --sampler " +
+                      attr("nxrender.sampler") + " to continue it)");
     if (attr("nxrender.renderKey") != job.renderKey())
       throw nx::Error(adaptiveFrom +
                       ": was rendered from another scene, other data files, other options or "

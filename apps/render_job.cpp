@@ -21,13 +21,13 @@ std::string hex(uint64_t v) {
 }
 
 // One of `names`, else nx::Error "option: expected a, b or c, found 'x'".
-void requireOneOf(const std::string& value, const std::vector<const char*>& names,
+void requireOneOf(const std::string& value, const std::vector<std::string>& names,
                   const char* option) {
   std::string list;
   size_t i = 0;
-  for (const char* n : names) {
+  for (const std::string& n : names) {
     if (value == n) return;
-    list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::string(n);
+    list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + n;
     ++i;
   }
   throw Error(std::string(option) + ": expected " + list + ", found '" + value + "'");
@@ -52,10 +52,38 @@ ErrorMeasure errorMeasureFrom(const std::string& text) {
 
 const std::vector<StrategyOption>& strategyOptions() {
   static const std::vector<StrategyOption> options{
-      {&RenderChoices::sampler, "--sampler", {"sobol", "stratified", "independent"}},
-      {&RenderChoices::lightSampling, "--light-sampling", {"mis", "bsdf", "nee"}},
-      {&RenderChoices::lightSelection, "--light-selection", {"local", "power", "uniform"}},
-      {&RenderChoices::density, "--wavelength-density", {"sensor", "visible"}}};
+      {&RenderChoices::sampler,
+       "--sampler",
+       {"stratified", "sobol", "independent"},
+       "stratified (default: Owen-scrambled Sobol, each pixel's wavelengths stratified over its "
+       "samples), sobol (the same with each sample's lanes from one coordinate: more noise per "
+       "band; the earlier default) or independent (uniform random numbers)"},
+      {&RenderChoices::lightSampling,
+       "--light-sampling",
+       {"mis", "bsdf", "nee"},
+       "mis (default), bsdf or nee: how diffuse surfaces find lights"},
+      {&RenderChoices::lightSelection,
+       "--light-selection",
+       {"local", "power", "uniform"},
+       "local (default: by the power each light sends to the shading point), power (by emitted "
+       "power) or uniform: how next-event estimation chooses a light"},
+      {&RenderChoices::density,
+       "--wavelength-density",
+       {"sensor", "visible"},
+       "sensor (default: half the lanes over the bands, each band the same share, half over the "
+       "visible range for XYZ and the preview) or visible (the eye's density alone, as earlier "
+       "versions)"}};
+  // Each option's default is listed first, as RenderChoices declares it (checked once here, so
+  // that --help, the Python defaults and the render key cannot disagree).
+  static const bool defaultsListedFirst = [] {
+    const RenderChoices defaults;
+    for (const StrategyOption& o : options)
+      if (defaults.*o.field != o.values.front())
+        throw Error(std::string("internal error: ") + o.option + "'s default '" +
+                    defaults.*o.field + "' is not the first of its values");
+    return true;
+  }();
+  (void)defaultsListedFirst;
   return options;
 }
 

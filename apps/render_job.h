@@ -15,13 +15,14 @@ namespace nx {
 
 /// What a render does beyond its scene: the command line's options, by their names there.
 struct RenderChoices {
-  int samples = 0;                      ///< samples per pixel; 0 = the scene's <sampl>
-  int firstSample = 0;                  ///< first sample of each pixel's sequence (--spp-range A:B)
-  std::optional<uint32_t> seed;         ///< default: the scene's <seed>
-  std::optional<Sensor> bands;          ///< default: the scene's <bands>/<sensor>
-  std::optional<PixelRect> crop;        ///< default: the whole image
-  bool sampleRange = false;             ///< firstSample/samples came from a sample range
-  std::string sampler = "sobol";        ///< sobol, stratified or independent
+  int samples = 0;               ///< samples per pixel; 0 = the scene's <sampl>
+  int firstSample = 0;           ///< first sample of each pixel's sequence (--spp-range A:B)
+  std::optional<uint32_t> seed;  ///< default: the scene's <seed>
+  std::optional<Sensor> bands;   ///< default: the scene's <bands>/<sensor>
+  std::optional<PixelRect> crop; ///< default: the whole image
+  bool sampleRange = false;      ///< firstSample/samples came from a sample range
+  /// The strategies (strategyOptions(): each one's values, its default first).
+  std::string sampler = "stratified";   ///< stratified, sobol or independent
   std::string lightSampling = "mis";    ///< mis, bsdf or nee
   std::string lightSelection = "local"; ///< local, power or uniform
   std::string density = "sensor";       ///< sensor or visible
@@ -47,14 +48,17 @@ Sensor sensorFromOption(const std::string& text, const std::string& option);
 bool addAov(RenderChoices& choices, const std::string& name);
 
 /// A strategy option of RenderChoices (sampler, light sampling, light selection, wavelength
-/// density): its field, its command-line name and the values it takes.
+/// density): its field, its command-line name, the values it takes (the default first: the
+/// field's initial value, tested) and its help text.
 struct StrategyOption {
   std::string RenderChoices::*field; ///< the choice
   const char* option;                ///< "--light-sampling"
-  std::vector<const char*> values;   ///< {"mis", "bsdf", "nee"}
+  std::vector<std::string> values;   ///< {"mis", "bsdf", "nee"}
+  const char* help;                  ///< what the option chooses, for --help and docs
 };
 
-/// The strategy options, checked by RenderJob (the Python module names them after them).
+/// The strategy options, checked by RenderJob; nxrender's options and the Python module's
+/// parameters (named after them) are made from this table.
 const std::vector<StrategyOption>& strategyOptions();
 
 /// Removes the fluorescence of every object and named material (--no-fluorescence).
@@ -68,6 +72,8 @@ public:
   /// the image's attributes.
   RenderJob(const RenderScene& scene, std::string scenePath, const RenderChoices& choices);
 
+  /// The choices it was made with.
+  const RenderChoices& choices() const { return choices_; }
   /// The options for nx::render (hooks such as stop and progress are the caller's to set).
   RenderOptions& options() { return options_; }
   /// What the image estimates: scene content (text and files), options that change the image,

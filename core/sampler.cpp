@@ -51,11 +51,40 @@ struct SobolDimension1Table {
 };
 const SobolDimension1Table kSobol1Reversed;
 
+// Sobol dimension 2 (primitive polynomial x^2 + x + 1, initial m = 1, 3: Joe and Kuo 2008,
+// "Constructing Sobol sequences with better two-dimensional projections", dimension 3 of their
+// table): v_0 = 2^31, v_1 = 3 * 2^29, v_k = v_{k-1} ^ v_{k-2} ^ (v_{k-2} >> 2). Tabulated
+// bit-reversed per index byte like dimension 1.
+struct SobolDimension2Table {
+  uint32_t byByte[4][256];
+  SobolDimension2Table() {
+    uint32_t v[32];
+    v[0] = 1U << 31;
+    v[1] = 3U << 29;
+    for (int k = 2; k < 32; ++k) v[k] = v[k - 1] ^ v[k - 2] ^ (v[k - 2] >> 2);
+    for (int byte = 0; byte < 4; ++byte)
+      for (uint32_t value = 0; value < 256; ++value) {
+        uint32_t x = 0;
+        for (int bit = 0; bit < 8; ++bit)
+          if (value & (1U << bit)) x ^= v[8 * byte + bit];
+        byByte[byte][value] = reverseBits(x);
+      }
+  }
+};
+const SobolDimension2Table kSobol2Reversed;
+
 // Sobol dimension 1 of an index, bit-reversed.
 uint32_t sobolDimension1Reversed(uint32_t index) {
   return kSobol1Reversed.byByte[0][index & 0xffU] ^
          kSobol1Reversed.byByte[1][(index >> 8) & 0xffU] ^
          kSobol1Reversed.byByte[2][(index >> 16) & 0xffU] ^ kSobol1Reversed.byByte[3][index >> 24];
+}
+
+// Sobol dimension 2 of an index, bit-reversed.
+uint32_t sobolDimension2Reversed(uint32_t index) {
+  return kSobol2Reversed.byByte[0][index & 0xffU] ^
+         kSobol2Reversed.byByte[1][(index >> 8) & 0xffU] ^
+         kSobol2Reversed.byByte[2][(index >> 16) & 0xffU] ^ kSobol2Reversed.byByte[3][index >> 24];
 }
 
 constexpr uint32_t kShuffleSalt = 0x5f356495U;
@@ -76,6 +105,17 @@ Sample2 sobolPair(uint32_t reversedIndex, uint32_t shuffleSeed, uint32_t seedX, 
   return {bitsToUnitFloat(scrambleReversed(shuffled, seedX)), // reverse(reverse(shuffled))
           bitsToUnitFloat(scrambleReversed(sobolDimension1Reversed(shuffled), seedY))};
 }
+
+// The third coordinate of a pair: Sobol dimension 2 at the pair's shuffled index.
+float sobolThird(uint32_t reversedIndex, uint32_t shuffleSeed, uint32_t seedZ) {
+  const uint32_t shuffled = scrambleReversed(reversedIndex, shuffleSeed);
+  return bitsToUnitFloat(scrambleReversed(sobolDimension2Reversed(shuffled), seedZ));
+}
+
+// Scrambling seeds of the third coordinates and counter dimensions of the independent ones:
+// numbered after every pair's two dimensions.
+constexpr uint32_t kThirdDimension = 2 * kSobolPairs;
+constexpr uint32_t kCounterThirdDimension = 0xffffff00U;
 
 uint32_t shuffleSeed(uint32_t pixel, uint32_t pair, uint32_t seed) {
   return hash4(pixel, pair, seed, kShuffleSalt);
@@ -110,6 +150,7 @@ PixelSequence::PixelSequence(SamplerKind kind, uint32_t pixel, uint32_t seed)
     shuffle_[p] = sobol_ ? shuffleSeed(pixel, p, seed) : 0;
     scramble_[p][0] = sobol_ ? scrambleSeed(pixel, 2 * p, seed) : 0;
     scramble_[p][1] = sobol_ ? scrambleSeed(pixel, 2 * p + 1, seed) : 0;
+    scramble_[p][2] = sobol_ ? scrambleSeed(pixel, kThirdDimension + p, seed) : 0;
   }
 }
 
@@ -122,6 +163,17 @@ Sample2 PixelSequence::pair(const SampleId& id, uint32_t pair) const {
     return {bitsToUnitFloat(counterBits(id.key, 2 * pair)),
             bitsToUnitFloat(counterBits(id.key, 2 * pair + 1))};
   return sobolPair(id.reversedIndex, shuffle_[pair], scramble_[pair][0], scramble_[pair][1]);
+}
+
+float PixelSequence::third(const SampleId& id, uint32_t pair) const {
+  if (!sobol_ || pair >= kSobolPairs)
+    return bitsToUnitFloat(counterBits(id.key, kCounterThirdDimension + pair));
+  return sobolThird(id.reversedIndex, shuffle_[pair], scramble_[pair][2]);
+}
+
+float sampleThird(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed) {
+  return PixelSequence(kind, pixel, seed)
+      .third(PixelSequence(kind, pixel, seed).sample(index), pair);
 }
 
 } // namespace nx

@@ -41,6 +41,9 @@ float sampleValue(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t dim
 /// Dimensions 2*pair and 2*pair+1 together (they form a (0,2)-sequence for SobolOwen).
 Sample2 samplePair(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed);
 
+/// The third coordinate of that pair (PixelSequence::third).
+float sampleThird(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed);
+
 /// The sequence of one (pixel, seed): its scrambling seeds, computed once and shared by all
 /// of the pixel's samples.
 class PixelSequence {
@@ -58,12 +61,16 @@ public:
   /// Dimensions 2*pair and 2*pair+1 of the sample: equal to samplePair(kind, pixel, index,
   /// pair, seed).
   Sample2 pair(const SampleId& id, uint32_t pair) const;
+  /// The third coordinate of the pair: Sobol dimension 2 at the pair's shuffled index, with a
+  /// scrambling of its own (SobolOwen; for the first 2^m samples the three coordinates form a
+  /// (1,m,3)-net, each two a net of t <= 1), else a counter-based value.
+  float third(const SampleId& id, uint32_t pair) const;
 
 private:
   bool sobol_;
   uint32_t pixel_, seed_;
   uint32_t shuffle_[kSobolPairs];     ///< index shuffle seed per Sobol pair
-  uint32_t scramble_[kSobolPairs][2]; ///< Owen scrambling seed per Sobol dimension
+  uint32_t scramble_[kSobolPairs][3]; ///< Owen scrambling seed per Sobol dimension (and third)
 };
 
 /// The sample values of one (pixel, sample index), handed out in order. A 2D draw takes a
@@ -87,6 +94,17 @@ public:
   }
   /// Next point in [0,1)^2.
   Sample2 next2D() { return sequence_->pair(id_, pair_++); }
+  /// The next pair's two coordinates, and its third (Sobol dimension 2 at the same shuffled
+  /// index) left as the next 1D draw: three coordinates stratified together, e.g. a sample's
+  /// wavelengths (two) and the path's first decision, as one coordinate's wavelengths share
+  /// their pair with that decision (next1D).
+  Sample2 next2DWithThirdPending() {
+    const uint32_t p = pair_;
+    const Sample2 s = next2D();
+    pending_ = true;
+    pendingValue_ = sequence_->third(id_, p);
+    return s;
+  }
 
 private:
   const PixelSequence* sequence_;

@@ -25,11 +25,15 @@
 namespace nx {
 namespace {
 
-// A sample's wavelengths from both coordinates of its next Sobol pair
-// (RenderOptions::stratifiedLanes).
+// A sample's wavelengths from both coordinates of its next Sobol pair, the pair's third
+// coordinate left for the path's first 1D decision (RenderOptions::stratifiedLanes): the
+// offset, the hero's stratum and that decision stratified together, as one coordinate's
+// wavelengths share their pair with it. Taken from a new pair instead, the decision loses its
+// stratification against the wavelengths (3x the band variance of a glass sphere's
+// reflect-or-refract choice, docs/performance.md).
 SampledWavelengths sampleStratifiedLanes(const WavelengthSampler& wavelengths,
                                          PixelSampleStream& rng) {
-  const Sample2 u = rng.next2D();
+  const Sample2 u = rng.next2DWithThirdPending();
   return wavelengths.sample(u.u, u.v);
 }
 
@@ -138,10 +142,6 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   std::vector<std::vector<double>> sourceSpectra;
   std::vector<std::string> sources;
   if (relightable) {
-    if (options.stratifiedLanes)
-      throw Error("--relightable with --sampler stratified: the relit variances add the excitation "
-                  "bins' layers as independent, which stratified lanes make anticorrelated; use "
-                  "--sampler sobol or independent for a relightable render");
     if (options.resumeFrom)
       throw Error("--relightable: continuing a relightable render (--resume) is not supported; "
                   "render it again, or split it by --spp-range parts and merge them");

@@ -91,11 +91,9 @@ struct RenderOptions {
   TriangleLightSampling triangleLightSampling = TriangleLightSampling::SolidAngle;
   /// Draws each sample's wavelengths from both coordinates of the first Sobol pair
   /// (WavelengthSampler::sample(offset, heroStratum)), so that a pixel's lanes are stratified
-  /// over its samples (`--sampler stratified`): 1.8-3.4x less variance per band on the
-  /// area-light scenes, but not the default yet (docs/performance.md, "Stratified lanes": the
-  /// relit variance channels and some statistical tests move with it; refused with a
-  /// relightable scene). Off: one coordinate, u + i / kLanes.
-  bool stratifiedLanes = false;
+  /// over its samples (`--sampler stratified`, the default): 1.8-3.4x less variance per band
+  /// than one coordinate, u + i / kLanes (off: `--sampler sobol`; docs/performance.md).
+  bool stratifiedLanes = true;
   /// When set, no new tile is started once it becomes true (SIGINT, SIGTERM, time limit);
   /// the film then holds every finished tile's samples with their true counts.
   const std::atomic<bool>* stop = nullptr;

@@ -74,7 +74,10 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
   const int nb = first.image.bands.count();
   std::vector<std::pair<long long, long long>> ranges;
   for (const ImagePart& p : parts) {
-    for (const char* key : {"nxrender.renderKey", "nxrender.seed", "nxrender.bands"})
+    // The sampler first: parts of one render made before and after the default sampler
+    // changed (sobol -> stratified) differ there, and the render key would not say so.
+    for (const char* key :
+         {"nxrender.sampler", "nxrender.renderKey", "nxrender.seed", "nxrender.bands"})
       if (attribute(p, key) != attribute(first, key))
         throw Error(p.name + ": does not belong with " + first.name + ": its " + key + " is '" +
                     attribute(p, key) + "', not '" + attribute(first, key) + "'" +
@@ -358,7 +361,8 @@ SpectralImage stitchBands(const std::vector<ImagePart>& images) {
   std::map<std::string, std::string> layerOwner;
   for (size_t k = 0; k < images.size(); ++k) {
     const ImagePart& p = images[k];
-    for (const char* key : {"nxrender.renderKey", "nxrender.seed", "nxrender.sampleRange"})
+    for (const char* key :
+         {"nxrender.sampler", "nxrender.renderKey", "nxrender.seed", "nxrender.sampleRange"})
       if (attribute(p, key) != attribute(first, key))
         throw Error(p.name + ": cannot be stitched with " + first.name + " (other bands): its " +
                     key + " is '" + attribute(p, key) + "', not '" + attribute(first, key) +

@@ -165,9 +165,9 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
     const std::string& value = choices.*o.field;
     std::string list;
     bool ok = false;
-    for (const char* n : o.values) {
+    for (const std::string& n : o.values) {
       ok = ok || value == n;
-      list += (list.empty() ? "'" : ", '") + std::string(n) + "'";
+      list += (list.empty() ? "'" : ", '") + n + "'";
     }
     if (!ok)
       throw py::value_error(pythonName(o.option) + ": expected one of " + list + ", found '" +
@@ -350,17 +350,20 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
 } // namespace
 
 void bindRender(py::module_& m) {
+  // The strategies' defaults as the command line's (RenderChoices, apps/render_job.h).
+  const nx::RenderChoices defaults;
   m.def("render", &render, py::arg("scene"), py::arg("spp") = py::none(),
         py::arg("seed") = py::none(), py::arg("threads") = py::none(),
         py::arg("bands") = py::none(), py::arg("sensor") = py::none(), py::arg("crop") = py::none(),
         py::arg("spp_range") = py::none(), py::arg("progress") = py::none(),
-        py::arg("sampler") = "sobol", py::arg("light_sampling") = "mis",
-        py::arg("light_selection") = "local", py::arg("wavelength_density") = "sensor",
-        py::arg("fluorescence") = true, py::arg("aovs") = py::tuple(),
-        py::arg("target_error") = py::none(), py::arg("error_of") = "luminance",
-        py::arg("time_limit") = py::none(), py::arg("adaptive") = false,
-        py::arg("relightable") = false, py::arg("relight_step") = py::none(),
-        py::arg("gradients") = py::none(), py::arg("adjoint") = py::none(),
+        py::arg("sampler") = defaults.sampler, py::arg("light_sampling") = defaults.lightSampling,
+        py::arg("light_selection") = defaults.lightSelection,
+        py::arg("wavelength_density") = defaults.density, py::arg("fluorescence") = true,
+        py::arg("aovs") = py::tuple(), py::arg("target_error") = py::none(),
+        py::arg("error_of") = "luminance", py::arg("time_limit") = py::none(),
+        py::arg("adaptive") = false, py::arg("relightable") = false,
+        py::arg("relight_step") = py::none(), py::arg("gradients") = py::none(),
+        py::arg("adjoint") = py::none(),
         "Renders a scene (an nxrender.Scene, a scene file name, or scene XML text) and returns "
         "an nxrender.Image, the same bit for bit as nxrender's EXR for the same scene, seed and "
         "samples. The GIL is released while rendering; Ctrl-C raises KeyboardInterrupt after "
@@ -383,9 +386,10 @@ void bindRender(py::module_& m) {
       },
       py::arg("scene"), py::arg("adjoint"), py::arg("gradients"), py::arg("spp") = py::none(),
       py::arg("seed") = py::none(), py::arg("threads") = py::none(), py::arg("bands") = py::none(),
-      py::arg("sensor") = py::none(), py::arg("crop") = py::none(), py::arg("sampler") = "sobol",
-      py::arg("light_sampling") = "mis", py::arg("light_selection") = "local",
-      py::arg("wavelength_density") = "sensor", py::arg("fluorescence") = true,
+      py::arg("sensor") = py::none(), py::arg("crop") = py::none(),
+      py::arg("sampler") = defaults.sampler, py::arg("light_sampling") = defaults.lightSampling,
+      py::arg("light_selection") = defaults.lightSelection,
+      py::arg("wavelength_density") = defaults.density, py::arg("fluorescence") = true,
       "Reverse mode (docs/inverse.md): the gradient of a scalar loss with respect to every "
       "parameter named in `gradients`, given adjoint = d loss / d image (the shape of the "
       "radiance), in one pass; returns (gradients, variances): dicts name -> a number, or an "

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <array>
+#include <map>
 #include <set>
 
 #include "core/sampler.h"
@@ -124,6 +126,69 @@ TEST(Sampler, SobolOwenFirstPowerOfTwoSamplesFormNets) {
     independentNets += cells.size() == 16;
   }
   EXPECT_LT(independentNets, 3);
+}
+
+// The third coordinate of a pair (Sobol dimension 2 at the pair's shuffled index): for the
+// first 2^m samples of a pixel it is a (0,m,1)-net on its own, with each of the pair's
+// coordinates a net of t <= 1 (every elementary interval of area 2^(1-m) holds two points),
+// and the three together a (1,m,3)-net (Joe and Kuo's dimensions 1-3); across pixels it is
+// uniform and independent of the pair (chi-square). The stream hands it out as the next 1D
+// draw after next2DWithThirdPending.
+TEST(Sampler, ThirdCoordinateIsStratifiedWithItsPair) {
+  // Points of boxes with the given bits per coordinate; each must hold `per` points.
+  auto eachBoxHolds = [](const std::vector<std::array<float, 3>>& pts, int bx, int by, int bz,
+                         uint32_t per) {
+    std::map<uint32_t, uint32_t> counts;
+    for (const auto& p : pts) {
+      const uint32_t cx = static_cast<uint32_t>(p[0] * float(1u << bx));
+      const uint32_t cy = static_cast<uint32_t>(p[1] * float(1u << by));
+      const uint32_t cz = static_cast<uint32_t>(p[2] * float(1u << bz));
+      ++counts[(cx << 20) | (cy << 10) | cz];
+    }
+    for (const auto& [cell, c] : counts)
+      if (c != per) return false;
+    return counts.size() == pts.size() / per;
+  };
+  for (uint32_t pixel : {0u, 17u, 123456u})
+    for (uint32_t pair : {0u, kSobolPairs - 1})
+      for (int m = 1; m <= 8; ++m) {
+        const uint32_t n = 1u << m;
+        std::vector<std::array<float, 3>> pts;
+        for (uint32_t i = 0; i < n; ++i) {
+          const Sample2 s = samplePair(SamplerKind::SobolOwen, pixel, i, pair, 77);
+          pts.push_back({s.u, s.v, sampleThird(SamplerKind::SobolOwen, pixel, i, pair, 77)});
+        }
+        EXPECT_TRUE(eachBoxHolds(pts, 0, 0, m, 1)) << "alone, m " << m;
+        for (int a = 0; a < m; ++a) {
+          EXPECT_TRUE(eachBoxHolds(pts, a, 0, m - 1 - a, 2)) << "with u, m " << m << " a " << a;
+          EXPECT_TRUE(eachBoxHolds(pts, 0, a, m - 1 - a, 2)) << "with v, m " << m << " a " << a;
+          for (int b = 0; a + b < m; ++b)
+            EXPECT_TRUE(eachBoxHolds(pts, a, b, m - 1 - a - b, 2))
+                << "all three, m " << m << " " << a << "," << b;
+        }
+      }
+  for (SamplerKind k : kKinds) {
+    const int side = 16, n = side * side * side * 40;
+    std::vector<double> obs(side * side * side, 0), exp(obs.size(), n / double(obs.size()));
+    for (int i = 0; i < n; ++i) {
+      const uint32_t px = static_cast<uint32_t>(i / 16), idx = static_cast<uint32_t>(i % 16);
+      const Sample2 s = samplePair(k, px, idx, 0, 9);
+      const float w = sampleThird(k, px, idx, 0, 9);
+      obs[(static_cast<size_t>(s.u * side) * side + static_cast<size_t>(s.v * side)) * side +
+          static_cast<size_t>(w * side)] += 1;
+    }
+    const auto [stat, dof] = test::chiSquare(obs, exp);
+    EXPECT_LT(test::chiSquareZ(stat, dof), 4.0) << "kind " << int(k);
+  }
+  const PixelSequence sequence(SamplerKind::SobolOwen, 5, 3);
+  PixelSampleStream stream(sequence, 6);
+  const Sample2 first = stream.next2DWithThirdPending();
+  const Sample2 second = stream.next2D();
+  const float third = stream.next1D();
+  EXPECT_EQ(first.u, samplePair(SamplerKind::SobolOwen, 5, 6, 0, 3).u);
+  EXPECT_EQ(second.v, samplePair(SamplerKind::SobolOwen, 5, 6, 1, 3).v);
+  EXPECT_EQ(third, sampleThird(SamplerKind::SobolOwen, 5, 6, 0, 3));
+  EXPECT_EQ(stream.next1D(), samplePair(SamplerKind::SobolOwen, 5, 6, 2, 3).u);
 }
 
 // Sample index ranges of a pixel are disjoint parts of one sequence (farm splits).

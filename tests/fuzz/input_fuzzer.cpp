@@ -11,8 +11,6 @@
 
 #include <unistd.h>
 
-#include <sanitizer/common_interface_defs.h>
-
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -48,10 +46,17 @@ void writeFile(const std::string& path, const uint8_t* data, size_t size) {
 
 } // namespace
 
+// The sanitizers' death callback (libFuzzer's writes the crashing input), weak so that the
+// replay build links without them.
+extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
+
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   // A crash of OpenCV's reader inside its child process is contained and refused as a file
   // error (what the tests check); only the fuzzed process's own crashes are findings.
-  nx::IsolatedWorker::childStarted = [] { __sanitizer_set_death_callback(nullptr); };
+  // (The sanitizers' runtime defines it; the replay build without them does not.)
+  nx::IsolatedWorker::childStarted = [] {
+    if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(nullptr);
+  };
   const char* kind = std::getenv("NX_FUZZ_KIND");
   gKind = kind ? kind : "";
   static const char* kKinds[] = {"ply", "obj",         "sensor",        "envi",   "exr",

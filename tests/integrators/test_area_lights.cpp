@@ -269,24 +269,71 @@ TEST(AreaLights, LocalSelectionBeatsUniformWithAWeakUvLamp) {
 }
 
 // On the scene of the MIS test (a small bright sphere inside an emitting dome), where emitted
-// power misleads (the dome's power is 5,000 times the small light's, its irradiance 3 times),
-// the local selection is no worse than uniform.
-TEST(AreaLights, LocalSelectionNoWorseThanUniformUnderADome) {
+// power misleads (the dome's power is 5,000 times the small light's, its irradiance 3 times):
+// choosing by the power each light sends to the point is far better than by emitted power, but
+// (measured) worse than uniform: 1.34x its variance at 550 nm with sobol lanes, 1.64x with
+// stratified ones (the uniform choice gains most from the choice dimension's stratification).
+// Irradiance is not what makes a light's estimate noisy (half the dome lies under the floor);
+// docs/performance.md, "Choosing lights". The camera sees only the floor: pixels that see the
+// small sphere's edge carry a coverage variance 10^4 times the floor's, the same for every
+// choice, which made the earlier two-seed comparison pass or fail by luck.
+// Variances from the scatter over 32 seed pairs; bounds at the measured ratio plus 3.5 jackknife
+// standard errors over the pairs (0.02-0.04: the choices share their seeds, so the pairs'
+// ratios move together); local / power measured 0.03-0.04.
+TEST(AreaLights, LocalSelectionUnderADomeAgainstUniformAndPower) {
   const RenderScene scene = buildRenderScene(parseScene(
       "<scene><settings><xres>16</xres><yres>12</yres><mode>spectral_mcpt</mode><depth>3</depth>"
-      "<sampl>16</sampl></settings><camera><position>0,3,-6</position><look_at>0,0,0</look_at>"
+      "<sampl>16</sampl></settings><camera><position>0,3,-6</position><look_at>0,0,-3</look_at>"
       "<fov>50</fov></camera><plane><normal>0,1,0</normal><distance>0</distance>"
       "<material>matte</material><reflectance>0.6</reflectance></plane>"
       "<sphere><center>0,1.2,0</center><radius>0.08</radius><material>matte</material>"
       "<emission>300</emission></sphere><sphere><center>0,0,0</center><radius>100</radius>"
       "<material>matte</material><emission>1</emission></sphere></scene>",
       "t.scn"));
-  const double uniform = bandVariance(scene, LightSelection::Uniform, 550);
-  const double power = bandVariance(scene, LightSelection::Power, 550);
-  const double local = bandVariance(scene, LightSelection::Local, 550);
-  std::printf("variance at 550 nm under a dome: uniform %.4g, power %.4g, local %.4g\n", uniform,
-              power, local);
-  EXPECT_LT(local, 1.1 * uniform);
+  constexpr int kPairs = 32;
+  // Per seed pair: the mean over pixels of half the squared difference at 550 nm.
+  auto pairVariances = [&](LightSelection sel, bool stratified) {
+    std::vector<double> v;
+    for (int k = 0; k < kPairs; ++k) {
+      RenderOptions o;
+      o.lightSelection = sel;
+      o.stratifiedLanes = stratified;
+      o.seed = static_cast<uint32_t>(1000 + 2 * k);
+      const RenderOutput a = render(scene, o);
+      o.seed = static_cast<uint32_t>(1001 + 2 * k);
+      const RenderOutput b = render(scene, o);
+      const int band = 15;
+      EXPECT_EQ(a.film.bands().centroid(band), 550.0);
+      double sum = 0;
+      for (int y = 0; y < a.film.height(); ++y)
+        for (int x = 0; x < a.film.width(); ++x) {
+          const double d = a.film.bandMean(x, y, band) - b.film.bandMean(x, y, band);
+          sum += d * d / 2;
+        }
+      v.push_back(sum / (a.film.width() * a.film.height()));
+    }
+    return v;
+  };
+  // mean(num) / mean(den) over the pairs, and its jackknife standard error.
+  auto ratio = [](const std::vector<double>& num, const std::vector<double>& den) {
+    const double n = static_cast<double>(num.size());
+    double sn = 0, sd = 0;
+    for (size_t k = 0; k < num.size(); ++k) sn += num[k], sd += den[k];
+    test::RunningStats left;
+    for (size_t k = 0; k < num.size(); ++k) left.add((sn - num[k]) / (sd - den[k]));
+    return std::pair{sn / sd, std::sqrt((n - 1) / n * left.m2)};
+  };
+  for (const bool stratified : {false, true}) {
+    const auto uniform = pairVariances(LightSelection::Uniform, stratified);
+    const auto power = pairVariances(LightSelection::Power, stratified);
+    const auto local = pairVariances(LightSelection::Local, stratified);
+    const auto [againstUniform, seU] = ratio(local, uniform);
+    const auto [againstPower, seP] = ratio(local, power);
+    std::printf("%s: local / uniform %.3f +- %.3f, local / power %.4f +- %.4f\n",
+                stratified ? "stratified" : "sobol", againstUniform, seU, againstPower, seP);
+    EXPECT_LT(againstUniform, (stratified ? 1.64 : 1.34) + 3.5 * seU);
+    EXPECT_LT(againstPower + 3.5 * seP, 0.1);
+  }
 }
 
 // Next-event estimation, BSDF sampling and their MIS combination estimate the same image for

@@ -78,8 +78,10 @@ SceneTangents tangentsOf(const Family& f, const RenderScene& base) {
 
 // Forward mode against the central difference of two renders with the same seed: per band,
 // the mean over pixels of (gradient - difference) within 5 standard errors, and the test has
-// power: in the band where the gradient is largest, that standard error is below f.power of it
-// (3%: a gradient 15% off fails).
+// power: among the bands carrying at least half the largest gradient, the best resolved has
+// that standard error below f.power of its gradient (3%: a gradient 15% off fails). (Not the
+// largest band alone: where two bands carry nearly equal gradients, an absorption band
+// resolved to 2% and an emission band to 8%, which one is largest changed with the sampler.)
 // Returns the image-mean gradient per band.
 std::vector<double> expectGradientMatchesDifference(const Family& f,
                                                     const RenderOptions& base = {}) {
@@ -101,7 +103,7 @@ std::vector<double> expectGradientMatchesDifference(const Family& f,
   }
   const int nb = g.film.bands().count();
   std::vector<double> means;
-  double strongest = 0, strongestError = 0;
+  std::vector<double> errors;
   for (int b = 0; b < nb; ++b) {
     test::RunningStats d, grad, radiance;
     for (int y = 0; y < 24; ++y)
@@ -123,12 +125,17 @@ std::vector<double> expectGradientMatchesDifference(const Family& f,
     EXPECT_LE(std::abs(d.mean), 5 * d.standardError() + rounding)
         << "band " << b << ": gradient " << grad.mean << ", difference " << grad.mean - d.mean
         << " +- " << d.standardError();
-    if (std::abs(grad.mean) > strongest)
-      strongest = std::abs(grad.mean), strongestError = d.standardError();
     means.push_back(grad.mean);
+    errors.push_back(d.standardError());
   }
+  double strongest = 0;
+  for (double m : means) strongest = std::max(strongest, std::abs(m));
   EXPECT_GT(strongest, 0.0);
-  EXPECT_LT(strongestError, f.power * strongest) << "the test cannot resolve the gradient";
+  double bestResolved = INFINITY;
+  for (size_t b = 0; b < means.size(); ++b)
+    if (std::abs(means[b]) >= 0.5 * strongest)
+      bestResolved = std::min(bestResolved, errors[b] / std::abs(means[b]));
+  EXPECT_LT(bestResolved, f.power) << "the test cannot resolve the gradient";
   return means;
 }
 

@@ -70,7 +70,7 @@ def test_missing_files(tmp_path):
     (dict(bands="400:300:10"), nxrender.Error, ""),
     (dict(bands=(400, 700)), ValueError, "^bands: expected 3 numbers"),
     (dict(bands="400:700:10", sensor="gaussian:500@10"), ValueError, "^bands, sensor"),
-    (dict(sampler="halton"), ValueError, "^sampler: expected one of 'sobol', 'stratified', 'independent'"),
+    (dict(sampler="halton"), ValueError, "^sampler: expected one of 'stratified', 'sobol', 'independent'"),
     (dict(light_sampling=3), TypeError, "^light_sampling: expected a str"),
     (dict(aovs="ids"), TypeError, "^aovs: "),
     (dict(aovs=["normals"]), ValueError, "^aovs: "),
