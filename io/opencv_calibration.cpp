@@ -36,10 +36,15 @@ constexpr double kMaxCalibrationNumbers = 6e6;
 
 // A node's numbers, row by row: an opencv-matrix, a sequence (of numbers or of sequences), or
 // one number; `rows`/`cols` get its shape (a sequence of sequences: its length and the first's).
+// `depth`: how deep inside a table the node is; a row's items are numbers (a fuzzed file
+// nested sequences thousands deep and overflowed the stack here).
 std::vector<double> numbersOf(const cv::FileNode& node, const std::string& what,
-                              const std::string& path, int& rows, int& cols) {
+                              const std::string& path, int& rows, int& cols, int depth = 0) {
   std::vector<double> out;
   rows = cols = 0;
+  if (depth >= 2 && (node.isSeq() || node.isMap()))
+    throw Error(path + ": expected numbers or rows of numbers in " + what +
+                ", found a row holding rows");
   if (node.isMap()) {
     // OpenCV allocates the rows x cols the file declares before it reads the data (a fuzzed
     // file asked for 48 GB): the declaration must be small, whole and match its data first.
@@ -74,7 +79,7 @@ std::vector<double> numbersOf(const cv::FileNode& node, const std::string& what,
       int length = 1;
       if (item.isSeq() || item.isMap()) {
         int r = 0, c = 0;
-        const std::vector<double> inner = numbersOf(item, what, path, r, c);
+        const std::vector<double> inner = numbersOf(item, what, path, r, c, depth + 1);
         length = static_cast<int>(inner.size());
         out.insert(out.end(), inner.begin(), inner.end());
       } else if (item.isReal() || item.isInt()) {

@@ -243,6 +243,11 @@ TEST(OpenCvCalibration, RaggedRowsAreRefusedWithTheRow) {
 // a single R/T pose, a name given twice or under two aliases, and a distortion <distortion>
 // refuses are refused.
 TEST(OpenCvCalibration, EverythingTheFileSaysIsChecked) {
+  // Tables are rows of numbers: a row holding rows is refused before it is walked (a fuzzed
+  // file nested sequences thousands deep: the walk overflowed the stack).
+  EXPECT_EQ(calibrationError(calibration("extrinsic_parameters: [[[0, 0, 0, 0, 0, 5]]]\n")),
+            "c.yml: expected numbers or rows of numbers in extrinsic_parameters, found a row "
+            "holding rows");
   EXPECT_EQ(calibrationError(calibration("", ""), std::nullopt),
             "c.yml: expected the calibrated image's size (image_width and image_height, or "
             "image_size: the camera matrix is in its pixels), found none");
