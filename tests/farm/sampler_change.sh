@@ -18,7 +18,10 @@ SCN
 r() { "$bin/nxrender" --threads 2 "$@" 2>"$d/err"; }
 r --spp-range 0:4 --sampler sobol -o "$d/a.exr" "$d/s.scn"
 r --spp-range 4:8 -o "$d/b.exr" "$d/s.scn"
-grep -q 'sampler.*stratified' <(exrheader "$d/b.exr") || { echo "no sampler attribute"; exit 1; }
+# (the header stores an attribute as its name, type, size and value; bytes that are not
+# printable read as spaces)
+LC_ALL=C tr -c '[:print:]' ' ' <"$d/b.exr" | grep -q 'nxrender\.sampler string *stratified' ||
+  { echo "no sampler attribute"; exit 1; }
 if "$bin/nxmerge" -o "$d/m.exr" "$d/a.exr" "$d/b.exr" 2>"$d/err"; then
   echo "parts of two samplers were merged"; exit 1
 fi
