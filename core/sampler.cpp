@@ -172,8 +172,8 @@ float PixelSequence::third(const SampleId& id, uint32_t pair) const {
 }
 
 float sampleThird(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed) {
-  return PixelSequence(kind, pixel, seed)
-      .third(PixelSequence(kind, pixel, seed).sample(index), pair);
+  const PixelSequence sequence(kind, pixel, seed);
+  return sequence.third(sequence.sample(index), pair);
 }
 
 } // namespace nx
