@@ -159,6 +159,16 @@ private:
   std::vector<std::pair<std::string, double>> steps_;
 };
 
+// A partial render (--resume) or a pilot (--adaptive-from) continues only with the sampler
+// that made it; the default changed (sobol -> stratified), so the error says how to continue.
+void requireSameSampler(const std::string& path, const std::string& made,
+                        const std::string& wanted) {
+  if (made != wanted)
+    throw nx::Error(path + ": was rendered with --sampler " + made + ", this render uses " +
+                    wanted + " (stratified is the default now, sobol was before; give --sampler " +
+                    made + " to continue it)");
+}
+
 int run(int argc, char** argv) {
   CLI::App app{
       "nxrender: spectral path tracer for fluorescence research\n"
@@ -410,11 +420,7 @@ int run(int argc, char** argv) {
     const nx::SpectralImage prev = nx::readSpectralExr(resumePath);
     auto attr = [&](const char* k) { return attributeOf(prev, k); };
     const nx::PixelRect want = job.rect();
-    if (attr("nxrender.sampler") != job.choices().sampler)
-      throw nx::Error(resumePath + ": was rendered with --sampler " + attr("nxrender.sampler") +
-                      ", this render uses " + job.choices().sampler +
-                      " (stratified is the default now, sobol was before; give --sampler " +
-                      attr("nxrender.sampler") + " to continue it)");
+    requireSameSampler(resumePath, attr("nxrender.sampler"), job.choices().sampler);
     if (attr("nxrender.renderKey") != job.renderKey())
       throw nx::Error(resumePath +
                       ": was rendered from another scene, other data files (CSV spectra, "
@@ -443,11 +449,7 @@ int run(int argc, char** argv) {
   if (!adaptiveFrom.empty()) {
     const nx::SpectralImage from = nx::readSpectralExr(adaptiveFrom);
     auto attr = [&](const char* k) { return attributeOf(from, k); };
-    if (attr("nxrender.sampler") != job.choices().sampler)
-      throw nx::Error(adaptiveFrom + ": was rendered with --sampler " + attr("nxrender.sampler") +
-                      ", this render uses " + job.choices().sampler +
-                      " (stratified is the default now, sobol was before; give --sampler " +
-                      attr("nxrender.sampler") + " to continue it)");
+    requireSameSampler(adaptiveFrom, attr("nxrender.sampler"), job.choices().sampler);
     if (attr("nxrender.renderKey") != job.renderKey())
       throw nx::Error(adaptiveFrom +
                       ": was rendered from another scene, other data files, other options or "

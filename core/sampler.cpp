@@ -30,16 +30,13 @@ uint32_t scrambleReversed(uint32_t reversed, uint32_t seed) {
   return reverseBits(laineKarrasPermutation(reversed, seed));
 }
 
-// Sobol dimension 1 (primitive polynomial x + 1): v_0 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1);
-// the value of an index is the XOR of v_k over its set bits k. Tabulated per index byte, so a
-// value costs four lookups instead of a loop over 32 bits; the table holds the values
-// bit-reversed (reversal commutes with XOR), which is the form the scrambling takes.
-struct SobolDimension1Table {
+// A Sobol dimension tabulated per index byte from its direction numbers v_0..v_31 (the value
+// of an index is the XOR of v_k over its set bits k): a value costs four lookups instead of a
+// loop over 32 bits. The table holds the values bit-reversed (reversal commutes with XOR),
+// which is the form the scrambling takes.
+struct SobolDimensionTable {
   uint32_t byByte[4][256];
-  SobolDimension1Table() {
-    uint32_t v[32];
-    v[0] = 1U << 31;
-    for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+  explicit SobolDimensionTable(const uint32_t (&v)[32]) {
     for (int byte = 0; byte < 4; ++byte)
       for (uint32_t value = 0; value < 256; ++value) {
         uint32_t x = 0;
@@ -48,44 +45,33 @@ struct SobolDimension1Table {
         byByte[byte][value] = reverseBits(x);
       }
   }
+  /// The dimension's value of an index, bit-reversed.
+  uint32_t reversed(uint32_t index) const {
+    return byByte[0][index & 0xffU] ^ byByte[1][(index >> 8) & 0xffU] ^
+           byByte[2][(index >> 16) & 0xffU] ^ byByte[3][index >> 24];
+  }
 };
-const SobolDimension1Table kSobol1Reversed;
+
+// Sobol dimension 1 (primitive polynomial x + 1): v_0 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1).
+SobolDimensionTable sobolDimension1() {
+  uint32_t v[32];
+  v[0] = 1U << 31;
+  for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+  return SobolDimensionTable(v);
+}
+const SobolDimensionTable kSobol1 = sobolDimension1();
 
 // Sobol dimension 2 (primitive polynomial x^2 + x + 1, initial m = 1, 3: Joe and Kuo 2008,
 // "Constructing Sobol sequences with better two-dimensional projections", dimension 3 of their
-// table): v_0 = 2^31, v_1 = 3 * 2^29, v_k = v_{k-1} ^ v_{k-2} ^ (v_{k-2} >> 2). Tabulated
-// bit-reversed per index byte like dimension 1.
-struct SobolDimension2Table {
-  uint32_t byByte[4][256];
-  SobolDimension2Table() {
-    uint32_t v[32];
-    v[0] = 1U << 31;
-    v[1] = 3U << 29;
-    for (int k = 2; k < 32; ++k) v[k] = v[k - 1] ^ v[k - 2] ^ (v[k - 2] >> 2);
-    for (int byte = 0; byte < 4; ++byte)
-      for (uint32_t value = 0; value < 256; ++value) {
-        uint32_t x = 0;
-        for (int bit = 0; bit < 8; ++bit)
-          if (value & (1U << bit)) x ^= v[8 * byte + bit];
-        byByte[byte][value] = reverseBits(x);
-      }
-  }
-};
-const SobolDimension2Table kSobol2Reversed;
-
-// Sobol dimension 1 of an index, bit-reversed.
-uint32_t sobolDimension1Reversed(uint32_t index) {
-  return kSobol1Reversed.byByte[0][index & 0xffU] ^
-         kSobol1Reversed.byByte[1][(index >> 8) & 0xffU] ^
-         kSobol1Reversed.byByte[2][(index >> 16) & 0xffU] ^ kSobol1Reversed.byByte[3][index >> 24];
+// table): v_0 = 2^31, v_1 = 3 * 2^29, v_k = v_{k-1} ^ v_{k-2} ^ (v_{k-2} >> 2).
+SobolDimensionTable sobolDimension2() {
+  uint32_t v[32];
+  v[0] = 1U << 31;
+  v[1] = 3U << 29;
+  for (int k = 2; k < 32; ++k) v[k] = v[k - 1] ^ v[k - 2] ^ (v[k - 2] >> 2);
+  return SobolDimensionTable(v);
 }
-
-// Sobol dimension 2 of an index, bit-reversed.
-uint32_t sobolDimension2Reversed(uint32_t index) {
-  return kSobol2Reversed.byByte[0][index & 0xffU] ^
-         kSobol2Reversed.byByte[1][(index >> 8) & 0xffU] ^
-         kSobol2Reversed.byByte[2][(index >> 16) & 0xffU] ^ kSobol2Reversed.byByte[3][index >> 24];
-}
+const SobolDimensionTable kSobol2 = sobolDimension2();
 
 constexpr uint32_t kShuffleSalt = 0x5f356495U;
 constexpr uint32_t kScrambleSalt = 0x2c1b3c6dU;
@@ -99,17 +85,14 @@ uint32_t counterBits(uint32_t key, uint32_t dim) {
 
 // Burley 2020, section 4: shuffle the index with a nested uniform scramble, take the first
 // two Sobol dimensions at the shuffled index (dimension 0 is the bit reversal), scramble each.
-// Takes the index bit-reversed (shared by all pairs of a sample).
-Sample2 sobolPair(uint32_t reversedIndex, uint32_t shuffleSeed, uint32_t seedX, uint32_t seedY) {
+// Takes the index bit-reversed (shared by all pairs of a sample). With `third`, also Sobol
+// dimension 2 at the same shuffled index, scrambled with seedZ (one shuffle for the three).
+Sample2 sobolPair(uint32_t reversedIndex, uint32_t shuffleSeed, uint32_t seedX, uint32_t seedY,
+                  float* third = nullptr, uint32_t seedZ = 0) {
   const uint32_t shuffled = scrambleReversed(reversedIndex, shuffleSeed);
+  if (third) *third = bitsToUnitFloat(scrambleReversed(kSobol2.reversed(shuffled), seedZ));
   return {bitsToUnitFloat(scrambleReversed(shuffled, seedX)), // reverse(reverse(shuffled))
-          bitsToUnitFloat(scrambleReversed(sobolDimension1Reversed(shuffled), seedY))};
-}
-
-// The third coordinate of a pair: Sobol dimension 2 at the pair's shuffled index.
-float sobolThird(uint32_t reversedIndex, uint32_t shuffleSeed, uint32_t seedZ) {
-  const uint32_t shuffled = scrambleReversed(reversedIndex, shuffleSeed);
-  return bitsToUnitFloat(scrambleReversed(sobolDimension2Reversed(shuffled), seedZ));
+          bitsToUnitFloat(scrambleReversed(kSobol1.reversed(shuffled), seedY))};
 }
 
 // Scrambling seeds of the third coordinates and counter dimensions of the independent ones:
@@ -165,15 +148,20 @@ Sample2 PixelSequence::pair(const SampleId& id, uint32_t pair) const {
   return sobolPair(id.reversedIndex, shuffle_[pair], scramble_[pair][0], scramble_[pair][1]);
 }
 
-float PixelSequence::third(const SampleId& id, uint32_t pair) const {
-  if (!sobol_ || pair >= kSobolPairs)
-    return bitsToUnitFloat(counterBits(id.key, kCounterThirdDimension + pair));
-  return sobolThird(id.reversedIndex, shuffle_[pair], scramble_[pair][2]);
+Sample2 PixelSequence::pairWithThird(const SampleId& id, uint32_t pair, float& third) const {
+  if (!sobol_ || pair >= kSobolPairs) {
+    third = bitsToUnitFloat(counterBits(id.key, kCounterThirdDimension + pair));
+    return this->pair(id, pair);
+  }
+  return sobolPair(id.reversedIndex, shuffle_[pair], scramble_[pair][0], scramble_[pair][1], &third,
+                   scramble_[pair][2]);
 }
 
 float sampleThird(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed) {
   const PixelSequence sequence(kind, pixel, seed);
-  return sequence.third(sequence.sample(index), pair);
+  float third = 0;
+  sequence.pairWithThird(sequence.sample(index), pair, third);
+  return third;
 }
 
 } // namespace nx

@@ -41,7 +41,7 @@ float sampleValue(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t dim
 /// Dimensions 2*pair and 2*pair+1 together (they form a (0,2)-sequence for SobolOwen).
 Sample2 samplePair(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed);
 
-/// The third coordinate of that pair (PixelSequence::third).
+/// The third coordinate of that pair (PixelSequence::pairWithThird).
 float sampleThird(SamplerKind kind, uint32_t pixel, uint32_t index, uint32_t pair, uint32_t seed);
 
 /// The sequence of one (pixel, seed): its scrambling seeds, computed once and shared by all
@@ -61,10 +61,10 @@ public:
   /// Dimensions 2*pair and 2*pair+1 of the sample: equal to samplePair(kind, pixel, index,
   /// pair, seed).
   Sample2 pair(const SampleId& id, uint32_t pair) const;
-  /// The third coordinate of the pair: Sobol dimension 2 at the pair's shuffled index, with a
-  /// scrambling of its own (SobolOwen; for the first 2^m samples the three coordinates form a
-  /// (1,m,3)-net, each two a net of t <= 1), else a counter-based value.
-  float third(const SampleId& id, uint32_t pair) const;
+  /// The pair, and in `third` its third coordinate: Sobol dimension 2 at the pair's shuffled
+  /// index, with a scrambling of its own (SobolOwen; for the first 2^m samples the three
+  /// coordinates form a (1,m,3)-net, each two a net of t <= 1), else a counter-based value.
+  Sample2 pairWithThird(const SampleId& id, uint32_t pair, float& third) const;
 
 private:
   bool sobol_;
@@ -99,11 +99,8 @@ public:
   /// wavelengths (two) and the path's first decision, as one coordinate's wavelengths share
   /// their pair with that decision (next1D).
   Sample2 next2DWithThirdPending() {
-    const uint32_t p = pair_;
-    const Sample2 s = next2D();
     pending_ = true;
-    pendingValue_ = sequence_->third(id_, p);
-    return s;
+    return sequence_->pairWithThird(id_, pair_++, pendingValue_);
   }
 
 private:
