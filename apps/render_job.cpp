@@ -64,9 +64,10 @@ const std::vector<StrategyOption>& strategyOptions() {
        "mis (default), bsdf or nee: how diffuse surfaces find lights"},
       {&RenderChoices::lightSelection,
        "--light-selection",
-       {"local", "power", "uniform"},
-       "local (default: by the power each light sends to the shading point), power (by emitted "
-       "power) or uniform: how next-event estimation chooses a light"},
+       {"local", "tree", "power", "uniform"},
+       "local (default: by the power each light sends to the shading point), tree (down a light "
+       "tree over all lights: the same weights, in time growing with the log of their number), "
+       "power (by emitted power) or uniform: how next-event estimation chooses a light"},
       {&RenderChoices::density,
        "--wavelength-density",
        {"sensor", "visible"},
@@ -140,6 +141,7 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
                                                             : LightSampling::Mis;
   options_.lightSelection = choices.lightSelection == "power"     ? LightSelection::Power
                             : choices.lightSelection == "uniform" ? LightSelection::Uniform
+                            : choices.lightSelection == "tree"    ? LightSelection::Tree
                                                                   : LightSelection::Local;
   options_.sampler =
       choices.sampler == "independent" ? SamplerKind::Independent : SamplerKind::SobolOwen;

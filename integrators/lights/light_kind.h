@@ -12,6 +12,7 @@
 
 #include "core/math_util.h"
 #include "core/sampler.h"
+#include "integrators/lights/light_bounds.h"
 #include "integrators/lights/light_sample.h"
 #include "integrators/materials/material_kind.h"
 #include "io/parameter_set.h"

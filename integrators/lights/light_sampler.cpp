@@ -246,7 +246,8 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
                        {}});
   }
   if (selection_ == LightSelection::Local && count() > kMaxLocalLights)
-    selection_ = LightSelection::Power;
+    selection_ = LightSelection::Tree;
+  if (selection_ == LightSelection::Tree) buildTree();
   // Each light's group (light groups) and relight source: an emitting shape's by its emission,
   // a <light>'s by its place in the list, the background's its own.
   const LightGroups& groups = scene.lightGroups;
@@ -335,6 +336,58 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
   if (!cdf_.empty()) cdf_.back() = 1.0;
 }
 
+void LightSampler::buildTree() {
+  // Each bounded light's bounds in the units of its Local weight (radiance times solid angle
+  // far away): power cos / d^2 with power the radiance times the area (a sphere's projected
+  // area, a closed mesh's a quarter of its area seen from outside, MeshLightTree::importance)
+  // or a point light's peak intensity.
+  const GeometryScene& geometry = *scene_->geometry;
+  std::vector<SceneLightTree::Item> items;
+  for (size_t k = 0; k < lights_.size(); ++k) {
+    const Light& l = lights_[k];
+    LightBounds b;
+    switch (l.kind) {
+    case LightKind::Point:
+      b.add(l.center);
+      std::visit(
+          [&](const auto& light) {
+            if constexpr (!std::decay_t<decltype(light)>::kInfinite)
+              b.normals = light.emissionCone();
+          },
+          scene_->lights[l.shape]);
+      b.cosEmission = 1; // a cone holds all its light
+      b.power = static_cast<float>(l.radiance);
+      break;
+    case LightKind::Sphere:
+      b.add(l.center - Vec3(l.radius, l.radius, l.radius));
+      b.add(l.center + Vec3(l.radius, l.radius, l.radius));
+      b.normals = DirectionCone::all();
+      b.power = static_cast<float>(l.radiance * kPi * l.radius * l.radius);
+      break;
+    case LightKind::Mesh: {
+      const TriangleMesh& mesh = geometry.meshes()[l.shape];
+      if (l.triangle >= 0) {
+        const TriangleShape c = mesh.corners(static_cast<size_t>(l.triangle));
+        b.add(Vec3(c.a)), b.add(Vec3(c.b)), b.add(Vec3(c.c));
+      } else {
+        for (uint32_t v = 0; v < mesh.vertexCount(); ++v) b.add(mesh.position(v));
+      }
+      b.normals = {l.bounds.axis, l.bounds.cosSpread};
+      b.twoSided = true;
+      const bool closed = l.tree >= 0 && trees_[static_cast<size_t>(l.tree)].closed();
+      b.power = static_cast<float>(l.radiance * l.area * (closed ? 0.25 : 1.0));
+      break;
+    }
+    case LightKind::Background:
+    case LightKind::Environment:
+      unbounded_.push_back(static_cast<int32_t>(k));
+      continue;
+    }
+    items.push_back({static_cast<int32_t>(k), b});
+  }
+  tree_ = SceneLightTree(items, lights_.size(), kLightTreeBucket);
+}
+
 float LightSampler::localWeight(const Light& l, const Vec3& p, const Vec3& n) const {
   const Vec3 toCenter = l.center - p;
   const float d2 = dot(toCenter, toCenter);
@@ -351,8 +404,16 @@ float LightSampler::localWeight(const Light& l, const Vec3& p, const Vec3& n) co
   };
   float solidAngle = 0;
   switch (l.kind) {
-  case LightKind::Point:
-    solidAngle = receiverCos(0) / std::max(d2, 1e-30f); // intensity |cos| / d^2
+  case LightKind::Point: // intensity (the fraction sent towards p: a spot's cone) |cos| / d^2
+    solidAngle = std::visit(
+                     [&](const auto& light) {
+                       if constexpr (!std::decay_t<decltype(light)>::kInfinite)
+                         return light.fractionToward(p);
+                       else
+                         return 1.0f; // unreachable: infinite lights are Environment
+                     },
+                     scene_->lights[l.shape]) *
+                 receiverCos(0) / std::max(d2, 1e-30f);
     break;
   case LightKind::Sphere:
     solidAngle = d2 <= r2 ? static_cast<float>(4 * kPi)
@@ -376,7 +437,52 @@ float LightSampler::localWeight(const Light& l, const Vec3& p, const Vec3& n) co
          (l.radiance > 0 ? 1.0f : 0.0f);
 }
 
+float LightSampler::treeProbability(int k, const Vec3& p, const Vec3& n) const {
+  const auto leafWeight = [&](int j) { return localWeight(lights_[static_cast<size_t>(j)], p, n); };
+  float total = tree_.weight(p, n, leafWeight);
+  const float ofTree = total;
+  for (const int32_t j : unbounded_) total += leafWeight(j);
+  if (!(total > 0)) return 0;
+  if (!tree_.holds(k)) return leafWeight(k) / total;
+  return static_cast<float>(ofTree / total * tree_.probability(k, p, n, leafWeight));
+}
+
+int LightSampler::chooseInTree(const Vec3& p, const Vec3& n, double uc, double& share,
+                               double& uRest) const {
+  // The tree as one entry beside each unbounded light, by weight; then down the tree.
+  const auto leafWeight = [&](int j) { return localWeight(lights_[static_cast<size_t>(j)], p, n); };
+  const float ofTree = tree_.weight(p, n, leafWeight);
+  std::array<float, 8> others{};
+  float total = ofTree;
+  for (size_t i = 0; i < unbounded_.size(); ++i) {
+    const float w = leafWeight(unbounded_[i]);
+    if (i < others.size()) others[i] = w;
+    total += w;
+  }
+  if (!(total > 0)) return -1;
+  double target = uc * total;
+  if (target < ofTree || unbounded_.empty()) {
+    double u = std::min(target / ofTree, 1.0 - 0x1p-53), inTree = 0;
+    const int k = tree_.choose(p, n, u, inTree, leafWeight);
+    share = ofTree / total * inTree;
+    uRest = u;
+    return k;
+  }
+  target -= ofTree;
+  for (size_t i = 0; i < unbounded_.size(); ++i) {
+    const float w = i < others.size() ? others[i] : leafWeight(unbounded_[i]);
+    if (w > 0 && (target < w || i + 1 == unbounded_.size())) {
+      share = w / total;
+      uRest = std::clamp(target / w, 0.0, 1.0 - 0x1p-53);
+      return unbounded_[i];
+    }
+    target -= w;
+  }
+  return -1;
+}
+
 float LightSampler::probability(int k, const Vec3& p, const Vec3& n) const {
+  if (selection_ == LightSelection::Tree && lights_.size() > 1) return treeProbability(k, p, n);
   if (selection_ != LightSelection::Local || lights_.size() == 1)
     return pmf_[static_cast<size_t>(k)];
   float total = 0;
@@ -426,6 +532,14 @@ int LightSampler::choose(const Vec3& p, const Vec3& n, float uChoice, float& sha
   double lo, share;
   if (lights_.size() == 1) {
     k = 0, lo = 0, share = 1;
+  } else if (selection_ == LightSelection::Tree) {
+    k = 0, lo = 0, share = 0;
+    double rest = 0;
+    const int chosen = chooseInTree(p, n, uc, share, rest);
+    if (chosen < 0 || !(share > 0)) return -1;
+    uRest = static_cast<float>(std::min(rest, 0.99999994));
+    shareOut = static_cast<float>(share);
+    return chosen;
   } else if (selection_ == LightSelection::Local) {
     // Each weight computed once, kept on the stack (at most kMaxLocalLights: no allocation).
     std::array<float, kMaxLocalLights> weights;

@@ -9,6 +9,7 @@
 #include "integrators/lights/light_bounds.h"
 #include "integrators/lights/light_sample.h"
 #include "integrators/lights/mesh_light_tree.h"
+#include "integrators/lights/scene_light_tree.h"
 #include "integrators/lights/spherical_rectangle.h"
 #include "integrators/lights/spherical_triangle.h"
 #include "integrators/render_scene.h"
@@ -20,16 +21,29 @@ namespace nx {
 enum class LightSelection : uint8_t {
   /// In proportion to the power each light can send to the shading point: its radiance
   /// integrated over the traced range times the solid angle it subtends there (intensity / d^2
-  /// for point lights; for triangles and meshes the bound of their LightBounds, which is zero
-  /// where every emitter faces away), times the receiver's |cos| bounded over the light -
-  /// the default. Scenes with more than kMaxLocalLights lights use Power.
+  /// for point lights, times a spot's falloff towards the point; for triangles and meshes the
+  /// bound of their LightBounds, which is zero where every emitter faces away), times the
+  /// receiver's |cos| bounded over the light - the default. Scenes with more than
+  /// kMaxLocalLights lights use Tree.
   Local,
   Power,   ///< in proportion to emitted power over the traced range, the same everywhere
   Uniform, ///< each light equally often
+  /// Down a light tree over the bounded lights (SceneLightTree), each cluster weighed by the
+  /// light it can send to the shading point (its box, its emitters' normals or cones) and each
+  /// light at the leaves by Local's weight; the infinite lights (environment, background)
+  /// weighed beside the tree's root by their Local weight.
+  Tree,
 };
 
-/// Most lights for which LightSelection::Local weighs every light at every shading point.
-inline constexpr int kMaxLocalLights = 64;
+/// Most lights for which LightSelection::Local weighs every light at every shading point; with
+/// more it walks the light tree. Measured (docs/performance.md, "Choosing among many lights"):
+/// weighing every light beats the tree up to 256 lights per band and up to about 512 in
+/// luminance, the tree wins from 1024.
+inline constexpr int kMaxLocalLights = 256;
+
+/// Lights per bucket of the light tree (LightSelection::Tree), weighed exactly: buckets of 8
+/// measured best at 1024 and 4096 lights (of 1, 4, 8, 16, 64; docs/performance.md).
+inline constexpr int kLightTreeBucket = 8;
 
 /// How emitting triangles (triangles, quads, meshes) are sampled from a shading point.
 enum class TriangleLightSampling : uint8_t {
@@ -59,7 +73,7 @@ public:
 
   /// Number of lights it can choose from.
   int count() const { return static_cast<int>(lights_.size()); }
-  /// The selection in use (Local falls back to Power beyond kMaxLocalLights lights).
+  /// The selection in use (Local falls back to Tree beyond kMaxLocalLights lights).
   LightSelection selection() const { return selection_; }
   /// Probability that sample() chooses light k for shading point p of shading normal n (zero:
   /// none, in a medium).
@@ -88,6 +102,8 @@ public:
   }
   /// Emitted power of light k over the traced range (W; the selection's weights).
   double power(int k) const { return lights_[static_cast<size_t>(k)].power; }
+  /// The light tree (LightSelection::Tree; empty otherwise).
+  const SceneLightTree& tree() const { return tree_; }
 
   /// A light chosen with uChoice, then a sample of it for shading point p (pdf includes the
   /// choice); false if there is no light or the configuration is degenerate. n: the shading
@@ -168,6 +184,12 @@ private:
   /// Weight of light l at p (shading normal n) for LightSelection::Local (positive wherever
   /// it can shine).
   float localWeight(const Light& l, const Vec3& p, const Vec3& n) const;
+  /// Builds tree_ and unbounded_ (LightSelection::Tree).
+  void buildTree();
+  /// Probability that LightSelection::Tree chooses light k at (p, n).
+  float treeProbability(int k, const Vec3& p, const Vec3& n) const;
+  /// LightSelection::Tree's choice: the light, its probability `share`, uc rescaled into it.
+  int chooseInTree(const Vec3& p, const Vec3& n, double uc, double& share, double& uRest) const;
   bool sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const;
   bool sampleMesh(const Light& l, const Vec3& p, const Vec3& n, float uTriangle, Sample2 u,
                   LightSample& out) const;
@@ -196,6 +218,8 @@ private:
   std::vector<double> cdf_;          ///< their running sum (cdf_[k] = P(light <= k))
   std::vector<double> areaCdf_;      ///< per whole-mesh light: running area of its triangles
   std::vector<MeshLightTree> trees_; ///< light trees of large mesh lights
+  SceneLightTree tree_;              ///< LightSelection::Tree: over the bounded lights
+  std::vector<int32_t> unbounded_;   ///< LightSelection::Tree: the lights beside the tree
   /// A rectangle light: its frame, and its two triangles' unit normals (the mesh's winding).
   struct RectangleLight {
     Rectangle shape;

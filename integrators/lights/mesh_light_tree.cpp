@@ -16,24 +16,6 @@
 namespace nx {
 namespace {
 
-// The orientation measure M_Omega of a normals' cone of half-angle theta_o with diffuse
-// emission (theta_e = pi / 2): Conty Estevez & Kulla 2018, section 4.4,
-// 2 pi (1 - cos theta_o) + pi / 2 (2 theta_w sin theta_o - cos(theta_o - 2 theta_w)
-// - 2 theta_o sin theta_o + cos theta_o), theta_w = min(theta_o + pi / 2, pi), simplified on
-// each side of theta_o = pi / 2 (no inverse cosine on the narrow side).
-double orientationMeasure(float cosSpread) {
-  const double cosO = std::clamp(static_cast<double>(cosSpread), -1.0, 1.0);
-  const double sinO = std::sqrt(std::max(0.0, 1 - cosO * cosO));
-  if (cosO >= 0) return 2 * kPi - kPi * cosO + 0.5 * kPi * kPi * sinO;
-  return 2 * kPi * (1 - cosO) + kPi * (kPi - std::acos(cosO)) * sinO;
-}
-
-double surfaceArea(const LightBounds& b) {
-  const Vec3 e = b.hi - b.lo;
-  return 2.0 * (static_cast<double>(e.x) * e.y + static_cast<double>(e.y) * e.z +
-                static_cast<double>(e.z) * e.x);
-}
-
 // Splits deeper than this are made at the median (a balanced tree below: depth stays bounded
 // whatever the heuristic would do with degenerate meshes).
 constexpr int kHeuristicDepth = 48;
@@ -181,8 +163,8 @@ int32_t BinaryTree::build(size_t begin, size_t end, int depth) {
         if (!(below.power > 0) || !(above.power > 0)) continue;
         const double cost =
             regular *
-            (below.power * surfaceArea(below) * orientationMeasure(below.normals.cosSpread) +
-             above.power * surfaceArea(above) * orientationMeasure(above.normals.cosSpread));
+            (below.power * surfaceArea(below) * orientationMeasure(below.normals.cosSpread, 0) +
+             above.power * surfaceArea(above) * orientationMeasure(above.normals.cosSpread, 0));
         if (cost < bestCost) bestCost = cost, bestAxis = axis, bestSplit = split;
       }
     }

@@ -32,6 +32,8 @@ public:
   bool empty() const { return nodes_.empty(); }
   /// Bounds of the whole mesh (power: its area; normals outward for a closed mesh).
   const LightCluster& bounds() const { return root_; }
+  /// Whether the mesh is closed (its outer faces alone are seen from outside).
+  bool closed() const { return closed_; }
   /// Whether only outer faces can be seen from p: a closed mesh and p outside its box.
   bool oneSidedAt(const Vec3& p) const;
   /// Importance of the whole mesh at (p, n) (LightCluster::importance, area as power); seen

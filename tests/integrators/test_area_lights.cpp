@@ -190,7 +190,8 @@ TEST(AreaLights, LightChoiceFollowsItsProbabilities) {
               "<triangle><vA>3,0,0</vA><vB>3,1,0</vB><vC>3,0,1</vC><material>matte</material>"
               "<emission>A</emission></triangle>",
               "<background>0.1</background>");
-  for (LightSelection sel : {LightSelection::Local, LightSelection::Power, LightSelection::Uniform})
+  for (LightSelection sel : {LightSelection::Local, LightSelection::Tree, LightSelection::Power,
+                             LightSelection::Uniform})
     for (const Vec3 normal : {Vec3(), normalize(Vec3(0.3f, 1, 0.2f))}) {
       const LightSampler lights(scene, sel);
       ASSERT_EQ(lights.count(), 5);

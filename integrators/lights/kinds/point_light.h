@@ -39,6 +39,11 @@ struct PointLight {
 
   /// Where Local light selection weighs it from: its position, no extent.
   Vec3 center() const { return position; }
+  /// The directions it sends light into (every one) and how far beyond them (cos theta_e,
+  /// LightBounds), for the light tree.
+  DirectionCone emissionCone() const { return DirectionCone::all(); }
+  /// The fraction of its peak intensity it sends towards p (1: the same everywhere).
+  float fractionToward(const Vec3&) const { return 1; }
   /// The traced-range integral of its peak intensity (W sr^-1).
   double tracedPeak() const { return tracedIntegral(intensity); }
   /// Emitted power over the traced range (W).

@@ -96,6 +96,14 @@ struct SpotLight {
   }
   /// Where Local light selection weighs it from: its position, no extent.
   Vec3 center() const { return position; }
+  /// The directions it sends light into: its cone (for the light tree, with theta_e = 0).
+  DirectionCone emissionCone() const { return {axis, cosEdge}; }
+  /// The fraction of its axis intensity it sends towards p (0 outside its cone).
+  float fractionToward(const Vec3& p) const {
+    const Vec3 d = p - position;
+    const float d2 = dot(d, d);
+    return d2 > 0 ? falloff(dot(d, axis) / std::sqrt(d2)) : 0.0f;
+  }
   /// The traced-range integral of its peak intensity (W sr^-1).
   double tracedPeak() const { return tracedIntegral(intensity); }
   /// Emitted power over the traced range (W): 2 pi times the integral of the falloff over
