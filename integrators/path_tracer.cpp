@@ -134,6 +134,9 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
   float prevPdf = 0;
   Vec3 prevP = ray.o;
   Vec3 prevN; // shading normal at prevP (zero in a medium): light pdfs' cosine warp
+  // The sum of the light weights next-event estimation found at prevP (LightSampler::choose;
+  // 0: none), so the MIS weight of an emitter found from there does not weigh every light again.
+  float prevWeights = 0;
   [[maybe_unused]] MediumStack media;
   // Spectral MIS through media: p_lane / p_hero of the path so far (free_flight.h); every
   // contribution is divided by their mean (1 while no medium event happened).
@@ -225,11 +228,12 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
               tangents ? tangents->media[static_cast<size_t>(m)] : noMediumTangents();
           if constexpr (kGradients)
             if (reemitted) reemissionEvents(mediumTangents, medium, current, lit, sink, event);
+          float weightsHere = 0;
           if (ctx.lightSampling != LightSampling::BsdfOnly && ctx.lights->count() > 0) {
             const float uChoice = rng.next1D();
             const Sample2 uLight = rng.next2D();
             LightSample ls;
-            if (ctx.lights->sample(p, uChoice, uLight, lit, ls)) {
+            if (ctx.lights->sample(p, uChoice, uLight, lit, ls, Vec3(), &weightsHere)) {
               const auto visible = [&](const Ray& r) {
                 return shadowTransmittance(scene, r, media, lit, counters, shadowCrossings());
               };
@@ -261,6 +265,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
           prevPdf = phaseTo(wi);
           prevP = p;
           prevN = Vec3();
+          prevWeights = weightsHere;
           if (!survivesRoulette()) break;
           ray.o = p;
           ray.d = wi;
@@ -276,13 +281,14 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         const SampledSpectrum le = evaluate(*scene.background, current);
         if constexpr (kGradients) ratioEvents(tangents->background, current, le, sink, local);
         sink.add(weighted() * le *
-                     (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP, prevN))),
+                     (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP, prevN, prevWeights))),
                  classOf(scatterings, groups.ofBackground, groups.sourceOfBackground, current));
       }
       for (int e = 0; e < ctx.lights->environmentCount(); ++e)
         sink.add(weighted() * ctx.lights->environmentRadiance(e, ray.d, current) *
                      (specular ? 1.0f
-                               : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d, prevN))),
+                               : emitterWeight(
+                                     ctx.lights->pdfEnvironment(e, prevP, ray.d, prevN, prevWeights))),
                  classOf(scatterings, ctx.lights->environmentGroup(e), 0, current));
       break;
     }
@@ -305,7 +311,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     }
     const bool whiteHere = kWhite && scatterings == 0;
     if (app.emission >= 0 && !whiteHere) {
-      const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d, prevN));
+      const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d, prevN, prevWeights));
       if (w > 0) {
         const SampledSpectrum le =
             evaluate(scene.emission[static_cast<size_t>(app.emission)], current);
@@ -374,6 +380,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     constexpr bool kGuidedExcitation =
         kFluorescence && !kMedia && !kGradients && !std::is_same_v<Sink, RelightSink>;
     bool guidedDone = false;
+    float weightsHere = 0; // LightSampler::choose's sum of weights at hit.p, for the next MIS
     if constexpr (kGuidedExcitation) {
       if (fluorescent && !ctx.columnOnlyExcitation && bsdf.hasNonSpecular() &&
           ctx.lightSampling != LightSampling::BsdfOnly && ctx.lights->count() > 0) {
@@ -382,7 +389,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         const Sample2 uLight = rng.next2D();
         const Sample2 uGuide = rng.next2D();
         float share = 0, uRest = 0;
-        const int l = ctx.lights->choose(hit.p, hit.ns, uChoice, share, uRest);
+        const int l = ctx.lights->choose(hit.p, hit.ns, uChoice, share, uRest, &weightsHere);
         LightSample ls, lsGuided;
         if (l >= 0 &&
             ctx.lights->sampleChosen(l, share, hit.p, uRest, uLight, shift.excited, ls, hit.ns)) {
@@ -422,7 +429,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
       const Sample2 uLight = rng.next2D();
       LightSample ls;
       const SampledWavelengths& lit = fluorescent ? shift.excited : current;
-      if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls, hit.ns)) {
+      if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls, hit.ns, &weightsHere)) {
         auto f = [&](const Vec3& wi) {
           return fluorescent ? shift.albedo * bsdf.diffuseLobe(wi) : bsdf.f(wi);
         };
@@ -517,6 +524,7 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     prevPdf = bs.pdf;
     prevP = hit.p;
     prevN = hit.ns;
+    prevWeights = weightsHere;
 
     if (!survivesRoulette()) break;
     ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, bs.wi);

@@ -481,12 +481,14 @@ int LightSampler::chooseInTree(const Vec3& p, const Vec3& n, double uc, double& 
   return -1;
 }
 
-float LightSampler::probability(int k, const Vec3& p, const Vec3& n) const {
+float LightSampler::probability(int k, const Vec3& p, const Vec3& n, float weightTotal) const {
   if (selection_ == LightSelection::Tree && lights_.size() > 1) return treeProbability(k, p, n);
   if (selection_ != LightSelection::Local || lights_.size() == 1)
     return pmf_[static_cast<size_t>(k)];
-  float total = 0;
-  for (const Light& l : lights_) total += localWeight(l, p, n);
+  // The same sum, in the same order, as choose() (bit for bit the same total).
+  float total = weightTotal;
+  if (!(total > 0))
+    for (const Light& l : lights_) total += localWeight(l, p, n);
   return total > 0 ? localWeight(lights_[static_cast<size_t>(k)], p, n) / total : 0.0f;
 }
 
@@ -503,7 +505,8 @@ SampledSpectrum LightSampler::environmentRadiance(int i, const Vec3& d,
       scene_->lights[l.shape]);
 }
 
-float LightSampler::pdfEnvironment(int i, const Vec3& p, const Vec3& d, const Vec3& n) const {
+float LightSampler::pdfEnvironment(int i, const Vec3& p, const Vec3& d, const Vec3& n,
+                                   float weightTotal) const {
   const int k = environments_[static_cast<size_t>(i)];
   const Light& l = lights_[static_cast<size_t>(k)];
   const float pdf = std::visit(
@@ -514,16 +517,17 @@ float LightSampler::pdfEnvironment(int i, const Vec3& p, const Vec3& d, const Ve
           return 0.0f; // unreachable: environments_ holds infinite lights only
       },
       scene_->lights[l.shape]);
-  return pdf * probability(k, p, n);
+  return pdf * probability(k, p, n, weightTotal);
 }
 
-float LightSampler::pdfBackground(const Vec3& p, const Vec3& n) const {
+float LightSampler::pdfBackground(const Vec3& p, const Vec3& n, float weightTotal) const {
   return background_ < 0 ? 0.0f
-                         : static_cast<float>(1.0 / (4 * kPi)) * probability(background_, p, n);
+                         : static_cast<float>(1.0 / (4 * kPi)) *
+                               probability(background_, p, n, weightTotal);
 }
 
 int LightSampler::choose(const Vec3& p, const Vec3& n, float uChoice, float& shareOut,
-                         float& uRest) const {
+                         float& uRest, float* weightTotal) const {
   if (lights_.empty()) return -1;
   // The first light whose running probability exceeds uChoice; uChoice is then rescaled to
   // [0, 1) within that light's share, for the light's own choice of triangle.
@@ -545,6 +549,7 @@ int LightSampler::choose(const Vec3& p, const Vec3& n, float uChoice, float& sha
     std::array<float, kMaxLocalLights> weights;
     float total = 0;
     for (size_t i = 0; i < lights_.size(); ++i) total += weights[i] = localWeight(lights_[i], p, n);
+    if (weightTotal) *weightTotal = total;
     if (!(total > 0)) return -1;
     const double target = uc * total;
     double running = 0;
@@ -582,9 +587,9 @@ bool LightSampler::sampleChosen(int k, float share, const Vec3& p, float uRest, 
 }
 
 bool LightSampler::sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
-                          LightSample& out, const Vec3& n) const {
+                          LightSample& out, const Vec3& n, float* weightTotal) const {
   float share = 0, uRest = 0;
-  const int k = choose(p, n, uChoice, share, uRest);
+  const int k = choose(p, n, uChoice, share, uRest, weightTotal);
   return k >= 0 && sampleChosen(k, share, p, uRest, u, lambda, out, n);
 }
 
@@ -857,8 +862,8 @@ float LightSampler::spherePdf(uint32_t sphere, const Vec3& p, const Vec3& wi) co
   return static_cast<float>(uniformConePdf(oneMinusCosMax));
 }
 
-float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi,
-                        const Vec3& n) const {
+float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi, const Vec3& n,
+                        float weightTotal) const {
   const int k = lightOf(lightHit);
   if (k < 0) return 0;
   const Light& l = lights_[static_cast<size_t>(k)];
@@ -872,7 +877,7 @@ float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& w
             : trianglePdf(l, Vec3d(p), n, lightHit.prim, Vec3d(lightHit.p), Vec3d(wi)));
     if (!std::isfinite(pdf)) return 0;
   }
-  return pdf * probability(k, p, n);
+  return pdf * probability(k, p, n, weightTotal);
 }
 
 } // namespace nx

@@ -76,8 +76,9 @@ public:
   /// The selection in use (Local falls back to Tree beyond kMaxLocalLights lights).
   LightSelection selection() const { return selection_; }
   /// Probability that sample() chooses light k for shading point p of shading normal n (zero:
-  /// none, in a medium).
-  float probability(int k, const Vec3& p, const Vec3& n) const;
+  /// none, in a medium). weightTotal: the sum of the Local weights at (p, n) as choose() found
+  /// it there (0: unknown, summed again).
+  float probability(int k, const Vec3& p, const Vec3& n, float weightTotal = 0) const;
   /// The kind of light k.
   LightKind kind(int k) const { return lights_[static_cast<size_t>(k)].kind; }
   /// Triangles light k samples among (1 for points, spheres and the background).
@@ -108,12 +109,16 @@ public:
   /// A light chosen with uChoice, then a sample of it for shading point p (pdf includes the
   /// choice); false if there is no light or the configuration is degenerate. n: the shading
   /// normal at p, for the cosine warp of triangle lights (zero: none, e.g. in a medium).
+  /// weightTotal, if given, receives choose()'s sum of weights (for pdf() at the same point).
   bool sample(const Vec3& p, float uChoice, Sample2 u, const SampledWavelengths& lambda,
-              LightSample& out, const Vec3& n = Vec3()) const;
+              LightSample& out, const Vec3& n = Vec3(), float* weightTotal = nullptr) const;
   /// The light sample() chooses with uChoice for shading point p of shading normal n (zero:
   /// none), its probability `share` and uChoice rescaled to [0, 1) within its share (`uRest`,
-  /// for the light's triangle); -1 if none can be chosen.
-  int choose(const Vec3& p, const Vec3& n, float uChoice, float& share, float& uRest) const;
+  /// for the light's triangle); -1 if none can be chosen. weightTotal, if given, receives the
+  /// sum of the Local weights at (p, n) (left as it is for other selections): passed back to
+  /// pdf() at the same point, it spares weighing every light again for the MIS weight.
+  int choose(const Vec3& p, const Vec3& n, float uChoice, float& share, float& uRest,
+             float* weightTotal = nullptr) const;
   /// sample() for the light choose() gave: sampleLight with the choice's probability in pdf.
   bool sampleChosen(int k, float share, const Vec3& p, float uRest, Sample2 u,
                     const SampledWavelengths& lambda, LightSample& out,
@@ -149,12 +154,13 @@ public:
   int lightOf(const SurfaceHit& hit) const;
   /// Density (solid angle, with the choice probability) with which sample() returns direction
   /// wi from p towards the point `lightHit` (found by a ray from p along wi); 0 if that surface
-  /// is not a light it samples. n: the shading normal sample() was given at p.
-  float pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi,
-            const Vec3& n = Vec3()) const;
+  /// is not a light it samples. n: the shading normal sample() was given at p; weightTotal:
+  /// what choose() gave there (0: unknown).
+  float pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi, const Vec3& n = Vec3(),
+            float weightTotal = 0) const;
   /// Density with which sample() returns direction wi from p (shading normal n) towards the
-  /// background; 0 without one.
-  float pdfBackground(const Vec3& p, const Vec3& n) const;
+  /// background; 0 without one. weightTotal as for pdf().
+  float pdfBackground(const Vec3& p, const Vec3& n, float weightTotal = 0) const;
 
   /// Number of environment lights (infinite lights of the scene's list) a ray that leaves
   /// the scene sees.
@@ -162,8 +168,10 @@ public:
   /// Radiance environment light i sends from direction d (d points away from the scene).
   SampledSpectrum environmentRadiance(int i, const Vec3& d, const SampledWavelengths& lambda) const;
   /// Density (solid angle, with the choice probability) with which sample() returns
-  /// direction d from p (shading normal n) through environment light i.
-  float pdfEnvironment(int i, const Vec3& p, const Vec3& d, const Vec3& n) const;
+  /// direction d from p (shading normal n) through environment light i; weightTotal as for
+  /// pdf().
+  float pdfEnvironment(int i, const Vec3& p, const Vec3& d, const Vec3& n,
+                       float weightTotal = 0) const;
 
 private:
   struct Light {

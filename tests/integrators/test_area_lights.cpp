@@ -203,6 +203,13 @@ TEST(AreaLights, LightChoiceFollowsItsProbabilities) {
       EXPECT_NEAR(total, 1.0, 1e-5);
       for (int k = 0; k < 5; ++k)
         exp[static_cast<size_t>(k)] = n * lights.probability(k, p, normal);
+      // The sum of weights choose() hands out gives the very same probabilities (the path
+      // tracer passes it back for the MIS weight instead of weighing every light again).
+      float weightTotal = 0, share = 0, uRest = 0;
+      lights.choose(p, normal, 0.5f, share, uRest, &weightTotal);
+      EXPECT_EQ(weightTotal > 0, sel == LightSelection::Local);
+      for (int k = 0; k < 5; ++k)
+        EXPECT_EQ(lights.probability(k, p, normal, weightTotal), lights.probability(k, p, normal));
       for (int i = 0; i < n; ++i) {
         LightSample ls;
         if (lights.sample(p, sampleValue(SamplerKind::Independent, i, 0, 0, 5),
