@@ -281,14 +281,16 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
         const SampledSpectrum le = evaluate(*scene.background, current);
         if constexpr (kGradients) ratioEvents(tangents->background, current, le, sink, local);
         sink.add(weighted() * le *
-                     (specular ? 1.0f : emitterWeight(ctx.lights->pdfBackground(prevP, prevN, prevWeights))),
+                     (specular
+                          ? 1.0f
+                          : emitterWeight(ctx.lights->pdfBackground(prevP, prevN, prevWeights))),
                  classOf(scatterings, groups.ofBackground, groups.sourceOfBackground, current));
       }
       for (int e = 0; e < ctx.lights->environmentCount(); ++e)
         sink.add(weighted() * ctx.lights->environmentRadiance(e, ray.d, current) *
                      (specular ? 1.0f
-                               : emitterWeight(
-                                     ctx.lights->pdfEnvironment(e, prevP, ray.d, prevN, prevWeights))),
+                               : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d, prevN,
+                                                                          prevWeights))),
                  classOf(scatterings, ctx.lights->environmentGroup(e), 0, current));
       break;
     }
@@ -311,7 +313,8 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
     }
     const bool whiteHere = kWhite && scatterings == 0;
     if (app.emission >= 0 && !whiteHere) {
-      const float w = specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d, prevN, prevWeights));
+      const float w =
+          specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d, prevN, prevWeights));
       if (w > 0) {
         const SampledSpectrum le =
             evaluate(scene.emission[static_cast<size_t>(app.emission)], current);

@@ -521,13 +521,13 @@ float LightSampler::pdfEnvironment(int i, const Vec3& p, const Vec3& d, const Ve
 }
 
 float LightSampler::pdfBackground(const Vec3& p, const Vec3& n, float weightTotal) const {
-  return background_ < 0 ? 0.0f
-                         : static_cast<float>(1.0 / (4 * kPi)) *
-                               probability(background_, p, n, weightTotal);
+  return background_ < 0
+             ? 0.0f
+             : static_cast<float>(1.0 / (4 * kPi)) * probability(background_, p, n, weightTotal);
 }
 
-int LightSampler::choose(const Vec3& p, const Vec3& n, float uChoice, float& shareOut,
-                         float& uRest, float* weightTotal) const {
+int LightSampler::choose(const Vec3& p, const Vec3& n, float uChoice, float& shareOut, float& uRest,
+                         float* weightTotal) const {
   if (lights_.empty()) return -1;
   // The first light whose running probability exceeds uChoice; uChoice is then rescaled to
   // [0, 1) within that light's share, for the light's own choice of triangle.
