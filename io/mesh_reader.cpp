@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/memory.h"
+#include "io/mesh_cache.h"
 #include "io/mesh_file_check.h"
 
 namespace nx {
@@ -134,7 +135,13 @@ MeshFile meshFromBytes(std::string bytes, const std::string& path) {
 MeshFile readMeshFile(const std::string& path) {
   if (const std::string ext = lowerExtension(path); ext != "ply" && ext != "obj")
     throw Error("expected a mesh file ending in .ply or .obj, found '" + path + "'");
-  return meshFromBytes(readRegularFile(path, kMaxMeshFileBytes, "mesh file"), path);
+  std::string bytes = readRegularFile(path, kMaxMeshFileBytes, "mesh file");
+  // A file read before with the same bytes is not parsed again (io/mesh_cache.h).
+  const std::string ext = lowerExtension(path);
+  if (const auto known = cachedMesh(bytes, ext)) return {*known, std::move(bytes)};
+  MeshFile f = meshFromBytes(std::move(bytes), path);
+  cacheMesh(f.bytes, ext, f.mesh);
+  return f;
 }
 
 } // namespace nx

@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include "core/error.h"
+#include "io/mesh_cache.h"
 #include "io/mesh_reader.h"
 #include "support/errors.h"
 
@@ -263,6 +264,35 @@ TEST(MeshReader, ObjMaterialLibrariesAreNotOpened) {
     EXPECT_EQ(readMeshFile(dir + "/m.obj").mesh.triangleCount(), 1u) << lib;
   }
   std::filesystem::remove(fifo);
+}
+
+// A file read again with the same bytes comes from the cache (the same triangles, not parsed
+// again); changed on disk, it is parsed anew; the same bytes under another format's extension
+// are not taken for it.
+TEST(MeshReader, FilesReadAgainComeFromTheCacheByTheirBytes) {
+  // Bytes no other test reads (a comment in the header).
+  std::string original = asciiPly();
+  original.insert(original.find('\n', original.find("format")) + 1, "comment read twice\n");
+  const std::string path = writeFile("cached.ply", original);
+  const size_t before = cachedMeshCount();
+  const TriangleMesh first = readMeshFile(path).mesh;
+  EXPECT_EQ(cachedMeshCount(), before + 1);
+  const MeshFile again = readMeshFile(path);
+  EXPECT_EQ(cachedMeshCount(), before + 1);
+  EXPECT_EQ(again.bytes, original);
+  EXPECT_EQ(triangleSet(again.mesh), triangleSet(first));
+  // The file changed in place (one vertex moved): its new triangles, a second entry.
+  std::string moved = original;
+  const size_t at = moved.find("end_header\n") + 11; // the first vertex's x: 0 becomes 0.25
+  moved.replace(at, moved.find(' ', at) - at, "0.25");
+  writeFile("cached.ply", moved);
+  const TriangleMesh changed = readMeshFile(path).mesh;
+  EXPECT_EQ(cachedMeshCount(), before + 2);
+  EXPECT_NE(triangleSet(changed), triangleSet(first));
+  // Transforming a read mesh leaves the cached one as it was.
+  TriangleMesh scaled = readMeshFile(path).mesh;
+  scaled.transform(Matrix3{{{2, 0, 0}, {0, 2, 0}, {0, 0, 2}}}, Vec3d());
+  EXPECT_EQ(triangleSet(readMeshFile(path).mesh), triangleSet(changed));
 }
 
 } // namespace
