@@ -73,6 +73,8 @@ public:
   /// every attribute finite and some triangle has a non-zero area; else what is wrong
   /// ("triangle 12 refers to vertex 99 of 40").
   std::string validate() const;
+  /// Whether both hold the same vertices (positions, normals, uv) and triangles, exactly.
+  bool operator==(const TriangleMesh&) const = default;
 
 private:
   std::vector<float> xyz_; ///< 3 floats per vertex + 1 float of padding

@@ -131,8 +131,9 @@ struct RenderScene {
   /// not as asked: e.g. a medium too dense for float positions where it stands)
   std::vector<std::string> warnings;
   PinholeCamera camera{{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 60, 1, 1};
-  std::unique_ptr<EmbreeDevice> device;
-  std::unique_ptr<GeometryScene> geometry;
+  /// The shapes and their BVH (with its Embree device), shared with other renders of the
+  /// same shapes (accel/geometry_cache.h).
+  std::shared_ptr<const GeometryScene> geometry;
   std::vector<Material> materials;
   /// What each object is called (index: object id - 1): its name="...", else the <material
   /// id> it uses, else "sphere at line 12 (matte)"; names a comparison's regions by object id

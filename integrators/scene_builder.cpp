@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "accel/closed_mesh.h"
+#include "accel/geometry_cache.h"
 #include "accel/shape_kinds.h"
 #include "core/error.h"
 #include "core/math_util.h"
@@ -217,9 +218,7 @@ public:
     scene.warnings.insert(scene.warnings.end(), warnings_.begin(), warnings_.end());
     scene.warnings.insert(scene.warnings.end(), refs_.warnings().begin(), refs_.warnings().end());
     if (!withGeometry) return scene;
-    scene.device = std::make_unique<EmbreeDevice>();
-    scene.geometry = std::make_unique<GeometryScene>(*scene.device, std::move(spheres),
-                                                     std::move(planes), std::move(meshes));
+    scene.geometry = sharedGeometry(std::move(spheres), std::move(planes), std::move(meshes));
     return scene;
   }
 
@@ -369,8 +368,8 @@ private:
         throw Error(where.str() + ": " + (what.rfind(path, 0) == 0 ? "" : path + ": ") + what);
       }
     }
-    void tabulated(const SourceLocation& where, const std::string& what, double loNm,
-                   double hiNm, const std::string& choice) const override {
+    void tabulated(const SourceLocation& where, const std::string& what, double loNm, double hiNm,
+                   const std::string& choice) const override {
       b_.refs_.noteTable({where.str(), what, loNm, hiNm, choice});
     }
 
@@ -744,8 +743,7 @@ std::vector<std::string> extrapolationWarnings(const RenderScene& scene, double 
     if (t.loNm <= loNm && t.hiNm >= hiNm) continue;
     std::string w = t.where + ": warning: spectrum '" + t.what + "' is tabulated over " +
                     numberText(t.loNm) + "-" + numberText(t.hiNm) + " nm and this render traces " +
-                    numberText(loNm) + "-" + numberText(hiNm) +
-                    " nm: it is 0 beyond its table (" +
+                    numberText(loNm) + "-" + numberText(hiNm) + " nm: it is 0 beyond its table (" +
                     (t.choice.empty() ? std::string("write extrapolate=\"zero\" or "
                                                     "extrapolate=\"hold\" on the element")
                                       : t.choice) +
