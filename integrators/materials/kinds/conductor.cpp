@@ -35,8 +35,9 @@ Material buildConductor(const MaterialKindSpec&, const ParameterSet& p, const Ma
     if (!metal)
       throw Error(metalParam->loc.str() + ": expected a metal name (" + metalList() + "), found '" +
                   name + "'");
-    m.conductorEta = metal->eta;
-    m.conductorK = metal->k;
+    // Indexed for the render loop's lookups (the same values, found without a binary search).
+    m.conductorEta = forRendering(metal->eta);
+    m.conductorK = forRendering(metal->k);
   } else {
     if (!eta || !k)
       throw Error(in.objectLoc.str() + ": expected <metal> (" + metalList() +
