@@ -142,12 +142,18 @@ inline bool sampleSphericalRectangle(const SphericalRectangle& s, Sample2 u, Vec
   if (sinAu == 0) {
     xu = 0; // the plane at au contains the normal through o
   } else {
+    // The paper's cu = sign(fu) / sqrt(fu^2 + b0^2) and xu = -cu z0 / sqrt(1 - cu^2), as one
+    // square root: xu = -sign(fu) z0 / sqrt(fu^2 + b0^2 - 1) (the chain of dependent roots and
+    // divisions is most of a rectangle sample's time). Where fu^2 + b0^2 <= 1 (cu = +-1 to
+    // rounding) the chord is at the rectangle's edge on fu's side.
     const double fu = (std::cos(au) * s.b0 - s.b1) / sinAu;
-    double cu = std::copysign(1.0, fu) / std::sqrt(fu * fu + s.b0 * s.b0);
-    if (!std::isfinite(cu)) cu = 0;
-    cu = std::clamp(cu, -1.0, 1.0);
-    const double sinCu = std::sqrt(std::max(0.0, 1 - cu * cu));
-    xu = sinCu > 0 ? -(cu * s.z0) / sinCu : (cu > 0 ? s.x1 : s.x0);
+    const double q = fu * fu + s.b0 * s.b0 - 1;
+    if (std::isinf(fu))
+      xu = 0; // cu = 0
+    else if (q > 0)
+      xu = -std::copysign(1.0, fu) * s.z0 / std::sqrt(q);
+    else
+      xu = fu > 0 ? s.x1 : s.x0;
   }
   xu = std::clamp(xu, s.x0, s.x1);
   const double d2 = xu * xu + s.z0 * s.z0, d = std::sqrt(d2);
