@@ -93,6 +93,20 @@ constexpr double kGuidedMismatch = 1.25;
 LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
                            TriangleLightSampling triangles)
     : scene_(&scene), selection_(selection), triangleSampling_(triangles) {
+  addSphereLights();
+  addMeshLights();
+  addListedLights();
+  addBackground();
+  if (selection_ == LightSelection::Local && count() > kMaxLocalLights)
+    selection_ = LightSelection::Tree;
+  if (selection_ == LightSelection::Tree) buildTree();
+  assignGroupsAndSources();
+  buildExcitationGuides();
+  buildChoiceTables();
+}
+
+void LightSampler::addSphereLights() {
+  const RenderScene& scene = *scene_;
   const GeometryScene& geometry = *scene.geometry;
   auto emissionOf = [&](const ShapeAppearance& a) {
     return &scene.emission[static_cast<size_t>(a.emission)];
@@ -118,6 +132,14 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
                        -1,
                        {}});
   }
+}
+
+void LightSampler::addMeshLights() {
+  const RenderScene& scene = *scene_;
+  const GeometryScene& geometry = *scene.geometry;
+  auto emissionOf = [&](const ShapeAppearance& a) {
+    return &scene.emission[static_cast<size_t>(a.emission)];
+  };
   meshLight_.assign(scene.meshes.size(), -1);
   triangleLight_.resize(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -206,6 +228,10 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
       lights_.push_back(l);
     }
   }
+}
+
+void LightSampler::addListedLights() {
+  const RenderScene& scene = *scene_;
   for (size_t i = 0; i < scene.lights.size(); ++i)
     std::visit(
         [&](const auto& light) {
@@ -227,6 +253,10 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
                              {}});
         },
         scene.lights[i]);
+}
+
+void LightSampler::addBackground() {
+  const RenderScene& scene = *scene_;
   if (scene.background) {
     const double r = sceneRadius(scene);
     background_ = static_cast<int32_t>(lights_.size());
@@ -245,9 +275,10 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
                        -1,
                        {}});
   }
-  if (selection_ == LightSelection::Local && count() > kMaxLocalLights)
-    selection_ = LightSelection::Tree;
-  if (selection_ == LightSelection::Tree) buildTree();
+}
+
+void LightSampler::assignGroupsAndSources() {
+  const RenderScene& scene = *scene_;
   // Each light's group (light groups) and relight source: an emitting shape's by its emission,
   // a <light>'s by its place in the list, the background's its own.
   const LightGroups& groups = scene.lightGroups;
@@ -284,7 +315,10 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
     group_.push_back(of(groups.ofEmission, groups.ofLight, groups.ofBackground));
     source_.push_back(of(groups.sourceOfEmission, groups.sourceOfLight, groups.sourceOfBackground));
   }
+}
 
+void LightSampler::buildExcitationGuides() {
+  const RenderScene& scene = *scene_;
   // Excitation guides, for scenes with a fluorescent surface only: the emission of shapes and
   // the background, a point or spot light's intensity, a flat guide for environment maps.
   if (std::any_of(scene.materials.begin(), scene.materials.end(),
@@ -321,7 +355,9 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
       }
     }
   }
+}
 
+void LightSampler::buildChoiceTables() {
   // Choice probabilities: by power (uniform when every power is zero or not finite).
   double total = 0;
   for (const Light& l : lights_) total += l.power;

@@ -192,6 +192,22 @@ private:
   /// Weight of light l at p (shading normal n) for LightSelection::Local (positive wherever
   /// it can shine).
   float localWeight(const Light& l, const Vec3& p, const Vec3& n) const;
+  // The constructor's steps, in order: the lights of each source, then what is derived.
+  /// Emitting spheres (sampled through their cone).
+  void addSphereLights();
+  /// Emitting meshes: whole (rectangles, meshes with a light tree, small meshes) or, where the
+  /// triangles' emission differs, triangle by triangle.
+  void addMeshLights();
+  /// The scene's <light> list (points, spots, environments).
+  void addListedLights();
+  /// The uniform background.
+  void addBackground();
+  /// Each light's light group and relight source.
+  void assignGroupsAndSources();
+  /// Excitation guides and where they pay (scenes with a fluorescent surface only).
+  void buildExcitationGuides();
+  /// Power and Uniform's choice probabilities and their running sums.
+  void buildChoiceTables();
   /// Builds tree_ and unbounded_ (LightSelection::Tree).
   void buildTree();
   /// Probability that LightSelection::Tree chooses light k at (p, n).
