@@ -12,19 +12,10 @@
 #endif
 
 #include "core/math_util.h"
+#include "integrators/lights/light_tree_split.h"
 
 namespace nx {
 namespace {
-
-// Splits deeper than this are made at the median (a balanced tree below: depth stays bounded
-// whatever the heuristic would do with degenerate meshes).
-constexpr int kHeuristicDepth = 48;
-constexpr int kBuckets = 12;
-
-// The bucket of a centroid coordinate x in [lo, hi] (hi > lo).
-int bucketOf(float x, float lo, float hi) {
-  return std::min(kBuckets - 1, static_cast<int>(kBuckets * ((x - lo) / (hi - lo))));
-}
 
 // A binary light tree over triangles (a MeshLightTree before it is made 4-wide): nodes in
 // depth-first order, each inner node's first child right after it.
@@ -91,9 +82,9 @@ int32_t BinaryTree::build(size_t begin, size_t end, int depth) {
   }
   // The split of least cost Phi M_A M_Omega summed over both sides, times the box's longest
   // extent over its extent along the axis (Conty Estevez & Kulla's regularisation against
-  // thin slabs), over kBuckets buckets of centroids along each axis.
+  // thin slabs), over kLightTreeBuckets buckets of centroids along each axis.
   size_t mid = begin;
-  if (depth < kHeuristicDepth) {
+  if (depth < kLightTreeHeuristicDepth) {
     const Vec3 extent = all.hi - all.lo;
     const float longest = std::max({extent.x, extent.y, extent.z});
     double bestCost = INFINITY;
@@ -104,23 +95,23 @@ int32_t BinaryTree::build(size_t begin, size_t end, int depth) {
       // Each bucket's box, area, the area-weighted sum of its normals and its normals' cone
       // about their mean, spread to the farthest (dot products only: merging cone by cone
       // takes inverse cosines, most of the build's time).
-      std::array<LightBounds, kBuckets> buckets;
-      std::array<Vec3d, kBuckets> bucketNormalSum, meanNormal;
-      std::array<double, kBuckets> spread; // cos(theta_o) about the mean normal
+      std::array<LightBounds, kLightTreeBuckets> buckets;
+      std::array<Vec3d, kLightTreeBuckets> bucketNormalSum, meanNormal;
+      std::array<double, kLightTreeBuckets> spread; // cos(theta_o) about the mean normal
       for (size_t i = begin; i < end; ++i) {
-        const size_t k = static_cast<size_t>(bucketOf(prims[i].centroid[axis], lo, hi));
+        const size_t k = static_cast<size_t>(lightTreeBucket(prims[i].centroid[axis], lo, hi));
         buckets[k].add(prims[i].bounds.lo);
         buckets[k].add(prims[i].bounds.hi);
         buckets[k].power += prims[i].bounds.power;
         bucketNormalSum[k] += Vec3d(prims[i].bounds.normals.axis) * double(prims[i].bounds.power);
       }
-      for (size_t k = 0; k < kBuckets; ++k) {
+      for (size_t k = 0; k < kLightTreeBuckets; ++k) {
         const double l = length(bucketNormalSum[k]);
         meanNormal[k] = l > 0 ? bucketNormalSum[k] * (1 / l) : Vec3d(0, 0, 1);
         spread[k] = l > 1e-6 * buckets[k].power ? 1.0 : -1.0; // opposite normals: all
       }
       for (size_t i = begin; i < end; ++i) {
-        const size_t k = static_cast<size_t>(bucketOf(prims[i].centroid[axis], lo, hi));
+        const size_t k = static_cast<size_t>(lightTreeBucket(prims[i].centroid[axis], lo, hi));
         spread[k] = std::min(spread[k], dot(meanNormal[k], Vec3d(prims[i].bounds.normals.axis)));
       }
       // The cone of buckets [first, last) about their mean normal: each bucket's cone reaches
@@ -157,9 +148,9 @@ int32_t BinaryTree::build(size_t begin, size_t end, int depth) {
         return side;
       };
       const double regular = extent[axis] > 0 ? longest / extent[axis] : 1.0;
-      for (int split = 1; split < kBuckets; ++split) {
+      for (int split = 1; split < kLightTreeBuckets; ++split) {
         const LightBounds below = sideOf(0, static_cast<size_t>(split));
-        const LightBounds above = sideOf(static_cast<size_t>(split), kBuckets);
+        const LightBounds above = sideOf(static_cast<size_t>(split), kLightTreeBuckets);
         if (!(below.power > 0) || !(above.power > 0)) continue;
         const double cost =
             regular *
@@ -173,22 +164,15 @@ int32_t BinaryTree::build(size_t begin, size_t end, int depth) {
       const auto split =
           std::partition(prims.begin() + static_cast<std::ptrdiff_t>(begin),
                          prims.begin() + static_cast<std::ptrdiff_t>(end), [&](const Primitive& p) {
-                           return bucketOf(p.centroid[bestAxis], lo, hi) < bestSplit;
+                           return lightTreeBucket(p.centroid[bestAxis], lo, hi) < bestSplit;
                          });
       mid = static_cast<size_t>(split - prims.begin());
     }
   }
   if (mid <= begin || mid >= end) {
-    // No useful split (coincident centroids, or deep): halves along the centroids' longest axis.
-    const Vec3 e = centroids.hi - centroids.lo;
-    const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
-    mid = begin + (end - begin) / 2;
-    std::nth_element(prims.begin() + static_cast<std::ptrdiff_t>(begin),
-                     prims.begin() + static_cast<std::ptrdiff_t>(mid),
-                     prims.begin() + static_cast<std::ptrdiff_t>(end),
-                     [axis](const Primitive& a, const Primitive& b) {
-                       return a.centroid[axis] < b.centroid[axis];
-                     });
+    // No useful split (coincident centroids, or deep): halves along the longest axis.
+    mid =
+        splitAtMedian(prims, begin, end, centroids, [](const Primitive& p) { return p.centroid; });
   }
   build(begin, mid, depth + 1);
   const int32_t other = build(mid, end, depth + 1);

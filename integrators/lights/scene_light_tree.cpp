@@ -3,6 +3,8 @@
 
 #include "integrators/lights/scene_light_tree.h"
 
+#include "integrators/lights/light_tree_split.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -10,17 +12,8 @@
 namespace nx {
 namespace {
 
-// Splits deeper than this are made at the median (a balanced tree below whatever the
-// heuristic does with degenerate scenes).
-constexpr int kHeuristicDepth = 48;
-constexpr int kBuckets = 12;
-
 Vec3 centroidOf(const LightBounds& b) {
   return b.center();
-}
-
-int bucketOf(float x, float lo, float hi) {
-  return std::min(kBuckets - 1, static_cast<int>(kBuckets * ((x - lo) / (hi - lo))));
 }
 
 // The heuristic's cost of a side: power M_A M_Omega (0 for an empty side).
@@ -87,7 +80,7 @@ SceneLightTree::Entry SceneLightTree::build(std::vector<Item>& items, size_t beg
   // The split of least cost summed over both sides, times the box's longest extent over its
   // extent along the axis (Conty Estevez & Kulla's regularisation against thin slabs).
   size_t mid = begin;
-  if (depth < kHeuristicDepth) {
+  if (depth < kLightTreeHeuristicDepth) {
     const Vec3 extent = all.hi - all.lo;
     const float longest = std::max({extent.x, extent.y, extent.z});
     double bestCost = INFINITY;
@@ -95,21 +88,22 @@ SceneLightTree::Entry SceneLightTree::build(std::vector<Item>& items, size_t beg
     for (int axis = 0; axis < 3; ++axis) {
       const float lo = centroids.lo[axis], hi = centroids.hi[axis];
       if (!(hi > lo)) continue;
-      std::array<LightBounds, kBuckets> buckets;
+      std::array<LightBounds, kLightTreeBuckets> buckets;
       for (size_t i = begin; i < end; ++i) {
-        LightBounds& b =
-            buckets[static_cast<size_t>(bucketOf(centroidOf(items[i].bounds)[axis], lo, hi))];
+        LightBounds& b = buckets[static_cast<size_t>(
+            lightTreeBucket(centroidOf(items[i].bounds)[axis], lo, hi))];
         b = unionOf(b, items[i].bounds);
       }
-      // Bounds of buckets [split, kBuckets), swept from the top; [0, split) from the bottom.
-      std::array<LightBounds, kBuckets> above;
-      above[kBuckets - 1] = buckets[kBuckets - 1];
-      for (int k = kBuckets - 2; k >= 0; --k)
+      // Bounds of buckets [split, kLightTreeBuckets), swept from the top; [0, split) from the
+      // bottom.
+      std::array<LightBounds, kLightTreeBuckets> above;
+      above[kLightTreeBuckets - 1] = buckets[kLightTreeBuckets - 1];
+      for (int k = kLightTreeBuckets - 2; k >= 0; --k)
         above[static_cast<size_t>(k)] =
             unionOf(buckets[static_cast<size_t>(k)], above[static_cast<size_t>(k) + 1]);
       const double regular = extent[axis] > 0 ? longest / extent[axis] : 1.0;
       LightBounds below;
-      for (int split = 1; split < kBuckets; ++split) {
+      for (int split = 1; split < kLightTreeBuckets; ++split) {
         below = unionOf(below, buckets[static_cast<size_t>(split) - 1]);
         const LightBounds& rest = above[static_cast<size_t>(split)];
         if (!(below.power > 0) || !(rest.power > 0)) continue;
@@ -119,25 +113,18 @@ SceneLightTree::Entry SceneLightTree::build(std::vector<Item>& items, size_t beg
     }
     if (bestAxis >= 0) {
       const float lo = centroids.lo[bestAxis], hi = centroids.hi[bestAxis];
-      const auto split =
-          std::partition(items.begin() + static_cast<std::ptrdiff_t>(begin),
-                         items.begin() + static_cast<std::ptrdiff_t>(end), [&](const Item& i) {
-                           return bucketOf(centroidOf(i.bounds)[bestAxis], lo, hi) < bestSplit;
-                         });
+      const auto split = std::partition(
+          items.begin() + static_cast<std::ptrdiff_t>(begin),
+          items.begin() + static_cast<std::ptrdiff_t>(end), [&](const Item& i) {
+            return lightTreeBucket(centroidOf(i.bounds)[bestAxis], lo, hi) < bestSplit;
+          });
       mid = static_cast<size_t>(split - items.begin());
     }
   }
   if (mid <= begin || mid >= end) {
-    // No useful split (coincident lights, or deep): halves along the centroids' longest axis.
-    const Vec3 e = centroids.hi - centroids.lo;
-    const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
-    mid = begin + (end - begin) / 2;
-    std::nth_element(items.begin() + static_cast<std::ptrdiff_t>(begin),
-                     items.begin() + static_cast<std::ptrdiff_t>(mid),
-                     items.begin() + static_cast<std::ptrdiff_t>(end),
-                     [axis](const Item& a, const Item& b) {
-                       return centroidOf(a.bounds)[axis] < centroidOf(b.bounds)[axis];
-                     });
+    // No useful split (coincident lights, or deep): halves along the longest axis.
+    mid = splitAtMedian(items, begin, end, centroids,
+                        [](const Item& i) { return centroidOf(i.bounds); });
   }
   const Entry first = build(items, begin, mid, depth + 1);
   const Entry second = build(items, mid, end, depth + 1);

@@ -74,4 +74,27 @@ inline double relativeLuminanceError(const Film& film, const Film& ref) {
   return std::sqrt(se / n) / (mean / n);
 }
 
+/// Per-pixel variance of one render of scene with options o in the band nearest `nm` (luminance
+/// Y for nm = 0), averaged over the image: half the mean squared difference of two renders at
+/// seeds seedA and seedB.
+inline double seedPairVariance(const RenderScene& scene, RenderOptions o, double nm, uint32_t seedA,
+                               uint32_t seedB) {
+  o.seed = seedA;
+  const RenderOutput a = render(scene, o);
+  o.seed = seedB;
+  const RenderOutput b = render(scene, o);
+  int band = 0;
+  for (int i = 0; i < a.film.bands().count(); ++i)
+    if (std::abs(a.film.bands().centroid(i) - nm) < std::abs(a.film.bands().centroid(band) - nm))
+      band = i;
+  double v = 0;
+  for (int y = 0; y < a.film.height(); ++y)
+    for (int x = 0; x < a.film.width(); ++x) {
+      const double d = nm > 0 ? a.film.bandMean(x, y, band) - b.film.bandMean(x, y, band)
+                              : a.film.xyzMean(x, y).y - b.film.xyzMean(x, y).y;
+      v += d * d / 2;
+    }
+  return v / (a.film.width() * a.film.height());
+}
+
 } // namespace nx
