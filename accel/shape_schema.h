@@ -37,6 +37,8 @@ public:
   /// A mesh file read and transformed (its bytes join the render key); throws nx::Error naming
   /// the file and the problem.
   virtual TriangleMesh meshFile(const std::string& path, const AffineDesc& transform) const = 0;
+  /// Notes a warning about the shape being built (the object's file:line is put before it).
+  virtual void warn(const std::string& message) const = 0;
 };
 
 } // namespace nx

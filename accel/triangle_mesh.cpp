@@ -103,4 +103,13 @@ std::string TriangleMesh::validate() const {
   return "";
 }
 
+size_t TriangleMesh::zeroAreaTriangles() const {
+  size_t flat = 0;
+  for (size_t t = 0; t < triangleCount(); ++t) {
+    const TriangleShape c = corners(t);
+    flat += !(length(cross(c.b - c.a, c.c - c.a)) > 0);
+  }
+  return flat;
+}
+
 } // namespace nx

@@ -73,6 +73,8 @@ public:
   /// every attribute finite and some triangle has a non-zero area; else what is wrong
   /// ("triangle 12 refers to vertex 99 of 40").
   std::string validate() const;
+  /// How many triangles have zero area (never hit; validate() refuses a mesh of only these).
+  size_t zeroAreaTriangles() const;
   /// Whether both hold the same vertices (positions, normals, uv) and triangles, exactly.
   bool operator==(const TriangleMesh&) const = default;
 

@@ -321,8 +321,12 @@ private:
         throw Error("mesh '" + path + "' after its <transform>: " + problem);
       return std::move(f.mesh);
     }
+    void warn(const std::string& message) const override {
+      b_.warnings_.push_back(building_->str() + ": warning: " + message);
+    }
     // The object's primitive from its kind's build.
     ShapeGeometry build(const ShapeKindSpec& kind, const ObjectDesc& o) const {
+      building_ = &o.loc;
       try {
         return kind.build(o.geometry, *this);
       } catch (const Error& e) {
@@ -332,6 +336,7 @@ private:
 
   private:
     const Builder& b_;
+    mutable const SourceLocation* building_ = nullptr; ///< the object being built
   };
 
   // What the light kinds' builds ask of the scene (integrators/lights/light_kind.h).

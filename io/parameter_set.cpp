@@ -34,6 +34,10 @@ const char* paramTypeName(ParamType t) {
     return "transform";
   case ParamType::Dye:
     return "dye";
+  case ParamType::Reals:
+    return "rows of numbers";
+  case ParamType::Indices:
+    return "rows of indices";
   }
   return "?";
 }
@@ -146,6 +150,9 @@ struct CanonicalWriter {
   void operator()(const AffineDesc& a) const {
     for (const auto& row : a.m) t << row[0] << ',' << row[1] << ',' << row[2] << ',';
     (*this)(a.t);
+  }
+  void operator()(const ArrayDesc& a) const {
+    t << (a.reals ? "reals:" : "indices:") << a.columns << ':' << a.rows() << ':' << a.digest;
   }
 };
 

@@ -32,7 +32,24 @@ enum class ParamType : uint8_t {
   File,         ///< a file name, relative to the scene file
   Transform,    ///< <translate>, <rotate>, <scale> and <matrix> steps: an affine map
   Dye,          ///< a medium's dye: the fluorescence model with <peak> per unit length
+  Reals,        ///< rows of `columns` finite numbers (kept as float), e.g. a mesh's vertices
+  Indices,      ///< rows of `columns` whole numbers in [0, 2^32), e.g. a mesh's faces
 };
+
+/// Calls f with each space-separated word of `words` (a ParamSpec's excludes).
+template <typename F>
+void forEachWord(const char* words, F&& f) {
+  std::string word;
+  for (const char* c = words;; ++c) {
+    if (*c == ' ' || *c == '\0') {
+      if (!word.empty()) f(word);
+      word.clear();
+      if (*c == '\0') return;
+    } else {
+      word += *c;
+    }
+  }
+}
 
 /// The type's name in reference docs and errors ("number", "spectrum", ...).
 const char* paramTypeName(ParamType t);
@@ -52,6 +69,8 @@ struct ParamSpec {
   /// Point: what its three numbers are in errors ("" : "x, y, z"); File given as an attribute:
   /// what the file is ("a .ply or .obj mesh").
   const char* what = "";
+  /// Reals and Indices: the numbers per row (3 for x, y, z; 2 for u, v).
+  uint32_t columns = 0;
 };
 
 /// One parameter a light or medium kind takes: its declaration, its default, whether it is
@@ -65,9 +84,11 @@ struct TakenParameter {
 
 /// A parameter's value, by type (Number -> double, Rgb -> array, Spectrum and Reflectance ->
 /// SpectrumDesc, Ior -> IorDesc, Fluorescence and Dye -> FluorescenceDesc, Coating -> CoatingDesc,
-/// Name and File -> string, Point -> Vec3d, Transform -> AffineDesc).
-using ParamValue = std::variant<double, std::array<double, 4>, SpectrumDesc, IorDesc,
-                                FluorescenceDesc, CoatingDesc, std::string, Vec3d, AffineDesc>;
+/// Name and File -> string, Point -> Vec3d, Transform -> AffineDesc, Reals and Indices ->
+/// ArrayDesc).
+using ParamValue =
+    std::variant<double, std::array<double, 4>, SpectrumDesc, IorDesc, FluorescenceDesc,
+                 CoatingDesc, std::string, Vec3d, AffineDesc, ArrayDesc>;
 
 /// One parameter as given.
 struct Parameter {

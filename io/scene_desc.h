@@ -11,6 +11,7 @@
 
 #include "core/vec3.h"
 #include "io/parameter_set.h"
+#include "io/scene_tree.h"
 #include "io/scene_values.h"
 #include "spectra/sensor.h"
 
@@ -152,6 +153,11 @@ SceneDesc loadScene(const std::string& path);
 /// Bytes the film and the output image of a width x height render with `bands` bands take
 /// (what the memory checks compare with the memory budget).
 double renderBufferBytes(int width, int height, int bands);
+
+/// Reads a scene given as data (io/scene_tree.h) exactly as its scene text: errors name the
+/// path in the data ("objects[2].faces: ...") instead of a line; `name` is the scene's name
+/// and anchors relative file names (its directory; "" or "<dict>": the working directory).
+SceneDesc parseSceneTree(const SceneTree& tree, const std::string& name);
 
 /// Parses scene text; `file` names it in messages and anchors relative paths.
 SceneDesc parseScene(const std::string& text, const std::string& file);

@@ -24,6 +24,7 @@
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
+#include "io/array_values.h"
 #include "io/camera_checks.h"
 #include "io/exr_names.h"
 #include "io/material_parameters.h"
@@ -31,6 +32,7 @@
 #include "io/scene_desc.h"
 #include "io/scene_limits.h"
 #include "io/scene_state_text.h"
+#include "io/scene_tree_text.h"
 
 namespace nx {
 namespace {
@@ -54,7 +56,9 @@ std::string trim(const std::string& s) {
 
 class SceneParser {
 public:
-  SceneParser(const std::string& text, std::string file) : file_(std::move(file)) {
+  SceneParser(const std::string& text, std::string file,
+              const std::vector<std::string>* linePaths = nullptr)
+      : file_(std::move(file)), linePaths_(linePaths) {
     for (size_t i = 0; i < text.size(); ++i)
       if (text[i] == '\n') newlines_.push_back(i);
     if (trim(text).empty())
@@ -142,12 +146,18 @@ private:
                             newlines_.begin()) +
            1;
   }
+  // Where line `line` is: file:line, or the data path of the line in a scene given as data.
+  SourceLocation locOfLine(int line) const {
+    if (linePaths_ && line >= 1 && static_cast<size_t>(line) <= linePaths_->size())
+      return {(*linePaths_)[static_cast<size_t>(line) - 1], 0};
+    return {file_, line};
+  }
   SourceLocation loc(const pugi::xml_node& n) const {
     const ptrdiff_t off = n.offset_debug();
-    return {file_, off < 0 ? 0 : lineOfOffset(static_cast<size_t>(off))};
+    return locOfLine(off < 0 ? 0 : lineOfOffset(static_cast<size_t>(off)));
   }
   [[noreturn]] void failAt(int line, const std::string& message) const {
-    throw Error(file_ + ":" + std::to_string(line) + ": " + message);
+    throw Error(locOfLine(line).str() + ": " + message);
   }
   [[noreturn]] void fail(const pugi::xml_node& n, const std::string& expected,
                          const std::string& found) const {
@@ -857,6 +867,14 @@ private:
       if (t.empty()) fail(n, "a name in <" + std::string(n.name()) + ">", "nothing");
       return t;
     }
+    case ParamType::Reals:
+    case ParamType::Indices:
+      try {
+        return arrayFromText(text(n), spec.type == ParamType::Indices, spec.columns);
+      } catch (const Error& e) {
+        throw Error(loc(n).str() + ": <" + std::string(n.name()) + "> (" + spec.what +
+                    "): " + e.what());
+      }
     }
     fail(n, "a declared parameter type", "none"); // unreachable: the switch is exhaustive
   }
@@ -1286,6 +1304,7 @@ private:
   }
 
   std::string file_;
+  const std::vector<std::string>* linePaths_; ///< a tree's path per line, or null (a file)
   std::vector<size_t> newlines_;
   pugi::xml_document doc_;
 };
@@ -1299,12 +1318,23 @@ double renderBufferBytes(int width, int height, int bands) {
   return pixels * ((2.0 * bands + 6) * 8.0 + (2.0 * bands + 9) * 4.0);
 }
 
-SceneDesc parseScene(const std::string& text, const std::string& file) {
-  SceneDesc d = SceneParser(text, file).parse();
-  // The key of the scene's state (with the calibration file's bytes), not of its text: the
-  // same scene written otherwise, or edited into it from Python, renders under the same key.
+namespace {
+// The key of the scene's state (with the calibration file's bytes), not of its text: the
+// same scene written otherwise, given as data or edited into it from Python, renders under
+// the same key.
+SceneDesc keyed(SceneDesc d) {
   d.textDigest = sceneStateDigest(d);
   return d;
+}
+} // namespace
+
+SceneDesc parseScene(const std::string& text, const std::string& file) {
+  return keyed(SceneParser(text, file).parse());
+}
+
+SceneDesc parseSceneTree(const SceneTree& tree, const std::string& name) {
+  const SceneTreeText t = sceneTreeText(tree);
+  return keyed(SceneParser(t.text, name, &t.linePaths).parse());
 }
 
 SceneDesc loadScene(const std::string& path) {

@@ -28,12 +28,27 @@ struct SpectralTexels {
   uint64_t digest = 0;
 };
 
-/// Where an item was written: file name and 1-based line.
+/// Rows of numbers written inline (a mesh's <vertices>, <faces>, <normals>, <uv>), `columns`
+/// per row: real numbers kept as float (the precision meshes are kept in) or indices as
+/// uint32. Shared, so copies of a description share the numbers.
+struct ArrayDesc {
+  std::shared_ptr<const std::vector<float>> reals;      ///< ParamType::Reals, else null
+  std::shared_ptr<const std::vector<uint32_t>> indices; ///< ParamType::Indices, else null
+  uint32_t columns = 3;
+  uint64_t digest = 0; ///< FNV-1a of the numbers' bytes: their identity in the render key
+  /// Number of rows.
+  size_t rows() const {
+    return (reals ? reals->size() : indices ? indices->size() : 0) / (columns ? columns : 1);
+  }
+};
+
+/// Where an item was written: file name and 1-based line, or its path in a scene given as data.
 struct SourceLocation {
   std::string file;
   int line = 0;
-  /// "file:line", the prefix of every error about this item.
-  std::string str() const { return file + ":" + std::to_string(line); }
+  /// "file:line", the prefix of every error about this item; for an item given as data
+  /// (line 0), its path in the data ("objects[2].radius").
+  std::string str() const { return line > 0 ? file + ":" + std::to_string(line) : file; }
 };
 
 /// A spectrum as a scene refers to it.

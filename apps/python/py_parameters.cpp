@@ -5,7 +5,14 @@
 #include <pybind11/stl.h>
 
 #include "apps/python/py_arguments.h"
+#include "apps/python/py_arrays.h"
 #include "apps/python/py_image.h"
+#include "io/array_values.h"
+
+#include <pybind11/numpy.h>
+
+#include <cmath>
+#include <limits>
 
 namespace nxpy {
 
@@ -142,6 +149,42 @@ nx::IorDesc iorFromPython(const py::handle& value, const std::string& param,
 
 } // namespace
 
+nx::ArrayDesc arrayFromPython(const py::handle& value, bool indices, uint32_t columns,
+                              const std::string& param) {
+  const py::array a = realArray(value, param.c_str());
+  if (a.ndim() != 2 || a.shape(1) != static_cast<py::ssize_t>(columns) || a.shape(0) < 1)
+    throw py::value_error(param + ": expected an array of shape (N, " + std::to_string(columns) +
+                          "), found shape " + py::str(a.attr("shape")).cast<std::string>());
+  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  const double* x = d.data();
+  const size_t n = static_cast<size_t>(d.size());
+  auto where = [&](size_t i) {
+    return " at [" + std::to_string(i / columns) + ", " + std::to_string(i % columns) + "]";
+  };
+  try {
+    if (indices) {
+      std::vector<uint32_t> v(n);
+      for (size_t i = 0; i < n; ++i) {
+        if (!(x[i] >= 0 && x[i] < 4294967296.0 && x[i] == std::floor(x[i])))
+          throw py::value_error(param + ": expected whole numbers in [0, 2^32), found " +
+                                py::str(py::float_(x[i])).cast<std::string>() + where(i));
+        v[i] = static_cast<uint32_t>(x[i]);
+      }
+      return nx::indexRows(std::move(v), columns);
+    }
+    std::vector<float> v(n);
+    for (size_t i = 0; i < n; ++i) {
+      if (!(std::abs(x[i]) <= std::numeric_limits<float>::max()))
+        throw py::value_error(param + ": expected finite numbers that fit a float, found " +
+                              py::str(py::float_(x[i])).cast<std::string>() + where(i));
+      v[i] = static_cast<float>(x[i]);
+    }
+    return nx::realRows(std::move(v), columns);
+  } catch (const nx::Error& e) {
+    throw py::value_error(param + ": " + e.what());
+  }
+}
+
 py::object parameterToPython(const nx::ParamValue& v) {
   if (const double* d = std::get_if<double>(&v)) return py::float_(*d);
   if (const auto* c = std::get_if<std::array<double, 4>>(&v))
@@ -152,6 +195,11 @@ py::object parameterToPython(const nx::ParamValue& v) {
     return py::make_tuple(c->thicknessNm, iorToPython(c->ior));
   if (const auto* t = std::get_if<std::string>(&v)) return py::str(*t);
   if (const auto* p = std::get_if<nx::Vec3d>(&v)) return py::make_tuple(p->x, p->y, p->z);
+  if (const auto* r = std::get_if<nx::ArrayDesc>(&v)) {
+    const py::ssize_t rows = static_cast<py::ssize_t>(r->rows()), cols = r->columns;
+    if (r->reals) return py::array_t<float>({rows, cols}, r->reals->data());
+    return py::array_t<uint32_t>({rows, cols}, r->indices->data());
+  }
   if (const auto* a = std::get_if<nx::AffineDesc>(&v)) {
     py::list rows;
     for (int i = 0; i < 3; ++i)
@@ -243,6 +291,9 @@ nx::ParamValue parameterFromPython(const nx::ParamSpec& spec, const py::handle& 
                             nx::numberText(a.determinant()));
     return a;
   }
+  case nx::ParamType::Reals:
+  case nx::ParamType::Indices:
+    return arrayFromPython(value, spec.type == nx::ParamType::Indices, spec.columns, param);
   case nx::ParamType::Fluorescence:
     throw py::type_error(param + ": set with set_fluorescence(...) or by its fields");
   case nx::ParamType::Dye:

@@ -32,6 +32,11 @@ nx::SpectrumDesc spectrumFromPython(const py::handle& value, const std::string& 
 /// A spectrum as Python sees it (see parameterToPython).
 py::object spectrumToPython(const nx::SpectrumDesc& s);
 
+/// Rows of `columns` numbers from an (N, columns) array: float32 reals (finite) or uint32
+/// indices (whole, in [0, 2^32)); ValueError naming `param` and the first offending entry.
+nx::ArrayDesc arrayFromPython(const py::handle& value, bool indices, uint32_t columns,
+                              const std::string& param);
+
 /// A number in `r`, or ValueError "param: expected <what> in [lo, hi], found v".
 double rangedArgument(const py::handle& value, const std::string& param,
                       const nx::ParameterRange& r);

@@ -1,6 +1,7 @@
 // nxrender.Scene and its views (camera, objects, materials, fluorescence, lights).
 
 #include "apps/python/py_scene.h"
+#include "apps/python/py_scene_tree.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -11,6 +12,7 @@
 #include "apps/python/py_arguments.h"
 #include "apps/python/py_parameters.h"
 #include "apps/python/py_readonly.h"
+#include "apps/python/py_scene_tree.h"
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/hash.h"
@@ -179,16 +181,7 @@ void setMaterialParameter(const MaterialView& v, const nx::ParamSpec& spec, cons
   }
   requireKindTakes(v, spec.name, param);
   d.params.set({spec.name, parameterFromPython(spec, value, param, v.loc()), v.loc()});
-  std::string excluded;
-  for (const char* c = spec.excludes;; ++c) {
-    if (*c == ' ' || *c == '\0') {
-      if (!excluded.empty()) d.params.erase(excluded);
-      excluded.clear();
-      if (*c == '\0') break;
-    } else {
-      excluded += *c;
-    }
-  }
+  nx::forEachWord(spec.excludes, [&](const std::string& x) { d.params.erase(x); });
 }
 
 // A measured matrix as Python arrays: (excitation_nm, emission_nm, values) with values of shape
@@ -334,29 +327,40 @@ std::optional<std::array<const char*, 3>> cornerNames(const std::string& shape) 
   return std::nullopt;
 }
 
-// Sets (None: removes) one parameter of an object's shape, checked by its type and range and
-// by the kind (shapeProblem: a required one, a value's own check, the parameters together): a
-// refused value leaves the object as it was.
-void setShapeParameter(const ObjectView& o, const std::string& name, const py::handle& value,
-                       const std::string& param) {
+// The parameter `name` of a shape kind, or ValueError naming the kinds that take it.
+const nx::ShapeParameter& shapeParameterOf(const nx::ShapeKindSpec& kind, const std::string& name,
+                                           const std::string& param) {
+  if (const nx::ShapeParameter* decl = nx::shapeParameter(kind, name)) return *decl;
+  std::vector<std::string> takers;
+  for (const nx::ShapeKindSpec& k : nx::shapeKinds())
+    if (nx::shapeParameter(k, name)) takers.push_back(std::string("a ") + k.name);
+  throw py::value_error(param + ": a " + std::string(kind.name) + " takes no " + name + " (" +
+                        nx::listWithOr(takers) + " does)");
+}
+
+// Sets (None: removes) parameters of an object's shape together, each checked by its type and
+// range (the names it excludes removed), then all by the kind (shapeProblem: a required one, a
+// value's own check, the parameters together): a refused change leaves the object as it was.
+void setShapeParameters(const ObjectView& o,
+                        const std::vector<std::pair<std::string, py::object>>& values) {
   nx::ObjectDesc& d = o.get();
   const nx::ShapeKindSpec& kind = *nx::findShapeKind(d.shape);
-  const nx::ShapeParameter* decl = nx::shapeParameter(kind, name);
-  if (!decl) {
-    std::vector<std::string> takers;
-    for (const nx::ShapeKindSpec& k : nx::shapeKinds())
-      if (nx::shapeParameter(k, name)) takers.push_back(std::string("a ") + k.name);
-    throw py::value_error(param + ": a " + d.shape + " takes no " + name + " (" +
-                          nx::listWithOr(takers) + " does)");
-  }
   nx::ParameterSet next = d.geometry;
-  if (value.is_none())
-    next.erase(name);
-  else
-    next.set({name, parameterFromPython(decl->spec, value, param, d.loc),
-              d.geometry.locOf(name, d.loc)});
+  for (const auto& [name, value] : values) {
+    const std::string param = o.label() + "." + name;
+    const nx::ShapeParameter& decl = shapeParameterOf(kind, name, param);
+    if (value.is_none()) {
+      next.erase(name);
+      continue;
+    }
+    next.set(
+        {name, parameterFromPython(decl.spec, value, param, d.loc), d.geometry.locOf(name, d.loc)});
+    nx::forEachWord(decl.spec.excludes, [&](const std::string& x) { next.erase(x); });
+  }
   if (const auto problem = nx::shapeProblem(kind, next))
-    throw py::value_error(param + ": expected " + problem->expected + ", found " + problem->found);
+    throw py::value_error(o.label() + "." +
+                          (values.size() == 1 ? values[0].first : std::string("update")) +
+                          ": expected " + problem->expected + ", found " + problem->found);
   d.geometry = std::move(next);
 }
 
@@ -441,6 +445,14 @@ nx::FluorescenceDesc fluorescenceModel(const std::string& p, const nx::SourceLoc
   if (!quantumYield.is_none())
     f.quantumYield = rangedArgument(quantumYield, p + "quantum_yield", nx::kYieldRange);
   return f;
+}
+
+// What Scene() is: the settings and camera a scene needs, nothing in it.
+nx::SceneTree emptySceneTree() {
+  using D = nx::SceneTree::Dict;
+  using L = nx::SceneTree::List;
+  return D{{"settings", D{{"xres", 64.0}, {"yres", 64.0}, {"mode", std::string("spectral_mcpt")}}},
+           {"camera", D{{"position", L{0.0, 0.0, -5.0}}, {"look_at", L{0.0, 0.0, 0.0}}}}};
 }
 
 SceneState loadState(const std::string& text, const std::string& name) {
@@ -756,6 +768,17 @@ void bindScene(py::module_& m) {
           },
           "The medium inside a sphere or closed mesh (None: none); assign None to remove it")
       .def(
+          "update",
+          [](const ObjectView& o, const py::kwargs& values) {
+            std::vector<std::pair<std::string, py::object>> v;
+            for (const auto& [k, x] : values)
+              v.emplace_back(k.cast<std::string>(), py::reinterpret_borrow<py::object>(x));
+            setShapeParameters(o, v);
+            for (const auto& [k, x] : v) record(*o.s, o.label() + "." + k, x);
+          },
+          "Sets several shape parameters at once, checked together (e.g. a mesh's vertices, "
+          "faces, normals and uv: o.update(vertices=V, faces=F)); None removes one")
+      .def(
           "set_medium",
           [](const ObjectView& o, const py::object& sigmaA, const py::object& sigmaS,
              const py::object& g) {
@@ -915,9 +938,8 @@ void bindScene(py::module_& m) {
             return q ? parameterToPython(q->value) : py::object(py::none());
           },
           [name](const ObjectView& o, const py::object& value) {
-            const std::string param = o.label() + "." + name;
-            setShapeParameter(o, name, value, param);
-            record(*o.s, param, value);
+            setShapeParameters(o, {{name, value}});
+            record(*o.s, o.label() + "." + name, value);
           },
           sp.spec.doc);
     }
@@ -1063,14 +1085,35 @@ void bindScene(py::module_& m) {
                       "nxrender.render(scene). Edits are checked like the file's values and "
                       "recorded in the image's nxrender.sceneEdits attribute.")
       .def(py::init([](const py::object& path) {
-             const std::string p = pathArgument(path, "path");
              PyScene s;
              s.state = std::make_shared<SceneState>();
+             if (path.is_none()) {
+               s.state->desc = nx::parseSceneTree(emptySceneTree(), "<empty>");
+               return s;
+             }
+             const std::string p = pathArgument(path, "path");
              py::gil_scoped_release release;
              s.state->desc = nx::loadScene(p);
              return s;
            }),
-           py::arg("path"), "Reads a scene file (errors: nxrender.Error with file:line)")
+           py::arg("path") = py::none(),
+           "Reads a scene file (errors: nxrender.Error with file:line); without a path, an "
+           "empty scene (no objects or lights; 64 x 64 pixels, spectral_mcpt, 16 spp; the "
+           "camera at (0, 0, -5) looking at the origin)")
+      .def_static(
+          "from_dict",
+          [](const py::object& d, const std::string& name) {
+            const nx::SceneTree tree = treeFromPython(d, "");
+            PyScene s;
+            s.state = std::make_shared<SceneState>();
+            s.state->desc = nx::parseSceneTree(tree, name);
+            return s;
+          },
+          py::arg("d"), py::arg("name") = "<dict>",
+          "A scene from a dict keyed by the scene format's element and parameter names "
+          "(docs/python.md, 'Scenes from data'); errors name the path in the dict "
+          "('objects[2].radius: ...'). Relative file names are relative to `name`'s directory "
+          "(the working directory by default).")
       .def_static(
           "from_text",
           [](const std::string& text, const std::string& name) {

@@ -36,15 +36,42 @@ std::string exampleMesh() {
   return path;
 }
 
-// The kind's element with every parameter at its declared example, and `extra` inside.
-std::string exampleObject(const ShapeKindSpec& kind, const std::string& extra = "") {
-  std::string attributes, children;
+// Whether `name` is among a parameter's excludes.
+bool excludes(const ShapeParameter& p, const std::string& name) {
+  bool found = false;
+  forEachWord(p.spec.excludes, [&](const std::string& w) { found = found || w == name; });
+  return found;
+}
+
+// The parameters of one example: each in order unless one chosen before excludes it; the
+// alternative form leaves out those that exclude others (a mesh's rows instead of its file).
+std::vector<const ShapeParameter*> exampleParameters(const ShapeKindSpec& kind, bool alternative) {
+  std::vector<const ShapeParameter*> chosen;
   for (const ShapeParameter& p : kind.params()) {
-    const std::string value = p.spec.type == ParamType::File ? exampleMesh() : p.spec.example;
-    if (p.attribute)
-      attributes += " " + std::string(p.spec.name) + "=\"" + value + "\"";
+    if (alternative && *p.spec.excludes && p.attribute) continue;
+    bool excluded = false;
+    for (const ShapeParameter* c : chosen) excluded = excluded || excludes(*c, p.spec.name);
+    if (!excluded) chosen.push_back(&p);
+  }
+  return chosen;
+}
+
+// Whether the kind has a second form (parameters that exclude others).
+bool hasAlternative(const ShapeKindSpec& kind) {
+  return exampleParameters(kind, true).size() != exampleParameters(kind, false).size();
+}
+
+// The kind's element with its example's parameters at their declared examples, and `extra`
+// inside.
+std::string exampleObject(const ShapeKindSpec& kind, const std::string& extra = "",
+                          bool alternative = false) {
+  std::string attributes, children;
+  for (const ShapeParameter* p : exampleParameters(kind, alternative)) {
+    const std::string value = p->spec.type == ParamType::File ? exampleMesh() : p->spec.example;
+    if (p->attribute)
+      attributes += " " + std::string(p->spec.name) + "=\"" + value + "\"";
     else
-      children += "<" + std::string(p.spec.name) + ">" + value + "</" + p.spec.name + ">";
+      children += "<" + std::string(p->spec.name) + ">" + value + "</" + p->spec.name + ">";
   }
   return "<" + std::string(kind.name) + attributes + ">" + children + extra +
          "<material>matte</material><reflectance>0.5</reflectance></" + kind.name + ">";
@@ -56,16 +83,20 @@ TEST(ShapeKinds, EveryKindBuildsFromItsExamplesIntoOnePrimitive) {
     SCOPED_TRACE(kind.name);
     EXPECT_TRUE(names.insert(kind.name).second);
     EXPECT_EQ(findShapeKind(kind.name), &kind);
-    const SceneDesc d = parseScene(withObject(exampleObject(kind)), "t.scn");
-    ASSERT_EQ(d.objects.size(), 1u);
-    EXPECT_EQ(d.objects[0].shape, kind.name);
-    for (const ShapeParameter& p : kind.params())
-      EXPECT_TRUE(d.objects[0].geometry.has(p.spec.name));
-    const RenderScene s = buildRenderScene(d);
-    EXPECT_EQ(s.spheres.size() + s.planes.size() + s.meshes.size(), 1u);
-    EXPECT_EQ(s.geometry->spheres().size() + s.geometry->planes().size() +
-                  s.geometry->meshes().size(),
-              1u);
+    for (bool alternative : {false, true}) {
+      if (alternative && !hasAlternative(kind)) continue;
+      SCOPED_TRACE(alternative ? "alternative form" : "first form");
+      const SceneDesc d = parseScene(withObject(exampleObject(kind, "", alternative)), "t.scn");
+      ASSERT_EQ(d.objects.size(), 1u);
+      EXPECT_EQ(d.objects[0].shape, kind.name);
+      for (const ShapeParameter* p : exampleParameters(kind, alternative))
+        EXPECT_TRUE(d.objects[0].geometry.has(p->spec.name));
+      const RenderScene s = buildRenderScene(d);
+      EXPECT_EQ(s.spheres.size() + s.planes.size() + s.meshes.size(), 1u);
+      EXPECT_EQ(s.geometry->spheres().size() + s.geometry->planes().size() +
+                    s.geometry->meshes().size(),
+                1u);
+    }
   }
 }
 
