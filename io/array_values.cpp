@@ -55,9 +55,27 @@ ArrayDesc arrayFromText(std::string_view text, bool indices, uint32_t columns) {
   std::vector<uint32_t> whole;
   const char* p = text.data();
   const char* end = p + text.size();
+  // Rows separated by commas must each hold `columns` numbers (a (N, 2) array given for
+  // (N, 3) rows is refused, not read as other rows); without commas the numbers run on.
+  const bool rowsMarked = text.find(',') != std::string_view::npos;
+  size_t inRow = 0, row = 0;
+  auto endRow = [&] {
+    if (rowsMarked && inRow != columns)
+      throw Error("expected rows of " + std::to_string(columns) +
+                  " numbers separated by commas, found " + std::to_string(inRow) +
+                  " numbers in row " + std::to_string(row));
+    inRow = 0, ++row;
+  };
   while (true) {
-    while (p < end && separator(*p)) ++p;
-    if (p == end) break;
+    while (p < end && separator(*p)) {
+      if (*p == ',') endRow();
+      ++p;
+    }
+    if (p == end) {
+      if (inRow) endRow();
+      break;
+    }
+    ++inRow;
     const char* q = p;
     while (q < end && !separator(*q)) ++q;
     const std::string_view token(p, static_cast<size_t>(q - p));

@@ -19,8 +19,9 @@ ArrayDesc realRows(std::vector<float> values, uint32_t columns);
 /// Rows of `columns` indices; throws as realRows when the count is not a positive multiple.
 ArrayDesc indexRows(std::vector<uint32_t> values, uint32_t columns);
 
-/// Rows read from text: numbers separated by commas and/or white space (reals rounded once to
-/// float; indices whole numbers in [0, 2^32)); throws as realRows.
+/// Rows read from text: numbers separated by white space, rows by commas (each of `columns`
+/// numbers; without commas the numbers run on); reals rounded once to float, indices whole
+/// numbers in [0, 2^32); throws as realRows.
 ArrayDesc arrayFromText(std::string_view text, bool indices, uint32_t columns);
 
 /// The rows as text ("x y z, x y z, ..."): the shortest digits that read back to each float.

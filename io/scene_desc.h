@@ -120,6 +120,9 @@ struct SettingsDesc {
   int samples = 16;
   std::optional<SpectrumDesc> illuminant; ///< <illum>
   Sensor bands;
+  /// <sensor csv="..." centres="...">: the measured responses' file and nominal centres as
+  /// written (empty when the sensor is not a file's); to_text writes them back
+  std::string sensorFile, sensorCentres;
   std::optional<SpectrumDesc> background; ///< uniform environment radiance
   std::string backgroundGroup;            ///< <background group="NAME">, or empty
   uint32_t seed = 0;

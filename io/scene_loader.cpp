@@ -574,8 +574,13 @@ private:
       }
     }
     if (c.count("sensor")) {
-      if (c.count("bands")) fail(c.at("sensor"), "one of <bands> and <sensor>", "both");
-      s.bands = sensor(c.at("sensor"));
+      const pugi::xml_node sn = c.at("sensor");
+      if (c.count("bands")) fail(sn, "one of <bands> and <sensor>", "both");
+      s.bands = sensor(sn);
+      if (sn.attribute("csv")) {
+        s.sensorFile = relativeToScene(trim(decoded(sn.attribute("csv").value(), sn)));
+        s.sensorCentres = trim(decoded(sn.attribute("centres").value(), sn));
+      }
     }
     if (c.count("seed"))
       s.seed = static_cast<uint32_t>(integer(c.at("seed"), "a seed", 0, 2147483647));

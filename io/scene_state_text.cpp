@@ -10,7 +10,7 @@ namespace {
 // A field added to a description must be written below too (else two scenes differing only in
 // it would share a render key). Sizes of x86-64 with libstdc++.
 #if defined(__x86_64__) && defined(__GLIBCXX__)
-static_assert(sizeof(SettingsDesc) == 928, "a SettingsDesc field was added: write it below");
+static_assert(sizeof(SettingsDesc) == 992, "a SettingsDesc field was added: write it below");
 static_assert(sizeof(CameraDesc) == 424, "a CameraDesc field was added: write it below");
 static_assert(sizeof(LightDesc) == 128, "a LightDesc field was added: write it below");
 static_assert(sizeof(ObjectDesc) == 688, "an ObjectDesc field was added: write it below");
@@ -61,6 +61,7 @@ std::string sceneStateText(const SceneDesc& d) {
   w.text(s.outputPath);
   w.optional(s.illuminant);
   w.text(s.bands.toString());
+  w.text(s.sensorFile), w.text(s.sensorCentres);
   w.optional(s.background);
   w.text(s.backgroundGroup);
   const CameraDesc& c = d.camera;

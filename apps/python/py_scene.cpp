@@ -23,6 +23,7 @@
 #include "io/material_parameters.h"
 #include "io/scene_limits.h"
 #include "io/scene_state_text.h"
+#include "io/scene_to_tree.h"
 #include "spectra/reradiation_matrix.h"
 
 namespace nxpy {
@@ -1124,6 +1125,24 @@ void bindScene(py::module_& m) {
           py::arg("text"), py::arg("name") = "<string>",
           "A scene from its XML text; `name` names it in errors and anchors relative paths "
           "(its directory)")
+      .def(
+          "to_dict", [](const PyScene& s) { return treeToPython(nx::sceneToTree(s.state->desc)); },
+          "The scene as a dict of the scene format's names (Scene.from_dict reads it back to the "
+          "same scene); file names as the scene holds them (relative to the working directory "
+          "or absolute)")
+      .def(
+          "to_text",
+          [](const PyScene& s, const py::object& path) {
+            const std::string base =
+                path.is_none()
+                    ? std::string()
+                    : std::filesystem::path(pathArgument(path, "path")).parent_path().string();
+            return nx::sceneToText(s.state->desc, base.empty() && !path.is_none() ? "." : base);
+          },
+          py::arg("path") = py::none(),
+          "The scene as scene text that reads back to the same scene (Scene.from_text(text, "
+          "path)); with `path`, file names are written relative to its directory, so the text "
+          "can be saved there")
       .def_property_readonly("file", [](const PyScene& s) { return s.state->desc.file; })
       .def_property_readonly("warnings", [](const PyScene& s) { return s.state->desc.warnings; })
       .def_property_readonly(
@@ -1173,6 +1192,8 @@ void bindScene(py::module_& m) {
           [](const PyScene& s, const py::object& value) {
             s.state->desc.settings.bands =
                 nx::Sensor::parse(stringArgument(value, "bands"), "bands");
+            s.state->desc.settings.sensorFile.clear(); // no longer the file's sensor
+            s.state->desc.settings.sensorCentres.clear();
             record(*s.state, "bands", value);
           },
           "The output bands ('400:700:10', 'gaussian:...', 'boxes:...')")

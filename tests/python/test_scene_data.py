@@ -2,6 +2,9 @@
 object and light lists. Images that must be the same are compared bit for bit (the same
 samples of the same scene)."""
 
+import pathlib
+import warnings
+
 import numpy as np
 import pytest
 
@@ -102,3 +105,86 @@ def test_mesh_rows_in_scene_text_are_checked_at_their_line():
     with pytest.warns(UserWarning, match=r"<string>:3: warning: 1 of the mesh's 2 triangles have "
                       r"zero area \(they are never hit\)"):
         nxrender.render(scene, spp=1)
+
+
+EXAMPLES = sorted((pathlib.Path(__file__).parents[2] / "scenes").glob("*.scn"))
+
+
+def small(scene):
+    scene.resolution = (20, 12)
+    return scene
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
+def test_example_scene_from_its_dict_and_text_renders_as_the_file(path):
+    """Every example scene rebuilt from to_dict() (Scene.from_dict) and from to_text() renders
+    bit for bit as the file, under the same render key."""
+    from_file = small(nxrender.Scene(str(path)))
+    from_dict = nxrender.Scene.from_dict(from_file.to_dict())
+    from_text = nxrender.Scene.from_text(from_file.to_text(str(path)), str(path))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the examples' own notes (tables ending, ...)
+        a = nxrender.render(from_file, spp=1)
+        for other in (from_dict, from_text):
+            b = nxrender.render(other, spp=1)
+            assert same_bits(a, b)
+            assert b.attributes["nxrender.renderKey"] == a.attributes["nxrender.renderKey"]
+
+
+def test_the_issue_dict_renders_and_reads_back():
+    """The documented dict form: settings, camera, a fluorescent sphere, a mesh from arrays,
+    a lamp; to_dict gives the same names back (arrays as numpy, spectra as given)."""
+    V = np.array([[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]], np.float32)
+    F = np.array([[0, 2, 1], [0, 3, 2]])
+    d = {"settings": {"xres": 32, "yres": 18, "mode": "spectral_mcpt", "sampl": 4},
+         "camera": {"position": [0, 2, -6], "look_at": [0, 0.5, 0]},
+         "objects": [{"shape": "sphere", "center": [0, 1, 0], "radius": 0.5,
+                      "material": "matte", "reflectance": 0.6,
+                      "fluorescence": {"absorption": "blue", "stokes": 80}},
+                     {"shape": "mesh", "vertices": V, "faces": F, "material": "matte",
+                      "reflectance": ([400, 550, 700], [0.2, 0.5, 0.8])}],
+         "lights": [{"type": "point", "position": [0, 3, -2], "color": [1, 1, 1]}]}
+    scene = nxrender.Scene.from_dict(d)
+    back = scene.to_dict()
+    assert back["settings"]["xres"] == 32 and back["camera"]["look_at"] == [0, 0.5, 0]
+    sphere, mesh = back["objects"]
+    assert sphere["shape"] == "sphere" and sphere["fluorescence"] == {"absorption": "blue",
+                                                                     "stokes": 80}
+    assert mesh["vertices"].dtype == np.float32 and np.array_equal(mesh["vertices"], V)
+    assert np.array_equal(mesh["faces"], F)
+    assert mesh["reflectance"] == [[400, 550, 700], [0.2, 0.5, 0.8]]
+    assert back["lights"][0]["type"] == "point"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        a = nxrender.render(scene, spp=2)
+        b = nxrender.render(nxrender.Scene.from_dict(back), spp=2)
+    assert a.radiance.mean() > 0 and same_bits(a, b)
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda d: d["objects"][1].update(faces=np.array([[0, 1, 9]])),
+     "objects[1]: expected face indices below the vertex count (3), found face 0 refers to "
+     "vertex 9"),
+    (lambda d: d["objects"][0].update(radius=-1),
+     "objects[0].radius: expected a radius in (0, 1e+12], found '-1'"),
+    (lambda d: d["objects"][0].pop("shape"),
+     "objects[0]: expected a \"shape\" (sphere, plane, mesh, ...), found none"),
+    (lambda d: d["objects"][1].update(vertices=np.zeros((3, 2))),
+     "objects[1].vertices: <vertices> (x, y, z per vertex): expected rows of 3 numbers "
+     "separated by commas, found 2 numbers in row 0"),
+    (lambda d: d["settings"].update(mode="pbr"),
+     "settings.mode: expected a mode rt, mcpt or spectral_mcpt, found 'pbr'"),
+    (lambda d: d.update(lamps=[]), "lamps: expected one of the sections"),
+    (lambda d: d["objects"][0].update(center=object()), "objects[0].center: expected a number"),
+])
+def test_dict_errors_name_the_path(change, message):
+    d = {"settings": {"xres": 8, "yres": 8, "mode": "spectral_mcpt"},
+         "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0]},
+         "objects": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1, "material": "matte"},
+                     {"shape": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+                      "faces": [[0, 1, 2]], "material": "matte"}]}
+    nxrender.Scene.from_dict(d)  # valid as it is
+    change(d)
+    with pytest.raises((nxrender.Error, ValueError, TypeError)) as e:
+        nxrender.Scene.from_dict(d)
+    assert message in str(e.value)
