@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/vec3.h"
@@ -161,6 +162,13 @@ double renderBufferBytes(int width, int height, int bands);
 /// path in the data ("objects[2].faces: ...") instead of a line; `name` is the scene's name
 /// and anchors relative file names (its directory; "" or "<dict>": the working directory).
 SceneDesc parseSceneTree(const SceneTree& tree, const std::string& name);
+
+/// One object (light false) or light given as data (Scene.objects.append(dict)), checked as
+/// in a scene file: errors name `path` ("objects[3].radius: ..."); an object's material may
+/// be one of `scene`'s named materials; relative file names are relative to the working
+/// directory (as sceneToTree gives them for a scene read from there).
+std::variant<ObjectDesc, LightDesc> parseItemTree(const SceneTree& item, bool light,
+                                                  const std::string& path, const SceneDesc& scene);
 
 /// Parses scene text; `file` names it in messages and anchors relative paths.
 SceneDesc parseScene(const std::string& text, const std::string& file);

@@ -921,26 +921,51 @@ private:
       if (!byId.emplace(m.id, &m).second)
         throw Error(m.loc.str() + ": expected a new material id, found '" + m.id +
                     "' defined twice (first at " + byId.at(m.id)->loc.str() + ")");
-    for (ObjectDesc& o : scene.objects) {
-      const auto it = byId.find(o.material);
-      if (it == byId.end()) {
-        const MaterialKindSpec* kind = findMaterialKind(o.material);
-        if (!kind)
-          throw Error(o.materialLoc.str() + ": expected a material " + materialKindList() +
-                      " or the id of a <material id=\"...\"> of the scene, found " +
-                      shownText(o.material));
-        checkMaterialParameters(*kind, o.params);
-        continue;
-      }
-      o.materialRef = o.material;
-      if (!o.params.empty())
-        throw Error(o.params.items().front().loc.str() +
-                    ": expected no material parameters on an object whose material '" +
-                    o.materialRef + "' is defined at " + it->second->loc.str() + ", found <" +
-                    o.params.items().front().name + "> (define a second material instead)");
-    }
+    for (ObjectDesc& o : scene.objects) resolveMaterialReference(o, byId);
   }
 
+  // One object's material: a kind, whose schema its parameters are checked against, or the id
+  // of a named material, and then no parameters of its own.
+  static void
+  resolveMaterialReference(ObjectDesc& o,
+                           const std::map<std::string, const NamedMaterialDesc*>& byId) {
+    const auto it = byId.find(o.material);
+    if (it == byId.end()) {
+      const MaterialKindSpec* kind = findMaterialKind(o.material);
+      if (!kind)
+        throw Error(o.materialLoc.str() + ": expected a material " + materialKindList() +
+                    " or the id of a <material id=\"...\"> of the scene, found " +
+                    shownText(o.material));
+      checkMaterialParameters(*kind, o.params);
+      return;
+    }
+    o.materialRef = o.material;
+    if (!o.params.empty())
+      throw Error(o.params.items().front().loc.str() +
+                  ": expected no material parameters on an object whose material '" +
+                  o.materialRef + "' is defined at " + it->second->loc.str() + ", found <" +
+                  o.params.items().front().name + "> (define a second material instead)");
+  }
+
+public:
+  // The one item of a document holding only an object or only a light (an item given as
+  // data); an object's material may name one of `scene`'s materials.
+  std::variant<ObjectDesc, LightDesc> parseItem(const SceneDesc& scene) const {
+    const pugi::xml_node root = doc_.child("scene");
+    const std::vector<pugi::xml_node> items = elements(root);
+    if (items.size() != 1) failAt(1, "expected one object or light");
+    const pugi::xml_node n = items.front();
+    if (std::string(n.name()) == "light") return parseLight(n);
+    const ShapeKindSpec* shape = findShapeKind(n.name());
+    if (!shape) fail(n, "a shape " + shapeKindList(), shownText(n.name()));
+    ObjectDesc o = parseObject(n, *shape);
+    std::map<std::string, const NamedMaterialDesc*> byId;
+    for (const NamedMaterialDesc& m : scene.materials) byId.emplace(m.id, &m);
+    resolveMaterialReference(o, byId);
+    return o;
+  }
+
+private:
   // <transform>: translate, rotate (axis x, y, z and an angle in degrees), scale (one or three
   // factors) and matrix (4x4, row-major, last row 0 0 0 1) steps, applied in the order written.
   AffineDesc transform(const pugi::xml_node& n) const {
@@ -1340,6 +1365,13 @@ SceneDesc parseScene(const std::string& text, const std::string& file) {
 SceneDesc parseSceneTree(const SceneTree& tree, const std::string& name) {
   const SceneTreeText t = sceneTreeText(tree);
   return keyed(SceneParser(t.text, name, &t.linePaths).parse());
+}
+
+std::variant<ObjectDesc, LightDesc> parseItemTree(const SceneTree& item, bool light,
+                                                  const std::string& path, const SceneDesc& scene) {
+  const SceneTreeText t = itemTreeText(item, light, path);
+  // File names as Scene.to_dict gives them: relative to the working directory.
+  return SceneParser(t.text, "<item>", &t.linePaths).parseItem(scene);
 }
 
 SceneDesc loadScene(const std::string& path) {

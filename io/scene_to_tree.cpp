@@ -56,16 +56,39 @@ public:
     List objects, lights;
     for (size_t i = 0; i < d.objects.size(); ++i)
       objects.push_back(object(d.objects[i], "objects[" + std::to_string(i) + "]"));
-    for (size_t i = 0; i < d.lights.size(); ++i) {
-      const LightDesc& l = d.lights[i];
-      Dict item{{"type", l.kind}};
-      if (!l.group.empty()) item.emplace_back("group", l.group);
-      parameters(l.params, "lights[" + std::to_string(i) + "]", item);
-      lights.emplace_back(std::move(item));
-    }
+    for (size_t i = 0; i < d.lights.size(); ++i)
+      lights.push_back(light(d.lights[i], "lights[" + std::to_string(i) + "]"));
     root.emplace_back("objects", std::move(objects));
     root.emplace_back("lights", std::move(lights));
     return root;
+  }
+
+  SceneTree light(const LightDesc& l, const std::string& where) {
+    Dict item{{"type", l.kind}};
+    if (!l.group.empty()) item.emplace_back("group", l.group);
+    parameters(l.params, where, item);
+    return item;
+  }
+
+  SceneTree object(const ObjectDesc& o, const std::string& where) {
+    Dict d{{"shape", o.shape}};
+    if (!o.name.empty()) d.emplace_back("name", o.name);
+    if (!o.group.empty()) d.emplace_back("group", o.group);
+    parameters(o.geometry, where, d);
+    d.emplace_back("material", o.material);
+    parameters(o.params, where, d);
+    if (o.emission) {
+      d.emplace_back("emission", spectrum(*o.emission, where + ".emission"));
+      if (o.emissionScale != 1) d.emplace_back("emission_scale", o.emissionScale);
+      if (o.emissionAt) d.emplace_back("emission_at", *o.emissionAt);
+      if (o.emissionFlux) d.emplace_back("emission_quantity", std::string("flux"));
+    }
+    if (o.medium) {
+      Dict m{{"type", o.medium->kind}};
+      parameters(o.medium->params, where + ".medium", m);
+      d.emplace_back("medium", std::move(m));
+    }
+    return d;
   }
 
 private:
@@ -138,27 +161,6 @@ private:
       d.emplace_back("distortion",
                      numbers(std::vector<double>(c.distortion.begin(), c.distortion.end())));
     if (c.thinLens) d.emplace_back("thin_lens", numbers({(*c.thinLens)[0], (*c.thinLens)[1]}));
-    return d;
-  }
-
-  SceneTree object(const ObjectDesc& o, const std::string& where) {
-    Dict d{{"shape", o.shape}};
-    if (!o.name.empty()) d.emplace_back("name", o.name);
-    if (!o.group.empty()) d.emplace_back("group", o.group);
-    parameters(o.geometry, where, d);
-    d.emplace_back("material", o.material);
-    parameters(o.params, where, d);
-    if (o.emission) {
-      d.emplace_back("emission", spectrum(*o.emission, where + ".emission"));
-      if (o.emissionScale != 1) d.emplace_back("emission_scale", o.emissionScale);
-      if (o.emissionAt) d.emplace_back("emission_at", *o.emissionAt);
-      if (o.emissionFlux) d.emplace_back("emission_quantity", std::string("flux"));
-    }
-    if (o.medium) {
-      Dict m{{"type", o.medium->kind}};
-      parameters(o.medium->params, where + ".medium", m);
-      d.emplace_back("medium", std::move(m));
-    }
     return d;
   }
 
@@ -292,6 +294,14 @@ private:
 };
 
 } // namespace
+
+SceneTree objectToTree(const ObjectDesc& o, const std::string& where) {
+  return TreeOfDesc("").object(o, where);
+}
+
+SceneTree lightToTree(const LightDesc& l, const std::string& where) {
+  return TreeOfDesc("").light(l, where);
+}
 
 SceneTree sceneToTree(const SceneDesc& d, const std::string& base) {
   return TreeOfDesc(base).scene(d);

@@ -17,6 +17,11 @@ namespace nx {
 /// to files and name the files).
 SceneTree sceneToTree(const SceneDesc& d, const std::string& base = "");
 
+/// The tree of one object or light of a scene (what sceneToTree lists), `where` naming it in
+/// errors.
+SceneTree objectToTree(const ObjectDesc& o, const std::string& where);
+SceneTree lightToTree(const LightDesc& l, const std::string& where);
+
 /// The scene text of `d` (sceneTreeText of sceneToTree).
 std::string sceneToText(const SceneDesc& d, const std::string& base = "");
 

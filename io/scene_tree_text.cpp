@@ -197,6 +197,15 @@ public:
     line("</scene>", "scene");
   }
 
+  void item(const SceneTree& t, bool light, const std::string& path) {
+    line("<scene>", path);
+    if (light)
+      element("light", t, path, attributesOf("light"));
+    else
+      object(t, path);
+    line("</scene>", path);
+  }
+
 private:
   void line(const std::string& text, const std::string& path) {
     result.text += text;
@@ -378,6 +387,12 @@ private:
 };
 
 } // namespace
+
+SceneTreeText itemTreeText(const SceneTree& item, bool light, const std::string& path) {
+  TreeWriter w;
+  w.item(item, light, path);
+  return std::move(w.result);
+}
 
 SceneTreeText sceneTreeText(const SceneTree& root) {
   TreeWriter w;

@@ -23,4 +23,8 @@ struct SceneTreeText {
 /// no scene type).
 SceneTreeText sceneTreeText(const SceneTree& root);
 
+/// The scene text of one object (a dictionary with its "shape") or light alone in a <scene>,
+/// its lines' paths under `path` ("objects[3]").
+SceneTreeText itemTreeText(const SceneTree& item, bool light, const std::string& path);
+
 } // namespace nx

@@ -1,7 +1,9 @@
 // nxrender.Scene and its views (camera, objects, materials, fluorescence, lights).
 
 #include "apps/python/py_scene.h"
+#include "apps/python/py_scene_lists.h"
 #include "apps/python/py_scene_tree.h"
+#include "apps/python/py_scene_views.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -28,8 +30,6 @@
 
 namespace nxpy {
 namespace {
-
-using StatePtr = std::shared_ptr<SceneState>;
 
 py::object spectrumToPythonOpt(const std::optional<nx::SpectrumDesc>& s) {
   return s ? spectrumToPython(*s) : py::object(py::none());
@@ -67,95 +67,6 @@ nx::Vec3d pointArgument(const py::handle& value, const std::string& param) {
 py::tuple tupleOf(const nx::Vec3d& v) {
   return py::make_tuple(v.x, v.y, v.z);
 }
-
-// ---- views ----
-
-struct CameraView {
-  StatePtr s;
-};
-
-/// A <spectrum name="..."> of the scene.
-struct NamedSpectrumView {
-  StatePtr s;
-  size_t i;
-  nx::NamedSpectrumDesc& get() const { return s->desc.spectra.at(i); }
-  std::string label() const { return "spectra['" + get().name + "']"; }
-};
-
-struct LightView {
-  StatePtr s;
-  size_t i;
-  nx::LightDesc& get() const { return s->desc.lights.at(i); }
-  std::string label() const { return "lights[" + std::to_string(i) + "]"; }
-  // What bindTakenParameters asks of a view.
-  nx::ParameterSet& params() const { return get().params; }
-  std::string kindText() const { return "a " + get().kind + " light"; }
-  const nx::TakenParameter* declared(const std::string& name) const {
-    const nx::LightKindSpec* k = nx::findLightKind(get().kind);
-    return k ? nx::lightParameter(*k, name) : nullptr;
-  }
-  nx::SourceLocation loc() const { return get().loc; }
-  SceneState& state() const { return *s; }
-};
-
-struct MaterialView {
-  StatePtr s;
-  bool named;
-  size_t i;
-  nx::MaterialDesc& get() const {
-    return named ? s->desc.materials.at(i).material
-                 : static_cast<nx::MaterialDesc&>(s->desc.objects.at(i));
-  }
-  std::string label() const {
-    return named ? "materials['" + s->desc.materials.at(i).id + "']"
-                 : "objects[" + std::to_string(i) + "]";
-  }
-  nx::SourceLocation loc() const {
-    return named ? s->desc.materials.at(i).loc : s->desc.objects.at(i).loc;
-  }
-  // An object using a <material id> has no parameters of its own.
-  nx::MaterialDesc& editable() const {
-    if (!named && !s->desc.objects.at(i).materialRef.empty())
-      throw py::value_error(label() + ": uses the material '" + s->desc.objects.at(i).materialRef +
-                            "'; change scene.materials['" + s->desc.objects.at(i).materialRef +
-                            "'] instead");
-    return get();
-  }
-};
-
-struct FluorescenceView {
-  MaterialView m;
-  nx::FluorescenceDesc& get() const {
-    nx::FluorescenceDesc* f = m.get().params.getMutable<nx::FluorescenceDesc>("fluorescence");
-    if (!f) throw py::value_error(m.label() + ": has no fluorescence any more");
-    return *f;
-  }
-  nx::FluorescenceDesc& editable(const char* field) const {
-    nx::FluorescenceDesc& f = get();
-    (void)m.editable();
-    if (f.eem) { // an imported EEM: its yield and peak absorptance, when the scene gave them
-      const std::string name = field;
-      if ((name == "quantum_yield" && f.eem->referenceFile.empty()) ||
-          (name == "peak_absorptance" && !f.eem->absorptance))
-        return f;
-      throw py::value_error(
-          m.label() + ".fluorescence." + field + ": the fluorescence is the EEM " + f.eem->file +
-          (name == "quantum_yield" || name == "peak_absorptance"
-               ? std::string(" whose ") + field + " comes from its <reference> or <absorptance>"
-               : "; only quantum_yield and peak_absorptance of an "
-                 "EEM are set from Python"));
-    }
-    if (f.matrixCsv || f.matrix)
-      throw py::value_error(m.label() + ".fluorescence." + field +
-                            ": the fluorescence is a measured matrix" +
-                            (f.matrixCsv ? " (" + *f.matrixCsv + ")" : std::string()) +
-                            "; set a model with set_fluorescence(...) first");
-    return f;
-  }
-  /// The name its fields are recorded under ("objects[1].fluorescence").
-  std::string prefix() const { return m.label() + ".fluorescence"; }
-  SceneState& state() const { return *m.s; }
-};
 
 // Refuses a parameter the material's kind does not take (its schema), as the loader does.
 void requireKindTakes(const MaterialView& v, const char* name, const std::string& param) {
@@ -230,53 +141,6 @@ void setMeasuredMatrix(const MaterialView& v, const py::handle& value, const std
                        std::to_string(m->emissionNm.size()) + " digest " +
                        std::to_string(nx::fnv1a64(nx::canonicalText(nx::ParamValue(f)))) + ">");
 }
-
-struct ObjectView {
-  StatePtr s;
-  size_t i;
-  nx::ObjectDesc& get() const { return s->desc.objects.at(i); }
-  std::string label() const { return "objects[" + std::to_string(i) + "]"; }
-  MaterialView material() const {
-    const nx::ObjectDesc& o = get();
-    if (!o.materialRef.empty())
-      for (size_t k = 0; k < s->desc.materials.size(); ++k)
-        if (s->desc.materials[k].id == o.materialRef) return {s, true, k};
-    return {s, false, i};
-  }
-};
-
-struct MediumView {
-  ObjectView o;
-  nx::MediumDesc& get() const {
-    auto& m = o.get().medium;
-    if (!m) throw py::value_error(o.label() + ": has no medium any more");
-    return *m;
-  }
-  std::string label() const { return o.label() + ".medium"; }
-  // What bindTakenParameters asks of a view.
-  nx::ParameterSet& params() const { return get().params; }
-  std::string kindText() const { return "a " + get().kind + " medium"; }
-  const nx::TakenParameter* declared(const std::string& name) const {
-    const nx::MediumKindSpec* k = nx::findMediumKind(get().kind);
-    return k ? nx::mediumParameter(*k, name) : nullptr;
-  }
-  nx::SourceLocation loc() const { return get().loc; }
-  SceneState& state() const { return *o.s; }
-};
-
-// The fluorescent dye dissolved in a medium: the parametric model's fields (its peak is the
-// medium's dye_peak, a coefficient per unit length).
-struct DyeView {
-  MediumView v;
-  nx::FluorescenceDesc& get() const {
-    nx::FluorescenceDesc* f = v.get().params.getMutable<nx::FluorescenceDesc>("fluorescence");
-    if (!f) throw py::value_error(v.label() + ": has no dye any more");
-    return *f;
-  }
-  nx::FluorescenceDesc& editable(const char*) const { return get(); }
-  std::string prefix() const { return v.label() + ".dye"; }
-  SceneState& state() const { return *v.o.s; }
-};
 
 // One property per parameter any kind in `kinds` declares (the first declaration of a name; a
 // lights' or media's TakenParameter list), except those with views of their own (`skip`): read
@@ -1081,6 +945,7 @@ void bindScene(py::module_& m) {
           },
           "OpenCV extrinsics r11 .. r33, t1, t2, t3 (x_cam = R x_world + t), or None");
 
+  bindSceneLists(m);
   py::class_<PyScene>(m, "Scene",
                       "A scene file read once and edited from Python; render it with "
                       "nxrender.render(scene). Edits are checked like the file's values and "
@@ -1250,23 +1115,12 @@ void bindScene(py::module_& m) {
           "The named spectra (<spectrum name=...>) by name")
       .def_property_readonly("camera", [](const PyScene& s) { return CameraView{s.state}; })
       .def_property_readonly(
-          "objects",
-          [](const PyScene& s) {
-            py::list v;
-            for (size_t i = 0; i < s.state->desc.objects.size(); ++i)
-              v.append(ObjectView{s.state, i});
-            return ReadOnlyList{py::tuple(v), "scene.objects"};
-          },
-          "The objects in file order")
+          "objects", [](const PyScene& s) { return objectList(s.state); },
+          "The objects in file order: a live list (append, insert, del, pop, item assignment "
+          "of an Object or a dict)")
       .def_property_readonly(
-          "lights",
-          [](const PyScene& s) {
-            py::list v;
-            for (size_t i = 0; i < s.state->desc.lights.size(); ++i)
-              v.append(LightView{s.state, i});
-            return ReadOnlyList{py::tuple(v), "scene.lights"};
-          },
-          "The point lights in file order")
+          "lights", [](const PyScene& s) { return lightList(s.state); },
+          "The <light> elements in file order: a live list as objects")
       .def_property_readonly(
           "materials",
           [](const PyScene& s) {

@@ -20,6 +20,9 @@ namespace py = pybind11;
 struct SceneState {
   nx::SceneDesc desc;
   std::vector<std::string> edits; ///< "objects[2].fluorescence.stokes_nm = 60", in order
+  /// Counts of insertions into and removals from the object and light lists (views taken
+  /// before one refuse to be used)
+  uint64_t objectsVersion = 0, lightsVersion = 0;
 };
 
 /// The Python object behind nxrender.Scene (shared by its views: objects, camera, ...).

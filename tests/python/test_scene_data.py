@@ -188,3 +188,81 @@ def test_dict_errors_name_the_path(change, message):
     with pytest.raises((nxrender.Error, ValueError, TypeError)) as e:
         nxrender.Scene.from_dict(d)
     assert message in str(e.value)
+
+
+def lit_floor():
+    return nxrender.Scene.from_dict({
+        "settings": {"xres": 24, "yres": 16, "mode": "spectral_mcpt", "sampl": 2},
+        "camera": {"position": [0, 1.5, -4], "look_at": [0, 0.5, 0]},
+        "objects": [{"shape": "plane", "normal": [0, 1, 0], "distance": 0,
+                     "material": "matte", "reflectance": 0.5}],
+        "lights": [{"type": "point", "position": [0, 3, -1], "color": [2, 2, 2]}]})
+
+
+def key_and_bits(scene):
+    image = nxrender.render(scene, spp=2)
+    return image.attributes["nxrender.renderKey"], image.radiance.tobytes()
+
+
+def test_appending_removing_and_readding_an_object_restores_key_and_image():
+    """objects.append of a sphere changes the image; del restores the original key and image;
+    adding it again (from the popped dict or as a view) gives the appended state back."""
+    scene = lit_floor()
+    original = key_and_bits(scene)
+    sphere = {"shape": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "matte",
+              "reflectance": 0.8}
+    scene.objects.append(sphere)
+    assert len(scene.objects) == 2 and scene.objects[1].radius == 0.5
+    with_sphere = key_and_bits(scene)
+    assert with_sphere[0] != original[0] and with_sphere[1] != original[1]
+    del scene.objects[1]
+    assert key_and_bits(scene) == original
+    scene.objects.append(sphere)
+    assert key_and_bits(scene) == with_sphere
+    popped = scene.objects.pop()
+    assert popped["shape"] == "sphere" and popped["radius"] == 0.5
+    assert key_and_bits(scene) == original
+    scene.objects.insert(0, popped)
+    other = nxrender.Scene.from_dict(scene.to_dict())
+    assert key_and_bits(other) == key_and_bits(scene)
+    assert scene.edits[:2] == ["objects.insert(1, " + repr(sphere) + ")", "del objects[1]"]
+
+
+def test_views_and_dicts_assign_and_stale_views_refuse():
+    scene = lit_floor()
+    scene.objects.append({"shape": "sphere", "center": [0, 0.5, 0], "radius": 0.5,
+                          "material": "matte", "reflectance": 0.8})
+    ball = scene.objects[1]
+    copy = lit_floor()
+    copy.objects.append(ball)  # a view of another scene: its description is copied
+    assert key_and_bits(copy) == key_and_bits(scene)
+    scene.objects[0] = {"shape": "plane", "normal": [0, 1, 0], "distance": -0.1,
+                        "material": "matte", "reflectance": 0.2}
+    with pytest.raises(ValueError, match=r"objects\[1\]: this view was taken before objects "
+                       r"were inserted into or removed from the scene"):
+        ball.radius = 0.3
+    assert scene.objects[1].radius == 0.5
+    with pytest.raises(IndexError, match="objects index 5 out of range"):
+        del scene.objects[5]
+    with pytest.raises(nxrender.Error, match=r"objects\[2\].radius: expected a radius"):
+        scene.objects.append({"shape": "sphere", "center": [0, 0, 0], "radius": 0,
+                              "material": "matte"})
+    with pytest.raises(TypeError, match=r"objects\[2\]: expected a dict or an nxrender.Object"):
+        scene.objects.append(42)
+    assert len(scene.objects) == 2  # refused changes leave the list as it was
+    scene.lights.append({"type": "spot", "position": [0, 3, 0], "look_at": [0, 0, 0],
+                         "cone_angle": 30, "color": [5, 5, 5]})
+    assert [l.kind for l in scene.lights] == ["point", "spot"]
+    del scene.lights[0]
+    assert nxrender.render(scene, spp=1).radiance.mean() > 0
+
+
+def test_an_empty_scene_built_up_renders():
+    scene = nxrender.Scene()
+    assert len(scene.objects) == 0 and len(scene.lights) == 0
+    scene.objects.append({"shape": "sphere", "center": [0, 0, 0], "radius": 1,
+                          "material": "matte", "emission": 1})
+    image = nxrender.render(scene, spp=16)
+    # the emitter's radiance 1 in every band (the 8 x 8 centre pixels' mean over the bands:
+    # wavelength sampling alone makes it noisy, about 0.1% here)
+    assert image.radiance[28:36, 28:36].mean() == pytest.approx(1, rel=0.01)
