@@ -28,9 +28,10 @@ GeometryCache& cache() {
 }
 
 bool sameShapes(const GeometryScene& g, const std::vector<SphereShape>& spheres,
-                const std::vector<PlaneShape>& planes, const std::vector<TriangleMesh>& meshes) {
+                const std::vector<PlaneShape>& planes, const std::vector<TriangleMesh>& meshes,
+                const std::vector<DiskShape>& disks, const std::vector<CylinderShape>& cylinders) {
   if (g.spheres().size() != spheres.size() || g.planes().size() != planes.size() ||
-      g.meshes() != meshes)
+      g.meshes() != meshes || g.disks() != disks || g.cylinders() != cylinders)
     return false;
   for (size_t i = 0; i < spheres.size(); ++i)
     if (!(g.spheres()[i].center == spheres[i].center) || g.spheres()[i].radius != spheres[i].radius)
@@ -49,16 +50,20 @@ std::shared_ptr<const GeometryScene> sceneOf(const std::shared_ptr<const BuiltGe
 
 std::shared_ptr<const GeometryScene> sharedGeometry(std::vector<SphereShape> spheres,
                                                     std::vector<PlaneShape> planes,
-                                                    std::vector<TriangleMesh> meshes) {
+                                                    std::vector<TriangleMesh> meshes,
+                                                    std::vector<DiskShape> disks,
+                                                    std::vector<CylinderShape> cylinders) {
   GeometryCache& c = cache();
   std::unique_lock<std::mutex> guard(c.lock);
-  if (c.kept && sameShapes(*c.kept->scene, spheres, planes, meshes)) return sceneOf(c.kept);
+  if (c.kept && sameShapes(*c.kept->scene, spheres, planes, meshes, disks, cylinders))
+    return sceneOf(c.kept);
   c.kept.reset(); // freed before the build (if no render still holds it)
   guard.unlock(); // builds run in parallel
   auto b = std::make_shared<BuiltGeometry>();
   b->device = std::make_unique<EmbreeDevice>();
-  b->scene = std::make_unique<GeometryScene>(*b->device, std::move(spheres), std::move(planes),
-                                             std::move(meshes));
+  b->scene =
+      std::make_unique<GeometryScene>(*b->device, std::move(spheres), std::move(planes),
+                                      std::move(meshes), std::move(disks), std::move(cylinders));
   c.built.fetch_add(1, std::memory_order_relaxed);
   size_t bytes = b->scene->embreeBytes();
   for (const TriangleMesh& m : b->scene->meshes()) bytes += m.bytes();

@@ -20,6 +20,8 @@
 #include <vector>
 
 #include "accel/embree_device.h"
+#include "accel/kinds/cylinder.h"
+#include "accel/kinds/disk.h"
 #include "accel/shapes.h"
 #include "accel/triangle_mesh.h"
 #include "core/ray.h"
@@ -37,10 +39,11 @@ struct SurfaceHit {
                       ///< (on the side of ng), else ng
   Vec3 dpdu;          ///< surface tangent along u (not unit; orthogonal to nothing in particular)
   float u = 0, v = 0; ///< surface coordinates: mesh uv (or barycentrics mapped to (0,0),
-                      ///< (1,0), (1,1)); spheres: 0 until sphereUv(); planes: 0
+                      ///< (1,0), (1,1)); spheres: 0 until sphereUv(); planes: 0; disks and
+                      ///< cylinders: their polar or cylindrical coordinates
   ShapeKind kind = ShapeKind::Sphere;
   uint32_t index = 0; ///< index of the shape within its kind (sphere, plane, mesh)
-  uint32_t prim = 0;  ///< triangle within the mesh (0 for spheres and planes)
+  uint32_t prim = 0;  ///< triangle within the mesh; a cylinder's part (CylinderPart); else 0
 };
 
 /// Fills a sphere hit's (u, v) = (phi / 2 pi, theta / pi), phi around +y from +z towards +x
@@ -65,7 +68,8 @@ public:
   /// Builds the BVH over spheres and meshes; planes are kept for the analytic pass. Meshes must
   /// be valid (TriangleMesh::validate()).
   GeometryScene(EmbreeDevice& device, std::vector<SphereShape> spheres,
-                std::vector<PlaneShape> planes, std::vector<TriangleMesh> meshes);
+                std::vector<PlaneShape> planes, std::vector<TriangleMesh> meshes,
+                std::vector<DiskShape> disks = {}, std::vector<CylinderShape> cylinders = {});
   ~GeometryScene();
   GeometryScene(const GeometryScene&) = delete;
   GeometryScene& operator=(const GeometryScene&) = delete;
@@ -81,7 +85,9 @@ public:
   const std::vector<SphereShape>& spheres() const { return spheres_; }
   const std::vector<PlaneShape>& planes() const { return planes_; }
   const std::vector<TriangleMesh>& meshes() const { return meshes_; }
-  /// Bounds of the spheres and meshes (planes are unbounded).
+  const std::vector<DiskShape>& disks() const { return disks_; }
+  const std::vector<CylinderShape>& cylinders() const { return cylinders_; }
+  /// Bounds of the bounded shapes (planes are unbounded).
   BoundingBox bounds() const;
   /// The Embree scene of the spheres and meshes (not the planes), for benchmarks that query it
   /// directly.
@@ -93,6 +99,8 @@ private:
   std::vector<SphereShape> spheres_;
   std::vector<PlaneShape> planes_;
   std::vector<TriangleMesh> meshes_;
+  std::vector<DiskShape> disks_;
+  std::vector<CylinderShape> cylinders_;
   RTCScene scene_ = nullptr;
   /// The primitive table: what each Embree geometry id is (sphere set or mesh number).
   struct GeometryEntry {
@@ -102,6 +110,8 @@ private:
   std::vector<GeometryEntry> byGeomId_;
   size_t embreeBytes_ = 0;
   void fillMeshHit(float baryU, float baryV, const Vec3& ngEmbree, SurfaceHit& hit) const;
+  void fillDiskHit(const Vec3d& o, const Vec3d& d, SurfaceHit& hit) const;
+  void fillCylinderHit(const Vec3d& o, const Vec3d& d, CylinderPart part, SurfaceHit& hit) const;
   mutable std::atomic<uint64_t> nonFinite_{0};
 };
 

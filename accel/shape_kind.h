@@ -7,6 +7,6 @@
 namespace nx {
 
 /// Which kind of shape a hit is on.
-enum class ShapeKind : uint8_t { Sphere, Plane, Triangle };
+enum class ShapeKind : uint8_t { Sphere, Plane, Triangle, Disk, Cylinder };
 
 } // namespace nx

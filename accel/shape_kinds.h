@@ -15,6 +15,9 @@
 #include <variant>
 #include <vector>
 
+#include "accel/kinds/box.h"
+#include "accel/kinds/cylinder.h"
+#include "accel/kinds/disk.h"
 #include "accel/kinds/mesh.h"
 #include "accel/kinds/plane.h"
 #include "accel/kinds/quad.h"
@@ -25,11 +28,12 @@
 namespace nx {
 
 /// The registered shape kinds, in the order the reference docs list them.
-using ShapeKindList =
-    std::tuple<SphereShapeKind, PlaneShapeKind, TriangleShapeKind, QuadShapeKind, MeshShapeKind>;
+using ShapeKindList = std::tuple<SphereShapeKind, PlaneShapeKind, TriangleShapeKind, QuadShapeKind,
+                                 MeshShapeKind, BoxShapeKind, DiskShapeKind, CylinderShapeKind>;
 
 /// What a shape kind's build gives: a primitive the geometry holds.
-using ShapeGeometry = std::variant<SphereShape, PlaneShape, TriangleShape, TriangleMesh>;
+using ShapeGeometry =
+    std::variant<SphereShape, PlaneShape, TriangleShape, TriangleMesh, DiskShape, CylinderShape>;
 
 /// A shape kind as the scene format sees it.
 struct ShapeKindSpec {

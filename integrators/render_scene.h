@@ -138,9 +138,10 @@ struct RenderScene {
   /// What each object is called (index: object id - 1): its name="...", else the <material
   /// id> it uses, else "sphere at line 12 (matte)"; names a comparison's regions by object id
   std::vector<std::string> objectLabels;
-  std::vector<Spectrum> emission;               ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
-  std::vector<ShapeAppearance> spheres, planes; ///< parallel to the geometry's shapes
-  std::vector<MeshAppearance> meshes;           ///< parallel to the geometry's meshes
+  std::vector<Spectrum> emission;                ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
+  std::vector<ShapeAppearance> spheres, planes;  ///< parallel to the geometry's shapes
+  std::vector<ShapeAppearance> disks, cylinders; ///< parallel to the geometry's shapes
+  std::vector<MeshAppearance> meshes;            ///< parallel to the geometry's meshes
   std::vector<SceneLight> lights;     ///< the <light>s (points, spots, ...), in file order
   LightGroups lightGroups;            ///< which group each emitter belongs to
   RelightSpectra relight;             ///< the groups' spectra of a relightable build
@@ -189,6 +190,10 @@ struct RenderScene {
       return spheres[hit.index];
     case ShapeKind::Plane:
       return planes[hit.index];
+    case ShapeKind::Disk:
+      return disks[hit.index];
+    case ShapeKind::Cylinder:
+      return cylinders[hit.index];
     default:
       return meshes[hit.index].of(hit.prim);
     }

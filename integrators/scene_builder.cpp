@@ -74,6 +74,8 @@ public:
     std::vector<TriangleShape> triangles; // the inline triangles, gathered into one mesh
     MeshAppearance inlineTriangles;
     std::vector<TriangleMesh> meshes;
+    std::vector<DiskShape> disks;
+    std::vector<CylinderShape> cylinders;
     // Materials are stored once per distinct description: the kind and the canonical text of
     // its parameters (a <material id>'s, or inline ones written alike), so 16,000 triangles of
     // one colour share one material and one upsampling fit. MaterialId: the first object using
@@ -154,6 +156,12 @@ public:
             } else if constexpr (std::is_same_v<Shape, TriangleShape>) {
               triangles.push_back(shape);
               inlineTriangles.perTriangle.push_back(app);
+            } else if constexpr (std::is_same_v<Shape, DiskShape>) {
+              disks.push_back(shape);
+              scene.disks.push_back(app);
+            } else if constexpr (std::is_same_v<Shape, CylinderShape>) {
+              cylinders.push_back(shape);
+              scene.cylinders.push_back(app);
             } else {
               for (uint32_t v = 0; v < shape.vertexCount(); ++v) {
                 const Vec3 p = shape.position(v);
@@ -218,7 +226,8 @@ public:
     scene.warnings.insert(scene.warnings.end(), warnings_.begin(), warnings_.end());
     scene.warnings.insert(scene.warnings.end(), refs_.warnings().begin(), refs_.warnings().end());
     if (!withGeometry) return scene;
-    scene.geometry = sharedGeometry(std::move(spheres), std::move(planes), std::move(meshes));
+    scene.geometry = sharedGeometry(std::move(spheres), std::move(planes), std::move(meshes),
+                                    std::move(disks), std::move(cylinders));
     return scene;
   }
 

@@ -698,7 +698,10 @@ void bindScene(py::module_& m) {
           [](const ObjectView& o) -> py::object {
             const nx::ParameterSet& g = o.get().geometry;
             const auto names = cornerNames(o.get().shape);
-            if (!names) return py::none();
+            if (!names) { // a mesh's rows (the shape parameter), or None
+              const nx::Parameter* q = g.find("vertices");
+              return q ? parameterToPython(q->value) : py::object(py::none());
+            }
             py::list out;
             for (const char* n : *names) out.append(tupleOf(*g.get<nx::Vec3d>(n)));
             return py::tuple(out);
@@ -706,7 +709,11 @@ void bindScene(py::module_& m) {
           [](const ObjectView& o, const py::object& value) {
             const std::string param = o.label() + ".vertices";
             const auto names = cornerNames(o.get().shape);
-            if (!names) throw py::value_error(param + ": only triangles and quads have vertices");
+            if (!names) { // a mesh's rows, checked as every shape parameter
+              setShapeParameters(o, {{"vertices", value}});
+              record(*o.s, param, value);
+              return;
+            }
             if (!(py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) ||
                 py::len(value) != 3)
               throw py::type_error(param + ": expected three points");
@@ -728,7 +735,8 @@ void bindScene(py::module_& m) {
             }
             record(*o.s, param, value);
           },
-          "A triangle's (vA, vB, vC) or a quad's (origin, edge_u, edge_v) together")
+          "A triangle's (vA, vB, vC) or a quad's (origin, edge_u, edge_v) together; a mesh's "
+          "vertex rows ((N, 3) array)")
       .def_property_readonly(
           "name",
           [](const ObjectView& o) -> py::object {
@@ -792,7 +800,9 @@ void bindScene(py::module_& m) {
   std::vector<std::string> shapeNames;
   for (const nx::ShapeKindSpec& kind : nx::shapeKinds())
     for (const nx::ShapeParameter& sp : kind.params()) {
-      if (std::find(shapeNames.begin(), shapeNames.end(), sp.spec.name) != shapeNames.end())
+      // (a mesh's vertices share the triangles' and quads' `vertices` property above)
+      if (std::string(sp.spec.name) == "vertices" ||
+          std::find(shapeNames.begin(), shapeNames.end(), sp.spec.name) != shapeNames.end())
         continue;
       shapeNames.push_back(sp.spec.name);
       const std::string name = sp.spec.name;

@@ -15,6 +15,7 @@ namespace nx {
 inline bool lightsItsOwnSurface(const SurfaceHit& hit, const LightSample& ls, const Vec3& rayDir) {
   if (ls.delta || ls.infinite || ls.kind != hit.kind || ls.shape != hit.index) return false;
   if (hit.kind == ShapeKind::Sphere) return dot(rayDir, hit.ng) < 0;
+  if (hit.kind == ShapeKind::Cylinder) return false; // its inside lights itself: shadow rays tell
   return ls.prim == hit.prim;
 }
 

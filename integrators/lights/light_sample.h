@@ -17,6 +17,7 @@ enum class LightKind : uint8_t {
   Sphere,      ///< an emitting sphere (cone sampling from outside, uniform from inside)
   Mesh,        ///< an emitting mesh or inline triangle (sampled by solid angle or by area:
                ///< TriangleLightSampling)
+  Surface,     ///< an emitting disk or cylinder (a point uniformly by area, both faces)
   Background,  ///< the uniform environment (uniform directions)
   Environment, ///< an infinite light of the scene's <light> list (an environment map: its
                ///< kind samples it)

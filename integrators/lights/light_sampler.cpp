@@ -95,6 +95,7 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
     : scene_(&scene), selection_(selection), triangleSampling_(triangles) {
   addSphereLights();
   addMeshLights();
+  addSurfaceLights();
   addListedLights();
   addBackground();
   if (selection_ == LightSelection::Local && count() > kMaxLocalLights)
@@ -132,6 +133,56 @@ void LightSampler::addSphereLights() {
                        -1,
                        {}});
   }
+}
+
+void LightSampler::addSurfaceLights() {
+  const RenderScene& scene = *scene_;
+  const GeometryScene& geometry = *scene.geometry;
+  // One kind's lights: area, bounds (box, normals, power the area: localWeight multiplies by
+  // the radiance) for each emitting shape.
+  auto add = [&](const std::vector<ShapeAppearance>& apps, std::vector<int32_t>& lightOf,
+                 ShapeKind kind, auto&& shapeBounds) {
+    lightOf.assign(apps.size(), -1);
+    for (size_t i = 0; i < apps.size(); ++i) {
+      if (apps[i].emission < 0) continue;
+      const Spectrum* e = &scene.emission[static_cast<size_t>(apps[i].emission)];
+      const double le = tracedIntegral(*e);
+      LightBounds b;
+      const double area = shapeBounds(i, b);
+      b.power = static_cast<float>(area);
+      b.twoSided = true;
+      lightOf[i] = static_cast<int32_t>(lights_.size());
+      Light l{LightKind::Surface,
+              static_cast<uint32_t>(i),
+              -1,
+              e,
+              area,
+              0,
+              kPi * area * le * 2,
+              le,
+              b.center(),
+              length(b.hi - b.lo) * 0.5f,
+              -1,
+              -1,
+              LightCluster(b)};
+      l.surface = kind;
+      lights_.push_back(l);
+    }
+  };
+  add(scene.disks, diskLight_, ShapeKind::Disk, [&](size_t i, LightBounds& b) {
+    const DiskShape& d = geometry.disks()[i];
+    const Vec3d e = circleExtent(d.normal, d.radius);
+    b.add(Vec3(d.center - e)), b.add(Vec3(d.center + e));
+    b.normals = {Vec3(d.normal), 1.0f};
+    return d.area();
+  });
+  add(scene.cylinders, cylinderLight_, ShapeKind::Cylinder, [&](size_t i, LightBounds& b) {
+    const CylinderShape& c = geometry.cylinders()[i];
+    const Vec3d e = circleExtent(c.axis(), c.radius);
+    for (const Vec3d& end : {c.p0, c.p1}) b.add(Vec3(end - e)), b.add(Vec3(end + e));
+    b.normals = DirectionCone::all();
+    return c.area();
+  });
 }
 
 void LightSampler::addMeshLights() {
@@ -289,6 +340,9 @@ void LightSampler::assignGroupsAndSources() {
     case LightKind::Sphere:
       emission = scene.spheres[l.shape].emission;
       break;
+    case LightKind::Surface:
+      emission = (l.surface == ShapeKind::Disk ? scene.disks : scene.cylinders)[l.shape].emission;
+      break;
     case LightKind::Mesh:
       emission = scene.meshes[l.shape]
                      .of(l.triangle < 0 ? 0u : static_cast<uint32_t>(l.triangle))
@@ -414,6 +468,13 @@ void LightSampler::buildTree() {
       b.power = static_cast<float>(l.radiance * l.area * (closed ? 0.25 : 1.0));
       break;
     }
+    case LightKind::Surface: // the bounds it weighs itself with, its power the radiance's
+      b.add(l.bounds.center - Vec3(l.bounds.radius, l.bounds.radius, l.bounds.radius));
+      b.add(l.bounds.center + Vec3(l.bounds.radius, l.bounds.radius, l.bounds.radius));
+      b.normals = {l.bounds.axis, l.bounds.cosSpread};
+      b.twoSided = true;
+      b.power = static_cast<float>(l.radiance * l.area);
+      break;
     case LightKind::Background:
     case LightKind::Environment:
       unbounded_.push_back(static_cast<int32_t>(k));
@@ -462,6 +523,9 @@ float LightSampler::localWeight(const Light& l, const Vec3& p, const Vec3& n) co
                      : std::min(static_cast<float>(2 * kPi),
                                 l.tree >= 0 ? trees_[static_cast<size_t>(l.tree)].importance(p, n)
                                             : l.bounds.importance(p, n, true));
+    break;
+  case LightKind::Surface: // both faces: at most the whole sphere of directions from inside
+    solidAngle = std::min(static_cast<float>(4 * kPi), l.bounds.importance(p, n, true));
     break;
   case LightKind::Background: // |cos| over the sphere integrates to 2 pi
   case LightKind::Environment:
@@ -653,6 +717,9 @@ bool LightSampler::sampleLight(int k, const Vec3& p, float uChoice, Sample2 u,
   case LightKind::Mesh:
     if (!sampleMesh(l, p, n, uChoice, u, out)) return false;
     break;
+  case LightKind::Surface:
+    if (!sampleSurface(l, p, u, out)) return false;
+    break;
   case LightKind::Background:
     out.wi = sampleUniformSphere(u);
     out.distance = INFINITY;
@@ -702,6 +769,60 @@ bool LightSampler::sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightS
   out.kind = ShapeKind::Sphere;
   out.shape = l.shape;
   out.prim = 0;
+  return true;
+}
+
+// A point uniformly by area: a disk's by the concentric map; a cylinder's part in proportion
+// to its area (u.u reused within the part's share), the side by height and angle, a cap as a
+// disk. Density 1 / area, d^2 / (|cos| area) in solid angle.
+bool LightSampler::sampleSurface(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const {
+  const GeometryScene& g = *scene_->geometry;
+  Vec3d q, normal;
+  uint32_t part = 0;
+  auto onDisk = [&](const DiskShape& d, Sample2 v) {
+    float x, y;
+    sampleConcentricDisk(v, x, y);
+    const AxisFrame f = AxisFrame::of(d.normal);
+    q = d.center + (f.s * double(x) + f.t * double(y)) * d.radius;
+    normal = d.normal;
+  };
+  if (l.surface == ShapeKind::Disk) {
+    onDisk(g.disks()[l.shape], u);
+  } else {
+    const CylinderShape& c = g.cylinders()[l.shape];
+    const double side = c.sideArea() / c.area();
+    if (u.u < side || !c.capped) {
+      const double v = c.capped ? u.u / side : u.u;
+      const Vec3d a = c.axis();
+      const AxisFrame f = AxisFrame::of(a);
+      const double phi = 2 * kPi * u.v;
+      normal = f.s * std::cos(phi) + f.t * std::sin(phi);
+      q = c.p0 + a * (std::min(v, 1.0) * c.height()) + normal * c.radius;
+    } else {
+      const double v = (u.u - side) / (1 - side); // in [0, 1): half each cap
+      part = v < 0.5 ? static_cast<uint32_t>(CylinderPart::Base)
+                     : static_cast<uint32_t>(CylinderPart::Top);
+      const float w = static_cast<float>(v < 0.5 ? 2 * v : 2 * v - 1);
+      onDisk(c.cap(static_cast<CylinderPart>(part)), Sample2{std::min(w, 0x1.fffffep-1f), u.v});
+    }
+  }
+  const Vec3d toLight = q - Vec3d(p);
+  const double d2 = dot(toLight, toLight);
+  if (!(d2 > 0)) return false;
+  const double d = std::sqrt(d2);
+  const Vec3d wi = toLight * (1 / d);
+  const double cosLight = std::abs(dot(normal, wi));
+  const double pdf = d2 / (cosLight * l.area);
+  if (!(cosLight > 0) || !std::isfinite(pdf)) return false;
+  out.wi = Vec3(wi);
+  out.distance = static_cast<float>(d);
+  out.p = Vec3(q);
+  out.pError = roundingError(out.p);
+  out.n = Vec3(normal);
+  out.pdf = static_cast<float>(pdf);
+  out.kind = l.surface;
+  out.shape = l.shape;
+  out.prim = part;
   return true;
 }
 
@@ -879,6 +1000,10 @@ int LightSampler::lightOf(const SurfaceHit& hit) const {
   switch (hit.kind) {
   case ShapeKind::Sphere:
     return hit.index < sphereLight_.size() ? sphereLight_[hit.index] : -1;
+  case ShapeKind::Disk:
+    return hit.index < diskLight_.size() ? diskLight_[hit.index] : -1;
+  case ShapeKind::Cylinder:
+    return hit.index < cylinderLight_.size() ? cylinderLight_[hit.index] : -1;
   case ShapeKind::Triangle:
     if (hit.index >= meshLight_.size()) return -1;
     if (!triangleLight_[hit.index].empty()) return triangleLight_[hit.index][hit.prim];
@@ -906,6 +1031,11 @@ float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& w
   float pdf = 0;
   if (l.kind == LightKind::Sphere) {
     pdf = spherePdf(l.shape, p, wi);
+  } else if (l.kind == LightKind::Surface) { // d^2 / (|cos| area)
+    const Vec3d toLight = Vec3d(lightHit.p) - Vec3d(p);
+    const double cosLight = std::abs(dot(Vec3d(lightHit.ng), Vec3d(wi)));
+    pdf = static_cast<float>(dot(toLight, toLight) / (cosLight * l.area));
+    if (!std::isfinite(pdf)) return 0;
   } else {
     pdf = static_cast<float>(
         l.rectangle >= 0

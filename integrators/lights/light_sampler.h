@@ -187,7 +187,8 @@ private:
     float radius = 0;
     int32_t tree = -1;      ///< whole meshes of more than kSolidAngleChoice triangles: trees_
     int32_t rectangle = -1; ///< whole meshes forming a rectangle: rectangles_
-    LightCluster bounds;    ///< meshes and triangles: box, normals (both faces), area
+    LightCluster bounds;    ///< meshes, triangles, disks, cylinders: box, normals, area
+    ShapeKind surface = ShapeKind::Disk; ///< Surface lights: a disk or a cylinder
   };
   /// Weight of light l at p (shading normal n) for LightSelection::Local (positive wherever
   /// it can shine).
@@ -198,6 +199,10 @@ private:
   /// Emitting meshes: whole (rectangles, meshes with a light tree, small meshes) or, where the
   /// triangles' emission differs, triangle by triangle.
   void addMeshLights();
+  /// Emitting disks and cylinders (sampled uniformly by area).
+  void addSurfaceLights();
+  /// A point of a disk or cylinder light uniformly by area, seen from p.
+  bool sampleSurface(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const;
   /// The scene's <light> list (points, spots, environments).
   void addListedLights();
   /// The uniform background.
@@ -252,6 +257,7 @@ private:
   };
   std::vector<RectangleLight> rectangles_;          ///< rectangle lights
   std::vector<int32_t> sphereLight_;                ///< light number per sphere, or -1
+  std::vector<int32_t> diskLight_, cylinderLight_;  ///< light number per disk / cylinder, or -1
   std::vector<int32_t> meshLight_;                  ///< light number per mesh (whole meshes), or -1
   std::vector<std::vector<int32_t>> triangleLight_; ///< per mesh with inline triangles
   int32_t background_ = -1;

@@ -1,18 +1,16 @@
 #include "integrators/lights/measured_emitter.h"
 
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <vector>
 
 #include "accel/closed_mesh.h"
 #include "core/error.h"
+#include "core/math_util.h"
 
 namespace nx {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 std::string text(double v) {
   std::ostringstream s;
@@ -54,6 +52,12 @@ double axialIrradiancePerRadiance(const ShapeGeometry& g, double d, const std::s
   }
   if (std::holds_alternative<PlaneShape>(g))
     throw Error(where + ": expected an emitter of finite size for at=\"...\", found a plane");
+  if (const auto* disk = std::get_if<DiskShape>(&g)) // pi sin^2 of its half-angle at d
+    return kPi * disk->radius * disk->radius / (disk->radius * disk->radius + d * d);
+  if (std::holds_alternative<CylinderShape>(g))
+    throw Error(where + ": expected a flat emitter for at=\"...\" (a triangle, a quad, a disk or "
+                        "a planar mesh), found a cylinder (give its total flux with "
+                        "quantity=\"flux\")");
   const std::vector<TriangleShape> tris = trianglesOf(g);
   // The axis: the normal through the area-weighted centroid; every triangle in its plane.
   Vec3d normalSum, centroid;
@@ -88,6 +92,10 @@ double fluxPerRadiance(const ShapeGeometry& g, const std::string& where) {
   if (std::holds_alternative<PlaneShape>(g))
     throw Error(where +
                 ": expected an emitter of finite size for quantity=\"flux\", found a plane");
+  // Both faces of flat and open shapes emit; a closed shape's inward light never leaves.
+  if (const auto* disk = std::get_if<DiskShape>(&g)) return 2 * kPi * disk->area();
+  if (const auto* c = std::get_if<CylinderShape>(&g))
+    return c->capped ? kPi * c->area() : 2 * kPi * c->sideArea();
   double area = 0;
   for (const TriangleShape& t : trianglesOf(g)) area += length(cross(t.b - t.a, t.c - t.a)) / 2;
   const auto* m = std::get_if<TriangleMesh>(&g);

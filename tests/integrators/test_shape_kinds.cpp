@@ -92,9 +92,12 @@ TEST(ShapeKinds, EveryKindBuildsFromItsExamplesIntoOnePrimitive) {
       for (const ShapeParameter* p : exampleParameters(kind, alternative))
         EXPECT_TRUE(d.objects[0].geometry.has(p->spec.name));
       const RenderScene s = buildRenderScene(d);
-      EXPECT_EQ(s.spheres.size() + s.planes.size() + s.meshes.size(), 1u);
+      EXPECT_EQ(s.spheres.size() + s.planes.size() + s.meshes.size() + s.disks.size() +
+                    s.cylinders.size(),
+                1u);
       EXPECT_EQ(s.geometry->spheres().size() + s.geometry->planes().size() +
-                    s.geometry->meshes().size(),
+                    s.geometry->meshes().size() + s.geometry->disks().size() +
+                    s.geometry->cylinders().size(),
                 1u);
     }
   }

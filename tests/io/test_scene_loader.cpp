@@ -129,7 +129,7 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
       {"wrong root", "<scen></scen>", "t.scn:1: expected the root element <scene>, found <scen>"},
       {"unknown top tag", scene("<shpere></shpere>\n"),
        "t.scn:4: expected one of <settings>, <camera>, <light>, <sphere>, <plane>, <triangle>, "
-       "<quad>, <mesh>, <material>, <spectrum>, found <shpere>"},
+       "<quad>, <mesh>, <box>, <disk>, <cylinder>, <material>, <spectrum>, found <shpere>"},
       {"unknown child", scene("<sphere><centre>0,0,0</centre></sphere>\n"),
        "t.scn:4: expected one of <material>, <color>, <reflectance>, <roughness>, <ior>, "
        "<fluorescence>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, <coating>, <emission>, "

@@ -266,3 +266,16 @@ def test_an_empty_scene_built_up_renders():
     # the emitter's radiance 1 in every band (the 8 x 8 centre pixels' mean over the bands:
     # wavelength sampling alone makes it noisy, about 0.1% here)
     assert image.radiance[28:36, 28:36].mean() == pytest.approx(1, rel=0.01)
+
+
+def test_vertices_are_a_triangles_corners_and_a_meshs_rows():
+    scene = nxrender.Scene.from_text(MESH_SCENE)
+    scene.objects.append({"shape": "triangle", "vA": [0, 0, 1], "vB": [1, 0, 1], "vC": [0, 1, 1],
+                          "material": "matte", "reflectance": 0.5})
+    mesh, triangle = scene.objects
+    assert mesh.vertices.shape == (3, 3) and triangle.vertices == ((0, 0, 1), (1, 0, 1), (0, 1, 1))
+    triangle.vertices = ((0, 0, 2), (1, 0, 2), (0, 1, 2))
+    mesh.vertices = np.array([[0, 0, 0], [2, 0, 0], [0, 2, 0]])
+    assert triangle.vA == (0, 0, 2) and mesh.vertices[1, 0] == 2
+    with pytest.raises(ValueError, match=r"objects\[0\]\.vertices: expected face indices below"):
+        mesh.vertices = np.zeros((2, 3))
