@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "accel/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 #include "core/vec3.h"
 
 namespace nx {

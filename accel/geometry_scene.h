@@ -23,7 +23,7 @@
 #include "accel/kinds/cylinder.h"
 #include "accel/kinds/disk.h"
 #include "accel/shapes.h"
-#include "accel/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 #include "core/ray.h"
 
 namespace nx {

@@ -8,11 +8,11 @@
 #include <span>
 #include <string>
 
-#include "io/parameter_set.h"
+#include "core/params/parameter_set.h"
 
 namespace nx {
 
-class TriangleMesh; // accel/triangle_mesh.h
+class TriangleMesh; // core/triangle_mesh.h
 
 /// One parameter a shape kind takes.
 struct ShapeParameter {

@@ -5,7 +5,7 @@
 //   what --write writes
 //
 // The material kinds and their parameters come from the registry (integrators/materials/kinds/,
-// io/material_parameters.cpp), the other parameters from io/scene_parameters.cpp. CI runs
+// core/params/material_parameters.cpp), the other parameters from core/params/scene_parameters.cpp. CI runs
 // --check (ctest docs.reference_current); `cmake --build build --target reference-docs` runs
 // --write.
 
@@ -23,8 +23,8 @@
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
-#include "io/material_parameters.h"
-#include "io/scene_parameters.h"
+#include "core/params/material_parameters.h"
+#include "core/params/scene_parameters.h"
 
 namespace {
 

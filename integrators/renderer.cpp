@@ -15,7 +15,7 @@
 #include "core/memory.h"
 #include "integrators/gradients/gradient_context.h"
 #include "integrators/gradients/path_gradients.h"
-#include "integrators/light_layer_name.h"
+#include "io/light_layer_name.h"
 #include "integrators/render_memory.h"
 #include "integrators/sampling.h"
 #include "spectra/colour.h"

@@ -234,7 +234,7 @@ public:
 private:
   // What makes two materials the same (shared, one MaterialId): the kind, whether the object
   // emits (an emitter without a reflectance is black), and the canonical text of the
-  // parameters (one serialisation: io/parameter_set.h).
+  // parameters (one serialisation: core/params/parameter_set.h).
   static std::string identityText(const MaterialDesc& m, bool emitter) {
     return m.material + (emitter ? ";emitter;" : ";;") + m.params.canonicalText();
   }

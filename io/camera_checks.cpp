@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "core/math_util.h"
-#include "io/scene_limits.h"
+#include "core/params/scene_limits.h"
 
 namespace nx {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
-#include "integrators/light_layer_name.h"
+#include "io/light_layer_name.h"
 #include "io/relight_channels.h"
 #include "io/spectral_exr.h"
 #include "spectra/spectrum.h"

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "accel/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 
 namespace nx {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "accel/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 
 namespace nx {
 

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "core/vec3.h"
-#include "io/parameter_set.h"
+#include "core/params/parameter_set.h"
 #include "io/scene_tree.h"
-#include "io/scene_values.h"
+#include "core/params/scene_values.h"
 #include "spectra/sensor.h"
 
 namespace nx {

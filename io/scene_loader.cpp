@@ -24,13 +24,13 @@
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
-#include "io/array_values.h"
+#include "core/params/array_values.h"
 #include "io/camera_checks.h"
 #include "io/exr_names.h"
-#include "io/material_parameters.h"
+#include "core/params/material_parameters.h"
 #include "io/opencv_calibration.h"
 #include "io/scene_desc.h"
-#include "io/scene_limits.h"
+#include "core/params/scene_limits.h"
 #include "io/scene_state_text.h"
 #include "io/scene_tree_text.h"
 
@@ -822,7 +822,7 @@ private:
   }
 
   // The material parameters among an element's children (an object's, or a <material id>'s),
-  // each read by its declared type (io/material_parameters.h).
+  // each read by its declared type (core/params/material_parameters.h).
   void parseMaterialParameters(const std::map<std::string, pugi::xml_node>& c,
                                MaterialDesc& m) const {
     for (const ParamSpec& spec : materialParameters()) {

@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "io/array_values.h"
+#include "core/params/array_values.h"
 #include "io/scene_tree_text.h"
 
 namespace nx {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "integrators/materials/reflectance_texture.h"
+#include "spectra/reflectance_texture.h"
 
 namespace nx {
 

@@ -6,9 +6,19 @@
 
 #include "core/error.h"
 #include "core/file_text.h"
+#include "core/hash.h"
 #include "core/text_table.h"
 
 namespace nx {
+
+uint64_t measuredMatrixDigest(const MeasuredMatrix& m) {
+  uint64_t h = fnv1a64("");
+  for (const std::vector<double>* v : {&m.excitationNm, &m.emissionNm, &m.cells})
+    h = fnv1a64(
+        std::string_view(reinterpret_cast<const char*>(v->data()), v->size() * sizeof(double)),
+        fnv1a64(std::to_string(v->size()), h));
+  return h;
+}
 
 ExcitationGuide excitationGuideOf(const Spectrum* s) {
   using RM = ReradiationMatrix;

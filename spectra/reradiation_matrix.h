@@ -32,6 +32,9 @@ struct MeasuredMatrix {
   bool fluorescenceOnly = false;
 };
 
+/// FNV-1a of a measured matrix's numbers (wavelengths and cells): its identity in render keys.
+uint64_t measuredMatrixDigest(const MeasuredMatrix& m);
+
 /// What next-event estimation knows of a light's spectrum on the matrix's grid: the mean of its
 /// emission over each 5 nm bin (any non-negative shape: only its proportions matter) and the
 /// bins [lo, hi) outside which it is zero.

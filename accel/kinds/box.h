@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "accel/shape_schema.h"
-#include "accel/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 #include "core/error.h"
 
 namespace nx {

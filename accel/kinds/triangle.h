@@ -5,15 +5,10 @@
 #include <optional>
 
 #include "accel/shape_schema.h"
+#include "core/triangle_mesh.h"
 #include "core/vec3.h"
 
 namespace nx {
-
-/// A triangle with vertices a, b, c (front face counter-clockwise seen from its normal
-/// (b - a) x (c - a)).
-struct TriangleShape {
-  Vec3d a, b, c;
-};
 
 /// Ray parameter t in (tMin, tMax) where o + t d meets the triangle (Moeller-Trumbore in
 /// double precision), if any. Used as the independent reference in tests.

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "io/scene_values.h"
+#include "core/params/scene_values.h"
 #include "io/spectral_exr.h"
 
 namespace nxpy {

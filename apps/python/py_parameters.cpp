@@ -7,7 +7,7 @@
 #include "apps/python/py_arguments.h"
 #include "apps/python/py_arrays.h"
 #include "apps/python/py_image.h"
-#include "io/array_values.h"
+#include "core/params/array_values.h"
 
 #include <pybind11/numpy.h>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Scene parameters as Python values, by their declared type (io/parameter_set.h): one
+// Scene parameters as Python values, by their declared type (core/params/parameter_set.h): one
 // conversion each way per type, so every parameter of the scene format is readable and
 // settable from Python without a binding of its own.
 
@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "io/parameter_set.h"
+#include "core/params/parameter_set.h"
 
 namespace nxpy {
 

@@ -22,8 +22,8 @@
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
 #include "io/camera_checks.h"
-#include "io/material_parameters.h"
-#include "io/scene_limits.h"
+#include "core/params/material_parameters.h"
+#include "core/params/scene_limits.h"
 #include "io/scene_state_text.h"
 #include "io/scene_to_tree.h"
 #include "spectra/reradiation_matrix.h"
@@ -136,6 +136,7 @@ void setMeasuredMatrix(const MaterialView& v, const py::handle& value, const std
   nx::FluorescenceDesc f;
   f.loc = v.loc();
   f.matrix = m;
+  f.matrixDigest = nx::measuredMatrixDigest(*m);
   d.params.set({"fluorescence", f, v.loc()});
   v.s->edits.push_back(param + " = <matrix " + std::to_string(m->excitationNm.size()) + "x" +
                        std::to_string(m->emissionNm.size()) + " digest " +

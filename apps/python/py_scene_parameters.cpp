@@ -2,7 +2,7 @@
 // by a stable name (the names Scene.edits records), with its type, unit, range and meaning.
 // Shape, material and light parameters come from the kinds' schemas (accel/shape_kinds.h,
 // integrators/materials/material_kind.h, integrators/lights/light_kinds.h); the others from
-// the table of io/scene_parameters.cpp. Values are read and set through the views' properties, so
+// the table of core/params/scene_parameters.cpp. Values are read and set through the views' properties, so
 // a value set by name is checked and recorded exactly as one set by attribute.
 
 #include "apps/python/py_scene_parameters.h"
@@ -15,8 +15,8 @@
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
-#include "io/material_parameters.h"
-#include "io/scene_parameters.h"
+#include "core/params/material_parameters.h"
+#include "core/params/scene_parameters.h"
 
 namespace nxpy {
 namespace {

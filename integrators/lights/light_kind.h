@@ -15,7 +15,7 @@
 #include "integrators/lights/light_bounds.h"
 #include "integrators/lights/light_sample.h"
 #include "integrators/materials/material_kind.h"
-#include "io/parameter_set.h"
+#include "core/params/parameter_set.h"
 #include "io/spectral_exr.h"
 #include "spectra/spectrum.h"
 

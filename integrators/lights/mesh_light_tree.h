@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "accel/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 #include "integrators/lights/light_bounds.h"
 
 namespace nx {

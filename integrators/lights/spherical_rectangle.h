@@ -7,7 +7,7 @@
 #include <cmath>
 #include <optional>
 
-#include "accel/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 #include "core/math_util.h"
 #include "integrators/lights/spherical_triangle.h"
 

@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "integrators/ior_model.h"
-#include "integrators/materials/reflectance_texture.h"
-#include "io/concentration_map.h"
+#include "spectra/reflectance_texture.h"
+#include "core/params/concentration_map.h"
 #include "spectra/reradiation_matrix.h"
 #include "spectra/spectrum.h"
 

@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "core/text_table.h"
-#include "io/material_parameters.h"
+#include "core/params/material_parameters.h"
 #include "spectra/spectrum_bounds.h"
 
 namespace nx {

@@ -12,7 +12,7 @@
 #include <string_view>
 
 #include "integrators/materials/material.h"
-#include "io/parameter_set.h"
+#include "core/params/parameter_set.h"
 
 namespace nx {
 
@@ -56,7 +56,7 @@ public:
 
 /// One parameter a kind takes.
 struct KindParameter {
-  const char* name;        ///< a name of materialParameters() (io/material_parameters.h)
+  const char* name;        ///< a name of materialParameters() (core/params/material_parameters.h)
   const char* defaultText; ///< its default as a scene would write it ("" : none)
   const char* doc;         ///< what it does for this kind ("": the parameter's own line)
 };

@@ -13,7 +13,7 @@
 
 #include "core/error.h"
 #include "integrators/materials/material_kind.h"
-#include "io/parameter_set.h"
+#include "core/params/parameter_set.h"
 #include "spectra/reradiation_matrix.h"
 #include "spectra/sampled_wavelengths.h"
 #include "spectra/spectrum.h"

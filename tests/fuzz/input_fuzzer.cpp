@@ -24,7 +24,7 @@
 
 #include "core/error.h"
 #include "integrators/relight_image.h"
-#include "io/concentration_map.h"
+#include "core/params/concentration_map.h"
 #include "io/exr_header_check.h"
 #include "io/isolated_call.h"
 #include "io/mesh_reader.h"

@@ -11,7 +11,7 @@
 
 #include "integrators/materials/material_kind.h"
 #include "integrators/render_scene.h"
-#include "io/material_parameters.h"
+#include "core/params/material_parameters.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 

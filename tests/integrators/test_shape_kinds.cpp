@@ -11,7 +11,7 @@
 #include "accel/shape_kinds.h"
 #include "integrators/media/medium_kinds.h"
 #include "integrators/render_scene.h"
-#include "io/material_parameters.h"
+#include "core/params/material_parameters.h"
 #include "io/scene_desc.h"
 #include "support/errors.h"
 #include "support/render_checks.h"

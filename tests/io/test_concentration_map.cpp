@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/concentration_map.h"
+#include "core/params/concentration_map.h"
 #include "support/errors.h"
 
 namespace nx {

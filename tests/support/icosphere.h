@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "accel/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 
 namespace nx::test {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "spectra/eem_layout.h"
+#include "core/params/eem_layout.h"
 #include "spectra/reradiation_matrix.h"
 #include "spectra/spectrum.h"
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "core/params/concentration_map.h"
+#include "core/params/eem_layout.h"
 #include "core/vec3.h"
-#include "io/concentration_map.h"
-#include "spectra/eem_layout.h"
 
 namespace nx {
 
@@ -105,10 +105,11 @@ struct FluorescenceDesc {
   std::optional<std::string> matrixCsv; ///< measured Donaldson matrix
   /// Or the measured matrix itself (given from Python as arrays), checked
   std::shared_ptr<const MeasuredMatrix> matrix;
+  uint64_t matrixDigest = 0; ///< the content of `matrix` (measuredMatrixDigest), set with it
   /// Or an instrument EEM (quantumYield and peakAbsorptance are then its yield and a_max)
   std::shared_ptr<const EemDesc> eem;
   /// A surface dye's relative concentration over the surface (<concentration>FILE</...>, a CSV
-  /// grid), scaling its absorptance per place (io/concentration_map.h); or the map itself
+  /// grid), scaling its absorptance per place (core/params/concentration_map.h); or the map itself
   /// (given from Python as numbers)
   std::optional<std::string> concentrationCsv;
   std::shared_ptr<const ConcentrationMap> concentration;

@@ -1,4 +1,4 @@
-#include "io/array_values.h"
+#include "core/params/array_values.h"
 
 #include <charconv>
 #include <cmath>

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "io/scene_values.h"
+#include "core/params/scene_values.h"
 
 namespace nx {
 

@@ -2,12 +2,12 @@
 // The scene's parameters that are not a material kind's (settings, camera, shapes, media,
 // fluorescence fields, point lights): one declaration each, for Python's Scene.parameters()
 // and the reference docs (docs/reference/python-parameters.md). Material parameters:
-// io/material_parameters.h and the kinds' schemas.
+// core/params/material_parameters.h and the kinds' schemas.
 
 #include <span>
 #include <string>
 
-#include "io/scene_limits.h"
+#include "core/params/scene_limits.h"
 
 namespace nx {
 

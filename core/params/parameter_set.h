@@ -12,9 +12,9 @@
 #include <variant>
 #include <vector>
 
+#include "core/params/scene_limits.h"
+#include "core/params/scene_values.h"
 #include "core/vec3.h"
-#include "io/scene_limits.h"
-#include "io/scene_values.h"
 
 namespace nx {
 

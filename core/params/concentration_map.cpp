@@ -1,4 +1,4 @@
-#include "io/concentration_map.h"
+#include "core/params/concentration_map.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,9 @@
-#include "io/parameter_set.h"
+#include "core/params/parameter_set.h"
 
 #include <algorithm>
 #include <sstream>
 
 #include "core/hash.h"
-#include "spectra/reradiation_matrix.h"
 
 namespace nx {
 
@@ -77,7 +76,7 @@ namespace {
 #if defined(__x86_64__) && defined(__GLIBCXX__)
 static_assert(sizeof(SpectrumDesc) == 256, "a SpectrumDesc field was added: write it below");
 static_assert(sizeof(IorDesc) == 112, "an IorDesc field was added: write it below");
-static_assert(sizeof(FluorescenceDesc) == 304, "a FluorescenceDesc field was added: write it");
+static_assert(sizeof(FluorescenceDesc) == 312, "a FluorescenceDesc field was added: write it");
 static_assert(sizeof(EemDesc) == 448, "an EemDesc field was added: write it below");
 static_assert(sizeof(EemLayout) == 48, "an EemLayout field was added: write it below");
 static_assert(sizeof(CoatingDesc) == 160, "a CoatingDesc field was added: write it below");
@@ -119,15 +118,7 @@ struct CanonicalWriter {
     opt(f.absorptionNm), opt(f.stokesNm), opt(f.widthNm), opt(f.skew), opt(f.quantumYield);
     opt(f.peakAbsorptance);
     text(f.matrixCsv);
-    if (f.matrix) { // the content of a matrix given as numbers
-      const MeasuredMatrix& m = *f.matrix;
-      uint64_t h = fnv1a64("");
-      for (const std::vector<double>* v : {&m.excitationNm, &m.emissionNm, &m.cells})
-        h = fnv1a64(
-            std::string_view(reinterpret_cast<const char*>(v->data()), v->size() * sizeof(double)),
-            fnv1a64(std::to_string(v->size()), h));
-      t << "matrix:" << h;
-    }
+    if (f.matrix) t << "matrix:" << f.matrixDigest; // the content of a matrix given as numbers
     text(f.concentrationCsv);
     if (f.concentration) t << "concentration:" << f.concentration->digest << ',';
     if (f.eem) { // the files' bytes join the render key when they are read

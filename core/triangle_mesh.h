@@ -1,15 +1,21 @@
 #pragma once
-// An indexed triangle mesh in single precision: the buffers Embree reads in place.
+// An indexed triangle mesh in single precision: plain buffers (the mesh reader fills them; the
+// geometry (accel/) lets Embree read them in place), and one triangle's corners in double.
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "accel/shapes.h"
 #include "core/matrix3.h"
 #include "core/vec3.h"
 
 namespace nx {
+
+/// A triangle with vertices a, b, c (front face counter-clockwise seen from its normal
+/// (b - a) x (c - a)).
+struct TriangleShape {
+  Vec3d a, b, c;
+};
 
 /// Largest coordinate a mesh vertex may have (as for the scene's own shapes: far below
 /// Embree's limit of about 1.8e18, beyond which it drops primitives silently).

@@ -1,4 +1,4 @@
-#include "io/scene_parameters.h"
+#include "core/params/scene_parameters.h"
 
 #include <stdexcept>
 

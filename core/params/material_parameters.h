@@ -6,7 +6,7 @@
 #include <span>
 #include <string_view>
 
-#include "io/parameter_set.h"
+#include "core/params/parameter_set.h"
 
 namespace nx {
 

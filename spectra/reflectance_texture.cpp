@@ -1,4 +1,4 @@
-#include "integrators/materials/reflectance_texture.h"
+#include "spectra/reflectance_texture.h"
 
 #include "core/texel_grid.h"
 

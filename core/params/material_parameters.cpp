@@ -1,4 +1,4 @@
-#include "io/material_parameters.h"
+#include "core/params/material_parameters.h"
 
 namespace nx {
 

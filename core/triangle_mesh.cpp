@@ -1,4 +1,4 @@
-#include "accel/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 
 #include <cmath>
 #include <string>
