@@ -15,9 +15,9 @@
 #include "core/memory.h"
 #include "integrators/gradients/gradient_context.h"
 #include "integrators/gradients/path_gradients.h"
-#include "io/light_layer_name.h"
 #include "integrators/render_memory.h"
 #include "integrators/sampling.h"
+#include "io/light_layer_name.h"
 #include "spectra/colour.h"
 #include "spectra/tonemap.h"
 #include "spectra/wavelength_sampler.h"
@@ -58,21 +58,52 @@ std::vector<std::string> componentLayerNames(const RenderScene& scene,
   return names;
 }
 
-RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  // Every tile task runs in the same floating-point mode, whatever thread started the render:
-  // the context captures the mode set here and TBB applies it to the workers' tasks.
-  const FlushDenormalsScope floatMode;
-  tbb::task_group_context tileContext;
-  tileContext.capture_fp_settings();
-  const RenderSettings& settings = scene.settings;
-  // The stop flag raised while the render is being prepared: nothing to write yet.
-  const auto stopIfAsked = [&] {
-    if (options.stop && options.stop->load()) throw StoppedBeforeRendering();
-  };
-  stopIfAsked();
-  const Sensor bands = options.bands ? *options.bands : settings.bands;
-  if (options.targetRelativeError > 0) options.errorMeasure.requireBandsIn(bands);
+namespace {
+
+// What a render request asks for, checked and set up: the bands, the pixels, the film (with
+// its layers and relight transport), the layers' layout, the mode's flags and the samples.
+struct RenderTarget {
+  Sensor bands;
+  PixelRect rect;
+  RenderOutput out;
+  ComponentLayout layout;
+  bool differentiated = false, reverse = false, relightable = false;
+  uint32_t seed = 0;
+  int begin = 0, end = 0; ///< the sample numbers to render
+};
+
+// Differentiated renders: what they cannot be combined with, and the adjoint's size.
+void checkGradientRequest(const RenderScene& scene, const RenderOptions& options,
+                          const PixelRect& rect, const Sensor& bands) {
+  const SceneTangents& t = *options.gradients;
+  const bool reverse = options.adjoint != nullptr;
+  if (scene.settings.mode == RenderMode::Rt)
+    throw Error("gradients need a path-traced mode (spectral_mcpt or mcpt), found rt");
+  if (scene.relight.enabled || options.components || options.lightGroups)
+    throw Error("gradients cannot be combined with component, light-group or relightable "
+                "outputs: render those separately");
+  if (options.resumeFrom || options.adaptive || options.adaptivePlan)
+    throw Error("gradients need a uniform render from its first sample (no --resume, no "
+                "adaptive sampling)");
+  if (t.reflectance.size() != scene.materials.size() ||
+      t.emission.size() != scene.emission.size() || t.lights.size() != scene.lights.size())
+    throw Error("internal error: gradient tangents made for another scene");
+  if (!reverse && t.slots() > kMaxForwardSlots)
+    throw Error("forward-mode gradients keep one spectral image per parameter: at most " +
+                std::to_string(kMaxForwardSlots) + ", found " + std::to_string(t.slots()) +
+                " (use reverse mode, nxrender.backward, for many parameters)");
+  if (reverse) {
+    const size_t expected = static_cast<size_t>(rect.width()) * rect.height() * bands.count();
+    if (options.adjoint->size() != expected)
+      throw Error("the adjoint image holds " + std::to_string(options.adjoint->size()) +
+                  " values, expected " + std::to_string(expected) + " (" +
+                  std::to_string(rect.width()) + "x" + std::to_string(rect.height()) + " x " +
+                  std::to_string(bands.count()) + " bands)");
+  }
+}
+
+// The pixels to render: the crop, checked to lie inside the image, or the whole image.
+PixelRect renderRect(const RenderSettings& settings, const RenderOptions& options) {
   const PixelRect rect =
       options.crop ? *options.crop : PixelRect{0, 0, settings.width, settings.height};
   if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > settings.width || rect.y1 > settings.height ||
@@ -81,55 +112,90 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                 std::to_string(rect.x1) + "," + std::to_string(rect.y1) +
                 " is not a non-empty rectangle inside the " + std::to_string(settings.width) + "x" +
                 std::to_string(settings.height) + " image");
-  RenderOutput out{options.resumeFrom
-                       ? *options.resumeFrom
-                       : Film(settings.width, settings.height, rect, bands, options.whiteReference),
-                   {},
-                   options.firstSample,
-                   0,
-                   0,
-                   {},
-                   {}};
+  return rect;
+}
+
+// A relightable render's transport: one source per light group and spectrum, its spectrum
+// averaged over the grid's bins, and the pattern of the transport's entries.
+struct RelightSetup {
+  std::shared_ptr<const RelightPattern> pattern;
+  std::vector<std::vector<double>> sourceSpectra;
+  std::vector<std::string> sources;
+};
+template <class StopIfAsked>
+RelightSetup relightSetup(const RenderScene& scene, const RenderOptions& options,
+                          const Sensor& bands, StopIfAsked&& stopIfAsked) {
+  RelightSetup r;
+  if (options.resumeFrom)
+    throw Error("--relightable: continuing a relightable render (--resume) is not supported; "
+                "render it again, or split it by --spp-range parts and merge them");
+  if (scene.relight.ofSource.empty())
+    throw Error("--relightable: the scene has no emitter to relight");
+  checkRelightStep(options.relightStepNm, "--relight-step");
+  const RelightGrid grid = RelightGrid::withStep(options.relightStepNm);
+  // One transport per source: the emitters of a light group that share a spectrum.
+  for (size_t s = 0; s < scene.relight.ofSource.size(); ++s) {
+    stopIfAsked(); // thousands of sources at a fine step take a while
+    r.sourceSpectra.push_back(binAverages(scene.relight.ofSource[s], grid));
+    r.sources.push_back(scene.relight.name(s, scene.lightGroups));
+  }
+  stopIfAsked();
+  r.pattern = std::make_shared<const RelightPattern>(grid, bands, scene);
+  return r;
+}
+
+// Everything that scales with the layers and the transport, counted before it is allocated
+// (the film's sums, the image, the tasks' accumulators and the file's writer).
+void requireExtrasMemory(const RenderScene& scene, const RenderOptions& options,
+                         const RenderTarget& t, const RelightSetup& relight) {
+  RenderExtras extras;
+  extras.width = t.rect.width(), extras.height = t.rect.height(), extras.bands = t.bands.count();
+  extras.layers = t.layout.count;
+  extras.lightGroupLayers =
+      options.lightGroups ? static_cast<int>(scene.lightGroups.names.size()) : 0;
+  extras.relightEntries = relight.pattern ? relight.pattern->size() : 0;
+  extras.relightSources = relight.sources.size();
+  extras.relightBins = relight.pattern ? static_cast<size_t>(relight.pattern->grid().bins) : 0;
+  extras.whiteReference = options.whiteReference;
+  extras.threads = static_cast<int>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  requireRenderExtrasMemory(extras, options.output);
+}
+
+// The request checked and its film set up (a new one, or the resumed one with the same layers).
+template <class StopIfAsked>
+RenderTarget renderTarget(const RenderScene& scene, const RenderOptions& options,
+                          StopIfAsked&& stopIfAsked) {
+  const RenderSettings& settings = scene.settings;
+  const Sensor bands = options.bands ? *options.bands : settings.bands;
+  if (options.targetRelativeError > 0) options.errorMeasure.requireBandsIn(bands);
+  const PixelRect rect = renderRect(settings, options);
+  RenderTarget t{bands,
+                 rect,
+                 RenderOutput{options.resumeFrom ? *options.resumeFrom
+                                                 : Film(settings.width, settings.height, rect,
+                                                        bands, options.whiteReference),
+                              {},
+                              options.firstSample,
+                              0,
+                              0,
+                              {},
+                              {}},
+                 {}};
   // Component layers: set on a new film, the same names on a resumed one.
   const std::vector<std::string> layerNames = componentLayerNames(scene, options);
-  ComponentLayout layout;
-  if (options.components) layout.classes = 0;
-  if (options.lightGroups) layout.groups = options.components ? 4 : 0;
-  layout.count = static_cast<int>(layerNames.size());
-  if (layout.any() && settings.mode == RenderMode::Rt)
+  if (options.components) t.layout.classes = 0;
+  if (options.lightGroups) t.layout.groups = options.components ? 4 : 0;
+  t.layout.count = static_cast<int>(layerNames.size());
+  if (t.layout.any() && settings.mode == RenderMode::Rt)
     throw Error("component images (--aov components, lightgroups) need a path-traced mode "
                 "(spectral_mcpt or mcpt), found rt (Whitted ray tracing has no path classes)");
-  const bool differentiated = options.gradients != nullptr;
-  const bool reverse = differentiated && options.adjoint;
-  if (differentiated) {
-    const SceneTangents& t = *options.gradients;
-    if (settings.mode == RenderMode::Rt)
-      throw Error("gradients need a path-traced mode (spectral_mcpt or mcpt), found rt");
-    if (scene.relight.enabled || options.components || options.lightGroups)
-      throw Error("gradients cannot be combined with component, light-group or relightable "
-                  "outputs: render those separately");
-    if (options.resumeFrom || options.adaptive || options.adaptivePlan)
-      throw Error("gradients need a uniform render from its first sample (no --resume, no "
-                  "adaptive sampling)");
-    if (t.reflectance.size() != scene.materials.size() ||
-        t.emission.size() != scene.emission.size() || t.lights.size() != scene.lights.size())
-      throw Error("internal error: gradient tangents made for another scene");
-    if (!reverse && t.slots() > kMaxForwardSlots)
-      throw Error("forward-mode gradients keep one spectral image per parameter: at most " +
-                  std::to_string(kMaxForwardSlots) + ", found " + std::to_string(t.slots()) +
-                  " (use reverse mode, nxrender.backward, for many parameters)");
-    if (reverse) {
-      const size_t expected = static_cast<size_t>(rect.width()) * rect.height() * bands.count();
-      if (options.adjoint->size() != expected)
-        throw Error("the adjoint image holds " + std::to_string(options.adjoint->size()) +
-                    " values, expected " + std::to_string(expected) + " (" +
-                    std::to_string(rect.width()) + "x" + std::to_string(rect.height()) + " x " +
-                    std::to_string(bands.count()) + " bands)");
-    }
-  }
+  t.differentiated = options.gradients != nullptr;
+  t.reverse = t.differentiated && options.adjoint;
+  if (t.differentiated) checkGradientRequest(scene, options, t.rect, t.bands);
   if (options.resumeFrom) {
     std::vector<std::string> held;
-    for (int l = 0; l < out.film.layerCount(); ++l) held.push_back(out.film.layerName(l));
+    for (int l = 0; l < t.out.film.layerCount(); ++l) held.push_back(t.out.film.layerName(l));
     if (held != layerNames)
       throw Error("cannot continue a render with other component layers: it holds " +
                   std::to_string(held.size()) + " (" + (held.empty() ? "none" : held.front()) +
@@ -137,54 +203,410 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                   std::to_string(layerNames.size()) + " (use the same --aov as the first run)");
   }
   // A relightable scene: the transport per light group on the excitation grid.
-  const bool relightable = scene.relight.enabled;
-  std::shared_ptr<const RelightPattern> pattern;
-  std::vector<std::vector<double>> sourceSpectra;
-  std::vector<std::string> sources;
-  if (relightable) {
-    if (options.resumeFrom)
-      throw Error("--relightable: continuing a relightable render (--resume) is not supported; "
-                  "render it again, or split it by --spp-range parts and merge them");
-    if (scene.relight.ofSource.empty())
-      throw Error("--relightable: the scene has no emitter to relight");
-    checkRelightStep(options.relightStepNm, "--relight-step");
-    const RelightGrid grid = RelightGrid::withStep(options.relightStepNm);
-    // One transport per source: the emitters of a light group that share a spectrum.
-    for (size_t s = 0; s < scene.relight.ofSource.size(); ++s) {
-      stopIfAsked(); // thousands of sources at a fine step take a while
-      sourceSpectra.push_back(binAverages(scene.relight.ofSource[s], grid));
-      sources.push_back(scene.relight.name(s, scene.lightGroups));
-    }
-    stopIfAsked();
-    pattern = std::make_shared<const RelightPattern>(grid, bands, scene);
-  }
+  t.relightable = scene.relight.enabled;
+  RelightSetup relight;
+  if (t.relightable) relight = relightSetup(scene, options, t.bands, stopIfAsked);
   stopIfAsked();
-  // Everything that scales with the layers and the transport, counted before it is allocated
-  // (the film's sums, the image, the tasks' accumulators and the file's writer).
-  RenderExtras extras;
-  extras.width = rect.width(), extras.height = rect.height(), extras.bands = bands.count();
-  extras.layers = layout.count;
-  extras.lightGroupLayers =
-      options.lightGroups ? static_cast<int>(scene.lightGroups.names.size()) : 0;
-  extras.relightEntries = pattern ? pattern->size() : 0;
-  extras.relightSources = sources.size();
-  extras.relightBins = pattern ? static_cast<size_t>(pattern->grid().bins) : 0;
-  extras.whiteReference = options.whiteReference;
-  extras.threads = static_cast<int>(
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-  requireRenderExtrasMemory(extras, options.output);
-  if (!options.resumeFrom) out.film.setLayers(layerNames);
-  if (relightable)
-    out.film.setRelight(std::move(pattern), std::move(sources), std::move(sourceSpectra));
-  out.samplesPerPixel = options.samples > 0 ? options.samples : settings.samples;
-  out.seed = options.seed ? *options.seed : settings.seed;
-  const uint32_t seed = out.seed;
-  const int begin = options.firstSample, end = options.firstSample + out.samplesPerPixel;
+  requireExtrasMemory(scene, options, t, relight);
+  if (!options.resumeFrom) t.out.film.setLayers(layerNames);
+  if (t.relightable)
+    t.out.film.setRelight(std::move(relight.pattern), std::move(relight.sources),
+                          std::move(relight.sourceSpectra));
+  t.out.samplesPerPixel = options.samples > 0 ? options.samples : settings.samples;
+  t.out.seed = options.seed ? *options.seed : settings.seed;
+  t.seed = t.out.seed;
+  t.begin = options.firstSample, t.end = options.firstSample + t.out.samplesPerPixel;
+  return t;
+}
 
+// The passes of a render over the target's tiles, their statistics and, in reverse mode, the
+// gradient summed in tile order (so it does not depend on which thread ran which tile).
+class PassRunner {
+public:
+  PassRunner(const RenderScene& scene, const RenderOptions& options, RenderTarget& target,
+             const IntegratorContext& ctx, const WavelengthSampler& wavelengths,
+             tbb::task_group_context& tileContext)
+      : scene_(scene), options_(options), t_(target), out_(target.out), ctx_(ctx),
+        wavelengths_(wavelengths), tileContext_(tileContext),
+        whitted_(scene.settings.mode == RenderMode::Rt),
+        // Adaptive renders use tiles of one plan block: late rounds add samples to few blocks,
+        // and small tasks keep every thread busy (the image does not depend on the tiles).
+        ts_(options.adaptive ? std::min(std::max(1, options.tileSize), kAdaptiveBlock)
+                             : std::max(1, options.tileSize)),
+        tilesX_((target.rect.width() + ts_ - 1) / ts_),
+        tiles_(tilesX_ * ((target.rect.height() + ts_ - 1) / ts_)),
+        passSize_(std::max(1, options.passSamples)),
+        passes_((target.out.samplesPerPixel + passSize_ - 1) / passSize_),
+        slots_(target.differentiated ? options.gradients->slots() : 0),
+        // Progress counts tiles of passes; an adaptive render's passes are not known in
+        // advance (its count is capped at the uniform render's).
+        progressTotal_(static_cast<int64_t>(tiles_) * passes_),
+        now_(options.clock ? options.clock : [] {
+          return std::chrono::duration<double>(
+                     std::chrono::steady_clock::now().time_since_epoch())
+              .count();
+        }),
+        clockStart_(now_()), passStart_(clockStart_) {
+    if (t_.reverse) {
+      tileGradients_.resize(static_cast<size_t>(tiles_));
+      gradientSum_.assign(slots_, 0.0);
+      gradientVarianceSum_.assign(slots_, 0.0);
+    }
+  }
+
+  // Passes of passSize samples up to the end, or until the error target is met.
+  void uniformPasses() {
+    for (int pass = 0; pass < passes_ && mayStartPass(); ++pass) {
+      const int passEnd = std::min(t_.end, t_.begin + (pass + 1) * passSize_);
+      runPass(passEnd, nullptr);
+      if (!out_.stats.stopped) out_.stats.samplesReached = passEnd - t_.begin;
+      if (!out_.stats.stopped && options_.targetRelativeError > 0 && passEnd < t_.end &&
+          options_.errorMeasure.of(out_.film) <= options_.targetRelativeError) {
+        out_.stats.reachedTarget = true;
+        break;
+      }
+    }
+  }
+
+  // A uniform pilot (unless a plan is given), then rounds: plan from the film, render the plan
+  // in passes, measure; a given plan is one round.
+  void adaptiveRounds();
+
+  // The statistics of the run and, in reverse mode, the gradient and its variance.
+  RenderOutput finish(std::chrono::steady_clock::time_point start) {
+    out_.stats.relativeError = options_.errorMeasure.of(out_.film);
+    out_.stats.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out_.stats.samples = samples_;
+    out_.stats.rays = rays_;
+    out_.stats.nonFinite = nonFinite_;
+    out_.stats.truncated = truncated_;
+    out_.stats.bounceLimited = bounceLimited_;
+    out_.stats.relightMissed = relightMissed_;
+    out_.stats.gradientZeroValues = gradientZeros_;
+    if (t_.reverse) {
+      // Each replicate's sum estimates half the gradient; per tile, their difference squared
+      // estimates the variance of the tile's share (the film's (A - B)^2 / 4 for the means).
+      out_.gradient = std::move(gradientSum_);
+      out_.gradientVariance = std::move(gradientVarianceSum_);
+    }
+    return std::move(out_);
+  }
+
+private:
+  // A tile task's own buffers: the pixel being summed, the sample's layers and relight
+  // contributions, the gradient tape and its forward or reverse sums.
+  struct TileState {
+    TraceCounters counters;
+    uint64_t dropped = 0, taken = 0, missed = 0;
+    Film::Pixel pixel;
+    std::vector<SampledSpectrum> layers;
+    RelightRecorder recorder;
+    GradientTape tape;
+    std::vector<SampledSpectrum> forward;
+    std::vector<double> tileSums[2];
+  };
+  struct TileGradient {
+    uint32_t slot;
+    double even, odd; ///< the replicates' sums
+  };
+
+  // Whether another pass may start: not after a stop, nor when it would end after the time
+  // limit (judged by the last pass; the first pass always runs).
+  bool mayStartPass() {
+    if (out_.stats.stopped) return false;
+    passStart_ = now_();
+    if (options_.timeLimitSeconds > 0 && anyPass_ &&
+        passStart_ - clockStart_ + lastPassSeconds_ > options_.timeLimitSeconds) {
+      out_.stats.reachedTimeLimit = true;
+      return false;
+    }
+    return true;
+  }
+
+  // The stop flag is looked at before every sample (a relaxed load), so a stop takes effect
+  // within one sample wherever the render is; each pixel keeps the samples it finished (its
+  // count stays true, and a resume continues after them).
+  bool stopping() const { return options_.stop && options_.stop->load(std::memory_order_relaxed); }
+
+  // One pass: every pixel continues after the samples it holds up to `uniformEnd` (a sample
+  // number), or with a plan up to min(planned, held + passSize) samples.
+  void runPass(int uniformEnd, const AdaptivePlan* plan) {
+    tbb::parallel_for(
+        0, tiles_, [&](int tile) { renderTile(tile, uniformEnd, plan); }, tileContext_);
+    if (options_.stop && options_.stop->load()) out_.stats.stopped = true;
+    for (auto& kept : tileGradients_) {
+      for (const TileGradient& g : kept) {
+        gradientSum_[g.slot] += g.even + g.odd;
+        gradientVarianceSum_[g.slot] += (g.even - g.odd) * (g.even - g.odd);
+      }
+      kept.clear();
+    }
+    lastPassSeconds_ = now_() - passStart_;
+    anyPass_ = true;
+    if (options_.afterPass) options_.afterPass(out_.film);
+  }
+
+  void renderTile(int tile, int uniformEnd, const AdaptivePlan* plan);
+  // The samples of pixel (x, y) this pass adds; false when a stop halted it.
+  bool renderPixel(int x, int y, int uniformEnd, const AdaptivePlan* plan, TileState& st);
+  // One sample along `ray`, traced and recorded as the render's outputs ask: gradients
+  // (reverse or forward), relightable transport, component layers, or the plain radiance.
+  void traceSample(const Ray& ray, const SampledWavelengths& lambda, PixelSampleStream& rng,
+                   bool odd, int x, int y, TileState& st) const;
+
+  const RenderScene& scene_;
+  const RenderOptions& options_;
+  RenderTarget& t_;
+  RenderOutput& out_;
+  const IntegratorContext& ctx_;
+  const WavelengthSampler& wavelengths_;
+  tbb::task_group_context& tileContext_;
+  const bool whitted_;
+  const int ts_, tilesX_, tiles_, passSize_, passes_;
+  const uint32_t slots_;
+  const int64_t progressTotal_;
+  std::atomic<uint64_t> rays_{0}, nonFinite_{0}, samples_{0}, truncated_{0}, bounceLimited_{0},
+      relightMissed_{0}, gradientZeros_{0};
+  // Reverse mode: each tile's sums per replicate (its non-zero slots), added up in tile order
+  // after each pass. The gradient, and the variance of its estimate: the sum over tiles
+  // (independent) of the squared differences of their replicates' sums.
+  std::vector<std::vector<TileGradient>> tileGradients_;
+  std::vector<double> gradientSum_, gradientVarianceSum_;
+  std::atomic<int64_t> finished_{0};
+  std::mutex progressMutex_;
+  const std::function<double()> now_;
+  double lastPassSeconds_ = 0;
+  const double clockStart_;
+  double passStart_;
+  bool anyPass_ = false;
+};
+
+void PassRunner::renderTile(int tile, int uniformEnd, const AdaptivePlan* plan) {
+  if (stopping()) return;
+  const PixelRect& rect = t_.rect;
+  const int x0 = rect.x0 + (tile % tilesX_) * ts_, y0 = rect.y0 + (tile / tilesX_) * ts_;
+  const int x1 = std::min(x0 + ts_, rect.x1), y1 = std::min(y0 + ts_, rect.y1);
+  TileState st;
+  st.pixel = out_.film.newPixel();
+  st.layers.resize(static_cast<size_t>(t_.layout.count));
+  st.forward.resize(t_.reverse ? 0 : slots_);
+  if (t_.reverse) st.tileSums[0].assign(slots_, 0.0), st.tileSums[1].assign(slots_, 0.0);
+  if (t_.relightable) {
+    st.recorder.spectra = &scene_.relight.ofSource;
+    st.recorder.grid = out_.film.relightPattern()->grid();
+    st.recorder.contributions.reserve(256);
+  }
+  bool halted = false;
+  for (int y = y0; y < y1 && !halted; ++y)
+    for (int x = x0; x < x1 && !halted; ++x) halted = !renderPixel(x, y, uniformEnd, plan, st);
+  if (t_.reverse) {
+    auto& kept = tileGradients_[static_cast<size_t>(tile)];
+    for (uint32_t k = 0; k < slots_; ++k)
+      if (st.tileSums[0][k] != 0 || st.tileSums[1][k] != 0)
+        kept.push_back({k, st.tileSums[0][k], st.tileSums[1][k]});
+  }
+  gradientZeros_ += st.tape.zeroValues;
+  rays_ += st.counters.rays;
+  truncated_ += st.counters.truncated;
+  bounceLimited_ += st.counters.bounceLimited;
+  relightMissed_ += st.missed;
+  nonFinite_ += st.dropped;
+  samples_ += st.taken;
+  const int64_t done = ++finished_;
+  if (options_.progress) {
+    std::lock_guard<std::mutex> lock(progressMutex_);
+    options_.progress(std::min(done, progressTotal_), progressTotal_);
+  }
+}
+
+bool PassRunner::renderPixel(int x, int y, int uniformEnd, const AdaptivePlan* plan,
+                             TileState& st) {
+  const int begin = t_.begin;
+  const int held = static_cast<int>(out_.film.samples(x, y));
+  // A planned pass adds passSize samples, or half what the pixel holds once that is more
+  // (fewer passes, fewer waits at their ends; still several per round).
+  const int sEnd = plan ? begin + std::min(static_cast<int>(plan->samplesAt(x, y)),
+                                           held + std::max(passSize_, held / 2))
+                        : uniformEnd;
+  if (begin + held >= sEnd) return true;
+  Film::resetPixel(st.pixel);
+  const uint32_t pixelIndex =
+      static_cast<uint32_t>(y) * static_cast<uint32_t>(scene_.settings.width) +
+      static_cast<uint32_t>(x);
+  // Two independently scrambled replicates, interleaved: even sample numbers use the seed, odd
+  // ones a derived seed; each is one sequence of its own (index s / 2), and the difference of
+  // their means estimates the error (randomized QMC).
+  const PixelSequence replicates[2] = {
+      PixelSequence(options_.sampler, pixelIndex, t_.seed),
+      PixelSequence(options_.sampler, pixelIndex, t_.seed ^ kOddReplicateSalt)};
+  // The white reference's own sequences, made only when it is rendered.
+  std::optional<PixelSequence> whiteSequences[2];
+  if (out_.film.hasWhite()) {
+    whiteSequences[0].emplace(options_.sampler, pixelIndex, t_.seed ^ kWhiteSalt);
+    whiteSequences[1].emplace(options_.sampler, pixelIndex,
+                              t_.seed ^ kWhiteSalt ^ kOddReplicateSalt);
+  }
+  bool halted = false;
+  // Each pixel continues after the samples it already has (a resumed film or an adaptive plan
+  // may hold more in some pixels than in others).
+  for (int s = begin + held; s < sEnd; ++s) {
+    if (stopping()) {
+      halted = true;
+      break;
+    }
+    const bool odd = (s & 1) != 0;
+    PixelSampleStream rng(replicates[odd], static_cast<uint32_t>(s) >> 1);
+    // With stratified lanes, the offset within the lanes' strata and the hero's stratum from
+    // one Sobol pair (stratified jointly).
+    const SampledWavelengths lambda = options_.stratifiedLanes
+                                          ? sampleStratifiedLanes(wavelengths_, rng)
+                                          : wavelengths_.sample(rng.next1D());
+    const Sample2 jitter = rng.next2D();
+    float lensX = 0, lensY = 0; // a point of the aperture, for a thin lens only
+    if (scene_.camera.hasLens()) sampleConcentricDisk(rng.next2D(), lensX, lensY);
+    const Ray ray = scene_.camera.generateRay(static_cast<double>(x) + jitter.u,
+                                              static_cast<double>(y) + jitter.v, lensX, lensY);
+    traceSample(ray, lambda, rng, odd, x, y, st);
+    if (out_.film.hasWhite()) {
+      // Its own random numbers (a salted seed): the same for every thread count.
+      PixelSampleStream whiteRng(*whiteSequences[odd], static_cast<uint32_t>(s) >> 1);
+      out_.film.addWhiteSample(st.pixel, lambda,
+                               traceWhiteReference(ctx_, ray, lambda, whiteRng, st.counters));
+    }
+  }
+  st.taken += Film::samplesIn(st.pixel);
+  out_.film.add(x, y, st.pixel);
+  return !halted;
+}
+
+void PassRunner::traceSample(const Ray& ray, const SampledWavelengths& lambda,
+                             PixelSampleStream& rng, bool odd, int x, int y, TileState& st) const {
+  Film& film = out_.film;
+  if (t_.differentiated) {
+    st.tape.clear();
+    const SampledSpectrum L = tracePathGradients(ctx_, ray, lambda, rng, st.counters, st.tape);
+    if (!film.addSample(st.pixel, lambda, L, odd)) {
+      ++st.dropped;
+    } else if (t_.reverse) {
+      // d loss / d slot: each term weighted as the film weighs the lane, times d loss / d
+      // band, over the pixel's sample count (uniform: the render's).
+      const PixelRect& rect = t_.rect;
+      const size_t p =
+          static_cast<size_t>(y - rect.y0) * rect.width() + static_cast<size_t>(x - rect.x0);
+      const SampledSpectrum a =
+          film.adjointWeights(lambda, options_.adjoint->data() +
+                                          p * static_cast<size_t>(t_.bands.count())) *
+          (1.0f / static_cast<float>(out_.samplesPerPixel));
+      double* sums = st.tileSums[odd].data();
+      st.tape.sweep([&](uint32_t slot, int lane, float v) {
+        sums[slot] += static_cast<double>(v * a[lane]);
+      });
+    } else {
+      std::fill(st.forward.begin(), st.forward.end(), SampledSpectrum());
+      st.tape.sweep([&](uint32_t slot, int lane, float v) { st.forward[slot][lane] += v; });
+      bool finite = true;
+      for (const SampledSpectrum& f : st.forward)
+        for (int i = 0; i < kLanes; ++i) finite = finite && std::isfinite(f[i]);
+      if (finite) film.addLayerSamples(st.pixel, lambda, st.forward.data(), odd);
+    }
+  } else if (t_.relightable) {
+    std::fill(st.layers.begin(), st.layers.end(), SampledSpectrum());
+    st.recorder.contributions.clear();
+    const SampledSpectrum L = tracePathRelightable(ctx_, ray, lambda, rng, st.counters, t_.layout,
+                                                   st.layers.data(), st.recorder);
+    if (film.addSample(st.pixel, lambda, L, odd)) {
+      if (t_.layout.any()) film.addLayerSamples(st.pixel, lambda, st.layers.data(), odd);
+      st.missed += film.addRelightSamples(st.pixel, lambda, st.recorder.contributions, odd);
+    } else {
+      ++st.dropped;
+    }
+  } else if (t_.layout.any()) {
+    std::fill(st.layers.begin(), st.layers.end(), SampledSpectrum());
+    const SampledSpectrum L =
+        tracePathComponents(ctx_, ray, lambda, rng, st.counters, t_.layout, st.layers.data());
+    if (film.addSample(st.pixel, lambda, L, odd))
+      film.addLayerSamples(st.pixel, lambda, st.layers.data(), odd);
+    else
+      ++st.dropped;
+  } else {
+    const SampledSpectrum L = whitted_ ? traceWhitted(ctx_, ray, lambda, rng, st.counters)
+                                       : tracePath(ctx_, ray, lambda, rng, st.counters);
+    if (!film.addSample(st.pixel, lambda, L, odd)) ++st.dropped;
+  }
+}
+
+void PassRunner::adaptiveRounds() {
+  if (!(options_.targetRelativeError > 0))
+    throw Error("adaptive sampling needs a target error (--target-error)");
+  if (out_.samplesPerPixel < 2)
+    throw Error("adaptive sampling needs at least 2 samples per pixel (one per replicate), "
+                "found " +
+                std::to_string(out_.samplesPerPixel));
+  const auto maxSamples = static_cast<uint32_t>(out_.samplesPerPixel);
+  const PixelRect& rect = t_.rect;
+  const int begin = t_.begin;
+  if (options_.adaptivePlan) {
+    const PixelRect& pr = options_.adaptivePlan->region;
+    if (rect.x0 < pr.x0 || rect.y0 < pr.y0 || rect.x1 > pr.x1 || rect.y1 > pr.y1)
+      throw Error("internal error: an adaptive plan that does not cover the render's pixels");
+  } else {
+    // The uniform pilot: every pixel gets the same first samples (an even number, so both
+    // replicates are alike), enough to estimate each block's noise.
+    int pilot = std::min(std::max(options_.adaptiveMinSamples, 2), out_.samplesPerPixel);
+    pilot = std::max(pilot - (pilot & 1), 2);
+    for (int k = 0; begin + k * passSize_ < begin + pilot && mayStartPass(); ++k)
+      runPass(std::min(begin + pilot, begin + (k + 1) * passSize_), nullptr);
+  }
+  // The error is judged at the end of a round only, so a round is the same work whether one
+  // machine renders it or a farm renders its crops.
+  constexpr int kMaxRounds = 40; // rounds at most double: 2^40 is beyond any count
+  for (int round = 0; round < kMaxRounds && !out_.stats.stopped && !out_.stats.reachedTimeLimit;
+       ++round) {
+    if (!options_.adaptivePlan &&
+        options_.errorMeasure.of(out_.film) <= options_.targetRelativeError) {
+      out_.stats.reachedTarget = true;
+      break;
+    }
+    // A given plan is used in place; a planned one lives for this round.
+    std::optional<AdaptivePlan> planned;
+    if (!options_.adaptivePlan)
+      planned = planAdaptiveSamples(out_.film, options_.errorMeasure, options_.targetRelativeError,
+                                    maxSamples);
+    const AdaptivePlan& plan = options_.adaptivePlan ? *options_.adaptivePlan : *planned;
+    if (!plan.addsSamplesTo(out_.film)) break;
+    while (plan.addsSamplesTo(out_.film) && mayStartPass()) runPass(0, &plan);
+    ++out_.stats.adaptiveRounds;
+    if (options_.adaptivePlan) break;
+  }
+  if (!options_.adaptivePlan && !out_.stats.stopped && !out_.stats.reachedTarget &&
+      options_.errorMeasure.of(out_.film) <= options_.targetRelativeError)
+    out_.stats.reachedTarget = true;
+  uint32_t most = 0;
+  for (int y = rect.y0; y < rect.y1; ++y)
+    for (int x = rect.x0; x < rect.x1; ++x) most = std::max(most, out_.film.samples(x, y));
+  out_.stats.samplesReached = static_cast<int>(most);
+}
+
+} // namespace
+
+RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  // Every tile task runs in the same floating-point mode, whatever thread started the render:
+  // the context captures the mode set here and TBB applies it to the workers' tasks.
+  const FlushDenormalsScope floatMode;
+  tbb::task_group_context tileContext;
+  tileContext.capture_fp_settings();
+  // The stop flag raised while the render is being prepared: nothing to write yet.
+  const auto stopIfAsked = [&] {
+    if (options.stop && options.stop->load()) throw StoppedBeforeRendering();
+  };
+  stopIfAsked();
+  RenderTarget target = renderTarget(scene, options, stopIfAsked);
   const LightSampler lights(scene, options.lightSelection, options.triangleLightSampling);
   stopIfAsked();
   std::optional<GradientContext> gradientContext;
-  if (differentiated) gradientContext.emplace(scene, lights, *options.gradients);
+  if (target.differentiated) gradientContext.emplace(scene, lights, *options.gradients);
   stopIfAsked();
   const IntegratorContext ctx{&scene,
                               &lights,
@@ -192,316 +614,17 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
                               scene.hasFluorescence || options.forceFluorescencePath,
                               options.columnOnlyExcitation,
                               gradientContext ? &*gradientContext : nullptr};
+  const Film& film = target.out.film;
   const WavelengthSampler wavelengths =
       options.wavelengthDensity == WavelengthDensity::Visible
-          ? WavelengthSampler(out.film.tracedMinNm(), out.film.tracedMaxNm())
-          : WavelengthSampler::forSensor(out.film.bands(), out.film.tracedMinNm(),
-                                         out.film.tracedMaxNm());
-  const bool whitted = settings.mode == RenderMode::Rt;
-
-  // Adaptive renders use tiles of one plan block: late rounds add samples to few blocks, and
-  // small tasks keep every thread busy (the image does not depend on the tiles).
-  const int ts = options.adaptive ? std::min(std::max(1, options.tileSize), kAdaptiveBlock)
-                                  : std::max(1, options.tileSize);
-  const int tilesX = (rect.width() + ts - 1) / ts, tilesY = (rect.height() + ts - 1) / ts;
-  const int tiles = tilesX * tilesY;
-  const int passSize = std::max(1, options.passSamples);
-  const int passes = (out.samplesPerPixel + passSize - 1) / passSize;
-  std::atomic<uint64_t> rays{0}, nonFinite{0}, samples{0}, truncated{0}, bounceLimited{0},
-      relightMissed{0}, gradientZeros{0};
-  // Reverse mode: each tile's sums per replicate (its non-zero slots), added up in tile order
-  // after each pass, so the gradient does not depend on which thread ran which tile.
-  const uint32_t slots = differentiated ? options.gradients->slots() : 0;
-  struct TileGradient {
-    uint32_t slot;
-    double even, odd; ///< the replicates' sums
-  };
-  std::vector<std::vector<TileGradient>> tileGradients;
-  // The gradient, and the variance of its estimate: the sum over tiles (independent) of the
-  // squared differences of their replicates' sums.
-  std::vector<double> gradientSum, gradientVarianceSum;
-  if (reverse) {
-    tileGradients.resize(static_cast<size_t>(tiles));
-    gradientSum.assign(slots, 0.0);
-    gradientVarianceSum.assign(slots, 0.0);
-  }
-  std::atomic<int64_t> finished{0};
-  // Progress counts tiles of passes; an adaptive render's passes are not known in advance
-  // (its count is capped at the uniform render's).
-  const int64_t progressTotal = static_cast<int64_t>(tiles) * passes;
-  std::mutex progressMutex;
-
-  double lastPassSeconds = 0;
-  const std::function<double()> now = options.clock ? options.clock : [] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-  };
-  const double clockStart = now();
-  double passStart = clockStart;
-  bool anyPass = false;
-  // Whether another pass may start: not after a stop, nor when it would end after the time
-  // limit (judged by the last pass; the first pass always runs).
-  auto mayStartPass = [&] {
-    if (out.stats.stopped) return false;
-    passStart = now();
-    if (options.timeLimitSeconds > 0 && anyPass &&
-        passStart - clockStart + lastPassSeconds > options.timeLimitSeconds) {
-      out.stats.reachedTimeLimit = true;
-      return false;
-    }
-    return true;
-  };
-  // The stop flag is looked at before every sample (a relaxed load), so a stop takes effect
-  // within one sample wherever the render is; each pixel keeps the samples it finished (its
-  // count stays true, and a resume continues after them).
-  auto stopping = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
-  // One pass: every pixel continues after the samples it holds up to `uniformEnd` (a sample
-  // number), or with a plan up to min(planned, held + passSize) samples.
-  auto runPass = [&](int uniformEnd, const AdaptivePlan* plan) {
-    tbb::parallel_for(
-        0, tiles,
-        [&](int tile) {
-          if (stopping()) return;
-          const int x0 = rect.x0 + (tile % tilesX) * ts, y0 = rect.y0 + (tile / tilesX) * ts;
-          const int x1 = std::min(x0 + ts, rect.x1), y1 = std::min(y0 + ts, rect.y1);
-          TraceCounters counters;
-          uint64_t dropped = 0, taken = 0;
-          Film::Pixel pixel = out.film.newPixel();
-          std::vector<SampledSpectrum> layers(static_cast<size_t>(layout.count));
-          RelightRecorder recorder;
-          uint64_t missed = 0;
-          GradientTape tape;
-          std::vector<SampledSpectrum> forward(reverse ? 0 : slots);
-          std::vector<double> tileSums[2];
-          if (reverse) tileSums[0].assign(slots, 0.0), tileSums[1].assign(slots, 0.0);
-          if (relightable) {
-            recorder.spectra = &scene.relight.ofSource;
-            recorder.grid = out.film.relightPattern()->grid();
-            recorder.contributions.reserve(256);
-          }
-          bool halted = false;
-          for (int y = y0; y < y1 && !halted; ++y) {
-            for (int x = x0; x < x1 && !halted; ++x) {
-              const int held = static_cast<int>(out.film.samples(x, y));
-              // A planned pass adds passSize samples, or half what the pixel holds once that
-              // is more (fewer passes, fewer waits at their ends; still several per round).
-              const int sEnd = plan ? begin + std::min(static_cast<int>(plan->samplesAt(x, y)),
-                                                       held + std::max(passSize, held / 2))
-                                    : uniformEnd;
-              if (begin + held >= sEnd) continue;
-              Film::resetPixel(pixel);
-              const uint32_t pixelIndex =
-                  static_cast<uint32_t>(y) * static_cast<uint32_t>(settings.width) +
-                  static_cast<uint32_t>(x);
-              // Two independently scrambled replicates, interleaved: even sample numbers use the
-              // seed, odd ones a derived seed; each is one sequence of its own (index s / 2), and
-              // the difference of their means estimates the error (randomized QMC).
-              const PixelSequence replicates[2] = {
-                  PixelSequence(options.sampler, pixelIndex, seed),
-                  PixelSequence(options.sampler, pixelIndex, seed ^ kOddReplicateSalt)};
-              // The white reference's own sequences, made only when it is rendered.
-              std::optional<PixelSequence> whiteSequences[2];
-              if (out.film.hasWhite()) {
-                whiteSequences[0].emplace(options.sampler, pixelIndex, seed ^ kWhiteSalt);
-                whiteSequences[1].emplace(options.sampler, pixelIndex,
-                                          seed ^ kWhiteSalt ^ kOddReplicateSalt);
-              }
-              // Each pixel continues after the samples it already has (a resumed film or an
-              // adaptive plan may hold more in some pixels than in others).
-              for (int s = begin + held; s < sEnd; ++s) {
-                if (stopping()) {
-                  halted = true;
-                  break;
-                }
-                const bool odd = (s & 1) != 0;
-                PixelSampleStream rng(replicates[odd], static_cast<uint32_t>(s) >> 1);
-                // With stratified lanes, the offset within the lanes' strata and the hero's
-                // stratum from one Sobol pair (stratified jointly).
-                const SampledWavelengths lambda = options.stratifiedLanes
-                                                      ? sampleStratifiedLanes(wavelengths, rng)
-                                                      : wavelengths.sample(rng.next1D());
-                const Sample2 jitter = rng.next2D();
-                float lensX = 0, lensY = 0; // a point of the aperture, for a thin lens only
-                if (scene.camera.hasLens()) sampleConcentricDisk(rng.next2D(), lensX, lensY);
-                const Ray ray =
-                    scene.camera.generateRay(static_cast<double>(x) + jitter.u,
-                                             static_cast<double>(y) + jitter.v, lensX, lensY);
-                if (differentiated) {
-                  tape.clear();
-                  const SampledSpectrum L =
-                      tracePathGradients(ctx, ray, lambda, rng, counters, tape);
-                  if (!out.film.addSample(pixel, lambda, L, odd)) {
-                    ++dropped;
-                  } else if (reverse) {
-                    // d loss / d slot: each term weighted as the film weighs the lane, times
-                    // d loss / d band, over the pixel's sample count (uniform: the render's).
-                    const size_t p = static_cast<size_t>(y - rect.y0) * rect.width() +
-                                     static_cast<size_t>(x - rect.x0);
-                    const SampledSpectrum a =
-                        out.film.adjointWeights(lambda,
-                                                options.adjoint->data() +
-                                                    p * static_cast<size_t>(bands.count())) *
-                        (1.0f / static_cast<float>(out.samplesPerPixel));
-                    double* sums = tileSums[odd].data();
-                    tape.sweep([&](uint32_t slot, int lane, float v) {
-                      sums[slot] += static_cast<double>(v * a[lane]);
-                    });
-                  } else {
-                    std::fill(forward.begin(), forward.end(), SampledSpectrum());
-                    tape.sweep([&](uint32_t slot, int lane, float v) { forward[slot][lane] += v; });
-                    bool finite = true;
-                    for (const SampledSpectrum& f : forward)
-                      for (int i = 0; i < kLanes; ++i) finite = finite && std::isfinite(f[i]);
-                    if (finite) out.film.addLayerSamples(pixel, lambda, forward.data(), odd);
-                  }
-                } else if (relightable) {
-                  std::fill(layers.begin(), layers.end(), SampledSpectrum());
-                  recorder.contributions.clear();
-                  const SampledSpectrum L = tracePathRelightable(ctx, ray, lambda, rng, counters,
-                                                                 layout, layers.data(), recorder);
-                  if (out.film.addSample(pixel, lambda, L, odd)) {
-                    if (layout.any()) out.film.addLayerSamples(pixel, lambda, layers.data(), odd);
-                    missed +=
-                        out.film.addRelightSamples(pixel, lambda, recorder.contributions, odd);
-                  } else {
-                    ++dropped;
-                  }
-                } else if (layout.any()) {
-                  std::fill(layers.begin(), layers.end(), SampledSpectrum());
-                  const SampledSpectrum L =
-                      tracePathComponents(ctx, ray, lambda, rng, counters, layout, layers.data());
-                  if (out.film.addSample(pixel, lambda, L, odd))
-                    out.film.addLayerSamples(pixel, lambda, layers.data(), odd);
-                  else
-                    ++dropped;
-                } else {
-                  const SampledSpectrum L = whitted ? traceWhitted(ctx, ray, lambda, rng, counters)
-                                                    : tracePath(ctx, ray, lambda, rng, counters);
-                  if (!out.film.addSample(pixel, lambda, L, odd)) ++dropped;
-                }
-                if (out.film.hasWhite()) {
-                  // Its own random numbers (a salted seed): the same for every thread count.
-                  PixelSampleStream whiteRng(*whiteSequences[odd], static_cast<uint32_t>(s) >> 1);
-                  out.film.addWhiteSample(
-                      pixel, lambda, traceWhiteReference(ctx, ray, lambda, whiteRng, counters));
-                }
-              }
-              taken += Film::samplesIn(pixel);
-              out.film.add(x, y, pixel);
-            }
-          }
-          if (reverse) {
-            auto& kept = tileGradients[static_cast<size_t>(tile)];
-            for (uint32_t k = 0; k < slots; ++k)
-              if (tileSums[0][k] != 0 || tileSums[1][k] != 0)
-                kept.push_back({k, tileSums[0][k], tileSums[1][k]});
-          }
-          gradientZeros += tape.zeroValues;
-          rays += counters.rays;
-          truncated += counters.truncated;
-          bounceLimited += counters.bounceLimited;
-          relightMissed += missed;
-          nonFinite += dropped;
-          samples += taken;
-          const int64_t done = ++finished;
-          if (options.progress) {
-            std::lock_guard<std::mutex> lock(progressMutex);
-            options.progress(std::min(done, progressTotal), progressTotal);
-          }
-        },
-        tileContext);
-    if (options.stop && options.stop->load()) out.stats.stopped = true;
-    for (auto& kept : tileGradients) {
-      for (const TileGradient& t : kept) {
-        gradientSum[t.slot] += t.even + t.odd;
-        gradientVarianceSum[t.slot] += (t.even - t.odd) * (t.even - t.odd);
-      }
-      kept.clear();
-    }
-    lastPassSeconds = now() - passStart;
-    anyPass = true;
-    if (options.afterPass) options.afterPass(out.film);
-  };
-
-  if (!options.adaptive) {
-    for (int pass = 0; pass < passes && mayStartPass(); ++pass) {
-      const int passEnd = std::min(end, begin + (pass + 1) * passSize);
-      runPass(passEnd, nullptr);
-      if (!out.stats.stopped) out.stats.samplesReached = passEnd - begin;
-      if (!out.stats.stopped && options.targetRelativeError > 0 && passEnd < end &&
-          options.errorMeasure.of(out.film) <= options.targetRelativeError) {
-        out.stats.reachedTarget = true;
-        break;
-      }
-    }
-  } else {
-    if (!(options.targetRelativeError > 0))
-      throw Error("adaptive sampling needs a target error (--target-error)");
-    if (out.samplesPerPixel < 2)
-      throw Error("adaptive sampling needs at least 2 samples per pixel (one per replicate), "
-                  "found " +
-                  std::to_string(out.samplesPerPixel));
-    const auto maxSamples = static_cast<uint32_t>(out.samplesPerPixel);
-    if (options.adaptivePlan) {
-      const PixelRect& pr = options.adaptivePlan->region;
-      if (rect.x0 < pr.x0 || rect.y0 < pr.y0 || rect.x1 > pr.x1 || rect.y1 > pr.y1)
-        throw Error("internal error: an adaptive plan that does not cover the render's pixels");
-    } else {
-      // The uniform pilot: every pixel gets the same first samples (an even number, so both
-      // replicates are alike), enough to estimate each block's noise.
-      int pilot = std::min(std::max(options.adaptiveMinSamples, 2), out.samplesPerPixel);
-      pilot = std::max(pilot - (pilot & 1), 2);
-      for (int k = 0; begin + k * passSize < begin + pilot && mayStartPass(); ++k)
-        runPass(std::min(begin + pilot, begin + (k + 1) * passSize), nullptr);
-    }
-    // Rounds: plan from the film, render the plan in passes, measure; a given plan is one
-    // round. The error is judged at the end of a round only, so a round is the same work
-    // whether one machine renders it or a farm renders its crops.
-    constexpr int kMaxRounds = 40; // rounds at most double: 2^40 is beyond any count
-    for (int round = 0; round < kMaxRounds && !out.stats.stopped && !out.stats.reachedTimeLimit;
-         ++round) {
-      if (!options.adaptivePlan &&
-          options.errorMeasure.of(out.film) <= options.targetRelativeError) {
-        out.stats.reachedTarget = true;
-        break;
-      }
-      // A given plan is used in place; a planned one lives for this round.
-      std::optional<AdaptivePlan> planned;
-      if (!options.adaptivePlan)
-        planned = planAdaptiveSamples(out.film, options.errorMeasure, options.targetRelativeError,
-                                      maxSamples);
-      const AdaptivePlan& plan = options.adaptivePlan ? *options.adaptivePlan : *planned;
-      if (!plan.addsSamplesTo(out.film)) break;
-      while (plan.addsSamplesTo(out.film) && mayStartPass()) runPass(0, &plan);
-      ++out.stats.adaptiveRounds;
-      if (options.adaptivePlan) break;
-    }
-    if (!options.adaptivePlan && !out.stats.stopped && !out.stats.reachedTarget &&
-        options.errorMeasure.of(out.film) <= options.targetRelativeError)
-      out.stats.reachedTarget = true;
-    uint32_t most = 0;
-    for (int y = rect.y0; y < rect.y1; ++y)
-      for (int x = rect.x0; x < rect.x1; ++x) most = std::max(most, out.film.samples(x, y));
-    out.stats.samplesReached = static_cast<int>(most);
-  }
-  out.stats.relativeError = options.errorMeasure.of(out.film);
-
-  out.stats.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out.stats.samples = samples;
-  out.stats.rays = rays;
-  out.stats.nonFinite = nonFinite;
-  out.stats.truncated = truncated;
-  out.stats.bounceLimited = bounceLimited;
-  out.stats.relightMissed = relightMissed;
-  out.stats.gradientZeroValues = gradientZeros;
-  if (reverse) {
-    // Each replicate's sum estimates half the gradient; per tile, their difference squared
-    // estimates the variance of the tile's share (the film's (A - B)^2 / 4 for the means).
-    out.gradient = std::move(gradientSum);
-    out.gradientVariance = std::move(gradientVarianceSum);
-  }
-  return out;
+          ? WavelengthSampler(film.tracedMinNm(), film.tracedMaxNm())
+          : WavelengthSampler::forSensor(film.bands(), film.tracedMinNm(), film.tracedMaxNm());
+  PassRunner runner(scene, options, target, ctx, wavelengths, tileContext);
+  if (!options.adaptive)
+    runner.uniformPasses();
+  else
+    runner.adaptiveRounds();
+  return runner.finish(start);
 }
 
 std::vector<std::string> warningsOf(const RenderStats& stats) {
