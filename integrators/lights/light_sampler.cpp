@@ -120,6 +120,7 @@ void LightSampler::addSphereLights() {
     const Spectrum* e = emissionOf(scene.spheres[i]);
     const double le = tracedIntegral(*e);
     lights_.push_back({LightKind::Sphere,
+                       ShapeKind::Sphere,
                        static_cast<uint32_t>(i),
                        -1,
                        e,
@@ -153,6 +154,7 @@ void LightSampler::addSurfaceLights() {
       b.twoSided = true;
       lightOf[i] = static_cast<int32_t>(lights_.size());
       Light l{LightKind::Surface,
+              kind,
               static_cast<uint32_t>(i),
               -1,
               e,
@@ -165,7 +167,6 @@ void LightSampler::addSurfaceLights() {
               -1,
               -1,
               LightCluster(b)};
-      l.surface = kind;
       lights_.push_back(l);
     }
   };
@@ -199,6 +200,7 @@ void LightSampler::addMeshLights() {
     if (app.perTriangle.empty()) {
       if (app.whole.emission < 0) continue;
       Light l{LightKind::Mesh,
+              ShapeKind::Sphere,
               static_cast<uint32_t>(m),
               -1,
               emissionOf(app.whole),
@@ -254,6 +256,7 @@ void LightSampler::addMeshLights() {
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       if (app.perTriangle[t].emission < 0) continue;
       Light l{LightKind::Mesh,
+              ShapeKind::Sphere,
               static_cast<uint32_t>(m),
               static_cast<int32_t>(t),
               emissionOf(app.perTriangle[t]),
@@ -290,6 +293,7 @@ void LightSampler::addListedLights() {
           if constexpr (Kind::kInfinite)
             environments_.push_back(static_cast<int32_t>(lights_.size()));
           lights_.push_back({Kind::kInfinite ? LightKind::Environment : LightKind::Point,
+                             ShapeKind::Sphere,
                              static_cast<uint32_t>(i),
                              -1,
                              nullptr,
@@ -313,6 +317,7 @@ void LightSampler::addBackground() {
     background_ = static_cast<int32_t>(lights_.size());
     const double le = tracedIntegral(*scene.background);
     lights_.push_back({LightKind::Background,
+                       ShapeKind::Sphere,
                        0,
                        -1,
                        &*scene.background,
@@ -517,16 +522,15 @@ float LightSampler::localWeight(const Light& l, const Vec3& p, const Vec3& n) co
                           : static_cast<float>(2 * kPi * oneMinusCosFromSin2(r2 / d2)) *
                                 receiverCos(r2 / d2);
     break;
-  case LightKind::Mesh: // at most a hemisphere of one face; the bound of its emitters when far
-    solidAngle = d2 <= r2
-                     ? static_cast<float>(2 * kPi)
-                     : std::min(static_cast<float>(2 * kPi),
-                                l.tree >= 0 ? trees_[static_cast<size_t>(l.tree)].importance(p, n)
-                                            : l.bounds.importance(p, n, true));
+  case LightKind::Mesh:      // at most a hemisphere of one face; the bound of its emitters when far
+  case LightKind::Surface: { // a curved surface (a cylinder) seen from inside: the whole sphere
+    const float most = static_cast<float>((l.kind == LightKind::Surface ? 4 : 2) * kPi);
+    solidAngle =
+        d2 <= r2 ? most
+                 : std::min(most, l.tree >= 0 ? trees_[static_cast<size_t>(l.tree)].importance(p, n)
+                                              : l.bounds.importance(p, n, true));
     break;
-  case LightKind::Surface: // both faces: at most the whole sphere of directions from inside
-    solidAngle = std::min(static_cast<float>(4 * kPi), l.bounds.importance(p, n, true));
-    break;
+  }
   case LightKind::Background: // |cos| over the sphere integrates to 2 pi
   case LightKind::Environment:
     solidAngle = static_cast<float>((receiver ? 2 : 4) * kPi);

@@ -176,7 +176,8 @@ public:
 private:
   struct Light {
     LightKind kind;
-    uint32_t shape;           ///< sphere, mesh or point-light index
+    ShapeKind surface;        ///< Surface lights: a disk or a cylinder (else unused)
+    uint32_t shape;           ///< sphere, mesh, disk, cylinder or point-light index
     int32_t triangle = -1;    ///< an inline triangle of the mesh, or -1 for the whole mesh
     const Spectrum* emission; ///< radiance, or a point light's intensity
     double area = 0;          ///< mesh lights: total area
@@ -188,7 +189,6 @@ private:
     int32_t tree = -1;      ///< whole meshes of more than kSolidAngleChoice triangles: trees_
     int32_t rectangle = -1; ///< whole meshes forming a rectangle: rectangles_
     LightCluster bounds;    ///< meshes, triangles, disks, cylinders: box, normals, area
-    ShapeKind surface = ShapeKind::Disk; ///< Surface lights: a disk or a cylinder
   };
   /// Weight of light l at p (shading normal n) for LightSelection::Local (positive wherever
   /// it can shine).
