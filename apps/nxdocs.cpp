@@ -5,7 +5,8 @@
 //   what --write writes
 //
 // The material kinds and their parameters come from the registry (integrators/materials/kinds/,
-// core/params/material_parameters.cpp), the other parameters from core/params/scene_parameters.cpp. CI runs
+// core/params/material_parameters.cpp), the other parameters from core/params/scene_parameters.cpp.
+// CI runs
 // --check (ctest docs.reference_current); `cmake --build build --target reference-docs` runs
 // --write.
 
@@ -19,12 +20,12 @@
 #include "accel/shape_kinds.h"
 #include "apps/command_line.h"
 #include "core/file_text.h"
+#include "core/params/material_parameters.h"
+#include "core/params/scene_parameters.h"
 #include "core/text_table.h"
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
-#include "core/params/material_parameters.h"
-#include "core/params/scene_parameters.h"
 
 namespace {
 
@@ -223,14 +224,17 @@ std::string pythonDoc() {
   std::ostringstream o;
   o << "# Python: the scene's parameters by name\n\n" << kGenerated;
   o << "`Scene.parameters()` returns a dict from these names to `{value, type, unit, range, "
-       "default, doc}`; `Scene.get(name)` and `Scene.set(name, value)` read and set one (set "
+       "default, doc, differentiable}` (differentiable: `render(gradients=...)` and "
+       "`nxrender.backward` give derivatives with respect to it, as its declaration says); "
+       "`Scene.get(name)` and `Scene.set(name, value)` read and set one (set "
        "checks the value as the scene file's reader does and records it in `Scene.edits`, the "
        "render key and the image's `nxrender.sceneEdits`). `i` is an object's or light's "
        "position in the file, `id` a `<material id>`. Parameters of an object's own material "
        "are named after the object (`objects[i].reflectance`); those of a shared material after "
        "it (`materials['id'].reflectance`). A material lists every parameter its kind takes, "
        "given or not (value None: the kind's default).\n\n";
-  o << "| name | type | unit | range | meaning |\n|---|---|---|---|---|\n";
+  o << "| name | type | unit | range | d | meaning |\n|---|---|---|---|---|---|\n";
+  const auto d = [](bool differentiable) { return differentiable ? " | yes | " : " | | "; };
   auto nameOf = [](const std::string& key) {
     const size_t dot = key.find('.');
     const std::string item = dot == std::string::npos ? "" : key.substr(0, dot),
@@ -247,28 +251,31 @@ std::string pythonDoc() {
   };
   for (const nx::FixedParameter& f : nx::fixedParameters())
     o << "| `" << cell(nameOf(f.key)) << "` | " << f.type << " | " << f.unit << " | "
-      << rangeText(f.range) << " | " << cell(f.doc) << " |\n";
+      << rangeText(f.range) << d(f.differentiable) << cell(f.doc) << " |\n";
   for (const nx::ParamSpec& p : nx::materialParameters())
     o << "| `objects[i]." << p.name << "`, `materials['id']." << p.name << "` | "
       << nx::paramTypeName(p.type) << " | " << p.unit << " | "
-      << rangeText(p.type == nx::ParamType::Number ? p.range : nullptr) << " | " << cell(p.doc)
-      << " ([materials.md](materials.md)) |\n";
+      << rangeText(p.type == nx::ParamType::Number ? p.range : nullptr) << d(p.differentiable)
+      << cell(p.doc) << " ([materials.md](materials.md)) |\n";
   for (const nx::ShapeKindSpec& k : nx::shapeKinds())
     for (const nx::ShapeParameter& p : k.params())
       o << "| `objects[i]." << p.spec.name << "` (" << k.name << ") | "
         << nx::paramTypeName(p.spec.type) << " | " << (*p.spec.unit ? p.spec.unit : "-") << " | "
-        << rangeText(p.spec.range) << " | " << cell(p.spec.doc) << " ([shapes.md](shapes.md)) |\n";
+        << rangeText(p.spec.range) << d(p.spec.differentiable) << cell(p.spec.doc)
+        << " ([shapes.md](shapes.md)) |\n";
   for (const nx::MediumKindSpec& k : nx::mediumKinds())
     for (const nx::TakenParameter& p : k.params())
       if (p.spec.type != nx::ParamType::Dye)
         o << "| `objects[i].medium." << p.spec.name << "` (" << k.name << ") | "
           << nx::paramTypeName(p.spec.type) << " | " << p.spec.unit << " | "
-          << rangeText(p.spec.range) << " | " << cell(p.spec.doc) << " ([media.md](media.md)) |\n";
+          << rangeText(p.spec.range) << d(p.spec.differentiable) << cell(p.spec.doc)
+          << " ([media.md](media.md)) |\n";
   for (const nx::LightKindSpec& k : nx::lightKinds())
     for (const nx::LightParameter& p : k.params())
       o << "| `lights[i]." << p.spec.name << "` (" << k.name << ") | "
         << nx::paramTypeName(p.spec.type) << " | " << p.spec.unit << " | "
-        << rangeText(p.spec.range) << " | " << cell(p.spec.doc) << " ([lights.md](lights.md)) |\n";
+        << rangeText(p.spec.range) << d(p.spec.differentiable) << cell(p.spec.doc)
+        << " ([lights.md](lights.md)) |\n";
   o << "\nPython values: numbers as float, points as (x, y, z), spectra as a float, a name, "
        "(wavelengths_nm, values) or \"csv:FILE[#COLUMN]\", an ior as a float, a glass name or "
        "(\"cauchy\" | \"sellmeier\", coefficients), a coating as (thickness_nm, ior), a measured "

@@ -41,8 +41,8 @@ class Builder {
 public:
   explicit Builder(const SceneDesc& desc) : desc_(desc), refs_(desc), mediumInputs_(*this) {}
 
-  RenderScene build(bool withGeometry) {
-    RenderScene scene;
+  // The settings, the camera, the preview's white, the relightable check and the background.
+  void buildSettings(RenderScene& scene) const {
     const SettingsDesc& s = desc_.settings;
     scene.settings = {s.width, s.height, s.mode, s.depth, s.samples, s.seed, s.bands, s.outputPath};
     scene.camera = cameraFromDesc(desc_.camera, s.width, s.height);
@@ -68,6 +68,58 @@ public:
                                 scene.lightGroups.ofBackground, s.background->loc, scene,
                                 scene.lightGroups.sourceOfBackground);
     }
+  }
+
+  // The closed meshes of a scene with media, (volume, mesh), each marked as a boundary of the
+  // side its triangles face; a <medium> in a mesh that is not closed is an error.
+  std::vector<std::pair<double, size_t>>
+  closedMeshBoundaries(RenderScene& scene, const std::vector<TriangleMesh>& meshes,
+                       const std::vector<std::pair<size_t, size_t>>& meshObjects) const {
+    std::vector<std::pair<double, size_t>> closedMeshes; // (volume, mesh)
+    for (const auto& [meshIndex, objectIndex] : meshObjects) {
+      const ObjectDesc& o = desc_.objects[objectIndex];
+      if (!scene.hasMedia) break;
+      const MeshClosure c = meshClosure(meshes[meshIndex]);
+      if (!c.closed && o.medium)
+        throw Error(o.medium->loc.str() +
+                    ": expected a closed mesh around a <medium> (every "
+                    "edge shared by two triangles wound alike), found " +
+                    c.problem + " in " +
+                    (o.geometry.has("file") ? *o.geometry.get<std::string>("file") : o.shape));
+      if (!c.closed) continue;
+      scene.meshes[meshIndex].whole.boundary = c.volume > 0 ? 1 : -1;
+      closedMeshes.emplace_back(std::abs(c.volume), meshIndex);
+    }
+    return closedMeshes;
+  }
+
+  // The material of object o (its id objectId): stored once per distinct description, the
+  // kind and the canonical text of its parameters (a <material id>'s, or inline ones written
+  // alike), so 16,000 triangles of one colour share one material and one upsampling fit; its
+  // MaterialId is the first object using that description.
+  uint32_t sharedMaterial(const ObjectDesc& o, uint32_t objectId, bool spectral,
+                          RenderScene& scene) {
+    const bool emitter = o.emission.has_value();
+    const MaterialDesc& md =
+        o.materialRef.empty() ? static_cast<const MaterialDesc&>(o) : namedMaterial(o.materialRef);
+    const std::string text = identityText(md, emitter);
+    if (auto it = materialByText_.find(text); it != materialByText_.end()) return it->second;
+    Material m = material(md, o.materialRef.empty() ? o.loc : namedMaterialLoc(o.materialRef),
+                          emitter, spectral);
+    m.reflectance = forRendering(m.reflectance);
+    if (m.reradiation) scene.hasFluorescence = true;
+    materialIdOf_.push_back(objectId);
+    const auto index = static_cast<uint32_t>(scene.materials.size());
+    scene.materials.push_back(std::move(m));
+    materialByText_.emplace(text, index);
+    return index;
+  }
+
+  RenderScene build(bool withGeometry) {
+    RenderScene scene;
+    const SettingsDesc& s = desc_.settings;
+    const bool spectral = s.mode == RenderMode::SpectralMcpt;
+    buildSettings(scene);
 
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
@@ -76,12 +128,6 @@ public:
     std::vector<TriangleMesh> meshes;
     std::vector<DiskShape> disks;
     std::vector<CylinderShape> cylinders;
-    // Materials are stored once per distinct description: the kind and the canonical text of
-    // its parameters (a <material id>'s, or inline ones written alike), so 16,000 triangles of
-    // one colour share one material and one upsampling fit. MaterialId: the first object using
-    // that description.
-    std::map<std::string, uint32_t> materialByText;
-    std::vector<uint32_t> materialIdOf;                 // per material index
     std::vector<std::pair<size_t, size_t>> meshObjects; // (mesh, object) of meshes
     const ShapeKindInputs shapeInputs(*this);
     for (size_t objectIndex = 0; objectIndex < desc_.objects.size(); ++objectIndex) {
@@ -93,23 +139,8 @@ public:
                                              o.material + ")");
       ShapeAppearance app;
       app.objectId = static_cast<uint32_t>(objectIndex + 1);
-      const bool emitter = o.emission.has_value();
-      const MaterialDesc& md = o.materialRef.empty() ? static_cast<const MaterialDesc&>(o)
-                                                     : namedMaterial(o.materialRef);
-      const std::string text = identityText(md, emitter);
-      if (auto it = materialByText.find(text); it != materialByText.end()) {
-        app.material = it->second;
-      } else {
-        Material m = material(md, o.materialRef.empty() ? o.loc : namedMaterialLoc(o.materialRef),
-                              emitter, spectral);
-        m.reflectance = forRendering(m.reflectance);
-        if (m.reradiation) scene.hasFluorescence = true;
-        materialIdOf.push_back(app.objectId);
-        app.material = static_cast<uint32_t>(scene.materials.size());
-        scene.materials.push_back(std::move(m));
-        materialByText.emplace(text, app.material);
-      }
-      app.materialId = materialIdOf[app.material];
+      app.material = sharedMaterial(o, app.objectId, spectral, scene);
+      app.materialId = materialIdOf_[app.material];
       // Surfaces light passes straight through need the path tracer that sees through them.
       if (scene.materials[app.material].kind == MaterialKind::Interface ||
           scene.materials[app.material].kind == MaterialKind::ThinDielectric)
@@ -197,21 +228,8 @@ public:
       scene.meshes.push_back(std::move(inlineTriangles));
     }
     // In scenes with media, closed meshes are boundaries the paths' medium stacks follow.
-    std::vector<std::pair<double, size_t>> closedMeshes; // (volume, mesh)
-    for (const auto& [meshIndex, objectIndex] : meshObjects) {
-      const ObjectDesc& o = desc_.objects[objectIndex];
-      if (!scene.hasMedia) break;
-      const MeshClosure c = meshClosure(meshes[meshIndex]);
-      if (!c.closed && o.medium)
-        throw Error(o.medium->loc.str() +
-                    ": expected a closed mesh around a <medium> (every "
-                    "edge shared by two triangles wound alike), found " +
-                    c.problem + " in " +
-                    (o.geometry.has("file") ? *o.geometry.get<std::string>("file") : o.shape));
-      if (!c.closed) continue;
-      scene.meshes[meshIndex].whole.boundary = c.volume > 0 ? 1 : -1;
-      closedMeshes.emplace_back(std::abs(c.volume), meshIndex);
-    }
+    const std::vector<std::pair<double, size_t>> closedMeshes =
+        closedMeshBoundaries(scene, meshes, meshObjects);
     if (scene.hasMedia && s.mode == RenderMode::Rt)
       throw Error(s.modeLoc.str() +
                   ": expected <mode> spectral_mcpt or mcpt for a scene with media, interface or "
@@ -737,6 +755,8 @@ private:
   const SceneDesc& desc_;
   mutable SceneReferences refs_;              ///< spectra resolved, referenced files in the digest
   mutable std::vector<std::string> warnings_; ///< the kinds' builds' warnings
+  std::map<std::string, uint32_t> materialByText_;      ///< a description's material index
+  std::vector<uint32_t> materialIdOf_;                  ///< per material index: its MaterialId
   mutable std::vector<EmissionWindow> emissionWindows_; ///< imported EEMs' emission windows
   const MediumKindInputs mediumInputs_;                 ///< what the media kinds ask of the scene
 };

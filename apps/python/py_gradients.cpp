@@ -137,17 +137,6 @@ bool resolvedWith(const py::object& scene, const std::string& name, const py::ob
 
 } // namespace
 
-const std::vector<std::string>& differentiableLeaves() {
-  static const std::vector<std::string> leaves = {
-      "reflectance", "color",         "emission",         "emission_scale",
-      "background",  "absorption_nm", "stokes_nm",        "width_nm",
-      "skew",        "quantum_yield", "peak_absorptance", "sigma_a",
-      "sigma_s",     "sigma_a_scale", "sigma_s_scale",    "g",
-      "dye_peak",    "value",         "concentration",    "matrix",
-      "alpha",       "alpha_u",       "alpha_v"};
-  return leaves;
-}
-
 GradientRequest gradientRequest(const py::object& scene, const py::handle& names,
                                 const nx::RenderScene& base, bool fluorescence) {
   if (py::isinstance<py::str>(names) || !py::hasattr(names, "__iter__"))
@@ -165,10 +154,8 @@ GradientRequest gradientRequest(const py::object& scene, const py::handle& names
       throw py::key_error("gradients: no scene parameter named '" + name +
                           "' (scene.parameters() lists them)");
     const std::string leaf = leafOf(name);
-    const auto& leaves = differentiableLeaves();
-    if (std::find(leaves.begin(), leaves.end(), leaf) == leaves.end() ||
-        (leaf == "value" && name.rfind("spectra[", 0) != 0) ||
-        (leaf == "emission" && name.rfind("camera", 0) == 0))
+    // Which parameters are differentiable: their declarations say (parameters()).
+    if (!known[py::str(name)]["differentiable"].cast<bool>())
       throw py::value_error(name +
                             ": not differentiated: only appearance parameters are (reflectance, "
                             "fluorescence, media, emission: docs/inverse.md); shape, camera, "

@@ -29,8 +29,4 @@ struct GradientRequest {
 GradientRequest gradientRequest(const py::object& scene, const py::handle& names,
                                 const nx::RenderScene& base, bool fluorescence);
 
-/// The names of the parameters nxrender differentiates (the last part of a parameter's name),
-/// for messages and docs.
-const std::vector<std::string>& differentiableLeaves();
-
 } // namespace nxpy

@@ -2,8 +2,8 @@
 // by a stable name (the names Scene.edits records), with its type, unit, range and meaning.
 // Shape, material and light parameters come from the kinds' schemas (accel/shape_kinds.h,
 // integrators/materials/material_kind.h, integrators/lights/light_kinds.h); the others from
-// the table of core/params/scene_parameters.cpp. Values are read and set through the views' properties, so
-// a value set by name is checked and recorded exactly as one set by attribute.
+// the table of core/params/scene_parameters.cpp. Values are read and set through the views'
+// properties, so a value set by name is checked and recorded exactly as one set by attribute.
 
 #include "apps/python/py_scene_parameters.h"
 
@@ -12,11 +12,11 @@
 #include <cctype>
 
 #include "accel/shape_kinds.h"
+#include "core/params/material_parameters.h"
+#include "core/params/scene_parameters.h"
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
-#include "core/params/material_parameters.h"
-#include "core/params/scene_parameters.h"
 
 namespace nxpy {
 namespace {
@@ -29,11 +29,12 @@ const nx::FixedParameter& fixed(const std::string& key) {
 struct Entry {
   std::string name, type, unit, doc, defaultText;
   const nx::ParameterRange* range = nullptr;
+  bool differentiable = false;
 };
 
 void addFixed(std::vector<Entry>& out, const std::string& name, const std::string& key) {
   const nx::FixedParameter& f = fixed(key);
-  out.push_back({name, f.type, f.unit, f.doc, "", f.range});
+  out.push_back({name, f.type, f.unit, f.doc, "", f.range, f.differentiable});
 }
 
 // The fluorescence fields of a material or a dye named `prefix`.
@@ -62,7 +63,7 @@ void addMaterial(std::vector<Entry>& out, const std::string& label, const nx::Ma
   for (const nx::KindParameter& p : kind->params) {
     const nx::ParamSpec& spec = *nx::materialParameter(p.name);
     out.push_back({label + "." + p.name, nx::paramTypeName(spec.type), spec.unit,
-                   *p.doc ? p.doc : spec.doc, p.defaultText, spec.range});
+                   *p.doc ? p.doc : spec.doc, p.defaultText, spec.range, spec.differentiable});
     if (spec.type == nx::ParamType::Fluorescence)
       if (const auto* f = m.params.get<nx::FluorescenceDesc>("fluorescence"))
         addFluorescence(out, label + ".fluorescence", *f, false);
@@ -76,7 +77,7 @@ void addTaken(std::vector<Entry>& out, const std::string& label,
   for (const nx::TakenParameter& p : params)
     if (p.spec.type != nx::ParamType::Dye)
       out.push_back({label + "." + p.spec.name, nx::paramTypeName(p.spec.type), p.spec.unit,
-                     p.spec.doc, p.defaultText, p.spec.range});
+                     p.spec.doc, p.defaultText, p.spec.range, p.spec.differentiable});
 }
 
 std::vector<Entry> entries(const SceneState& s) {
@@ -102,7 +103,7 @@ std::vector<Entry> entries(const SceneState& s) {
     if (const nx::ShapeKindSpec* kind = nx::findShapeKind(o.shape))
       for (const nx::ShapeParameter& p : kind->params())
         out.push_back({label + "." + p.spec.name, nx::paramTypeName(p.spec.type), p.spec.unit,
-                       p.spec.doc, "", p.spec.range});
+                       p.spec.doc, "", p.spec.range, p.spec.differentiable});
     addFixed(out, label + ".emission", "object.emission");
     if (o.emission)
       for (const char* f : {"emission_scale", "emission_at", "emission_quantity"})
@@ -225,13 +226,15 @@ void bindSceneParameters(py::module_& m) {
                                : py::object(py::none());
           d["default"] = e.defaultText.empty() ? py::object(py::none()) : py::str(e.defaultText);
           d["doc"] = e.doc;
+          d["differentiable"] = e.differentiable;
           out[py::str(e.name)] = d;
         }
         return out;
       },
       py::name("parameters"), py::is_method(scene),
       "Every parameter of the scene by its stable name (the names Scene.edits records): a dict "
-      "name -> {value, type, unit, range, default, doc}. Material parameters a kind takes are "
+      "name -> {value, type, unit, range, default, doc, differentiable}. Material parameters a "
+      "kind takes are "
       "listed whether given or not (value None: the kind's default).");
   scene.attr("get") = py::cpp_function(
       [](const py::object& self, const std::string& name) -> py::object {

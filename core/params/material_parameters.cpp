@@ -4,14 +4,16 @@ namespace nx {
 
 std::span<const ParamSpec> materialParameters() {
   static const ParamSpec specs[] = {
-      {"color", ParamType::Rgb, "1", &kUnitRange,
-       "sRGB colour R, G, B[, A] in [0, 1]: rt and mcpt upsample it to a reflectance; "
-       "spectral_mcpt uses it when there is no <reflectance>",
-       "0.8, 0.2, 0.1"},
-      {"reflectance", ParamType::Reflectance, "1", nullptr,
-       "reflectance (a dielectric's transmission tint) in [0, 1] at every wavelength, or a "
-       "texture",
-       "400:0.2, 700:0.8"},
+      differentiable(
+          {"color", ParamType::Rgb, "1", &kUnitRange,
+           "sRGB colour R, G, B[, A] in [0, 1]: rt and mcpt upsample it to a reflectance; "
+           "spectral_mcpt uses it when there is no <reflectance>",
+           "0.8, 0.2, 0.1"}),
+      differentiable(
+          {"reflectance", ParamType::Reflectance, "1", nullptr,
+           "reflectance (a dielectric's transmission tint) in [0, 1] at every wavelength, or a "
+           "texture",
+           "400:0.2, 700:0.8"}),
       {"roughness", ParamType::Number, "1", &kRoughnessRange,
        "weight r of the Lambertian lobe in Niixtracer's mixture (1 - r) mirror + r Lambertian",
        "0.5"},
@@ -29,12 +31,13 @@ std::span<const ParamSpec> materialParameters() {
        "extinction coefficient of a conductor's complex index, within [0, 1000]", "3.5", "metal"},
       {"metal", ParamType::Name, "-", nullptr,
        "a built-in metal's measured eta and k: gold, silver, copper, aluminium", "gold", "eta k"},
-      {"alpha", ParamType::Number, "1", &kAlphaRange, "isotropic GGX roughness alpha (0: smooth)",
-       "0.2", "alpha_u alpha_v"},
-      {"alpha_u", ParamType::Number, "1", &kAlphaRange,
-       "GGX roughness along the surface tangent dpdu (with <alpha_v>)", "0.1", "alpha"},
-      {"alpha_v", ParamType::Number, "1", &kAlphaRange,
-       "GGX roughness across the surface tangent (with <alpha_u>)", "0.3", "alpha"},
+      differentiable({"alpha", ParamType::Number, "1", &kAlphaRange,
+                      "isotropic GGX roughness alpha (0: smooth)", "0.2", "alpha_u alpha_v"}),
+      differentiable({"alpha_u", ParamType::Number, "1", &kAlphaRange,
+                      "GGX roughness along the surface tangent dpdu (with <alpha_v>)", "0.1",
+                      "alpha"}),
+      differentiable({"alpha_v", ParamType::Number, "1", &kAlphaRange,
+                      "GGX roughness across the surface tangent (with <alpha_u>)", "0.3", "alpha"}),
       {"coating", ParamType::Coating, "nm", &kCoatingThicknessRange,
        "thin-film coating: <thickness> in nm and its <ior> (interference colours)",
        "<thickness>150</thickness><ior>1.4</ior>"},

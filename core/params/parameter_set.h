@@ -71,7 +71,16 @@ struct ParamSpec {
   const char* what = "";
   /// Reals and Indices: the numbers per row (3 for x, y, z; 2 for u, v).
   uint32_t columns = 0;
+  /// Renders can differentiate with respect to it (render(gradients=...), nxrender.backward);
+  /// declared with differentiable(...).
+  bool differentiable = false;
 };
+
+/// `s` declared differentiable (renders give derivatives with respect to it).
+constexpr ParamSpec differentiable(ParamSpec s) {
+  s.differentiable = true;
+  return s;
+}
 
 /// One parameter a light or medium kind takes: its declaration, its default, whether it is
 /// required. A Spectrum parameter NAME may have a factor NAME_scale, written as its

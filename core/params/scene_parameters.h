@@ -19,6 +19,7 @@ struct FixedParameter {
   const char* unit;
   const ParameterRange* range; ///< numbers: the allowed values; null otherwise
   const char* doc;
+  bool differentiable = false; ///< renders give derivatives with respect to it
 };
 
 /// Every such parameter, in the order they are listed.

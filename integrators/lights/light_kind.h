@@ -11,11 +11,11 @@
 #include <string>
 
 #include "core/math_util.h"
+#include "core/params/parameter_set.h"
 #include "core/sampler.h"
 #include "integrators/lights/light_bounds.h"
 #include "integrators/lights/light_sample.h"
 #include "integrators/materials/material_kind.h"
-#include "core/params/parameter_set.h"
 #include "io/spectral_exr.h"
 #include "spectra/spectrum.h"
 
@@ -56,8 +56,8 @@ inline const LightParameter kLightPosition{
     {"position", ParamType::Point, "scene units", nullptr, "where it is", "0, 5, 0"}, "", true};
 /// The factor on a light's <emission>, written as its scale="...".
 inline const LightParameter kLightEmissionScale{
-    {"emission_scale", ParamType::Number, "1", &kEmissionScaleRange,
-     "the factor on <emission> (its scale=\"...\")", "2", "", "emission scale"},
+    differentiable({"emission_scale", ParamType::Number, "1", &kEmissionScaleRange,
+                    "the factor on <emission> (its scale=\"...\")", "2", "", "emission scale"}),
     "1"};
 
 /// <emission at="d">: the emission is the spectral irradiance E the lamp gives on its axis at

@@ -12,8 +12,8 @@
 #include <span>
 
 #include "core/error.h"
-#include "integrators/materials/material_kind.h"
 #include "core/params/parameter_set.h"
+#include "integrators/materials/material_kind.h"
 #include "spectra/reradiation_matrix.h"
 #include "spectra/sampled_wavelengths.h"
 #include "spectra/spectrum.h"
@@ -90,34 +90,39 @@ struct HomogeneousMediumKind {
   /// Its parameters.
   static std::span<const TakenParameter> parameters() {
     static const TakenParameter p[] = {
-        {{"sigma_a", ParamType::Spectrum, "1/scene unit", nullptr,
-          "absorption coefficient (besides the dye's); scale=\"...\" multiplies it",
-          "water:absorption"},
-         "",
-         true},
-        {{"sigma_a_scale", ParamType::Number, "1", &kPositiveScaleRange,
-          "the factor on <sigma_a> (its scale=\"...\", e.g. 0.01 for a per-metre table in "
-          "centimetres)",
-          "0.01", "", "coefficient scale"},
+        {differentiable({"sigma_a", ParamType::Spectrum, "1/scene unit", nullptr,
+                         "absorption coefficient (besides the dye's); scale=\"...\" multiplies it",
+                         "water:absorption"}),
+         "", true},
+        {differentiable(
+             {"sigma_a_scale", ParamType::Number, "1", &kPositiveScaleRange,
+              "the factor on <sigma_a> (its scale=\"...\", e.g. 0.01 for a per-metre table in "
+              "centimetres)",
+              "0.01", "", "coefficient scale"}),
          "1"},
-        {{"sigma_s", ParamType::Spectrum, "1/scene unit", nullptr,
-          "scattering coefficient; scale=\"...\" multiplies it", "0.5"},
-         "",
-         true},
-        {{"sigma_s_scale", ParamType::Number, "1", &kPositiveScaleRange,
-          "the factor on <sigma_s> (its scale=\"...\")", "0.01", "", "coefficient scale"},
+        {differentiable({"sigma_s", ParamType::Spectrum, "1/scene unit", nullptr,
+                         "scattering coefficient; scale=\"...\" multiplies it", "0.5"}),
+         "", true},
+        {differentiable({"sigma_s_scale", ParamType::Number, "1", &kPositiveScaleRange,
+                         "the factor on <sigma_s> (its scale=\"...\")", "0.01", "",
+                         "coefficient scale"}),
          "1"},
-        {{"g", ParamType::Number, "1", &kPhaseGRange, "Henyey-Greenstein mean cosine", "0.3"}, "0"},
+        {differentiable(
+             {"g", ParamType::Number, "1", &kPhaseGRange, "Henyey-Greenstein mean cosine", "0.3"}),
+         "0"},
         {{"fluorescence", ParamType::Dye, "", nullptr,
           "a dissolved fluorescent dye: the parametric model, its <peak> the dye's peak "
           "absorption coefficient per unit length (added to sigma_a)",
           "<absorption>blue</absorption><stokes>60</stokes><peak>2</peak>"},
          ""},
-        {{"emission", ParamType::Spectrum, "W m^-2 sr^-1 nm^-1", nullptr,
-          "emitted radiance Le: the medium emits sigma_a Le per unit length (Kirchhoff)", "D65"},
+        {differentiable(
+             {"emission", ParamType::Spectrum, "W m^-2 sr^-1 nm^-1", nullptr,
+              "emitted radiance Le: the medium emits sigma_a Le per unit length (Kirchhoff)",
+              "D65"}),
          ""},
-        {{"emission_scale", ParamType::Number, "1", &kEmissionScaleRange,
-          "the factor on <emission> (its scale=\"...\")", "2", "", "emission scale"},
+        {differentiable({"emission_scale", ParamType::Number, "1", &kEmissionScaleRange,
+                         "the factor on <emission> (its scale=\"...\")", "2", "",
+                         "emission scale"}),
          "1"},
     };
     return p;

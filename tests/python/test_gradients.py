@@ -250,3 +250,17 @@ def test_measured_matrix_cells(scene):
             s2.objects[1].material.set_fluorescence_matrix(ex, em, v2)
             images.append(nxrender.render(s2, spp=64, seed=5, threads=2).radiance.astype(np.float64))
         expect_agrees(g[i, j], (images[0] - images[1]) / 0.01)
+
+
+def test_the_declarations_say_which_parameters_are_differentiable(scenes):
+    """parameters() reports each parameter's declared `differentiable`, and a gradient request
+    follows it: appearance parameters are, geometry and settings are not (yet)."""
+    scene = nxrender.Scene(str(scenes / "blacklight.scn"))
+    params = scene.parameters()
+    assert all(isinstance(p["differentiable"], bool) for p in params.values())
+    assert params["objects[1].fluorescence.stokes_nm"]["differentiable"]
+    assert params["background"]["differentiable"] is (params["background"]["type"] == "spectrum")
+    for name in ("spp", "camera.fov", "objects[0].normal"):
+        assert not params[name]["differentiable"], name
+        with pytest.raises(ValueError, match="not differentiated"):
+            nxrender.render(scene, spp=1, gradients=[name])

@@ -67,7 +67,7 @@ def test_every_parameter_is_settable_by_name_and_renders(path):
     assert parameters, "a scene has parameters"
     changed = 0
     for name, info in parameters.items():
-        assert set(info) == {"value", "type", "unit", "range", "default", "doc"}
+        assert set(info) == {"value", "type", "unit", "range", "default", "doc", "differentiable"}
         assert info["doc"], name
         value = new_value(name, info)
         if value is None:

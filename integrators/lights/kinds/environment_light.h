@@ -22,7 +22,7 @@ namespace nx {
 /// An environment light.
 struct EnvironmentLight {
   int width = 0, height = 0;
-  std::vector<double> bandNm;                        ///< the map's band centroids, increasing
+  std::vector<double> bandNm; ///< the map's band centroids, increasing
   /// What its bands cover: from the first band's lower edge to the last's upper one (a band's
   /// value holds over its support, not from its centroid); beyond, 0 or held (extrapolate).
   double supportLoNm = 0, supportHiNm = 0;

@@ -20,12 +20,12 @@ struct PointLight {
   static std::span<const LightParameter> parameters() {
     static const LightParameter p[] = {
         kLightPosition,
-        {{"color", ParamType::Rgb, "W sr^-1 nm^-1", nullptr,
-          "RGB intensity (rt and mcpt; spectral_mcpt without <emission>)", "40, 40, 40"},
-         "",
-         true},
-        {{"emission", ParamType::Spectrum, "W sr^-1 nm^-1", nullptr,
-          "spectral intensity (spectral_mcpt); scale=\"...\" multiplies it", "D65"},
+        {differentiable({"color", ParamType::Rgb, "W sr^-1 nm^-1", nullptr,
+                         "RGB intensity (rt and mcpt; spectral_mcpt without <emission>)",
+                         "40, 40, 40"}),
+         "", true},
+        {differentiable({"emission", ParamType::Spectrum, "W sr^-1 nm^-1", nullptr,
+                         "spectral intensity (spectral_mcpt); scale=\"...\" multiplies it", "D65"}),
          ""},
         kLightEmissionScale,
         kLightEmissionAt,

@@ -44,14 +44,16 @@ struct SpotLight {
         {{"falloff_angle", ParamType::Number, "degrees", &kSpotFalloffRange,
           "half-angle within which the intensity is whole (smoothstep to the edge)", "20"},
          "cone_angle"},
-        {{"color", ParamType::Rgb, "W sr^-1 nm^-1", nullptr,
-          "RGB intensity on the axis (rt and mcpt; spectral_mcpt without <emission>)",
-          "40, 40, 40"},
+        {differentiable(
+             {"color", ParamType::Rgb, "W sr^-1 nm^-1", nullptr,
+              "RGB intensity on the axis (rt and mcpt; spectral_mcpt without <emission>)",
+              "40, 40, 40"}),
          ""},
-        {{"emission", ParamType::Spectrum, "W sr^-1 nm^-1", nullptr,
-          "spectral intensity on the axis (a measured lamp: csv=\"...\"); scale=\"...\" "
-          "multiplies it",
-          "A"},
+        {differentiable(
+             {"emission", ParamType::Spectrum, "W sr^-1 nm^-1", nullptr,
+              "spectral intensity on the axis (a measured lamp: csv=\"...\"); scale=\"...\" "
+              "multiplies it",
+              "A"}),
          ""},
         kLightEmissionScale,
         kLightEmissionAt,
