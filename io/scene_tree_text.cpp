@@ -42,6 +42,9 @@ const Names kSpectrumAttributes{"csv",     "column", "extrapolate", "negative",
 const char* const kAttributeSuffixes[] = {"scale", "at", "quantity", "group"};
 // Keys whose values are rows of numbers, never (wavelengths, values) pairs.
 const Names kRowKeys{"vertices", "faces", "normals", "uv", "transform", "matrix"};
+// Rows of real numbers kept as float (a mesh's): written as the float each number rounds to,
+// exactly as numbers set from Python are rounded (one rounding, not two through decimal text).
+const Names kFloatRowKeys{"vertices", "normals", "uv"};
 
 // The attributes an element takes, by its tag (objects: kObjectAttributes).
 const Names& attributesOf(const std::string& tag) {
@@ -116,17 +119,20 @@ bool isNumeric(const SceneTree& t) {
   return false;
 }
 
-// Appends the numbers of t, flattened.
-void flatten(const SceneTree& t, std::vector<std::string>& out) {
-  if (const double* d = t.as<double>()) out.push_back(numberText(*d, Array::Kind::Float64));
+// Appends the numbers of t, flattened (asFloat: real numbers as the floats they round to).
+void flatten(const SceneTree& t, std::vector<std::string>& out, bool asFloat = false) {
+  const auto kindOf = [&](Array::Kind k) {
+    return asFloat && k != Array::Kind::Integer ? Array::Kind::Float32 : k;
+  };
+  if (const double* d = t.as<double>()) out.push_back(numberText(*d, kindOf(Array::Kind::Float64)));
   if (const Array* a = t.as<Array>())
-    for (double v : a->values) out.push_back(numberText(v, a->kind));
+    for (double v : a->values) out.push_back(numberText(v, kindOf(a->kind)));
   if (const List* l = t.as<List>())
-    for (const SceneTree& x : *l) flatten(x, out);
+    for (const SceneTree& x : *l) flatten(x, out, asFloat);
 }
 
 // Numbers as text: rows (the outer list's items, an array's rows) separated by commas.
-std::string numbersText(const SceneTree& t) {
+std::string numbersText(const SceneTree& t, bool asFloat = false) {
   std::string out;
   auto row = [&](const std::vector<std::string>& numbers) {
     if (!out.empty()) out += ", ";
@@ -136,7 +142,9 @@ std::string numbersText(const SceneTree& t) {
     const size_t width = a->columns ? a->columns : 1;
     std::vector<std::string> r;
     for (size_t i = 0; i < a->values.size(); ++i) {
-      r.push_back(numberText(a->values[i], a->kind));
+      r.push_back(numberText(a->values[i], asFloat && a->kind != Array::Kind::Integer
+                                               ? Array::Kind::Float32
+                                               : a->kind));
       if (r.size() == width || a->columns == 0) row(r), r.clear();
     }
     return out;
@@ -144,13 +152,13 @@ std::string numbersText(const SceneTree& t) {
   if (const List* l = t.as<List>()) {
     for (const SceneTree& x : *l) {
       std::vector<std::string> r;
-      flatten(x, r);
+      flatten(x, r, asFloat);
       row(r);
     }
     return out;
   }
   std::vector<std::string> r;
-  flatten(t, r);
+  flatten(t, r, asFloat);
   row(r);
   return out;
 }
@@ -322,8 +330,9 @@ private:
     }
     std::string attrs;
     if (!d) {
-      const std::string text =
-          kRowKeys.count(tag) && isNumeric(v) ? numbersText(v) : scalarText(v, path, attrs);
+      const std::string text = kRowKeys.count(tag) && isNumeric(v)
+                                   ? numbersText(v, kFloatRowKeys.count(tag) > 0)
+                                   : scalarText(v, path, attrs);
       line(indent + "<" + tag + attrs + ">" + text + "</" + tag + ">", path);
       return;
     }

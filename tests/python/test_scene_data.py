@@ -279,3 +279,20 @@ def test_vertices_are_a_triangles_corners_and_a_meshs_rows():
     assert triangle.vA == (0, 0, 2) and mesh.vertices[1, 0] == 2
     with pytest.raises(ValueError, match=r"objects\[0\]\.vertices: expected face indices below"):
         mesh.vertices = np.zeros((2, 3))
+
+
+def test_float64_rows_round_once_to_float_as_set_from_python():
+    """Vertices given as float64 in a dict round to the same floats as when set as an array,
+    also where a double lies exactly halfway between two floats (one rounding, not two)."""
+    halfway = 1 + 2.0 ** -24  # exactly between 1 and the next float
+    V = np.array([[halfway, 0, 0], [0, 1 + 3 * 2.0 ** -25, 0], [0, 0, 0.1]])
+    F = np.array([[0, 1, 2]])
+    d = {"settings": {"xres": 4, "yres": 4, "mode": "spectral_mcpt"},
+         "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0]},
+         "objects": [{"shape": "mesh", "vertices": V, "faces": F, "material": "matte",
+                      "reflectance": 0.5}]}
+    from_dict = nxrender.Scene.from_dict(d).objects[0].vertices
+    assert np.array_equal(from_dict, V.astype(np.float32))
+    scene = nxrender.Scene.from_dict(d)
+    scene.objects[0].vertices = V
+    assert np.array_equal(scene.objects[0].vertices, from_dict)
