@@ -23,8 +23,8 @@
 #include "accel/kinds/cylinder.h"
 #include "accel/kinds/disk.h"
 #include "accel/shapes.h"
-#include "core/triangle_mesh.h"
 #include "core/ray.h"
+#include "core/triangle_mesh.h"
 
 namespace nx {
 

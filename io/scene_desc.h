@@ -10,10 +10,10 @@
 #include <variant>
 #include <vector>
 
-#include "core/vec3.h"
 #include "core/params/parameter_set.h"
-#include "io/scene_tree.h"
 #include "core/params/scene_values.h"
+#include "core/vec3.h"
+#include "io/scene_tree.h"
 #include "spectra/sensor.h"
 
 namespace nx {

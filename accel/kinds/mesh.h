@@ -9,8 +9,8 @@
 #include <optional>
 
 #include "accel/shape_schema.h"
-#include "core/triangle_mesh.h"
 #include "core/error.h"
+#include "core/triangle_mesh.h"
 
 namespace nx {
 

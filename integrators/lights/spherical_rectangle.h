@@ -7,8 +7,8 @@
 #include <cmath>
 #include <optional>
 
-#include "core/triangle_mesh.h"
 #include "core/math_util.h"
+#include "core/triangle_mesh.h"
 #include "integrators/lights/spherical_triangle.h"
 
 namespace nx {

@@ -7,9 +7,9 @@
 #include <memory>
 #include <optional>
 
+#include "core/params/concentration_map.h"
 #include "integrators/ior_model.h"
 #include "spectra/reflectance_texture.h"
-#include "core/params/concentration_map.h"
 #include "spectra/reradiation_matrix.h"
 #include "spectra/spectrum.h"
 

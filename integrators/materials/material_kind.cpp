@@ -4,8 +4,8 @@
 #include <cstdlib>
 
 #include "core/error.h"
-#include "core/text_table.h"
 #include "core/params/material_parameters.h"
+#include "core/text_table.h"
 #include "spectra/spectrum_bounds.h"
 
 namespace nx {

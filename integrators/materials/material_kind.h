@@ -11,8 +11,8 @@
 #include <string>
 #include <string_view>
 
-#include "integrators/materials/material.h"
 #include "core/params/parameter_set.h"
+#include "integrators/materials/material.h"
 
 namespace nx {
 

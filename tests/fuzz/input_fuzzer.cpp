@@ -23,8 +23,8 @@
 #include <string>
 
 #include "core/error.h"
-#include "integrators/relight_image.h"
 #include "core/params/concentration_map.h"
+#include "integrators/relight_image.h"
 #include "io/exr_header_check.h"
 #include "io/isolated_call.h"
 #include "io/mesh_reader.h"

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "core/params/material_parameters.h"
 #include "integrators/materials/bsdf.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/sampling.h"
-#include "core/params/material_parameters.h"
 #include "support/direction_chi_square.h"
 #include "support/render_checks.h"
 #include "support/statistics.h"

@@ -9,9 +9,9 @@
 #include <cstdlib>
 #include <set>
 
+#include "core/params/material_parameters.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/render_scene.h"
-#include "core/params/material_parameters.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 

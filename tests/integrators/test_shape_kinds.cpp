@@ -9,9 +9,9 @@
 #include <set>
 
 #include "accel/shape_kinds.h"
+#include "core/params/material_parameters.h"
 #include "integrators/media/medium_kinds.h"
 #include "integrators/render_scene.h"
-#include "core/params/material_parameters.h"
 #include "io/scene_desc.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
