@@ -7,34 +7,15 @@ namespace {
 [[noreturn]] void refuse(const std::string& name, const char* method) {
   throw py::type_error(
       name + "." + method + ": " + name +
-      " cannot be changed from Python (the scene's items are those of its file): set their "
-      "parameters (scene.set(name, value), scene.parameters() lists them), or write the item into "
-      "the scene text and read it with nxrender.Scene.from_text");
+      " cannot be changed from Python (the scene's named items are those of its file or dict): "
+      "set their parameters (scene.set(name, value), scene.parameters() lists them), or write "
+      "the item into the scene's dict or text and read it with nxrender.Scene.from_dict or "
+      "from_text");
 }
 
 } // namespace
 
 void bindReadOnlyContainers(py::module_& m) {
-  auto list = py::class_<ReadOnlyList>(m, "SceneList",
-                                       "A scene's items in file order (read-only: edit their "
-                                       "parameters instead)");
-  list.def("__len__", [](const ReadOnlyList& l) { return py::len(l.items); })
-      .def("__getitem__",
-           [](const ReadOnlyList& l, const py::object& i) -> py::object { return l.items[i]; })
-      .def("__iter__", [](const ReadOnlyList& l) { return py::iter(l.items); })
-      .def("__contains__",
-           [](const ReadOnlyList& l, const py::object& o) { return l.items.contains(o); })
-      .def("__repr__",
-           [](const ReadOnlyList& l) { return std::string(py::repr(py::list(l.items))); })
-      .def("__eq__", [](const ReadOnlyList& l, const py::object& o) {
-        return py::list(l.items).equal(o) ||
-               (py::isinstance<ReadOnlyList>(o) && l.items.equal(o.cast<ReadOnlyList&>().items));
-      });
-  for (const char* method : {"append", "extend", "insert", "pop", "remove", "clear", "sort",
-                             "reverse", "__setitem__", "__delitem__", "__iadd__", "__imul__"})
-    list.def(method,
-             [method](const ReadOnlyList& l, py::args, py::kwargs) { refuse(l.name, method); });
-
   auto mapping = py::class_<ReadOnlyMapping>(m, "SceneMapping",
                                              "A scene's named items (read-only: edit their "
                                              "parameters instead)");

@@ -1,8 +1,8 @@
 #pragma once
-// The scene's lists (objects, lights) and tables (spectra, materials) as Python sees them:
-// views that can be read and indexed, and whose every mutating method raises a TypeError
-// saying what to do instead (they were copies: scene.objects.append(o) succeeded and did
-// nothing).
+// The scene's tables (spectra, materials) as Python sees them: views that can be read and
+// indexed, and whose every mutating method raises a TypeError saying what to do instead (they
+// were copies: a change succeeded and did nothing). The objects and lights are live lists
+// (apps/python/py_scene_lists.h).
 
 #include <pybind11/pybind11.h>
 
@@ -12,19 +12,13 @@ namespace nxpy {
 
 namespace py = pybind11;
 
-/// A read-only sequence of items named `name` ("scene.objects").
-struct ReadOnlyList {
-  py::tuple items;
-  std::string name;
-};
-
 /// A read-only mapping named `name` ("scene.materials").
 struct ReadOnlyMapping {
   py::dict items;
   std::string name;
 };
 
-/// Registers both classes (SceneList and SceneMapping) in the module.
+/// Registers the SceneMapping class in the module.
 void bindReadOnlyContainers(py::module_& m);
 
 } // namespace nxpy

@@ -669,7 +669,8 @@ void bindScene(py::module_& m) {
           "Fills a sphere or closed mesh with a homogeneous medium (replacing any); returns it")
       .def_property_readonly(
           "shape", [](const ObjectView& o) { return o.get().shape; },
-          "Its kind: sphere, plane, triangle, quad or mesh (docs/reference/shapes.md)")
+          "Its kind: sphere, plane, triangle, quad, mesh, box, disk or cylinder "
+          "(docs/reference/shapes.md)")
       .def_property_readonly(
           "line", [](const ObjectView& o) { return o.get().loc.line; },
           "Its line in the scene file")

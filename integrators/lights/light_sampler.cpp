@@ -41,12 +41,14 @@ LightBounds triangleBounds(const TriangleMesh& mesh, Triangles&& triangles) {
   return b;
 }
 
-// Completes a sample at point q of a flat emitter (unit normal `normal`, of its triangle
-// `prim`) seen from pd: direction, distance, point and normal; `pdf` in solid angle, or
-// negative for a point drawn with density `areaDensity` per unit area (d^2 / |cos| times it in
-// solid angle). False where the configuration is degenerate.
+// Completes a sample at point q of an emitter's surface (unit normal `normal` there, of its
+// triangle or part `prim` of shape `shape` of kind `kind`) seen from pd: direction, distance,
+// point and normal; `pdf` in solid angle, or negative for a point drawn with density
+// `areaDensity` per unit area (d^2 / |cos| times it in solid angle). False where the
+// configuration is degenerate.
 bool finishFlatSample(const Vec3d& pd, const Vec3d& q, const Vec3d& normal, double pdf,
-                      double areaDensity, uint32_t shape, uint32_t prim, LightSample& out) {
+                      double areaDensity, uint32_t shape, uint32_t prim, LightSample& out,
+                      ShapeKind kind = ShapeKind::Triangle) {
   const Vec3d toLight = q - pd;
   const double d2 = dot(toLight, toLight);
   if (!(d2 > 0)) return false;
@@ -63,7 +65,7 @@ bool finishFlatSample(const Vec3d& pd, const Vec3d& q, const Vec3d& normal, doub
   out.pError = roundingError(out.p);
   out.n = Vec3(normal);
   out.pdf = static_cast<float>(pdf);
-  out.kind = ShapeKind::Triangle;
+  out.kind = kind;
   out.shape = shape;
   out.prim = prim;
   return true;
@@ -810,24 +812,7 @@ bool LightSampler::sampleSurface(const Light& l, const Vec3& p, Sample2 u, Light
       onDisk(c.cap(static_cast<CylinderPart>(part)), Sample2{std::min(w, 0x1.fffffep-1f), u.v});
     }
   }
-  const Vec3d toLight = q - Vec3d(p);
-  const double d2 = dot(toLight, toLight);
-  if (!(d2 > 0)) return false;
-  const double d = std::sqrt(d2);
-  const Vec3d wi = toLight * (1 / d);
-  const double cosLight = std::abs(dot(normal, wi));
-  const double pdf = d2 / (cosLight * l.area);
-  if (!(cosLight > 0) || !std::isfinite(pdf)) return false;
-  out.wi = Vec3(wi);
-  out.distance = static_cast<float>(d);
-  out.p = Vec3(q);
-  out.pError = roundingError(out.p);
-  out.n = Vec3(normal);
-  out.pdf = static_cast<float>(pdf);
-  out.kind = l.surface;
-  out.shape = l.shape;
-  out.prim = part;
-  return true;
+  return finishFlatSample(Vec3d(p), q, normal, -1, 1 / l.area, l.shape, part, out, l.surface);
 }
 
 int LightSampler::chooseTriangle(const Light& l, const Vec3d& p, const Vec3& normal,

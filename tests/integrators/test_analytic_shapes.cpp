@@ -13,6 +13,7 @@
 #include "integrators/sampling.h"
 #include "support/direction_chi_square.h"
 #include "support/flat_wavelengths.h"
+#include "support/light_pdf.h"
 #include "support/render_checks.h"
 #include "support/statistics.h"
 
@@ -138,14 +139,7 @@ const std::string kDiskLight =
     "<disk><center>0,1,0</center><normal>0,-1,0</normal><radius>0.8</radius>"
     "<material>matte</material><emission>2</emission></disk>";
 
-// The density LightSampler::pdf gives the surface a ray from p along wi meets (0 if none).
-float pdfTowards(const RenderScene& s, const LightSampler& lights, const Vec3& p, const Vec3& wi) {
-  Ray r;
-  r.o = p;
-  r.d = wi;
-  SurfaceHit hit;
-  return s.geometry->intersect(r, hit) ? lights.pdf(p, hit, wi) : 0.0f;
-}
+using test::pdfTowards;
 
 // E = pi L r^2 / (r^2 + h^2) on the axis of a Lambertian disk of radiance L, facing it.
 TEST(AnalyticShapes, DiskLightIrradianceOnItsAxis) {

@@ -5,6 +5,7 @@
 #include "integrators/lights/light_sampler.h"
 #include "integrators/sampling.h"
 #include "support/flat_wavelengths.h"
+#include "support/light_pdf.h"
 #include "support/statistics.h"
 
 namespace nx {
@@ -19,14 +20,7 @@ RenderScene sceneWithLight(const std::string& lights) {
                  "t.scn"));
 }
 
-// The density LightSampler::pdf gives the surface a ray from p along wi meets (0 if none).
-float pdfTowards(const RenderScene& s, const LightSampler& lights, const Vec3& p, const Vec3& wi) {
-  Ray r;
-  r.o = p;
-  r.d = wi;
-  SurfaceHit hit;
-  return s.geometry->intersect(r, hit) ? lights.pdf(p, hit, wi) : 0.0f;
-}
+using test::pdfTowards;
 
 // Directions towards a sphere light are uniform in the cone it subtends (chi-square in the
 // cone's cos theta and phi), and pdf() agrees with sample().
