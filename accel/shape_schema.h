@@ -8,26 +8,11 @@
 #include <span>
 #include <string>
 
-#include "core/params/parameter_set.h"
+#include "core/params/shape_parameter.h"
 
 namespace nx {
 
 class TriangleMesh; // core/triangle_mesh.h
-
-/// One parameter a shape kind takes.
-struct ShapeParameter {
-  ParamSpec spec;         ///< name, type, unit, range, meaning, example
-  bool required = true;   ///< the shape cannot be built without it
-  bool attribute = false; ///< written as an attribute (<mesh file="...">), not as a child
-  /// What a value must be beyond its type and range (null: nothing); returns the "expected"
-  /// phrase of the error for a value that is not (e.g. "a non-zero plane normal"), else null.
-  const char* (*valueProblem)(const ParamValue&) = nullptr;
-};
-
-/// Why a shape's parameters together describe no shape: the error's "expected" and "found".
-struct ShapeProblem {
-  std::string expected, found;
-};
 
 /// What a shape kind's build asks of the scene; implemented by the scene builder, called once
 /// per shape, never while rendering.

@@ -31,6 +31,7 @@
 #include "core/math_util.h"
 #include "integrators/renderer.h"
 #include "integrators/sampling.h"
+#include "integrators/scene_reader.h"
 #include "io/preview_image.h"
 
 namespace {

@@ -29,6 +29,7 @@
 #include "core/error.h"
 #include "core/text_table.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "io/preview_image.h"
 
 namespace {

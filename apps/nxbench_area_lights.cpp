@@ -18,6 +18,7 @@
 #include "apps/command_line.h"
 #include "apps/seed_statistics.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Triangle lights by solid angle against by area: noise, time, time to equal error"};

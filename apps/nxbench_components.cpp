@@ -22,6 +22,7 @@
 #include "integrators/integrator.h"
 #include "integrators/materials/bsdf.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "spectra/wavelength_sampler.h"
 
 namespace {

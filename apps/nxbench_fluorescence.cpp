@@ -35,6 +35,7 @@
 #include "apps/seed_statistics.h"
 #include "core/file_text.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 
 namespace {
 

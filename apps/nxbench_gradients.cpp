@@ -21,6 +21,7 @@
 #include "apps/program_main.h"
 #include "integrators/gradients/scene_tangents.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 
 namespace {
 

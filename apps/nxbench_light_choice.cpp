@@ -22,6 +22,7 @@
 #include "apps/command_line.h"
 #include "apps/seed_statistics.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 
 namespace {
 

@@ -13,6 +13,7 @@
 
 #include "apps/command_line.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 
 namespace {
 

@@ -19,6 +19,7 @@
 #include "apps/command_line.h"
 #include "apps/heightfield_scene.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "io/mesh_reader.h"
 
 namespace {

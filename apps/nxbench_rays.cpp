@@ -44,6 +44,7 @@
 #include "integrators/lights/light_sampler.h"
 #include "integrators/renderer.h"
 #include "integrators/sampling.h"
+#include "integrators/scene_reader.h"
 #include "spectra/wavelength_sampler.h"
 
 namespace {

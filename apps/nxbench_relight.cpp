@@ -24,6 +24,7 @@
 #include "core/error.h"
 #include "integrators/relight_image.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "io/spectral_exr.h"
 
 namespace {

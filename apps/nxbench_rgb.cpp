@@ -18,6 +18,7 @@
 #include "apps/command_line.h"
 #include "core/error.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "spectra/sigmoid_table.h"
 
 namespace {

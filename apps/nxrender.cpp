@@ -26,6 +26,7 @@
 #include "core/memory.h"
 #include "core/text_table.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "io/atomic_file.h"
 #include "io/envi_export.h"
 #include "io/preview_image.h"

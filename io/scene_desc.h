@@ -148,11 +148,14 @@ struct SceneDesc {
   bool relightable = false;
 };
 
-/// Reads a scene file. Throws nx::Error "file:line: expected ..., found ..." on any problem:
-/// XML syntax, unknown or repeated tags and attributes, missing required tags, malformed,
-/// non-finite or out-of-range numbers, unknown material or mode names, resolutions whose
+class SceneKindSchemas; // io/scene_kind_schemas.h
+
+/// Reads a scene file, its kinds' parameters by `kinds` (integrators/scene_reader.h gives
+/// the registered ones and the forms without it). Throws nx::Error "file:line: expected ..., found
+/// ..." on any problem: XML syntax, unknown or repeated tags and attributes, missing required tags,
+/// malformed, non-finite or out-of-range numbers, unknown material or mode names, resolutions whose
 /// buffers would not fit in memory.
-SceneDesc loadScene(const std::string& path);
+SceneDesc loadScene(const std::string& path, const SceneKindSchemas& kinds);
 
 /// Bytes the film and the output image of a width x height render with `bands` bands take
 /// (what the memory checks compare with the memory budget).
@@ -161,16 +164,19 @@ double renderBufferBytes(int width, int height, int bands);
 /// Reads a scene given as data (io/scene_tree.h) exactly as its scene text: errors name the
 /// path in the data ("objects[2].faces: ...") instead of a line; `name` is the scene's name
 /// and anchors relative file names (its directory; "" or "<dict>": the working directory).
-SceneDesc parseSceneTree(const SceneTree& tree, const std::string& name);
+SceneDesc parseSceneTree(const SceneTree& tree, const std::string& name,
+                         const SceneKindSchemas& kinds);
 
 /// One object (light false) or light given as data (Scene.objects.append(dict)), checked as
 /// in a scene file: errors name `path` ("objects[3].radius: ..."); an object's material may
 /// be one of `scene`'s named materials; relative file names are relative to the working
 /// directory (as sceneToTree gives them for a scene read from there).
 std::variant<ObjectDesc, LightDesc> parseItemTree(const SceneTree& item, bool light,
-                                                  const std::string& path, const SceneDesc& scene);
+                                                  const std::string& path, const SceneDesc& scene,
+                                                  const SceneKindSchemas& kinds);
 
 /// Parses scene text; `file` names it in messages and anchors relative paths.
-SceneDesc parseScene(const std::string& text, const std::string& file);
+SceneDesc parseScene(const std::string& text, const std::string& file,
+                     const SceneKindSchemas& kinds);
 
 } // namespace nx

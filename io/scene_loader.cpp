@@ -14,23 +14,21 @@
 #include <set>
 #include <sstream>
 
-#include "accel/shape_kinds.h"
 #include "core/error.h"
 #include "core/file_text.h"
 #include "core/hash.h"
+#include "core/kind_lookup.h"
 #include "core/math_util.h"
 #include "core/memory.h"
 #include "core/params/array_values.h"
 #include "core/params/material_parameters.h"
 #include "core/params/scene_limits.h"
 #include "core/text_table.h"
-#include "integrators/lights/light_kinds.h"
-#include "integrators/materials/material_kind.h"
-#include "integrators/media/medium_kinds.h"
 #include "io/camera_checks.h"
 #include "io/exr_names.h"
 #include "io/opencv_calibration.h"
 #include "io/scene_desc.h"
+#include "io/scene_kind_schemas.h"
 #include "io/scene_state_text.h"
 #include "io/scene_tree_text.h"
 
@@ -56,9 +54,9 @@ std::string trim(const std::string& s) {
 
 class SceneParser {
 public:
-  SceneParser(const std::string& text, std::string file,
+  SceneParser(const std::string& text, std::string file, const SceneKindSchemas& kinds,
               const std::vector<std::string>* linePaths = nullptr)
-      : file_(std::move(file)), linePaths_(linePaths) {
+      : file_(std::move(file)), kinds_(kinds), linePaths_(linePaths) {
     for (size_t i = 0; i < text.size(); ++i)
       if (text[i] == '\n') newlines_.push_back(i);
     if (trim(text).empty())
@@ -107,7 +105,7 @@ public:
         scene.camera = parseCamera(n);
       } else if (tag == "light") {
         scene.lights.push_back(parseLight(n));
-      } else if (const ShapeKindSpec* shape = findShapeKind(tag)) {
+      } else if (const auto shape = kinds_.shape(tag)) {
         scene.objects.push_back(parseObject(n, *shape));
       } else if (tag == "spectrum") {
         scene.spectra.push_back(parseNamedSpectrum(n));
@@ -115,7 +113,7 @@ public:
         scene.materials.push_back(parseNamedMaterial(n));
       } else {
         std::string shapes;
-        for (const ShapeKindSpec& k : shapeKinds()) shapes += "<" + std::string(k.name) + ">, ";
+        for (const std::string& k : kinds_.shapeNames()) shapes += "<" + k + ">, ";
         fail(n, "one of <settings>, <camera>, <light>, " + shapes + "<material>, <spectrum>",
              "<" + tag + ">");
       }
@@ -737,9 +735,9 @@ private:
     l.loc = loc(n);
     l.group = groupAttribute(n);
     if (n.attribute("type")) l.kind = trim(decoded(n.attribute("type").value(), n));
-    const LightKindSpec* kind = findLightKind(l.kind);
-    if (!kind) fail(n, "a light type " + lightKindList(), shownText(l.kind));
-    parseTakenParameters(n, kind->params(), l.params);
+    const auto kind = kinds_.light(l.kind);
+    if (!kind) fail(n, "a light type " + kinds_.lightList(), shownText(l.kind));
+    parseTakenParameters(n, kind->params, l.params);
     return l;
   }
 
@@ -898,17 +896,17 @@ private:
     d.loc = loc(n);
     if (!n.attribute("id")) fail(n, "an id=\"...\" on a top-level <material>", "none");
     if (!n.attribute("type"))
-      fail(n, "a type=\"...\" (" + materialKindList() + ") on <material>", "none");
+      fail(n, "a type=\"...\" (" + kinds_.materialList() + ") on <material>", "none");
     d.id = trim(decoded(n.attribute("id").value(), n));
     if (d.id.empty()) fail(n, "a non-empty material id", "id=\"\"");
-    if (findMaterialKind(d.id))
+    if (kinds_.isMaterial(d.id))
       fail(n, "a material id that is not a built-in kind's name", shownText(d.id));
     d.material.material = trim(decoded(n.attribute("type").value(), n));
     d.material.materialLoc = d.loc;
-    const MaterialKindSpec* kind = findMaterialKind(d.material.material);
-    if (!kind) fail(n, "a material type " + materialKindList(), shownText(d.material.material));
+    if (!kinds_.isMaterial(d.material.material))
+      fail(n, "a material type " + kinds_.materialList(), shownText(d.material.material));
     parseMaterialParameters(uniqueChildren(n, materialParameterNames()), d.material);
-    checkMaterialParameters(*kind, d.material.params);
+    kinds_.checkMaterial(d.material.material, d.material.params);
     return d;
   }
 
@@ -926,17 +924,15 @@ private:
 
   // One object's material: a kind, whose schema its parameters are checked against, or the id
   // of a named material, and then no parameters of its own.
-  static void
-  resolveMaterialReference(ObjectDesc& o,
-                           const std::map<std::string, const NamedMaterialDesc*>& byId) {
+  void resolveMaterialReference(ObjectDesc& o,
+                                const std::map<std::string, const NamedMaterialDesc*>& byId) const {
     const auto it = byId.find(o.material);
     if (it == byId.end()) {
-      const MaterialKindSpec* kind = findMaterialKind(o.material);
-      if (!kind)
-        throw Error(o.materialLoc.str() + ": expected a material " + materialKindList() +
+      if (!kinds_.isMaterial(o.material))
+        throw Error(o.materialLoc.str() + ": expected a material " + kinds_.materialList() +
                     " or the id of a <material id=\"...\"> of the scene, found " +
                     shownText(o.material));
-      checkMaterialParameters(*kind, o.params);
+      kinds_.checkMaterial(o.material, o.params);
       return;
     }
     o.materialRef = o.material;
@@ -956,8 +952,8 @@ public:
     if (items.size() != 1) failAt(1, "expected one object or light");
     const pugi::xml_node n = items.front();
     if (std::string(n.name()) == "light") return parseLight(n);
-    const ShapeKindSpec* shape = findShapeKind(n.name());
-    if (!shape) fail(n, "a shape " + shapeKindList(), shownText(n.name()));
+    const auto shape = kinds_.shape(n.name());
+    if (!shape) fail(n, "a shape " + kinds_.shapeList(), shownText(n.name()));
     ObjectDesc o = parseObject(n, *shape);
     std::map<std::string, const NamedMaterialDesc*> byId;
     for (const NamedMaterialDesc& m : scene.materials) byId.emplace(m.id, &m);
@@ -1029,12 +1025,12 @@ private:
   // read by its declared type and checked by the kind, and its appearance: <material> (a kind
   // or a <material id>) with the material's parameters, <emission>, and a <medium> where the
   // kind holds one.
-  ObjectDesc parseObject(const pugi::xml_node& n, const ShapeKindSpec& kind) const {
+  ObjectDesc parseObject(const pugi::xml_node& n, const ShapeKindSchema& kind) const {
     const std::string tag = n.name();
     std::vector<std::string> attributes, allowed{"material"};
     for (const std::string& p : materialParameterNames()) allowed.push_back(p);
     allowed.push_back("emission");
-    for (const ShapeParameter& p : kind.params())
+    for (const ShapeParameter& p : kind.params)
       (p.attribute ? attributes : allowed).push_back(p.spec.name);
     attributes.push_back("name");
     attributes.push_back("group");
@@ -1053,7 +1049,7 @@ private:
         fail(n, "a name of printable characters in name=\"...\" on <" + tag + ">",
              o.name.empty() ? "an empty one" : "control characters");
     }
-    for (const ShapeParameter& p : kind.params()) {
+    for (const ShapeParameter& p : kind.params) {
       if (p.attribute) {
         const pugi::xml_attribute a = n.attribute(p.spec.name);
         const std::string v = a ? trim(decoded(a.value(), n)) : std::string();
@@ -1082,7 +1078,7 @@ private:
     o.material = text(mat);
     o.materialLoc = loc(mat);
     if (o.material.empty())
-      fail(mat, "a material " + materialKindList() + " or a <material id>", "nothing");
+      fail(mat, "a material " + kinds_.materialList() + " or a <material id>", "nothing");
     parseMaterialParameters(c, o);
     if (c.count("emission")) {
       const pugi::xml_node e = c.at("emission");
@@ -1109,9 +1105,9 @@ private:
     MediumDesc m;
     m.loc = loc(n);
     if (n.attribute("type")) m.kind = trim(decoded(n.attribute("type").value(), n));
-    const MediumKindSpec* kind = findMediumKind(m.kind);
-    if (!kind) fail(n, "a medium type " + mediumKindList(), shownText(m.kind));
-    parseTakenParameters(n, kind->params(), m.params);
+    const auto kind = kinds_.medium(m.kind);
+    if (!kind) fail(n, "a medium type " + kinds_.mediumList(), shownText(m.kind));
+    parseTakenParameters(n, kind->params, m.params);
     return m;
   }
 
@@ -1334,6 +1330,7 @@ private:
   }
 
   std::string file_;
+  const SceneKindSchemas& kinds_;             ///< what the kinds take
   const std::vector<std::string>* linePaths_; ///< a tree's path per line, or null (a file)
   std::vector<size_t> newlines_;
   pugi::xml_document doc_;
@@ -1358,24 +1355,27 @@ SceneDesc keyed(SceneDesc d) {
 }
 } // namespace
 
-SceneDesc parseScene(const std::string& text, const std::string& file) {
-  return keyed(SceneParser(text, file).parse());
+SceneDesc parseScene(const std::string& text, const std::string& file,
+                     const SceneKindSchemas& kinds) {
+  return keyed(SceneParser(text, file, kinds).parse());
 }
 
-SceneDesc parseSceneTree(const SceneTree& tree, const std::string& name) {
+SceneDesc parseSceneTree(const SceneTree& tree, const std::string& name,
+                         const SceneKindSchemas& kinds) {
   const SceneTreeText t = sceneTreeText(tree);
-  return keyed(SceneParser(t.text, name, &t.linePaths).parse());
+  return keyed(SceneParser(t.text, name, kinds, &t.linePaths).parse());
 }
 
 std::variant<ObjectDesc, LightDesc> parseItemTree(const SceneTree& item, bool light,
-                                                  const std::string& path, const SceneDesc& scene) {
+                                                  const std::string& path, const SceneDesc& scene,
+                                                  const SceneKindSchemas& kinds) {
   const SceneTreeText t = itemTreeText(item, light, path);
   // File names as Scene.to_dict gives them: relative to the working directory.
-  return SceneParser(t.text, "<item>", &t.linePaths).parseItem(scene);
+  return SceneParser(t.text, "<item>", kinds, &t.linePaths).parseItem(scene);
 }
 
-SceneDesc loadScene(const std::string& path) {
-  return parseScene(readRegularFile(path, 64u << 20, "scene file"), path);
+SceneDesc loadScene(const std::string& path, const SceneKindSchemas& kinds) {
+  return parseScene(readRegularFile(path, 64u << 20, "scene file"), path, kinds);
 }
 
 } // namespace nx

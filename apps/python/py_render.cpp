@@ -25,6 +25,7 @@
 #include "apps/render_job.h"
 #include "core/error.h"
 #include "core/memory.h"
+#include "integrators/scene_reader.h"
 
 namespace nxpy {
 namespace {

@@ -23,6 +23,7 @@
 #include "integrators/lights/light_kinds.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
+#include "integrators/scene_reader.h"
 #include "io/camera_checks.h"
 #include "io/scene_state_text.h"
 #include "io/scene_to_tree.h"

@@ -4,6 +4,7 @@
 
 #include "apps/python/py_arguments.h"
 #include "apps/python/py_scene_tree.h"
+#include "integrators/scene_reader.h"
 #include "io/scene_to_tree.h"
 
 namespace nxpy {

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/text_table.h"
 #include "integrators/render_scene.h"
+#include "integrators/scene_reader.h"
 #include "spectra/bands.h"
 #include "spectra/reradiation_matrix.h"
 

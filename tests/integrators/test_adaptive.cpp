@@ -10,6 +10,7 @@
 
 #include "integrators/adaptive_plan.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 

@@ -11,6 +11,7 @@
 #include "integrators/lights/light_sampler.h"
 #include "integrators/render_scene.h"
 #include "integrators/sampling.h"
+#include "integrators/scene_reader.h"
 #include "support/direction_chi_square.h"
 #include "support/flat_wavelengths.h"
 #include "support/light_pdf.h"

@@ -11,6 +11,7 @@
 #include "integrators/lights/light_sampler.h"
 #include "integrators/lights/spherical_triangle.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "support/errors.h"
 #include "support/flat_wavelengths.h"
 #include "support/render_checks.h"

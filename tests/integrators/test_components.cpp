@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "spectra/reradiation_matrix.h"
 #include "support/errors.h"
 #include "support/furnace_solution.h"

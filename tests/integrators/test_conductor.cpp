@@ -10,6 +10,7 @@
 #include "integrators/materials/bsdf.h"
 #include "integrators/materials/fresnel.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "spectra/bands.h"
 #include "spectra/metals.h"
 #include "support/direction_chi_square.h"

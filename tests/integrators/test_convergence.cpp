@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "support/render_checks.h"
 
 namespace nx {

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "spectra/bands.h"
 #include "support/errors.h"
 #include "support/render_checks.h"

@@ -18,6 +18,7 @@
 
 #include "integrators/render_scene.h"
 #include "integrators/sampling.h"
+#include "integrators/scene_reader.h"
 #include "io/spectral_exr.h"
 #include "support/constant_map.h"
 #include "support/errors.h"

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "io/part_merge.h"
 #include "support/errors.h"
 

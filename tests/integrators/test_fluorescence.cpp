@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "spectra/reradiation_matrix.h"
 #include "support/furnace_solution.h"
 #include "support/statistics.h"

@@ -14,6 +14,7 @@
 #include "integrators/gradients/light_gradients.h"
 #include "integrators/gradients/path_gradients.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "support/constant_map.h"
 #include "support/errors.h"
 #include "support/statistics.h"

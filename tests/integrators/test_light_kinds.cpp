@@ -7,6 +7,7 @@
 #include <set>
 
 #include "integrators/render_scene.h"
+#include "integrators/scene_reader.h"
 #include "io/spectral_exr.h"
 #include "support/constant_map.h"
 #include "support/errors.h"

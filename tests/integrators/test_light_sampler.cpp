@@ -4,6 +4,7 @@
 #include "core/math_util.h"
 #include "integrators/lights/light_sampler.h"
 #include "integrators/sampling.h"
+#include "integrators/scene_reader.h"
 #include "support/flat_wavelengths.h"
 #include "support/light_pdf.h"
 #include "support/statistics.h"

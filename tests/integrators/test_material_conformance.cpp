@@ -17,6 +17,7 @@
 #include "integrators/materials/bsdf.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/sampling.h"
+#include "integrators/scene_reader.h"
 #include "support/direction_chi_square.h"
 #include "support/render_checks.h"
 #include "support/statistics.h"

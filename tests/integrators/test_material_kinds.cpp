@@ -12,6 +12,7 @@
 #include "core/params/material_parameters.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/render_scene.h"
+#include "integrators/scene_reader.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "integrators/lights/measured_emitter.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "io/mesh_reader.h"
 #include "support/errors.h"
 #include "support/statistics.h"

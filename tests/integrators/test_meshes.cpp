@@ -12,6 +12,7 @@
 #include "integrators/lights/light_sampler.h"
 #include "integrators/lights/measured_emitter.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "support/flat_wavelengths.h"
 #include "support/icosphere.h"
 #include "support/statistics.h"

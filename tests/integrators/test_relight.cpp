@@ -18,6 +18,7 @@
 #include "integrators/relight_image.h"
 #include "integrators/relight_pattern.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "io/exr_names.h"
 #include "io/exr_write_cost.h"
 #include "io/part_merge.h"

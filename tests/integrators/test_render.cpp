@@ -7,6 +7,7 @@
 
 #include "core/math_util.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "spectra/bands.h"
 #include "spectra/colour.h"
 #include "support/errors.h"

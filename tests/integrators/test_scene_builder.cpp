@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "integrators/render_scene.h"
+#include "integrators/scene_reader.h"
 #include "spectra/colour.h"
 #include "spectra/illuminants.h"
 #include "spectra/rgb_upsampling.h"

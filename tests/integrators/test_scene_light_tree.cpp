@@ -12,6 +12,7 @@
 
 #include "integrators/lights/light_sampler.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "support/render_checks.h"
 #include "support/statistics.h"
 

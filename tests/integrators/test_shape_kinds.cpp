@@ -12,6 +12,7 @@
 #include "core/params/material_parameters.h"
 #include "integrators/media/medium_kinds.h"
 #include "integrators/render_scene.h"
+#include "integrators/scene_reader.h"
 #include "io/scene_desc.h"
 #include "support/errors.h"
 #include "support/render_checks.h"

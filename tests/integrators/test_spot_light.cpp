@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "integrators/scene_reader.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 

@@ -5,6 +5,7 @@
 #include <stb/stb_image_write.h>
 
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "io/spectral_exr.h"
 #include "spectra/colorchecker.h"
 #include "spectra/colour.h"

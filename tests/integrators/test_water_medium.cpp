@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "spectra/water.h"
 
 namespace nx {

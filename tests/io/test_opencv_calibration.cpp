@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "integrators/scene_reader.h"
 #include "io/opencv_calibration.h"
 #include "io/scene_desc.h"
 #include "support/errors.h"

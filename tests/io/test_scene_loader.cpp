@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "integrators/scene_reader.h"
 #include "io/scene_desc.h"
 #include "support/errors.h"
 

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "integrators/scene_reader.h"
 #include "io/scene_desc.h"
 #include "io/scene_state_text.h"
 #include "io/scene_to_tree.h"

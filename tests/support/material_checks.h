@@ -5,6 +5,7 @@
 #include <string>
 
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "spectra/sampled_wavelengths.h"
 #include "support/errors.h"
 #include "support/render_checks.h"

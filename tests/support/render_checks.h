@@ -8,6 +8,7 @@
 #include <string>
 
 #include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
 #include "support/statistics.h"
 
 namespace nx {
