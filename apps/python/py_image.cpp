@@ -166,7 +166,10 @@ py::object texelsToPython(const nx::SpectralTexels& t) {
   return py::make_tuple(py::cast(t.nm), values);
 }
 
-void bindImage(py::module_& m) {
+namespace {
+
+// nxrender.Image: its arrays, colour, counts and provenance.
+void bindImageClass(py::module_& m) {
   py::class_<PyImage>(m, "Image",
                       "A spectral image: band radiances with their error estimates, colour, "
                       "sample counts and provenance. Array properties are numpy views of the "
@@ -303,7 +306,10 @@ void bindImage(py::module_& m) {
         return "<nxrender.Image " + std::to_string(p.image.width) + "x" +
                std::to_string(p.image.height) + ", " + p.image.bands.summary() + ">";
       });
+}
 
+// The image files: read_exr and the writers.
+void bindImageFiles(py::module_& m) {
   m.def(
       "read_exr",
       [](const py::object& path) {
@@ -388,6 +394,13 @@ void bindImage(py::module_& m) {
       py::arg("path"), py::arg("image"),
       "Writes the bands as an ENVI cube: the data file `path` (BSQ float32) and its .hdr "
       "(wavelength, fwhm); returns the header's path.");
+}
+
+} // namespace
+
+void bindImage(py::module_& m) {
+  bindImageClass(m);
+  bindImageFiles(m);
 }
 
 } // namespace nxpy

@@ -81,87 +81,17 @@ std::string optionString(const py::object& value, const char* param) {
   return stringArgument(value, param);
 }
 
-py::object render(const py::object& sceneArg, const py::object& spp, const py::object& seed,
-                  const py::object& threads, const py::object& bands, const py::object& sensor,
-                  const py::object& crop, const py::object& sppRange, const py::object& progress,
-                  const py::object& sampler, const py::object& lightSampling,
-                  const py::object& lightSelection, const py::object& density, bool fluorescence,
-                  const py::object& aovs, const py::object& targetError, const py::object& errorOf,
-                  const py::object& timeLimit, bool adaptive, bool relightable,
-                  const py::object& relightStep, const py::object& gradients,
-                  const py::object& adjoint) {
-  // Every argument is checked before the (possibly long) scene build.
-  nx::RenderChoices choices;
-  if (!spp.is_none() && !sppRange.is_none())
-    throw py::value_error("spp, spp_range: give one of them");
-  if (!spp.is_none()) choices.samples = static_cast<int>(integerArgument(spp, "spp", 1, 1 << 30));
-  if (!sppRange.is_none()) {
-    const auto r = integersArgument(sppRange, "spp_range", 2);
-    if (r[0] < 0 || r[1] <= r[0] || r[1] > (1LL << 30))
-      throw py::value_error("spp_range: expected (a, b) with 0 <= a < b <= 2**30, found (" +
-                            std::to_string(r[0]) + ", " + std::to_string(r[1]) + ")");
-    choices.firstSample = static_cast<int>(r[0]);
-    choices.samples = static_cast<int>(r[1] - r[0]);
-    choices.sampleRange = true;
-  }
-  if (!seed.is_none())
-    choices.seed = static_cast<uint32_t>(integerArgument(seed, "seed", 0, 2147483647));
-  const int nThreads = threads.is_none()
-                           ? tbb::info::default_concurrency()
-                           : static_cast<int>(integerArgument(threads, "threads", 1, 4096));
-  if (!bands.is_none() && !sensor.is_none())
-    throw py::value_error("bands, sensor: give one of them");
-  if (!bands.is_none()) {
-    if (py::isinstance<py::str>(bands)) {
-      choices.bands = nx::Sensor(nx::SpectralBands::parse(bands.cast<std::string>()));
-    } else {
-      const auto v = numbersArgument(bands, "bands", 3);
-      nx::SpectralBands b{v[0], v[1], v[2]};
-      choices.bands = nx::Sensor(nx::SpectralBands::parse(b.toString()));
-    }
-  }
-  if (!sensor.is_none())
-    choices.bands = nx::sensorFromOption(pathArgument(sensor, "sensor"), "sensor");
-  std::optional<std::vector<long long>> cropBox;
-  if (!crop.is_none()) cropBox = integersArgument(crop, "crop", 4);
-  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
-    throw py::type_error("progress: expected a callable progress(done, total), found " +
-                         typeName(progress));
-  choices.sampler = optionString(sampler, "sampler");
-  choices.lightSampling = optionString(lightSampling, "light_sampling");
-  choices.lightSelection = optionString(lightSelection, "light_selection");
-  choices.density = optionString(density, "wavelength_density");
-  choices.noFluorescence = !fluorescence;
-  choices.relightable = relightable;
-  if (!relightStep.is_none()) {
-    if (!relightable)
-      throw py::value_error("relight_step: only with relightable=True (the grid it keeps)");
-    choices.relightStepNm = numberArgument(relightStep, "relight_step", 1e-9, 1e9);
-    try {
-      nx::checkRelightStep(choices.relightStepNm, "relight_step");
-    } catch (const nx::Error& e) {
-      throw py::value_error(e.what());
-    }
-  }
-  if (py::isinstance<py::str>(aovs) || !py::hasattr(aovs, "__iter__"))
-    throw py::type_error("aovs: expected a list of 'white', 'ids', 'depth', 'components', "
-                         "'lightgroups', found " +
-                         typeName(aovs));
-  for (const py::handle a : aovs) {
-    const std::string name = stringArgument(a, "aovs");
-    if (!nx::addAov(choices, name))
-      throw py::value_error("aovs: expected 'white', 'ids', 'depth', 'components' or "
-                            "'lightgroups', found '" +
-                            name + "'");
-  }
-  if (!targetError.is_none())
-    choices.targetError = numberArgument(targetError, "target_error", 1e-9, 1e9);
-  choices.errorOf = optionString(errorOf, "error_of");
-  if (!timeLimit.is_none()) choices.timeLimit = numberArgument(timeLimit, "time_limit", 1e-3, 1e12);
-  choices.adaptive = adaptive;
-  if (adaptive && targetError.is_none())
-    throw py::value_error("adaptive: expected a target_error to aim at, found none");
-  // Names of strategies: the command line's checks, with Python's parameter names.
+// render()'s arguments, as Python gave them.
+struct RenderArguments {
+  py::object spp, seed, bands, sensor, sppRange, sampler, lightSampling, lightSelection, density;
+  bool fluorescence;
+  py::object aovs, targetError, errorOf, timeLimit;
+  bool adaptive, relightable;
+  py::object relightStep;
+};
+
+// Refuses a strategy name the command line would refuse, naming Python's parameter.
+void checkStrategyNames(const nx::RenderChoices& choices) {
   for (const nx::StrategyOption& o : nx::strategyOptions()) {
     const std::string& value = choices.*o.field;
     std::string list;
@@ -174,83 +104,95 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
       throw py::value_error(pythonName(o.option) + ": expected one of " + list + ", found '" +
                             value + "'");
   }
+}
 
-  SceneSource src = sceneArgument(sceneArg);
-  if (!src.desc.warnings.empty()) {
-    const py::object warn = py::module_::import("warnings").attr("warn");
-    for (const auto& w : src.desc.warnings) warn(w);
+// The render's choices from its arguments, each checked (before the possibly long build).
+nx::RenderChoices choicesFrom(const RenderArguments& a) {
+  nx::RenderChoices choices;
+  if (!a.spp.is_none() && !a.sppRange.is_none())
+    throw py::value_error("spp, spp_range: give one of them");
+  if (!a.spp.is_none())
+    choices.samples = static_cast<int>(integerArgument(a.spp, "spp", 1, 1 << 30));
+  if (!a.sppRange.is_none()) {
+    const auto r = integersArgument(a.sppRange, "spp_range", 2);
+    if (r[0] < 0 || r[1] <= r[0] || r[1] > (1LL << 30))
+      throw py::value_error("spp_range: expected (a, b) with 0 <= a < b <= 2**30, found (" +
+                            std::to_string(r[0]) + ", " + std::to_string(r[1]) + ")");
+    choices.firstSample = static_cast<int>(r[0]);
+    choices.samples = static_cast<int>(r[1] - r[0]);
+    choices.sampleRange = true;
   }
-  if (!fluorescence) nx::removeFluorescence(src.desc);
-  src.desc.relightable = relightable;
-  std::optional<nx::RenderScene> scene;
-  {
-    py::gil_scoped_release release;
-    scene.emplace(nx::buildRenderScene(src.desc));
-  }
-  for (const auto& w : scene->warnings) py::module_::import("warnings").attr("warn")(w);
-  const int width = scene->settings.width, height = scene->settings.height;
-  if (cropBox) {
-    const auto& c = *cropBox;
-    if (c[0] < 0 || c[1] < 0 || c[2] > width || c[3] > height || c[2] <= c[0] || c[3] <= c[1])
-      throw py::value_error(
-          "crop: expected (x0, y0, x1, y1) with 0 <= x0 < x1 <= " + std::to_string(width) +
-          " and 0 <= y0 < y1 <= " + std::to_string(height) + ", found (" + std::to_string(c[0]) +
-          ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) + ", " + std::to_string(c[3]) +
-          ")");
-    choices.crop = nx::PixelRect{static_cast<int>(c[0]), static_cast<int>(c[1]),
-                                 static_cast<int>(c[2]), static_cast<int>(c[3])};
-  }
-  // A differentiated render: the slots of the parameters asked for, and their tangents.
-  if (!adjoint.is_none() && gradients.is_none())
-    throw py::value_error("adjoint: only with gradients=[names] (d loss / d image for reverse "
-                          "mode, as nxrender.backward takes it), found an adjoint without them");
-  std::optional<GradientRequest> request;
-  std::vector<float> adjointValues;
-  if (!gradients.is_none()) {
-    py::object pyScene = sceneArg;
-    if (!py::isinstance<PyScene>(sceneArg)) {
-      const py::object cls = py::module_::import("nxrender").attr("Scene");
-      pyScene =
-          src.name == "<string>" ? cls.attr("from_text")(sceneArg, "<string>") : cls(src.name);
-    }
-    request.emplace(gradientRequest(pyScene, gradients, *scene, fluorescence));
-  }
-  std::optional<nx::RenderJob> jobHolder;
-  try {
-    jobHolder.emplace(*scene, src.name, choices);
-  } catch (const nx::Error& e) {
-    // The job's checks name the command line's options (--error-of); say Python's (error_of).
-    std::string message = e.what();
-    const size_t colon = message.find(':');
-    if (message.rfind("--", 0) == 0 && colon != std::string::npos)
-      message = pythonName(message.substr(0, colon)) + message.substr(colon);
-    throw py::value_error(message);
-  }
-  nx::RenderJob& job = *jobHolder;
-  // Tables and EEM windows that end inside the range this render traces (as nxrender warns).
-  for (const std::string& w : nx::extrapolationWarnings(*scene, nx::Film::tracedMinNm(job.bands()),
-                                                        nx::Film::tracedMaxNm(job.bands())))
-    py::module_::import("warnings").attr("warn")(w);
-  const nx::PixelRect r = job.rect();
-  nx::requireMemory(nx::renderBufferBytes(r.width(), r.height(), job.bands().count()), src.name,
-                    "a render",
-                    std::to_string(r.width()) + "x" + std::to_string(r.height()) + " with " +
-                        std::to_string(job.bands().count()) + " bands");
-  // The render runs on a worker thread in its own arena; this thread waits with the GIL
-  // released, and every 50 ms takes it to run Python's signal handlers (Ctrl-C) and the
-  // progress callback, so both run on the caller's thread and never inside a TBB task.
-  nx::RenderOptions& options = job.options();
-  if (request) {
-    options.gradients = &request->tangents;
-    if (!adjoint.is_none()) {
-      // d loss / d image: (H, W, bands) over the rendered pixels, as the radiance; real numbers
-      // float32 keeps, as an image's arrays (complex, str, bool and object arrays were cast,
-      // 1e-50 became 0).
-      adjointValues = pixelsArgument<float>(adjoint, "adjoint", r.height(), r.width(),
-                                            job.bands().count(), -FLT_MAX, FLT_MAX);
-      options.adjoint = &adjointValues;
+  if (!a.seed.is_none())
+    choices.seed = static_cast<uint32_t>(integerArgument(a.seed, "seed", 0, 2147483647));
+  if (!a.bands.is_none() && !a.sensor.is_none())
+    throw py::value_error("bands, sensor: give one of them");
+  if (!a.bands.is_none()) {
+    if (py::isinstance<py::str>(a.bands)) {
+      choices.bands = nx::Sensor(nx::SpectralBands::parse(a.bands.cast<std::string>()));
+    } else {
+      const auto v = numbersArgument(a.bands, "bands", 3);
+      nx::SpectralBands b{v[0], v[1], v[2]};
+      choices.bands = nx::Sensor(nx::SpectralBands::parse(b.toString()));
     }
   }
+  if (!a.sensor.is_none())
+    choices.bands = nx::sensorFromOption(pathArgument(a.sensor, "sensor"), "sensor");
+  choices.sampler = optionString(a.sampler, "sampler");
+  choices.lightSampling = optionString(a.lightSampling, "light_sampling");
+  choices.lightSelection = optionString(a.lightSelection, "light_selection");
+  choices.density = optionString(a.density, "wavelength_density");
+  choices.noFluorescence = !a.fluorescence;
+  choices.relightable = a.relightable;
+  if (!a.relightStep.is_none()) {
+    if (!a.relightable)
+      throw py::value_error("relight_step: only with relightable=True (the grid it keeps)");
+    choices.relightStepNm = numberArgument(a.relightStep, "relight_step", 1e-9, 1e9);
+    try {
+      nx::checkRelightStep(choices.relightStepNm, "relight_step");
+    } catch (const nx::Error& e) {
+      throw py::value_error(e.what());
+    }
+  }
+  if (py::isinstance<py::str>(a.aovs) || !py::hasattr(a.aovs, "__iter__"))
+    throw py::type_error("aovs: expected a list of 'white', 'ids', 'depth', 'components', "
+                         "'lightgroups', found " +
+                         typeName(a.aovs));
+  for (const py::handle aov : a.aovs) {
+    const std::string name = stringArgument(aov, "aovs");
+    if (!nx::addAov(choices, name))
+      throw py::value_error("aovs: expected 'white', 'ids', 'depth', 'components' or "
+                            "'lightgroups', found '" +
+                            name + "'");
+  }
+  if (!a.targetError.is_none())
+    choices.targetError = numberArgument(a.targetError, "target_error", 1e-9, 1e9);
+  choices.errorOf = optionString(a.errorOf, "error_of");
+  if (!a.timeLimit.is_none())
+    choices.timeLimit = numberArgument(a.timeLimit, "time_limit", 1e-3, 1e12);
+  choices.adaptive = a.adaptive;
+  if (a.adaptive && a.targetError.is_none())
+    throw py::value_error("adaptive: expected a target_error to aim at, found none");
+  checkStrategyNames(choices);
+  return choices;
+}
+
+// The crop (x0, y0, x1, y1) checked against the image's size.
+nx::PixelRect cropRect(const std::vector<long long>& c, int width, int height) {
+  if (c[0] < 0 || c[1] < 0 || c[2] > width || c[3] > height || c[2] <= c[0] || c[3] <= c[1])
+    throw py::value_error("crop: expected (x0, y0, x1, y1) with 0 <= x0 < x1 <= " +
+                          std::to_string(width) + " and 0 <= y0 < y1 <= " + std::to_string(height) +
+                          ", found (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
+                          std::to_string(c[2]) + ", " + std::to_string(c[3]) + ")");
+  return nx::PixelRect{static_cast<int>(c[0]), static_cast<int>(c[1]), static_cast<int>(c[2]),
+                       static_cast<int>(c[3])};
+}
+
+// Renders on a worker thread in its own arena of `threads`; this thread waits with the GIL
+// released, and every 50 ms takes it to run Python's signal handlers (Ctrl-C) and the
+// progress callback, so both run on the caller's thread and never inside a TBB task. A
+// Python error (Ctrl-C, the callback's) stops the render and is raised.
+nx::RenderOutput renderWaiting(const nx::RenderScene& scene, nx::RenderOptions& options,
+                               int threads, const py::object& progress) {
   std::atomic<bool> stop{false};
   std::atomic<int64_t> done{0}, total{0};
   options.stop = &stop;
@@ -265,8 +207,8 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   std::exception_ptr renderError;
   std::thread worker([&] {
     try {
-      tbb::task_arena arena(nThreads);
-      arena.execute([&] { result.emplace(nx::render(*scene, options)); });
+      tbb::task_arena arena(threads);
+      arena.execute([&] { result.emplace(nx::render(scene, options)); });
     } catch (...) {
       renderError = std::current_exception();
     }
@@ -306,31 +248,122 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   }
   if (pythonError) throw std::move(*pythonError);
   if (renderError) std::rethrow_exception(renderError);
+  return std::move(*result);
+}
 
+// Reverse mode's result: d loss / d parameter per name (a number, or one per component) and
+// their variances.
+py::object gradientsByName(const GradientRequest& request, const nx::RenderOutput& result) {
+  py::dict grads, variances;
+  for (const GradientRequest::Parameter& p : request.parameters) {
+    auto pick = [&](const std::vector<double>& v) -> py::object {
+      if (!p.indexed) return py::float_(v[p.firstSlot]);
+      py::array_t<double> a(static_cast<py::ssize_t>(p.slots));
+      std::copy(v.begin() + p.firstSlot, v.begin() + p.firstSlot + p.slots, a.mutable_data());
+      if (p.shape.empty()) return a;
+      py::list shape;
+      for (long n : p.shape) shape.append(n);
+      return a.attr("reshape")(py::tuple(shape));
+    };
+    grads[py::str(p.name)] = pick(result.gradient);
+    variances[py::str(p.name)] = pick(result.gradientVariance);
+  }
+  return py::make_tuple(grads, variances);
+}
+
+py::object render(const py::object& sceneArg, const py::object& spp, const py::object& seed,
+                  const py::object& threads, const py::object& bands, const py::object& sensor,
+                  const py::object& crop, const py::object& sppRange, const py::object& progress,
+                  const py::object& sampler, const py::object& lightSampling,
+                  const py::object& lightSelection, const py::object& density, bool fluorescence,
+                  const py::object& aovs, const py::object& targetError, const py::object& errorOf,
+                  const py::object& timeLimit, bool adaptive, bool relightable,
+                  const py::object& relightStep, const py::object& gradients,
+                  const py::object& adjoint) {
+  // Every argument is checked before the (possibly long) scene build.
+  nx::RenderChoices choices = choicesFrom(
+      {spp, seed, bands, sensor, sppRange, sampler, lightSampling, lightSelection, density,
+       fluorescence, aovs, targetError, errorOf, timeLimit, adaptive, relightable, relightStep});
+  const int nThreads = threads.is_none()
+                           ? tbb::info::default_concurrency()
+                           : static_cast<int>(integerArgument(threads, "threads", 1, 4096));
+  std::optional<std::vector<long long>> cropBox;
+  if (!crop.is_none()) cropBox = integersArgument(crop, "crop", 4);
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+    throw py::type_error("progress: expected a callable progress(done, total), found " +
+                         typeName(progress));
+
+  SceneSource src = sceneArgument(sceneArg);
+  if (!src.desc.warnings.empty()) {
+    const py::object warn = py::module_::import("warnings").attr("warn");
+    for (const auto& w : src.desc.warnings) warn(w);
+  }
+  if (!fluorescence) nx::removeFluorescence(src.desc);
+  src.desc.relightable = relightable;
+  std::optional<nx::RenderScene> scene;
+  {
+    py::gil_scoped_release release;
+    scene.emplace(nx::buildRenderScene(src.desc));
+  }
+  for (const auto& w : scene->warnings) py::module_::import("warnings").attr("warn")(w);
+  const int width = scene->settings.width, height = scene->settings.height;
+  if (cropBox) choices.crop = cropRect(*cropBox, width, height);
+  // A differentiated render: the slots of the parameters asked for, and their tangents.
+  if (!adjoint.is_none() && gradients.is_none())
+    throw py::value_error("adjoint: only with gradients=[names] (d loss / d image for reverse "
+                          "mode, as nxrender.backward takes it), found an adjoint without them");
+  std::optional<GradientRequest> request;
+  std::vector<float> adjointValues;
+  if (!gradients.is_none()) {
+    py::object pyScene = sceneArg;
+    if (!py::isinstance<PyScene>(sceneArg)) {
+      const py::object cls = py::module_::import("nxrender").attr("Scene");
+      pyScene =
+          src.name == "<string>" ? cls.attr("from_text")(sceneArg, "<string>") : cls(src.name);
+    }
+    request.emplace(gradientRequest(pyScene, gradients, *scene, fluorescence));
+  }
+  std::optional<nx::RenderJob> jobHolder;
+  try {
+    jobHolder.emplace(*scene, src.name, choices);
+  } catch (const nx::Error& e) {
+    // The job's checks name the command line's options (--error-of); say Python's (error_of).
+    std::string message = e.what();
+    const size_t colon = message.find(':');
+    if (message.rfind("--", 0) == 0 && colon != std::string::npos)
+      message = pythonName(message.substr(0, colon)) + message.substr(colon);
+    throw py::value_error(message);
+  }
+  nx::RenderJob& job = *jobHolder;
+  // Tables and EEM windows that end inside the range this render traces (as nxrender warns).
+  for (const std::string& w : nx::extrapolationWarnings(*scene, nx::Film::tracedMinNm(job.bands()),
+                                                        nx::Film::tracedMaxNm(job.bands())))
+    py::module_::import("warnings").attr("warn")(w);
+  const nx::PixelRect r = job.rect();
+  nx::requireMemory(nx::renderBufferBytes(r.width(), r.height(), job.bands().count()), src.name,
+                    "a render",
+                    std::to_string(r.width()) + "x" + std::to_string(r.height()) + " with " +
+                        std::to_string(job.bands().count()) + " bands");
+  nx::RenderOptions& options = job.options();
+  if (request) {
+    options.gradients = &request->tangents;
+    if (!adjoint.is_none()) {
+      // d loss / d image: (H, W, bands) over the rendered pixels, as the radiance; real numbers
+      // float32 keeps, as an image's arrays (complex, str, bool and object arrays were cast,
+      // 1e-50 became 0).
+      adjointValues = pixelsArgument<float>(adjoint, "adjoint", r.height(), r.width(),
+                                            job.bands().count(), -FLT_MAX, FLT_MAX);
+      options.adjoint = &adjointValues;
+    }
+  }
+  std::optional<nx::RenderOutput> result = renderWaiting(*scene, options, nThreads, progress);
   // An adaptive image keeps its range (counts differ per pixel: sample_count).
   if (!adaptive && (result->stats.reachedTarget || result->stats.reachedTimeLimit))
     job.setSamplesReached(result->stats.samplesReached);
   nx::requireSomeFiniteSamples(result->stats, src.name);
   for (const std::string& w : nx::warningsOf(result->stats))
     if (request) py::module_::import("warnings").attr("warn")(w);
-  if (request && !adjoint.is_none()) {
-    // Reverse mode: d loss / d parameter per name (a number, or one per component).
-    py::dict grads, variances;
-    for (const GradientRequest::Parameter& p : request->parameters) {
-      auto pick = [&](const std::vector<double>& v) -> py::object {
-        if (!p.indexed) return py::float_(v[p.firstSlot]);
-        py::array_t<double> a(static_cast<py::ssize_t>(p.slots));
-        std::copy(v.begin() + p.firstSlot, v.begin() + p.firstSlot + p.slots, a.mutable_data());
-        if (p.shape.empty()) return a;
-        py::list shape;
-        for (long n : p.shape) shape.append(n);
-        return a.attr("reshape")(py::tuple(shape));
-      };
-      grads[py::str(p.name)] = pick(result->gradient);
-      variances[py::str(p.name)] = pick(result->gradientVariance);
-    }
-    return py::make_tuple(grads, variances);
-  }
+  if (request && !adjoint.is_none()) return gradientsByName(*request, *result);
   PyImage out;
   out.image = job.image(result->film, result->stats.seconds);
   if (request) {

@@ -344,7 +344,10 @@ std::string editsText(const SceneState& state) {
   return out;
 }
 
-void bindScene(py::module_& m) {
+namespace {
+
+// nxrender.Fluorescence.
+void bindFluorescenceClass(py::module_& m) {
   py::class_<FluorescenceView> fl(m, "Fluorescence",
                                   "The fluorescence of a material (the re-radiation matrix's "
                                   "parameters; docs/fluorescence.md)");
@@ -451,7 +454,10 @@ void bindScene(py::module_& m) {
            (d.absorptionNm ? std::to_string(*d.absorptionNm) + " nm" : *d.absorptionName) +
            ", stokes=" + std::to_string(d.stokesNm.value_or(0)) + " nm>";
   });
+}
 
+// nxrender.Material: its kind and one property per declared parameter.
+void bindMaterialClass(py::module_& m) {
   py::class_<MaterialView> mat(m, "Material",
                                "A material's parameters (an object's or a named one): a "
                                "property per parameter of the scene format "
@@ -554,7 +560,10 @@ void bindScene(py::module_& m) {
       .def("__repr__", [](const MaterialView& v) {
         return "<nxrender.Material " + v.label() + " " + v.get().material + ">";
       });
+}
 
+// nxrender.Dye and nxrender.Medium.
+void bindMediumClasses(py::module_& m) {
   py::class_<DyeView> dye(m, "Dye",
                           "The fluorescent dye dissolved in a medium (the parametric model; its "
                           "peak absorption coefficient is the medium's dye_peak)");
@@ -615,7 +624,10 @@ void bindScene(py::module_& m) {
              v.o.s->edits.push_back(v.label() + ".remove_dye()");
            })
       .def("__repr__", [](const MediumView& v) { return "<nxrender.Medium " + v.label() + ">"; });
+}
 
+// nxrender.Object: its structure, medium, material and emission (bindObjectShape: the rest).
+py::class_<ObjectView> bindObjectClass(py::module_& m) {
   py::class_<ObjectView> object(m, "Object",
                                 "One object of the scene: a shape kind's parameters (a property "
                                 "each, docs/reference/shapes.md) and its appearance");
@@ -695,7 +707,13 @@ void bindScene(py::module_& m) {
             record(*o.s, param, value);
           },
           "Its emitted radiance (an area light; W m^-2 sr^-1 nm^-1): a number, an illuminant "
-          "name or (wavelengths_nm, values); None: not a light")
+          "name or (wavelengths_nm, values); None: not a light");
+  return object;
+}
+
+// An object's mesh arrays and its shape kinds' parameters.
+void bindObjectShape(py::class_<ObjectView>& object) {
+  object
       .def_property(
           "vertices",
           [](const ObjectView& o) -> py::object {
@@ -821,7 +839,10 @@ void bindScene(py::module_& m) {
           },
           sp.spec.doc);
     }
+}
 
+// nxrender.Light and nxrender.NamedSpectrum.
+void bindLightClasses(py::module_& m) {
   py::class_<LightView> light(m, "Light",
                               "A <light>: a point or spot light; a property per parameter of "
                               "its kind (docs/reference/lights.md)");
@@ -848,7 +869,10 @@ void bindScene(py::module_& m) {
           "Its values: a number, (wavelengths_nm, values) or \"csv:FILE[#COLUMN]\"")
       .def("__repr__",
            [](const NamedSpectrumView& v) { return "<nxrender.NamedSpectrum " + v.label() + ">"; });
+}
 
+// nxrender.Camera.
+void bindCameraClass(py::module_& m) {
   py::class_<CameraView>(m, "Camera", "The scene's camera")
       .def_property(
           "position", [](const CameraView& c) { return tupleOf(c.s->desc.camera.position); },
@@ -957,12 +981,16 @@ void bindScene(py::module_& m) {
             });
           },
           "OpenCV extrinsics r11 .. r33, t1, t2, t3 (x_cam = R x_world + t), or None");
+}
 
+// nxrender.Scene: construction, data and lists (bindSceneSettings: the settings).
+py::class_<PyScene> bindSceneClass(py::module_& m) {
   bindSceneLists(m);
-  py::class_<PyScene>(m, "Scene",
-                      "A scene file read once and edited from Python; render it with "
-                      "nxrender.render(scene). Edits are checked like the file's values and "
-                      "recorded in the image's nxrender.sceneEdits attribute.")
+  py::class_<PyScene> scene(m, "Scene",
+                            "A scene file read once and edited from Python; render it with "
+                            "nxrender.render(scene). Edits are checked like the file's values and "
+                            "recorded in the image's nxrender.sceneEdits attribute.");
+  scene
       .def(py::init([](const py::object& path) {
              PyScene s;
              s.state = std::make_shared<SceneState>();
@@ -1041,7 +1069,13 @@ void bindScene(py::module_& m) {
             s.state->desc.settings.height = static_cast<int>(v[1]);
             record(*s.state, "resolution", value);
           },
-          "(width, height) in pixels")
+          "(width, height) in pixels");
+  return scene;
+}
+
+// The scene's settings as properties, and copies.
+void bindSceneSettings(py::class_<PyScene>& scene) {
+  scene
       .def_property(
           "spp", [](const PyScene& s) { return s.state->desc.settings.samples; },
           [](const PyScene& s, const py::object& value) {
@@ -1156,6 +1190,20 @@ void bindScene(py::module_& m) {
                std::to_string(s.state->desc.objects.size()) + " objects, " +
                std::to_string(s.state->edits.size()) + " edits>";
       });
+}
+
+} // namespace
+
+void bindScene(py::module_& m) {
+  bindFluorescenceClass(m);
+  bindMaterialClass(m);
+  bindMediumClasses(m);
+  py::class_<ObjectView> object = bindObjectClass(m);
+  bindObjectShape(object);
+  bindLightClasses(m);
+  bindCameraClass(m);
+  py::class_<PyScene> scene = bindSceneClass(m);
+  bindSceneSettings(scene);
 }
 
 } // namespace nxpy
