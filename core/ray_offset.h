@@ -46,7 +46,8 @@ inline float nextFloatDown(float v) {
 /// the result is rounded away from the surface, so the origin is provably on the correct
 /// side: no self-intersection and no leaking, for tiny and huge objects alike, with no fixed
 /// epsilon (the error-bound method of pbrt, Pharr, Jakob & Humphreys, 4th ed., 6.8.6).
-inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& pError, const Vec3& n, const Vec3& w) {
+[[gnu::always_inline]] inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& pError, const Vec3& n,
+                                                   const Vec3& w) {
   const float d = std::fabs(n.x) * pError.x + std::fabs(n.y) * pError.y + std::fabs(n.z) * pError.z;
   Vec3 offset = n * d;
   if (dot(w, n) < 0) offset = -offset;

@@ -66,6 +66,33 @@ const Material& whiteLambertian() {
   return white;
 }
 
+// What a surface vertex holds for next-event estimation and the continuation: its material,
+// reflectance and BSDF, and at a fluorescent diffuse lobe the excitation wavelengths chosen
+// once for both.
+struct SurfaceVertex {
+  /// The vertex at `h` (the rest default-initialized, as locals would be: no per-vertex zeroing).
+  SurfaceVertex(SurfaceHit& h, const ShapeAppearance& a, bool white, const Material& m,
+                const Vec3& w, const SampledSpectrum& r, const SampledWavelengths& current)
+      : hit(h), app(a), whiteHere(white), material(m), wo(w), rho(r),
+        bsdf(m, current, r, h.ng, h.ns, w) {}
+  SurfaceHit& hit; ///< (a sphere's uv is filled in when a texture or map needs it)
+  const ShapeAppearance& app;
+  bool whiteHere;
+  const Material& material;
+  Vec3 wo;
+  SampledSpectrum rho;
+  SurfaceBsdf bsdf;
+  RhoTangents rhoTangents; ///< differentiated renders: what rho's derivatives are here
+  FluorescentShift shift;
+  bool fluorescent = false;
+  float concentration = 1; ///< of the dye here (a concentration map)
+  ConcentrationTangents concentrationTangents;
+};
+
+// One path from the camera: its state (wavelengths, throughput, the previous vertex for MIS,
+// the media it is in) and one function per concept of the walk: free flights through media,
+// escaping to the background, emitters hit, and at surfaces the excitation shift, next-event
+// estimation (guided or not) and the BSDF's continuation.
 // kFluorescence: compiled in only for scenes with fluorescent materials, so that other
 // scenes run exactly the code they would without the feature.
 // kMedia: likewise for scenes with media or interface surfaces: the path tracks the media it
@@ -75,466 +102,597 @@ const Material& whiteLambertian() {
 // Sink: where contributions go (path_contributions.h); with Sink::kClasses the path's class
 // (shifted lanes, scatterings, light group) is tracked for each of them.
 template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
-void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
-                   PixelSampleStream& rng, TraceCounters& counters, Sink& sink) {
-  const RenderScene& scene = *ctx.scene;
-  const int rouletteStart = scene.settings.depth;
-  // Differentiated renders: the tangents, and the two ways an event enters the tape (scaling
-  // every later contribution, or the next one only).
-  constexpr bool kGradients = recordsGradients<Sink>();
-  [[maybe_unused]] const SceneTangents* tangents =
-      ctx.gradients ? ctx.gradients->tangents : nullptr;
-  [[maybe_unused]] auto event = [&](uint32_t slot, int lane, float g) {
-    if constexpr (kGradients) sink.event(slot, lane, g);
-  };
-  [[maybe_unused]] auto local = [&](uint32_t slot, int lane, float g) {
-    if constexpr (kGradients) sink.local(slot, lane, g);
-  };
+class PathWalk {
+public:
+  PathWalk(const IntegratorContext& ctx, const Ray& ray, const SampledWavelengths& lambda,
+           PixelSampleStream& rng, TraceCounters& counters, Sink& sink)
+      : ctx_(ctx), scene_(*ctx.scene), groups_(scene_.lightGroups), rng_(rng), counters_(counters),
+        sink_(sink), rouletteStart_(scene_.settings.depth),
+        tangents_(ctx.gradients ? ctx.gradients->tangents : nullptr), ray0_(ray), lambda_(lambda),
+        prevP_(ray.o) {
+    if constexpr (kMedia) media_ = scene_.cameraMedia;
+  }
+
+  // The walk: a bounce per ray until the path ends (escapes, is absorbed, loses the roulette or
+  // reaches the bounce limit). Flattened: every step and what it calls in this file is inlined
+  // into the walk, as it was when the walk was one function (without it GCC's growth limits
+  // left offsetRayOrigin and the walk's set-up out of line: 1% more instructions).
+  [[gnu::flatten]] void run() {
+    Ray ray_ = ray0_;
+    SampledWavelengths current_ = lambda_;
+    for (int bounce = 0;; ++bounce) {
+      SurfaceHit hit;
+      ++counters_.rays;
+      const bool found = scene_.geometry->intersect(ray_, hit);
+      if constexpr (kMedia) {
+        const Flight f = throughMedium(ray_, current_, bounce, found, hit);
+        if (f == Flight::PathEnds) break;
+        if (f == Flight::Scattered) continue;
+      }
+      if (!found) {
+        escape(ray_, current_);
+        break;
+      }
+      const ShapeAppearance& app = scene_.appearance(hit);
+      if constexpr (kMedia) {
+        // An interface: the path goes straight on into (or out of) the medium it bounds; the
+        // previous vertex stays the one MIS weights refer to (next-event estimation sees
+        // through interfaces too).
+        if (scene_.materials[app.material].kind == MaterialKind::Interface) {
+          if (bounce >= kMaxPathBounces) {
+            ++counters_.bounceLimited; // still carrying light: counted, reported
+            break;
+          }
+          crossBoundary(hit, app, -ray_.d, ray_.d, media_);
+          ray_.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ray_.d);
+          ray_.tMin = 0;
+          ray_.tMax = INFINITY;
+          continue;
+        }
+      }
+      const bool whiteHere = kWhite && scatterings_ == 0;
+      if (app.emission >= 0 && !whiteHere) addEmitterHit(ray_, current_, hit, app);
+      if (bounce >= kMaxPathBounces) {
+        ++counters_.bounceLimited; // still carrying light: counted, reported
+        break;
+      }
+      if (!scatterAtSurface(ray_, current_, hit, app, whiteHere)) break;
+    }
+  }
+
+private:
+  // Differentiated renders: the two ways an event enters the tape (scaling every later
+  // contribution, or the next one only).
+  static constexpr bool kGradients = recordsGradients<Sink>();
+  // Next-event estimation at a fluorescent vertex of a plain render: the excitation is also
+  // drawn guided by the chosen light's spectrum (fluorescent_vertex.h); differentiated,
+  // relightable and media renders keep the column's choice alone.
+  static constexpr bool kGuidedExcitation =
+      kFluorescence && !kMedia && !kGradients && !std::is_same_v<Sink, RelightSink>;
+  // What a ray's flight through a medium did.
+  enum class Flight { Through, Scattered, PathEnds };
+
+  auto event() {
+    return [this](uint32_t slot, int lane, float g) {
+      if constexpr (kGradients) sink_.event(slot, lane, g);
+    };
+  }
+  auto local() {
+    return [this](uint32_t slot, int lane, float g) {
+      if constexpr (kGradients) sink_.local(slot, lane, g);
+    };
+  }
   // Where a shadow ray records what it passed through (differentiated renders), else null.
-  [[maybe_unused]] auto shadowCrossings = [&]() -> ShadowCrossings* {
+  ShadowCrossings* shadowCrossings() {
     if constexpr (kGradients) {
-      sink.tape->crossings.clear();
-      return &sink.tape->crossings;
+      sink_.tape->crossings.clear();
+      return &sink_.tape->crossings;
     } else {
       return nullptr;
     }
-  };
+  }
   // The local events of a sampled light's emission (its radiance or intensity at `lit`).
-  [[maybe_unused]] auto lightEvents = [&](const LightSample& ls, const SampledWavelengths& lit) {
+  void lightEvents(const LightSample& ls, const SampledWavelengths& lit) {
     if constexpr (kGradients) {
       const size_t l = static_cast<size_t>(ls.light);
-      if (const Spectrum* emitted = ctx.gradients->spectrumOfSampledLight[l])
-        ratioEvents(*ctx.gradients->ofSampledLight[l], lit, evaluate(*emitted, lit), sink, local);
+      if (const Spectrum* emitted = ctx_.gradients->spectrumOfSampledLight[l])
+        ratioEvents(*ctx_.gradients->ofSampledLight[l], lit, evaluate(*emitted, lit), sink_,
+                    local());
     }
-  };
-  // lambda: the sensor wavelengths (where the film accumulates); current: what lights and
-  // materials are evaluated at (they differ after a fluorescent shift).
-  SampledWavelengths current = lambda;
-  SampledSpectrum beta = SampledSpectrum::filled(1.0f);
-  const LightGroups& groups = scene.lightGroups;
-  // Lanes re-radiated so far (tracked for component sinks only).
-  [[maybe_unused]] uint64_t shifted = 0;
+  }
   // The class of a contribution after `events` scatterings from an emitter of light group
   // `group` and relight source `source`, which the light left at wavelengths `emitted`; the
   // lanes of `extra` shifted in addition.
-  auto classOf = [&]([[maybe_unused]] int events, [[maybe_unused]] uint16_t group,
-                     [[maybe_unused]] uint16_t source,
-                     [[maybe_unused]] const SampledWavelengths& emitted,
-                     [[maybe_unused]] uint64_t extra = 0) {
+  PathClass classOf([[maybe_unused]] int events, [[maybe_unused]] uint16_t group,
+                    [[maybe_unused]] uint16_t source,
+                    [[maybe_unused]] const SampledWavelengths& emitted,
+                    [[maybe_unused]] uint64_t extra = 0) const {
     PathClass k;
-    if constexpr (Sink::kClasses) k = {shifted | extra, events, group, source, &emitted};
+    if constexpr (Sink::kClasses) k = {shifted_ | extra, events, group, source, &emitted};
     return k;
-  };
+  }
+  // beta for contributions: with media, divided by the spectral MIS divisor
+  SampledSpectrum weighted() const {
+    if constexpr (kMedia)
+      return beta_ * invMisDivisor_;
+    else
+      return beta_;
+  }
+  // Counts a scattering vertex and plays Russian roulette after <depth> of them, re-weighting
+  // survivors by 1/q (unbiased); false: the path ends (terminated, or nothing left to carry).
+  bool survivesRoulette() {
+    if (++scatterings_ >= rouletteStart_) {
+      const float q = std::min(1.0f, weighted().maxValue() * rrScale_);
+      const float u = rng_.next1D();
+      if (!(q > 0) || u >= q) return false;
+      beta_ *= 1.0f / q;
+    }
+    return !beta_.isBlack();
+  }
+  // Weight of an emitter found by this BSDF-sampled ray that next-event estimation could also
+  // have sampled, with density lightPdf.
+  float emitterWeight(float lightPdf) const {
+    if (specular_ || ctx_.lightSampling == LightSampling::BsdfOnly || !(lightPdf > 0)) return 1.0f;
+    return ctx_.lightSampling == LightSampling::NeeOnly ? 0.0f : powerHeuristic(prevPdf_, lightPdf);
+  }
+
+  [[gnu::always_inline]] inline Flight throughMedium([[maybe_unused]] Ray& ray_,
+                                                     [[maybe_unused]] SampledWavelengths& current_,
+                                                     int bounce, bool found, const SurfaceHit& hit);
+  // A scattering or re-emission at distance t in medium m: next-event estimation there and the
+  // phase function's (or an isotropic) continuation.
+  [[gnu::always_inline]] inline Flight
+  scatterInMedium([[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_,
+                  const HomogeneousMedium& medium, int m, float t, bool reemitted);
+  // A ray that leaves the scene: the background's and the environment lights' radiance.
+  [[gnu::always_inline]] inline void escape([[maybe_unused]] Ray& ray_,
+                                            [[maybe_unused]] SampledWavelengths& current_);
+  // An emitter the ray hit: its radiance, MIS-weighted against next-event estimation.
+  [[gnu::always_inline]] inline void addEmitterHit([[maybe_unused]] Ray& ray_,
+                                                   [[maybe_unused]] SampledWavelengths& current_,
+                                                   const SurfaceHit& hit,
+                                                   const ShapeAppearance& app);
+  // A surface vertex: its excitation shift, next-event estimation and the continuation;
+  // false: the path ends here.
+  [[gnu::always_inline]] inline bool scatterAtSurface([[maybe_unused]] Ray& ray_,
+                                                      [[maybe_unused]] SampledWavelengths& current_,
+                                                      SurfaceHit& hit, const ShapeAppearance& app,
+                                                      bool whiteHere);
+  // A fluorescent diffuse lobe: every lane's excitation wavelength chosen once, for both
+  // next-event estimation and the continuation through the diffuse lobe.
+  [[gnu::always_inline]] inline void chooseExcitation([[maybe_unused]] Ray& ray_,
+                                                      [[maybe_unused]] SampledWavelengths& current_,
+                                                      SurfaceVertex& v);
+  // A rough conductor's roughness: d ln f / d alpha at direction wi, for each slot moving it.
+  template <class Emit>
+  void roughnessEvents(const SurfaceVertex& v, const Vec3& wi, Emit&& emit);
+  // Next-event estimation with the excitation also drawn guided by the light (fluorescent
+  // vertices of plain renders); false where it does not apply.
+  [[gnu::always_inline]] inline bool
+  guidedDirectLight([[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_,
+                    SurfaceVertex& v, float& weightsHere);
+  // Next-event estimation at the vertex.
+  [[gnu::always_inline]] inline void directLightHere([[maybe_unused]] Ray& ray_,
+                                                     [[maybe_unused]] SampledWavelengths& current_,
+                                                     SurfaceVertex& v, float& weightsHere);
+  // The BSDF's sample and the path's state after it; false: the path ends.
+  [[gnu::always_inline]] inline bool continueFrom([[maybe_unused]] Ray& ray_,
+                                                  [[maybe_unused]] SampledWavelengths& current_,
+                                                  SurfaceVertex& v, float weightsHere);
+
+  const IntegratorContext& ctx_;
+  const RenderScene& scene_;
+  const LightGroups& groups_;
+  PixelSampleStream& rng_;
+  TraceCounters& counters_;
+  Sink& sink_;
+  const int rouletteStart_;
+  [[maybe_unused]] const SceneTangents* tangents_; ///< differentiated renders' tangents
+  // The camera ray and the sensor wavelengths (where the film accumulates). The walk's ray and
+  // `current` wavelengths (what lights and materials are evaluated at: they differ after a
+  // fluorescent shift) are run()'s locals, handed to each step: their addresses go to the
+  // intersector and the lights, and the path's other state stays in registers.
+  const Ray& ray0_;
+  const SampledWavelengths& lambda_;
+  SampledSpectrum beta_ = SampledSpectrum::filled(1.0f);
+  // Lanes re-radiated so far (tracked for component sinks only).
+  [[maybe_unused]] uint64_t shifted_ = 0;
   // Russian roulette looks at beta * rrScale: the throughput without the radiance scaling
   // 1 / eta^2 of refractions (a lossless path through glass keeps probability 1, as in pbrt-v4
   // and Mitsuba 3) and without the factor kLanes of a hero-only path.
-  float rrScale = 1;
-  bool heroAlone = kLanes == 1; // the secondary lanes were terminated (dispersion)
-  bool specular = true;         // the previous bounce was specular (or the camera)
-  float prevPdf = 0;
-  Vec3 prevP = ray.o;
-  Vec3 prevN; // shading normal at prevP (zero in a medium): light pdfs' cosine warp
+  float rrScale_ = 1;
+  bool heroAlone_ = kLanes == 1; // the secondary lanes were terminated (dispersion)
+  bool specular_ = true;         // the previous bounce was specular (or the camera)
+  float prevPdf_ = 0;
+  Vec3 prevP_;
+  Vec3 prevN_; // shading normal at prevP (zero in a medium): light pdfs' cosine warp
   // The sum of the light weights next-event estimation found at prevP (LightSampler::choose;
   // 0: none), so the MIS weight of an emitter found from there does not weigh every light again.
-  float prevWeights = 0;
-  [[maybe_unused]] MediumStack media;
+  float prevWeights_ = 0;
+  [[maybe_unused]] MediumStack media_;
   // Spectral MIS through media: p_lane / p_hero of the path so far (free_flight.h); every
   // contribution is divided by their mean (1 while no medium event happened).
-  [[maybe_unused]] SampledSpectrum misRatios = SampledSpectrum::filled(1.0f);
+  [[maybe_unused]] SampledSpectrum misRatios_ = SampledSpectrum::filled(1.0f);
   // 1 / spectralMisDivisor(misRatios, heroAlone), kept up to date where either changes (after
   // each free flight, when the hero goes alone) rather than summed at every contribution.
-  [[maybe_unused]] float invMisDivisor = 1.0f;
-  if constexpr (kMedia) media = scene.cameraMedia;
-  // beta for contributions: with media, divided by the spectral MIS divisor
-  auto weighted = [&]() {
-    if constexpr (kMedia)
-      return beta * invMisDivisor;
-    else
-      return beta;
-  };
+  [[maybe_unused]] float invMisDivisor_ = 1.0f;
   // Scattering vertices so far (surfaces and media; interfaces do not count): Russian roulette
   // starts after <depth> of them.
-  int scatterings = 0;
-  // Counts a scattering vertex and plays Russian roulette after <depth> of them, re-weighting
-  // survivors by 1/q (unbiased); false: the path ends (terminated, or nothing left to carry).
-  auto survivesRoulette = [&]() {
-    if (++scatterings >= rouletteStart) {
-      const float q = std::min(1.0f, weighted().maxValue() * rrScale);
-      const float u = rng.next1D();
-      if (!(q > 0) || u >= q) return false;
-      beta *= 1.0f / q;
-    }
-    return !beta.isBlack();
-  };
+  int scatterings_ = 0;
+};
 
-  for (int bounce = 0;; ++bounce) {
-    SurfaceHit hit;
-    ++counters.rays;
-    // Weight of an emitter found by this BSDF-sampled ray that next-event estimation could
-    // also have sampled, with density lightPdf.
-    auto emitterWeight = [&](float lightPdf) {
-      if (specular || ctx.lightSampling == LightSampling::BsdfOnly || !(lightPdf > 0)) return 1.0f;
-      return ctx.lightSampling == LightSampling::NeeOnly ? 0.0f : powerHeuristic(prevPdf, lightPdf);
-    };
-    const bool found = scene.geometry->intersect(ray, hit);
-    if constexpr (kMedia) {
-      if (const int m = media.current(); m >= 0) {
-        const HomogeneousMedium& medium = scene.media[static_cast<size_t>(m)];
-        const float uDistance = rng.next1D(), uEvent = rng.next1D();
-        // An emitting medium: the emission along the flight, weighted by the path before it.
-        const SampledSpectrum before = medium.emission ? weighted() : SampledSpectrum();
-        SampledSpectrum glow;
-        const FreeFlight flight =
-            sampleFreeFlight(medium, current, found ? hit.t : INFINITY, uDistance, uEvent, beta,
-                             misRatios, medium.emission ? &glow : nullptr);
-        if (medium.emission)
-          sink.add(before * glow,
-                   classOf(scatterings, groups.ofMedium[static_cast<size_t>(m)], 0, current));
-        if constexpr (kGradients)
-          freeFlightEvents(tangents->media[static_cast<size_t>(m)], medium, current, flight.event,
-                           flight.event == MediumEvent::None ? (found ? hit.t : INFINITY)
-                                                             : flight.t,
-                           sink, event);
-        // beta_i / mean(ratios) is all that counts, so both are divided by the mean after each
-        // flight: the products stay near 1 on long chromatic paths (ratios' mean 1; the hero's
-        // own ratio, once 1, becomes 1 / (the product of these means)).
-        if (!heroAlone) {
-          const float mean = spectralMisDivisor(misRatios, false);
-          if (mean > 0) {
-            misRatios *= 1.0f / mean;
-            beta *= 1.0f / mean;
-          }
-        }
-        invMisDivisor = 1.0f / spectralMisDivisor(misRatios, heroAlone);
-        if (flight.event != MediumEvent::None) {
-          if (bounce >= kMaxPathBounces) {
-            ++counters.bounceLimited; // still carrying light: counted, reported
-            break;
-          }
-          const Vec3 p = ray.at(flight.t);
-          // A re-emission: every lane's excitation wavelength is chosen once (as at a
-          // fluorescent surface), for next-event estimation and the continuation; the light
-          // leaves isotropically. Its strength per lane is already in beta (sigma_fl).
-          const bool reemitted = flight.event == MediumEvent::Fluoresce;
-          const SampledWavelengths lit =
-              reemitted
-                  ? sampleFluorescentShift(*medium.dye, current, SampledSpectrum(), rng).excited
-                  : current;
-          auto phaseTo = [&](const Vec3& wi) {
-            return reemitted ? static_cast<float>(1 / (4 * kPi))
-                             : henyeyGreenstein(dot(ray.d, wi), medium.g);
-          };
-          [[maybe_unused]] const std::vector<MediumTangent>& mediumTangents =
-              tangents ? tangents->media[static_cast<size_t>(m)] : noMediumTangents();
-          if constexpr (kGradients)
-            if (reemitted) reemissionEvents(mediumTangents, medium, current, lit, sink, event);
-          float weightsHere = 0;
-          if (ctx.lightSampling != LightSampling::BsdfOnly && ctx.lights->count() > 0) {
-            const float uChoice = rng.next1D();
-            const Sample2 uLight = rng.next2D();
-            LightSample ls;
-            if (ctx.lights->sample(p, uChoice, uLight, lit, ls, Vec3(), &weightsHere)) {
-              const auto visible = [&](const Ray& r) {
-                return shadowTransmittance(scene, r, media, lit, counters, shadowCrossings());
-              };
-              const SampledSpectrum direct = directLightAt(
-                  p, Vec3(), Vec3(), ls,
-                  [&](const Vec3& wi) { return SampledSpectrum::filled(phaseTo(wi)); }, phaseTo,
-                  ctx.lightSampling != LightSampling::NeeOnly, visible);
-              if constexpr (kGradients) {
-                if (!direct.isBlack()) {
-                  if (!reemitted) phaseEvents(mediumTangents, medium.g, dot(ray.d, ls.wi), local);
-                  lightEvents(ls, lit);
-                  shadowEvents(*tangents, scene, sink.tape->crossings, lit, sink, local);
-                }
-              }
-              sink.add(weighted() * direct,
-                       classOf(scatterings + 1, ctx.lights->group(ls.light),
-                               ctx.lights->source(ls.light), lit,
-                               Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0}));
-            }
-          }
-          const Sample2 uDir = rng.next2D();
-          const Vec3 wi =
-              reemitted ? sampleUniformSphere(uDir) : sampleHenyeyGreenstein(ray.d, medium.g, uDir);
-          if constexpr (Sink::kClasses) shifted |= shiftedLanes(lit, current);
-          if constexpr (kGradients)
-            if (!reemitted) phaseEvents(mediumTangents, medium.g, dot(ray.d, wi), event);
-          current = lit;
-          specular = false;
-          prevPdf = phaseTo(wi);
-          prevP = p;
-          prevN = Vec3();
-          prevWeights = weightsHere;
-          if (!survivesRoulette()) break;
-          ray.o = p;
-          ray.d = wi;
-          ray.tMin = 0;
-          ray.tMax = INFINITY;
-          continue;
-        }
-        if (beta.isBlack()) break;
-      }
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+typename PathWalk<kFluorescence, kMedia, kWhite, Sink>::Flight
+PathWalk<kFluorescence, kMedia, kWhite, Sink>::throughMedium(
+    [[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_, int bounce,
+    bool found, const SurfaceHit& hit) {
+  const int m = media_.current();
+  if (m < 0) return Flight::Through;
+  const HomogeneousMedium& medium = scene_.media[static_cast<size_t>(m)];
+  const float uDistance = rng_.next1D(), uEvent = rng_.next1D();
+  // An emitting medium: the emission along the flight, weighted by the path before it.
+  const SampledSpectrum before = medium.emission ? weighted() : SampledSpectrum();
+  SampledSpectrum glow;
+  const FreeFlight flight =
+      sampleFreeFlight(medium, current_, found ? hit.t : INFINITY, uDistance, uEvent, beta_,
+                       misRatios_, medium.emission ? &glow : nullptr);
+  if (medium.emission)
+    sink_.add(before * glow,
+              classOf(scatterings_, groups_.ofMedium[static_cast<size_t>(m)], 0, current_));
+  if constexpr (kGradients)
+    freeFlightEvents(tangents_->media[static_cast<size_t>(m)], medium, current_, flight.event,
+                     flight.event == MediumEvent::None ? (found ? hit.t : INFINITY) : flight.t,
+                     sink_, event());
+  // beta_i / mean(ratios) is all that counts, so both are divided by the mean after each
+  // flight: the products stay near 1 on long chromatic paths (ratios' mean 1; the hero's own
+  // ratio, once 1, becomes 1 / (the product of these means)).
+  if (!heroAlone_) {
+    const float mean = spectralMisDivisor(misRatios_, false);
+    if (mean > 0) {
+      misRatios_ *= 1.0f / mean;
+      beta_ *= 1.0f / mean;
     }
-    if (!found) {
-      if (scene.background) {
-        const SampledSpectrum le = evaluate(*scene.background, current);
-        if constexpr (kGradients) ratioEvents(tangents->background, current, le, sink, local);
-        sink.add(weighted() * le *
-                     (specular
-                          ? 1.0f
-                          : emitterWeight(ctx.lights->pdfBackground(prevP, prevN, prevWeights))),
-                 classOf(scatterings, groups.ofBackground, groups.sourceOfBackground, current));
-      }
-      for (int e = 0; e < ctx.lights->environmentCount(); ++e)
-        sink.add(weighted() * ctx.lights->environmentRadiance(e, ray.d, current) *
-                     (specular ? 1.0f
-                               : emitterWeight(ctx.lights->pdfEnvironment(e, prevP, ray.d, prevN,
-                                                                          prevWeights))),
-                 classOf(scatterings, ctx.lights->environmentGroup(e), 0, current));
-      break;
-    }
-    const ShapeAppearance& app = scene.appearance(hit);
-    if constexpr (kMedia) {
-      // An interface: the path goes straight on into (or out of) the medium it bounds; the
-      // previous vertex stays the one MIS weights refer to (next-event estimation sees
-      // through interfaces too).
-      if (scene.materials[app.material].kind == MaterialKind::Interface) {
-        if (bounce >= kMaxPathBounces) {
-          ++counters.bounceLimited; // still carrying light: counted, reported
-          break;
-        }
-        crossBoundary(hit, app, -ray.d, ray.d, media);
-        ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ray.d);
-        ray.tMin = 0;
-        ray.tMax = INFINITY;
-        continue;
-      }
-    }
-    const bool whiteHere = kWhite && scatterings == 0;
-    if (app.emission >= 0 && !whiteHere) {
-      const float w =
-          specular ? 1.0f : emitterWeight(ctx.lights->pdf(prevP, hit, ray.d, prevN, prevWeights));
-      if (w > 0) {
-        const SampledSpectrum le =
-            evaluate(scene.emission[static_cast<size_t>(app.emission)], current);
-        if constexpr (kGradients)
-          ratioEvents(tangents->emission[static_cast<size_t>(app.emission)], current, le, sink,
-                      local);
-        sink.add(weighted() * le * w,
-                 classOf(scatterings, groups.ofEmission[static_cast<size_t>(app.emission)],
-                         relightSourceOf(groups, app.emission), current));
-      }
-    }
-    if (bounce >= kMaxPathBounces) {
-      ++counters.bounceLimited; // still carrying light: counted, reported
-      break;
-    }
-
-    const Material& material = whiteHere ? whiteLambertian() : scene.materials[app.material];
-    const Vec3 wo = -ray.d;
-    const SampledSpectrum rho = scene.reflectanceAt(material, hit, current);
-    // A differentiated render: what rho's derivatives are here (its texture's at the hit's uv).
-    [[maybe_unused]] RhoTangents rhoTangents;
-    if constexpr (kGradients) {
-      if (!whiteHere)
-        rhoTangents = {&tangents->reflectance[app.material], material.texture.get(),
-                       tangents->textureFirstSlot[app.material], hit.u, hit.v};
-    }
-    SurfaceBsdf bsdf(material, current, rho, hit.ng, hit.ns, wo);
-    bsdf.orient(hit.dpdu);
-    bsdf.setHeroAlone(heroAlone);
-    // A rough conductor's roughness: d ln f / d alpha at direction wi, for each slot moving it.
-    [[maybe_unused]] auto roughnessEvents = [&](const Vec3& wi, auto&& emit) {
-      if constexpr (kGradients) {
-        const auto& ts = tangents->roughness[app.material];
-        float du = 0, dv = 0;
-        if (ts.empty() || !bsdf.conductorRoughnessSlopes(wi, du, dv)) return;
-        for (const RoughnessTangent& t : ts)
-          if (const float g = t.alphaU * du + t.alphaV * dv; g != 0)
-            for (int i = 0; i < kLanes; ++i) emit(t.slot, i, g);
-      }
-    };
-
-    // A fluorescent diffuse lobe: every lane's excitation wavelength is chosen once, for both
-    // next-event estimation and the continuation through the diffuse lobe.
-    [[maybe_unused]] FluorescentShift shift;
-    [[maybe_unused]] bool fluorescent = false;
-    [[maybe_unused]] float concentration = 1; // of the dye here (a concentration map)
-    [[maybe_unused]] ConcentrationTangents concentrationTangents;
-    if constexpr (kFluorescence) {
-      if (material.reradiation && bsdf.hasNonSpecular()) {
-        if (material.concentration) {
-          concentration = scene.concentrationAt(material, hit);
-          if constexpr (kGradients)
-            concentrationTangents = {material.concentration.get(),
-                                     tangents->concentrationFirstSlot[app.material], hit.u, hit.v};
-          shift = sampleFluorescentShift(*material.reradiation, current, rho, rng, &concentration);
-        } else {
-          shift = sampleFluorescentShift(*material.reradiation, current, rho, rng);
-        }
-        fluorescent = true;
-      }
-    }
-
-    // Next-event estimation at a fluorescent vertex of a plain render: the excitation is also
-    // drawn guided by the chosen light's spectrum (fluorescent_vertex.h); differentiated,
-    // relightable and media renders keep the column's choice alone.
-    constexpr bool kGuidedExcitation =
-        kFluorescence && !kMedia && !kGradients && !std::is_same_v<Sink, RelightSink>;
-    bool guidedDone = false;
-    float weightsHere = 0; // LightSampler::choose's sum of weights at hit.p, for the next MIS
-    if constexpr (kGuidedExcitation) {
-      if (fluorescent && !ctx.columnOnlyExcitation && bsdf.hasNonSpecular() &&
-          ctx.lightSampling != LightSampling::BsdfOnly && ctx.lights->count() > 0) {
-        guidedDone = true;
-        const float uChoice = rng.next1D();
-        const Sample2 uLight = rng.next2D();
-        const Sample2 uGuide = rng.next2D();
-        float share = 0, uRest = 0;
-        const int l = ctx.lights->choose(hit.p, hit.ns, uChoice, share, uRest, &weightsHere);
-        LightSample ls, lsGuided;
-        if (l >= 0 &&
-            ctx.lights->sampleChosen(l, share, hit.p, uRest, uLight, shift.excited, ls, hit.ns)) {
-          // Where the light meets the column evenly the column's event alone, at its weight.
-          const bool guide = ctx.lights->guidanceHelps(l, app.material, current);
-          const GuidedShift g =
-              guide ? guideFluorescentShift(*material.reradiation, current, shift, rho,
-                                            concentration, *ctx.lights->excitationGuide(l), uGuide)
-                    : GuidedShift{current, shift.albedo, SampledSpectrum::filled(0.0f)};
-          if (guide)
-            ctx.lights->sampleChosen(l, share, hit.p, uRest, uLight, g.guided, lsGuided, hit.ns);
-          // One shadow ray for both events: the light's geometry with unit radiance.
-          LightSample unit = ls;
-          unit.radiance = SampledSpectrum::filled(1.0f);
-          const SampledSpectrum geometric = directLight(
-              scene, hit, ray.d, unit, [&](const Vec3& wi) { return bsdf.diffuseLobe(wi); },
-              [&](const Vec3& wi) { return bsdf.pdf(wi); },
-              ctx.lightSampling != LightSampling::NeeOnly, counters);
-          if (!geometric.isBlack()) {
-            const uint16_t group = ctx.lights->group(l), source = ctx.lights->source(l);
-            const auto lanesOf = [&](const SampledWavelengths& lit) {
-              return Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0};
-            };
-            sink.add(
-                beta * geometric * g.columnWeight * ls.radiance,
-                classOf(scatterings + 1, group, source, shift.excited, lanesOf(shift.excited)));
-            if (guide)
-              sink.add(beta * geometric * g.guidedWeight * lsGuided.radiance,
-                       classOf(scatterings + 1, group, source, g.guided, lanesOf(g.guided)));
-          }
-        }
-      }
-    }
-    if (!guidedDone && bsdf.hasNonSpecular() && ctx.lightSampling != LightSampling::BsdfOnly &&
-        ctx.lights->count() > 0) {
-      const float uChoice = rng.next1D();
-      const Sample2 uLight = rng.next2D();
-      LightSample ls;
-      const SampledWavelengths& lit = fluorescent ? shift.excited : current;
-      if (ctx.lights->sample(hit.p, uChoice, uLight, lit, ls, hit.ns, &weightsHere)) {
-        auto f = [&](const Vec3& wi) {
-          return fluorescent ? shift.albedo * bsdf.diffuseLobe(wi) : bsdf.f(wi);
-        };
-        auto pdf = [&](const Vec3& wi) { return bsdf.pdf(wi); };
-        const PathClass k =
-            classOf(scatterings + 1, ctx.lights->group(ls.light), ctx.lights->source(ls.light), lit,
-                    Sink::kClasses ? shiftedLanes(lit, current) : uint64_t{0});
-        if constexpr (kGradients) {
-          if (!whiteHere) {
-            if (fluorescent)
-              reradiationEvents(tangents->reradiation[app.material], rhoTangents,
-                                *material.reradiation, current, shift.excited, rho, sink, local,
-                                concentration, concentrationTangents);
-            roughnessEvents(ls.wi, local);
-            reflectanceEvents(rhoTangents, material, current, rho, false, !fluorescent, sink,
-                              local);
-          }
-          lightEvents(ls, lit);
-        }
-        if constexpr (kMedia) {
-          const auto visible = [&](const Ray& r) {
-            return shadowTransmittance(scene, r, media, lit, counters, shadowCrossings());
-          };
-          const SampledSpectrum direct = directLightThrough(
-              hit, ray.d, ls, f, pdf, ctx.lightSampling != LightSampling::NeeOnly, visible);
-          if constexpr (kGradients)
-            if (!direct.isBlack())
-              shadowEvents(*tangents, scene, sink.tape->crossings, lit, sink, local);
-          sink.add(weighted() * direct, k);
-        } else {
-          sink.add(beta * directLight(scene, hit, ray.d, ls, f, pdf,
-                                      ctx.lightSampling != LightSampling::NeeOnly, counters),
-                   k);
-        }
-      }
-    }
-
-    [[maybe_unused]] const SampledWavelengths lambdaBefore = current; // before a re-radiation
-    BsdfSample bs;
-    const float uLobe = rng.next1D();
-    const Sample2 uDir = rng.next2D();
-    if (!bsdf.sample(uLobe, uDir, bs)) break;
-    if constexpr (kFluorescence) {
-      if (fluorescent && !bs.specular) { // the diffuse lobe re-radiates; the mirror lobe does not
-        bs.weight = shift.albedo * bs.diffuseScale;
-        if constexpr (Sink::kClasses) shifted |= shiftedLanes(shift.excited, current);
-        if constexpr (kGradients) {
-          if (!whiteHere)
-            reradiationEvents(tangents->reradiation[app.material], rhoTangents,
-                              *material.reradiation, current, shift.excited, rho, sink, event,
-                              concentration, concentrationTangents);
-        }
-        current = shift.excited;
-      }
-    }
-    if constexpr (kGradients) {
-      // The lobe taken scales the rest of the path (a fluorescent diffuse lobe's albedo came
-      // from the matrix above; rho's other shares, a coat's, from here).
-      if (!whiteHere) {
-        if (!bs.specular) roughnessEvents(bs.wi, event);
-        const bool reradiated = fluorescent && !bs.specular;
-        reflectanceEvents(rhoTangents, material, lambdaBefore, rho, bs.specular, !reradiated, sink,
-                          event);
-      }
-    }
-    if constexpr (kMedia) {
-      crossBoundary(hit, app, wo, bs.wi, media);
-      if (bs.straight) {
-        // Straight through a thin wall: like an interface, the MIS state stays the previous
-        // vertex's (next-event estimation sees through the wall).
-        beta *= bs.weight;
-        if (beta.isBlack()) break;
-        ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, bs.wi);
-        ray.tMin = 0;
-        ray.tMax = INFINITY;
-        continue;
-      }
-    }
-    beta *= bs.weight;
-    rrScale *= bs.eta * bs.eta;
-    if (bs.terminateSecondary && !heroAlone) {
-      // From here on the hero's estimator stands alone; what L holds keeps its lane weights.
-      // Its weight is f_hero / p_hero: beta's hero lane over the hero's ratio (1 unless
-      // media rescaled both).
-      beta = heroOnly(beta);
-      if constexpr (kMedia) beta *= misRatios[0] > 0 ? 1.0f / misRatios[0] : 0.0f;
-      rrScale *= 1.0f / static_cast<float>(kLanes);
-      heroAlone = true;
-      if constexpr (kMedia) invMisDivisor = 1.0f;
-    }
-    specular = bs.specular;
-    prevPdf = bs.pdf;
-    prevP = hit.p;
-    prevN = hit.ns;
-    prevWeights = weightsHere;
-
-    if (!survivesRoulette()) break;
-    ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, bs.wi);
-    ray.d = bs.wi;
-    ray.tMin = 0;
-    ray.tMax = INFINITY;
   }
+  invMisDivisor_ = 1.0f / spectralMisDivisor(misRatios_, heroAlone_);
+  if (flight.event != MediumEvent::None) {
+    if (bounce >= kMaxPathBounces) {
+      ++counters_.bounceLimited; // still carrying light: counted, reported
+      return Flight::PathEnds;
+    }
+    return scatterInMedium(ray_, current_, medium, m, flight.t,
+                           flight.event == MediumEvent::Fluoresce);
+  }
+  return beta_.isBlack() ? Flight::PathEnds : Flight::Through;
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+typename PathWalk<kFluorescence, kMedia, kWhite, Sink>::Flight
+PathWalk<kFluorescence, kMedia, kWhite, Sink>::scatterInMedium(
+    [[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_,
+    const HomogeneousMedium& medium, int m, float t, bool reemitted) {
+  const Vec3 p = ray_.at(t);
+  // A re-emission: every lane's excitation wavelength is chosen once (as at a fluorescent
+  // surface), for next-event estimation and the continuation; the light leaves isotropically.
+  // Its strength per lane is already in beta (sigma_fl).
+  const SampledWavelengths lit =
+      reemitted ? sampleFluorescentShift(*medium.dye, current_, SampledSpectrum(), rng_).excited
+                : current_;
+  auto phaseTo = [&](const Vec3& wi) {
+    return reemitted ? static_cast<float>(1 / (4 * kPi))
+                     : henyeyGreenstein(dot(ray_.d, wi), medium.g);
+  };
+  [[maybe_unused]] const std::vector<MediumTangent>& mediumTangents =
+      tangents_ ? tangents_->media[static_cast<size_t>(m)] : noMediumTangents();
+  if constexpr (kGradients)
+    if (reemitted) reemissionEvents(mediumTangents, medium, current_, lit, sink_, event());
+  float weightsHere = 0;
+  if (ctx_.lightSampling != LightSampling::BsdfOnly && ctx_.lights->count() > 0) {
+    const float uChoice = rng_.next1D();
+    const Sample2 uLight = rng_.next2D();
+    LightSample ls;
+    if (ctx_.lights->sample(p, uChoice, uLight, lit, ls, Vec3(), &weightsHere)) {
+      const auto visible = [&](const Ray& r) {
+        return shadowTransmittance(scene_, r, media_, lit, counters_, shadowCrossings());
+      };
+      const SampledSpectrum direct = directLightAt(
+          p, Vec3(), Vec3(), ls,
+          [&](const Vec3& wi) { return SampledSpectrum::filled(phaseTo(wi)); }, phaseTo,
+          ctx_.lightSampling != LightSampling::NeeOnly, visible);
+      if constexpr (kGradients) {
+        if (!direct.isBlack()) {
+          if (!reemitted) phaseEvents(mediumTangents, medium.g, dot(ray_.d, ls.wi), local());
+          lightEvents(ls, lit);
+          shadowEvents(*tangents_, scene_, sink_.tape->crossings, lit, sink_, local());
+        }
+      }
+      sink_.add(weighted() * direct,
+                classOf(scatterings_ + 1, ctx_.lights->group(ls.light),
+                        ctx_.lights->source(ls.light), lit,
+                        Sink::kClasses ? shiftedLanes(lit, current_) : uint64_t{0}));
+    }
+  }
+  const Sample2 uDir = rng_.next2D();
+  const Vec3 wi =
+      reemitted ? sampleUniformSphere(uDir) : sampleHenyeyGreenstein(ray_.d, medium.g, uDir);
+  if constexpr (Sink::kClasses) shifted_ |= shiftedLanes(lit, current_);
+  if constexpr (kGradients)
+    if (!reemitted) phaseEvents(mediumTangents, medium.g, dot(ray_.d, wi), event());
+  current_ = lit;
+  specular_ = false;
+  prevPdf_ = phaseTo(wi);
+  prevP_ = p;
+  prevN_ = Vec3();
+  prevWeights_ = weightsHere;
+  if (!survivesRoulette()) return Flight::PathEnds;
+  ray_.o = p;
+  ray_.d = wi;
+  ray_.tMin = 0;
+  ray_.tMax = INFINITY;
+  return Flight::Scattered;
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::escape(
+    [[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_) {
+  if (scene_.background) {
+    const SampledSpectrum le = evaluate(*scene_.background, current_);
+    if constexpr (kGradients) ratioEvents(tangents_->background, current_, le, sink_, local());
+    sink_.add(weighted() * le *
+                  (specular_
+                       ? 1.0f
+                       : emitterWeight(ctx_.lights->pdfBackground(prevP_, prevN_, prevWeights_))),
+              classOf(scatterings_, groups_.ofBackground, groups_.sourceOfBackground, current_));
+  }
+  for (int e = 0; e < ctx_.lights->environmentCount(); ++e)
+    sink_.add(weighted() * ctx_.lights->environmentRadiance(e, ray_.d, current_) *
+                  (specular_ ? 1.0f
+                             : emitterWeight(ctx_.lights->pdfEnvironment(e, prevP_, ray_.d, prevN_,
+                                                                         prevWeights_))),
+              classOf(scatterings_, ctx_.lights->environmentGroup(e), 0, current_));
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::addEmitterHit(
+    [[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_,
+    const SurfaceHit& hit, const ShapeAppearance& app) {
+  const float w =
+      specular_ ? 1.0f : emitterWeight(ctx_.lights->pdf(prevP_, hit, ray_.d, prevN_, prevWeights_));
+  if (!(w > 0)) return;
+  const SampledSpectrum le = evaluate(scene_.emission[static_cast<size_t>(app.emission)], current_);
+  if constexpr (kGradients)
+    ratioEvents(tangents_->emission[static_cast<size_t>(app.emission)], current_, le, sink_,
+                local());
+  sink_.add(weighted() * le * w,
+            classOf(scatterings_, groups_.ofEmission[static_cast<size_t>(app.emission)],
+                    relightSourceOf(groups_, app.emission), current_));
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+bool PathWalk<kFluorescence, kMedia, kWhite, Sink>::scatterAtSurface(
+    [[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_, SurfaceHit& hit,
+    const ShapeAppearance& app, bool whiteHere) {
+  const Material& material = whiteHere ? whiteLambertian() : scene_.materials[app.material];
+  const Vec3 wo = -ray_.d;
+  const SampledSpectrum rho = scene_.reflectanceAt(material, hit, current_);
+  SurfaceVertex v(hit, app, whiteHere, material, wo, rho, current_);
+  if constexpr (kGradients) {
+    if (!whiteHere)
+      v.rhoTangents = {&tangents_->reflectance[app.material], material.texture.get(),
+                       tangents_->textureFirstSlot[app.material], hit.u, hit.v};
+  }
+  v.bsdf.orient(hit.dpdu);
+  v.bsdf.setHeroAlone(heroAlone_);
+  if constexpr (kFluorescence) chooseExcitation(ray_, current_, v);
+  float weightsHere = 0; // LightSampler::choose's sum of weights at hit.p, for the next MIS
+  bool guidedDone = false;
+  if constexpr (kGuidedExcitation) guidedDone = guidedDirectLight(ray_, current_, v, weightsHere);
+  if (!guidedDone && v.bsdf.hasNonSpecular() && ctx_.lightSampling != LightSampling::BsdfOnly &&
+      ctx_.lights->count() > 0)
+    directLightHere(ray_, current_, v, weightsHere);
+  return continueFrom(ray_, current_, v, weightsHere);
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::chooseExcitation(
+    [[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_, SurfaceVertex& v) {
+  if (!(v.material.reradiation && v.bsdf.hasNonSpecular())) return;
+  if (v.material.concentration) {
+    v.concentration = scene_.concentrationAt(v.material, v.hit);
+    if constexpr (kGradients)
+      v.concentrationTangents = {v.material.concentration.get(),
+                                 tangents_->concentrationFirstSlot[v.app.material], v.hit.u,
+                                 v.hit.v};
+    v.shift =
+        sampleFluorescentShift(*v.material.reradiation, current_, v.rho, rng_, &v.concentration);
+  } else {
+    v.shift = sampleFluorescentShift(*v.material.reradiation, current_, v.rho, rng_);
+  }
+  v.fluorescent = true;
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+template <class Emit>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::roughnessEvents(
+    [[maybe_unused]] const SurfaceVertex& v, [[maybe_unused]] const Vec3& wi,
+    [[maybe_unused]] Emit&& emit) {
+  if constexpr (kGradients) {
+    const auto& ts = tangents_->roughness[v.app.material];
+    float du = 0, dv = 0;
+    if (ts.empty() || !v.bsdf.conductorRoughnessSlopes(wi, du, dv)) return;
+    for (const RoughnessTangent& t : ts)
+      if (const float g = t.alphaU * du + t.alphaV * dv; g != 0)
+        for (int i = 0; i < kLanes; ++i) emit(t.slot, i, g);
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+bool PathWalk<kFluorescence, kMedia, kWhite, Sink>::guidedDirectLight(
+    [[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_, SurfaceVertex& v,
+    float& weightsHere) {
+  if (!(v.fluorescent && !ctx_.columnOnlyExcitation && v.bsdf.hasNonSpecular() &&
+        ctx_.lightSampling != LightSampling::BsdfOnly && ctx_.lights->count() > 0))
+    return false;
+  const SurfaceHit& hit = v.hit;
+  const float uChoice = rng_.next1D();
+  const Sample2 uLight = rng_.next2D();
+  const Sample2 uGuide = rng_.next2D();
+  float share = 0, uRest = 0;
+  const int l = ctx_.lights->choose(hit.p, hit.ns, uChoice, share, uRest, &weightsHere);
+  LightSample ls, lsGuided;
+  if (l >= 0 &&
+      ctx_.lights->sampleChosen(l, share, hit.p, uRest, uLight, v.shift.excited, ls, hit.ns)) {
+    // Where the light meets the column evenly the column's event alone, at its weight.
+    const bool guide = ctx_.lights->guidanceHelps(l, v.app.material, current_);
+    const GuidedShift g =
+        guide ? guideFluorescentShift(*v.material.reradiation, current_, v.shift, v.rho,
+                                      v.concentration, *ctx_.lights->excitationGuide(l), uGuide)
+              : GuidedShift{current_, v.shift.albedo, SampledSpectrum::filled(0.0f)};
+    if (guide)
+      ctx_.lights->sampleChosen(l, share, hit.p, uRest, uLight, g.guided, lsGuided, hit.ns);
+    // One shadow ray for both events: the light's geometry with unit radiance.
+    LightSample unit = ls;
+    unit.radiance = SampledSpectrum::filled(1.0f);
+    const SampledSpectrum geometric = directLight(
+        scene_, hit, ray_.d, unit, [&](const Vec3& wi) { return v.bsdf.diffuseLobe(wi); },
+        [&](const Vec3& wi) { return v.bsdf.pdf(wi); },
+        ctx_.lightSampling != LightSampling::NeeOnly, counters_);
+    if (!geometric.isBlack()) {
+      const uint16_t group = ctx_.lights->group(l), source = ctx_.lights->source(l);
+      const auto lanesOf = [&](const SampledWavelengths& lit) {
+        return Sink::kClasses ? shiftedLanes(lit, current_) : uint64_t{0};
+      };
+      sink_.add(
+          beta_ * geometric * g.columnWeight * ls.radiance,
+          classOf(scatterings_ + 1, group, source, v.shift.excited, lanesOf(v.shift.excited)));
+      if (guide)
+        sink_.add(beta_ * geometric * g.guidedWeight * lsGuided.radiance,
+                  classOf(scatterings_ + 1, group, source, g.guided, lanesOf(g.guided)));
+    }
+  }
+  return true;
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directLightHere(
+    [[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_, SurfaceVertex& v,
+    float& weightsHere) {
+  const SurfaceHit& hit = v.hit;
+  const float uChoice = rng_.next1D();
+  const Sample2 uLight = rng_.next2D();
+  LightSample ls;
+  const SampledWavelengths& lit = v.fluorescent ? v.shift.excited : current_;
+  if (!ctx_.lights->sample(hit.p, uChoice, uLight, lit, ls, hit.ns, &weightsHere)) return;
+  auto f = [&](const Vec3& wi) {
+    return v.fluorescent ? v.shift.albedo * v.bsdf.diffuseLobe(wi) : v.bsdf.f(wi);
+  };
+  auto pdf = [&](const Vec3& wi) { return v.bsdf.pdf(wi); };
+  const PathClass k =
+      classOf(scatterings_ + 1, ctx_.lights->group(ls.light), ctx_.lights->source(ls.light), lit,
+              Sink::kClasses ? shiftedLanes(lit, current_) : uint64_t{0});
+  if constexpr (kGradients) {
+    if (!v.whiteHere) {
+      if (v.fluorescent)
+        reradiationEvents(tangents_->reradiation[v.app.material], v.rhoTangents,
+                          *v.material.reradiation, current_, v.shift.excited, v.rho, sink_, local(),
+                          v.concentration, v.concentrationTangents);
+      roughnessEvents(v, ls.wi, local());
+      reflectanceEvents(v.rhoTangents, v.material, current_, v.rho, false, !v.fluorescent, sink_,
+                        local());
+    }
+    lightEvents(ls, lit);
+  }
+  if constexpr (kMedia) {
+    const auto visible = [&](const Ray& r) {
+      return shadowTransmittance(scene_, r, media_, lit, counters_, shadowCrossings());
+    };
+    const SampledSpectrum direct = directLightThrough(
+        hit, ray_.d, ls, f, pdf, ctx_.lightSampling != LightSampling::NeeOnly, visible);
+    if constexpr (kGradients)
+      if (!direct.isBlack())
+        shadowEvents(*tangents_, scene_, sink_.tape->crossings, lit, sink_, local());
+    sink_.add(weighted() * direct, k);
+  } else {
+    sink_.add(beta_ * directLight(scene_, hit, ray_.d, ls, f, pdf,
+                                  ctx_.lightSampling != LightSampling::NeeOnly, counters_),
+              k);
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+bool PathWalk<kFluorescence, kMedia, kWhite, Sink>::continueFrom(
+    [[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_, SurfaceVertex& v,
+    float weightsHere) {
+  const SurfaceHit& hit = v.hit;
+  [[maybe_unused]] const SampledWavelengths lambdaBefore = current_; // before a re-radiation
+  BsdfSample bs;
+  const float uLobe = rng_.next1D();
+  const Sample2 uDir = rng_.next2D();
+  if (!v.bsdf.sample(uLobe, uDir, bs)) return false;
+  if constexpr (kFluorescence) {
+    if (v.fluorescent && !bs.specular) { // the diffuse lobe re-radiates; the mirror lobe does not
+      bs.weight = v.shift.albedo * bs.diffuseScale;
+      if constexpr (Sink::kClasses) shifted_ |= shiftedLanes(v.shift.excited, current_);
+      if constexpr (kGradients) {
+        if (!v.whiteHere)
+          reradiationEvents(tangents_->reradiation[v.app.material], v.rhoTangents,
+                            *v.material.reradiation, current_, v.shift.excited, v.rho, sink_,
+                            event(), v.concentration, v.concentrationTangents);
+      }
+      current_ = v.shift.excited;
+    }
+  }
+  if constexpr (kGradients) {
+    // The lobe taken scales the rest of the path (a fluorescent diffuse lobe's albedo came from
+    // the matrix; rho's other shares, a coat's, from here).
+    if (!v.whiteHere) {
+      if (!bs.specular) roughnessEvents(v, bs.wi, event());
+      const bool reradiated = v.fluorescent && !bs.specular;
+      reflectanceEvents(v.rhoTangents, v.material, lambdaBefore, v.rho, bs.specular, !reradiated,
+                        sink_, event());
+    }
+  }
+  if constexpr (kMedia) {
+    crossBoundary(hit, v.app, v.wo, bs.wi, media_);
+    if (bs.straight) {
+      // Straight through a thin wall: like an interface, the MIS state stays the previous
+      // vertex's (next-event estimation sees through the wall).
+      beta_ *= bs.weight;
+      if (beta_.isBlack()) return false;
+      ray_.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, bs.wi);
+      ray_.tMin = 0;
+      ray_.tMax = INFINITY;
+      return true;
+    }
+  }
+  beta_ *= bs.weight;
+  rrScale_ *= bs.eta * bs.eta;
+  if (bs.terminateSecondary && !heroAlone_) {
+    // From here on the hero's estimator stands alone; what L holds keeps its lane weights. Its
+    // weight is f_hero / p_hero: beta's hero lane over the hero's ratio (1 unless media rescaled
+    // both).
+    beta_ = heroOnly(beta_);
+    if constexpr (kMedia) beta_ *= misRatios_[0] > 0 ? 1.0f / misRatios_[0] : 0.0f;
+    rrScale_ *= 1.0f / static_cast<float>(kLanes);
+    heroAlone_ = true;
+    if constexpr (kMedia) invMisDivisor_ = 1.0f;
+  }
+  specular_ = bs.specular;
+  prevPdf_ = bs.pdf;
+  prevP_ = hit.p;
+  prevN_ = hit.ns;
+  prevWeights_ = weightsHere;
+  if (!survivesRoulette()) return false;
+  ray_.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, bs.wi);
+  ray_.d = bs.wi;
+  ray_.tMin = 0;
+  ray_.tMax = INFINITY;
+  return true;
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
+                   PixelSampleStream& rng, TraceCounters& counters, Sink& sink) {
+  PathWalk<kFluorescence, kMedia, kWhite, Sink>(ctx, ray, lambda, rng, counters, sink).run();
 }
 
 } // namespace
