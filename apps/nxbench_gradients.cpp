@@ -14,12 +14,11 @@
 #include <tbb/global_control.h>
 
 #include <cstdio>
-#include <functional>
 
 #include "apps/bench_util.h"
 #include "apps/command_line.h"
 #include "apps/program_main.h"
-#include "integrators/gradients/scene_tangents.h"
+#include "integrators/gradients/gradient_setup.h"
 #include "integrators/renderer.h"
 #include "integrators/scene_reader.h"
 
@@ -58,23 +57,6 @@ std::string text(const Values& v, int width, int spp) {
          "\">380:1, 480:1, 520:0.1, 800:0.1</emission></sphere></scene>";
 }
 
-RenderScene resolved(const std::string& t) {
-  return resolveRenderScene(parseScene(t, "bench.scn"));
-}
-
-// Adds one slot per parameter moved by `move` (central differences of resolved scenes).
-void addSlot(SceneTangents& t, const RenderScene& base, const Values& v, int width, int spp,
-             const std::string& name, double step,
-             const std::function<void(Values&, double)>& move) {
-  Values plus = v, minus = v;
-  move(plus, step);
-  move(minus, -step);
-  const RenderScene a = resolved(text(plus, width, spp)), b = resolved(text(minus, width, spp));
-  const RenderScene* scenes[] = {&a, &b};
-  const double w[] = {0.5 / step, -0.5 / step};
-  addTangentSlot(t, name, base, scenes, w);
-}
-
 long peakKilobytes() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -95,25 +77,18 @@ int run(int argc, char** argv) {
                             static_cast<size_t>(threads));
   Values v;
   for (int k = 0; k < knots; ++k) v.floor.push_back(0.3 + 0.5 * k / (knots - 1.0));
-  const RenderScene scene = buildRenderScene(parseScene(text(v, width, spp), "bench.scn"));
-  SceneTangents four = SceneTangents::sizedFor(scene);
-  addSlot(four, scene, v, width, spp, "stokes", 0.01, [](Values& x, double d) { x.stokes += d; });
-  addSlot(four, scene, v, width, spp, "yield", 1e-3, [](Values& x, double d) { x.yield += d; });
-  addSlot(four, scene, v, width, spp, "lamp", 1e-6, [](Values& x, double d) { x.lampScale += d; });
-  addSlot(four, scene, v, width, spp, "rho", 1e-4, [](Values& x, double d) { x.rho += d; });
-  SceneTangents one = SceneTangents::sizedFor(scene);
-  addSlot(one, scene, v, width, spp, "stokes", 0.01, [](Values& x, double d) { x.stokes += d; });
-  // The floor table's knots: d rho / d value_k is the table with 1 at knot k (as differences
-  // of resolved scenes give it, without resolving 2K scenes).
-  SceneTangents many = four;
-  const auto& table = std::get<TabulatedSpectrum>(scene.materials[0].reflectance.kind());
-  for (int k = 0; k < knots; ++k) {
-    TabulatedSpectrum unit = table;
-    std::fill(unit.value.begin(), unit.value.end(), 0.0);
-    unit.value[static_cast<size_t>(k)] = 1;
-    many.reflectance[0].add(many.slots(), Spectrum(std::move(unit)));
-    many.slotNames.push_back("floor" + std::to_string(k));
-  }
+  const SceneDesc desc = parseScene(text(v, width, spp), "bench.scn");
+  const RenderScene scene = buildRenderScene(desc);
+  // The tangents by parameter name, as render(gradients=...) makes them.
+  const std::vector<std::string> fourNames = {
+      "objects[1].fluorescence.stokes_nm", "objects[1].fluorescence.quantum_yield",
+      "objects[2].emission_scale", "objects[1].reflectance"};
+  const SceneTangents one =
+      gradientSetup(desc, {"objects[1].fluorescence.stokes_nm"}, scene, true).tangents;
+  const SceneTangents four = gradientSetup(desc, fourNames, scene, true).tangents;
+  std::vector<std::string> manyNames = fourNames;
+  manyNames.push_back("objects[0].reflectance"); // one slot per knot of the floor's table
+  const SceneTangents many = gradientSetup(desc, manyNames, scene, true).tangents;
   std::printf("scene: %dx%d, %d spp, %d threads, 31 bands\n", scene.settings.width,
               scene.settings.height, spp, threads);
   RenderOptions plain;

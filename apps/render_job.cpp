@@ -108,11 +108,6 @@ bool addAov(RenderChoices& choices, const std::string& name) {
   return flag != nullptr;
 }
 
-void removeFluorescence(SceneDesc& desc) {
-  for (auto& o : desc.objects) o.params.erase("fluorescence");
-  for (auto& m : desc.materials) m.material.params.erase("fluorescence");
-}
-
 RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const RenderChoices& choices)
     : scene_(scene), scenePath_(std::move(scenePath)), choices_(choices) {
   const int width = scene.settings.width, height = scene.settings.height;

@@ -61,9 +61,6 @@ struct StrategyOption {
 /// parameters (named after them) are made from this table.
 const std::vector<StrategyOption>& strategyOptions();
 
-/// Removes the fluorescence of every object and named material (--no-fluorescence).
-void removeFluorescence(SceneDesc& desc);
-
 /// A render of one built scene with one set of choices.
 class RenderJob {
 public:

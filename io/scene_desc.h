@@ -175,6 +175,9 @@ std::variant<ObjectDesc, LightDesc> parseItemTree(const SceneTree& item, bool li
                                                   const std::string& path, const SceneDesc& scene,
                                                   const SceneKindSchemas& kinds);
 
+/// Removes the fluorescence of every object and named material (--no-fluorescence).
+void removeFluorescence(SceneDesc& desc);
+
 /// Parses scene text; `file` names it in messages and anchors relative paths.
 SceneDesc parseScene(const std::string& text, const std::string& file,
                      const SceneKindSchemas& kinds);

@@ -1,8 +1,7 @@
 #pragma once
-// The parameters a differentiated render (render(gradients=...), backward) is asked for: their
-// names expanded into slots (one per number: a scalar, a knot of a tabulated spectrum, a colour
-// channel) and the scene's tangents for them, made by resolving copies of the scene with each
-// number moved a little (integrators/gradients/scene_tangents.h).
+// The parameters a differentiated render (render(gradients=...), backward) is asked for, from
+// Python: the names checked as Python's, then the library's set-up
+// (integrators/gradients/gradient_setup.h).
 
 #include <string>
 #include <vector>
@@ -13,14 +12,8 @@
 
 namespace nxpy {
 
-/// The slots of a differentiated render.
-struct GradientRequest {
-  /// Per requested name: its canonical name, first slot and number of slots; `indexed` when
-  /// it is a vector (a spectrum's values, a colour) whose gradient has a leading component axis.
-  using Parameter = GradientParameter;
-  std::vector<Parameter> parameters;
-  nx::SceneTangents tangents;
-};
+/// The slots of a differentiated render and the scene's tangents for them.
+using GradientRequest = nx::GradientSetup;
 
 /// The request for `names` (a list of str, as scene.parameters() names them) on `scene` (an
 /// nxrender.Scene), whose built scene is `base`. `fluorescence` false: the scenes are resolved

@@ -149,13 +149,7 @@ texelsArgument(const py::handle& wavelengths, const py::handle& values, const st
   t->width = static_cast<int>(a.shape(1));
   t->values = pixelsArgument<float>(a, (param + "[1] (values)").c_str(), a.shape(0), a.shape(1),
                                     a.shape(2), 0.0, 1.0);
-  uint64_t h = nx::fnv1a64(std::to_string(t->width) + "x" + std::to_string(t->height));
-  h = nx::fnv1a64(
-      std::string_view(reinterpret_cast<const char*>(t->nm.data()), t->nm.size() * sizeof(double)),
-      h);
-  t->digest = nx::fnv1a64(std::string_view(reinterpret_cast<const char*>(t->values.data()),
-                                           t->values.size() * sizeof(float)),
-                          h);
+  t->digest = nx::spectralTexelsDigest(*t);
   return t;
 }
 

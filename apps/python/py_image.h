@@ -9,20 +9,15 @@
 #include <vector>
 
 #include "core/params/scene_values.h"
+#include "integrators/gradients/gradient_setup.h"
 #include "io/spectral_exr.h"
 
 namespace nxpy {
 
 namespace py = pybind11;
 
-/// A parameter of a differentiated render: its name and its slots (GradientRequest).
-struct GradientParameter {
-  std::string name;
-  uint32_t firstSlot = 0, slots = 1;
-  bool indexed = false; ///< a vector: its gradient has a leading component axis
-  /// The component axes' shape (a texture's (height, width, bands)); empty: (slots,)
-  std::vector<long> shape;
-};
+/// A parameter of a differentiated render: its name and its slots.
+using GradientParameter = nx::GradientParameter;
 
 /// The Python object behind nxrender.Image.
 struct PyImage {

@@ -255,7 +255,7 @@ nx::RenderOutput renderWaiting(const nx::RenderScene& scene, nx::RenderOptions& 
 // their variances.
 py::object gradientsByName(const GradientRequest& request, const nx::RenderOutput& result) {
   py::dict grads, variances;
-  for (const GradientRequest::Parameter& p : request.parameters) {
+  for (const GradientParameter& p : request.parameters) {
     auto pick = [&](const std::vector<double>& v) -> py::object {
       if (!p.indexed) return py::float_(v[p.firstSlot]);
       py::array_t<double> a(static_cast<py::ssize_t>(p.slots));

@@ -1,183 +1,54 @@
 // Scene.parameters(), Scene.get(name), Scene.set(name, value): every parameter of the scene
-// by a stable name (the names Scene.edits records), with its type, unit, range and meaning.
-// Shape, material and light parameters come from the kinds' schemas (accel/shape_kinds.h,
-// integrators/materials/material_kind.h, integrators/lights/light_kinds.h); the others from
-// the table of core/params/scene_parameters.cpp. Values are read and set through the views'
-// properties, so a value set by name is checked and recorded exactly as one set by attribute.
+// by a stable name (the names Scene.edits records), with its type, unit, range and meaning, as
+// the library lists them (integrators/scene_params/scene_parameter_list.h). Values are read and
+// set through the views' properties, so a value set by name is checked and recorded exactly as
+// one set by attribute.
 
 #include "apps/python/py_scene_parameters.h"
 
 #include <pybind11/stl.h>
 
-#include <cctype>
+#include <variant>
 
-#include "accel/shape_kinds.h"
-#include "core/params/material_parameters.h"
-#include "core/params/scene_parameters.h"
-#include "integrators/lights/light_kinds.h"
-#include "integrators/materials/material_kind.h"
-#include "integrators/media/medium_kinds.h"
+#include "core/error.h"
+#include "integrators/scene_params/parameter_path.h"
+#include "integrators/scene_params/scene_parameter_list.h"
 
 namespace nxpy {
 namespace {
 
-const nx::FixedParameter& fixed(const std::string& key) {
-  return nx::fixedParameter(key);
-}
-
-// One entry of parameters(): the name and its description.
-struct Entry {
-  std::string name, type, unit, doc, defaultText;
-  const nx::ParameterRange* range = nullptr;
-  bool differentiable = false;
-};
-
-void addFixed(std::vector<Entry>& out, const std::string& name, const std::string& key) {
-  const nx::FixedParameter& f = fixed(key);
-  out.push_back({name, f.type, f.unit, f.doc, "", f.range, f.differentiable});
-}
-
-// The fluorescence fields of a material or a dye named `prefix`.
-void addFluorescence(std::vector<Entry>& out, const std::string& prefix,
-                     const nx::FluorescenceDesc& f, bool dye) {
-  if (f.matrixCsv || f.matrix) return addFixed(out, prefix + ".matrix", "fluorescence.matrix");
-  if (f.eem) { // an imported EEM: the yield and peak it was made absolute with
-    if (f.eem->referenceFile.empty())
-      addFixed(out, prefix + ".quantum_yield", "fluorescence.quantum_yield");
-    if (!f.eem->absorptance)
-      addFixed(out, prefix + ".peak_absorptance", "fluorescence.peak_absorptance");
-    addFixed(out, prefix + ".concentration", "fluorescence.concentration");
-    return;
-  }
-  for (const char* field :
-       {"absorption_nm", "stokes_nm", "width_nm", "skew", "quantum_yield", "peak_absorptance"})
-    if (!(dye && std::string(field) == "peak_absorptance"))
-      addFixed(out, prefix + "." + field, std::string("fluorescence.") + field);
-  if (!dye) addFixed(out, prefix + ".concentration", "fluorescence.concentration");
-}
-
-// Every parameter a material's kind takes (given or not), named `label.<parameter>`.
-void addMaterial(std::vector<Entry>& out, const std::string& label, const nx::MaterialDesc& m) {
-  const nx::MaterialKindSpec* kind = nx::findMaterialKind(m.material);
-  if (!kind) return;
-  for (const nx::KindParameter& p : kind->params) {
-    const nx::ParamSpec& spec = *nx::materialParameter(p.name);
-    out.push_back({label + "." + p.name, nx::paramTypeName(spec.type), spec.unit,
-                   *p.doc ? p.doc : spec.doc, p.defaultText, spec.range, spec.differentiable});
-    if (spec.type == nx::ParamType::Fluorescence)
-      if (const auto* f = m.params.get<nx::FluorescenceDesc>("fluorescence"))
-        addFluorescence(out, label + ".fluorescence", *f, false);
-  }
-}
-
-// Every parameter a light's or medium's kind takes, named `label.<parameter>` (a dye is listed
-// by its fields).
-void addTaken(std::vector<Entry>& out, const std::string& label,
-              std::span<const nx::TakenParameter> params) {
-  for (const nx::TakenParameter& p : params)
-    if (p.spec.type != nx::ParamType::Dye)
-      out.push_back({label + "." + p.spec.name, nx::paramTypeName(p.spec.type), p.spec.unit,
-                     p.spec.doc, p.defaultText, p.spec.range, p.spec.differentiable});
-}
-
-std::vector<Entry> entries(const SceneState& s) {
-  std::vector<Entry> out;
-  for (const char* k :
-       {"resolution", "mode", "spp", "seed", "depth", "bands", "background", "illuminant", "path"})
-    addFixed(out, k, k);
-  for (const nx::NamedSpectrumDesc& n : s.desc.spectra)
-    addFixed(out, "spectra['" + n.name + "'].value", "spectrum.value");
-  const nx::CameraDesc& c = s.desc.camera;
-  if (!c.extrinsics)
-    for (const char* k : {"position", "look_at", "up"})
-      addFixed(out, std::string("camera.") + k, std::string("camera.") + k);
-  else
-    addFixed(out, "camera.extrinsics", "camera.extrinsics");
-  addFixed(out, c.intrinsics ? "camera.intrinsics" : "camera.fov",
-           c.intrinsics ? "camera.intrinsics" : "camera.fov");
-  addFixed(out, "camera.distortion", "camera.distortion");
-  addFixed(out, "camera.thin_lens", "camera.thin_lens");
-  for (size_t i = 0; i < s.desc.objects.size(); ++i) {
-    const nx::ObjectDesc& o = s.desc.objects[i];
-    const std::string label = "objects[" + std::to_string(i) + "]";
-    if (const nx::ShapeKindSpec* kind = nx::findShapeKind(o.shape))
-      for (const nx::ShapeParameter& p : kind->params())
-        out.push_back({label + "." + p.spec.name, nx::paramTypeName(p.spec.type), p.spec.unit,
-                       p.spec.doc, "", p.spec.range, p.spec.differentiable});
-    addFixed(out, label + ".emission", "object.emission");
-    if (o.emission)
-      for (const char* f : {"emission_scale", "emission_at", "emission_quantity"})
-        addFixed(out, label + "." + f, std::string("object.") + f);
-    if (o.materialRef.empty()) addMaterial(out, label, o);
-    if (o.medium) {
-      if (const nx::MediumKindSpec* kind = nx::findMediumKind(o.medium->kind))
-        addTaken(out, label + ".medium", kind->params());
-      if (const auto* dye = o.medium->params.get<nx::FluorescenceDesc>("fluorescence")) {
-        addFixed(out, label + ".medium.dye_peak", "medium.dye_peak");
-        addFluorescence(out, label + ".medium.dye", *dye, true);
-      }
-    }
-  }
-  for (const nx::NamedMaterialDesc& m : s.desc.materials)
-    addMaterial(out, "materials['" + m.id + "']", m.material);
-  for (size_t i = 0; i < s.desc.lights.size(); ++i) {
-    const std::string label = "lights[" + std::to_string(i) + "]";
-    if (const nx::LightKindSpec* kind = nx::findLightKind(s.desc.lights[i].kind))
-      addTaken(out, label, kind->params());
-  }
-  return out;
-}
-
-// A name split into its steps: "objects[1].fluorescence.stokes_nm" -> (objects, 1),
-// (fluorescence), (stokes_nm); "materials['card'].reflectance" -> (materials, 'card'), ...
+// A name as steps for walking the views: (attribute, index) with the index as Python's (None,
+// an int or a str); KeyError when the name is not of the form of parameter names.
 struct Step {
   std::string attribute;
-  py::object index; ///< None, an int or a str
+  py::object index;
 };
 
 std::vector<Step> steps(const std::string& name) {
-  std::vector<Step> out;
-  size_t i = 0;
-  auto bad = [&] { return py::key_error("no scene parameter named '" + name + "'"); };
-  while (i < name.size()) {
-    Step s;
-    s.index = py::none();
-    while (i < name.size() && (std::isalnum(static_cast<unsigned char>(name[i])) || name[i] == '_'))
-      s.attribute += name[i++];
-    if (s.attribute.empty()) throw bad();
-    if (i < name.size() && name[i] == '[') {
-      const size_t close = name.find(']', i);
-      if (close == std::string::npos) throw bad();
-      const std::string inside = name.substr(i + 1, close - i - 1);
-      if (inside.size() >= 2 && (inside.front() == '\'' || inside.front() == '"') &&
-          inside.back() == inside.front())
-        s.index = py::str(inside.substr(1, inside.size() - 2));
-      else if (!inside.empty() && inside.find_first_not_of("0123456789") == std::string::npos)
-        s.index = py::int_(std::stoll(inside));
-      else
-        throw bad();
-      i = close + 1;
-    }
-    out.push_back(std::move(s));
-    if (i < name.size()) {
-      if (name[i] != '.') throw bad();
-      ++i;
-      if (i == name.size()) throw bad();
-    }
+  std::vector<nx::ParameterStep> parsed;
+  try {
+    parsed = nx::parameterSteps(name);
+  } catch (const nx::Error& e) {
+    throw py::key_error(e.what());
   }
-  if (out.empty() || !out.back().index.is_none()) throw bad();
+  std::vector<Step> out;
+  for (const nx::ParameterStep& s : parsed) {
+    Step step{s.attribute, py::none()};
+    if (const size_t* i = std::get_if<size_t>(&s.index)) step.index = py::int_(*i);
+    if (const std::string* k = std::get_if<std::string>(&s.index)) step.index = py::str(*k);
+    out.push_back(std::move(step));
+  }
   return out;
 }
 
 // The canonical spelling of a name (materials["x"] -> materials['x']), checked to be one of
 // the scene's parameters.
 std::string knownName(const SceneState& s, const std::string& name) {
-  std::string canonical = name;
-  for (char& ch : canonical)
-    if (ch == '"') ch = '\'';
-  for (const Entry& e : entries(s))
-    if (e.name == canonical) return canonical;
-  throw py::key_error("no scene parameter named '" + name + "' (Scene.parameters() lists them)");
+  try {
+    return nx::sceneParameter(s.desc, name).name;
+  } catch (const nx::Error& e) {
+    throw py::key_error(e.what());
+  }
 }
 
 // An object's material parameters are named after the object ("objects[1].reflectance", as
@@ -209,7 +80,7 @@ void bindSceneParameters(py::module_& m) {
       [](const py::object& self) {
         const PyScene& s = self.cast<const PyScene&>();
         py::dict out;
-        for (const Entry& e : entries(*s.state)) {
+        for (const nx::SceneParameterInfo& e : nx::sceneParameters(s.state->desc)) {
           py::dict d;
           const std::vector<Step> path = steps(e.name);
           const py::object at = holder(self, path);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/hash.h"
 #include "core/params/concentration_map.h"
 #include "core/params/eem_layout.h"
 #include "core/vec3.h"
@@ -27,6 +28,17 @@ struct SpectralTexels {
   std::vector<float> values;
   uint64_t digest = 0;
 };
+
+/// The digest of a texture's size, wavelengths and values (SpectralTexels::digest).
+inline uint64_t spectralTexelsDigest(const SpectralTexels& t) {
+  uint64_t h = fnv1a64(std::to_string(t.width) + "x" + std::to_string(t.height));
+  h = fnv1a64(
+      std::string_view(reinterpret_cast<const char*>(t.nm.data()), t.nm.size() * sizeof(double)),
+      h);
+  return fnv1a64(std::string_view(reinterpret_cast<const char*>(t.values.data()),
+                                  t.values.size() * sizeof(float)),
+                 h);
+}
 
 /// Rows of numbers written inline (a mesh's <vertices>, <faces>, <normals>, <uv>), `columns`
 /// per row: real numbers kept as float (the precision meshes are kept in) or indices as
