@@ -1,6 +1,7 @@
 // nxrender.Scene and its views (camera, objects, materials, fluorescence, lights).
 
 #include "apps/python/py_scene.h"
+#include "apps/python/py_scene_fields.h"
 #include "apps/python/py_scene_lists.h"
 #include "apps/python/py_scene_tree.h"
 #include "apps/python/py_scene_views.h"
@@ -32,28 +33,8 @@
 namespace nxpy {
 namespace {
 
-py::object spectrumToPythonOpt(const std::optional<nx::SpectrumDesc>& s) {
-  return s ? spectrumToPython(*s) : py::object(py::none());
-}
-
 void record(SceneState& s, const std::string& what, const py::handle& value) {
-  s.edits.push_back(what + " = " + py::repr(value).cast<std::string>());
-}
-
-// Applies edit to a copy of the camera, checks the result as the scene build does (the same
-// function), and only then stores it and records the edit: a refused value leaves the scene
-// as it was.
-template <typename Edit>
-void editCamera(SceneState& s, const std::string& param, const py::handle& value, Edit edit) {
-  nx::CameraDesc copy = s.desc.camera;
-  edit(copy);
-  try {
-    nx::checkCameraDesc(copy, s.desc.settings.width, s.desc.settings.height);
-  } catch (const nx::Error& e) {
-    throw py::value_error(param + ": " + e.what());
-  }
-  s.desc.camera = copy;
-  record(s, param, value);
+  s.record(what, py::repr(value).cast<std::string>());
 }
 
 nx::Vec3d pointArgument(const py::handle& value, const std::string& param) {
@@ -97,38 +78,12 @@ void setMaterialParameter(const MaterialView& v, const nx::ParamSpec& spec, cons
   nx::forEachWord(spec.excludes, [&](const std::string& x) { d.params.erase(x); });
 }
 
-// A measured matrix as Python arrays: (excitation_nm, emission_nm, values) with values of shape
-// (excitation, emission).
-py::object matrixToPython(const nx::MeasuredMatrix& m) {
-  py::array_t<double> values({m.excitationNm.size(), m.emissionNm.size()});
-  std::copy(m.cells.begin(), m.cells.end(), values.mutable_data());
-  return py::make_tuple(py::array_t<double>(m.excitationNm.size(), m.excitationNm.data()),
-                        py::array_t<double>(m.emissionNm.size(), m.emissionNm.data()), values);
-}
-
 // Gives a material a measured matrix from Python arrays (replacing any fluorescence), checked
 // as a CSV matrix is; the edit is recorded with a digest of the content (a numpy repr elides).
 void setMeasuredMatrix(const MaterialView& v, const py::handle& value, const std::string& param) {
   nx::MaterialDesc& d = v.editable();
   requireKindTakes(v, "fluorescence", param);
-  if (!(py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) || py::len(value) != 3)
-    throw py::type_error(param + ": expected (excitation_nm, emission_nm, values), found " +
-                         typeName(value));
-  auto m = std::make_shared<nx::MeasuredMatrix>();
-  m->source = param;
-  m->excitationNm = numberListArgument(value[py::int_(0)], (param + "[0]").c_str(), 2);
-  m->emissionNm = numberListArgument(value[py::int_(1)], (param + "[1]").c_str(), 2);
-  const auto cells =
-      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value[py::int_(2)]);
-  if (!cells || cells.ndim() != 2)
-    throw py::type_error(param + "[2]: expected a 2-d array of values (excitation, emission)");
-  if (static_cast<size_t>(cells.shape(0)) != m->excitationNm.size() ||
-      static_cast<size_t>(cells.shape(1)) != m->emissionNm.size())
-    throw py::value_error(param + "[2]: expected shape (" + std::to_string(m->excitationNm.size()) +
-                          ", " + std::to_string(m->emissionNm.size()) + "), found (" +
-                          std::to_string(cells.shape(0)) + ", " + std::to_string(cells.shape(1)) +
-                          ")");
-  m->cells.assign(cells.data(), cells.data() + cells.size());
+  const std::shared_ptr<const nx::MeasuredMatrix> m = matrixFromPython(value, param);
   try {
     nx::checkMeasuredMatrix(*m, param);
   } catch (const nx::Error& e) {
@@ -139,9 +94,7 @@ void setMeasuredMatrix(const MaterialView& v, const py::handle& value, const std
   f.matrix = m;
   f.matrixDigest = nx::measuredMatrixDigest(*m);
   d.params.set({"fluorescence", f, v.loc()});
-  v.s->edits.push_back(param + " = <matrix " + std::to_string(m->excitationNm.size()) + "x" +
-                       std::to_string(m->emissionNm.size()) + " digest " +
-                       std::to_string(nx::fnv1a64(nx::canonicalText(nx::ParamValue(f)))) + ">");
+  v.s->edits.push_back(param + " = " + matrixEditText(*m));
 }
 
 // One property per parameter any kind in `kinds` declares (the first declaration of a name; a
@@ -231,55 +184,11 @@ void setShapeParameters(const ObjectView& o,
   d.geometry = std::move(next);
 }
 
-// A optional<double> field of a fluorescence model (a material's or a dye's), with its range.
+// The model's fields both a material's fluorescence and a dye have: the absorption's colour
+// name (read only) and the declared fields (core/params/scene_parameters.h), except those in
+// `except`.
 template <typename View>
-void bindFluorescenceField(py::class_<View>& c, const char* name,
-                           std::optional<double> nx::FluorescenceDesc::*field,
-                           const nx::ParameterRange& range, const char* doc) {
-  c.def_property(
-      name,
-      [field](const View& f) -> py::object {
-        const auto& v = f.get().*field;
-        return v ? py::object(py::float_(*v)) : py::object(py::none());
-      },
-      [field, name, range](const View& f, const py::object& value) {
-        nx::FluorescenceDesc& d = f.editable(name);
-        const std::string param = f.prefix() + "." + name;
-        // None means "the default" only where there is one: the Stokes shift has none, and an
-        // imported EEM's yield and peak absorptance are what make it absolute (a None was
-        // recorded, then the build read an empty value).
-        const bool required = std::string(name) == "stokes_nm" || d.eem;
-        if (value.is_none() && required)
-          throw py::type_error(param + ": expected a number (" +
-                               (d.eem ? "the EEM " + d.eem->file + " is made absolute with it"
-                                      : std::string("the model has no default")) +
-                               "), found None");
-        if (value.is_none())
-          d.*field = std::nullopt;
-        else
-          d.*field = rangedArgument(value, param, range);
-        record(f.state(), param, value);
-      },
-      doc);
-}
-
-// The model's fields both a material's fluorescence and a dye have.
-template <typename View>
-void bindFluorescenceModel(py::class_<View>& c) {
-  c.def_property(
-      "absorption_nm",
-      [](const View& f) -> py::object {
-        const auto& d = f.get();
-        return d.absorptionNm ? py::object(py::float_(*d.absorptionNm)) : py::object(py::none());
-      },
-      [](const View& f, const py::object& value) {
-        nx::FluorescenceDesc& d = f.editable("absorption_nm");
-        const std::string param = f.prefix() + ".absorption_nm";
-        d.absorptionNm = rangedArgument(value, param, nx::kAbsorptionRange);
-        d.absorptionName.reset();
-        record(f.state(), param, value);
-      },
-      "Absorption peak in nm (None when given by a colour name)");
+void bindFluorescenceModel(py::class_<View>& c, std::initializer_list<const char*> except = {}) {
   c.def_property_readonly(
       "absorption",
       [](const View& f) -> py::object {
@@ -287,14 +196,7 @@ void bindFluorescenceModel(py::class_<View>& c) {
         return d.absorptionName ? py::object(py::str(*d.absorptionName)) : py::object(py::none());
       },
       "Absorption colour name, if the scene gave one");
-  bindFluorescenceField(c, "stokes_nm", &nx::FluorescenceDesc::stokesNm, nx::kStokesRange,
-                        "Stokes shift in nm (emission peak minus absorption peak)");
-  bindFluorescenceField(c, "width_nm", &nx::FluorescenceDesc::widthNm, nx::kWidthRange,
-                        "Width of the absorption and emission bands in nm (None: default)");
-  bindFluorescenceField(c, "skew", &nx::FluorescenceDesc::skew, nx::kSkewRange,
-                        "Skew magnitude of the bands (None: default)");
-  bindFluorescenceField(c, "quantum_yield", &nx::FluorescenceDesc::quantumYield, nx::kYieldRange,
-                        "Quantum yield in [0, 1] (None: default)");
+  bindSceneFields(c, "fluorescence", except);
 }
 
 // The parametric fluorescence model's arguments (set_fluorescence, set_dye), checked; `p`
@@ -330,20 +232,6 @@ SceneState loadState(const std::string& text, const std::string& name) {
 
 } // namespace
 
-nx::SceneDesc sceneForRendering(const SceneState& state) {
-  nx::SceneDesc d = state.desc;
-  // The key follows the state: a no-op edit, or 0.4 -> 0.3 -> 0.4, keeps the file's key, and a
-  // scene edited into another file's state takes that file's.
-  d.textDigest = nx::sceneStateDigest(d);
-  return d;
-}
-
-std::string editsText(const SceneState& state) {
-  std::string out;
-  for (const std::string& e : state.edits) out += (out.empty() ? "" : "; ") + e;
-  return out;
-}
-
 namespace {
 
 // nxrender.Fluorescence.
@@ -352,8 +240,6 @@ void bindFluorescenceClass(py::module_& m) {
                                   "The fluorescence of a material (the re-radiation matrix's "
                                   "parameters; docs/fluorescence.md)");
   bindFluorescenceModel(fl);
-  bindFluorescenceField(fl, "peak_absorptance", &nx::FluorescenceDesc::peakAbsorptance,
-                        nx::kPeakRange, "Absorptance at the absorption peak (None: default)");
   fl.def_property_readonly(
       "matrix_file",
       [](const FluorescenceView& f) -> py::object {
@@ -368,84 +254,6 @@ void bindFluorescenceClass(py::module_& m) {
         return d.eem ? py::object(py::str(d.eem->file)) : py::object(py::none());
       },
       "The imported EEM's CSV file, if the fluorescence is one (docs/eem-import.md)");
-  fl.def_property(
-      "matrix",
-      [](const FluorescenceView& f) -> py::object {
-        const auto& d = f.get();
-        if (d.matrix) return matrixToPython(*d.matrix);
-        if (!d.matrixCsv) return py::none();
-        nx::MeasuredMatrix read;
-        try {
-          read = nx::parseMeasuredMatrixCsv(
-              nx::readRegularFile(*d.matrixCsv, 64u << 20, "table file"), *d.matrixCsv);
-        } catch (const nx::Error& e) {
-          throw py::value_error(f.m.label() + ".fluorescence.matrix: " + e.what());
-        }
-        return matrixToPython(read);
-      },
-      [](const FluorescenceView& f, const py::object& value) {
-        setMeasuredMatrix(f.m, value, f.m.label() + ".fluorescence.matrix");
-      },
-      "The measured matrix (excitation_nm, emission_nm, values[excitation, emission]) as numpy "
-      "arrays, or None for the parametric model; set it the same way (checked like a CSV's)");
-  fl.def_property(
-      "concentration",
-      [](const FluorescenceView& f) -> py::object {
-        const auto& d = f.get();
-        std::shared_ptr<const nx::ConcentrationMap> map = d.concentration;
-        if (!map && d.concentrationCsv) {
-          try {
-            map = std::make_shared<const nx::ConcentrationMap>(nx::parseConcentrationCsv(
-                nx::readRegularFile(*d.concentrationCsv, 64u << 20, "table file"),
-                *d.concentrationCsv));
-          } catch (const nx::Error& e) {
-            throw py::value_error(f.prefix() + ".concentration: " + e.what());
-          }
-        }
-        if (!map) return py::none();
-        py::array_t<float> a({map->height, map->width});
-        std::copy(map->values.begin(), map->values.end(), a.mutable_data());
-        return a;
-      },
-      [](const FluorescenceView& f, const py::object& value) {
-        const std::string param = f.prefix() + ".concentration";
-        const nx::FluorescenceDesc& current = f.get();
-        if (current.matrixCsv || current.matrix)
-          throw py::value_error(param + ": a concentration map needs the parametric model or an "
-                                        "imported EEM, found a measured matrix");
-        if (value.is_none()) {
-          nx::FluorescenceDesc& d = f.get();
-          (void)f.m.editable();
-          d.concentration.reset();
-          d.concentrationCsv.reset();
-          record(f.state(), param, value);
-          return;
-        }
-        const py::array_t<double, py::array::c_style | py::array::forcecast> a =
-            py::module_::import("numpy").attr("asarray")(value, "float64");
-        if (a.ndim() != 2)
-          throw py::value_error(param + ": expected values[height, width], found an array of " +
-                                std::to_string(a.ndim()) + " axes");
-        std::vector<float> values(a.data(), a.data() + a.size());
-        std::shared_ptr<const nx::ConcentrationMap> map;
-        try {
-          map = std::make_shared<const nx::ConcentrationMap>(
-              nx::makeConcentrationMap(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)),
-                                       std::move(values), param));
-        } catch (const nx::Error& e) {
-          throw py::value_error(e.what());
-        }
-        nx::FluorescenceDesc& d = f.get();
-        (void)f.m.editable();
-        d.concentration = map;
-        d.concentrationCsv.reset();
-        f.state().edits.push_back(param + " = <map " + std::to_string(map->height) + "x" +
-                                  std::to_string(map->width) + " digest " +
-                                  std::to_string(map->digest) + ">");
-      },
-      "The dye's relative concentration over the surface: values[height, width] in [0, 1] "
-      "(row 0 at the top; bilinear by the hit's uv) scaling its absorptance, or None (1 "
-      "everywhere); read from a <concentration> CSV file or set as numbers");
   fl.def("__repr__", [](const FluorescenceView& f) {
     const auto& d = f.get();
     if (d.matrixCsv) return "<nxrender.Fluorescence matrix=" + *d.matrixCsv + ">";
@@ -567,12 +375,13 @@ void bindMediumClasses(py::module_& m) {
   py::class_<DyeView> dye(m, "Dye",
                           "The fluorescent dye dissolved in a medium (the parametric model; its "
                           "peak absorption coefficient is the medium's dye_peak)");
-  bindFluorescenceModel(dye);
+  bindFluorescenceModel(dye, {"peak_absorptance", "matrix", "concentration"});
 
   py::class_<MediumView> med(m, "Medium",
                              "The participating medium inside a sphere or closed mesh "
                              "(docs/media.md); coefficients per scene unit of length");
   bindTakenParameters(med, nx::mediumKinds(), nx::ParamType::Dye);
+  bindSceneFields(med, "medium");
   med.def_property_readonly(
          "kind", [](const MediumView& v) { return v.get().kind; }, "homogeneous")
       .def_property_readonly(
@@ -582,21 +391,6 @@ void bindMediumClasses(py::module_& m) {
                                                       : py::object(py::none());
           },
           "The dye dissolved in it (None: none; set_dye(...) adds one)")
-      .def_property(
-          "dye_peak",
-          [](const MediumView& v) -> py::object {
-            const auto* f = v.get().params.get<nx::FluorescenceDesc>("fluorescence");
-            return f && f->peakAbsorptance ? py::object(py::float_(*f->peakAbsorptance))
-                                           : py::object(py::none());
-          },
-          [](const MediumView& v, const py::object& value) {
-            auto* f = v.get().params.getMutable<nx::FluorescenceDesc>("fluorescence");
-            const std::string param = v.label() + ".dye_peak";
-            if (!f) throw py::value_error(param + ": the medium has no dye; use set_dye(...)");
-            f->peakAbsorptance = rangedArgument(value, param, nx::kPeakCoefficientRange);
-            record(*v.o.s, param, value);
-          },
-          "The dye's peak absorption coefficient per unit length (None: no dye)")
       .def(
           "set_dye",
           [](const MediumView& v, const py::object& absorptionNm, const py::object& stokesNm,
@@ -695,19 +489,8 @@ py::class_<ObjectView> bindObjectClass(py::module_& m) {
             return o.get().materialRef.empty() ? py::object(py::none())
                                                : py::object(py::str(o.get().materialRef));
           },
-          "The id of the named material it uses, or None")
-      .def_property(
-          "emission", [](const ObjectView& o) { return spectrumToPythonOpt(o.get().emission); },
-          [](const ObjectView& o, const py::object& value) {
-            const std::string param = o.label() + ".emission";
-            if (value.is_none())
-              o.get().emission.reset();
-            else
-              o.get().emission = spectrumFromPython(value, param, o.get().loc);
-            record(*o.s, param, value);
-          },
-          "Its emitted radiance (an area light; W m^-2 sr^-1 nm^-1): a number, an illuminant "
-          "name or (wavelengths_nm, values); None: not a light");
+          "The id of the named material it uses, or None");
+  bindSceneFields(object, "object");
   return object;
 }
 
@@ -765,53 +548,6 @@ void bindObjectShape(py::class_<ObjectView>& object) {
                                         : py::object(py::str(o.get().name));
           },
           "Its name=\"...\" in the scene file (names its region in comparisons), or None")
-      .def_property(
-          "emission_scale", [](const ObjectView& o) { return o.get().emissionScale; },
-          [](const ObjectView& o, const py::object& value) {
-            if (!o.get().emission)
-              throw py::value_error(o.label() + ".emission_scale: the object emits no light");
-            o.get().emissionScale =
-                rangedArgument(value, o.label() + ".emission_scale", nx::kEmissionScaleRange);
-            record(*o.s, o.label() + ".emission_scale", value);
-          },
-          "The factor on its emission (> 0)")
-      .def_property(
-          "emission_at",
-          [](const ObjectView& o) -> py::object {
-            const auto& a = o.get().emissionAt;
-            return a ? py::object(py::float_(*a)) : py::object(py::none());
-          },
-          [](const ObjectView& o, const py::object& value) {
-            const std::string param = o.label() + ".emission_at";
-            if (!o.get().emission) throw py::value_error(param + ": the object emits no light");
-            if (value.is_none())
-              o.get().emissionAt.reset();
-            else {
-              o.get().emissionAt = rangedArgument(value, param, nx::kMeasuredDistanceRange);
-              o.get().emissionFlux = false;
-            }
-            record(*o.s, param, value);
-          },
-          "Its emission is the irradiance on its axis at this distance (None: radiance)")
-      .def_property(
-          "emission_quantity",
-          [](const ObjectView& o) {
-            return o.get().emissionAt ? "irradiance" : o.get().emissionFlux ? "flux" : "radiance";
-          },
-          [](const ObjectView& o, const py::object& given) {
-            const std::string param = o.label() + ".emission_quantity";
-            const std::string value = stringArgument(given, param.c_str());
-            if (!o.get().emission) throw py::value_error(param + ": the object emits no light");
-            if (value == "irradiance" && !o.get().emissionAt)
-              throw py::value_error(param + ": 'irradiance' needs a distance: set emission_at");
-            if (value != "radiance" && value != "flux" && value != "irradiance")
-              throw py::value_error(
-                  param + ": expected 'radiance', 'flux' or 'irradiance', found '" + value + "'");
-            if (value != "irradiance") o.get().emissionAt.reset();
-            o.get().emissionFlux = value == "flux";
-            record(*o.s, param, py::str(value));
-          },
-          "What its emission gives: 'radiance', 'flux' (total) or 'irradiance' (emission_at)")
       .def("__repr__", [](const ObjectView& o) {
         return "<nxrender.Object " + o.label() + " " + o.get().shape + " (line " +
                std::to_string(o.get().loc.line) + ")>";
@@ -850,137 +586,18 @@ void bindLightClasses(py::module_& m) {
       "kind", [](const LightView& l) { return l.get().kind; }, "point, spot, ...");
   bindTakenParameters(light, nx::lightKinds(), nx::ParamType::Dye);
 
-  py::class_<NamedSpectrumView>(m, "NamedSpectrum",
-                                "A <spectrum name=...> of the scene, used by its name")
-      .def_property_readonly("name", [](const NamedSpectrumView& v) { return v.get().name; })
-      .def_property(
-          "value", [](const NamedSpectrumView& v) { return spectrumToPython(v.get().spectrum); },
-          [](const NamedSpectrumView& v, const py::object& value) {
-            const std::string param = v.label() + ".value";
-            nx::SpectrumDesc d = spectrumFromPython(value, param, v.get().loc);
-            if (d.kind == nx::SpectrumDesc::Kind::Texture)
-              throw py::value_error(param + ": expected a spectrum, found a texture");
-            if (d.kind == nx::SpectrumDesc::Kind::Name)
-              throw py::value_error(param + ": expected numbers or a CSV file (a named spectrum "
-                                            "is defined by values, not by another name)");
-            v.get().spectrum = d;
-            record(*v.s, param, value);
-          },
-          "Its values: a number, (wavelengths_nm, values) or \"csv:FILE[#COLUMN]\"")
+  py::class_<NamedSpectrumView> spectrum(m, "NamedSpectrum",
+                                         "A <spectrum name=...> of the scene, used by its name");
+  spectrum.def_property_readonly("name", [](const NamedSpectrumView& v) { return v.get().name; })
       .def("__repr__",
            [](const NamedSpectrumView& v) { return "<nxrender.NamedSpectrum " + v.label() + ">"; });
+  bindSceneFields(spectrum, "spectrum");
 }
 
 // nxrender.Camera.
 void bindCameraClass(py::module_& m) {
-  py::class_<CameraView>(m, "Camera", "The scene's camera")
-      .def_property(
-          "position", [](const CameraView& c) { return tupleOf(c.s->desc.camera.position); },
-          [](const CameraView& c, const py::object& value) {
-            if (c.s->desc.camera.extrinsics)
-              throw py::value_error("camera.position: the camera is placed by <extrinsics>");
-            const nx::Vec3d p = pointArgument(value, "camera.position");
-            editCamera(*c.s, "camera.position", value, [&](nx::CameraDesc& d) { d.position = p; });
-          })
-      .def_property(
-          "look_at", [](const CameraView& c) { return tupleOf(c.s->desc.camera.lookAt); },
-          [](const CameraView& c, const py::object& value) {
-            if (c.s->desc.camera.extrinsics)
-              throw py::value_error("camera.look_at: the camera is placed by <extrinsics>");
-            const nx::Vec3d p = pointArgument(value, "camera.look_at");
-            editCamera(*c.s, "camera.look_at", value, [&](nx::CameraDesc& d) { d.lookAt = p; });
-          })
-      .def_property(
-          "up", [](const CameraView& c) { return tupleOf(c.s->desc.camera.up); },
-          [](const CameraView& c, const py::object& value) {
-            const nx::Vec3d u = pointArgument(value, "camera.up");
-            editCamera(*c.s, "camera.up", value, [&](nx::CameraDesc& d) { d.up = u; });
-          })
-      .def_property(
-          "fov",
-          [](const CameraView& c) -> py::object {
-            return c.s->desc.camera.intrinsics
-                       ? py::object(py::none())
-                       : py::object(py::float_(c.s->desc.camera.fovDegrees));
-          },
-          [](const CameraView& c, const py::object& value) {
-            const double fov = rangedArgument(value, "camera.fov", nx::kFovRange);
-            editCamera(*c.s, "camera.fov", value, [&](nx::CameraDesc& d) {
-              d.fovDegrees = fov;
-              d.intrinsics.reset();
-            });
-          },
-          "Horizontal field of view in degrees (None when intrinsics are given; setting it "
-          "removes them)")
-      .def_property(
-          "intrinsics",
-          [](const CameraView& c) -> py::object {
-            const auto& k = c.s->desc.camera.intrinsics;
-            return k ? py::object(py::make_tuple((*k)[0], (*k)[1], (*k)[2], (*k)[3]))
-                     : py::object(py::none());
-          },
-          [](const CameraView& c, const py::object& value) {
-            const std::vector<double> v = numbersArgument(value, "camera.intrinsics", 4);
-            editCamera(*c.s, "camera.intrinsics", value, [&](nx::CameraDesc& d) {
-              d.intrinsics = std::array<double, 4>{v[0], v[1], v[2], v[3]};
-            });
-          },
-          "OpenCV intrinsics (fx, fy, cx, cy) in pixels, or None")
-      .def_property(
-          "distortion",
-          [](const CameraView& c) {
-            const auto& d = c.s->desc.camera.distortion;
-            return py::make_tuple(d[0], d[1], d[2], d[3], d[4]);
-          },
-          [](const CameraView& c, const py::object& value) {
-            const std::vector<double> v = numberListArgument(value, "camera.distortion", 4);
-            if (v.size() > 5)
-              throw py::value_error("camera.distortion: expected k1, k2, p1, p2[, k3]");
-            for (double x : v)
-              if (!(std::abs(x) <= 1e4))
-                throw py::value_error(
-                    "camera.distortion: expected coefficients within [-1e4, 1e4]");
-            editCamera(*c.s, "camera.distortion", value, [&](nx::CameraDesc& d) {
-              d.distortion = {};
-              std::copy(v.begin(), v.end(), d.distortion.begin());
-              d.distortionLoc = d.loc;
-            });
-          },
-          "OpenCV distortion (k1, k2, p1, p2, k3); a fold in the image is refused at render")
-      .def_property(
-          "thin_lens",
-          [](const CameraView& c) -> py::object {
-            const auto& l = c.s->desc.camera.thinLens;
-            return l ? py::object(py::make_tuple((*l)[0], (*l)[1])) : py::object(py::none());
-          },
-          [](const CameraView& c, const py::object& value) {
-            if (value.is_none())
-              return editCamera(*c.s, "camera.thin_lens", value,
-                                [](nx::CameraDesc& d) { d.thinLens.reset(); });
-            const std::vector<double> v = numbersArgument(value, "camera.thin_lens", 2);
-            editCamera(*c.s, "camera.thin_lens", value, [&](nx::CameraDesc& d) {
-              d.thinLens = std::array<double, 2>{v[0], v[1]};
-            });
-          },
-          "(aperture radius, focus distance) in scene units, or None (a pinhole)")
-      .def_property(
-          "extrinsics",
-          [](const CameraView& c) -> py::object {
-            const auto& e = c.s->desc.camera.extrinsics;
-            if (!e) return py::none();
-            return py::cast(std::vector<double>(e->begin(), e->end()));
-          },
-          [](const CameraView& c, const py::object& value) {
-            if (value.is_none())
-              throw py::value_error("camera.extrinsics: expected 12 numbers (r11 .. r33, t1, t2, "
-                                    "t3); a camera placed by extrinsics has no look-at form");
-            const std::vector<double> v = numbersArgument(value, "camera.extrinsics", 12);
-            editCamera(*c.s, "camera.extrinsics", value, [&](nx::CameraDesc& d) {
-              d.extrinsics = std::array<double, 12>{};
-              std::copy(v.begin(), v.end(), d.extrinsics->begin());
-            });
-          },
-          "OpenCV extrinsics r11 .. r33, t1, t2, t3 (x_cam = R x_world + t), or None");
+  py::class_<CameraView> camera(m, "Camera", "The scene's camera");
+  bindSceneFields(camera, "camera");
 }
 
 // nxrender.Scene: construction, data and lists (bindSceneSettings: the settings).
@@ -1053,104 +670,14 @@ py::class_<PyScene> bindSceneClass(py::module_& m) {
       .def_property_readonly("warnings", [](const PyScene& s) { return s.state->desc.warnings; })
       .def_property_readonly(
           "edits", [](const PyScene& s) { return s.state->edits; },
-          "The edits made so far, in order")
-      .def_property(
-          "resolution",
-          [](const PyScene& s) {
-            return py::make_tuple(s.state->desc.settings.width, s.state->desc.settings.height);
-          },
-          [](const PyScene& s, const py::object& value) {
-            const auto v = integersArgument(value, "resolution", 2);
-            for (long long x : v)
-              if (x < 1 || x > nx::kMaxResolution)
-                throw py::value_error("resolution: expected sizes in [1, 65536], found " +
-                                      std::to_string(x));
-            s.state->desc.settings.width = static_cast<int>(v[0]);
-            s.state->desc.settings.height = static_cast<int>(v[1]);
-            record(*s.state, "resolution", value);
-          },
-          "(width, height) in pixels");
+          "The edits made so far, in order");
   return scene;
 }
 
 // The scene's settings as properties, and copies.
 void bindSceneSettings(py::class_<PyScene>& scene) {
+  bindSceneFields(scene, "");
   scene
-      .def_property(
-          "spp", [](const PyScene& s) { return s.state->desc.settings.samples; },
-          [](const PyScene& s, const py::object& value) {
-            s.state->desc.settings.samples =
-                static_cast<int>(integerArgument(value, "spp", 1, 1 << 30));
-            record(*s.state, "spp", value);
-          },
-          "Samples per pixel (<sampl>)")
-      .def_property(
-          "seed", [](const PyScene& s) { return s.state->desc.settings.seed; },
-          [](const PyScene& s, const py::object& value) {
-            s.state->desc.settings.seed =
-                static_cast<uint32_t>(integerArgument(value, "seed", 0, 2147483647));
-            record(*s.state, "seed", value);
-          })
-      .def_property(
-          "depth", [](const PyScene& s) { return s.state->desc.settings.depth; },
-          [](const PyScene& s, const py::object& value) {
-            s.state->desc.settings.depth =
-                static_cast<int>(integerArgument(value, "depth", 0, 100000));
-            record(*s.state, "depth", value);
-          },
-          "Bounce count")
-      .def_property(
-          "bands", [](const PyScene& s) { return s.state->desc.settings.bands.toString(); },
-          [](const PyScene& s, const py::object& value) {
-            s.state->desc.settings.bands =
-                nx::Sensor::parse(stringArgument(value, "bands"), "bands");
-            s.state->desc.settings.sensorFile.clear(); // no longer the file's sensor
-            s.state->desc.settings.sensorCentres.clear();
-            record(*s.state, "bands", value);
-          },
-          "The output bands ('400:700:10', 'gaussian:...', 'boxes:...')")
-      .def_property(
-          "background",
-          [](const PyScene& s) { return spectrumToPythonOpt(s.state->desc.settings.background); },
-          [](const PyScene& s, const py::object& value) {
-            if (value.is_none())
-              s.state->desc.settings.background.reset();
-            else
-              s.state->desc.settings.background =
-                  spectrumFromPython(value, "background", s.state->desc.settings.loc);
-            record(*s.state, "background", value);
-          },
-          "Uniform environment radiance (a spectrum), or None (black)")
-      .def_property(
-          "illuminant",
-          [](const PyScene& s) { return spectrumToPythonOpt(s.state->desc.settings.illuminant); },
-          [](const PyScene& s, const py::object& value) {
-            if (value.is_none())
-              s.state->desc.settings.illuminant.reset();
-            else
-              s.state->desc.settings.illuminant =
-                  spectrumFromPython(value, "illuminant", s.state->desc.settings.loc);
-            record(*s.state, "illuminant", value);
-          },
-          "The preview's white (<illum>, a spectrum), or None (D65)")
-      .def_property(
-          "mode", [](const PyScene& s) { return nx::renderModeName(s.state->desc.settings.mode); },
-          [](const PyScene& s, const py::object& value) {
-            const auto mode = nx::parseRenderMode(stringArgument(value, "mode"));
-            if (!mode)
-              throw py::value_error("mode: expected rt, mcpt or spectral_mcpt, found " +
-                                    py::repr(value).cast<std::string>());
-            s.state->desc.settings.mode = *mode;
-            record(*s.state, "mode", value);
-          },
-          "The rendering mode (<mode>): rt, mcpt or spectral_mcpt")
-      .def_property(
-          "path", [](const PyScene& s) { return s.state->desc.settings.outputPath; },
-          [](const PyScene& s, const py::object& value) {
-            s.state->desc.settings.outputPath = stringArgument(value, "path");
-            record(*s.state, "path", value);
-          },
-          "The output the command line writes (<path>; renders from Python return images)")
       .def_property_readonly(
           "spectra",
           [](const PyScene& s) {

@@ -10,32 +10,22 @@
 #include <string>
 #include <vector>
 
+#include "integrators/scene_params/edited_scene.h"
 #include "io/scene_desc.h"
 
 namespace nxpy {
 
 namespace py = pybind11;
 
-/// A scene description and the edits made to it since it was read.
-struct SceneState {
-  nx::SceneDesc desc;
-  std::vector<std::string> edits; ///< "objects[2].fluorescence.stokes_nm = 60", in order
-  /// Counts of insertions into and removals from the object and light lists (views taken
-  /// before one refuse to be used)
-  uint64_t objectsVersion = 0, lightsVersion = 0;
-};
+/// A scene description and the edits made to it since it was read (the library's).
+using SceneState = nx::EditedScene;
+using nx::editsText;
+using nx::sceneForRendering;
 
 /// The Python object behind nxrender.Scene (shared by its views: objects, camera, ...).
 struct PyScene {
   std::shared_ptr<SceneState> state;
 };
-
-/// The description to render: a copy of the scene's with the digest of its state (the render
-/// key follows the state, as a file's does, not the edit log).
-nx::SceneDesc sceneForRendering(const SceneState& state);
-
-/// The edits as one attribute value ("" when there are none).
-std::string editsText(const SceneState& state);
 
 /// Registers Scene and its views.
 void bindScene(py::module_& m);

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "integrators/gradients/gradient_setup.h"
 #include "integrators/render_scene.h"
+#include "integrators/scene_params/edited_scene.h"
 #include "integrators/scene_params/parameter_numbers.h"
 #include "integrators/scene_params/parameter_path.h"
 #include "integrators/scene_params/scene_parameter_list.h"
@@ -134,6 +135,68 @@ TEST(SceneParameters, GradientSetupRefusesByName) {
   EXPECT_EQ(s.parameters[1].slots, 3u);
   EXPECT_TRUE(s.parameters[1].indexed);
   EXPECT_EQ(s.tangents.slots(), 4u);
+}
+
+TEST(SceneFields, EveryListedFieldReadsAndWritesBackUnchanged) {
+  EditedScene e;
+  e.desc = parseScene(kScene, "t.scn");
+  const std::string before = sceneStateText(e.desc);
+  int fields = 0;
+  for (const SceneParameterInfo& p : sceneParameters(e.desc)) {
+    if (sceneFieldKey(p.name).empty()) continue;
+    SCOPED_TRACE(p.name);
+    const FieldValue v = sceneField(e.desc, p.name);
+    // What may be None stays None; the rest is written back as read.
+    if (std::holds_alternative<std::monostate>(v) &&
+        (p.name == "camera.intrinsics" || p.name == "camera.extrinsics" ||
+         p.name.ends_with("_nm") || p.name.ends_with("matrix")))
+      continue;
+    e.setField(p.name, v, "as read");
+    ++fields;
+  }
+  EXPECT_EQ(sceneStateText(e.desc), before);
+  EXPECT_EQ(e.edits.size(), static_cast<size_t>(fields));
+  EXPECT_GT(fields, 20);
+  EXPECT_EQ(e.edits.front(), "resolution = as read");
+}
+
+TEST(SceneFields, SetByNameIsCheckedInItsPlace) {
+  SceneDesc d = parseScene(kScene, "t.scn");
+  const std::string before = sceneStateText(d);
+  auto errorOf = [&](const std::string& name, const FieldValue& v) {
+    return test::errorMessage([&] { setSceneField(d, name, v); });
+  };
+  EXPECT_EQ(errorOf("spp", 0.0), "spp: expected an int in [1, 1073741824], found 0");
+  EXPECT_EQ(errorOf("resolution", std::vector<double>{0, 10}),
+            "resolution: expected sizes in [1, 65536], found 0");
+  EXPECT_EQ(errorOf("mode", std::string("fast")),
+            "mode: expected rt, mcpt or spectral_mcpt, found 'fast'");
+  EXPECT_EQ(errorOf("objects[0].emission_scale", 2.0),
+            "objects[0].emission_scale: the object emits no light");
+  EXPECT_EQ(errorOf("objects[2].emission_quantity", std::string("irradiance")),
+            "objects[2].emission_quantity: 'irradiance' needs a distance: set emission_at");
+  EXPECT_EQ(errorOf("objects[1].fluorescence.stokes_nm", FieldValue()),
+            "objects[1].fluorescence.stokes_nm: expected a number (the model has no default), "
+            "found None");
+  EXPECT_THROW(setSceneField(d, "objects[1].fluorescence.stokes_nm", FieldValue()), FieldTypeError);
+  EXPECT_NE(errorOf("camera.up", Vec3d(0, 0, 0)).find("camera.up: "), std::string::npos);
+  EXPECT_EQ(errorOf("objects[9].emission", FieldValue()),
+            "no scene parameter named 'objects[9].emission' (Scene.parameters() lists them)");
+  EXPECT_EQ(sceneStateText(d), before); // every refusal left the scene as it was
+
+  setSceneField(d, "camera.intrinsics", std::vector<double>{8, 8, 4, 3});
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(sceneField(d, "camera.fov")));
+  setSceneField(d, "camera.fov", 50.0); // the field of view replaces the intrinsics
+  EXPECT_FALSE(d.camera.intrinsics);
+  setSceneField(d, "camera.extrinsics", std::vector<double>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 4});
+  EXPECT_EQ(errorOf("camera.position", Vec3d(0, 0, 1)),
+            "camera.position: the camera is placed by <extrinsics>");
+  setSceneField(d, "objects[2].emission_at", 2.0);
+  setSceneField(d, "objects[2].emission_quantity", std::string("flux"));
+  EXPECT_FALSE(d.objects[2].emissionAt);
+  EXPECT_TRUE(d.objects[2].emissionFlux);
+  setSceneField(d, "objects[1].fluorescence.absorption_nm", 470.0);
+  EXPECT_EQ(*d.objects[1].params.get<FluorescenceDesc>("fluorescence")->absorptionNm, 470);
 }
 
 } // namespace
