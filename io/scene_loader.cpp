@@ -1159,7 +1159,7 @@ private:
     checkAttributes(n, {});
     const auto c =
         uniqueChildren(n, {"absorption", "stokes", "width", "skew", "yield", "peak", "matrix",
-                           "eem", "absorptance", "reference", "concentration"});
+                           "eem", "absorptance", "emission", "reference", "concentration"});
     FluorescenceDesc f;
     f.loc = loc(n);
     if (c.count("concentration")) {
@@ -1186,10 +1186,14 @@ private:
              "...; measured matrices and EEMs describe surfaces)",
              "<" + std::string(measured) + ">");
     if (c.count("eem")) return importedEem(c, n, f);
-    for (const char* tag : {"absorptance", "reference"})
-      if (c.count(tag))
-        fail(c.at(tag), "<" + std::string(tag) + "> only with an <eem> in <fluorescence>",
-             "<" + std::string(tag) + "> without one");
+    if (c.count("emission")) return dyeSpectra(c, n, f, inMedium);
+    if (c.count("reference"))
+      fail(c.at("reference"), "<reference> only with an <eem> in <fluorescence>",
+           "<reference> without one");
+    if (c.count("absorptance"))
+      fail(c.at("absorptance"),
+           "<absorptance> only with an <eem> or an <emission> spectrum in <fluorescence>",
+           "<absorptance> without either");
     if (inMedium && !c.count("peak"))
       fail(n,
            "a <peak> (the dye's peak absorption coefficient per unit length) in a medium's "
@@ -1252,11 +1256,41 @@ private:
     fail(n, list, shownText(t));
   }
 
+  // <fluorescence> with <absorptance> and <emission> spectra and a <yield>: a dye as a
+  // datasheet gives it (the separable matrix); in a medium, <peak> is the coefficient its
+  // absorptance's maximum is scaled to.
+  FluorescenceDesc dyeSpectra(const std::map<std::string, pugi::xml_node>& c,
+                              const pugi::xml_node& n, FluorescenceDesc f, bool inMedium) const {
+    for (const char* tag : {"absorption", "stokes", "width", "skew", "matrix", "reference"})
+      if (c.count(tag))
+        fail(c.at(tag),
+             "only <absorptance>, <emission>, <yield>" + std::string(inMedium ? ", <peak>" : "") +
+                 " and <concentration> with an <emission> spectrum (the separable form)",
+             "<" + std::string(tag) + ">");
+    if (!inMedium && c.count("peak"))
+      fail(c.at("peak"),
+           "no <peak> with an <absorptance> spectrum on a surface (the spectrum is the "
+           "absorptance itself)",
+           "<peak>");
+    if (inMedium && !c.count("peak"))
+      fail(n,
+           "a <peak> (the dye's peak absorption coefficient per unit length) in a medium's "
+           "<fluorescence>",
+           "none");
+    auto spectra = std::make_shared<DyeSpectra>();
+    spectra->absorptance = *spectrum(required(c, n, "absorptance"), false);
+    spectra->emission = *spectrum(c.at("emission"), false);
+    f.spectra = spectra;
+    if (c.count("yield")) f.quantumYield = number(c.at("yield"), kYieldRange);
+    if (c.count("peak")) f.peakAbsorptance = number(c.at("peak"), kPeakCoefficientRange);
+    return f;
+  }
+
   // <fluorescence> with an <eem file="..." rayleigh_width="..." .../>: an instrument EEM, made
   // absolute by <yield> or <reference>, and <peak> or <absorptance> (docs/eem-import.md).
   FluorescenceDesc importedEem(const std::map<std::string, pugi::xml_node>& c,
                                const pugi::xml_node& n, FluorescenceDesc f) const {
-    for (const char* tag : {"absorption", "stokes", "width", "skew", "matrix"})
+    for (const char* tag : {"absorption", "stokes", "width", "skew", "matrix", "emission"})
       if (c.count(tag))
         fail(c.at(tag), "only <yield> or <reference>, and <peak> or <absorptance>, with an <eem>",
              "<" + std::string(tag) + ">");

@@ -262,6 +262,10 @@ private:
     if (f.skew) d.emplace_back("skew", *f.skew);
     if (f.quantumYield) d.emplace_back("yield", *f.quantumYield);
     if (f.peakAbsorptance) d.emplace_back("peak", *f.peakAbsorptance);
+    if (f.spectra) {
+      d.emplace_back("absorptance", spectrum(f.spectra->absorptance, where));
+      d.emplace_back("emission", spectrum(f.spectra->emission, where));
+    }
     if (f.matrixCsv) d.emplace_back("matrix", file(*f.matrixCsv));
     if (f.concentrationCsv) d.emplace_back("concentration", file(*f.concentrationCsv));
     if (f.eem) {

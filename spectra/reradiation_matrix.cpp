@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <sstream>
 
 #include "core/error.h"
@@ -41,27 +42,69 @@ ExcitationGuide excitationGuideOf(const Spectrum* s) {
 }
 
 ReradiationMatrix ReradiationMatrix::fromModel(const FluorescenceModel& p) {
-  ReradiationMatrix r;
   const SkewCauchySpectrum absorption{p.absorptionPeakNm, p.widthNm, -p.skew};
   const SkewCauchySpectrum emission{p.absorptionPeakNm + p.stokesNm, p.widthNm, p.skew};
-  double aMax = 0, eSum = 0;
-  std::array<double, kBins> e{};
+  std::array<double, kBins> a{}, e{};
+  double aMax = 0;
   for (int i = 0; i < kBins; ++i) {
-    r.absorptance_[i] = absorption(centre(i));
-    aMax = std::max(aMax, r.absorptance_[i]);
+    a[i] = absorption(centre(i));
+    aMax = std::max(aMax, a[i]);
     e[i] = emission(centre(i));
-    eSum += e[i];
   }
-  for (int i = 0; i < kBins; ++i) {
-    r.absorptance_[i] = aMax > 0 ? p.peakAbsorptance * r.absorptance_[i] / aMax : 0.0;
-    e[i] = eSum > 0 ? e[i] / eSum : 0.0; // e_o: the integral of e over bin o
-  }
+  for (double& x : a) x = aMax > 0 ? p.peakAbsorptance * x / aMax : 0.0;
+  if (!(std::accumulate(e.begin(), e.end(), 0.0) > 0)) return fromSpectra(a, {}, 0.0);
+  return fromSpectra(a, e, p.quantumYield);
+}
+
+ReradiationMatrix ReradiationMatrix::fromSpectra(const std::array<double, kBins>& absorptance,
+                                                 const std::array<double, kBins>& emission,
+                                                 double quantumYield) {
+  ReradiationMatrix r;
+  const double eSum = std::accumulate(emission.begin(), emission.end(), 0.0);
+  if (!(eSum > 0) && quantumYield > 0)
+    throw Error("expected an emission spectrum above 0 somewhere in " +
+                std::to_string(int(kMinNm)) + "-" + std::to_string(int(kMaxNm)) +
+                " nm, found 0 everywhere");
+  for (int i = 0; i < kBins; ++i) r.absorptance_[i] = absorptance[i];
   for (int i = 0; i < kBins; ++i)
-    for (int o = i + 1; o < kBins; ++o)
+    for (int o = i + 1; o < kBins; ++o) // e_o / eSum: the integral of e over bin o
       r.m_[static_cast<size_t>(i) * kBins + o] =
-          r.absorptance_[i] * p.quantumYield * e[o] * centre(i) / centre(o);
+          absorptance[i] * quantumYield * (emission[o] / eSum) * centre(i) / centre(o);
   r.finish();
   return r;
+}
+
+ReradiationMatrix separableMatrix(const Spectrum& absorptance, const Spectrum& emission,
+                                  double quantumYield, bool normaliseAbsorptance,
+                                  const std::string& where) {
+  using R = ReradiationMatrix;
+  std::array<double, R::kBins> a{}, e{};
+  double aMax = 0, eMax = 0;
+  for (int i = 0; i < R::kBins; ++i) {
+    const double nm = R::centre(i);
+    a[i] = absorptance(nm);
+    e[i] = emission(nm);
+    if (!(a[i] >= 0 && (normaliseAbsorptance || a[i] <= 1)))
+      throw Error(where + ": expected an absorptance " +
+                  (normaliseAbsorptance ? "of at least 0" : "within [0, 1]") + ", found " +
+                  numberText(a[i]) + " at " + numberText(nm) + " nm");
+    if (!(e[i] >= 0))
+      throw Error(where + ": expected an emission spectrum of at least 0, found " +
+                  numberText(e[i]) + " at " + numberText(nm) + " nm");
+    aMax = std::max(aMax, a[i]);
+    eMax = std::max(eMax, e[i]);
+  }
+  const std::string range = numberText(R::kMinNm) + "-" + numberText(R::kMaxNm) + " nm";
+  if (!(eMax > 0))
+    throw Error(where + ": expected an emission spectrum above 0 somewhere in " + range +
+                ", found 0 everywhere");
+  if (normaliseAbsorptance) {
+    if (!(aMax > 0))
+      throw Error(where + ": expected an absorptance above 0 somewhere in " + range +
+                  ", found 0 everywhere");
+    for (double& x : a) x /= aMax;
+  }
+  return R::fromSpectra(a, e, quantumYield);
 }
 
 namespace {

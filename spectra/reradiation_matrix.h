@@ -79,6 +79,14 @@ public:
   /// grid, M[i][o] = a_i Q e_o l_i / l_o for o > i, 0 otherwise.
   static ReradiationMatrix fromModel(const FluorescenceModel& m);
 
+  /// The separable matrix of a dye given as a datasheet gives it: absorptance a_i in [0, 1] and
+  /// an emission spectrum in photons of any scale (e_o, normalised here to sum 1 over the grid)
+  /// at the bins' centres, and the quantum yield Q: M[i][o] = a_i Q e_o l_i / l_o for o > i
+  /// (fromModel is this with the model's curves). Throws nx::Error when e is 0 everywhere.
+  static ReradiationMatrix fromSpectra(const std::array<double, kBins>& absorptance,
+                                       const std::array<double, kBins>& emission,
+                                       double quantumYield);
+
   /// A measured matrix resampled onto the grid: off-diagonal cells (emission longer than
   /// excitation) as a bilinearly interpolated density per nm of emission times 5 nm; the
   /// diagonal gives the elastic reflectance D. Cells with emission shorter than excitation
@@ -310,5 +318,14 @@ std::vector<double> emittedPhotonsPerBin(const ReradiationMatrix& m);
 /// excitation and emission wavelengths within the traced range's neighbourhood, one finite
 /// cell in [0, 1] per pair. Throws nx::Error "<where>: expected ..., found ...".
 void checkMeasuredMatrix(const MeasuredMatrix& m, const std::string& where);
+
+/// The separable matrix of a dye given by spectra (<fluorescence> with <absorptance> and
+/// <emission>): both evaluated at the bins' centres. On a surface the absorptance must lie in
+/// [0, 1]; with `normaliseAbsorptance` (a medium's dye) it is a shape, scaled to 1 at its
+/// maximum over the grid (and must be above 0 somewhere). The emission (photons) must be
+/// non-negative and above 0 somewhere. Throws nx::Error "<where>: expected ..., found ...".
+ReradiationMatrix separableMatrix(const Spectrum& absorptance, const Spectrum& emission,
+                                  double quantumYield, bool normaliseAbsorptance,
+                                  const std::string& where);
 
 } // namespace nx

@@ -340,6 +340,31 @@ void bindMaterialClass(py::module_& m) {
           py::arg("peak_absorptance") = py::none(),
           "Gives the material a fluorescence model (replacing any); returns it")
       .def(
+          "set_fluorescence_spectra",
+          [](const MaterialView& v, const py::object& absorptance, const py::object& emission,
+             const py::object& quantumYield) {
+            nx::MaterialDesc& d = v.editable();
+            const std::string p = v.label() + ".set_fluorescence_spectra: ";
+            requireKindTakes(v, "fluorescence", v.label() + ".set_fluorescence_spectra");
+            nx::FluorescenceDesc f;
+            f.loc = v.loc();
+            auto spectra = std::make_shared<nx::DyeSpectra>();
+            spectra->absorptance = spectrumFromPython(absorptance, p + "absorptance", v.loc());
+            spectra->emission = spectrumFromPython(emission, p + "emission", v.loc());
+            f.spectra = spectra;
+            if (!quantumYield.is_none())
+              f.quantumYield = rangedArgument(quantumYield, p + "quantum_yield", nx::kYieldRange);
+            d.params.set({"fluorescence", f, v.loc()});
+            v.s->record(
+                v.label() + ".set_fluorescence_spectra(...)",
+                py::repr(py::make_tuple(absorptance, emission, quantumYield)).cast<std::string>());
+            return FluorescenceView{v};
+          },
+          py::arg("absorptance"), py::arg("emission"), py::arg("quantum_yield") = py::none(),
+          "Gives the material a dye as a datasheet gives it (replacing any fluorescence): its "
+          "absorptance and emission spectra (any spectrum form; emission in photons, any "
+          "scale) and its quantum yield (None: 1); returns it")
+      .def(
           "set_fluorescence_matrix",
           [](const MaterialView& v, const py::object& excitationNm, const py::object& emissionNm,
              const py::object& values) {

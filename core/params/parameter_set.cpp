@@ -76,7 +76,7 @@ namespace {
 #if defined(__x86_64__) && defined(__GLIBCXX__)
 static_assert(sizeof(SpectrumDesc) == 256, "a SpectrumDesc field was added: write it below");
 static_assert(sizeof(IorDesc) == 112, "an IorDesc field was added: write it below");
-static_assert(sizeof(FluorescenceDesc) == 312, "a FluorescenceDesc field was added: write it");
+static_assert(sizeof(FluorescenceDesc) == 328, "a FluorescenceDesc field was added: write it");
 static_assert(sizeof(EemDesc) == 448, "an EemDesc field was added: write it below");
 static_assert(sizeof(EemLayout) == 48, "an EemLayout field was added: write it below");
 static_assert(sizeof(CoatingDesc) == 160, "a CoatingDesc field was added: write it below");
@@ -130,6 +130,13 @@ struct CanonicalWriter {
         << e.referenceYield << ',' << e.referenceAbsorptance << ',';
       opt(e.referenceExcitationNm);
       if (e.absorptance) (*this)(*e.absorptance);
+    }
+    if (f.spectra) { // the separable form: its two spectra
+      t << "spectra:";
+      (*this)(f.spectra->absorptance);
+      t << ';';
+      (*this)(f.spectra->emission);
+      t << ';';
     }
   }
   void operator()(const CoatingDesc& c) const {

@@ -109,6 +109,14 @@ struct EemDesc {
 };
 
 /// <fluorescence>: the parameters of the re-radiation matrix, or a measured matrix.
+/// A dye as a datasheet gives it (<fluorescence> with <absorptance> and <emission>): its
+/// absorptance spectrum a(lambda) (on a surface, in [0, 1]; a medium's dye: its shape, scaled to
+/// the medium's <peak> coefficient at its maximum) and its emission spectrum (photons, any
+/// scale); with the quantum yield, the separable matrix (ReradiationMatrix::fromSpectra).
+struct DyeSpectra {
+  SpectrumDesc absorptance, emission;
+};
+
 struct FluorescenceDesc {
   std::optional<std::string> absorptionName; ///< a colour name (peak wavelength)
   std::optional<double> absorptionNm;        ///< or the peak wavelength itself
@@ -120,6 +128,9 @@ struct FluorescenceDesc {
   uint64_t matrixDigest = 0; ///< the content of `matrix` (measuredMatrixDigest), set with it
   /// Or an instrument EEM (quantumYield and peakAbsorptance are then its yield and a_max)
   std::shared_ptr<const EemDesc> eem;
+  /// Or the separable form: absorptance and emission spectra (quantumYield: the yield;
+  /// peakAbsorptance: a medium's peak coefficient)
+  std::shared_ptr<const DyeSpectra> spectra;
   /// A surface dye's relative concentration over the surface (<concentration>FILE</...>, a CSV
   /// grid), scaling its absorptance per place (core/params/concentration_map.h); or the map itself
   /// (given from Python as numbers)

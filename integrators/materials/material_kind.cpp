@@ -131,6 +131,13 @@ void setFluorescence(Material& m, const ParameterSet& p, const MaterialInputs& i
               (m.texture ? " (a texture: the energy of each texel is not checked)" : ""));
     return;
   }
+  if (f->spectra) { // a dye as a datasheet gives it: the separable matrix
+    const Spectrum a = in.spectrum(f->spectra->absorptance, SpectrumRole::Reflectance);
+    const Spectrum e = in.spectrum(f->spectra->emission, SpectrumRole::Emission);
+    m.reradiation = std::make_shared<const ReradiationMatrix>(
+        separableMatrix(a, e, f->quantumYield.value_or(1), false, f->loc.str()));
+    return;
+  }
   m.fluorescenceModel = in.fluorescenceModel(*f);
   m.reradiation =
       std::make_shared<const ReradiationMatrix>(ReradiationMatrix::fromModel(*m.fluorescenceModel));

@@ -166,7 +166,17 @@ struct HomogeneousMediumKind {
       in.checkEmission(le, emission->loc);
       m.emission = forRendering(le);
     }
-    if (const FluorescenceDesc* dye = p.get<FluorescenceDesc>("fluorescence")) {
+    if (const FluorescenceDesc* dye = p.get<FluorescenceDesc>("fluorescence");
+        dye && dye->spectra) { // a dye as a datasheet gives it: its absorptance is a shape
+      if (!dye->peakAbsorptance)
+        throw Error(dye->loc.str() + ": expected a <peak> (the dye's peak absorption "
+                                     "coefficient per unit length), found none");
+      m.dyePeak = static_cast<float>(*dye->peakAbsorptance);
+      m.dye = std::make_shared<const ReradiationMatrix>(
+          separableMatrix(in.spectrum(dye->spectra->absorptance, SpectrumRole::Coefficient),
+                          in.spectrum(dye->spectra->emission, SpectrumRole::Emission),
+                          dye->quantumYield.value_or(1), true, dye->loc.str()));
+    } else if (dye) {
       FluorescenceModel model = in.fluorescenceModel(*dye);
       m.dyePeak = static_cast<float>(model.peakAbsorptance); // the coefficient, per unit length
       model.peakAbsorptance = 1;

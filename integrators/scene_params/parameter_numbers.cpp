@@ -57,6 +57,17 @@ ValueAccess inFluorescence(FluorescenceDesc& f, const std::string& field, const 
   if (field == "skew") return inField(f.skew);
   if (field == "quantum_yield") return inField(f.quantumYield);
   if (field == "peak_absorptance") return inField(f.peakAbsorptance);
+  if (f.spectra && (field == "absorptance" || field == "emission")) {
+    const bool absorptance = field == "absorptance";
+    return {[&f, absorptance]() -> std::optional<ParamValue> {
+              return ParamValue(absorptance ? f.spectra->absorptance : f.spectra->emission);
+            },
+            [&f, absorptance](ParamValue v) {
+              auto s = std::make_shared<DyeSpectra>(*f.spectra);
+              (absorptance ? s->absorptance : s->emission) = std::get<SpectrumDesc>(std::move(v));
+              f.spectra = s;
+            }};
+  }
   ValueAccess a{[&f]() -> std::optional<ParamValue> { return ParamValue(f); },
                 [&f](ParamValue v) { f = std::get<FluorescenceDesc>(std::move(v)); }};
   if (field == "matrix")
@@ -220,8 +231,8 @@ std::optional<ParamValue> withNumbers(const ParamValue& current, ParameterNumber
   }
   if (const auto* s = std::get_if<SpectrumDesc>(&current)) {
     SpectrumDesc out = *s;
-    for (double x : v)
-      if (!std::isfinite(x)) return std::nullopt;
+    for (double x : v) // spectra (reflectances, emissions, coefficients) are not negative
+      if (!std::isfinite(x) || x < 0) return std::nullopt;
     if (s->kind == SpectrumDesc::Kind::Number) {
       if (!(v[0] >= 0)) return std::nullopt;
       out.number = v[0];

@@ -36,8 +36,9 @@ struct ParameterNumbers {
 ParameterNumbers parameterNumbers(const SceneDesc& d, const std::string& name);
 
 /// Sets `d`'s parameter `name` to `values` (as many as parameterNumbers gives, in its form),
-/// each checked as a value set from Python is (its range; a colour's channels, a texture's
-/// texels and a map's values in [0, 1]; a matrix as a measured one). Returns false, leaving
+/// each checked as a value set from Python is (its range; a spectrum's values not negative; a
+/// colour's channels, a texture's texels and a map's values in [0, 1]; a matrix as a measured
+/// one). Returns false, leaving
 /// `d` as it was, when a value is refused; throws nx::Error for a wrong count or a parameter
 /// without numbers.
 bool setParameterNumbers(SceneDesc& d, const std::string& name, std::span<const double> values);

@@ -130,6 +130,10 @@ FieldValue fluorescenceField(const FluorescenceDesc& f, const std::string& leaf,
   if (leaf == "skew") return optionalNumber(f.skew);
   if (leaf == "quantum_yield") return optionalNumber(f.quantumYield);
   if (leaf == "peak_absorptance") return optionalNumber(f.peakAbsorptance);
+  if (leaf == "absorptance" || leaf == "emission") {
+    if (!f.spectra) return FieldValue();
+    return leaf == "absorptance" ? f.spectra->absorptance : f.spectra->emission;
+  }
   if (leaf == "matrix") {
     if (f.matrix) return f.matrix;
     if (!f.matrixCsv) return FieldValue();
@@ -300,6 +304,18 @@ void setObjectField(ObjectDesc& o, const std::string& leaf, const FieldValue& v,
 void requireModelField(const FluorescenceDesc& f, const std::string& leaf,
                        const std::string& name) {
   if (leaf == "matrix" || leaf == "concentration") return;
+  const bool spectral = leaf == "absorptance" || leaf == "emission";
+  if (f.spectra) {
+    if (spectral || leaf == "quantum_yield") return;
+    throw Error(name + ": the fluorescence is given by its <absorptance> and <emission> "
+                       "spectra; set them, or a model with set_fluorescence(...)");
+  }
+  if (spectral)
+    throw Error(name + ": the fluorescence is not given by spectra (it is " +
+                (f.eem                     ? "an imported EEM"
+                 : f.matrixCsv || f.matrix ? "a measured matrix"
+                                           : "the parametric model") +
+                "); write <absorptance> and <emission> in the scene to give it so");
   if (f.eem) {
     if ((leaf == "quantum_yield" && f.eem->referenceFile.empty()) ||
         (leaf == "peak_absorptance" && !f.eem->absorptance))
@@ -338,6 +354,13 @@ void setFluorescenceField(FluorescenceDesc& f, const std::string& leaf, const Fi
         none ? nullptr
              : valueAs<std::shared_ptr<const ConcentrationMap>>(v, name, "a concentration map");
     f.concentrationCsv.reset();
+    return;
+  }
+  if (leaf == "absorptance" || leaf == "emission") {
+    auto spectra = std::make_shared<DyeSpectra>(*f.spectra);
+    (leaf == "absorptance" ? spectra->absorptance : spectra->emission) =
+        valueAs<SpectrumDesc>(v, name, "a spectrum");
+    f.spectra = spectra;
     return;
   }
   // None means "the default" only where there is one: the Stokes shift has none, and an

@@ -27,6 +27,12 @@ void addSpec(std::vector<SceneParameterInfo>& out, const std::string& name, cons
 void addFluorescence(std::vector<SceneParameterInfo>& out, const std::string& prefix,
                      const FluorescenceDesc& f, bool dye) {
   if (f.matrixCsv || f.matrix) return addFixed(out, prefix + ".matrix", "fluorescence.matrix");
+  if (f.spectra) { // the separable form: its spectra and yield
+    for (const char* field : {"absorptance", "emission", "quantum_yield"})
+      addFixed(out, prefix + "." + field, std::string("fluorescence.") + field);
+    if (!dye) addFixed(out, prefix + ".concentration", "fluorescence.concentration");
+    return;
+  }
   if (f.eem) { // an imported EEM: the yield and peak it was made absolute with
     if (f.eem->referenceFile.empty())
       addFixed(out, prefix + ".quantum_yield", "fluorescence.quantum_yield");

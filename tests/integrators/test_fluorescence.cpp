@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 
 #include "integrators/renderer.h"
 #include "integrators/scene_reader.h"
 #include "spectra/reradiation_matrix.h"
+#include "support/errors.h"
 #include "support/furnace_solution.h"
 #include "support/statistics.h"
 #include "support/synthetic_eem.h"
@@ -35,6 +37,16 @@ void expectBandsEqual(const Film& film, const std::function<double(int)>& expect
   }
 }
 
+// A camera inside a closed matte sphere (reflectance 0.5) emitting a flat 0.5, fluorescent with
+// `fluorescence`'s children.
+std::string furnaceText(const std::string& fluorescence) {
+  return "<scene><settings><xres>12</xres><yres>12</yres><mode>spectral_mcpt</mode><depth>3"
+         "</depth><sampl>256</sampl></settings><camera><position>0,0,0</position><look_at>0,0,1"
+         "</look_at></camera><sphere><center>0,0,0</center><radius>1</radius><material>matte"
+         "</material><reflectance>0.5</reflectance><emission>0.5</emission><fluorescence>" +
+         fluorescence + "</fluorescence></sphere></scene>";
+}
+
 struct FurnaceCase {
   std::string fluorescence;
   FluorescenceModel model;
@@ -53,19 +65,132 @@ TEST(Fluorescence, FurnaceMatchesTheMatrixSolution) {
        {450, 50, 30, 5, 0.8, 0.7}},
   };
   for (const auto& c : cases) {
-    const RenderOutput out =
-        renderText("<scene><settings><xres>12</xres><yres>12</yres><mode>spectral_mcpt</"
-                   "mode><depth>3</depth><sampl>256</sampl>"
-                   "</settings><camera><position>0,0,0</position><look_at>0,0,1</look_at></camera>"
-                   "<sphere><center>0,0,0</center><radius>1</radius><material>matte</"
-                   "material><reflectance>0.5</reflectance>"
-                   "<emission>0.5</emission><fluorescence>" +
-                   c.fluorescence + "</fluorescence></sphere></scene>");
+    const RenderOutput out = renderText(furnaceText(c.fluorescence));
     const std::vector<double> L = test::furnaceRadiance(RM::fromModel(c.model), rho, le);
     expectBandsEqual(
         out.film, [&](int b) { return bandOfBins(L, out.film.bands(), b); }, 0.02, c.fluorescence);
     EXPECT_EQ(out.stats.nonFinite, 0u);
   }
+}
+
+// A table of f at the matrix's bin centres, as scene text ("302.5:v, 307.5:v, ...").
+std::string binTable(const std::function<double(double)>& f) {
+  std::string t;
+  for (int i = 0; i < RM::kBins; ++i) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%s%.17g:%.17g", i ? ", " : "", RM::centre(i), f(RM::centre(i)));
+    t += b;
+  }
+  return t;
+}
+
+// The model's curves (docs/fluorescence.md) as spectra: absorptance a_max f(l; l_a, g, -w) /
+// max f, emission f(l; l_a + S, g, w).
+struct ModelCurves {
+  FluorescenceModel m;
+  double aMax = 0;
+  explicit ModelCurves(const FluorescenceModel& model) : m(model) {
+    for (int i = 0; i < RM::kBins; ++i) aMax = std::max(aMax, absorption(RM::centre(i)));
+  }
+  double absorption(double nm) const {
+    return SkewCauchySpectrum{m.absorptionPeakNm, m.widthNm, -m.skew}(nm);
+  }
+  double absorptance(double nm) const { return m.peakAbsorptance * absorption(nm) / aMax; }
+  double emission(double nm) const {
+    return SkewCauchySpectrum{m.absorptionPeakNm + m.stokesNm, m.widthNm, m.skew}(nm);
+  }
+};
+
+// A dye given as a datasheet gives it (absorptance and emission spectra, a yield) whose spectra
+// are the model's curves at the bin centres has the model's matrix, cell for cell; its
+// emission's scale does not matter (it is normalised), and neither does the unit of its table.
+TEST(Fluorescence, SeparableDyeOfTheModelsCurvesHasTheModelsMatrix) {
+  const FluorescenceModel model{450, 60, 25, 8, 0.7, 0.9};
+  const ModelCurves curves(model);
+  auto table = [](const std::function<double(double)>& f, double scale) {
+    std::vector<double> nm, v;
+    for (int i = 0; i < RM::kBins; ++i) {
+      nm.push_back(RM::centre(i));
+      v.push_back(scale * f(RM::centre(i)));
+    }
+    return Spectrum(TabulatedSpectrum{nm, v});
+  };
+  const RM expected = RM::fromModel(model);
+  const RM separable = separableMatrix(table([&](double nm) { return curves.absorptance(nm); }, 1),
+                                       table([&](double nm) { return curves.emission(nm); }, 123.0),
+                                       0.7, false, "t");
+  for (int i = 0; i < RM::kBins; ++i) {
+    EXPECT_NEAR(separable.absorptance(i), expected.absorptance(i), 1e-15);
+    for (int o = 0; o < RM::kBins; ++o)
+      ASSERT_NEAR(separable(i, o), expected(i, o), 1e-12 * expected(i, o) + 1e-300)
+          << i << "," << o;
+  }
+}
+
+// Closed form of the separable matrix for box spectra: a = 0.4 over 400-450 nm, all emission in
+// the bin 600-605 nm, yield 0.5: M[i][o] = 0.4 * 0.5 * l_i / l_o there and 0 elsewhere; an
+// emission entirely below the absorption is lost (Stokes); bad spectra are refused.
+TEST(Fluorescence, SeparableMatrixOfBoxSpectra) {
+  const Spectrum a(TabulatedSpectrum{{400, 449.999, 450}, {0.4, 0.4, 0}});
+  const Spectrum e(TabulatedSpectrum{{600, 604.999, 605}, {2, 2, 0}});
+  const RM m = separableMatrix(a, e, 0.5, false, "t");
+  const int em = RM::binOf(602.5);
+  for (int i = 0; i < RM::kBins; ++i)
+    for (int o = 0; o < RM::kBins; ++o) {
+      const bool absorbs = RM::centre(i) > 400 && RM::centre(i) < 450;
+      const double want = absorbs && o == em ? 0.2 * RM::centre(i) / RM::centre(o) : 0;
+      ASSERT_NEAR(m(i, o), want, 1e-14) << i << "," << o;
+    }
+  const RM lost = separableMatrix(e.scaled(0.1), a, 1, false, "t"); // emits below it absorbs
+  for (int o = 0; o < RM::kBins; ++o) EXPECT_EQ(lost.columnSum(o), 0) << o;
+  const std::string over =
+      test::errorMessage([&] { separableMatrix(a.scaled(3), e, 1, false, "t.scn:4"); });
+  EXPECT_EQ(over.rfind("t.scn:4: expected an absorptance within [0, 1], found 1.2 at", 0), 0u)
+      << over;
+  EXPECT_EQ(test::errorMessage(
+                [&] { separableMatrix(a, Spectrum(ConstantSpectrum{0}), 1, false, "t.scn:4"); }),
+            "t.scn:4: expected an emission spectrum above 0 somewhere in 300-1100 nm, found 0 "
+            "everywhere");
+  // A medium's dye: its absorptance is a shape (any scale), scaled to 1 at its maximum.
+  const RM shape = separableMatrix(a.scaled(3), e, 0.5, true, "t");
+  EXPECT_NEAR(shape.absorptance(RM::binOf(420)), 1.0, 1e-15);
+}
+
+// Rendered, a surface and a medium whose dyes are the model's curves written as spectra render
+// as the model: the furnace's matrix solution, and the medium's image against the model's.
+TEST(Fluorescence, SeparableDyeRendersAsTheModelItTabulates) {
+  const FluorescenceModel model{460, 80, 20, 10, 0.8, 1};
+  const ModelCurves curves(model);
+  const std::string spectra =
+      "<absorptance>" + binTable([&](double nm) { return curves.absorptance(nm); }) +
+      "</absorptance><emission>" + binTable([&](double nm) { return curves.emission(nm); }) +
+      "</emission><yield>0.8</yield>";
+  const RenderOutput out = renderText(furnaceText(spectra));
+  const std::vector<double> L = test::furnaceRadiance(RM::fromModel(model), 0.5, 0.5);
+  expectBandsEqual(
+      out.film, [&](int b) { return bandOfBins(L, out.film.bands(), b); }, 0.02, "separable");
+  // In a medium: the same image as the model dye of the same peak coefficient.
+  auto medium = [](const std::string& dye) {
+    return renderText(
+        "<scene><settings><xres>8</xres><yres>8</yres><mode>spectral_mcpt</mode><depth>6</depth>"
+        "<sampl>64</sampl><bands>400:700:50</bands></settings><camera><position>0,0,-3</position>"
+        "<look_at>0,0,0</look_at><fov>30</fov></camera><sphere><center>0,0,0</center><radius>"
+        "0.8</radius><material>interface</material><medium><sigma_a>0.1</sigma_a><sigma_s>0.5"
+        "</sigma_s><fluorescence>" +
+        dye +
+        "<peak>2</peak></fluorescence></medium></sphere><sphere><center>0,3,-2</center>"
+        "<radius>0.5</radius><material>matte</material><reflectance>0</reflectance>"
+        "<emission>blackbody:6500</emission></sphere></scene>");
+  };
+  const RenderOutput asModel = medium("<absorption>460</absorption><stokes>80</stokes>"
+                                      "<yield>0.8</yield>");
+  const RenderOutput asSpectra = medium(spectra);
+  for (int b = 0; b < asModel.film.bands().count(); ++b)
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x)
+        EXPECT_NEAR(asSpectra.film.bandMean(x, y, b), asModel.film.bandMean(x, y, b),
+                    1e-6 * std::abs(asModel.film.bandMean(x, y, b)) + 1e-12)
+            << b << " " << x << " " << y;
 }
 
 // The same furnace emitting only a royal-blue LED's narrow band (450 nm, FWHM 20 nm) onto a dye

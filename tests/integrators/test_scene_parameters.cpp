@@ -68,6 +68,8 @@ TEST(SceneParameters, ValuesOutsideTheirRangeAreRefusedAndLeaveTheScene) {
   EXPECT_FALSE(setParameterNumbers(d, "objects[1].fluorescence.stokes_nm", negative));
   EXPECT_FALSE(setParameterNumbers(d, "objects[1].fluorescence.stokes_nm", big));
   EXPECT_FALSE(setParameterNumbers(d, "objects[1].reflectance", nan));
+  const double negativeKnot[] = {0.3, -0.1, 0.8}; // spectra are not negative
+  EXPECT_FALSE(setParameterNumbers(d, "objects[0].reflectance", negativeKnot));
   const double colour[] = {-1, 0, 0, 1}; // a light's colour: non-negative, no upper bound
   EXPECT_FALSE(setParameterNumbers(d, "lights[0].color", colour));
   EXPECT_EQ(sceneStateText(d), before);

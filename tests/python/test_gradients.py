@@ -120,6 +120,34 @@ def test_held_table_knots_keep_their_extrapolation():
         expect_agrees(g[j], fd)
 
 
+DYE_SPECTRA = SCENE.replace(
+    "<fluorescence><absorption>460</absorption><stokes>90</stokes>\n<width>25</width>"
+    "<yield>0.8</yield></fluorescence>",
+    "<fluorescence><absorptance>400:0.1, 450:0.8, 500:0.1</absorptance>"
+    "<emission>480:0, 540:1, 600:0.3, 700:0</emission><yield>0.8</yield></fluorescence>")
+
+
+@pytest.mark.parametrize("name, j", [("objects[1].fluorescence.emission", 2),
+                                     ("objects[1].fluorescence.absorptance", 1)])
+def test_dye_spectra_knots(name, j):
+    # A dye given by its absorptance and emission spectra (the separable form): one gradient
+    # image per knot of either spectrum, against differences of renders with the knot moved.
+    scene = nxrender.Scene.from_text(DYE_SPECTRA, "t.scn")
+    assert DYE_SPECTRA != SCENE
+    image = nxrender.render(scene, spp=256, seed=5, threads=2, gradients=[name])
+    g = image.gradients[name]
+    nm, values = scene.get(name)
+    assert g.shape == (len(values),) + image.radiance.shape
+    renders = []
+    for step in (0.05, -0.05):
+        s = scene.copy()
+        v = np.array(values, dtype=float)
+        v[j] += step
+        s.set(name, (nm, v))
+        renders.append(nxrender.render(s, spp=256, seed=5, threads=2).radiance.astype(np.float64))
+    expect_agrees(g[j], (renders[0] - renders[1]) / 0.1, power=0.05)
+
+
 def test_backward_is_the_adjoint_weighted_forward_sum(scene):
     names = ["objects[1].fluorescence.stokes_nm", "objects[0].reflectance"]
     image = nxrender.render(scene, spp=16, seed=9, threads=2, gradients=names)

@@ -252,3 +252,41 @@ def test_settings_mode_path_and_named_spectra_are_parameters():
     rt.set("mode", "mcpt")
     assert rt.get("mode") == "mcpt" and rt.edits[-1] == "mode = 'mcpt'"
     assert np.isfinite(np.asarray(nxrender.render(rt, threads=1).radiance)).all()
+
+
+def test_dye_spectra_from_python():
+    # A dye as a datasheet gives it: set from Python, read back, refused where it is not one,
+    # written back through to_dict, and rendered as the same dye written in scene text.
+    base = {"settings": {"xres": 8, "yres": 6, "mode": "spectral_mcpt", "sampl": 16},
+            "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0]},
+            "objects": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1,
+                         "material": "matte", "reflectance": 0.5,
+                         "emission": 0.2}]}
+    scene = nxrender.Scene.from_dict(base)
+    material = scene.objects[0].material
+    absorptance = ([400, 450, 500], [0.1, 0.8, 0.1])
+    emission = ([480, 540, 600, 700], [0, 1, 0.3, 0])
+    f = material.set_fluorescence_spectra(absorptance, emission, quantum_yield=0.7)
+    nm, values = f.emission
+    assert list(nm) == [480, 540, 600, 700] and list(values) == [0, 1, 0.3, 0]
+    assert f.quantum_yield == 0.7 and f.stokes_nm is None
+    assert "objects[0].fluorescence.absorptance" in scene.parameters()
+    assert scene.parameters()["objects[0].fluorescence.emission"]["differentiable"]
+    with pytest.raises(ValueError, match=r"^objects\[0\]\.fluorescence\.stokes_nm: the "
+                                         r"fluorescence is given by its <absorptance>"):
+        f.stokes_nm = 80
+    f.emission = ([480, 560, 700], [0, 1, 0])
+    assert list(scene.get("objects[0].fluorescence.emission")[1]) == [0, 1, 0]
+    d = scene.to_dict()
+    assert d["objects"][0]["fluorescence"]["yield"] == 0.7
+    again = nxrender.Scene.from_dict(d)
+    text = nxrender.Scene.from_text(scene.to_text(), "t.scn")
+    a = nxrender.render(again, seed=3, threads=1).radiance
+    b = nxrender.render(text, seed=3, threads=1).radiance
+    assert np.array_equal(a, b)
+    # A model fluorescence has no spectra to set.
+    model = nxrender.Scene.from_dict(base)
+    g = model.objects[0].material.set_fluorescence(460, 80)
+    assert g.emission is None
+    with pytest.raises(ValueError, match="not given by spectra"):
+        g.emission = emission
