@@ -1,5 +1,6 @@
 // The Python module nxrender: render scenes and read/write spectral images from numpy.
 
+#include <pybind11/eval.h>
 #include <pybind11/pybind11.h>
 
 #include <filesystem>
@@ -12,6 +13,10 @@
 #include "apps/python/py_scene_parameters.h"
 #include "core/error.h"
 
+namespace nx {
+extern const char* const kTorchBridgePy; // apps/python/nxrender_torch.py
+} // namespace nx
+
 PYBIND11_MODULE(nxrender, m) {
   m.doc() = "nxrender: spectral path tracing for fluorescence research (docs/python.md)";
   m.attr("__version__") = NX_VERSION;
@@ -23,4 +28,10 @@ PYBIND11_MODULE(nxrender, m) {
   nxpy::bindScene(m);
   nxpy::bindSceneParameters(m);
   nxpy::bindRender(m);
+  // nxrender.torch: its Python source compiled in (apps/python/nxrender_torch.py); it imports
+  // torch at its first use only.
+  pybind11::module_ torch =
+      m.def_submodule("torch", "A render as a differentiable PyTorch operation (docs/python.md)");
+  pybind11::exec(nx::kTorchBridgePy, torch.attr("__dict__"));
+  pybind11::module_::import("sys").attr("modules")["nxrender.torch"] = torch;
 }

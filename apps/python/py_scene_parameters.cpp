@@ -10,7 +10,11 @@
 
 #include <variant>
 
+#include <pybind11/numpy.h>
+
 #include "core/error.h"
+#include "core/hash.h"
+#include "integrators/scene_params/parameter_numbers.h"
 #include "integrators/scene_params/parameter_path.h"
 #include "integrators/scene_params/scene_parameter_list.h"
 
@@ -72,6 +76,62 @@ py::object holder(const py::object& scene, const std::vector<Step>& path) {
   return owner(at, path.back().attribute);
 }
 
+// A parameter's numbers as a numpy array of their shape: () for one number, (n,) for a colour
+// or a table's values, (excitation, emission) for a matrix, (height, width[, bands]) for a
+// concentration map or a texture.
+py::array_t<double> numbersToPython(const nx::ParameterNumbers& n) {
+  std::vector<py::ssize_t> shape;
+  if (n.form == nx::ParameterNumbers::Form::List || n.form == nx::ParameterNumbers::Form::Table)
+    shape = {static_cast<py::ssize_t>(n.values.size())};
+  for (long d : n.shape) shape.push_back(d);
+  py::array_t<double> a(shape);
+  std::copy(n.values.begin(), n.values.end(), a.mutable_data());
+  return a;
+}
+
+// Scene.numbers(name) and Scene.set_numbers(name, values): a parameter's numbers by name
+// (integrators/scene_params/parameter_numbers.h), what nxrender.torch moves.
+void bindParameterNumbers(const py::object& scene) {
+  scene.attr("numbers") = py::cpp_function(
+      [](const py::object& self, const std::string& name) {
+        const PyScene& s = self.cast<const PyScene&>();
+        return numbersToPython(nx::parameterNumbers(s.state->desc, knownName(*s.state, name)));
+      },
+      py::name("numbers"), py::is_method(scene), py::arg("name"),
+      "The numbers of the parameter called `name` as a float64 array: () for a number, (n,) "
+      "for a colour or a table's values (at its own wavelengths), (excitation, emission) for a "
+      "measured matrix, (height, width) for a concentration map, (height, width, bands) for a "
+      "texture (nxrender.Error: a parameter without numbers, e.g. a named spectrum)");
+  scene.attr("set_numbers") = py::cpp_function(
+      [](const py::object& self, const std::string& name, const py::object& values) {
+        const PyScene& s = self.cast<const PyScene&>();
+        const std::string known = knownName(*s.state, name);
+        const py::array_t<double, py::array::c_style | py::array::forcecast> a =
+            py::module_::import("numpy").attr("asarray")(values, "float64");
+        const nx::ParameterNumbers before = nx::parameterNumbers(s.state->desc, known);
+        const py::array_t<double> expected = numbersToPython(before);
+        if (a.ndim() != expected.ndim() ||
+            !std::equal(a.shape(), a.shape() + a.ndim(), expected.shape()))
+          throw py::value_error(known + ": expected numbers of shape " +
+                                py::repr(expected.attr("shape")).cast<std::string>() + ", found " +
+                                py::repr(a.attr("shape")).cast<std::string>());
+        if (!nx::setParameterNumbers(s.state->desc, known,
+                                     std::span<const double>(a.data(), a.size())))
+          throw py::value_error(known + ": a value outside what the parameter allows (its "
+                                        "range; spectra not negative; reflectances, texels and "
+                                        "concentrations within [0, 1])");
+        s.state->record(known, a.size() <= 8 ? py::repr(a.attr("tolist")()).cast<std::string>()
+                                             : "<numbers " + std::to_string(a.size()) + " digest " +
+                                                   std::to_string(nx::fnv1a64(std::string_view(
+                                                       reinterpret_cast<const char*>(a.data()),
+                                                       a.size() * sizeof(double)))) +
+                                                   ">");
+      },
+      py::name("set_numbers"), py::is_method(scene), py::arg("name"), py::arg("values"),
+      "Sets the numbers of the parameter called `name` (the shape numbers() gives), each "
+      "checked; its form stays (a table keeps its wavelengths and extrapolation); recorded");
+}
+
 } // namespace
 
 void bindSceneParameters(py::module_& m) {
@@ -125,6 +185,7 @@ void bindSceneParameters(py::module_& m) {
       py::name("set"), py::is_method(scene), py::arg("name"), py::arg("value"),
       "Sets the parameter called `name`, checked and recorded as the attribute's setter does "
       "(ValueError / TypeError naming it)");
+  bindParameterNumbers(scene);
 }
 
 } // namespace nxpy

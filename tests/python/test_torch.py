@@ -1,0 +1,116 @@
+"""nxrender.torch: a render as a differentiable PyTorch operation. Its gradients are reverse
+mode's with torch's incoming gradient as the adjoint, they agree with central differences of
+the loss through torch, and a loss written in torch trains a parameter through the renderer."""
+
+import numpy as np
+import pytest
+import torch
+
+import nxrender
+import nxrender.torch as nxt
+
+SCENE = """<scene><settings><xres>16</xres><yres>12</yres><mode>spectral_mcpt</mode>
+<depth>6</depth><sampl>64</sampl><bands>400:700:50</bands></settings>
+<camera><position>0,0.9,-2.6</position><look_at>0,0.5,0</look_at><fov>40</fov></camera>
+<plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>
+<reflectance>300:0.3, 550:0.5, 1100:0.8</reflectance></plane>
+<sphere><center>0,0.7,0</center><radius>0.7</radius><material>matte</material>
+<reflectance>0.4</reflectance><fluorescence><absorption>460</absorption><stokes>90</stokes>
+<width>25</width><yield>0.8</yield></fluorescence></sphere>
+<sphere><center>-1.5,2.5,-1</center><radius>0.5</radius><material>matte</material>
+<reflectance>0</reflectance>
+<emission scale="5e-3" extrapolate="hold">380:1, 480:1, 520:0.1, 800:0.1</emission></sphere>
+</scene>"""
+
+YIELD = "objects[1].fluorescence.quantum_yield"
+FLOOR = "objects[0].reflectance"
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return nxrender.Scene.from_text(SCENE, "t.scn")
+
+
+def test_numbers_by_name(scene):
+    assert scene.numbers(YIELD).shape == ()
+    assert scene.numbers(FLOOR).tolist() == [0.3, 0.5, 0.8]
+    edited = scene.copy()
+    edited.set_numbers(FLOOR, [0.3, 0.6, 0.8])
+    assert list(edited.get(FLOOR)[1]) == [0.3, 0.6, 0.8]
+    assert edited.edits == [FLOOR + " = [0.3, 0.6, 0.8]"]
+    with pytest.raises(ValueError, match=r"expected numbers of shape \(3,\), found \(2,\)"):
+        edited.set_numbers(FLOOR, [0.1, 0.2])
+    with pytest.raises(ValueError, match="a value outside what the parameter allows"):
+        edited.set_numbers(YIELD, 2.0)
+    edited.set("objects[2].emission", "D65")  # a name has no numbers
+    with pytest.raises(nxrender.Error, match="not differentiable as given"):
+        edited.numbers("objects[2].emission")
+
+
+def test_gradient_is_reverse_mode_with_the_incoming_adjoint(scene):
+    q = torch.tensor(0.8, dtype=torch.float64, requires_grad=True)
+    floor = torch.tensor([0.3, 0.5, 0.8], dtype=torch.float64, requires_grad=True)
+    image = nxt.render(scene, {YIELD: q, FLOOR: floor}, spp=32, seed=3, threads=2)
+    assert image.dtype == torch.float32 and tuple(image.shape) == (12, 16, 7)
+    plain = nxrender.render(scene, spp=32, seed=3, threads=2).radiance
+    assert np.array_equal(image.detach().numpy(), plain)  # the same render
+    weights = torch.linspace(0, 1, image.numel(), dtype=torch.float32).reshape(image.shape)
+    (image * weights).sum().backward()
+    grads, _ = nxrender.backward(scene, weights.numpy().astype(np.float64), [YIELD, FLOOR],
+                                 spp=32, seed=4, threads=2)
+    assert q.grad.item() == pytest.approx(grads[YIELD], rel=1e-12)
+    assert np.allclose(floor.grad.numpy(), grads[FLOOR], rtol=1e-12)
+
+
+@pytest.mark.parametrize("name, index, step", [(YIELD, None, 0.1), (FLOOR, 1, 0.05)])
+def test_gradient_agrees_with_central_differences_through_torch(scene, name, index, step):
+    # loss = sum(w * image): its gradient through torch against (loss(v + h) - loss(v - h)) / 2h
+    # of renders with the same seed (the parameter is linear in the paths' weights: common
+    # random numbers make the difference nearly exact), within 5 standard errors of reverse
+    # mode plus 2% (the difference's own truncation and noise).
+    value = torch.tensor(scene.numbers(name), dtype=torch.float64, requires_grad=True)
+    rng = np.random.default_rng(1)
+    w = torch.from_numpy(rng.uniform(0, 1, (12, 16, 7)).astype(np.float32))
+    nxt.render(scene, {name: value}, spp=256, seed=5, grad_spp=256, threads=2).mul(w).sum().backward()
+    g = value.grad.numpy() if index is None else value.grad.numpy()[index]
+    _, variances = nxrender.backward(scene, w.numpy().astype(np.float64), [name], spp=256,
+                                     seed=6, threads=2)
+    sd = np.sqrt(variances[name] if index is None else variances[name][index])
+
+    def loss(delta):
+        v = scene.numbers(name).copy()
+        if index is None:
+            v = v + delta
+        else:
+            v[index] += delta
+        with torch.no_grad():
+            return nxt.render(scene, {name: torch.tensor(v)}, spp=256, seed=5,
+                              threads=2).mul(w).sum().item()
+
+    fd = (loss(step) - loss(-step)) / (2 * step)
+    assert abs(g - fd) <= 5 * sd + 0.02 * abs(fd), (g, fd, sd)
+    assert sd < 0.1 * abs(fd)  # the test has power: a gradient 50% off fails
+
+
+def test_a_loss_in_torch_trains_the_yield_through_the_renderer(scene):
+    target = torch.from_numpy(np.array(nxrender.render(scene, spp=64, seed=11, threads=2).radiance))
+    q = torch.tensor(0.3, dtype=torch.float64, requires_grad=True)
+    optimiser = torch.optim.Adam([q], lr=0.08)
+    for step in range(25):
+        optimiser.zero_grad()
+        image = nxt.render(scene, {YIELD: q}, spp=16, seed=100 + 2 * step, threads=2)
+        loss = (((image - target) / target.mean()) ** 2).mean()  # relative: Adam's eps is 1e-8
+        loss.backward()
+        optimiser.step()
+        with torch.no_grad():
+            q.clamp_(0.0, 1.0)
+    assert abs(q.item() - 0.8) < 0.08, q.item()
+
+
+def test_bad_parameters_are_refused(scene):
+    with pytest.raises(TypeError, match="expected a dict"):
+        nxt.render(scene, [YIELD])
+    with pytest.raises(TypeError, match=r"quantum_yield: expected a torch.Tensor, found float"):
+        nxt.render(scene, {YIELD: 0.5})
+    with pytest.raises(ValueError, match=r"expected a tensor of shape \(3,\), found \(2,\)"):
+        nxt.render(scene, {FLOOR: torch.zeros(2)})
