@@ -9,18 +9,7 @@ import torch
 import nxrender
 import nxrender.torch as nxt
 
-SCENE = """<scene><settings><xres>16</xres><yres>12</yres><mode>spectral_mcpt</mode>
-<depth>6</depth><sampl>64</sampl><bands>400:700:50</bands></settings>
-<camera><position>0,0.9,-2.6</position><look_at>0,0.5,0</look_at><fov>40</fov></camera>
-<plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>
-<reflectance>300:0.3, 550:0.5, 1100:0.8</reflectance></plane>
-<sphere><center>0,0.7,0</center><radius>0.7</radius><material>matte</material>
-<reflectance>0.4</reflectance><fluorescence><absorption>460</absorption><stokes>90</stokes>
-<width>25</width><yield>0.8</yield></fluorescence></sphere>
-<sphere><center>-1.5,2.5,-1</center><radius>0.5</radius><material>matte</material>
-<reflectance>0</reflectance>
-<emission scale="5e-3" extrapolate="hold">380:1, 480:1, 520:0.1, 800:0.1</emission></sphere>
-</scene>"""
+from test_gradients import SCENE  # a fluorescent sphere, a tabulated floor, a lamp, a medium
 
 YIELD = "objects[1].fluorescence.quantum_yield"
 FLOOR = "objects[0].reflectance"
@@ -51,7 +40,7 @@ def test_gradient_is_reverse_mode_with_the_incoming_adjoint(scene):
     q = torch.tensor(0.8, dtype=torch.float64, requires_grad=True)
     floor = torch.tensor([0.3, 0.5, 0.8], dtype=torch.float64, requires_grad=True)
     image = nxt.render(scene, {YIELD: q, FLOOR: floor}, spp=32, seed=3, threads=2)
-    assert image.dtype == torch.float32 and tuple(image.shape) == (12, 16, 7)
+    assert image.dtype == torch.float32 and tuple(image.shape) == (20, 24, 7)
     plain = nxrender.render(scene, spp=32, seed=3, threads=2).radiance
     assert np.array_equal(image.detach().numpy(), plain)  # the same render
     weights = torch.linspace(0, 1, image.numel(), dtype=torch.float32).reshape(image.shape)
@@ -70,7 +59,7 @@ def test_gradient_agrees_with_central_differences_through_torch(scene, name, ind
     # mode plus 2% (the difference's own truncation and noise).
     value = torch.tensor(scene.numbers(name), dtype=torch.float64, requires_grad=True)
     rng = np.random.default_rng(1)
-    w = torch.from_numpy(rng.uniform(0, 1, (12, 16, 7)).astype(np.float32))
+    w = torch.from_numpy(rng.uniform(0, 1, (20, 24, 7)).astype(np.float32))
     nxt.render(scene, {name: value}, spp=256, seed=5, grad_spp=256, threads=2).mul(w).sum().backward()
     g = value.grad.numpy() if index is None else value.grad.numpy()[index]
     _, variances = nxrender.backward(scene, w.numpy().astype(np.float64), [name], spp=256,
