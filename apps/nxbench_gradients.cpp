@@ -13,6 +13,8 @@
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "apps/bench_util.h"
@@ -20,6 +22,7 @@
 #include "apps/program_main.h"
 #include "integrators/gradients/gradient_setup.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_params/scene_fields.h"
 #include "integrators/scene_reader.h"
 
 namespace {
@@ -63,14 +66,61 @@ long peakKilobytes() {
   return u.ru_maxrss;
 }
 
+// A measured N x N matrix (excitation 350-550 nm, emission 401-701 nm: no diagonal) of a dye
+// absorbing around 460 nm and emitting around 540 nm, yield 0.7.
+std::shared_ptr<const MeasuredMatrix> benchMatrix(int n) {
+  auto m = std::make_shared<MeasuredMatrix>();
+  for (int k = 0; k < n; ++k) {
+    m->excitationNm.push_back(350 + 200.0 * k / (n - 1));
+    m->emissionNm.push_back(401 + 300.0 * k / (n - 1));
+  }
+  std::vector<double> e;
+  double sum = 0;
+  for (double em : m->emissionNm) sum += e.emplace_back(std::exp(-std::pow((em - 540) / 25, 2)));
+  for (double ex : m->excitationNm)
+    for (size_t c = 0; c < e.size(); ++c)
+      m->cells.push_back(m->emissionNm[c] > ex
+                             ? 0.8 * std::exp(-std::pow((ex - 460) / 30, 2)) * 0.7 * e[c] / sum
+                             : 0.0);
+  m->source = "the bench's matrix";
+  return m;
+}
+
+// The measured matrix's rows: its scene's plain render, setting up its cells' slots (seconds,
+// and as renders of it), and a reverse render with them.
+void matrixRows(SceneDesc desc, int n, int spp, const std::vector<float>& adjoint) {
+  setSceneField(desc, "objects[1].fluorescence.matrix", benchMatrix(n));
+  const RenderScene scene = buildRenderScene(desc);
+  RenderOptions plain;
+  plain.samples = spp;
+  const double t0 = bench::fastestSeconds(3, [&] { render(scene, plain); });
+  const auto start = std::chrono::steady_clock::now();
+  const SceneTangents cells =
+      gradientSetup(desc, {"objects[1].fluorescence.matrix"}, scene, true).tangents;
+  const double setup =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  RenderOptions o = plain;
+  o.gradients = &cells;
+  o.adjoint = &adjoint;
+  const double t = bench::fastestSeconds(3, [&] { render(scene, o); });
+  std::printf("\nmeasured matrix %dx%d (%u slots):\n", n, n, cells.slots());
+  std::printf("%-34s %9.3f %8.2f\n", "plain", t0, 1.0);
+  std::printf("%-34s %9.3f %8.2f\n", "set-up of its cells' tangents", setup, setup / t0);
+  std::printf("%-34s %9.3f %8.2f\n", "reverse render", t, t / t0);
+  std::printf("%-34s %9.3f %8.2f\n", "backward call (set-up + reverse)", setup + t,
+              (setup + t) / t0);
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"nxbench-gradients: the cost of forward- and reverse-mode gradients"};
-  int spp = 32, width = 96, threads = 2, knots = 31;
+  int spp = 32, width = 96, threads = 2, knots = 31, matrixSize = 21;
   app.add_option("--spp", spp, "Samples per pixel (default 32)")->check(numberIn(1, 1 << 20));
   app.add_option("--width", width, "Image width (default 96)")->check(numberIn(8, 4096));
   app.add_option("--threads", threads, "Worker threads (default 2)")->check(numberIn(1, 4096));
   app.add_option("--knots", knots, "Knots of the floor's table (default 31)")
       ->check(numberIn(2, 100000));
+  app.add_option("--matrix", matrixSize, "Rows and columns of the measured matrix (default 21)")
+      ->check(numberIn(2, 1000));
   if (const int status = parseCommandLine(app, argc, argv, "nxbench-gradients"); status >= 0)
     return status;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
@@ -120,6 +170,7 @@ int run(int argc, char** argv) {
   row(label.c_str(), reverse(many, spp));
   const std::string fd = "differences, " + std::to_string(4 + knots) + " parameters";
   row(fd.c_str(), 2.0 * (4 + knots) * t0);
+  matrixRows(desc, matrixSize, spp, adjoint);
   std::printf("\npeak memory of reverse renders (%u slots):\n", many.slots());
   for (int s : {spp / 4 > 0 ? spp / 4 : 1, spp, spp * 4}) {
     reverse(many, s);
