@@ -1,6 +1,6 @@
 // nxbench-gradients: what a differentiated render costs against a plain one.
 //
-//   nxbench-gradients [--spp N] [--width W] [--threads N]
+//   nxbench-gradients [--spp N] [--width W] [--threads N] [--knots K] [--matrix N]
 //
 // A fluorescent sphere on a tabulated floor under a blue-heavy lamp (docs/inverse.md). Prints
 // render seconds (fastest of repeats) for a plain render, forward mode with 1 and 4 parameters

@@ -441,6 +441,16 @@ FieldValue sceneField(const SceneDesc& d, const std::string& name) {
   noField(name);
 }
 
+std::string sceneFieldFile(const SceneDesc& d, const std::string& name) {
+  const FieldPlace p = placeOf(const_cast<SceneDesc&>(d), name); // reading changes nothing
+  if (p.kind != FieldPlace::Kind::Fluorescence) return "";
+  const FluorescenceDesc& f = *p.fluorescence;
+  if (p.leaf == "matrix" && !f.matrix && f.matrixCsv) return *f.matrixCsv;
+  if (p.leaf == "concentration" && !f.concentration && f.concentrationCsv)
+    return *f.concentrationCsv;
+  return "";
+}
+
 void setSceneField(SceneDesc& d, const std::string& name, const FieldValue& v) {
   const FieldPlace p = placeOf(d, name);
   if (!p.refusal.empty()) throw Error(p.refusal);

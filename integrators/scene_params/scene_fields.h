@@ -36,6 +36,10 @@ public:
 /// one, or whose item has no such field (an object without fluorescence).
 FieldValue sceneField(const SceneDesc& d, const std::string& name);
 
+/// The file field parameter `name`'s value is read from (a measured matrix's or a
+/// concentration map's CSV, when the scene names one rather than holding numbers), or "".
+std::string sceneFieldFile(const SceneDesc& d, const std::string& name);
+
 /// Sets `d`'s field parameter `name` to `v`, checked in its place; a refused value leaves `d`
 /// as it was. Errors name the parameter: "camera.position: the camera is placed by
 /// <extrinsics>".
