@@ -2,6 +2,7 @@
 
 #include "core/ray_offset.h"
 #include "integrators/fluorescent_vertex.h"
+#include "integrators/gradients/geometry_gradients.h"
 #include "integrators/gradients/gradient_context.h"
 #include "integrators/gradients/path_gradients.h"
 #include "integrators/integrator.h"
@@ -150,6 +151,7 @@ public:
           continue;
         }
       }
+      if constexpr (kGradients) moveVertex(ray_, hit);
       const bool whiteHere = kWhite && scatterings_ == 0;
       if (app.emission >= 0 && !whiteHere) addEmitterHit(ray_, current_, hit, app);
       if (bounce >= kMaxPathBounces) {
@@ -266,6 +268,18 @@ private:
   // A rough conductor's roughness: d ln f / d alpha at direction wi, for each slot moving it.
   template <class Emit>
   void roughnessEvents(const SurfaceVertex& v, const Vec3& wi, Emit&& emit);
+  // Shape derivatives (geometry_gradients.h): the motion of the vertex at `hit` from its ray's.
+  void moveVertex(const Ray& ray, const SurfaceHit& hit);
+  // The vertex's BSDF value (its diffuse lobe alone at a fluorescent vertex) as a function of
+  // its normals and directions, at wavelengths `at`.
+  auto bsdfValue(const SurfaceVertex& v, const SampledWavelengths& at, bool diffuseLobe) const;
+  // The shape slots' events of next-event estimation's light sample ls (its point held).
+  template <class Emit>
+  void shapeLightEvents(const SurfaceVertex& v, const LightSample& ls,
+                        const SampledWavelengths& at, Emit&& emit);
+  // The shape slots' events of the continuation bs, and the next ray's motion.
+  void shapeContinuation(const SurfaceVertex& v, const BsdfSample& bs,
+                         const SampledWavelengths& at);
   // Next-event estimation with the excitation also drawn guided by the light (fluorescent
   // vertices of plain renders); false where it does not apply.
   [[gnu::always_inline]] inline bool
@@ -526,6 +540,122 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::roughnessEvents(
 }
 
 template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::moveVertex([[maybe_unused]] const Ray& ray,
+                                                               [[maybe_unused]] const SurfaceHit& hit) {
+  if constexpr (kGradients) {
+    if (!ctx_.gradients->shapes) return;
+    PathMotion& m = sink_.tape->motion;
+    vertexMotion(tangents_->shapes, *scene_.geometry, ray, m.ray, hit, m.vertex);
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+auto PathWalk<kFluorescence, kMedia, kWhite, Sink>::bsdfValue(const SurfaceVertex& v,
+                                                              const SampledWavelengths& at,
+                                                              bool diffuseLobe) const {
+  return [&v, &at, diffuseLobe, hero = heroAlone_](const Vec3& ng, const Vec3& ns, const Vec3& wo,
+                                                   const Vec3& wi) {
+    SurfaceBsdf b(v.material, at, v.rho, ng, ns, wo);
+    b.setHeroAlone(hero);
+    return diffuseLobe ? b.diffuseLobe(wi) : b.f(wi);
+  };
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+template <class Emit>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::shapeLightEvents(
+    [[maybe_unused]] const SurfaceVertex& v, [[maybe_unused]] const LightSample& ls,
+    [[maybe_unused]] const SampledWavelengths& at, [[maybe_unused]] Emit&& emit) {
+  if constexpr (kGradients) {
+    const std::vector<VertexMotion>& motion = sink_.tape->motion.vertex;
+    if (motion.empty()) return;
+    const auto value = bsdfValue(v, at, v.fluorescent);
+    const SurfaceHit& hit = v.hit;
+    const SampledSpectrum f = value(hit.ng, hit.ns, v.wo, ls.wi);
+    const SpotLight* spot =
+        ls.delta ? ctx_.gradients->spotOfSampledLight[static_cast<size_t>(ls.light)] : nullptr;
+    for (const VertexMotion& m : motion) {
+      // The light's point is held: its direction turns as the vertex moves; radiance arrives
+      // with |cos_y| / d^2 (area lights) or I(direction) / d^2 (point and spot lights).
+      const Vec3 dwi = ls.infinite ? Vec3() : towardsFixedPoint(ls.wi, ls.distance, m.dp);
+      const SampledSpectrum df =
+          directionalDerivative(value, hit.ng, hit.ns, v.wo, ls.wi, m.dng, m.dns, -m.dDir, dwi);
+      float extra = 0;
+      if (!ls.infinite) {
+        extra = 2 * dot(ls.wi, m.dp) / ls.distance;
+        if (!ls.delta) {
+          if (const float cy = dot(ls.n, ls.wi); cy != 0) extra += dot(ls.n, dwi) / cy;
+        } else if (spot) {
+          const float c = -dot(spot->axis, ls.wi), fall = spot->falloff(c);
+          const float e = 1e-4f;
+          if (fall > 0)
+            extra += (spot->falloff(c + e) - spot->falloff(c - e)) / (2 * e) *
+                     -dot(spot->axis, dwi) / fall;
+        }
+      }
+      logDerivativeEvents(m.slot, df, f, extra, emit);
+    }
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::shapeContinuation(
+    [[maybe_unused]] const SurfaceVertex& v, [[maybe_unused]] const BsdfSample& bs,
+    [[maybe_unused]] const SampledWavelengths& at) {
+  if constexpr (kGradients) {
+    PathMotion& pm = sink_.tape->motion;
+    pm.ray.clear();
+    if (pm.vertex.empty()) return;
+    const SurfaceHit& hit = v.hit;
+    if (!bs.specular) {
+      // The sampled direction is held: the factor f |cos| / p changes with the frame.
+      const auto value = bsdfValue(v, at, v.fluorescent);
+      const SampledSpectrum f = value(hit.ng, hit.ns, v.wo, bs.wi);
+      for (const VertexMotion& m : pm.vertex) {
+        const SampledSpectrum df = directionalDerivative(value, hit.ng, hit.ns, v.wo, bs.wi,
+                                                         m.dng, m.dns, -m.dDir, Vec3());
+        logDerivativeEvents(m.slot, df, f, 0.0f, event());
+        pm.ray.push_back({m.slot, m.dp, Vec3()});
+      }
+      return;
+    }
+    // A delta lobe: its direction and weight are functions of the frame and of wo.
+    const bool reflected = (dot(bs.wi, hit.ng) > 0) == (dot(v.wo, hit.ng) > 0);
+    auto lobe = [&](const Vec3& ng, const Vec3& ns, const Vec3& wo, SpecularLobe& out) {
+      SurfaceBsdf b(v.material, at, v.rho, ng, ns, wo);
+      SpecularLobe l[2];
+      const int k = b.specularLobes(l);
+      for (int j = 0; j < k; ++j)
+        if (((dot(l[j].wi, ng) > 0) == (dot(wo, ng) > 0)) == reflected) {
+          out = l[j];
+          return true;
+        }
+      return false;
+    };
+    SpecularLobe at0;
+    if (!lobe(hit.ng, hit.ns, v.wo, at0)) return;
+    for (const VertexMotion& m : pm.vertex) {
+      const Vec3 dwo = -m.dDir;
+      const float scale = std::max({length(m.dng), length(m.dns), length(dwo)});
+      Vec3 dDir;
+      if (scale > 0 && std::isfinite(scale)) {
+        const float h = 1e-3f / scale;
+        SpecularLobe plus, minus;
+        if (lobe(normalize(hit.ng + m.dng * h), normalize(hit.ns + m.dns * h),
+                 normalize(v.wo + dwo * h), plus) &&
+            lobe(normalize(hit.ng - m.dng * h), normalize(hit.ns - m.dns * h),
+                 normalize(v.wo - dwo * h), minus)) {
+          dDir = (plus.wi - minus.wi) * (0.5f / h);
+          logDerivativeEvents(m.slot, (plus.weight + minus.weight * -1.0f) * (0.5f / h),
+                              at0.weight, 0.0f, event());
+        }
+      }
+      pm.ray.push_back({m.slot, m.dp, dDir});
+    }
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
 bool PathWalk<kFluorescence, kMedia, kWhite, Sink>::guidedDirectLight(
     [[maybe_unused]] Ray& ray_, [[maybe_unused]] SampledWavelengths& current_, SurfaceVertex& v,
     float& weightsHere) {
@@ -600,6 +730,7 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directLightHere(
                         local());
     }
     lightEvents(ls, lit);
+    shapeLightEvents(v, ls, current_, local());
   }
   if constexpr (kMedia) {
     const auto visible = [&](const Ray& r) {
@@ -650,6 +781,7 @@ bool PathWalk<kFluorescence, kMedia, kWhite, Sink>::continueFrom(
       reflectanceEvents(v.rhoTangents, v.material, lambdaBefore, v.rho, bs.specular, !reradiated,
                         sink_, event());
     }
+    shapeContinuation(v, bs, lambdaBefore);
   }
   if constexpr (kMedia) {
     crossBoundary(hit, v.app, v.wo, bs.wi, media_);

@@ -15,6 +15,7 @@
 #include "core/memory.h"
 #include "integrators/gradients/gradient_context.h"
 #include "integrators/gradients/path_gradients.h"
+#include "integrators/gradients/primary_boundary.h"
 #include "integrators/render_memory.h"
 #include "integrators/sampling.h"
 #include "io/light_layer_name.h"
@@ -271,6 +272,10 @@ public:
   // A uniform pilot (unless a plan is given), then rounds: plan from the film, render the plan
   // in passes, measure; a given plan is one round.
   void adaptiveRounds();
+
+  // Differentiated with respect to shape: the boundary term of primary visibility, sampled on
+  // the moving outlines (primary_boundary.h) and added to the gradient layers or sums.
+  void boundaryTerms();
 
   // The statistics of the run and, in reverse mode, the gradient and its variance.
   RenderOutput finish(std::chrono::steady_clock::time_point start) {
@@ -536,6 +541,56 @@ void PassRunner::traceSample(const Ray& ray, const SampledWavelengths& lambda,
   }
 }
 
+void PassRunner::boundaryTerms() {
+  if (out_.stats.stopped) return;
+  PrimaryBoundaryRequest req;
+  req.sampler = options_.sampler;
+  req.seed = t_.seed;
+  req.samplesPerPixel = std::max(1, out_.stats.samplesReached);
+  req.rect = t_.rect;
+  req.wavelengths = [&](PixelSampleStream& rng) {
+    return options_.stratifiedLanes ? sampleStratifiedLanes(wavelengths_, rng)
+                                    : wavelengths_.sample(rng.next1D());
+  };
+  uint64_t rays = 0;
+  const std::vector<BoundaryContribution> terms = primaryBoundary(ctx_, req, rays);
+  rays_ += rays;
+  Film& film = out_.film;
+  const int bands = t_.bands.count();
+  if (t_.reverse) {
+    // Summed in the samples' order; the replicates' sums per slot give the variance as a
+    // tile's do.
+    std::vector<double> sums[2] = {std::vector<double>(slots_, 0.0),
+                                   std::vector<double>(slots_, 0.0)};
+    for (const BoundaryContribution& c : terms) {
+      const size_t p = static_cast<size_t>(c.y - t_.rect.y0) * t_.rect.width() +
+                       static_cast<size_t>(c.x - t_.rect.x0);
+      const SampledSpectrum a = film.adjointWeights(
+          c.lambda, options_.adjoint->data() + p * static_cast<size_t>(bands));
+      double v = 0;
+      for (int i = 0; i < kLanes; ++i) v += static_cast<double>(c.value[i] * a[i]);
+      sums[c.odd][c.slot] += v;
+    }
+    for (uint32_t k = 0; k < slots_; ++k) {
+      gradientSum_[k] += sums[0][k] + sums[1][k];
+      gradientVarianceSum_[k] += (sums[0][k] - sums[1][k]) * (sums[0][k] - sums[1][k]);
+    }
+    return;
+  }
+  // Forward mode: each term joins its pixel's layer sums, scaled by the pixel's sample count
+  // (the film divides the sums by it).
+  Film::Pixel pixel = film.newPixel();
+  std::vector<SampledSpectrum> layers(slots_); // a differentiated film's layers: the slots
+  for (const BoundaryContribution& c : terms) {
+    Film::resetPixel(pixel);
+    std::fill(layers.begin(), layers.end(), SampledSpectrum());
+    const float n = static_cast<float>(film.samples(c.x, c.y));
+    layers[c.slot] = c.value * n;
+    film.addLayerSamples(pixel, c.lambda, layers.data(), c.odd);
+    film.add(c.x, c.y, pixel);
+  }
+}
+
 void PassRunner::adaptiveRounds() {
   if (!(options_.targetRelativeError > 0))
     throw Error("adaptive sampling needs a target error (--target-error)");
@@ -624,6 +679,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
     runner.uniformPasses();
   else
     runner.adaptiveRounds();
+  if (gradientContext && gradientContext->shapes) runner.boundaryTerms();
   return runner.finish(start);
 }
 

@@ -54,9 +54,10 @@ struct SphereShapeKind {
   /// Its parameters.
   static std::span<const ShapeParameter> parameters() {
     static const ShapeParameter p[] = {
-        {{"center", ParamType::Point, "scene units", nullptr, "its centre", "0, 1, 0", "",
-          "a sphere centre x, y, z"}},
-        {{"radius", ParamType::Number, "scene units", &kRadiusRange, "its radius", "1"}},
+        {differentiable({"center", ParamType::Point, "scene units", nullptr, "its centre",
+                         "0, 1, 0", "", "a sphere centre x, y, z"})},
+        {differentiable(
+            {"radius", ParamType::Number, "scene units", &kRadiusRange, "its radius", "1"})},
     };
     return p;
   }

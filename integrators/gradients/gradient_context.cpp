@@ -6,12 +6,14 @@ namespace nx {
 
 GradientContext::GradientContext(const RenderScene& scene, const LightSampler& lights,
                                  const SceneTangents& t)
-    : tangents(&t) {
+    : tangents(&t), shapes(!t.shapes.empty()) {
   static const SpectrumTangents none;
   for (int k = 0; k < lights.count(); ++k) {
     const SpectrumTangents* found = &none;
     const Spectrum* value = nullptr;
+    const SpotLight* spot = nullptr;
     if (const int l = lights.sceneLightOf(k); l >= 0) {
+      spot = std::get_if<SpotLight>(&scene.lights[static_cast<size_t>(l)]);
       value = differentiatedLightSpectrum(scene.lights[static_cast<size_t>(l)]);
       if (value) found = &t.lights[static_cast<size_t>(l)];
     } else {
@@ -23,6 +25,7 @@ GradientContext::GradientContext(const RenderScene& scene, const LightSampler& l
     }
     ofSampledLight.push_back(found);
     spectrumOfSampledLight.push_back(found->empty() ? nullptr : value);
+    spotOfSampledLight.push_back(spot);
   }
 }
 

@@ -16,6 +16,11 @@ struct GradientContext {
   /// they are derivatives of (its radiance or intensity; null when not differentiated).
   std::vector<const SpectrumTangents*> ofSampledLight;
   std::vector<const Spectrum*> spectrumOfSampledLight;
+  /// Some slot moves the geometry: paths carry their vertices' motion (geometry_gradients.h).
+  bool shapes = false;
+  /// Per LightSampler light: the spot light it is (its falloff moves with the lit point), or
+  /// null.
+  std::vector<const SpotLight*> spotOfSampledLight;
 
   /// The context for `scene` rendered with `lights`.
   GradientContext(const RenderScene& scene, const LightSampler& lights,

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "integrators/gradients/shape_setup.h"
 #include "integrators/render_scene.h"
 #include "integrators/scene_params/parameter_numbers.h"
 #include "integrators/scene_params/scene_parameter_list.h"
@@ -103,11 +104,14 @@ GradientSetup gradientSetup(const SceneDesc& desc, const std::vector<std::string
     const std::string& name = info.name;
     // Which parameters are differentiable: their declarations say.
     if (!info.differentiable)
-      throw Error(name + ": not differentiated: only appearance parameters are (reflectance, "
-                         "fluorescence, media, emission: docs/inverse.md); shape, camera, "
-                         "settings and visibility need edge sampling or reparameterisation");
+      throw Error(name + ": not differentiated: its declaration does not say differentiable "
+                         "(scene.parameters() marks those that are; docs/inverse.md)");
     for (const GradientParameter& p : r.parameters)
       if (p.name == name) throw Error("gradients: '" + name + "' given twice");
+    if (auto shape = shapeParameter(r.tangents, desc, name, base)) {
+      r.parameters.push_back(std::move(*shape));
+      continue;
+    }
     const ParameterNumbers n = parameterNumbers(desc, name);
     if (n.grid()) {
       r.parameters.push_back(gridParameter(r.tangents, desc, name, n, base, fluorescence));

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "integrators/gradients/geometry_gradients.h"
 #include "integrators/gradients/scene_tangents.h"
 #include "integrators/materials/material.h"
 #include "integrators/media/free_flight.h"
@@ -38,6 +39,7 @@ struct GradientTape {
   std::vector<TapeEntry> pending; ///< local events of the next contribution
   std::vector<Record> records;
   ShadowCrossings crossings; ///< scratch for the shadow rays of media scenes
+  PathMotion motion;         ///< how shape slots move the path's current ray and vertex
   /// Events skipped because the differentiated value was 0 where its derivative is not (the
   /// estimator divides by the value: such a path's derivative is missed, and reported).
   uint64_t zeroValues = 0;
@@ -48,6 +50,8 @@ struct GradientTape {
     locals.clear();
     pending.clear();
     records.clear();
+    motion.ray.clear();
+    motion.vertex.clear();
   }
 
   /// Calls out(slot, lane, v) with every (slot, lane) derivative term of the path's radiance:

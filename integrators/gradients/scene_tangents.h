@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/gradients/shape_tangents.h"
 #include "integrators/render_scene.h"
 
 namespace nx {
@@ -166,6 +167,7 @@ struct SceneTangents {
   std::vector<SpectrumTangents> lights;                 ///< per RenderScene::lights (intensity)
   SpectrumTangents background;
   std::vector<std::vector<MediumTangent>> media; ///< per RenderScene::media
+  ShapeTangents shapes; ///< how slots move the geometry (shape and camera parameters)
   /// Slots whose parameter changes nothing the scene renders (their derivative is 0).
   std::vector<uint32_t> inert;
 

@@ -1,0 +1,89 @@
+#pragma once
+// The interior term of derivatives with respect to shape (docs/inverse.md, "Shape and camera").
+// A path is parameterised as it was sampled: the camera ray by its film position, each
+// continuation by its direction (a delta lobe's direction moves with its surface: it is a
+// function of the normal and the arriving direction), each light sample by its point on the
+// light. As a slot moves a shape, the vertices move along their fixed rays (a ray's origin and
+// direction move with the vertex it leaves), their normals turn, and the factors f_i of the
+// contribution change through their arguments: g = f' / f enters the tape like any other
+// parameter's (path_gradients.h), the sampling densities held. The derivative of each factor
+// comes from its kind's own evaluation: the BSDF and its delta lobes are evaluated at normals and
+// directions moved a little each way along the slot's motion (central differences of a smooth
+// function: about 1e-6 relative, far below the Monte Carlo noise), so every material kind is
+// covered by the code that renders it. Where visibility changes, the boundary term is separate
+// (primary_boundary.h).
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "accel/geometry_scene.h"
+#include "core/ray.h"
+#include "integrators/gradients/shape_tangents.h"
+#include "spectra/sampled_wavelengths.h"
+
+namespace nx {
+
+/// How one slot moves the ray a path follows: its origin and its unit direction.
+struct RayMotion {
+  uint32_t slot = 0;
+  Vec3 dOrigin, dDir;
+};
+
+/// How one slot moves a surface vertex: its point, its geometric and shading normals, and the
+/// direction the path arrived along.
+struct VertexMotion {
+  uint32_t slot = 0;
+  Vec3 dp, dng, dns, dDir;
+};
+
+/// The geometric derivative's state along one path (kept in the tape, reused).
+struct PathMotion {
+  std::vector<RayMotion> ray;       ///< the current ray's motion (empty: it does not move)
+  std::vector<VertexMotion> vertex; ///< the current vertex's motion
+};
+
+/// How the slots move the vertex `hit` of `ray` (unit direction; its motion `rayMotion`): the
+/// ray's own motion carried to the surface, and the surface's where a slot moves it, with the
+/// normals' turning (a sphere's and a cylinder's curvature, a mesh's interpolated normals).
+void vertexMotion(const ShapeTangents& shapes, const GeometryScene& geometry, const Ray& ray,
+                  const std::vector<RayMotion>& rayMotion, const SurfaceHit& hit,
+                  std::vector<VertexMotion>& out);
+
+/// d value / d s at s = 0 of value(ng + s dng, ns + s dns, wo + s dwo, wi + s dwi), each
+/// argument renormalised: a central difference with steps of 1e-3 in the unit vectors.
+template <class Value>
+SampledSpectrum directionalDerivative(Value&& value, const Vec3& ng, const Vec3& ns,
+                                      const Vec3& wo, const Vec3& wi, const Vec3& dng,
+                                      const Vec3& dns, const Vec3& dwo, const Vec3& dwi) {
+  const float scale = std::max({length(dng), length(dns), length(dwo), length(dwi)});
+  if (!(scale > 0) || !std::isfinite(scale)) return {};
+  const float h = 1e-3f / scale;
+  const SampledSpectrum plus = value(normalize(ng + dng * h), normalize(ns + dns * h),
+                                     normalize(wo + dwo * h), normalize(wi + dwi * h));
+  const SampledSpectrum minus = value(normalize(ng - dng * h), normalize(ns - dns * h),
+                                      normalize(wo - dwo * h), normalize(wi - dwi * h));
+  return (plus + minus * -1.0f) * (0.5f / h);
+}
+
+/// d wi / d s of the unit direction wi = (y - p) / d towards a fixed point y at distance d as
+/// p moves by dp.
+inline Vec3 towardsFixedPoint(const Vec3& wi, float distance, const Vec3& dp) {
+  return (dp - wi * dot(wi, dp)) * (-1.0f / distance);
+}
+
+/// Emits (slot, lane, d / v + extra) per lane of the derivative d of a factor of value v (its
+/// log-derivative). A lane with v = 0 is skipped: the factors here are continuous in the
+/// geometry (a BSDF's value falls to 0 at the horizon with its cosine), so where one is 0 its
+/// derivative is 0 too, and a difference straddling the horizon is not one.
+template <class Emit>
+void logDerivativeEvents(uint32_t slot, const SampledSpectrum& d, const SampledSpectrum& v,
+                         float extra, Emit&& emit) {
+  for (int i = 0; i < kLanes; ++i) {
+    if (!(v[i] != 0)) continue;
+    const float g = d[i] / v[i] + extra;
+    if (g != 0 && std::isfinite(g)) emit(slot, i, g);
+  }
+}
+
+} // namespace nx

@@ -1,0 +1,302 @@
+#include "integrators/gradients/primary_boundary.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "core/math_util.h"
+#include "integrators/gradients/gradient_context.h"
+#include "integrators/render_scene.h"
+
+namespace nx {
+namespace {
+
+constexpr uint32_t kBoundarySalt = 0x3c6ef372U;
+constexpr int kChunk = 256;                  // samples per task (an even number: both replicates)
+constexpr double kFilmOffset = 5e-3; // pixels either side of an outline the two paths start
+constexpr int64_t kMaxSamplesPerOutline = 1 << 24;
+
+Vec3d col(const Matrix3& m, int j) { return {m[0][j], m[1][j], m[2][j]}; }
+
+// The pinhole's projection: film position (pixels, as generateRay takes them) of a world
+// point, false behind the camera; with the derivative of the film position along dp.
+struct Projection {
+  const CameraCalibration& c;
+  bool project(const Vec3d& p, double& x, double& y) const {
+    const Vector3d q = multiply(c.R, {p.x, p.y, p.z});
+    const double z = q[2] + c.t.z;
+    if (!(z > 0)) return false;
+    x = c.fx * (q[0] + c.t.x) / z + c.cx + 0.5;
+    y = c.fy * (q[1] + c.t.y) / z + c.cy + 0.5;
+    return true;
+  }
+  void along(const Vec3d& p, const Vec3d& dp, double& dx, double& dy) const {
+    const Vector3d q = multiply(c.R, {p.x, p.y, p.z});
+    const Vector3d dq = multiply(c.R, {dp.x, dp.y, dp.z});
+    const double X = q[0] + c.t.x, Y = q[1] + c.t.y, z = q[2] + c.t.z;
+    dx = c.fx * (dq[0] * z - X * dq[2]) / (z * z);
+    dy = c.fy * (dq[1] * z - Y * dq[2]) / (z * z);
+  }
+  // The unnormalised ray direction through film (x, y) and its derivatives along x and y
+  // (d = R^T K^-1 (x - 1/2, y - 1/2, 1)).
+  Vec3d direction(double x, double y, Vec3d& ddx, Vec3d& ddy) const {
+    const Matrix3 Rt = {{{c.R[0][0], c.R[1][0], c.R[2][0]},
+                         {c.R[0][1], c.R[1][1], c.R[2][1]},
+                         {c.R[0][2], c.R[1][2], c.R[2][2]}}};
+    ddx = col(Rt, 0) * (1 / c.fx);
+    ddy = col(Rt, 1) * (1 / c.fy);
+    return ddx * (x - 0.5 - c.cx) + ddy * (y - 0.5 - c.cy) + col(Rt, 2);
+  }
+};
+
+// One sphere's silhouette seen from o: the circle of tangent points, centre q, radius rho, in
+// the plane spanned by u, v.
+struct Silhouette {
+  Vec3d q, u, v;
+  double rho = 0;
+  Vec3d at(double a) const { return q + (u * std::cos(a) + v * std::sin(a)) * rho; }
+  Vec3d tangent(double a) const { return (u * -std::sin(a) + v * std::cos(a)) * rho; }
+};
+
+bool silhouetteOf(const SphereShape& s, const Vec3d& o, Silhouette& out) {
+  const Vec3d a = s.center - o;
+  const double d2 = dot(a, a), r2 = s.radius * s.radius;
+  if (!(d2 > r2 * (1 + 1e-9))) return false; // the camera is inside or on it
+  const double k = 1 - r2 / d2;
+  out.q = o + a * k;
+  out.rho = s.radius * std::sqrt(k);
+  const Vec3d w = normalize(a);
+  const Vec3d helper = std::abs(w.x) < 0.9 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
+  out.u = normalize(cross(w, helper));
+  out.v = cross(w, out.u);
+  return true;
+}
+
+// An outline on the film: which sphere casts it, seen from where (the camera: its silhouette;
+// a point or spot light: its shadow's edge on what the camera sees).
+struct Outline {
+  uint32_t sphere = 0;
+  Vec3d from;          ///< the camera's or the light's position
+  bool shadow = false; ///< a shadow's edge
+  Silhouette sil;      ///< the sphere's silhouette seen from `from`
+};
+
+// A point of an outline on the film: where (x, y), the unit normal towards phi > 0, |grad phi|,
+// the film length per radian, and how each slot moves phi there.
+struct OutlinePoint {
+  double x = 0, y = 0, nx = 0, ny = 0, grad = 0, speed = 0;
+  std::vector<std::pair<uint32_t, double>> dPhi; ///< (slot, d phi / d slot)
+};
+
+// phi's rate for the slots moving sphere k at tangent point m (w = (c - m) / r): d phi / d c = w,
+// d phi / d r = -1; and, for a shadow on a moving sphere (receiver `r`, at x with normal n,
+// seen along camera direction d), the receiver's motion at a fixed film position:
+// dx = d (n . v) / (n . d), times d phi / d x.
+void outlineRates(const ShapeTangents& shapes, uint32_t k, const Vec3d& w, int receiver,
+                  const Vec3d& n, const Vec3d& d, const Vec3d& dPhiDx,
+                  std::vector<std::pair<uint32_t, double>>& out) {
+  out.clear();
+  for (const SphereMotion& m : shapes.spheres[k])
+    out.push_back({m.slot, dot(w, m.dCenter) - m.dRadius});
+  if (receiver < 0 || static_cast<uint32_t>(receiver) == k) return;
+  for (const SphereMotion& m : shapes.spheres[static_cast<size_t>(receiver)]) {
+    const Vec3d v = m.dCenter + n * m.dRadius;
+    const double rate = dot(dPhiDx, d * (dot(n, v) / dot(n, d)));
+    bool found = false;
+    for (auto& [slot, r] : out)
+      if (slot == m.slot) r += rate, found = true;
+    if (!found) out.push_back({m.slot, rate});
+  }
+}
+
+// The point of outline `o` at angle alpha, or false where the camera does not see it there.
+bool outlinePoint(const IntegratorContext& ctx, const Outline& o, double alpha, OutlinePoint& p,
+                  uint64_t& rays) {
+  const RenderScene& scene = *ctx.scene;
+  const SphereShape& sphere = scene.geometry->spheres()[o.sphere];
+  const Projection proj{scene.camera.calibration()};
+  const Vec3d cam = scene.camera.position();
+  const Vec3d m = o.sil.at(alpha), w = (sphere.center - m) / sphere.radius;
+  const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
+  if (!o.shadow) {
+    if (!proj.project(m, p.x, p.y)) return false;
+    double dx, dy;
+    proj.along(m, o.sil.tangent(alpha), dx, dy);
+    p.speed = std::hypot(dx, dy);
+    Vec3d ddx, ddy;
+    const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
+    const double len = length(dir);
+    const Vec3d d = dir / len;
+    // phi = |w| - r: d phi / d (film x) = -(a . d)(w . d d / dx), d d / dx = (I - d d^T) ddx / |dir|
+    const double ad = dot(sphere.center - cam, d);
+    const double gx = -ad * dot(w, ddx) / len, gy = -ad * dot(w, ddy) / len;
+    p.grad = std::hypot(gx, gy);
+    if (!(p.grad > 0)) return false;
+    p.nx = gx / p.grad, p.ny = gy / p.grad;
+    outlineRates(shapes, o.sphere, w, -1, {}, {}, {}, p.dPhi);
+    return p.speed > 0;
+  }
+  // A shadow's edge: the light's ray grazing the sphere at m goes on to a surface at x; phi(y) =
+  // (distance of the line light -> x(y) from the centre) - r, x(y) what the camera sees at y.
+  const Vec3d e = normalize(m - o.from);
+  Ray beyond;
+  beyond.o = Vec3(m + e * (1e-6 * sphere.radius));
+  beyond.d = Vec3(e);
+  SurfaceHit hit;
+  // A hit on the sphere itself is the tangent's rounding (a line touching a sphere does not
+  // meet it again): the ray goes on from there.
+  for (int tries = 0;; ++tries) {
+    ++rays;
+    if (!scene.geometry->intersect(beyond, hit)) return false;
+    if (hit.kind != ShapeKind::Sphere || hit.index != o.sphere) break;
+    if (tries == 4) return false;
+    beyond.o = hit.p + beyond.d * static_cast<float>(1e-6 * sphere.radius);
+  }
+  const Vec3d x(hit.p), n(hit.ng);
+  if (!proj.project(x, p.x, p.y)) return false;
+  // the camera must see x itself
+  Ray view;
+  view.o = Vec3(cam);
+  view.d = Vec3(normalize(x - cam));
+  SurfaceHit seen;
+  ++rays;
+  if (!scene.geometry->intersect(view, seen) ||
+      std::abs(static_cast<double>(seen.t) - length(x - cam)) > 1e-4 * length(x - cam))
+    return false;
+  // dx / d alpha: along the light's ray through m(alpha), kept on the surface's tangent plane
+  const Vec3d dm = o.sil.tangent(alpha), lm = m - o.from;
+  const double s = dot(n, x - o.from) / dot(n, lm);
+  const Vec3d dxA = dm * s + lm * (-s * dot(n, dm) / dot(n, lm));
+  double fx, fy;
+  proj.along(x, dxA, fx, fy);
+  p.speed = std::hypot(fx, fy);
+  // grad_y phi = d phi / d x . d x / d y: d phi / d x = -((a . e) / l) w (a = c - light, l the
+  // light's distance to x), d x / d y_j = t (I - d n^T / (n . d)) d d / d y_j
+  const Vec3d a = sphere.center - o.from;
+  const double l = length(x - o.from);
+  const Vec3d dPhiDx = w * (-dot(a, e) / l);
+  Vec3d ddx, ddy;
+  const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
+  const double len = length(dir);
+  const Vec3d d = dir / len;
+  const double t = length(x - cam), nd = dot(n, d);
+  auto dxdy = [&](const Vec3d& dd) {
+    const Vec3d dUnit = (dd - d * dot(d, dd)) / len;
+    return (dUnit - d * (dot(n, dUnit) / nd)) * t;
+  };
+  const double gx = dot(dPhiDx, dxdy(ddx)), gy = dot(dPhiDx, dxdy(ddy));
+  p.grad = std::hypot(gx, gy);
+  if (!(p.grad > 0) || !(p.speed > 0)) return false;
+  p.nx = gx / p.grad, p.ny = gy / p.grad;
+  const int receiver = hit.kind == ShapeKind::Sphere ? static_cast<int>(hit.index) : -1;
+  outlineRates(shapes, o.sphere, w, receiver, n, d, dPhiDx, p.dPhi);
+  return true;
+}
+
+// The outline's length on the film in pixels (a polygon of 64 sides over the parts the camera
+// sees), what the sample count is set from.
+double filmLength(const IntegratorContext& ctx, const Outline& o) {
+  double total = 0, px = 0, py = 0;
+  bool previous = false;
+  uint64_t rays = 0;
+  for (int i = 0; i <= 64; ++i) {
+    OutlinePoint p;
+    const bool seen = outlinePoint(ctx, o, 2 * kPi * i / 64, p, rays);
+    if (seen && previous) total += std::hypot(p.x - px, p.y - py);
+    px = p.x, py = p.y, previous = seen;
+  }
+  return total;
+}
+
+// The samples [first, first + n) of `count` on outline `o`, appended to `out`.
+void sampleOutline(const IntegratorContext& ctx, const PrimaryBoundaryRequest& req,
+                   const PixelSequence& sequence, const Outline& o, int64_t first, int64_t n,
+                   int64_t count, std::vector<BoundaryContribution>& out, uint64_t& rays) {
+  const RenderScene& scene = *ctx.scene;
+  TraceCounters counters;
+  OutlinePoint p;
+  for (int64_t b = first; b < first + n; ++b) {
+    PixelSampleStream head(sequence, static_cast<uint32_t>(b));
+    if (!outlinePoint(ctx, o, 2 * kPi * head.next1D(), p, counters.rays)) continue;
+    const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
+    if (px < req.rect.x0 || px >= req.rect.x1 || py < req.rect.y0 || py >= req.rect.y1) continue;
+    // L where phi < 0 (the sphere seen, or in its shadow) minus L where phi > 0, with the same
+    // random numbers, just either side of the outline on the film.
+    SampledSpectrum L[2];
+    SampledWavelengths lambda;
+    for (int side = 0; side < 2; ++side) {
+      PixelSampleStream rng(sequence, static_cast<uint32_t>(b));
+      rng.next1D(); // the angle
+      lambda = req.wavelengths(rng);
+      const double sign = side == 0 ? -kFilmOffset : kFilmOffset;
+      const Ray ray = scene.camera.generateRay(p.x + sign * p.nx, p.y + sign * p.ny);
+      L[side] = tracePath(ctx, ray, lambda, rng, counters);
+    }
+    const SampledSpectrum jump = L[0] + L[1] * -1.0f;
+    if (jump.isBlack()) continue;
+    // v_n = -(d phi / d theta) / |grad phi|; alpha uniform: the film length 2 pi speed / count
+    const double weight = p.speed * 2 * kPi / static_cast<double>(count) / p.grad;
+    for (const auto& [slot, dPhi] : p.dPhi)
+      if (dPhi != 0)
+        out.push_back({px, py, (b & 1) != 0, slot, lambda, jump * static_cast<float>(-dPhi * weight)});
+  }
+  rays += counters.rays;
+}
+
+// Every outline a slot moves: the moving spheres' silhouettes and their shadows' edges under
+// each point and spot light.
+std::vector<Outline> movingOutlines(const IntegratorContext& ctx) {
+  const RenderScene& scene = *ctx.scene;
+  const auto& spheres = ctx.gradients->tangents->shapes.spheres;
+  std::vector<Vec3d> lights;
+  for (const SceneLight& l : scene.lights) {
+    if (const auto* p = std::get_if<PointLight>(&l)) lights.push_back(Vec3d(p->position));
+    if (const auto* p = std::get_if<SpotLight>(&l)) lights.push_back(Vec3d(p->position));
+  }
+  std::vector<Outline> out;
+  for (uint32_t k = 0; k < spheres.size(); ++k) {
+    if (spheres[k].empty()) continue;
+    const SphereShape& sphere = scene.geometry->spheres()[k];
+    Outline o{k, scene.camera.position(), false, {}};
+    if (silhouetteOf(sphere, o.from, o.sil)) out.push_back(o);
+    for (const Vec3d& p : lights) {
+      Outline s{k, p, true, {}};
+      if (silhouetteOf(sphere, p, s.sil)) out.push_back(s);
+    }
+  }
+  return out;
+}
+
+} // namespace
+
+std::vector<BoundaryContribution> primaryBoundary(const IntegratorContext& ctx,
+                                                  const PrimaryBoundaryRequest& req,
+                                                  uint64_t& rays) {
+  std::vector<BoundaryContribution> all;
+  const std::vector<Outline> outlines = movingOutlines(ctx);
+  for (uint32_t k = 0; k < outlines.size(); ++k) {
+    const Outline& o = outlines[k];
+    const double pixels = filmLength(ctx, o);
+    if (!(pixels > 0)) continue;
+    const int64_t count = std::min<int64_t>(
+        kMaxSamplesPerOutline,
+        std::max<int64_t>(kChunk, static_cast<int64_t>(std::ceil(pixels)) * req.samplesPerPixel));
+    const int64_t rounded = (count + kChunk - 1) / kChunk * kChunk;
+    const PixelSequence sequence(req.sampler, k, req.seed ^ kBoundarySalt);
+    const int64_t chunks = rounded / kChunk;
+    std::vector<std::vector<BoundaryContribution>> parts(static_cast<size_t>(chunks));
+    std::vector<uint64_t> partRays(static_cast<size_t>(chunks), 0);
+    tbb::parallel_for(int64_t{0}, chunks, [&](int64_t c) {
+      sampleOutline(ctx, req, sequence, o, c * kChunk, kChunk, rounded,
+                    parts[static_cast<size_t>(c)], partRays[static_cast<size_t>(c)]);
+    });
+    for (size_t c = 0; c < parts.size(); ++c) {
+      all.insert(all.end(), parts[c].begin(), parts[c].end());
+      rays += partRays[c];
+    }
+  }
+  return all;
+}
+
+} // namespace nx

@@ -1,0 +1,74 @@
+#include "integrators/gradients/shape_setup.h"
+
+#include <variant>
+
+#include "core/error.h"
+#include "integrators/render_scene.h"
+#include "integrators/scene_params/parameter_path.h"
+
+namespace nx {
+namespace {
+
+// Why a render differentiated with respect to shape would miss a share of its derivative in
+// this scene (what the interior and boundary terms do not cover yet), or "".
+std::string uncoveredFeature(const RenderScene& scene) {
+  if (scene.hasMedia) return "media or interfaces";
+  for (const Material& m : scene.materials) {
+    if (m.texture || m.concentration)
+      return "a texture or concentration map (the hit's uv moves)";
+    if (m.kind == MaterialKind::Conductor && m.alphaU != m.alphaV)
+      return "anisotropic roughness (its tangent frame moves)";
+  }
+  for (const SceneLight& l : scene.lights)
+    if (std::holds_alternative<EnvironmentLight>(l)) return "an environment map";
+  const CameraCalibration& c = scene.camera.calibration();
+  if (c.distorted() || scene.camera.hasLens()) return "lens distortion or a thin lens";
+  return "";
+}
+
+// The index among the geometry's spheres of object `object` (0-based), or -1.
+int sphereOf(const RenderScene& scene, size_t object) {
+  for (size_t k = 0; k < scene.spheres.size(); ++k)
+    if (scene.spheres[k].objectId == object + 1) return static_cast<int>(k);
+  return -1;
+}
+
+} // namespace
+
+std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const SceneDesc& desc,
+                                                const std::string& name,
+                                                const RenderScene& base) {
+  const std::vector<ParameterStep> steps = parameterSteps(name);
+  if (steps.size() != 2 || steps[0].attribute != "objects" ||
+      !std::holds_alternative<size_t>(steps[0].index))
+    return std::nullopt;
+  const size_t object = std::get<size_t>(steps[0].index);
+  if (object >= desc.objects.size()) return std::nullopt;
+  const ObjectDesc& o = desc.objects[object];
+  const std::string& leaf = steps[1].attribute;
+  if (o.shape != "sphere" || (leaf != "center" && leaf != "radius")) return std::nullopt;
+  if (const std::string why = uncoveredFeature(base); !why.empty())
+    throw Error(name + ": derivatives with respect to shape do not cover a scene with " + why +
+                " yet (docs/inverse.md, \"Shape and camera\")");
+  const int sphere = sphereOf(base, object);
+  if (sphere < 0) throw Error("internal error: " + name + ": its sphere was not built");
+  const ShapeAppearance& app = base.spheres[static_cast<size_t>(sphere)];
+  if (app.emission >= 0)
+    throw Error(name + ": moving an emitter is not differentiated yet (its light samples would "
+                       "move with it)");
+  auto& motions = tangents.shapes.spheres.at(static_cast<size_t>(sphere));
+  GradientParameter p{name, tangents.slots(), leaf == "center" ? 3u : 1u, leaf == "center", {}};
+  for (uint32_t j = 0; j < p.slots; ++j) {
+    SphereMotion m;
+    m.slot = tangents.slots();
+    if (leaf == "center")
+      m.dCenter = {j == 0 ? 1.0 : 0.0, j == 1 ? 1.0 : 0.0, j == 2 ? 1.0 : 0.0};
+    else
+      m.dRadius = 1;
+    motions.push_back(m);
+    tangents.slotNames.push_back(p.indexed ? name + "[" + std::to_string(j) + "]" : name);
+  }
+  return p;
+}
+
+} // namespace nx

@@ -1,0 +1,21 @@
+#pragma once
+// The set-up of derivatives with respect to shape parameters (docs/inverse.md, "Shape and
+// camera"): a parameter's slots and how they move the geometry, and the scene features the
+// geometric derivative covers.
+
+#include <optional>
+#include <string>
+
+#include "integrators/gradients/gradient_setup.h"
+
+namespace nx {
+
+/// When `name` (canonical, declared differentiable) is a shape's parameter: adds its slots to
+/// `tangents` and returns the parameter; nullopt for any other parameter. Throws nx::Error
+/// naming it when the scene holds what the geometric derivative does not cover yet (media,
+/// textures, a lens, an environment map, a moving emitter, anisotropic roughness).
+std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const SceneDesc& desc,
+                                                const std::string& name,
+                                                const RenderScene& base);
+
+} // namespace nx
