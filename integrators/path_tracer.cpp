@@ -5,6 +5,7 @@
 #include "integrators/gradients/geometry_gradients.h"
 #include "integrators/gradients/gradient_context.h"
 #include "integrators/gradients/path_gradients.h"
+#include "integrators/gradients/sphere_silhouette.h"
 #include "integrators/integrator.h"
 #include "integrators/lights/direct_lighting.h"
 #include "integrators/materials/bsdf.h"
@@ -275,11 +276,18 @@ private:
   auto bsdfValue(const SurfaceVertex& v, const SampledWavelengths& at, bool diffuseLobe) const;
   // The shape slots' events of next-event estimation's light sample ls (its point held).
   template <class Emit>
-  void shapeLightEvents(const SurfaceVertex& v, const LightSample& ls,
-                        const SampledWavelengths& at, Emit&& emit);
+  void shapeLightEvents(const SurfaceVertex& v, const LightSample& ls, const SampledWavelengths& at,
+                        Emit&& emit);
   // The shape slots' events of the continuation bs, and the next ray's motion.
   void shapeContinuation(const SurfaceVertex& v, const BsdfSample& bs,
                          const SampledWavelengths& at);
+  // Shape derivatives: an emitter found by a continuation, differentiated with its point held
+  // (as next-event estimation holds it; ContinuationLobe): the local events turning the held
+  // direction's derivative into the held point's.
+  void emitterPointHeld(const Ray& ray, const SurfaceHit& hit);
+  // Shape derivatives: the boundary term of the vertex's scattering integral over directions,
+  // on the silhouettes of the spheres that move relative to it.
+  void directionBoundary(const SampledWavelengths& current, const SurfaceVertex& v);
   // Next-event estimation with the excitation also drawn guided by the light (fluorescent
   // vertices of plain renders); false where it does not apply.
   [[gnu::always_inline]] inline bool
@@ -473,9 +481,11 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::addEmitterHit(
       specular_ ? 1.0f : emitterWeight(ctx_.lights->pdf(prevP_, hit, ray_.d, prevN_, prevWeights_));
   if (!(w > 0)) return;
   const SampledSpectrum le = evaluate(scene_.emission[static_cast<size_t>(app.emission)], current_);
-  if constexpr (kGradients)
+  if constexpr (kGradients) {
     ratioEvents(tangents_->emission[static_cast<size_t>(app.emission)], current_, le, sink_,
                 local());
+    if (!specular_) emitterPointHeld(ray_, hit);
+  }
   sink_.add(weighted() * le * w,
             classOf(scatterings_, groups_.ofEmission[static_cast<size_t>(app.emission)],
                     relightSourceOf(groups_, app.emission), current_));
@@ -503,6 +513,7 @@ bool PathWalk<kFluorescence, kMedia, kWhite, Sink>::scatterAtSurface(
   if (!guidedDone && v.bsdf.hasNonSpecular() && ctx_.lightSampling != LightSampling::BsdfOnly &&
       ctx_.lights->count() > 0)
     directLightHere(ray_, current_, v, weightsHere);
+  if constexpr (kGradients) directionBoundary(current_, v);
   return continueFrom(ray_, current_, v, weightsHere);
 }
 
@@ -540,8 +551,8 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::roughnessEvents(
 }
 
 template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
-void PathWalk<kFluorescence, kMedia, kWhite, Sink>::moveVertex([[maybe_unused]] const Ray& ray,
-                                                               [[maybe_unused]] const SurfaceHit& hit) {
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::moveVertex(
+    [[maybe_unused]] const Ray& ray, [[maybe_unused]] const SurfaceHit& hit) {
   if constexpr (kGradients) {
     if (!ctx_.gradients->shapes) return;
     PathMotion& m = sink_.tape->motion;
@@ -607,13 +618,23 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::shapeContinuation(
     pm.ray.clear();
     if (pm.vertex.empty()) return;
     const SurfaceHit& hit = v.hit;
+    pm.lobe.valid = false;
     if (!bs.specular) {
       // The sampled direction is held: the factor f |cos| / p changes with the frame.
       const auto value = bsdfValue(v, at, v.fluorescent);
       const SampledSpectrum f = value(hit.ng, hit.ns, v.wo, bs.wi);
+      ContinuationLobe& lobe = pm.lobe;
+      lobe = {true, bs.wi, {}, {}, f, {}, {}};
+      const Frame basis = Frame::fromNormal(bs.wi);
+      lobe.e1 = basis.s;
+      lobe.e2 = basis.t;
+      lobe.d1 = directionalDerivative(value, hit.ng, hit.ns, v.wo, bs.wi, Vec3(), Vec3(), Vec3(),
+                                      lobe.e1);
+      lobe.d2 = directionalDerivative(value, hit.ng, hit.ns, v.wo, bs.wi, Vec3(), Vec3(), Vec3(),
+                                      lobe.e2);
       for (const VertexMotion& m : pm.vertex) {
-        const SampledSpectrum df = directionalDerivative(value, hit.ng, hit.ns, v.wo, bs.wi,
-                                                         m.dng, m.dns, -m.dDir, Vec3());
+        const SampledSpectrum df = directionalDerivative(value, hit.ng, hit.ns, v.wo, bs.wi, m.dng,
+                                                         m.dns, -m.dDir, Vec3());
         logDerivativeEvents(m.slot, df, f, 0.0f, event());
         pm.ray.push_back({m.slot, m.dp, Vec3()});
       }
@@ -646,11 +667,119 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::shapeContinuation(
             lobe(normalize(hit.ng - m.dng * h), normalize(hit.ns - m.dns * h),
                  normalize(v.wo - dwo * h), minus)) {
           dDir = (plus.wi - minus.wi) * (0.5f / h);
-          logDerivativeEvents(m.slot, (plus.weight + minus.weight * -1.0f) * (0.5f / h),
-                              at0.weight, 0.0f, event());
+          logDerivativeEvents(m.slot, (plus.weight + minus.weight * -1.0f) * (0.5f / h), at0.weight,
+                              0.0f, event());
         }
       }
       pm.ray.push_back({m.slot, m.dp, dDir});
+    }
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::emitterPointHeld(
+    [[maybe_unused]] const Ray& ray, [[maybe_unused]] const SurfaceHit& hit) {
+  if constexpr (kGradients) {
+    const PathMotion& pm = sink_.tape->motion;
+    const ContinuationLobe& lobe = pm.lobe;
+    if (!lobe.valid || pm.ray.empty()) return;
+    const float t = length(hit.p - ray.o), cy = dot(hit.ng, lobe.wi);
+    if (!(t > 0) || cy == 0) return;
+    for (const RayMotion& r : pm.ray) {
+      // The point y held, the vertex moving by do: wi turns by dwi; |cos_y| / t^2 changes.
+      const Vec3 dwi = towardsFixedPoint(lobe.wi, t, r.dOrigin);
+      const SampledSpectrum df = lobe.d1 * dot(dwi, lobe.e1) + lobe.d2 * dot(dwi, lobe.e2);
+      const float extra = 2 * dot(lobe.wi, r.dOrigin) / t + dot(hit.ng, dwi) / cy;
+      logDerivativeEvents(r.slot, df, lobe.f, extra, local());
+    }
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directionBoundary(
+    [[maybe_unused]] const SampledWavelengths& current, [[maybe_unused]] const SurfaceVertex& v) {
+  if constexpr (kGradients) {
+    GradientTape& tape = *sink_.tape;
+    if (!ctx_.gradients->shapes || !ctx_.gradients->boundary || !tape.boundaryRng ||
+        !v.bsdf.hasNonSpecular())
+      return;
+    const std::vector<VertexMotion>& motion = tape.motion.vertex;
+    const auto& moving = tangents_->shapes.spheres;
+    const auto& spheres = scene_.geometry->spheres();
+    const SurfaceHit& hit = v.hit;
+    const Vec3d x(hit.p);
+    // The incoming light the lobe re-radiates is at the excitation wavelengths.
+    const SampledWavelengths& lit = v.fluorescent ? v.shift.excited : current;
+    std::vector<std::pair<uint32_t, double>>& rates = tape.motion.rates;
+    for (uint32_t k = 0; k < spheres.size(); ++k) {
+      // Outlines move where the sphere moves or the vertex does; a sphere never hides itself.
+      if ((moving[k].empty() && motion.empty()) ||
+          (hit.kind == ShapeKind::Sphere && hit.index == k))
+        continue;
+      const SphereShape& sphere = spheres[k];
+      SphereSilhouette sil;
+      if (!sphereSilhouette(sphere, x, sil)) continue;
+      PixelSampleStream& brng = *tape.boundaryRng;
+      const double alpha = 2 * kPi * brng.next1D();
+      const Vec3d m = sil.at(alpha), toM = m - x;
+      const double dist = length(toM);
+      const Vec3d wd = toM / dist;
+      const Vec3 wi(wd);
+      const SampledSpectrum f =
+          v.fluorescent ? v.shift.albedo * v.bsdf.diffuseLobe(wi) : v.bsdf.f(wi);
+      if (f.isBlack()) continue;
+      // phi(omega) = (distance of the ray from the centre) - r: |grad phi| = (c - x) . omega;
+      // d phi / d c = w, d phi / d r = -1, d phi / d x = -w (w = (c - m) / r).
+      const Vec3d w = (sphere.center - m) / sphere.radius;
+      rates.clear();
+      for (const SphereMotion& mo : moving[k])
+        rates.push_back({mo.slot, dot(w, mo.dCenter) - mo.dRadius});
+      for (const VertexMotion& vm : motion) {
+        const double r = -dot(w, Vec3d(vm.dp));
+        bool found = false;
+        for (auto& [slot, value] : rates)
+          if (slot == vm.slot) value += r, found = true;
+        if (!found) rates.push_back({vm.slot, r});
+      }
+      const double grad = dot(sphere.center - x, wd);
+      const Vec3d dm = sil.tangent(alpha);
+      const double speed = length(dm - wd * dot(wd, dm)) / dist;
+      if (!(grad > 0) || !(speed > 0)) continue;
+      // L just inside and just outside the silhouette, with the same random numbers.
+      const Vec3d targets[2] = {sphere.center + (m - sphere.center) * (1 - 1e-4),
+                                m + (m - sil.q) * 1e-4};
+      SampledSpectrum L[2];
+      const PixelSampleStream start = brng;
+      for (int side = 0; side < 2; ++side) {
+        PixelSampleStream r = start;
+        Ray ray;
+        ray.d = Vec3(normalize(targets[side] - x));
+        ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ray.d);
+        L[side] = tracePath(ctx_, ray, lit, r, counters_);
+        if (side == 1) brng = r;
+      }
+      // An emitting sphere's own outline: light arriving from its surface is differentiated
+      // with its point held (next-event estimation's area measure, where its outline is no
+      // discontinuity: |cos| falls to 0 there), so only what lies behind it jumps here.
+      if (scene_.spheres[k].emission >= 0) {
+        SurfaceHit first;
+        Ray in;
+        in.d = Vec3(normalize(targets[0] - x));
+        in.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, in.d);
+        if (scene_.geometry->intersect(in, first) && first.kind == ShapeKind::Sphere &&
+            first.index == k)
+          L[0] = L[0] +
+                 evaluate(scene_.emission[static_cast<size_t>(scene_.spheres[k].emission)], lit) *
+                     -1.0f;
+      }
+      const SampledSpectrum term = beta_ * f * (L[0] + L[1] * -1.0f);
+      if (term.isBlack()) continue;
+      // alpha uniform: the outline's length per sample 2 pi speed; v_n = -(d phi) / |grad phi|
+      const double scale = 2 * kPi * speed / grad;
+      for (const auto& [slot, dPhi] : rates)
+        if (dPhi != 0)
+          for (int i = 0; i < kLanes; ++i)
+            if (term[i] != 0) sink_.direct(slot, i, term[i] * static_cast<float>(-dPhi * scale));
     }
   }
 }

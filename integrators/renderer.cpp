@@ -40,6 +40,7 @@ SampledWavelengths sampleStratifiedLanes(const WavelengthSampler& wavelengths,
 
 constexpr uint32_t kOddReplicateSalt = 0x68e31da4U;
 constexpr uint32_t kWhiteSalt = 0x1b56c4e9U;
+constexpr uint32_t kPathBoundarySalt = 0x510e527fU;
 
 // Samples of [first, first + n) with odd numbers.
 uint32_t oddSamplesIn(int64_t first, int64_t n) {
@@ -452,6 +453,13 @@ bool PassRunner::renderPixel(int x, int y, int uniformEnd, const AdaptivePlan* p
     whiteSequences[1].emplace(options_.sampler, pixelIndex,
                               t_.seed ^ kWhiteSalt ^ kOddReplicateSalt);
   }
+  // Shape derivatives' boundary terms along the paths: their own sequences (salted seeds).
+  std::optional<PixelSequence> boundarySequences[2];
+  if (ctx_.gradients && ctx_.gradients->shapes) {
+    boundarySequences[0].emplace(options_.sampler, pixelIndex, t_.seed ^ kPathBoundarySalt);
+    boundarySequences[1].emplace(options_.sampler, pixelIndex,
+                                 t_.seed ^ kPathBoundarySalt ^ kOddReplicateSalt);
+  }
   bool halted = false;
   // Each pixel continues after the samples it already has (a resumed film or an adaptive plan
   // may hold more in some pixels than in others).
@@ -472,6 +480,10 @@ bool PassRunner::renderPixel(int x, int y, int uniformEnd, const AdaptivePlan* p
     if (scene_.camera.hasLens()) sampleConcentricDisk(rng.next2D(), lensX, lensY);
     const Ray ray = scene_.camera.generateRay(static_cast<double>(x) + jitter.u,
                                               static_cast<double>(y) + jitter.v, lensX, lensY);
+    std::optional<PixelSampleStream> boundaryRng;
+    if (boundarySequences[odd])
+      boundaryRng.emplace(*boundarySequences[odd], static_cast<uint32_t>(s) >> 1);
+    st.tape.boundaryRng = boundaryRng ? &*boundaryRng : nullptr;
     traceSample(ray, lambda, rng, odd, x, y, st);
     if (out_.film.hasWhite()) {
       // Its own random numbers (a salted seed): the same for every thread count.
@@ -565,8 +577,8 @@ void PassRunner::boundaryTerms() {
     for (const BoundaryContribution& c : terms) {
       const size_t p = static_cast<size_t>(c.y - t_.rect.y0) * t_.rect.width() +
                        static_cast<size_t>(c.x - t_.rect.x0);
-      const SampledSpectrum a = film.adjointWeights(
-          c.lambda, options_.adjoint->data() + p * static_cast<size_t>(bands));
+      const SampledSpectrum a =
+          film.adjointWeights(c.lambda, options_.adjoint->data() + p * static_cast<size_t>(bands));
       double v = 0;
       for (int i = 0; i < kLanes; ++i) v += static_cast<double>(c.value[i] * a[i]);
       sums[c.odd][c.slot] += v;
@@ -661,7 +673,10 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
   const LightSampler lights(scene, options.lightSelection, options.triangleLightSampling);
   stopIfAsked();
   std::optional<GradientContext> gradientContext;
-  if (target.differentiated) gradientContext.emplace(scene, lights, *options.gradients);
+  if (target.differentiated) {
+    gradientContext.emplace(scene, lights, *options.gradients);
+    gradientContext->boundary = options.shapeBoundary;
+  }
   stopIfAsked();
   const IntegratorContext ctx{&scene,
                               &lights,
@@ -679,7 +694,7 @@ RenderOutput render(const RenderScene& scene, const RenderOptions& options) {
     runner.uniformPasses();
   else
     runner.adaptiveRounds();
-  if (gradientContext && gradientContext->shapes) runner.boundaryTerms();
+  if (gradientContext && gradientContext->shapes && options.shapeBoundary) runner.boundaryTerms();
   return runner.finish(start);
 }
 

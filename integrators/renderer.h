@@ -106,6 +106,9 @@ struct RenderOptions {
   /// per slot. Forward mode (adjoint null): the film keeps one layer "gradient.<slot>" per slot,
   /// d radiance / d slot per band with its variance. Reverse mode: RenderOutput::gradient.
   const SceneTangents* gradients = nullptr;
+  /// Shape derivatives: sample the boundary terms where visibility changes (false: the
+  /// interior term alone, which misses them; for checks that they matter).
+  bool shapeBoundary = true;
   /// Reverse mode: d loss / d image, [pixel of the render's rectangle, row by row][band]; the
   /// output is then d loss / d slot for every slot (RenderOutput::gradient).
   const std::vector<float>* adjoint = nullptr;

@@ -45,13 +45,13 @@ Vec3 normalTurning(const GeometryScene& geometry, const SurfaceHit& hit, const V
     const float inv = 1 / dot(N, N);
     // x - a = u e1 + v e2: u = ((x - a) x e2) . N / |N|^2, v = (e1 x (x - a)) . N / |N|^2.
     const float du = dot(cross(dx, e2), N) * inv, dv = dot(cross(e1, dx), N) * inv;
-    const Vec3 dRaw = mesh.normal(idx[0]) * (-du - dv) + mesh.normal(idx[1]) * du +
-                      mesh.normal(idx[2]) * dv;
+    const Vec3 dRaw =
+        mesh.normal(idx[0]) * (-du - dv) + mesh.normal(idx[1]) * du + mesh.normal(idx[2]) * dv;
     // hit.ns = +-normalize(raw), raw at the hit's barycentrics
     const Vec3 x = hit.p - a;
     const float bu = dot(cross(x, e2), N) * inv, bv = dot(cross(e1, x), N) * inv;
-    const Vec3 raw = mesh.normal(idx[0]) * (1 - bu - bv) + mesh.normal(idx[1]) * bu +
-                     mesh.normal(idx[2]) * bv;
+    const Vec3 raw =
+        mesh.normal(idx[0]) * (1 - bu - bv) + mesh.normal(idx[1]) * bu + mesh.normal(idx[2]) * bv;
     const float len = length(raw);
     if (!(len > 0)) return {};
     const float sign = dot(raw, n) < 0 ? -1.0f : 1.0f;
@@ -97,7 +97,8 @@ void vertexMotion(const ShapeTangents& shapes, const GeometryScene& geometry, co
     for (const SphereMotion& s : shapes.spheres[hit.index]) {
       bool carried = false;
       for (const RayMotion& r : rayMotion) carried = carried || r.slot == s.slot;
-      if (!carried) add(s.slot, Vec3(), Vec3(), Vec3(s.dCenter) + n * static_cast<float>(s.dRadius));
+      if (!carried)
+        add(s.slot, Vec3(), Vec3(), Vec3(s.dCenter) + n * static_cast<float>(s.dRadius));
     }
 }
 

@@ -37,10 +37,25 @@ struct VertexMotion {
   Vec3 dp, dng, dns, dDir;
 };
 
+/// The lobe a continuation took, kept for the emitter its ray may find: its value f at the
+/// direction wi and the derivatives d1, d2 of f as wi turns towards e1 and e2 (both
+/// perpendicular to wi). Next-event estimation holds a light's point (area measure) where the
+/// continuation holds its direction: so that both strategies of multiple importance sampling
+/// estimate one parameterisation (their weights are held, and a mixture of two
+/// parameterisations' derivatives weighted by anything but 1 is biased), an emitter found by
+/// the continuation is differentiated with its point held too (path_tracer.cpp).
+struct ContinuationLobe {
+  bool valid = false;
+  Vec3 wi, e1, e2;
+  SampledSpectrum f, d1, d2;
+};
+
 /// The geometric derivative's state along one path (kept in the tape, reused).
 struct PathMotion {
-  std::vector<RayMotion> ray;       ///< the current ray's motion (empty: it does not move)
-  std::vector<VertexMotion> vertex; ///< the current vertex's motion
+  ContinuationLobe lobe;      ///< the last continuation's (valid when it was not a delta lobe)
+  std::vector<RayMotion> ray; ///< the current ray's motion (empty: it does not move)
+  std::vector<VertexMotion> vertex;               ///< the current vertex's motion
+  std::vector<std::pair<uint32_t, double>> rates; ///< scratch: an outline's rates per slot
 };
 
 /// How the slots move the vertex `hit` of `ray` (unit direction; its motion `rayMotion`): the
@@ -53,9 +68,9 @@ void vertexMotion(const ShapeTangents& shapes, const GeometryScene& geometry, co
 /// d value / d s at s = 0 of value(ng + s dng, ns + s dns, wo + s dwo, wi + s dwi), each
 /// argument renormalised: a central difference with steps of 1e-3 in the unit vectors.
 template <class Value>
-SampledSpectrum directionalDerivative(Value&& value, const Vec3& ng, const Vec3& ns,
-                                      const Vec3& wo, const Vec3& wi, const Vec3& dng,
-                                      const Vec3& dns, const Vec3& dwo, const Vec3& dwi) {
+SampledSpectrum directionalDerivative(Value&& value, const Vec3& ng, const Vec3& ns, const Vec3& wo,
+                                      const Vec3& wi, const Vec3& dng, const Vec3& dns,
+                                      const Vec3& dwo, const Vec3& dwi) {
   const float scale = std::max({length(dng), length(dns), length(dwo), length(dwi)});
   if (!(scale > 0) || !std::isfinite(scale)) return {};
   const float h = 1e-3f / scale;

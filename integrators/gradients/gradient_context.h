@@ -18,6 +18,8 @@ struct GradientContext {
   std::vector<const Spectrum*> spectrumOfSampledLight;
   /// Some slot moves the geometry: paths carry their vertices' motion (geometry_gradients.h).
   bool shapes = false;
+  /// Shape derivatives' boundary terms are sampled (RenderOptions::shapeBoundary).
+  bool boundary = true;
   /// Per LightSampler light: the spot light it is (its falloff moves with the lit point), or
   /// null.
   std::vector<const SpotLight*> spotOfSampledLight;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/sampler.h"
 #include "integrators/gradients/geometry_gradients.h"
 #include "integrators/gradients/scene_tangents.h"
 #include "integrators/materials/material.h"
@@ -37,6 +38,12 @@ struct GradientTape {
   std::vector<TapeEntry> events;  ///< events that scale everything after them
   std::vector<TapeEntry> locals;  ///< local events of the recorded contributions
   std::vector<TapeEntry> pending; ///< local events of the next contribution
+  /// Terms of the derivative itself (a boundary term: the path's weight so far times a jump
+  /// across a moving outline), added as they are
+  std::vector<TapeEntry> direct;
+  /// The random numbers of the boundary terms along the path (their own stream: the path's own
+  /// draws stay those of a plain render), or null
+  PixelSampleStream* boundaryRng = nullptr;
   std::vector<Record> records;
   ShadowCrossings crossings; ///< scratch for the shadow rays of media scenes
   PathMotion motion;         ///< how shape slots move the path's current ray and vertex
@@ -50,6 +57,7 @@ struct GradientTape {
     locals.clear();
     pending.clear();
     records.clear();
+    direct.clear();
     motion.ray.clear();
     motion.vertex.clear();
   }
@@ -73,6 +81,8 @@ struct GradientTape {
         const float v = e.g * r.c[e.lane];
         if (v != 0) out(e.slot, e.lane, v);
       }
+    for (const TapeEntry& e : direct)
+      if (e.g != 0) out(e.slot, e.lane, e.g);
   }
 };
 
@@ -103,6 +113,10 @@ struct GradientSink {
   /// An event of the next contribution only.
   void local(uint32_t slot, int lane, float g) {
     tape->pending.push_back({slot, static_cast<uint8_t>(lane), g});
+  }
+  /// A term of the derivative itself (a boundary term).
+  void direct(uint32_t slot, int lane, float v) {
+    tape->direct.push_back({slot, static_cast<uint8_t>(lane), v});
   }
   /// The value of a differentiated quantity was 0 where its derivative was not.
   void zeroValue() { ++tape->zeroValues; }

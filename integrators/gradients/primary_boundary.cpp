@@ -7,17 +7,20 @@
 
 #include "core/math_util.h"
 #include "integrators/gradients/gradient_context.h"
+#include "integrators/gradients/sphere_silhouette.h"
 #include "integrators/render_scene.h"
 
 namespace nx {
 namespace {
 
 constexpr uint32_t kBoundarySalt = 0x3c6ef372U;
-constexpr int kChunk = 256;                  // samples per task (an even number: both replicates)
+constexpr int kChunk = 256;          // samples per task (an even number: both replicates)
 constexpr double kFilmOffset = 5e-3; // pixels either side of an outline the two paths start
 constexpr int64_t kMaxSamplesPerOutline = 1 << 24;
 
-Vec3d col(const Matrix3& m, int j) { return {m[0][j], m[1][j], m[2][j]}; }
+Vec3d col(const Matrix3& m, int j) {
+  return {m[0][j], m[1][j], m[2][j]};
+}
 
 // The pinhole's projection: film position (pixels, as generateRay takes them) of a world
 // point, false behind the camera; with the derivative of the film position along dp.
@@ -50,36 +53,13 @@ struct Projection {
   }
 };
 
-// One sphere's silhouette seen from o: the circle of tangent points, centre q, radius rho, in
-// the plane spanned by u, v.
-struct Silhouette {
-  Vec3d q, u, v;
-  double rho = 0;
-  Vec3d at(double a) const { return q + (u * std::cos(a) + v * std::sin(a)) * rho; }
-  Vec3d tangent(double a) const { return (u * -std::sin(a) + v * std::cos(a)) * rho; }
-};
-
-bool silhouetteOf(const SphereShape& s, const Vec3d& o, Silhouette& out) {
-  const Vec3d a = s.center - o;
-  const double d2 = dot(a, a), r2 = s.radius * s.radius;
-  if (!(d2 > r2 * (1 + 1e-9))) return false; // the camera is inside or on it
-  const double k = 1 - r2 / d2;
-  out.q = o + a * k;
-  out.rho = s.radius * std::sqrt(k);
-  const Vec3d w = normalize(a);
-  const Vec3d helper = std::abs(w.x) < 0.9 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
-  out.u = normalize(cross(w, helper));
-  out.v = cross(w, out.u);
-  return true;
-}
-
 // An outline on the film: which sphere casts it, seen from where (the camera: its silhouette;
 // a point or spot light: its shadow's edge on what the camera sees).
 struct Outline {
   uint32_t sphere = 0;
-  Vec3d from;          ///< the camera's or the light's position
-  bool shadow = false; ///< a shadow's edge
-  Silhouette sil;      ///< the sphere's silhouette seen from `from`
+  Vec3d from;           ///< the camera's or the light's position
+  bool shadow = false;  ///< a shadow's edge
+  SphereSilhouette sil; ///< the sphere's silhouette seen from `from`
 };
 
 // A point of an outline on the film: where (x, y), the unit normal towards phi > 0, |grad phi|,
@@ -128,7 +108,8 @@ bool outlinePoint(const IntegratorContext& ctx, const Outline& o, double alpha, 
     const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
     const double len = length(dir);
     const Vec3d d = dir / len;
-    // phi = |w| - r: d phi / d (film x) = -(a . d)(w . d d / dx), d d / dx = (I - d d^T) ddx / |dir|
+    // phi = |w| - r: d phi / d (film x) = -(a . d)(w . d d / dx), d d / dx = (I - d d^T) ddx /
+    // |dir|
     const double ad = dot(sphere.center - cam, d);
     const double gx = -ad * dot(w, ddx) / len, gy = -ad * dot(w, ddy) / len;
     p.grad = std::hypot(gx, gy);
@@ -141,18 +122,15 @@ bool outlinePoint(const IntegratorContext& ctx, const Outline& o, double alpha, 
   // (distance of the line light -> x(y) from the centre) - r, x(y) what the camera sees at y.
   const Vec3d e = normalize(m - o.from);
   Ray beyond;
-  beyond.o = Vec3(m + e * (1e-6 * sphere.radius));
   beyond.d = Vec3(e);
   SurfaceHit hit;
-  // A hit on the sphere itself is the tangent's rounding (a line touching a sphere does not
-  // meet it again): the ray goes on from there.
-  for (int tries = 0;; ++tries) {
-    ++rays;
-    if (!scene.geometry->intersect(beyond, hit)) return false;
-    if (hit.kind != ShapeKind::Sphere || hit.index != o.sphere) break;
-    if (tries == 4) return false;
-    beyond.o = hit.p + beyond.d * static_cast<float>(1e-6 * sphere.radius);
-  }
+  // The ray starts at the tangent point and is looked at from 1% of the radius on, where it
+  // lies 5e-5 radii outside the sphere (far beyond rounding: a line touching a sphere does not
+  // meet it again, but a rounded one can).
+  beyond.o = Vec3(m);
+  beyond.tMin = static_cast<float>(1e-2 * sphere.radius);
+  ++rays;
+  if (!scene.geometry->intersect(beyond, hit)) return false;
   const Vec3d x(hit.p), n(hit.ng);
   if (!proj.project(x, p.x, p.y)) return false;
   // the camera must see x itself
@@ -239,7 +217,8 @@ void sampleOutline(const IntegratorContext& ctx, const PrimaryBoundaryRequest& r
     const double weight = p.speed * 2 * kPi / static_cast<double>(count) / p.grad;
     for (const auto& [slot, dPhi] : p.dPhi)
       if (dPhi != 0)
-        out.push_back({px, py, (b & 1) != 0, slot, lambda, jump * static_cast<float>(-dPhi * weight)});
+        out.push_back(
+            {px, py, (b & 1) != 0, slot, lambda, jump * static_cast<float>(-dPhi * weight)});
   }
   rays += counters.rays;
 }
@@ -259,10 +238,10 @@ std::vector<Outline> movingOutlines(const IntegratorContext& ctx) {
     if (spheres[k].empty()) continue;
     const SphereShape& sphere = scene.geometry->spheres()[k];
     Outline o{k, scene.camera.position(), false, {}};
-    if (silhouetteOf(sphere, o.from, o.sil)) out.push_back(o);
+    if (sphereSilhouette(sphere, o.from, o.sil)) out.push_back(o);
     for (const Vec3d& p : lights) {
       Outline s{k, p, true, {}};
-      if (silhouetteOf(sphere, p, s.sil)) out.push_back(s);
+      if (sphereSilhouette(sphere, p, s.sil)) out.push_back(s);
     }
   }
   return out;
@@ -270,9 +249,8 @@ std::vector<Outline> movingOutlines(const IntegratorContext& ctx) {
 
 } // namespace
 
-std::vector<BoundaryContribution> primaryBoundary(const IntegratorContext& ctx,
-                                                  const PrimaryBoundaryRequest& req,
-                                                  uint64_t& rays) {
+std::vector<BoundaryContribution>
+primaryBoundary(const IntegratorContext& ctx, const PrimaryBoundaryRequest& req, uint64_t& rays) {
   std::vector<BoundaryContribution> all;
   const std::vector<Outline> outlines = movingOutlines(ctx);
   for (uint32_t k = 0; k < outlines.size(); ++k) {

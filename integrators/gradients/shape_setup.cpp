@@ -14,8 +14,7 @@ namespace {
 std::string uncoveredFeature(const RenderScene& scene) {
   if (scene.hasMedia) return "media or interfaces";
   for (const Material& m : scene.materials) {
-    if (m.texture || m.concentration)
-      return "a texture or concentration map (the hit's uv moves)";
+    if (m.texture || m.concentration) return "a texture or concentration map (the hit's uv moves)";
     if (m.kind == MaterialKind::Conductor && m.alphaU != m.alphaV)
       return "anisotropic roughness (its tangent frame moves)";
   }
@@ -36,8 +35,7 @@ int sphereOf(const RenderScene& scene, size_t object) {
 } // namespace
 
 std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const SceneDesc& desc,
-                                                const std::string& name,
-                                                const RenderScene& base) {
+                                                const std::string& name, const RenderScene& base) {
   const std::vector<ParameterStep> steps = parameterSteps(name);
   if (steps.size() != 2 || steps[0].attribute != "objects" ||
       !std::holds_alternative<size_t>(steps[0].index))

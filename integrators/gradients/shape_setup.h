@@ -15,7 +15,6 @@ namespace nx {
 /// naming it when the scene holds what the geometric derivative does not cover yet (media,
 /// textures, a lens, an environment map, a moving emitter, anisotropic roughness).
 std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const SceneDesc& desc,
-                                                const std::string& name,
-                                                const RenderScene& base);
+                                                const std::string& name, const RenderScene& base);
 
 } // namespace nx

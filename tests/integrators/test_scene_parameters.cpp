@@ -123,7 +123,11 @@ TEST(SceneParameters, GradientSetupRefusesByName) {
   auto errorOf = [&](std::vector<std::string> names) {
     return test::errorMessage([&] { gradientSetup(d, names, base, true); });
   };
-  EXPECT_NE(errorOf({"objects[1].radius"}).find("objects[1].radius: not differentiated"),
+  EXPECT_NE(errorOf({"objects[0].normal"}).find("objects[0].normal: not differentiated"),
+            std::string::npos);
+  // A shape's parameter is differentiated, but not an emitter's (its light samples would move).
+  EXPECT_EQ(gradientSetup(d, {"objects[1].center"}, base, true).tangents.slots(), 3u);
+  EXPECT_NE(errorOf({"objects[2].radius"}).find("objects[2].radius: moving an emitter"),
             std::string::npos);
   EXPECT_NE(errorOf({"camera.fov"}).find("camera.fov: not differentiated"), std::string::npos);
   EXPECT_EQ(errorOf({"objects[1].reflectance", "objects[1].reflectance"}),

@@ -165,7 +165,10 @@ def test_backward_is_the_adjoint_weighted_forward_sum(scene):
 
 
 def test_refusals(scene):
-    with pytest.raises(ValueError, match=r"objects\[1\].radius: not differentiated"):
+    with pytest.raises(ValueError, match=r"objects\[0\].normal: not differentiated"):
+        nxrender.render(scene, spp=1, gradients=["objects[0].normal"])
+    with pytest.raises(ValueError, match=r"objects\[1\].radius: derivatives with respect to "
+                                         r"shape do not cover a scene with media"):
         nxrender.render(scene, spp=1, gradients=["objects[1].radius"])
     with pytest.raises(ValueError, match=r"camera.fov: not differentiated"):
         nxrender.render(scene, spp=1, gradients=["camera.fov"])

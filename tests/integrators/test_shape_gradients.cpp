@@ -1,0 +1,313 @@
+// Derivatives with respect to shape (docs/inverse.md, "Shape and camera"): a sphere's centre
+// and radius, forward mode against central differences of renders with common random numbers
+// over regions of the image (z-tests on the per-pixel differences, with power), the interior
+// term alone inside the sphere's outline, the boundary terms where it moves across the
+// background, casts a point light's shadow and an area light's, a closed form for the outline
+// term, a test the interior term alone fails, reverse mode against the forward images, and the
+// thread count.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include <tbb/task_arena.h>
+
+#include "accel/kinds/sphere.h"
+#include "core/camera.h"
+#include "integrators/gradients/gradient_setup.h"
+#include "integrators/renderer.h"
+#include "integrators/scene_reader.h"
+#include "support/statistics.h"
+
+namespace nx {
+namespace {
+
+constexpr int kSize = 32;
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  return b;
+}
+
+// A sphere of material `sphere` at `center` with `radius` (object 1), above a floor of material
+// `floor` (object 0, or none when empty), with `extra` (lights) and `settings` (a background).
+std::string scene(const Vec3d& center, double radius, const std::string& sphere,
+                  const std::string& floor, const std::string& extra, int samples,
+                  const std::string& settings) {
+  std::string s = "<scene><settings><xres>" + std::to_string(kSize) + "</xres><yres>" +
+                  std::to_string(kSize) + "</yres><mode>spectral_mcpt</mode><depth>4</depth>" +
+                  "<sampl>" + std::to_string(samples) + "</sampl><bands>400:700:100</bands>" +
+                  settings +
+                  "</settings><camera><position>0,0.9,-2.6"
+                  "</position><look_at>0,0.5,0</look_at><fov>40</fov></camera>";
+  if (!floor.empty())
+    s += "<plane><normal>0,1,0</normal><distance>0</distance>" + floor + "</plane>";
+  else
+    s += "<sphere><center>0,-100,0</center><radius>1e-3</radius><material>matte</material>"
+         "<reflectance>0.5</reflectance></sphere>"; // keeps the sphere object 1
+  s += "<sphere><center>" + num(center.x) + "," + num(center.y) + "," + num(center.z) +
+       "</center><radius>" + num(radius) + "</radius>" + sphere + "</sphere>" + extra + "</scene>";
+  return s;
+}
+
+// The sphere's parameter as differentiated: its scene at a value of component `component`.
+struct ShapeCase {
+  std::string sphere, floor, extra, settings = "";
+  Vec3d center{0, 0.7, 0};
+  double radius = 0.5;
+  int samples = 256;
+  std::string text(const std::string& name, int component, double delta) const {
+    Vec3d c = center;
+    double r = radius;
+    if (name == "objects[1].radius")
+      r += delta;
+    else
+      c = {c.x + (component == 0 ? delta : 0), c.y + (component == 1 ? delta : 0),
+           c.z + (component == 2 ? delta : 0)};
+    return scene(c, r, sphere, floor, extra, samples, settings);
+  }
+};
+
+RenderScene built(const std::string& text) {
+  return buildRenderScene(parseScene(text, "t.scn"));
+}
+
+// Which pixels a comparison sums.
+using Region = std::function<bool(int x, int y)>;
+
+// The forward-mode gradient of component `component` of `name`, the central difference of two
+// renders at +-step with the same seed, summed over the region per band: sums and the standard
+// error of their difference (from the per-pixel differences).
+struct Comparison {
+  std::vector<double> gradient, difference, standardError;
+};
+
+Comparison compare(const ShapeCase& c, const std::string& name, int component, double step,
+                   const Region& region, bool boundary = true) {
+  const SceneDesc desc = parseScene(c.text(name, component, 0), "t.scn");
+  const RenderScene base = buildRenderScene(desc);
+  const GradientSetup setup = gradientSetup(desc, {name}, base, true);
+  RenderOptions o;
+  o.gradients = &setup.tangents;
+  o.shapeBoundary = boundary;
+  const RenderOutput g = render(base, o);
+  const RenderOutput plus = render(built(c.text(name, component, step)), {});
+  const RenderOutput minus = render(built(c.text(name, component, -step)), {});
+  Comparison out;
+  const int nb = g.film.bands().count();
+  for (int b = 0; b < nb; ++b) {
+    test::RunningStats d;
+    double gs = 0, fs = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        if (!region(x, y)) continue;
+        const double fd = (plus.film.bandMean(x, y, b) - minus.film.bandMean(x, y, b)) / (2 * step);
+        const double gr = g.film.layerMean(x, y, component, b);
+        gs += gr, fs += fd;
+        d.add(gr - fd);
+      }
+    out.gradient.push_back(gs);
+    out.difference.push_back(fs);
+    out.standardError.push_back(d.standardError() * d.n);
+  }
+  return out;
+}
+
+// Agreement within 5 standard errors in every band, and power: the band with the largest
+// difference resolved to `power` of it.
+void expectAgrees(const Comparison& c, double power, const std::string& what) {
+  size_t k = 0;
+  for (size_t b = 0; b < c.gradient.size(); ++b) {
+    EXPECT_LE(std::abs(c.gradient[b] - c.difference[b]), 5 * c.standardError[b])
+        << what << " band " << b << ": gradient " << c.gradient[b] << ", difference "
+        << c.difference[b] << ", standard error " << c.standardError[b];
+    if (std::abs(c.difference[b]) > std::abs(c.difference[k])) k = b;
+  }
+  EXPECT_LT(c.standardError[k], power * std::abs(c.difference[k]))
+      << what << ": no power (" << c.standardError[k] << " against " << c.difference[k] << ")";
+}
+
+// True when the pixel's footprint (its corners and centre, widened by `margin` pixels) lies
+// wholly inside (inside = true) or wholly outside the sphere's image.
+bool footprint(const ShapeCase& c, int x, int y, bool inside, double margin) {
+  const RenderScene s = built(c.text("objects[1].radius", 0, 0));
+  const SphereShape sphere{c.center, c.radius};
+  for (double dy : {-margin, 0.5, 1 + margin})
+    for (double dx : {-margin, 0.5, 1 + margin}) {
+      const Ray r = s.camera.generateRay(x + dx, y + dy);
+      const bool hit = intersectSphere(sphere, Vec3d(r.o), Vec3d(r.d), 0, 1e30).has_value();
+      if (hit != inside) return false;
+    }
+  return true;
+}
+
+const std::string kPointLight =
+    "<light><position>0.3,3,-2.5</position><color>1,1,1</color><emission scale=\"0.02\">D65"
+    "</emission></light>";
+const std::string kMatte = "<material>matte</material><reflectance>0.6</reflectance>";
+const std::string kFloor = "<material>matte</material><reflectance>0.5</reflectance>";
+const std::string kFluorescent =
+    "<material>matte</material><reflectance>0.3</reflectance><fluorescence><absorption>460"
+    "</absorption><stokes>90</stokes><width>25</width><yield>0.8</yield></fluorescence>";
+
+TEST(ShapeGradients, InteriorInsideTheOutlineMatchesDifferences) {
+  // Pixels wholly inside the sphere's image see no outline: the interior term is all there is
+  // (hit points sliding on the sphere, its normal turning, the light's direction and distance).
+  for (const std::string& material : {kMatte, kFluorescent}) {
+    ShapeCase c{material, kFloor, kPointLight};
+    c.samples = 512;
+    std::vector<bool> inner(kSize * kSize);
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) inner[y * kSize + x] = footprint(c, x, y, true, 0.5);
+    const Region region = [&](int x, int y) { return inner[y * kSize + x]; };
+    for (int component = 0; component < 3; ++component)
+      expectAgrees(compare(c, "objects[1].center", component, 0.01, region), 0.05,
+                   "center[" + std::to_string(component) + "] " + material);
+    expectAgrees(compare(c, "objects[1].radius", 0, 0.01, region), 0.05, "radius " + material);
+  }
+}
+
+// The pixel the sphere's centre is seen in.
+std::pair<int, int> imageOfCenter(const ShapeCase& c) {
+  const RenderScene s = built(c.text("objects[1].radius", 0, 0));
+  const Vec3d toCenter = normalize(c.center - s.camera.position());
+  std::pair<int, int> best{0, 0};
+  double closest = -2;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x)
+      if (const double d = dot(Vec3d(s.camera.generateRay(x + 0.5, y + 0.5).d), toCenter);
+          d > closest)
+        closest = d, best = {x, y};
+  return best;
+}
+
+// The sphere's image area in pixels over a region, by the rays through a fine grid of film points
+// (an independent geometric computation).
+double imageArea(const ShapeCase& c, double radius, const Region& region) {
+  const RenderScene s = built(c.text("objects[1].radius", 0, 0));
+  const SphereShape sphere{c.center, radius};
+  constexpr int kSub = 64;
+  double hits = 0;
+  for (int y = 0; y < kSize * kSub; ++y)
+    for (int x = 0; x < kSize * kSub; ++x) {
+      if (!region(x / kSub, y / kSub)) continue;
+      const Ray r = s.camera.generateRay((x + 0.5) / kSub, (y + 0.5) / kSub);
+      hits += intersectSphere(sphere, Vec3d(r.o), Vec3d(r.d), 0, 1e30).has_value();
+    }
+  return hits / (kSub * kSub);
+}
+
+TEST(ShapeGradients, OutlineAgainstTheBackgroundMatchesDifferencesAndClosedForm) {
+  // A black sphere before a uniform background Lb: the image is Lb outside its outline and 0
+  // inside, so moving it changes the image through its outline alone (the interior term is 0:
+  // nothing of it is differentiated). d(image sum) / d theta = -Lb dA / d theta, A its image
+  // area in pixels; the interior term alone gives 0, far from the differences.
+  ShapeCase c{"<material>matte</material><reflectance>0</reflectance>", "", "",
+              "<background>0.05</background>"};
+  c.center = {0.3, 0.6, 0};
+  c.samples = 64;
+  // (moved sideways, the outline gains on one side what it loses on the other: the half
+  // towards which it moves)
+  const auto [cx, cy] = imageOfCenter(c);
+  const Region all = [](int, int) { return true; };
+  const double h = 1e-3;
+  for (int component : {-1, 0, 1}) {
+    const std::string name = component < 0 ? "objects[1].radius" : "objects[1].center";
+    const int k = std::max(component, 0);
+    const Region region = component < 0    ? all
+                          : component == 0 ? Region([cx = cx](int x, int) { return x > cx; })
+                                           : Region([cy = cy](int, int y) { return y < cy; });
+    const Comparison moved = compare(c, name, k, 0.01, region);
+    expectAgrees(moved, 0.03, name + "[" + std::to_string(k) + "]");
+    ShapeCase plus = c, minus = c;
+    if (component < 0) {
+      plus.radius += h, minus.radius -= h;
+    } else {
+      plus.center = {c.center.x + (k == 0 ? h : 0), c.center.y + (k == 1 ? h : 0), c.center.z};
+      minus.center = {c.center.x - (k == 0 ? h : 0), c.center.y - (k == 1 ? h : 0), c.center.z};
+    }
+    const double dA =
+        (imageArea(plus, plus.radius, region) - imageArea(minus, minus.radius, region)) / (2 * h);
+    for (size_t b = 0; b < moved.gradient.size(); ++b)
+      EXPECT_NEAR(moved.gradient[b], -0.05 * dA,
+                  5 * moved.standardError[b] + 1e-3 * 0.05 * std::abs(dA))
+          << name << " band " << b;
+    // (the noise of the differences is the comparison's above: the images are the same)
+    const Comparison interior = compare(c, name, k, 0.01, region, false);
+    for (size_t b = 0; b < interior.gradient.size(); ++b) {
+      EXPECT_EQ(interior.gradient[b], 0.0);
+      EXPECT_GT(std::abs(interior.difference[b]), 10 * moved.standardError[b])
+          << name << " band " << b << ": the interior term alone would pass";
+    }
+  }
+}
+
+TEST(ShapeGradients, PointLightShadowOnAFluorescentFloorMatchesDifferences) {
+  // A black sphere over a fluorescent floor under a point light: nothing of the sphere is seen
+  // but its outline and its shadow's edge, both boundary terms (the shadow's on the film).
+  ShapeCase c{"<material>matte</material><reflectance>0</reflectance>", kFluorescent,
+              "<light><position>0.8,6,0.3</position><color>1,1,1</color><emission "
+              "scale=\"0.05\">D65</emission></light>"};
+  c.samples = 256;
+  const Region all = [](int, int) { return true; };
+  // (sideways, the shadow gains on one side what it loses on the other: the left half)
+  expectAgrees(compare(c, "objects[1].center", 0, 0.01, [](int x, int) { return x < kSize / 2; }),
+               0.03, "center[0]");
+  expectAgrees(compare(c, "objects[1].center", 2, 0.01, all), 0.03, "center[2]");
+  expectAgrees(compare(c, "objects[1].radius", 0, 0.01, all), 0.03, "radius");
+}
+
+TEST(ShapeGradients, AreaLightShadowAndInterreflectionMatchDifferences) {
+  // A small sphere lamp: the sphere's soft shadow and the light it throws on the floor change
+  // through the outline of the sphere seen from each floor point (the boundary term of the
+  // floor's scattering integral, traced on both sides) and the interior term.
+  ShapeCase c{kMatte, kFloor,
+              "<sphere><center>0.3,3,-2.5</center><radius>0.1</radius><material>matte</material>"
+              "<reflectance>0</reflectance><emission scale=\"0.6\">D65</emission></sphere>"};
+  c.samples = 1536;
+  std::vector<bool> floor(kSize * kSize);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) floor[y * kSize + x] = footprint(c, x, y, false, 1.5);
+  const Region region = [&](int x, int y) { return floor[y * kSize + x]; };
+  // (the outline's term there is sampled where a light is rarely behind it: a weaker power)
+  expectAgrees(compare(c, "objects[1].center", 2, 0.03, region), 0.12, "center[2]");
+  expectAgrees(compare(c, "objects[1].radius", 0, 0.03, region), 0.12, "radius");
+}
+
+TEST(ShapeGradients, ReverseModeIsTheAdjointWeightedForwardSumAndThreadIndependent) {
+  ShapeCase c{kMatte, kFloor, kPointLight};
+  c.samples = 16;
+  const SceneDesc desc = parseScene(c.text("objects[1].radius", 0, 0), "t.scn");
+  const RenderScene base = buildRenderScene(desc);
+  const GradientSetup setup = gradientSetup(desc, {"objects[1].center"}, base, true);
+  RenderOptions forward;
+  forward.gradients = &setup.tangents;
+  const RenderOutput f = render(base, forward);
+  const int nb = f.film.bands().count();
+  std::vector<float> adjoint(static_cast<size_t>(kSize * kSize * nb));
+  for (size_t i = 0; i < adjoint.size(); ++i) adjoint[i] = static_cast<float>(1 + i % 7);
+  RenderOptions reverse = forward;
+  reverse.adjoint = &adjoint;
+  const RenderOutput r = render(base, reverse);
+  ASSERT_EQ(r.gradient.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    double expected = 0, scale = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        for (int b = 0; b < nb; ++b) {
+          const double v =
+              adjoint[static_cast<size_t>((y * kSize + x) * nb + b)] * f.film.layerMean(x, y, k, b);
+          expected += v, scale += std::abs(v);
+        }
+    EXPECT_NEAR(r.gradient[static_cast<size_t>(k)], expected, 1e-4 * scale) << k;
+  }
+  // one thread: the same numbers (the boundary terms are summed in their samples' order)
+  std::vector<double> one;
+  tbb::task_arena(1).execute([&] { one = render(base, reverse).gradient; });
+  EXPECT_EQ(one, r.gradient);
+}
+
+} // namespace
+} // namespace nx
