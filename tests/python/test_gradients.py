@@ -319,3 +319,54 @@ def test_the_declarations_say_which_parameters_are_differentiable(scenes):
         assert not params[name]["differentiable"], name
         with pytest.raises(ValueError, match="not differentiated"):
             nxrender.render(scene, spp=1, gradients=[name])
+
+
+SHAPE = """<scene><settings><xres>24</xres><yres>20</yres><mode>spectral_mcpt</mode>
+<depth>4</depth><sampl>64</sampl><bands>400:700:50</bands></settings>
+<camera><position>0,0.9,-2.6</position><look_at>0,0.5,0</look_at><fov>40</fov></camera>
+<plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>
+<reflectance>0.5</reflectance></plane>
+<sphere><center>0.1,0.7,0</center><radius>0.5</radius><material>matte</material>
+<reflectance>0.4</reflectance><fluorescence><absorption>460</absorption><stokes>90</stokes>
+<width>25</width><yield>0.8</yield></fluorescence></sphere>
+<light><position>0.8,3,-2.5</position><color>1,1,1</color><emission scale="0.02">D65</emission></light>
+</scene>"""
+
+
+def test_sphere_centre_and_radius():
+    # A fluorescent sphere on a floor under a point light: its centre's gradient has the vector
+    # on a leading axis, (3, H, W, bands); each component and the radius agree with central
+    # differences over the image (its outline and its shadow's edge are sampled); backward is
+    # the adjoint-weighted sum of the forward images.
+    scene = nxrender.Scene.from_text(SHAPE, "t.scn")
+    names = ["objects[1].center", "objects[1].radius"]
+    image = nxrender.render(scene, spp=256, seed=5, threads=2, gradients=names)
+    centre = image.gradients[names[0]]
+    assert centre.shape == (3,) + image.radiance.shape
+    assert image.gradients[names[1]].shape == image.radiance.shape
+    for name, component, step in ((names[0], 0, 0.01), (names[0], 1, 0.01), (names[0], 2, 0.01), (names[1], None, 0.01)):
+        value = np.array(scene.get(name), dtype=float)
+        images = []
+        for sign in (1, -1):
+            s = scene.copy()
+            moved = value.copy()
+            if component is None:
+                moved = moved + sign * step
+            else:
+                moved[component] += sign * step
+            s.set(name, tuple(moved) if component is not None else float(moved))
+            images.append(nxrender.render(s, spp=256, seed=5, threads=2).radiance.astype(np.float64))
+        fd = (images[0] - images[1]) / (2 * step)
+        g = image.gradients[name] if component is None else centre[component]
+        d = (g.astype(np.float64) - fd).reshape(-1, fd.shape[-1])
+        se = d.std(axis=0, ddof=1) * np.sqrt(d.shape[0])
+        total = fd.reshape(-1, fd.shape[-1]).sum(axis=0)
+        assert np.all(np.abs(d.sum(axis=0)) <= 5 * se), (name, component, d.sum(axis=0), se)
+        k = int(np.argmax(np.abs(total)))
+        if component != 0 and component != 1:  # (sideways and up, the outline's gains and losses cancel)
+            assert se[k] < 0.05 * abs(total[k]), (name, component, se[k], total[k])
+    adjoint = np.random.default_rng(2).normal(size=image.radiance.shape).astype(np.float32)
+    grads, _ = nxrender.backward(scene, adjoint, names, spp=256, seed=5, threads=2)
+    assert grads[names[0]].shape == (3,)
+    expected = np.tensordot(centre.astype(np.float64), adjoint, axes=([1, 2, 3], [0, 1, 2]))
+    assert np.allclose(grads[names[0]], expected, rtol=1e-3, atol=1e-9), (grads[names[0]], expected)
