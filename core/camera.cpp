@@ -105,6 +105,16 @@ void PinholeCamera::setThinLens(double apertureRadius, double focusDistance) {
 }
 
 Ray PinholeCamera::generateRay(double x, double y, double lensX, double lensY) const {
+  Vec3d origin, direction;
+  generateRay(x, y, lensX, lensY, origin, direction);
+  Ray r;
+  r.o = Vec3(origin);
+  r.d = Vec3(direction);
+  return r;
+}
+
+void PinholeCamera::generateRay(double x, double y, double lensX, double lensY, Vec3d& origin,
+                                Vec3d& direction) const {
   // Film position to OpenCV pixel coordinates (centres at integers), then to normalised
   // coordinates, undistorted when the lens distorts.
   double nx = (x - 0.5 - cal_.cx) / cal_.fx, ny = (y - 0.5 - cal_.cy) / cal_.fy;
@@ -113,7 +123,7 @@ Ray PinholeCamera::generateRay(double x, double y, double lensX, double lensY) c
     if (cal_.undistort(nx, ny, ux, uy)) nx = ux, ny = uy; // checked over the image at load
   }
   Vector3d dCam{nx, ny, 1.0};
-  Vec3d origin = position_;
+  origin = position_;
   if (lensRadius_ > 0) {
     // Thin lens (camera space): every ray through the pinhole direction's point on the plane of
     // focus z = focusDistance, from a point of the aperture disk in the plane z = 0.
@@ -123,10 +133,7 @@ Ray PinholeCamera::generateRay(double x, double y, double lensX, double lensY) c
     origin = position_ + Vec3d(o[0], o[1], o[2]);
   }
   const Vector3d d = multiply(cameraToWorld_, dCam);
-  Ray r;
-  r.o = Vec3(origin);
-  r.d = Vec3(normalize(Vec3d(d[0], d[1], d[2])));
-  return r;
+  direction = normalize(Vec3d(d[0], d[1], d[2]));
 }
 
 } // namespace nx

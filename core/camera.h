@@ -46,6 +46,9 @@ public:
   /// y downwards. Directions are unit length. With a thin lens, (lensX, lensY) is the point of
   /// the unit disk the ray leaves the lens from (ignored by a pinhole).
   Ray generateRay(double x, double y, double lensX = 0, double lensY = 0) const;
+  /// generateRay in double precision: the origin and the unit direction.
+  void generateRay(double x, double y, double lensX, double lensY, Vec3d& origin,
+                   Vec3d& direction) const;
 
   /// Makes the pinhole a thin lens of the given aperture radius, focused at `focusDistance`
   /// along the optical axis (both in scene units; radius 0: a pinhole).

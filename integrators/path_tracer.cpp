@@ -122,6 +122,7 @@ public:
   [[gnu::flatten]] void run() {
     Ray ray_ = ray0_;
     SampledWavelengths current_ = lambda_;
+    if constexpr (kGradients) sink_.tape->motion.ray = sink_.tape->motion.primary;
     for (int bounce = 0;; ++bounce) {
       SurfaceHit hit;
       ++counters_.rays;

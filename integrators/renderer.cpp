@@ -356,6 +356,16 @@ private:
   void renderTile(int tile, int uniformEnd, const AdaptivePlan* plan);
   // The samples of pixel (x, y) this pass adds; false when a stop halted it.
   bool renderPixel(int x, int y, int uniformEnd, const AdaptivePlan* plan, TileState& st);
+  // Differentiated with respect to the camera: how its slots move the ray through film
+  // position (x, y).
+  void primaryMotion(double x, double y, std::vector<RayMotion>& out) const {
+    out.clear();
+    for (const CameraMotion& c : options_.gradients->shapes.camera) {
+      Vec3d dOrigin, dDirection;
+      c.ray(x, y, dOrigin, dDirection);
+      out.push_back({c.slot, Vec3(dOrigin), Vec3(dDirection)});
+    }
+  }
   // One sample along `ray`, traced and recorded as the render's outputs ask: gradients
   // (reverse or forward), relightable transport, component layers, or the plain radiance.
   void traceSample(const Ray& ray, const SampledWavelengths& lambda, PixelSampleStream& rng,
@@ -480,6 +490,9 @@ bool PassRunner::renderPixel(int x, int y, int uniformEnd, const AdaptivePlan* p
     if (scene_.camera.hasLens()) sampleConcentricDisk(rng.next2D(), lensX, lensY);
     const Ray ray = scene_.camera.generateRay(static_cast<double>(x) + jitter.u,
                                               static_cast<double>(y) + jitter.v, lensX, lensY);
+    if (t_.differentiated)
+      primaryMotion(static_cast<double>(x) + jitter.u, static_cast<double>(y) + jitter.v,
+                    st.tape.motion.primary);
     std::optional<PixelSampleStream> boundaryRng;
     if (boundarySequences[odd])
       boundaryRng.emplace(*boundarySequences[odd], static_cast<uint32_t>(s) >> 1);

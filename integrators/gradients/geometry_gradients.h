@@ -52,6 +52,9 @@ struct ContinuationLobe {
 
 /// The geometric derivative's state along one path (kept in the tape, reused).
 struct PathMotion {
+  /// The camera ray's motion (the camera's slots), set per sample by the renderer and kept by
+  /// GradientTape::clear()
+  std::vector<RayMotion> primary;
   ContinuationLobe lobe;      ///< the last continuation's (valid when it was not a delta lobe)
   std::vector<RayMotion> ray; ///< the current ray's motion (empty: it does not move)
   std::vector<VertexMotion> vertex;               ///< the current vertex's motion

@@ -53,13 +53,14 @@ struct Projection {
   }
 };
 
-// An outline on the film: which sphere casts it, seen from where (the camera: its silhouette;
-// a point or spot light: its shadow's edge on what the camera sees).
+// An outline on the film: a sphere's silhouette seen from the camera, the edge of its shadow
+// under a point or spot light on what the camera sees, or an infinite plane's horizon.
 struct Outline {
-  uint32_t sphere = 0;
-  Vec3d from;           ///< the camera's or the light's position
-  bool shadow = false;  ///< a shadow's edge
-  SphereSilhouette sil; ///< the sphere's silhouette seen from `from`
+  enum class Kind { Silhouette, Shadow, Horizon } kind = Kind::Silhouette;
+  uint32_t shape = 0;                    ///< the sphere (or the plane)
+  Vec3d from;                            ///< the camera's or the light's position
+  SphereSilhouette sil;                  ///< the sphere's silhouette seen from `from`
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0; ///< a horizon's segment on the film
 };
 
 // A point of an outline on the film: where (x, y), the unit normal towards phi > 0, |grad phi|,
@@ -67,68 +68,82 @@ struct Outline {
 struct OutlinePoint {
   double x = 0, y = 0, nx = 0, ny = 0, grad = 0, speed = 0;
   std::vector<std::pair<uint32_t, double>> dPhi; ///< (slot, d phi / d slot)
+  // adds a slot's rate
+  void add(uint32_t slot, double rate) {
+    for (auto& [s, r] : dPhi)
+      if (s == slot) {
+        r += rate;
+        return;
+      }
+    dPhi.push_back({slot, rate});
+  }
 };
 
-// phi's rate for the slots moving sphere k at tangent point m (w = (c - m) / r): d phi / d c = w,
-// d phi / d r = -1; and, for a shadow on a moving sphere (receiver `r`, at x with normal n,
-// seen along camera direction d), the receiver's motion at a fixed film position:
-// dx = d (n . v) / (n . d), times d phi / d x.
-void outlineRates(const ShapeTangents& shapes, uint32_t k, const Vec3d& w, int receiver,
-                  const Vec3d& n, const Vec3d& d, const Vec3d& dPhiDx,
-                  std::vector<std::pair<uint32_t, double>>& out) {
-  out.clear();
-  for (const SphereMotion& m : shapes.spheres[k])
-    out.push_back({m.slot, dot(w, m.dCenter) - m.dRadius});
-  if (receiver < 0 || static_cast<uint32_t>(receiver) == k) return;
-  for (const SphereMotion& m : shapes.spheres[static_cast<size_t>(receiver)]) {
-    const Vec3d v = m.dCenter + n * m.dRadius;
-    const double rate = dot(dPhiDx, d * (dot(n, v) / dot(n, d)));
-    bool found = false;
-    for (auto& [slot, r] : out)
-      if (slot == m.slot) r += rate, found = true;
-    if (!found) out.push_back({m.slot, rate});
+// The rates of the camera's slots: phi's change as the ray through the point moves (by its
+// origin and unit direction), given phi's derivatives along both.
+void cameraRates(const ShapeTangents& shapes, double x, double y, const Vec3d& dPhiDo,
+                 const Vec3d& dPhiDd, OutlinePoint& p) {
+  for (const CameraMotion& c : shapes.camera) {
+    Vec3d dOrigin, dDirection;
+    c.ray(x, y, dOrigin, dDirection);
+    p.add(c.slot, dot(dPhiDo, dOrigin) + dot(dPhiDd, dDirection));
   }
 }
 
-// The point of outline `o` at angle alpha, or false where the camera does not see it there.
-bool outlinePoint(const IntegratorContext& ctx, const Outline& o, double alpha, OutlinePoint& p,
-                  uint64_t& rays) {
+// The rates of the slots moving sphere k at tangent point m (w = (c - m) / r): d phi / d c = w,
+// d phi / d r = -1.
+void sphereRates(const ShapeTangents& shapes, uint32_t k, const Vec3d& w, OutlinePoint& p) {
+  for (const SphereMotion& m : shapes.spheres[k]) p.add(m.slot, dot(w, m.dCenter) - m.dRadius);
+}
+
+// A sphere's silhouette seen from the camera: phi = |w| - r, w the vector from the ray's closest
+// point to the centre (at the tangent ray: c - m, |w| = r).
+bool silhouettePoint(const IntegratorContext& ctx, const Outline& o, double alpha,
+                     OutlinePoint& p) {
   const RenderScene& scene = *ctx.scene;
-  const SphereShape& sphere = scene.geometry->spheres()[o.sphere];
+  const SphereShape& sphere = scene.geometry->spheres()[o.shape];
+  const Projection proj{scene.camera.calibration()};
+  const Vec3d m = o.sil.at(alpha), w = (sphere.center - m) / sphere.radius;
+  if (!proj.project(m, p.x, p.y)) return false;
+  double dx, dy;
+  proj.along(m, o.sil.tangent(alpha), dx, dy);
+  p.speed = std::hypot(dx, dy);
+  Vec3d ddx, ddy;
+  const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
+  const double len = length(dir);
+  const Vec3d d = dir / len;
+  // d phi / d (film x) = -(a . d)(w . d d / dx), d d / dx = (I - d d^T) ddx / |dir|
+  const double ad = dot(sphere.center - o.from, d);
+  const double gx = -ad * dot(w, ddx) / len, gy = -ad * dot(w, ddy) / len;
+  p.grad = std::hypot(gx, gy);
+  if (!(p.grad > 0) || !(p.speed > 0)) return false;
+  p.nx = gx / p.grad, p.ny = gy / p.grad;
+  p.dPhi.clear();
+  const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
+  sphereRates(shapes, o.shape, w, p);
+  // the camera: d phi / d o = -w, d phi / d d = -(a . d) w
+  cameraRates(shapes, p.x, p.y, w * -1.0, w * -ad, p);
+  return true;
+}
+
+// A shadow's edge: the light's ray grazing the sphere at m goes on to a surface at x; phi(y) =
+// (distance of the line light -> x(y) from the centre) - r, x(y) what the camera sees at y.
+bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double alpha, OutlinePoint& p,
+                 uint64_t& rays) {
+  const RenderScene& scene = *ctx.scene;
+  const SphereShape& sphere = scene.geometry->spheres()[o.shape];
   const Projection proj{scene.camera.calibration()};
   const Vec3d cam = scene.camera.position();
   const Vec3d m = o.sil.at(alpha), w = (sphere.center - m) / sphere.radius;
-  const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
-  if (!o.shadow) {
-    if (!proj.project(m, p.x, p.y)) return false;
-    double dx, dy;
-    proj.along(m, o.sil.tangent(alpha), dx, dy);
-    p.speed = std::hypot(dx, dy);
-    Vec3d ddx, ddy;
-    const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
-    const double len = length(dir);
-    const Vec3d d = dir / len;
-    // phi = |w| - r: d phi / d (film x) = -(a . d)(w . d d / dx), d d / dx = (I - d d^T) ddx /
-    // |dir|
-    const double ad = dot(sphere.center - cam, d);
-    const double gx = -ad * dot(w, ddx) / len, gy = -ad * dot(w, ddy) / len;
-    p.grad = std::hypot(gx, gy);
-    if (!(p.grad > 0)) return false;
-    p.nx = gx / p.grad, p.ny = gy / p.grad;
-    outlineRates(shapes, o.sphere, w, -1, {}, {}, {}, p.dPhi);
-    return p.speed > 0;
-  }
-  // A shadow's edge: the light's ray grazing the sphere at m goes on to a surface at x; phi(y) =
-  // (distance of the line light -> x(y) from the centre) - r, x(y) what the camera sees at y.
   const Vec3d e = normalize(m - o.from);
-  Ray beyond;
-  beyond.d = Vec3(e);
-  SurfaceHit hit;
   // The ray starts at the tangent point and is looked at from 1% of the radius on, where it
   // lies 5e-5 radii outside the sphere (far beyond rounding: a line touching a sphere does not
   // meet it again, but a rounded one can).
+  Ray beyond;
   beyond.o = Vec3(m);
+  beyond.d = Vec3(e);
   beyond.tMin = static_cast<float>(1e-2 * sphere.radius);
+  SurfaceHit hit;
   ++rays;
   if (!scene.geometry->intersect(beyond, hit)) return false;
   const Vec3d x(hit.p), n(hit.ng);
@@ -159,17 +174,67 @@ bool outlinePoint(const IntegratorContext& ctx, const Outline& o, double alpha, 
   const double len = length(dir);
   const Vec3d d = dir / len;
   const double t = length(x - cam), nd = dot(n, d);
-  auto dxdy = [&](const Vec3d& dd) {
-    const Vec3d dUnit = (dd - d * dot(d, dd)) / len;
-    return (dUnit - d * (dot(n, dUnit) / nd)) * t;
+  // x's motion at a fixed film position as the camera ray moves (its origin and direction
+  // giving `along`) and the surface at v: dx = along + d n . (v - along) / (n . d)
+  auto moved = [&](const Vec3d& along, const Vec3d& v) {
+    return along + d * (dot(n, v - along) / nd);
   };
+  auto dxdy = [&](const Vec3d& dd) { return moved(((dd - d * dot(d, dd)) / len) * t, {}); };
   const double gx = dot(dPhiDx, dxdy(ddx)), gy = dot(dPhiDx, dxdy(ddy));
   p.grad = std::hypot(gx, gy);
   if (!(p.grad > 0) || !(p.speed > 0)) return false;
   p.nx = gx / p.grad, p.ny = gy / p.grad;
-  const int receiver = hit.kind == ShapeKind::Sphere ? static_cast<int>(hit.index) : -1;
-  outlineRates(shapes, o.sphere, w, receiver, n, d, dPhiDx, p.dPhi);
+  p.dPhi.clear();
+  const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
+  sphereRates(shapes, o.shape, w, p);
+  if (hit.kind == ShapeKind::Sphere && hit.index != o.shape) // a moving receiver
+    for (const SphereMotion& mo : shapes.spheres[hit.index])
+      p.add(mo.slot, dot(dPhiDx, moved({}, mo.dCenter + n * mo.dRadius)));
+  for (const CameraMotion& c : shapes.camera) {
+    Vec3d dOrigin, dDirection;
+    c.ray(p.x, p.y, dOrigin, dDirection);
+    p.add(c.slot, dot(dPhiDx, moved(dOrigin + dDirection * t, {})));
+  }
   return true;
+}
+
+// An infinite plane's horizon, a straight line on the film: phi = s n . d(y), s making phi < 0
+// where the camera's rays meet the plane.
+bool horizonPoint(const IntegratorContext& ctx, const Outline& o, double alpha, OutlinePoint& p) {
+  const RenderScene& scene = *ctx.scene;
+  const PlaneShape& plane = scene.geometry->planes()[o.shape];
+  const Projection proj{scene.camera.calibration()};
+  const double u = alpha / (2 * kPi);
+  p.x = o.x0 + (o.x1 - o.x0) * u, p.y = o.y0 + (o.y1 - o.y0) * u;
+  p.speed = std::hypot(o.x1 - o.x0, o.y1 - o.y0) / (2 * kPi);
+  const Vec3d n = normalize(plane.normal);
+  const double s = dot(n, scene.camera.position()) > plane.distance ? 1.0 : -1.0;
+  Vec3d ddx, ddy;
+  const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
+  const double len = length(dir);
+  const Vec3d d = dir / len;
+  auto unit = [&](const Vec3d& dd) { return (dd - d * dot(d, dd)) / len; };
+  const double gx = s * dot(n, unit(ddx)), gy = s * dot(n, unit(ddy));
+  p.grad = std::hypot(gx, gy);
+  if (!(p.grad > 0) || !(p.speed > 0)) return false;
+  p.nx = gx / p.grad, p.ny = gy / p.grad;
+  p.dPhi.clear();
+  cameraRates(ctx.gradients->tangents->shapes, p.x, p.y, {}, n * s, p);
+  return true;
+}
+
+// The point of outline `o` at angle alpha, or false where the camera does not see it there.
+bool outlinePoint(const IntegratorContext& ctx, const Outline& o, double alpha, OutlinePoint& p,
+                  uint64_t& rays) {
+  switch (o.kind) {
+  case Outline::Kind::Silhouette:
+    return silhouettePoint(ctx, o, alpha, p);
+  case Outline::Kind::Shadow:
+    return shadowPoint(ctx, o, alpha, p, rays);
+  case Outline::Kind::Horizon:
+    return horizonPoint(ctx, o, alpha, p);
+  }
+  return false;
 }
 
 // The outline's length on the film in pixels (a polygon of 64 sides over the parts the camera
@@ -199,6 +264,9 @@ void sampleOutline(const IntegratorContext& ctx, const PrimaryBoundaryRequest& r
     if (!outlinePoint(ctx, o, 2 * kPi * head.next1D(), p, counters.rays)) continue;
     const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
     if (px < req.rect.x0 || px >= req.rect.x1 || py < req.rect.y0 || py >= req.rect.y1) continue;
+    bool moves = false;
+    for (const auto& [slot, rate] : p.dPhi) moves = moves || rate != 0;
+    if (!moves) continue; // (a static outline, e.g. a static sphere's shadow on a static floor)
     // L where phi < 0 (the sphere seen, or in its shadow) minus L where phi > 0, with the same
     // random numbers, just either side of the outline on the film.
     SampledSpectrum L[2];
@@ -223,27 +291,61 @@ void sampleOutline(const IntegratorContext& ctx, const PrimaryBoundaryRequest& r
   rays += counters.rays;
 }
 
-// Every outline a slot moves: the moving spheres' silhouettes and their shadows' edges under
-// each point and spot light.
-std::vector<Outline> movingOutlines(const IntegratorContext& ctx) {
+// The segment of the line A x + B y + C = 0 inside the rectangle, or false.
+bool clipLine(double A, double B, double C, const PixelRect& r, Outline& o) {
+  std::vector<std::pair<double, double>> points;
+  auto inside = [&](double x, double y) {
+    return x >= r.x0 - 1e-9 && x <= r.x1 + 1e-9 && y >= r.y0 - 1e-9 && y <= r.y1 + 1e-9;
+  };
+  if (B != 0)
+    for (double x : {static_cast<double>(r.x0), static_cast<double>(r.x1)})
+      if (const double y = -(A * x + C) / B; inside(x, y)) points.push_back({x, y});
+  if (A != 0)
+    for (double y : {static_cast<double>(r.y0), static_cast<double>(r.y1)})
+      if (const double x = -(B * y + C) / A; inside(x, y)) points.push_back({x, y});
+  if (points.size() < 2) return false;
+  std::sort(points.begin(), points.end());
+  o.x0 = points.front().first, o.y0 = points.front().second;
+  o.x1 = points.back().first, o.y1 = points.back().second;
+  return std::hypot(o.x1 - o.x0, o.y1 - o.y0) > 0;
+}
+
+// Every outline a slot moves: the moving spheres' silhouettes and the shadows' edges under each
+// point and spot light (every sphere's, once a sphere moves: a moving receiver moves them too);
+// when the camera moves, every sphere's silhouette and every plane's horizon as well.
+std::vector<Outline> movingOutlines(const IntegratorContext& ctx, const PixelRect& rect) {
   const RenderScene& scene = *ctx.scene;
-  const auto& spheres = ctx.gradients->tangents->shapes.spheres;
+  const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
+  const bool camera = !shapes.camera.empty();
   std::vector<Vec3d> lights;
   for (const SceneLight& l : scene.lights) {
     if (const auto* p = std::get_if<PointLight>(&l)) lights.push_back(Vec3d(p->position));
     if (const auto* p = std::get_if<SpotLight>(&l)) lights.push_back(Vec3d(p->position));
   }
+  bool anySphere = false;
+  for (const auto& s : shapes.spheres) anySphere = anySphere || !s.empty();
   std::vector<Outline> out;
-  for (uint32_t k = 0; k < spheres.size(); ++k) {
-    if (spheres[k].empty()) continue;
+  for (uint32_t k = 0; k < shapes.spheres.size(); ++k) {
     const SphereShape& sphere = scene.geometry->spheres()[k];
-    Outline o{k, scene.camera.position(), false, {}};
-    if (sphereSilhouette(sphere, o.from, o.sil)) out.push_back(o);
+    Outline o{Outline::Kind::Silhouette, k, scene.camera.position(), {}};
+    if ((camera || !shapes.spheres[k].empty()) && sphereSilhouette(sphere, o.from, o.sil))
+      out.push_back(o);
+    if (!camera && !anySphere) continue;
     for (const Vec3d& p : lights) {
-      Outline s{k, p, true, {}};
+      Outline s{Outline::Kind::Shadow, k, p, {}};
       if (sphereSilhouette(sphere, p, s.sil)) out.push_back(s);
     }
   }
+  if (camera)
+    for (uint32_t k = 0; k < scene.geometry->planes().size(); ++k) {
+      const PlaneShape& plane = scene.geometry->planes()[k];
+      const Projection proj{scene.camera.calibration()};
+      Vec3d ddx, ddy;
+      const Vec3d at0 = proj.direction(0, 0, ddx, ddy); // the direction through film (0, 0)
+      const Vec3d n = normalize(plane.normal);
+      Outline h{Outline::Kind::Horizon, k, scene.camera.position(), {}};
+      if (clipLine(dot(n, ddx), dot(n, ddy), dot(n, at0), rect, h)) out.push_back(h);
+    }
   return out;
 }
 
@@ -252,7 +354,7 @@ std::vector<Outline> movingOutlines(const IntegratorContext& ctx) {
 std::vector<BoundaryContribution>
 primaryBoundary(const IntegratorContext& ctx, const PrimaryBoundaryRequest& req, uint64_t& rays) {
   std::vector<BoundaryContribution> all;
-  const std::vector<Outline> outlines = movingOutlines(ctx);
+  const std::vector<Outline> outlines = movingOutlines(ctx, req.rect);
   for (uint32_t k = 0; k < outlines.size(); ++k) {
     const Outline& o = outlines[k];
     const double pixels = filmLength(ctx, o);

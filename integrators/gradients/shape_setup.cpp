@@ -1,9 +1,12 @@
 #include "integrators/gradients/shape_setup.h"
 
+#include <algorithm>
+#include <cmath>
 #include <variant>
 
 #include "core/error.h"
 #include "integrators/render_scene.h"
+#include "integrators/scene_params/parameter_numbers.h"
 #include "integrators/scene_params/parameter_path.h"
 
 namespace nx {
@@ -32,10 +35,46 @@ int sphereOf(const RenderScene& scene, size_t object) {
   return -1;
 }
 
+// The camera's parameter `name`: one slot per number, the camera resolved with it moved by a
+// small step each way.
+GradientParameter cameraParameter(SceneTangents& tangents, const SceneDesc& desc,
+                                  const std::string& name, const RenderScene& base) {
+  if (const std::string why = uncoveredFeature(base); !why.empty())
+    throw Error(name + ": derivatives with respect to the camera do not cover a scene with " + why +
+                " yet (docs/inverse.md, \"Shape and camera\")");
+  const GeometryScene& g = *base.geometry;
+  if (!g.meshes().empty() || !g.disks().empty() || !g.cylinders().empty())
+    throw Error(name + ": derivatives with respect to the camera do not cover meshes, quads, "
+                       "disks or cylinders yet (the outlines of every shape move in the image, "
+                       "and theirs are not sampled)");
+  const ParameterNumbers n = parameterNumbers(desc, name);
+  GradientParameter p{
+      name, tangents.slots(), static_cast<uint32_t>(n.values.size()), n.indexed(), {}};
+  for (size_t j = 0; j < n.values.size(); ++j) {
+    const double step = 1e-4 * std::max(1.0, std::abs(n.values[j]));
+    auto cameraAt = [&](double v) {
+      SceneDesc copy = desc;
+      std::vector<double> values = n.values;
+      values[j] = v;
+      if (!setParameterNumbers(copy, name, values))
+        throw Error(name + ": cannot differentiate at " + std::to_string(n.values[j]) +
+                    ": a step of " + std::to_string(step) + " either way is refused");
+      return resolveRenderScene(copy).camera;
+    };
+    tangents.shapes.camera.push_back(
+        {tangents.slots(), cameraAt(n.values[j] + step), cameraAt(n.values[j] - step), step});
+    tangents.slotNames.push_back(p.indexed ? name + "[" + std::to_string(j) + "]" : name);
+  }
+  return p;
+}
+
 } // namespace
 
 std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const SceneDesc& desc,
                                                 const std::string& name, const RenderScene& base) {
+  if (name == "camera.position" || name == "camera.look_at" || name == "camera.fov" ||
+      name == "camera.extrinsics")
+    return cameraParameter(tangents, desc, name, base);
   const std::vector<ParameterStep> steps = parameterSteps(name);
   if (steps.size() != 2 || steps[0].attribute != "objects" ||
       !std::holds_alternative<size_t>(steps[0].index))

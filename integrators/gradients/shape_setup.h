@@ -10,10 +10,11 @@
 
 namespace nx {
 
-/// When `name` (canonical, declared differentiable) is a shape's parameter: adds its slots to
-/// `tangents` and returns the parameter; nullopt for any other parameter. Throws nx::Error
-/// naming it when the scene holds what the geometric derivative does not cover yet (media,
-/// textures, a lens, an environment map, a moving emitter, anisotropic roughness).
+/// When `name` (canonical, declared differentiable) is a shape's or the camera's parameter:
+/// adds its slots to `tangents` and returns the parameter; nullopt for any other parameter.
+/// Throws nx::Error naming it when the scene holds what the geometric derivative does not cover
+/// yet (media, textures, a lens, an environment map, a moving emitter, anisotropic roughness;
+/// for the camera, shapes other than spheres and planes).
 std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const SceneDesc& desc,
                                                 const std::string& name, const RenderScene& base);
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/camera.h"
 #include "core/vec3.h"
 
 namespace nx {
@@ -19,15 +20,33 @@ struct SphereMotion {
   double dRadius = 0;
 };
 
-/// Every slot's motion of the geometry, indexed like the geometry's shapes.
+/// How one slot moves the camera: the camera with the slot's number moved by +-step (a central
+/// difference of the camera's own model, so its every parameter is covered by the code that
+/// makes its rays).
+struct CameraMotion {
+  uint32_t slot = 0;
+  PinholeCamera plus, minus;
+  double step = 1;
+  /// d origin / d slot and d direction / d slot of the ray through film position (x, y).
+  void ray(double x, double y, Vec3d& dOrigin, Vec3d& dDirection) const {
+    Vec3d o0, d0, o1, d1;
+    plus.generateRay(x, y, 0, 0, o0, d0);
+    minus.generateRay(x, y, 0, 0, o1, d1);
+    dOrigin = (o0 - o1) * (0.5 / step);
+    dDirection = (d0 - d1) * (0.5 / step);
+  }
+};
+
+/// Every slot's motion of the geometry, indexed like the geometry's shapes, and of the camera.
 struct ShapeTangents {
   std::vector<std::vector<SphereMotion>> spheres; ///< per GeometryScene::spheres()
+  std::vector<CameraMotion> camera;
 
-  /// True when no slot moves any shape.
+  /// True when no slot moves any shape or the camera.
   bool empty() const {
     for (const auto& s : spheres)
       if (!s.empty()) return false;
-    return true;
+    return camera.empty();
   }
 };
 

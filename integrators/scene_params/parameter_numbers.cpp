@@ -16,11 +16,11 @@
 namespace nx {
 namespace {
 
-// A parameter's value as far as its numbers go: a number, a colour, a spectrum, a measured
-// matrix or a concentration map.
+// A parameter's value as far as its numbers go: a number, a colour, a point (a shape's or the
+// camera's), a spectrum, a measured matrix or a concentration map.
 using NumberedValue =
-    std::variant<double, std::array<double, 4>, SpectrumDesc, std::shared_ptr<const MeasuredMatrix>,
-                 std::shared_ptr<const ConcentrationMap>>;
+    std::variant<double, std::array<double, 4>, Vec3d, SpectrumDesc,
+                 std::shared_ptr<const MeasuredMatrix>, std::shared_ptr<const ConcentrationMap>>;
 
 // The ParameterSet holding kind parameter `name` (an object's shape or material, its medium's,
 // a light's, a named material's) and its key there; throws for a field parameter's name, which
@@ -45,7 +45,7 @@ std::pair<ParameterSet*, std::string> kindParameter(SceneDesc& d, const std::str
 
 [[noreturn]] void notDifferentiable(const std::string& name, const std::string& found) {
   throw Error(name +
-              ": not differentiable as given: expected a number, a tabulated spectrum "
+              ": not differentiable as given: expected a number, a point, a tabulated spectrum "
               "(wavelengths_nm, values) or a colour, found " +
               found +
               " (a named or built-in spectrum: set it as (wavelengths_nm, values) first, or "
@@ -57,6 +57,7 @@ std::optional<NumberedValue> valueOf(const SceneDesc& d, const std::string& name
   if (!sceneFieldKey(name).empty()) {
     const FieldValue v = sceneField(d, name);
     if (const double* x = std::get_if<double>(&v)) return *x;
+    if (const auto* p = std::get_if<Vec3d>(&v)) return *p;
     if (const auto* s = std::get_if<SpectrumDesc>(&v)) return *s;
     if (const auto* m = std::get_if<std::shared_ptr<const MeasuredMatrix>>(&v)) {
       if (const std::string file = sceneFieldFile(d, name); !file.empty())
@@ -72,6 +73,7 @@ std::optional<NumberedValue> valueOf(const SceneDesc& d, const std::string& name
   if (!p) return std::nullopt;
   if (const double* x = std::get_if<double>(&p->value)) return *x;
   if (const auto* c = std::get_if<std::array<double, 4>>(&p->value)) return *c;
+  if (const auto* x = std::get_if<Vec3d>(&p->value)) return *x;
   if (const auto* s = std::get_if<SpectrumDesc>(&p->value)) return *s;
   return std::nullopt; // no numbers (a name, a file, an index of refraction)
 }
@@ -89,6 +91,7 @@ void setValue(SceneDesc& d, const std::string& name, const NumberedValue& v) {
   const SourceLocation loc = set->locOf(key, SourceLocation{});
   if (const auto* x = std::get_if<double>(&v)) set->set({key, *x, loc});
   if (const auto* c = std::get_if<std::array<double, 4>>(&v)) set->set({key, *c, loc});
+  if (const auto* x = std::get_if<Vec3d>(&v)) set->set({key, *x, loc});
   if (const auto* s = std::get_if<SpectrumDesc>(&v)) set->set({key, *s, loc});
 }
 
@@ -123,6 +126,9 @@ ParameterNumbers numbersOf(const NumberedValue& v, const std::string& name) {
   } else if (const auto* c = std::get_if<std::array<double, 4>>(&v)) {
     n.form = ParameterNumbers::Form::List;
     n.values.assign(c->begin(), c->end());
+  } else if (const auto* p = std::get_if<Vec3d>(&v)) {
+    n.form = ParameterNumbers::Form::List;
+    n.values = {p->x, p->y, p->z};
   } else if (const auto* s = std::get_if<SpectrumDesc>(&v)) {
     return spectrumNumbers(*s, name);
   } else if (const auto* m = std::get_if<std::shared_ptr<const MeasuredMatrix>>(&v)) {
@@ -155,6 +161,11 @@ std::optional<NumberedValue> withNumbers(const NumberedValue& current,
       c[i] = v[i];
     }
     return c;
+  }
+  if (std::holds_alternative<Vec3d>(current)) {
+    for (size_t i = 0; i < 3; ++i)
+      if (!std::isfinite(v[i]) || std::abs(v[i]) > 1e12) return std::nullopt;
+    return Vec3d{v[0], v[1], v[2]};
   }
   if (const auto* s = std::get_if<SpectrumDesc>(&current)) {
     SpectrumDesc out = *s;

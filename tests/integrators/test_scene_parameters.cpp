@@ -129,7 +129,7 @@ TEST(SceneParameters, GradientSetupRefusesByName) {
   EXPECT_EQ(gradientSetup(d, {"objects[1].center"}, base, true).tangents.slots(), 3u);
   EXPECT_NE(errorOf({"objects[2].radius"}).find("objects[2].radius: moving an emitter"),
             std::string::npos);
-  EXPECT_NE(errorOf({"camera.fov"}).find("camera.fov: not differentiated"), std::string::npos);
+  EXPECT_NE(errorOf({"camera.up"}).find("camera.up: not differentiated"), std::string::npos);
   EXPECT_EQ(errorOf({"objects[1].reflectance", "objects[1].reflectance"}),
             "gradients: 'objects[1].reflectance' given twice");
   EXPECT_EQ(errorOf({}), "gradients: expected at least one name");

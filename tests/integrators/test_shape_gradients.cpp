@@ -15,6 +15,7 @@
 
 #include "accel/kinds/sphere.h"
 #include "core/camera.h"
+#include "core/error.h"
 #include "integrators/gradients/gradient_setup.h"
 #include "integrators/renderer.h"
 #include "integrators/scene_reader.h"
@@ -307,6 +308,100 @@ TEST(ShapeGradients, ReverseModeIsTheAdjointWeightedForwardSumAndThreadIndepende
   std::vector<double> one;
   tbb::task_arena(1).execute([&] { one = render(base, reverse).gradient; });
   EXPECT_EQ(one, r.gradient);
+}
+
+// The camera's numbers differentiated in a scene of spheres on a floor under a point light and
+// a small sphere lamp: every outline moves on the film (silhouettes, shadows' edges, the
+// floor's horizon) and every vertex seen moves.
+Comparison compareCamera(const std::string& field, const std::string& value,
+                         const std::function<std::string(double)>& moved, double step,
+                         int component, int samples, const Region& region) {
+  auto text = [&](const std::string& camera) {
+    return "<scene><settings><xres>" + std::to_string(kSize) + "</xres><yres>" +
+           std::to_string(kSize) + "</yres><mode>spectral_mcpt</mode><depth>4</depth><sampl>" +
+           std::to_string(samples) + "</sampl><bands>400:700:100</bands></settings><camera>" +
+           camera + "</camera><plane><normal>0,1,0</normal><distance>0</distance>" + kFloor +
+           "</plane><sphere><center>0.1,0.7,0</center><radius>0.5</radius>" + kFluorescent +
+           "</sphere><sphere><center>0.3,3,-2.5</center><radius>0.1</radius><material>matte"
+           "</material><reflectance>0</reflectance><emission scale=\"0.6\">D65</emission>"
+           "</sphere>" +
+           kPointLight + "</scene>";
+  };
+  const SceneDesc desc = parseScene(text(value), "t.scn");
+  const RenderScene base = buildRenderScene(desc);
+  const GradientSetup setup = gradientSetup(desc, {field}, base, true);
+  RenderOptions o;
+  o.gradients = &setup.tangents;
+  const RenderOutput g = render(base, o);
+  const RenderOutput plus = render(built(text(moved(step))), {});
+  const RenderOutput minus = render(built(text(moved(-step))), {});
+  Comparison out;
+  for (int b = 0; b < g.film.bands().count(); ++b) {
+    test::RunningStats d;
+    double gs = 0, fs = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        if (!region(x, y)) continue;
+        const double fd = (plus.film.bandMean(x, y, b) - minus.film.bandMean(x, y, b)) / (2 * step);
+        const double gr = g.film.layerMean(x, y, component, b);
+        gs += gr, fs += fd;
+        d.add(gr - fd);
+      }
+    out.gradient.push_back(gs);
+    out.difference.push_back(fs);
+    out.standardError.push_back(d.standardError() * d.n);
+  }
+  return out;
+}
+
+TEST(ShapeGradients, CameraTranslatingAndZoomingMatchesDifferences) {
+  // (over the whole image what enters on one side leaves on the other: halves of it)
+  const Region left = [](int x, int) { return x < kSize / 2; };
+  const Region top = [](int, int y) { return y < kSize / 2; };
+  const std::string lookAt = "<look_at>0,0.5,0</look_at>";
+  auto at = [&](double x, double z, double fov) {
+    return "<position>" + num(x) + ",0.9," + num(-2.6 + z) + "</position>" + lookAt + "<fov>" +
+           num(40 + fov) + "</fov>";
+  };
+  expectAgrees(compareCamera(
+                   "camera.position", at(0, 0, 0), [&](double h) { return at(h, 0, 0); }, 0.01, 0,
+                   512, left),
+               0.06, "position[0]");
+  expectAgrees(
+      compareCamera(
+          "camera.position", at(0, 0, 0), [&](double h) { return at(0, h, 0); }, 0.01, 2, 512, top),
+      0.05, "position[2]");
+  expectAgrees(
+      compareCamera(
+          "camera.fov", at(0, 0, 0), [&](double h) { return at(0, 0, h); }, 0.05, 0, 512, top),
+      0.05, "fov");
+}
+
+TEST(ShapeGradients, CameraRefusalsSayWhy) {
+  const std::string base = scene({0, 0.7, 0}, 0.5, kMatte, kFloor, kPointLight, 4, "");
+  auto errorOf = [&](const std::string& text, const std::string& name) {
+    const SceneDesc d = parseScene(text, "t.scn");
+    try {
+      gradientSetup(d, {name}, buildRenderScene(d), true);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::string quad = base;
+  quad.insert(quad.find("</scene>"),
+              "<quad><origin>-1,0,2</origin><edge_u>2,0,0</edge_u><edge_v>"
+              "0,1,0</edge_v><material>matte</material><reflectance>0.5</reflectance></quad>");
+  EXPECT_NE(errorOf(quad, "camera.position").find("do not cover meshes, quads"), std::string::npos)
+      << errorOf(quad, "camera.position");
+  std::string calibrated = base;
+  calibrated.replace(calibrated.find("<fov>40</fov>"), 13,
+                     "<intrinsics>30, 30, 16, 16</intrinsics>");
+  // (a calibrated camera has no field of view to differentiate: its intrinsics are not yet)
+  EXPECT_NE(errorOf(calibrated, "camera.fov").find("no scene parameter named 'camera.fov'"),
+            std::string::npos)
+      << errorOf(calibrated, "camera.fov");
+  EXPECT_EQ(errorOf(base, "camera.up").find("camera.up: not differentiated"), 0u);
 }
 
 } // namespace

@@ -170,8 +170,8 @@ def test_refusals(scene):
     with pytest.raises(ValueError, match=r"objects\[1\].radius: derivatives with respect to "
                                          r"shape do not cover a scene with media"):
         nxrender.render(scene, spp=1, gradients=["objects[1].radius"])
-    with pytest.raises(ValueError, match=r"camera.fov: not differentiated"):
-        nxrender.render(scene, spp=1, gradients=["camera.fov"])
+    with pytest.raises(ValueError, match=r"camera.up: not differentiated"):
+        nxrender.render(scene, spp=1, gradients=["camera.up"])
     with pytest.raises(KeyError, match="no scene parameter named"):
         nxrender.render(scene, spp=1, gradients=["objects[9].reflectance"])
     with pytest.raises(ValueError, match="lights\\[0\\].emission: not differentiable as given"):
@@ -309,13 +309,16 @@ def test_measured_matrix_cells(scene):
 
 def test_the_declarations_say_which_parameters_are_differentiable(scenes):
     """parameters() reports each parameter's declared `differentiable`, and a gradient request
-    follows it: appearance parameters are, geometry and settings are not (yet)."""
+    follows it: appearance parameters, a sphere's centre and radius and the camera's pose and
+    field of view are; other geometry and settings are not (yet)."""
     scene = nxrender.Scene(str(scenes / "blacklight.scn"))
     params = scene.parameters()
     assert all(isinstance(p["differentiable"], bool) for p in params.values())
     assert params["objects[1].fluorescence.stokes_nm"]["differentiable"]
     assert params["background"]["differentiable"] is (params["background"]["type"] == "spectrum")
-    for name in ("spp", "camera.fov", "objects[0].normal"):
+    for name in ("camera.fov", "camera.position", "camera.look_at"):
+        assert params[name]["differentiable"], name
+    for name in ("spp", "camera.up", "objects[0].normal"):
         assert not params[name]["differentiable"], name
         with pytest.raises(ValueError, match="not differentiated"):
             nxrender.render(scene, spp=1, gradients=[name])
