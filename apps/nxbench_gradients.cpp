@@ -5,7 +5,9 @@
 // A fluorescent sphere on a tabulated floor under a blue-heavy lamp (docs/inverse.md). Prints
 // render seconds (fastest of repeats) for a plain render, forward mode with 1 and 4 parameters
 // (the dye's Stokes shift, quantum yield, the lamp's scale, the sphere's reflectance), reverse
-// mode with those 4 and with the floor table's K knots added, and the finite-difference route
+// mode with those 4, the shape and camera rows (the sphere's centre forward, its centre and
+// radius in reverse, the camera's position forward), reverse mode with the floor table's K
+// knots added, and the finite-difference route
 // (two renders per parameter); then the process's peak memory after reverse renders of
 // increasing samples per pixel (it must not grow with them).
 
@@ -166,6 +168,15 @@ int run(int argc, char** argv) {
     return bench::fastestSeconds(3, [&] { render(scene, o); });
   };
   row("reverse, 4 parameters", reverse(four, spp));
+  // Shape and camera: the sphere's centre and radius, the camera's position (the boundary
+  // terms on the film and at every vertex included).
+  const SceneTangents centre = gradientSetup(desc, {"objects[1].center"}, scene, true).tangents;
+  const SceneTangents pose =
+      gradientSetup(desc, {"objects[1].center", "objects[1].radius"}, scene, true).tangents;
+  const SceneTangents camera = gradientSetup(desc, {"camera.position"}, scene, true).tangents;
+  row("forward, sphere centre (3)", forward(centre));
+  row("reverse, sphere centre + radius", reverse(pose, spp));
+  row("forward, camera position (3)", forward(camera));
   const std::string label = "reverse, 4 + " + std::to_string(knots) + " knots";
   row(label.c_str(), reverse(many, spp));
   const std::string fd = "differences, " + std::to_string(4 + knots) + " parameters";

@@ -103,3 +103,21 @@ def test_bad_parameters_are_refused(scene):
         nxt.render(scene, {YIELD: 0.5})
     with pytest.raises(ValueError, match=r"expected a tensor of shape \(3,\), found \(2,\)"):
         nxt.render(scene, {FLOOR: torch.zeros(2)})
+
+
+def test_a_sphere_centre_and_radius_through_torch():
+    # Shape parameters through the bridge: the centre's tensor (3,) and the radius' () get
+    # reverse mode's gradient (the outline's terms included).
+    from test_gradients import SHAPE
+    scene = nxrender.Scene.from_text(SHAPE, "t.scn")
+    centre = torch.tensor([0.1, 0.7, 0.0], dtype=torch.float64, requires_grad=True)
+    radius = torch.tensor(0.5, dtype=torch.float64, requires_grad=True)
+    names = ["objects[1].center", "objects[1].radius"]
+    image = nxt.render(scene, {names[0]: centre, names[1]: radius}, spp=16, seed=3, threads=2)
+    weights = torch.linspace(0, 1, image.numel(), dtype=torch.float32).reshape(image.shape)
+    (image * weights).sum().backward()
+    grads, _ = nxrender.backward(scene, weights.numpy().astype(np.float64), names, spp=16, seed=4,
+                                 threads=2)
+    assert np.allclose(centre.grad.numpy(), grads[names[0]], rtol=1e-12)
+    assert radius.grad.item() == pytest.approx(grads[names[1]], rel=1e-12)
+    assert radius.grad.item() != 0
