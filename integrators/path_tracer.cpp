@@ -4,6 +4,7 @@
 #include "integrators/fluorescent_vertex.h"
 #include "integrators/gradients/geometry_gradients.h"
 #include "integrators/gradients/gradient_context.h"
+#include "integrators/gradients/mesh_outlines.h"
 #include "integrators/gradients/path_gradients.h"
 #include "integrators/gradients/sphere_silhouette.h"
 #include "integrators/integrator.h"
@@ -287,8 +288,17 @@ private:
   // direction's derivative into the held point's.
   void emitterPointHeld(const Ray& ray, const SurfaceHit& hit);
   // Shape derivatives: the boundary term of the vertex's scattering integral over directions,
-  // on the silhouettes of the spheres that move relative to it.
+  // on the silhouettes of the spheres that move relative to it and of the moving meshes.
   void directionBoundary(const SampledWavelengths& current, const SurfaceVertex& v);
+  // The moving meshes' part of directionBoundary: a silhouette edge seen from the vertex.
+  void meshDirectionBoundary(const SampledWavelengths& lit, const SurfaceVertex& v);
+  // The radiance arriving at the vertex from targets[0] and targets[1] (either side of an
+  // outline), traced with the same random numbers of the boundary stream (advanced past them).
+  void radianceEitherSide(const SurfaceVertex& v, const Vec3d (&targets)[2],
+                          const SampledWavelengths& lit, SampledSpectrum (&L)[2]);
+  // The boundary terms of a jump `term` (the path's weight times the jump across an outline):
+  // term * (-d phi / d slot) * scale per slot of the tape's rates.
+  void boundaryTerms(const SampledSpectrum& term, double scale);
   // Next-event estimation with the excitation also drawn guided by the light (fluorescent
   // vertices of plain renders); false where it does not apply.
   [[gnu::always_inline]] inline bool
@@ -750,15 +760,7 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directionBoundary(
       const Vec3d targets[2] = {sphere.center + (m - sphere.center) * (1 - 1e-4),
                                 m + (m - sil.q) * 1e-4};
       SampledSpectrum L[2];
-      const PixelSampleStream start = brng;
-      for (int side = 0; side < 2; ++side) {
-        PixelSampleStream r = start;
-        Ray ray;
-        ray.d = Vec3(normalize(targets[side] - x));
-        ray.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, ray.d);
-        L[side] = tracePath(ctx_, ray, lit, r, counters_);
-        if (side == 1) brng = r;
-      }
+      radianceEitherSide(v, targets, lit, L);
       // An emitting sphere's own outline: light arriving from its surface is differentiated
       // with its point held (next-event estimation's area measure, where its outline is no
       // discontinuity: |cos| falls to 0 there), so only what lies behind it jumps here.
@@ -773,14 +775,104 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directionBoundary(
                  evaluate(scene_.emission[static_cast<size_t>(scene_.spheres[k].emission)], lit) *
                      -1.0f;
       }
-      const SampledSpectrum term = beta_ * f * (L[0] + L[1] * -1.0f);
-      if (term.isBlack()) continue;
       // alpha uniform: the outline's length per sample 2 pi speed; v_n = -(d phi) / |grad phi|
-      const double scale = 2 * kPi * speed / grad;
-      for (const auto& [slot, dPhi] : rates)
-        if (dPhi != 0)
-          for (int i = 0; i < kLanes; ++i)
-            if (term[i] != 0) sink_.direct(slot, i, term[i] * static_cast<float>(-dPhi * scale));
+      boundaryTerms(beta_ * f * (L[0] + L[1] * -1.0f), 2 * kPi * speed / grad);
+    }
+    meshDirectionBoundary(lit, v);
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::radianceEitherSide(
+    [[maybe_unused]] const SurfaceVertex& v, [[maybe_unused]] const Vec3d (&targets)[2],
+    [[maybe_unused]] const SampledWavelengths& lit, [[maybe_unused]] SampledSpectrum (&L)[2]) {
+  if constexpr (kGradients) {
+    PixelSampleStream& brng = *sink_.tape->boundaryRng;
+    const PixelSampleStream start = brng;
+    for (int side = 0; side < 2; ++side) {
+      PixelSampleStream r = start;
+      Ray ray;
+      ray.d = Vec3(normalize(targets[side] - Vec3d(v.hit.p)));
+      ray.o = offsetRayOrigin(v.hit.p, v.hit.pError, v.hit.ng, ray.d);
+      L[side] = tracePath(ctx_, ray, lit, r, counters_);
+      if (side == 1) brng = r;
+    }
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::boundaryTerms(
+    [[maybe_unused]] const SampledSpectrum& term, [[maybe_unused]] double scale) {
+  if constexpr (kGradients) {
+    if (term.isBlack()) return;
+    for (const auto& [slot, dPhi] : sink_.tape->motion.rates)
+      if (dPhi != 0)
+        for (int i = 0; i < kLanes; ++i)
+          if (term[i] != 0) sink_.direct(slot, i, term[i] * static_cast<float>(-dPhi * scale));
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::meshDirectionBoundary(
+    [[maybe_unused]] const SampledWavelengths& lit, [[maybe_unused]] const SurfaceVertex& v) {
+  if constexpr (kGradients) {
+    GradientTape& tape = *sink_.tape;
+    const std::vector<VertexMotion>& motion = tape.motion.vertex;
+    const SurfaceHit& hit = v.hit;
+    const Vec3d x(hit.p);
+    std::vector<std::pair<uint32_t, double>>& rates = tape.motion.rates;
+    const auto& meshes = tangents_->shapes.meshes;
+    for (uint32_t k = 0; k < meshes.size(); ++k) {
+      const MeshMotion& mm = meshes[k];
+      if (mm.firstSlot < 0 || mm.edges.empty()) continue;
+      // An edge chosen uniformly (its share of the outline is E times what it holds), a point
+      // uniformly along it; only the outline seen from x jumps.
+      const TriangleMesh& mesh = scene_.geometry->meshes()[k];
+      PixelSampleStream& brng = *tape.boundaryRng;
+      const Sample2 u = brng.next2D();
+      const size_t count = mm.edges.size();
+      const MeshEdge& e =
+          mm.edges[std::min(count - 1, static_cast<size_t>(u.u * static_cast<double>(count)))];
+      if (!outlineEdge(mesh, e, x)) continue;
+      if (hit.kind == ShapeKind::Triangle && hit.index == k &&
+          (e.face0 == hit.prim || e.face1 == hit.prim))
+        continue; // an edge of x's own triangle: seen edge-on
+      const Vec3d v0(mesh.position(e.v0)), v1(mesh.position(e.v1));
+      const Vec3d m = v0 + (v1 - v0) * static_cast<double>(u.v), toM = m - x;
+      const double dist = length(toM);
+      const Vec3d wd = toM / dist;
+      const Vec3 wi(wd);
+      const SampledSpectrum f =
+          v.fluorescent ? v.shift.albedo * v.bsdf.diffuseLobe(wi) : v.bsdf.f(wi);
+      if (f.isBlack()) continue;
+      // phi(omega) = n_e . omega, n_e = (v0 - x) x (v1 - x): its gradient on the sphere of
+      // directions n_e - omega (omega . n_e); d phi / d v0 = (v1 - x) x omega, d phi / d v1 =
+      // omega x (v0 - x), d phi / d x = -(v1 - v0) x omega.
+      const Vec3d ne = cross(v0 - x, v1 - x), g = ne - wd * dot(wd, ne);
+      const double grad = length(g);
+      const Vec3d dv = v1 - v0;
+      const double speed = length(dv - wd * dot(wd, dv)) / dist;
+      if (!(grad > 0) || !(speed > 0)) continue;
+      rates.clear();
+      auto add = [&](uint32_t slot, double r) {
+        for (auto& [s, value] : rates)
+          if (s == slot) {
+            value += r;
+            return;
+          }
+        rates.push_back({slot, r});
+      };
+      const Vec3d d0 = cross(v1 - x, wd), d1 = cross(wd, v0 - x), dx = cross(dv, wd) * -1.0;
+      for (int c = 0; c < 3; ++c) {
+        add(mm.slot(e.v0, c), dot(d0, mm.linear[c]));
+        add(mm.slot(e.v1, c), dot(d1, mm.linear[c]));
+      }
+      for (const VertexMotion& vm : motion) add(vm.slot, dot(dx, Vec3d(vm.dp)));
+      const Vec3d side = g * (1e-4 * dist / grad);
+      const Vec3d targets[2] = {m - side, m + side};
+      SampledSpectrum L[2];
+      radianceEitherSide(v, targets, lit, L);
+      boundaryTerms(beta_ * f * (L[0] + L[1] * -1.0f), static_cast<double>(count) * speed / grad);
     }
   }
 }

@@ -5,18 +5,49 @@
 namespace nx {
 namespace {
 
-// The velocity of the point of sphere k at unit normal n under `slot` (x = c + r n: dc + dr n),
-// or false when the slot does not move the sphere.
-bool sphereVelocity(const ShapeTangents& shapes, uint32_t k, uint32_t slot, const Vec3& n,
-                    Vec3& v) {
-  if (k >= shapes.spheres.size()) return false;
-  for (const SphereMotion& m : shapes.spheres[k])
-    if (m.slot == slot) {
-      v = Vec3(m.dCenter) + n * static_cast<float>(m.dRadius);
-      return true;
-    }
-  return false;
+// A scratch list per thread (the walk allocates nothing per vertex once it has grown).
+std::vector<SurfaceSlot>& surfaceScratch() {
+  thread_local std::vector<SurfaceSlot> list;
+  return list;
 }
+
+} // namespace
+
+void surfaceSlots(const ShapeTangents& shapes, const GeometryScene& geometry, const SurfaceHit& hit,
+                  std::vector<SurfaceSlot>& out) {
+  out.clear();
+  if (hit.kind == ShapeKind::Sphere && hit.index < shapes.spheres.size()) {
+    for (const SphereMotion& m : shapes.spheres[hit.index])
+      out.push_back({m.slot, Vec3(m.dCenter) + hit.ng * static_cast<float>(m.dRadius), Vec3()});
+    return;
+  }
+  if (hit.kind != ShapeKind::Triangle || hit.index >= shapes.meshes.size()) return;
+  const MeshMotion& mm = shapes.meshes[hit.index];
+  if (mm.firstSlot < 0) return;
+  const TriangleMesh& mesh = geometry.meshes()[hit.index];
+  const uint32_t* idx = mesh.triangle(hit.prim);
+  const Vec3 a = mesh.position(idx[0]), e1 = mesh.position(idx[1]) - a,
+             e2 = mesh.position(idx[2]) - a;
+  const Vec3 N = cross(e1, e2);
+  const float len = length(N), inv = 1 / dot(N, N);
+  if (!(len > 0)) return;
+  const Vec3 x = hit.p - a;
+  const float b1 = dot(cross(x, e2), N) * inv, b2 = dot(cross(e1, x), N) * inv;
+  const float bary[3] = {1 - b1 - b2, b1, b2};
+  const Vec3 nUnit = N / len;
+  const float sign = dot(hit.ng, N) < 0 ? -1.0f : 1.0f;
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 u(mm.linear[k]);
+      const Vec3 dN = j == 0   ? cross(u * -1.0f, e2) + cross(e1, u * -1.0f)
+                      : j == 1 ? cross(u, e2)
+                               : cross(e1, u);
+      out.push_back(
+          {mm.slot(idx[j], k), u * bary[j], (dN - nUnit * dot(nUnit, dN)) * (sign / len)});
+    }
+}
+
+namespace {
 
 // d n / d x applied to dx at a hit (the shape's curvature): a sphere's (I - n n^T) dx / r, a
 // cylinder side's the same across its axis, a mesh's interpolated normals' through the
@@ -73,33 +104,36 @@ void vertexMotion(const ShapeTangents& shapes, const GeometryScene& geometry, co
   const float t = length(hit.p - ray.o);
   const float nd = dot(n, d);
   if (!(std::abs(nd) > 0)) return; // grazing: the hit's motion is unbounded
-  const bool sphere = hit.kind == ShapeKind::Sphere;
+  std::vector<SurfaceSlot>& surface = surfaceScratch();
+  surfaceSlots(shapes, geometry, hit, surface);
+  const bool flat = hit.ns == hit.ng;
   // The point moves with the ray's origin and direction, and along the ray until it is back on
-  // the surface (moving at v): n . (dx - v) = 0 with dx = do + t dd + dt d. Its normal turns by
-  // the curvature applied to its motion relative to the surface's material point.
-  auto add = [&](uint32_t slot, const Vec3& dOrigin, const Vec3& dDir, const Vec3& v) {
+  // the surface (its material point moving at v): n . (dx - v) = 0 with dx = do + t dd + dt d.
+  // Its normal turns by the curvature applied to its motion relative to the material point,
+  // and with the surface's own turning there (a mesh's face as its vertices move); a mesh's
+  // interpolated normals are data and only slide.
+  auto add = [&](uint32_t slot, const Vec3& dOrigin, const Vec3& dDir, const SurfaceSlot& s) {
     const Vec3 along = dOrigin + dDir * t;
     VertexMotion m;
     m.slot = slot;
-    m.dp = along + d * (dot(n, v - along) / nd);
-    m.dns = normalTurning(geometry, hit, m.dp - v);
-    // a mesh's face normal stays (its vertices do not move); other shapes' is their normal
-    m.dng = hit.kind == ShapeKind::Triangle ? Vec3() : m.dns;
+    m.dp = along + d * (dot(n, s.v - along) / nd);
+    const Vec3 turn = normalTurning(geometry, hit, m.dp - s.v);
+    m.dng = (hit.kind == ShapeKind::Triangle ? Vec3() : turn) + s.dn;
+    m.dns = flat ? m.dng : turn;
     m.dDir = dDir;
     out.push_back(m);
   };
-  for (const RayMotion& r : rayMotion) {
-    Vec3 v;
-    if (!sphere || !sphereVelocity(shapes, hit.index, r.slot, n, v)) v = Vec3();
-    add(r.slot, r.dOrigin, r.dDir, v);
+  auto own = [&](uint32_t slot) {
+    for (const SurfaceSlot& s : surface)
+      if (s.slot == slot) return s;
+    return SurfaceSlot{slot, {}, {}};
+  };
+  for (const RayMotion& r : rayMotion) add(r.slot, r.dOrigin, r.dDir, own(r.slot));
+  for (const SurfaceSlot& s : surface) {
+    bool carried = false;
+    for (const RayMotion& r : rayMotion) carried = carried || r.slot == s.slot;
+    if (!carried) add(s.slot, Vec3(), Vec3(), s);
   }
-  if (sphere && hit.index < shapes.spheres.size())
-    for (const SphereMotion& s : shapes.spheres[hit.index]) {
-      bool carried = false;
-      for (const RayMotion& r : rayMotion) carried = carried || r.slot == s.slot;
-      if (!carried)
-        add(s.slot, Vec3(), Vec3(), Vec3(s.dCenter) + n * static_cast<float>(s.dRadius));
-    }
 }
 
 } // namespace nx

@@ -61,6 +61,19 @@ struct PathMotion {
   std::vector<std::pair<uint32_t, double>> rates; ///< scratch: an outline's rates per slot
 };
 
+/// How one slot moves the surface at a hit: the velocity of its material point there and the
+/// turning of its geometric normal (a mesh's face as its vertices move).
+struct SurfaceSlot {
+  uint32_t slot;
+  Vec3 v, dn;
+};
+
+/// The slots moving the surface at `hit` into `out`: a sphere's (x = c + r n: v = dc + dr n,
+/// its normal at a material point unturned) and a moving mesh's three vertices' coordinates
+/// (v = b_j u, the face normal turning by (I - n n^T) dN / |N|, N = (B - A) x (C - A)).
+void surfaceSlots(const ShapeTangents& shapes, const GeometryScene& geometry, const SurfaceHit& hit,
+                  std::vector<SurfaceSlot>& out);
+
 /// How the slots move the vertex `hit` of `ray` (unit direction; its motion `rayMotion`): the
 /// ray's own motion carried to the surface, and the surface's where a slot moves it, with the
 /// normals' turning (a sphere's and a cylinder's curvature, a mesh's interpolated normals).

@@ -6,7 +6,9 @@
 #include <tbb/parallel_for.h>
 
 #include "core/math_util.h"
+#include "integrators/gradients/geometry_gradients.h"
 #include "integrators/gradients/gradient_context.h"
+#include "integrators/gradients/mesh_outlines.h"
 #include "integrators/gradients/sphere_silhouette.h"
 #include "integrators/render_scene.h"
 
@@ -56,15 +58,25 @@ struct Projection {
 // An outline on the film: a sphere's silhouette seen from the camera, the edge of its shadow
 // under a point or spot light on what the camera sees, or an infinite plane's horizon.
 struct Outline {
-  enum class Kind { Silhouette, Shadow, Horizon } kind = Kind::Silhouette;
-  uint32_t shape = 0;                    ///< the sphere (or the plane)
+  enum class Kind { Silhouette, Shadow, Horizon, MeshSilhouette, MeshShadow };
+  Kind kind = Kind::Silhouette;
+  uint32_t shape = 0;                    ///< the sphere (or the plane, or the mesh)
   Vec3d from;                            ///< the camera's or the light's position
   SphereSilhouette sil;                  ///< the sphere's silhouette seen from `from`
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0; ///< a horizon's segment on the film
+  EdgeSet edges; ///< a mesh's silhouette edges seen from `from` (by film or scene length)
 };
 
+// An outline of `kind` of shape `shape` seen from `from`.
+Outline outlineOf(Outline::Kind kind, uint32_t shape, const Vec3d& from) {
+  Outline o;
+  o.kind = kind, o.shape = shape, o.from = from;
+  return o;
+}
+
 // A point of an outline on the film: where (x, y), the unit normal towards phi > 0, |grad phi|,
-// the film length per radian, and how each slot moves phi there.
+// the film length per unit of the sampling's first number (so that a sample's share of the
+// outline is speed / samples), and how each slot moves phi there.
 struct OutlinePoint {
   double x = 0, y = 0, nx = 0, ny = 0, grad = 0, speed = 0;
   std::vector<std::pair<uint32_t, double>> dPhi; ///< (slot, d phi / d slot)
@@ -98,8 +110,8 @@ void sphereRates(const ShapeTangents& shapes, uint32_t k, const Vec3d& w, Outlin
 
 // A sphere's silhouette seen from the camera: phi = |w| - r, w the vector from the ray's closest
 // point to the centre (at the tangent ray: c - m, |w| = r).
-bool silhouettePoint(const IntegratorContext& ctx, const Outline& o, double alpha,
-                     OutlinePoint& p) {
+bool silhouettePoint(const IntegratorContext& ctx, const Outline& o, double u, OutlinePoint& p) {
+  const double alpha = 2 * kPi * u;
   const RenderScene& scene = *ctx.scene;
   const SphereShape& sphere = scene.geometry->spheres()[o.shape];
   const Projection proj{scene.camera.calibration()};
@@ -107,7 +119,7 @@ bool silhouettePoint(const IntegratorContext& ctx, const Outline& o, double alph
   if (!proj.project(m, p.x, p.y)) return false;
   double dx, dy;
   proj.along(m, o.sil.tangent(alpha), dx, dy);
-  p.speed = std::hypot(dx, dy);
+  p.speed = 2 * kPi * std::hypot(dx, dy);
   Vec3d ddx, ddy;
   const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
   const double len = length(dir);
@@ -126,10 +138,21 @@ bool silhouettePoint(const IntegratorContext& ctx, const Outline& o, double alph
   return true;
 }
 
+// The rates of the slots moving the surface a shadow falls on (at `hit`), at a fixed film
+// position: d phi / d x times x's motion with its surface.
+template <class Moved>
+void receiverRates(const IntegratorContext& ctx, const SurfaceHit& hit, const Vec3d& dPhiDx,
+                   Moved&& moved, OutlinePoint& p) {
+  thread_local std::vector<SurfaceSlot> surface;
+  surfaceSlots(ctx.gradients->tangents->shapes, *ctx.scene->geometry, hit, surface);
+  for (const SurfaceSlot& s : surface) p.add(s.slot, dot(dPhiDx, moved(Vec3d{}, Vec3d(s.v))));
+}
+
 // A shadow's edge: the light's ray grazing the sphere at m goes on to a surface at x; phi(y) =
 // (distance of the line light -> x(y) from the centre) - r, x(y) what the camera sees at y.
-bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double alpha, OutlinePoint& p,
+bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double u, OutlinePoint& p,
                  uint64_t& rays) {
+  const double alpha = 2 * kPi * u;
   const RenderScene& scene = *ctx.scene;
   const SphereShape& sphere = scene.geometry->spheres()[o.shape];
   const Projection proj{scene.camera.calibration()};
@@ -163,7 +186,7 @@ bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double alpha, O
   const Vec3d dxA = dm * s + lm * (-s * dot(n, dm) / dot(n, lm));
   double fx, fy;
   proj.along(x, dxA, fx, fy);
-  p.speed = std::hypot(fx, fy);
+  p.speed = 2 * kPi * std::hypot(fx, fy);
   // grad_y phi = d phi / d x . d x / d y: d phi / d x = -((a . e) / l) w (a = c - light, l the
   // light's distance to x), d x / d y_j = t (I - d n^T / (n . d)) d d / d y_j
   const Vec3d a = sphere.center - o.from;
@@ -187,9 +210,8 @@ bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double alpha, O
   p.dPhi.clear();
   const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
   sphereRates(shapes, o.shape, w, p);
-  if (hit.kind == ShapeKind::Sphere && hit.index != o.shape) // a moving receiver
-    for (const SphereMotion& mo : shapes.spheres[hit.index])
-      p.add(mo.slot, dot(dPhiDx, moved({}, mo.dCenter + n * mo.dRadius)));
+  if (hit.kind != ShapeKind::Sphere || hit.index != o.shape) // a moving receiver
+    receiverRates(ctx, hit, dPhiDx, moved, p);
   for (const CameraMotion& c : shapes.camera) {
     Vec3d dOrigin, dDirection;
     c.ray(p.x, p.y, dOrigin, dDirection);
@@ -200,13 +222,12 @@ bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double alpha, O
 
 // An infinite plane's horizon, a straight line on the film: phi = s n . d(y), s making phi < 0
 // where the camera's rays meet the plane.
-bool horizonPoint(const IntegratorContext& ctx, const Outline& o, double alpha, OutlinePoint& p) {
+bool horizonPoint(const IntegratorContext& ctx, const Outline& o, double u, OutlinePoint& p) {
   const RenderScene& scene = *ctx.scene;
   const PlaneShape& plane = scene.geometry->planes()[o.shape];
   const Projection proj{scene.camera.calibration()};
-  const double u = alpha / (2 * kPi);
   p.x = o.x0 + (o.x1 - o.x0) * u, p.y = o.y0 + (o.y1 - o.y0) * u;
-  p.speed = std::hypot(o.x1 - o.x0, o.y1 - o.y0) / (2 * kPi);
+  p.speed = std::hypot(o.x1 - o.x0, o.y1 - o.y0);
   const Vec3d n = normalize(plane.normal);
   const double s = dot(n, scene.camera.position()) > plane.distance ? 1.0 : -1.0;
   Vec3d ddx, ddy;
@@ -223,33 +244,136 @@ bool horizonPoint(const IntegratorContext& ctx, const Outline& o, double alpha, 
   return true;
 }
 
-// The point of outline `o` at angle alpha, or false where the camera does not see it there.
-bool outlinePoint(const IntegratorContext& ctx, const Outline& o, double alpha, OutlinePoint& p,
-                  uint64_t& rays) {
+// The rates of the slots moving an edge's vertices: d phi / d v0 and d phi / d v1 (in the
+// scene), times each coordinate's velocity (the transform's columns).
+void edgeRates(const MeshMotion& mm, const MeshEdge& e, const Vec3d& dPhiDv0, const Vec3d& dPhiDv1,
+               OutlinePoint& p) {
+  for (int k = 0; k < 3; ++k) {
+    p.add(mm.slot(e.v0, k), dot(dPhiDv0, mm.linear[k]));
+    p.add(mm.slot(e.v1, k), dot(dPhiDv1, mm.linear[k]));
+  }
+}
+
+// A moving mesh's outline seen from the camera (silhouette edges; every edge seen of a
+// flat-shaded mesh): an edge chosen by its length on the film,
+// a point uniformly along it there; phi = n_e . d(y), n_e = (v0 - o) x (v1 - o).
+bool meshSilhouettePoint(const IntegratorContext& ctx, const Outline& o, double u1, double u2,
+                         OutlinePoint& p) {
+  const RenderScene& scene = *ctx.scene;
+  const TriangleMesh& mesh = scene.geometry->meshes()[o.shape];
+  const MeshMotion& mm = ctx.gradients->tangents->shapes.meshes[o.shape];
+  const Projection proj{scene.camera.calibration()};
+  double share = 0;
+  const MeshEdge& e = mm.edges[o.edges.choose(u1, share)];
+  const Vec3d v0(mesh.position(e.v0)), v1(mesh.position(e.v1));
+  double x0, y0, x1, y1;
+  if (!proj.project(v0, x0, y0) || !proj.project(v1, x1, y1)) return false;
+  p.x = x0 + (x1 - x0) * u2, p.y = y0 + (y1 - y0) * u2;
+  p.speed = o.edges.total(); // (an edge chosen with probability share / total, then u2)
+  Vec3d ddx, ddy;
+  const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
+  const double len = length(dir);
+  const Vec3d d = dir / len;
+  const Vec3d ne = cross(v0 - o.from, v1 - o.from);
+  auto unit = [&](const Vec3d& dd) { return (dd - d * dot(d, dd)) / len; };
+  const double gx = dot(ne, unit(ddx)), gy = dot(ne, unit(ddy));
+  p.grad = std::hypot(gx, gy);
+  if (!(p.grad > 0) || !(share > 0)) return false;
+  p.nx = gx / p.grad, p.ny = gy / p.grad;
+  p.dPhi.clear();
+  // n_e . d = (v0 - o) . ((v1 - o) x d): d / d v0 = (v1 - o) x d, d / d v1 = d x (v0 - o)
+  edgeRates(mm, e, cross(v1 - o.from, d), cross(d, v0 - o.from), p);
+  return true;
+}
+
+// A moving mesh's shadow's edge under a point or spot light: a silhouette edge seen from the
+// light chosen by its length, a point uniformly along it; the light's ray through it goes on to
+// a surface at x; phi(y) = n_L . (x(y) - light), n_L = (v0 - light) x (v1 - light).
+bool meshShadowPoint(const IntegratorContext& ctx, const Outline& o, double u1, double u2,
+                     OutlinePoint& p, uint64_t& rays) {
+  const RenderScene& scene = *ctx.scene;
+  const TriangleMesh& mesh = scene.geometry->meshes()[o.shape];
+  const MeshMotion& mm = ctx.gradients->tangents->shapes.meshes[o.shape];
+  const Projection proj{scene.camera.calibration()};
+  const Vec3d cam = scene.camera.position();
+  double share = 0;
+  const MeshEdge& e = mm.edges[o.edges.choose(u1, share)];
+  const Vec3d v0(mesh.position(e.v0)), v1(mesh.position(e.v1));
+  const Vec3d m = v0 + (v1 - v0) * u2, lm = m - o.from;
+  // past the edge (a silhouette edge's triangles lie on one side of the light's ray)
+  Ray beyond;
+  beyond.o = Vec3(m);
+  beyond.d = Vec3(normalize(lm));
+  beyond.tMin = static_cast<float>(1e-3 * length(v1 - v0));
+  SurfaceHit hit;
+  ++rays;
+  if (!scene.geometry->intersect(beyond, hit)) return false;
+  const Vec3d x(hit.p), n(hit.ng);
+  if (!proj.project(x, p.x, p.y)) return false;
+  Ray view;
+  view.o = Vec3(cam);
+  view.d = Vec3(normalize(x - cam));
+  SurfaceHit seen;
+  ++rays;
+  if (!scene.geometry->intersect(view, seen) ||
+      std::abs(static_cast<double>(seen.t) - length(x - cam)) > 1e-4 * length(x - cam))
+    return false;
+  const double s = dot(n, x - o.from) / dot(n, lm);
+  const Vec3d dm = v1 - v0, dxS = dm * s + lm * (-s * dot(n, dm) / dot(n, lm));
+  double fx, fy;
+  proj.along(x, dxS, fx, fy);
+  p.speed = std::hypot(fx, fy) * o.edges.total() / share;
+  const Vec3d nL = cross(v0 - o.from, v1 - o.from);
+  Vec3d ddx, ddy;
+  const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
+  const double len = length(dir);
+  const Vec3d d = dir / len;
+  const double t = length(x - cam), nd = dot(n, d);
+  auto moved = [&](const Vec3d& along, const Vec3d& v) {
+    return along + d * (dot(n, v - along) / nd);
+  };
+  auto dxdy = [&](const Vec3d& dd) { return moved(((dd - d * dot(d, dd)) / len) * t, {}); };
+  const double gx = dot(nL, dxdy(ddx)), gy = dot(nL, dxdy(ddy));
+  p.grad = std::hypot(gx, gy);
+  if (!(p.grad > 0) || !(p.speed > 0)) return false;
+  p.nx = gx / p.grad, p.ny = gy / p.grad;
+  p.dPhi.clear();
+  // n_L . (x - l) = (v0 - l) . ((v1 - l) x (x - l)): d / d v0 = (v1 - l) x (x - l),
+  // d / d v1 = (x - l) x (v0 - l)
+  edgeRates(mm, e, cross(v1 - o.from, x - o.from), cross(x - o.from, v0 - o.from), p);
+  receiverRates(ctx, hit, nL, moved, p);
+  return true;
+}
+
+// The point of outline `o` at (u1, u2) in [0, 1)^2, or false where the camera does not see it.
+bool outlinePoint(const IntegratorContext& ctx, const Outline& o, double u1, double u2,
+                  OutlinePoint& p, uint64_t& rays) {
   switch (o.kind) {
   case Outline::Kind::Silhouette:
-    return silhouettePoint(ctx, o, alpha, p);
+    return silhouettePoint(ctx, o, u1, p);
   case Outline::Kind::Shadow:
-    return shadowPoint(ctx, o, alpha, p, rays);
+    return shadowPoint(ctx, o, u1, p, rays);
   case Outline::Kind::Horizon:
-    return horizonPoint(ctx, o, alpha, p);
+    return horizonPoint(ctx, o, u1, p);
+  case Outline::Kind::MeshSilhouette:
+    return meshSilhouettePoint(ctx, o, u1, u2, p);
+  case Outline::Kind::MeshShadow:
+    return meshShadowPoint(ctx, o, u1, u2, p, rays);
   }
   return false;
 }
 
-// The outline's length on the film in pixels (a polygon of 64 sides over the parts the camera
-// sees), what the sample count is set from.
+// The outline's length on the film in pixels where the camera sees it, estimated on a 16 x 16
+// lattice of the sampling's numbers (the mean of speed where seen), what the sample count is
+// set from.
 double filmLength(const IntegratorContext& ctx, const Outline& o) {
-  double total = 0, px = 0, py = 0;
-  bool previous = false;
+  double total = 0;
   uint64_t rays = 0;
-  for (int i = 0; i <= 64; ++i) {
-    OutlinePoint p;
-    const bool seen = outlinePoint(ctx, o, 2 * kPi * i / 64, p, rays);
-    if (seen && previous) total += std::hypot(p.x - px, p.y - py);
-    px = p.x, py = p.y, previous = seen;
-  }
-  return total;
+  OutlinePoint p;
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j)
+      if (outlinePoint(ctx, o, (i + 0.5) / 16, (j + 0.5) / 16, p, rays)) total += p.speed;
+  return total / 256;
 }
 
 // The samples [first, first + n) of `count` on outline `o`, appended to `out`.
@@ -261,7 +385,8 @@ void sampleOutline(const IntegratorContext& ctx, const PrimaryBoundaryRequest& r
   OutlinePoint p;
   for (int64_t b = first; b < first + n; ++b) {
     PixelSampleStream head(sequence, static_cast<uint32_t>(b));
-    if (!outlinePoint(ctx, o, 2 * kPi * head.next1D(), p, counters.rays)) continue;
+    const Sample2 u = head.next2D();
+    if (!outlinePoint(ctx, o, u.u, u.v, p, counters.rays)) continue;
     const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
     if (px < req.rect.x0 || px >= req.rect.x1 || py < req.rect.y0 || py >= req.rect.y1) continue;
     bool moves = false;
@@ -273,7 +398,7 @@ void sampleOutline(const IntegratorContext& ctx, const PrimaryBoundaryRequest& r
     SampledWavelengths lambda;
     for (int side = 0; side < 2; ++side) {
       PixelSampleStream rng(sequence, static_cast<uint32_t>(b));
-      rng.next1D(); // the angle
+      rng.next2D(); // the outline's point
       lambda = req.wavelengths(rng);
       const double sign = side == 0 ? -kFilmOffset : kFilmOffset;
       const Ray ray = scene.camera.generateRay(p.x + sign * p.nx, p.y + sign * p.ny);
@@ -281,8 +406,8 @@ void sampleOutline(const IntegratorContext& ctx, const PrimaryBoundaryRequest& r
     }
     const SampledSpectrum jump = L[0] + L[1] * -1.0f;
     if (jump.isBlack()) continue;
-    // v_n = -(d phi / d theta) / |grad phi|; alpha uniform: the film length 2 pi speed / count
-    const double weight = p.speed * 2 * kPi / static_cast<double>(count) / p.grad;
+    // v_n = -(d phi / d theta) / |grad phi|; the sample's share of the outline speed / count
+    const double weight = p.speed / static_cast<double>(count) / p.grad;
     for (const auto& [slot, dPhi] : p.dPhi)
       if (dPhi != 0)
         out.push_back(
@@ -322,18 +447,41 @@ std::vector<Outline> movingOutlines(const IntegratorContext& ctx, const PixelRec
     if (const auto* p = std::get_if<PointLight>(&l)) lights.push_back(Vec3d(p->position));
     if (const auto* p = std::get_if<SpotLight>(&l)) lights.push_back(Vec3d(p->position));
   }
-  bool anySphere = false;
+  bool anySphere = shapes.movesMeshes(); // (a moving mesh can receive a sphere's shadow)
   for (const auto& s : shapes.spheres) anySphere = anySphere || !s.empty();
   std::vector<Outline> out;
   for (uint32_t k = 0; k < shapes.spheres.size(); ++k) {
     const SphereShape& sphere = scene.geometry->spheres()[k];
-    Outline o{Outline::Kind::Silhouette, k, scene.camera.position(), {}};
+    Outline o = outlineOf(Outline::Kind::Silhouette, k, scene.camera.position());
     if ((camera || !shapes.spheres[k].empty()) && sphereSilhouette(sphere, o.from, o.sil))
       out.push_back(o);
     if (!camera && !anySphere) continue;
     for (const Vec3d& p : lights) {
-      Outline s{Outline::Kind::Shadow, k, p, {}};
+      Outline s = outlineOf(Outline::Kind::Shadow, k, p);
       if (sphereSilhouette(sphere, p, s.sil)) out.push_back(s);
+    }
+  }
+  const auto& meshes = scene.geometry->meshes();
+  for (uint32_t k = 0; k < shapes.meshes.size(); ++k) {
+    const MeshMotion& mm = shapes.meshes[k];
+    if (mm.firstSlot < 0) continue;
+    const Projection proj{scene.camera.calibration()};
+    Outline o = outlineOf(Outline::Kind::MeshSilhouette, k, scene.camera.position());
+    for (uint32_t e = 0; e < mm.edges.size(); ++e) {
+      double x0, y0, x1, y1;
+      const MeshEdge& edge = mm.edges[e];
+      if (outlineEdge(meshes[k], edge, o.from) &&
+          proj.project(Vec3d(meshes[k].position(edge.v0)), x0, y0) &&
+          proj.project(Vec3d(meshes[k].position(edge.v1)), x1, y1))
+        o.edges.add(e, std::hypot(x1 - x0, y1 - y0));
+    }
+    if (o.edges.total() > 0) out.push_back(std::move(o));
+    for (const Vec3d& p : lights) {
+      Outline s = outlineOf(Outline::Kind::MeshShadow, k, p);
+      for (uint32_t e = 0; e < mm.edges.size(); ++e)
+        if (const MeshEdge& edge = mm.edges[e]; silhouetteEdge(meshes[k], edge, p))
+          s.edges.add(e, length(Vec3d(meshes[k].position(edge.v1) - meshes[k].position(edge.v0))));
+      if (s.edges.total() > 0) out.push_back(std::move(s));
     }
   }
   if (camera)
@@ -343,7 +491,7 @@ std::vector<Outline> movingOutlines(const IntegratorContext& ctx, const PixelRec
       Vec3d ddx, ddy;
       const Vec3d at0 = proj.direction(0, 0, ddx, ddy); // the direction through film (0, 0)
       const Vec3d n = normalize(plane.normal);
-      Outline h{Outline::Kind::Horizon, k, scene.camera.position(), {}};
+      Outline h = outlineOf(Outline::Kind::Horizon, k, scene.camera.position());
       if (clipLine(dot(n, ddx), dot(n, ddy), dot(n, at0), rect, h)) out.push_back(h);
     }
   return out;

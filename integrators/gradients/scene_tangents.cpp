@@ -191,7 +191,10 @@ SceneTangents SceneTangents::sizedFor(const RenderScene& scene) {
   t.media.resize(scene.media.size());
   t.textureFirstSlot.assign(scene.materials.size(), -1);
   t.concentrationFirstSlot.assign(scene.materials.size(), -1);
-  if (scene.geometry) t.shapes.spheres.resize(scene.geometry->spheres().size());
+  if (scene.geometry) {
+    t.shapes.spheres.resize(scene.geometry->spheres().size());
+    t.shapes.meshes.resize(scene.geometry->meshes().size());
+  }
   return t;
 }
 

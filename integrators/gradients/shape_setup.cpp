@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <variant>
 
 #include "core/error.h"
@@ -33,6 +34,57 @@ int sphereOf(const RenderScene& scene, size_t object) {
   for (size_t k = 0; k < scene.spheres.size(); ++k)
     if (scene.spheres[k].objectId == object + 1) return static_cast<int>(k);
   return -1;
+}
+
+// The edges of a mesh with the triangles sharing each.
+std::vector<MeshEdge> meshEdges(const TriangleMesh& mesh) {
+  std::map<std::pair<uint32_t, uint32_t>, size_t> index;
+  std::vector<MeshEdge> edges;
+  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+    const uint32_t* v = mesh.triangle(t);
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t a = std::min(v[e], v[(e + 1) % 3]), b = std::max(v[e], v[(e + 1) % 3]);
+      const auto [it, fresh] = index.try_emplace({a, b}, edges.size());
+      if (fresh)
+        edges.push_back({a, b, static_cast<int64_t>(t), -1});
+      else
+        edges[it->second].face1 = static_cast<int64_t>(t);
+    }
+  }
+  return edges;
+}
+
+// A mesh's vertices given as rows: one slot per coordinate, (vertices, 3).
+GradientParameter meshParameter(SceneTangents& tangents, const SceneDesc& desc, size_t object,
+                                const std::string& name, const RenderScene& base) {
+  if (const std::string why = uncoveredFeature(base); !why.empty())
+    throw Error(name + ": derivatives with respect to shape do not cover a scene with " + why +
+                " yet (docs/inverse.md, \"Shape and camera\")");
+  int mesh = -1;
+  for (size_t k = 0; k < base.meshes.size(); ++k)
+    if (base.meshes[k].perTriangle.empty() && base.meshes[k].whole.objectId == object + 1)
+      mesh = static_cast<int>(k);
+  if (mesh < 0) throw Error("internal error: " + name + ": its mesh was not built");
+  if (desc.objects[object].geometry.has("file"))
+    throw Error(name + ": the mesh is read from a file: give its vertices as rows (<vertices> "
+                       "and <faces>) to differentiate them");
+  if (base.meshes[static_cast<size_t>(mesh)].whole.emission >= 0)
+    throw Error(name + ": moving an emitter is not differentiated yet (its light samples would "
+                       "move with it)");
+  const ParameterNumbers n = parameterNumbers(desc, name);
+  MeshMotion& motion = tangents.shapes.meshes.at(static_cast<size_t>(mesh));
+  motion.firstSlot = tangents.slots();
+  const AffineDesc* t = desc.objects[object].geometry.get<AffineDesc>("transform");
+  const AffineDesc identity;
+  const auto& m = (t ? *t : identity).m;
+  for (int k = 0; k < 3; ++k) motion.linear[k] = {m[0][k], m[1][k], m[2][k]};
+  motion.edges = meshEdges(base.geometry->meshes()[static_cast<size_t>(mesh)]);
+  GradientParameter p{name, tangents.slots(), static_cast<uint32_t>(n.values.size()), true,
+                      n.shape};
+  for (size_t j = 0; j < n.values.size(); ++j)
+    tangents.slotNames.push_back(name + "[" + std::to_string(j / 3) + "][" + std::to_string(j % 3) +
+                                 "]");
+  return p;
 }
 
 // The camera's parameter `name`: one slot per number, the camera resolved with it moved by a
@@ -83,6 +135,8 @@ std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const S
   if (object >= desc.objects.size()) return std::nullopt;
   const ObjectDesc& o = desc.objects[object];
   const std::string& leaf = steps[1].attribute;
+  if (o.shape == "mesh" && leaf == "vertices")
+    return meshParameter(tangents, desc, object, name, base);
   if (o.shape != "sphere" || (leaf != "center" && leaf != "radius")) return std::nullopt;
   if (const std::string why = uncoveredFeature(base); !why.empty())
     throw Error(name + ": derivatives with respect to shape do not cover a scene with " + why +

@@ -20,6 +20,25 @@ struct SphereMotion {
   double dRadius = 0;
 };
 
+/// An edge of a mesh: its two vertices and the one or two triangles that share it (face1 -1
+/// for a border edge).
+struct MeshEdge {
+  uint32_t v0 = 0, v1 = 0;
+  int64_t face0 = -1, face1 = -1;
+};
+
+/// How slots move a mesh's vertices: vertex v's coordinate k (as written, before the mesh's
+/// transform) is slot firstSlot + 3 v + k; its velocity in the scene is column k of `linear`.
+struct MeshMotion {
+  int64_t firstSlot = -1;      ///< -1: no slot moves the mesh
+  Vec3d linear[3];             ///< the transform's columns
+  std::vector<MeshEdge> edges; ///< every edge, for the outlines
+  /// The slot moving vertex v's coordinate k.
+  uint32_t slot(uint32_t v, int k) const {
+    return static_cast<uint32_t>(firstSlot + 3 * static_cast<int64_t>(v) + k);
+  }
+};
+
 /// How one slot moves the camera: the camera with the slot's number moved by +-step (a central
 /// difference of the camera's own model, so its every parameter is covered by the code that
 /// makes its rays).
@@ -40,13 +59,22 @@ struct CameraMotion {
 /// Every slot's motion of the geometry, indexed like the geometry's shapes, and of the camera.
 struct ShapeTangents {
   std::vector<std::vector<SphereMotion>> spheres; ///< per GeometryScene::spheres()
+  std::vector<MeshMotion> meshes;                 ///< per GeometryScene::meshes()
   std::vector<CameraMotion> camera;
 
   /// True when no slot moves any shape or the camera.
   bool empty() const {
     for (const auto& s : spheres)
       if (!s.empty()) return false;
+    for (const MeshMotion& m : meshes)
+      if (m.firstSlot >= 0) return false;
     return camera.empty();
+  }
+  /// True when some slot moves a mesh.
+  bool movesMeshes() const {
+    for (const MeshMotion& m : meshes)
+      if (m.firstSlot >= 0) return true;
+    return false;
   }
 };
 

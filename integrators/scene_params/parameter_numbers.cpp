@@ -7,7 +7,9 @@
 
 #include "accel/shape_kinds.h"
 #include "core/error.h"
+#include "core/params/array_values.h"
 #include "core/params/concentration_map.h"
+#include "core/triangle_mesh.h"
 #include "integrators/scene_params/parameter_path.h"
 #include "integrators/scene_params/scene_fields.h"
 #include "integrators/scene_params/scene_parameter_list.h"
@@ -18,9 +20,9 @@ namespace {
 
 // A parameter's value as far as its numbers go: a number, a colour, a point (a shape's or the
 // camera's), a spectrum, a measured matrix or a concentration map.
-using NumberedValue =
-    std::variant<double, std::array<double, 4>, Vec3d, SpectrumDesc,
-                 std::shared_ptr<const MeasuredMatrix>, std::shared_ptr<const ConcentrationMap>>;
+using NumberedValue = std::variant<double, std::array<double, 4>, Vec3d, SpectrumDesc,
+                                   std::shared_ptr<const MeasuredMatrix>,
+                                   std::shared_ptr<const ConcentrationMap>, ArrayDesc>;
 
 // The ParameterSet holding kind parameter `name` (an object's shape or material, its medium's,
 // a light's, a named material's) and its key there; throws for a field parameter's name, which
@@ -75,6 +77,7 @@ std::optional<NumberedValue> valueOf(const SceneDesc& d, const std::string& name
   if (const auto* c = std::get_if<std::array<double, 4>>(&p->value)) return *c;
   if (const auto* x = std::get_if<Vec3d>(&p->value)) return *x;
   if (const auto* s = std::get_if<SpectrumDesc>(&p->value)) return *s;
+  if (const auto* a = std::get_if<ArrayDesc>(&p->value); a && a->reals) return *a;
   return std::nullopt; // no numbers (a name, a file, an index of refraction)
 }
 
@@ -93,6 +96,7 @@ void setValue(SceneDesc& d, const std::string& name, const NumberedValue& v) {
   if (const auto* c = std::get_if<std::array<double, 4>>(&v)) set->set({key, *c, loc});
   if (const auto* x = std::get_if<Vec3d>(&v)) set->set({key, *x, loc});
   if (const auto* s = std::get_if<SpectrumDesc>(&v)) set->set({key, *s, loc});
+  if (const auto* a = std::get_if<ArrayDesc>(&v)) set->set({key, *a, loc});
 }
 
 ParameterNumbers spectrumNumbers(const SpectrumDesc& s, const std::string& name) {
@@ -131,6 +135,10 @@ ParameterNumbers numbersOf(const NumberedValue& v, const std::string& name) {
     n.values = {p->x, p->y, p->z};
   } else if (const auto* s = std::get_if<SpectrumDesc>(&v)) {
     return spectrumNumbers(*s, name);
+  } else if (const auto* a = std::get_if<ArrayDesc>(&v)) {
+    n.form = ParameterNumbers::Form::Rows;
+    n.values.assign(a->reals->begin(), a->reals->end());
+    n.shape = {static_cast<long>(a->rows()), static_cast<long>(a->columns)};
   } else if (const auto* m = std::get_if<std::shared_ptr<const MeasuredMatrix>>(&v)) {
     n.form = ParameterNumbers::Form::Matrix;
     n.values = (*m)->cells;
@@ -166,6 +174,15 @@ std::optional<NumberedValue> withNumbers(const NumberedValue& current,
     for (size_t i = 0; i < 3; ++i)
       if (!std::isfinite(v[i]) || std::abs(v[i]) > 1e12) return std::nullopt;
     return Vec3d{v[0], v[1], v[2]};
+  }
+  if (const auto* a = std::get_if<ArrayDesc>(&current)) {
+    for (double x : v) // float, and within the scene's coordinates
+      if (!std::isfinite(x) || std::abs(x) > kMaxMeshCoordinate) return std::nullopt;
+    try {
+      return realRows(std::vector<float>(v.begin(), v.end()), a->columns);
+    } catch (const Error&) {
+      return std::nullopt;
+    }
   }
   if (const auto* s = std::get_if<SpectrumDesc>(&current)) {
     SpectrumDesc out = *s;

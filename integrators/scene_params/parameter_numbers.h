@@ -15,16 +15,17 @@ namespace nx {
 /// A parameter's numbers and their form.
 struct ParameterNumbers {
   enum class Form {
-    Number,       ///< one number
-    List,         ///< a colour's channels
-    Table,        ///< a tabulated spectrum's values (at its wavelengths)
-    Matrix,       ///< a measured matrix's cells, excitation by emission
-    Texture,      ///< a texture's texels, (height, width, bands)
-    Concentration ///< a concentration map, (height, width)
+    Number,        ///< one number
+    List,          ///< a colour's channels
+    Table,         ///< a tabulated spectrum's values (at its wavelengths)
+    Matrix,        ///< a measured matrix's cells, excitation by emission
+    Texture,       ///< a texture's texels, (height, width, bands)
+    Concentration, ///< a concentration map, (height, width)
+    Rows           ///< rows of reals (a mesh's vertices), (rows, columns)
   };
   Form form = Form::Number;
   std::vector<double> values;
-  std::vector<long> shape; ///< Matrix, Texture, Concentration: the values' shape
+  std::vector<long> shape; ///< Matrix, Texture, Concentration, Rows: the values' shape
   /// One slot per number (a list, a table, a grid), rather than a single number.
   bool indexed() const { return form != Form::Number; }
   /// A grid of values (a texture, a concentration map): located per value, not per number.

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 
@@ -402,6 +403,101 @@ TEST(ShapeGradients, CameraRefusalsSayWhy) {
             std::string::npos)
       << errorOf(calibrated, "camera.fov");
   EXPECT_EQ(errorOf(base, "camera.up").find("camera.up: not differentiated"), 0u);
+}
+
+// An octahedron of rows (object 1) above the floor, flat-shaded: its vertices, moved one by one
+// and all together.
+const double kOctahedron[6][3] = {{0.55, 0.6, 0}, {-0.45, 0.6, 0},  {0.05, 1.1, 0},
+                                  {0.05, 0.1, 0}, {0.05, 0.6, 0.5}, {0.05, 0.6, -0.5}};
+
+std::string octahedronScene(const double (&d)[6][3], const std::string& material,
+                            const std::string& lights, int samples) {
+  std::string vertices;
+  for (int i = 0; i < 6; ++i)
+    vertices += (i ? ", " : "") + num(kOctahedron[i][0] + d[i][0]) + " " +
+                num(kOctahedron[i][1] + d[i][1]) + " " + num(kOctahedron[i][2] + d[i][2]);
+  return "<scene><settings><xres>" + std::to_string(kSize) + "</xres><yres>" +
+         std::to_string(kSize) + "</yres><mode>spectral_mcpt</mode><depth>4</depth><sampl>" +
+         std::to_string(samples) +
+         "</sampl><bands>400:700:100</bands></settings><camera><position>0,0.9,-2.6</position>"
+         "<look_at>0,0.5,0</look_at><fov>40</fov></camera><plane><normal>0,1,0</normal>"
+         "<distance>0</distance>" +
+         kFloor + "</plane><mesh><vertices>" + vertices +
+         "</vertices><faces>0 2 4, 2 1 4, 1 3 4, 3 0 4, 2 0 5, 1 2 5, 3 1 5, 0 3 5</faces>" +
+         material + "</mesh>" + lights + "</scene>";
+}
+
+// The gradient of the vertices' coordinates in `which` (vertex, coordinate, weight: their
+// weighted sum, e.g. every vertex's x for a translation) against central differences.
+Comparison compareVertices(const std::string& material, const std::string& lights,
+                           const std::vector<std::array<int, 2>>& which, int samples,
+                           double step = 0.01) {
+  const double none[6][3] = {};
+  const SceneDesc desc = parseScene(octahedronScene(none, material, lights, samples), "t.scn");
+  const RenderScene base = buildRenderScene(desc);
+  const GradientSetup setup = gradientSetup(desc, {"objects[1].vertices"}, base, true);
+  RenderOptions o;
+  o.gradients = &setup.tangents;
+  const RenderOutput g = render(base, o);
+  auto moved = [&](double h) {
+    double d[6][3] = {};
+    for (const auto& [v, k] : which) d[v][k] = h;
+    return render(built(octahedronScene(d, material, lights, samples)), {});
+  };
+  const RenderOutput plus = moved(step), minus = moved(-step);
+  Comparison out;
+  for (int b = 0; b < g.film.bands().count(); ++b) {
+    test::RunningStats d;
+    double gs = 0, fs = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        double gr = 0;
+        for (const auto& [v, k] : which) gr += g.film.layerMean(x, y, 3 * v + k, b);
+        const double fd = (plus.film.bandMean(x, y, b) - minus.film.bandMean(x, y, b)) / (2 * step);
+        gs += gr, fs += fd;
+        d.add(gr - fd);
+      }
+    out.gradient.push_back(gs);
+    out.difference.push_back(fs);
+    out.standardError.push_back(d.standardError() * d.n);
+  }
+  return out;
+}
+
+TEST(ShapeGradients, MeshVerticesMatchDifferences) {
+  // A black octahedron under a point light: only its outline and its shadow's edge on the
+  // fluorescent floor move (boundary terms of its edges on the film); the whole mesh moving
+  // (every vertex's coordinate together) and one vertex at its silhouette alone.
+  const std::string black = "<material>matte</material><reflectance>0</reflectance>";
+  const std::string light = "<light><position>0.8,3,-2.5</position><color>1,1,1</color>"
+                            "<emission scale=\"0.05\">D65</emission></light>";
+  std::vector<std::array<int, 2>> all;
+  for (int v = 0; v < 6; ++v) all.push_back({v, 2});
+  expectAgrees(compareVertices(black, light, all, 256), 0.03, "the mesh moving back");
+  all.clear();
+  for (int v = 0; v < 6; ++v) all.push_back({v, 1});
+  expectAgrees(compareVertices(black, light, all, 256), 0.03, "the mesh moving up");
+  expectAgrees(compareVertices(black, light, {{0, 0}}, 256), 0.03, "a silhouette vertex");
+  // Lit and fluorescent, under a small sphere lamp: its faces turn (the interior term), its
+  // edges between faces jump in shading (flat: every edge seen is an outline), and the floor
+  // sees more or less of it (the edges seen from each floor point).
+  const std::string lamp = "<sphere><center>0.3,3,-2.5</center><radius>0.1</radius><material>"
+                           "matte</material><reflectance>0</reflectance><emission scale=\"0.6\">"
+                           "D65</emission></sphere>";
+  expectAgrees(compareVertices(kFluorescent, lamp, {{2, 1}}, 768), 0.05, "the top vertex");
+  expectAgrees(compareVertices(kFluorescent, lamp, {{5, 1}}, 768), 0.07, "the front vertex");
+  expectAgrees(compareVertices(kFluorescent, lamp, {{0, 0}}, 768), 0.07, "a silhouette vertex");
+}
+
+TEST(ShapeGradients, MeshVerticesRefusalsSayWhy) {
+  const double none[6][3] = {};
+  const std::string rows = octahedronScene(none, kMatte, kPointLight, 4);
+  const SceneDesc d = parseScene(rows, "t.scn");
+  const GradientSetup s = gradientSetup(d, {"objects[1].vertices"}, buildRenderScene(d), true);
+  ASSERT_EQ(s.parameters.size(), 1u);
+  EXPECT_EQ(s.parameters[0].slots, 18u);
+  EXPECT_EQ(s.parameters[0].shape, (std::vector<long>{6, 3}));
+  EXPECT_EQ(s.tangents.slotNames[4], "objects[1].vertices[1][1]");
 }
 
 } // namespace
