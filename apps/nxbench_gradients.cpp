@@ -1,13 +1,15 @@
 // nxbench-gradients: what a differentiated render costs against a plain one.
 //
 //   nxbench-gradients [--spp N] [--width W] [--threads N] [--knots K] [--matrix N]
+//                     [--mesh-vertices V]
 //
 // A fluorescent sphere on a tabulated floor under a blue-heavy lamp (docs/inverse.md). Prints
 // render seconds (fastest of repeats) for a plain render, forward mode with 1 and 4 parameters
 // (the dye's Stokes shift, quantum yield, the lamp's scale, the sphere's reflectance), reverse
 // mode with those 4, the shape and camera rows (the sphere's centre forward, its centre and
 // radius in reverse, the camera's position forward), reverse mode with the floor table's K
-// knots added, and the finite-difference route
+// knots added, and the finite-difference route; the measured matrix's rows; a mesh of V vertices
+// in reverse mode
 // (two renders per parameter); then the process's peak memory after reverse renders of
 // increasing samples per pixel (it must not grow with them).
 
@@ -113,9 +115,61 @@ void matrixRows(SceneDesc desc, int n, int spp, const std::vector<float>& adjoin
               (setup + t) / t0);
 }
 
+// The reverse-mode row of a mesh's vertices: a sphere of `vertices` vertices as rows (a latitude
+// by longitude grid) on the floor under the lamp, every coordinate differentiated.
+void meshRow(int vertices, int width, int spp) {
+  const int rings = std::max(3, static_cast<int>(std::sqrt(vertices / 2.0)));
+  const int segments = std::max(3, vertices / rings);
+  std::string v, f;
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const double theta = kPi * (i + 0.5) / rings, phi = 2 * kPi * j / segments;
+      char b[96];
+      std::snprintf(b, sizeof b, "%s%.6f %.6f %.6f", v.empty() ? "" : ", ",
+                    0.6 * std::sin(theta) * std::cos(phi), 0.7 + 0.6 * std::cos(theta),
+                    0.6 * std::sin(theta) * std::sin(phi));
+      v += b;
+    }
+  for (int i = 0; i + 1 < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const int a = i * segments + j, b = i * segments + (j + 1) % segments;
+      const int c = a + segments, d = b + segments;
+      f += (f.empty() ? "" : ", ") + std::to_string(a) + " " + std::to_string(c) + " " +
+           std::to_string(b) + ", " + std::to_string(b) + " " + std::to_string(c) + " " +
+           std::to_string(d);
+    }
+  const std::string text =
+      "<scene><settings><xres>" + std::to_string(width) + "</xres><yres>" +
+      std::to_string(width * 3 / 4) + "</yres><mode>spectral_mcpt</mode><depth>5</depth><sampl>" +
+      std::to_string(spp) +
+      "</sampl><bands>400:700:10</bands></settings><camera><position>0,0.9,-2.6</position>"
+      "<look_at>0,0.5,0</look_at><fov>40</fov></camera><plane><normal>0,1,0</normal><distance>0"
+      "</distance><material>matte</material><reflectance>0.5</reflectance></plane><mesh>"
+      "<vertices>" +
+      v + "</vertices><faces>" + f +
+      "</faces><material>matte</material><reflectance>0.4</reflectance></mesh><sphere><center>"
+      "-1.5,2.5,-1</center><radius>0.5</radius><material>matte</material><reflectance>0"
+      "</reflectance><emission scale=\"5e-3\">D65</emission></sphere></scene>";
+  const SceneDesc desc = parseScene(text, "mesh.scn");
+  const RenderScene scene = buildRenderScene(desc);
+  const SceneTangents t = gradientSetup(desc, {"objects[1].vertices"}, scene, true).tangents;
+  const std::vector<float> adjoint(static_cast<size_t>(scene.settings.width) *
+                                       scene.settings.height * scene.settings.bands.count(),
+                                   1.0f);
+  RenderOptions plain;
+  const double t0 = bench::fastestSeconds(3, [&] { render(scene, plain); });
+  RenderOptions o;
+  o.gradients = &t;
+  o.adjoint = &adjoint;
+  const double tr = bench::fastestSeconds(3, [&] { render(scene, o); });
+  std::printf("\nmesh of %d vertices (%u slots):\n", rings * segments, t.slots());
+  std::printf("%-34s %9.3f %8.2f\n", "plain", t0, 1.0);
+  std::printf("%-34s %9.3f %8.2f\n", "reverse, every vertex", tr, tr / t0);
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"nxbench-gradients: the cost of forward- and reverse-mode gradients"};
-  int spp = 32, width = 96, threads = 2, knots = 31, matrixSize = 21;
+  int spp = 32, width = 96, threads = 2, knots = 31, matrixSize = 21, meshVertices = 10000;
   app.add_option("--spp", spp, "Samples per pixel (default 32)")->check(numberIn(1, 1 << 20));
   app.add_option("--width", width, "Image width (default 96)")->check(numberIn(8, 4096));
   app.add_option("--threads", threads, "Worker threads (default 2)")->check(numberIn(1, 4096));
@@ -123,6 +177,9 @@ int run(int argc, char** argv) {
       ->check(numberIn(2, 100000));
   app.add_option("--matrix", matrixSize, "Rows and columns of the measured matrix (default 21)")
       ->check(numberIn(2, 1000));
+  app.add_option("--mesh-vertices", meshVertices,
+                 "Vertices of the mesh row's sphere (default 10000)")
+      ->check(numberIn(12, 1000000));
   if (const int status = parseCommandLine(app, argc, argv, "nxbench-gradients"); status >= 0)
     return status;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
@@ -187,6 +244,8 @@ int run(int argc, char** argv) {
     reverse(many, s);
     std::printf("  %6d spp: %8.1f MB\n", s, static_cast<double>(peakKilobytes()) / 1024.0);
   }
+  meshRow(meshVertices, width, spp);
+  std::printf("  peak memory after it: %.1f MB\n", static_cast<double>(peakKilobytes()) / 1024.0);
   return 0;
 }
 
