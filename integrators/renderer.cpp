@@ -578,8 +578,6 @@ void PassRunner::boundaryTerms() {
                                     : wavelengths_.sample(rng.next1D());
   };
   uint64_t rays = 0;
-  const std::vector<BoundaryContribution> terms = primaryBoundary(ctx_, req, rays);
-  rays_ += rays;
   Film& film = out_.film;
   const int bands = t_.bands.count();
   if (t_.reverse) {
@@ -587,15 +585,19 @@ void PassRunner::boundaryTerms() {
     // tile's do.
     std::vector<double> sums[2] = {std::vector<double>(slots_, 0.0),
                                    std::vector<double>(slots_, 0.0)};
-    for (const BoundaryContribution& c : terms) {
-      const size_t p = static_cast<size_t>(c.y - t_.rect.y0) * t_.rect.width() +
-                       static_cast<size_t>(c.x - t_.rect.x0);
-      const SampledSpectrum a =
-          film.adjointWeights(c.lambda, options_.adjoint->data() + p * static_cast<size_t>(bands));
-      double v = 0;
-      for (int i = 0; i < kLanes; ++i) v += static_cast<double>(c.value[i] * a[i]);
-      sums[c.odd][c.slot] += v;
-    }
+    primaryBoundary(
+        ctx_, req,
+        [&](const BoundaryContribution& c) {
+          const size_t p = static_cast<size_t>(c.y - t_.rect.y0) * t_.rect.width() +
+                           static_cast<size_t>(c.x - t_.rect.x0);
+          const SampledSpectrum a = film.adjointWeights(
+              c.lambda, options_.adjoint->data() + p * static_cast<size_t>(bands));
+          double v = 0;
+          for (int i = 0; i < kLanes; ++i) v += static_cast<double>(c.value[i] * a[i]);
+          sums[c.odd][c.slot] += v;
+        },
+        rays);
+    rays_ += rays;
     for (uint32_t k = 0; k < slots_; ++k) {
       gradientSum_[k] += sums[0][k] + sums[1][k];
       gradientVarianceSum_[k] += (sums[0][k] - sums[1][k]) * (sums[0][k] - sums[1][k]);
@@ -606,14 +608,18 @@ void PassRunner::boundaryTerms() {
   // (the film divides the sums by it).
   Film::Pixel pixel = film.newPixel();
   std::vector<SampledSpectrum> layers(slots_); // a differentiated film's layers: the slots
-  for (const BoundaryContribution& c : terms) {
-    Film::resetPixel(pixel);
-    std::fill(layers.begin(), layers.end(), SampledSpectrum());
-    const float n = static_cast<float>(film.samples(c.x, c.y));
-    layers[c.slot] = c.value * n;
-    film.addLayerSamples(pixel, c.lambda, layers.data(), c.odd);
-    film.add(c.x, c.y, pixel);
-  }
+  primaryBoundary(
+      ctx_, req,
+      [&](const BoundaryContribution& c) {
+        Film::resetPixel(pixel);
+        std::fill(layers.begin(), layers.end(), SampledSpectrum());
+        const float n = static_cast<float>(film.samples(c.x, c.y));
+        layers[c.slot] = c.value * n;
+        film.addLayerSamples(pixel, c.lambda, layers.data(), c.odd);
+        film.add(c.x, c.y, pixel);
+      },
+      rays);
+  rays_ += rays;
 }
 
 void PassRunner::adaptiveRounds() {

@@ -19,6 +19,7 @@ constexpr uint32_t kBoundarySalt = 0x3c6ef372U;
 constexpr int kChunk = 256;          // samples per task (an even number: both replicates)
 constexpr double kFilmOffset = 5e-3; // pixels either side of an outline the two paths start
 constexpr int64_t kMaxSamplesPerOutline = 1 << 24;
+constexpr int64_t kBatch = 64; // chunks sampled at once
 
 Vec3d col(const Matrix3& m, int j) {
   return {m[0][j], m[1][j], m[2][j]};
@@ -499,9 +500,9 @@ std::vector<Outline> movingOutlines(const IntegratorContext& ctx, const PixelRec
 
 } // namespace
 
-std::vector<BoundaryContribution>
-primaryBoundary(const IntegratorContext& ctx, const PrimaryBoundaryRequest& req, uint64_t& rays) {
-  std::vector<BoundaryContribution> all;
+void primaryBoundary(const IntegratorContext& ctx, const PrimaryBoundaryRequest& req,
+                     const std::function<void(const BoundaryContribution&)>& consume,
+                     uint64_t& rays) {
   const std::vector<Outline> outlines = movingOutlines(ctx, req.rect);
   for (uint32_t k = 0; k < outlines.size(); ++k) {
     const Outline& o = outlines[k];
@@ -513,18 +514,22 @@ primaryBoundary(const IntegratorContext& ctx, const PrimaryBoundaryRequest& req,
     const int64_t rounded = (count + kChunk - 1) / kChunk * kChunk;
     const PixelSequence sequence(req.sampler, k, req.seed ^ kBoundarySalt);
     const int64_t chunks = rounded / kChunk;
-    std::vector<std::vector<BoundaryContribution>> parts(static_cast<size_t>(chunks));
-    std::vector<uint64_t> partRays(static_cast<size_t>(chunks), 0);
-    tbb::parallel_for(int64_t{0}, chunks, [&](int64_t c) {
-      sampleOutline(ctx, req, sequence, o, c * kChunk, kChunk, rounded,
-                    parts[static_cast<size_t>(c)], partRays[static_cast<size_t>(c)]);
-    });
-    for (size_t c = 0; c < parts.size(); ++c) {
-      all.insert(all.end(), parts[c].begin(), parts[c].end());
-      rays += partRays[c];
+    // Batches of chunks in parallel, each batch handed over in order (the memory held is a
+    // batch's, whatever the outline's length)
+    for (int64_t first = 0; first < chunks; first += kBatch) {
+      const int64_t n = std::min(kBatch, chunks - first);
+      std::vector<std::vector<BoundaryContribution>> parts(static_cast<size_t>(n));
+      std::vector<uint64_t> partRays(static_cast<size_t>(n), 0);
+      tbb::parallel_for(int64_t{0}, n, [&](int64_t c) {
+        sampleOutline(ctx, req, sequence, o, (first + c) * kChunk, kChunk, rounded,
+                      parts[static_cast<size_t>(c)], partRays[static_cast<size_t>(c)]);
+      });
+      for (size_t c = 0; c < parts.size(); ++c) {
+        for (const BoundaryContribution& b : parts[c]) consume(b);
+        rays += partRays[c];
+      }
     }
   }
-  return all;
 }
 
 } // namespace nx

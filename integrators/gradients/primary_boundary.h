@@ -41,11 +41,13 @@ struct PrimaryBoundaryRequest {
   std::function<SampledWavelengths(PixelSampleStream&)> wavelengths;
 };
 
-/// The boundary term's samples for every sphere a slot moves, in a fixed order (independent of
-/// the thread count): its silhouette seen from the pinhole, sampled uniformly in angle, about
-/// samplesPerPixel samples per pixel of its length. Each sample traces two paths.
-std::vector<BoundaryContribution> primaryBoundary(const IntegratorContext& ctx,
-                                                  const PrimaryBoundaryRequest& request,
-                                                  uint64_t& rays);
+/// The boundary term's samples for every moving outline, handed to `consume` one by one in a
+/// fixed order (independent of the thread count): the moving spheres' silhouettes and meshes'
+/// outline edges seen from the pinhole, their shadows' edges under point and spot lights, and
+/// when the camera moves every sphere's silhouette and every plane's horizon; about
+/// samplesPerPixel samples per pixel of each outline's length. Each sample traces two paths.
+void primaryBoundary(const IntegratorContext& ctx, const PrimaryBoundaryRequest& request,
+                     const std::function<void(const BoundaryContribution&)>& consume,
+                     uint64_t& rays);
 
 } // namespace nx

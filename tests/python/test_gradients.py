@@ -373,3 +373,41 @@ def test_sphere_centre_and_radius():
     assert grads[names[0]].shape == (3,)
     expected = np.tensordot(centre.astype(np.float64), adjoint, axes=([1, 2, 3], [0, 1, 2]))
     assert np.allclose(grads[names[0]], expected, rtol=1e-3, atol=1e-9), (grads[names[0]], expected)
+
+
+def test_mesh_vertices_reverse_mode():
+    # A mesh given as rows: its vertices' numbers are (N, 3); backward gives one derivative per
+    # coordinate, the adjoint-weighted sum of the forward images, and a coordinate's agrees
+    # with differences of renders.
+    rows = SHAPE.replace(
+        "<sphere><center>0.1,0.7,0</center><radius>0.5</radius>",
+        "<mesh><vertices>0.55 0.6 0, -0.45 0.6 0, 0.05 1.1 0, 0.05 0.1 0, 0.05 0.6 0.5, "
+        "0.05 0.6 -0.5</vertices><faces>0 2 4, 2 1 4, 1 3 4, 3 0 4, 2 0 5, 1 2 5, 3 1 5, "
+        "0 3 5</faces>").replace("</fluorescence></sphere>", "</fluorescence></mesh>")
+    scene = nxrender.Scene.from_text(rows, "t.scn")
+    name = "objects[1].vertices"
+    assert scene.numbers(name).shape == (6, 3)
+    image = nxrender.render(scene, spp=64, seed=5, threads=2, gradients=[name])
+    assert image.gradients[name].shape == (6, 3) + image.radiance.shape
+    adjoint = np.random.default_rng(3).normal(size=image.radiance.shape).astype(np.float32)
+    grads, _ = nxrender.backward(scene, adjoint, [name], spp=64, seed=5, threads=2)
+    assert grads[name].shape == (6, 3)
+    expected = np.tensordot(image.gradients[name].astype(np.float64), adjoint, axes=3)
+    assert np.allclose(grads[name], expected, rtol=1e-3, atol=1e-9)
+    # the top vertex's height against differences
+    step, v = 0.01, scene.numbers(name)
+    images = []
+    for sign in (1, -1):
+        s = scene.copy()
+        moved = v.copy()
+        moved[2, 1] += sign * step
+        s.set_numbers(name, moved)
+        images.append(nxrender.render(s, spp=256, seed=5, threads=2).radiance.astype(np.float64))
+    fd = (images[0] - images[1]) / (2 * step)
+    g = nxrender.render(scene, spp=256, seed=5, threads=2, gradients=[name]).gradients[name][2, 1]
+    d = (g.astype(np.float64) - fd).reshape(-1, fd.shape[-1])
+    se = d.std(axis=0, ddof=1) * np.sqrt(d.shape[0])
+    assert np.all(np.abs(d.sum(axis=0)) <= 5 * se), (d.sum(axis=0), se)
+    total = fd.reshape(-1, fd.shape[-1]).sum(axis=0)
+    k = int(np.argmax(np.abs(total)))
+    assert se[k] < 0.06 * abs(total[k]), (se[k], total[k])
