@@ -271,34 +271,38 @@ private:
   // A rough conductor's roughness: d ln f / d alpha at direction wi, for each slot moving it.
   template <class Emit>
   void roughnessEvents(const SurfaceVertex& v, const Vec3& wi, Emit&& emit);
-  // Shape derivatives (geometry_gradients.h): the motion of the vertex at `hit` from its ray's.
-  void moveVertex(const Ray& ray, const SurfaceHit& hit);
+  // Shape derivatives (geometry_gradients.h), kept out of line ([[gnu::flatten]] would inline
+  // them and the paths they trace into every walk, for nothing: they run in differentiated
+  // renders only): the motion of the vertex at `hit` from its ray's.
+  [[gnu::noinline]] void moveVertex(const Ray& ray, const SurfaceHit& hit);
   // The vertex's BSDF value (its diffuse lobe alone at a fluorescent vertex) as a function of
   // its normals and directions, at wavelengths `at`.
   auto bsdfValue(const SurfaceVertex& v, const SampledWavelengths& at, bool diffuseLobe) const;
   // The shape slots' events of next-event estimation's light sample ls (its point held).
   template <class Emit>
-  void shapeLightEvents(const SurfaceVertex& v, const LightSample& ls, const SampledWavelengths& at,
-                        Emit&& emit);
+  [[gnu::noinline]] void shapeLightEvents(const SurfaceVertex& v, const LightSample& ls,
+                                          const SampledWavelengths& at, Emit&& emit);
   // The shape slots' events of the continuation bs, and the next ray's motion.
-  void shapeContinuation(const SurfaceVertex& v, const BsdfSample& bs,
-                         const SampledWavelengths& at);
+  [[gnu::noinline]] void shapeContinuation(const SurfaceVertex& v, const BsdfSample& bs,
+                                           const SampledWavelengths& at);
   // Shape derivatives: an emitter found by a continuation, differentiated with its point held
   // (as next-event estimation holds it; ContinuationLobe): the local events turning the held
   // direction's derivative into the held point's.
-  void emitterPointHeld(const Ray& ray, const SurfaceHit& hit);
+  [[gnu::noinline]] void emitterPointHeld(const Ray& ray, const SurfaceHit& hit);
   // Shape derivatives: the boundary term of the vertex's scattering integral over directions,
   // on the silhouettes of the spheres that move relative to it and of the moving meshes.
-  void directionBoundary(const SampledWavelengths& current, const SurfaceVertex& v);
+  [[gnu::noinline]] void directionBoundary(const SampledWavelengths& current,
+                                           const SurfaceVertex& v);
   // The moving meshes' part of directionBoundary: a silhouette edge seen from the vertex.
-  void meshDirectionBoundary(const SampledWavelengths& lit, const SurfaceVertex& v);
+  [[gnu::noinline]] void meshDirectionBoundary(const SampledWavelengths& lit,
+                                               const SurfaceVertex& v);
   // The radiance arriving at the vertex from targets[0] and targets[1] (either side of an
   // outline), traced with the same random numbers of the boundary stream (advanced past them).
-  void radianceEitherSide(const SurfaceVertex& v, const Vec3d (&targets)[2],
-                          const SampledWavelengths& lit, SampledSpectrum (&L)[2]);
+  [[gnu::noinline]] void radianceEitherSide(const SurfaceVertex& v, const Vec3d (&targets)[2],
+                                            const SampledWavelengths& lit, SampledSpectrum (&L)[2]);
   // The boundary terms of a jump `term` (the path's weight times the jump across an outline):
   // term * (-d phi / d slot) * scale per slot of the tape's rates.
-  void boundaryTerms(const SampledSpectrum& term, double scale);
+  [[gnu::noinline]] void boundaryTerms(const SampledSpectrum& term, double scale);
   // Next-event estimation with the excitation also drawn guided by the light (fluorescent
   // vertices of plain renders); false where it does not apply.
   [[gnu::always_inline]] inline bool
