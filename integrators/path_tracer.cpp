@@ -271,6 +271,11 @@ private:
   // A rough conductor's roughness: d ln f / d alpha at direction wi, for each slot moving it.
   template <class Emit>
   void roughnessEvents(const SurfaceVertex& v, const Vec3& wi, Emit&& emit);
+  // f |cos| of the vertex's non-specular lobes towards wi (a fluorescent diffuse lobe's with
+  // its re-radiation albedo).
+  static SampledSpectrum scattered(const SurfaceVertex& v, const Vec3& wi) {
+    return v.fluorescent ? v.shift.albedo * v.bsdf.diffuseLobe(wi) : v.bsdf.f(wi);
+  }
   // Shape derivatives (geometry_gradients.h), kept out of line ([[gnu::flatten]] would inline
   // them and the paths they trace into every walk, for nothing: they run in differentiated
   // renders only): the motion of the vertex at `hit` from its ray's.
@@ -740,8 +745,7 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directionBoundary(
       const double dist = length(toM);
       const Vec3d wd = toM / dist;
       const Vec3 wi(wd);
-      const SampledSpectrum f =
-          v.fluorescent ? v.shift.albedo * v.bsdf.diffuseLobe(wi) : v.bsdf.f(wi);
+      const SampledSpectrum f = scattered(v, wi);
       if (f.isBlack()) continue;
       // phi(omega) = (distance of the ray from the centre) - r: |grad phi| = (c - x) . omega;
       // d phi / d c = w, d phi / d r = -1, d phi / d x = -w (w = (c - m) / r).
@@ -749,13 +753,7 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directionBoundary(
       rates.clear();
       for (const SphereMotion& mo : moving[k])
         rates.push_back({mo.slot, dot(w, mo.dCenter) - mo.dRadius});
-      for (const VertexMotion& vm : motion) {
-        const double r = -dot(w, Vec3d(vm.dp));
-        bool found = false;
-        for (auto& [slot, value] : rates)
-          if (slot == vm.slot) value += r, found = true;
-        if (!found) rates.push_back({vm.slot, r});
-      }
+      for (const VertexMotion& vm : motion) addRate(rates, vm.slot, -dot(w, Vec3d(vm.dp)));
       const double grad = dot(sphere.center - x, wd);
       const Vec3d dm = sil.tangent(alpha);
       const double speed = length(dm - wd * dot(wd, dm)) / dist;
@@ -846,8 +844,7 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::meshDirectionBoundary(
       const double dist = length(toM);
       const Vec3d wd = toM / dist;
       const Vec3 wi(wd);
-      const SampledSpectrum f =
-          v.fluorescent ? v.shift.albedo * v.bsdf.diffuseLobe(wi) : v.bsdf.f(wi);
+      const SampledSpectrum f = scattered(v, wi);
       if (f.isBlack()) continue;
       // phi(omega) = n_e . omega, n_e = (v0 - x) x (v1 - x): its gradient on the sphere of
       // directions n_e - omega (omega . n_e); d phi / d v0 = (v1 - x) x omega, d phi / d v1 =
@@ -858,20 +855,13 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::meshDirectionBoundary(
       const double speed = length(dv - wd * dot(wd, dv)) / dist;
       if (!(grad > 0) || !(speed > 0)) continue;
       rates.clear();
-      auto add = [&](uint32_t slot, double r) {
-        for (auto& [s, value] : rates)
-          if (s == slot) {
-            value += r;
-            return;
-          }
-        rates.push_back({slot, r});
-      };
+
       const Vec3d d0 = cross(v1 - x, wd), d1 = cross(wd, v0 - x), dx = cross(dv, wd) * -1.0;
       for (int c = 0; c < 3; ++c) {
-        add(mm.slot(e.v0, c), dot(d0, mm.linear[c]));
-        add(mm.slot(e.v1, c), dot(d1, mm.linear[c]));
+        addRate(rates, mm.slot(e.v0, c), dot(d0, mm.linear[c]));
+        addRate(rates, mm.slot(e.v1, c), dot(d1, mm.linear[c]));
       }
-      for (const VertexMotion& vm : motion) add(vm.slot, dot(dx, Vec3d(vm.dp)));
+      for (const VertexMotion& vm : motion) addRate(rates, vm.slot, dot(dx, Vec3d(vm.dp)));
       const Vec3d side = g * (1e-4 * dist / grad);
       const Vec3d targets[2] = {m - side, m + side};
       SampledSpectrum L[2];
@@ -938,9 +928,7 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directLightHere(
   LightSample ls;
   const SampledWavelengths& lit = v.fluorescent ? v.shift.excited : current_;
   if (!ctx_.lights->sample(hit.p, uChoice, uLight, lit, ls, hit.ns, &weightsHere)) return;
-  auto f = [&](const Vec3& wi) {
-    return v.fluorescent ? v.shift.albedo * v.bsdf.diffuseLobe(wi) : v.bsdf.f(wi);
-  };
+  auto f = [&](const Vec3& wi) { return scattered(v, wi); };
   auto pdf = [&](const Vec3& wi) { return v.bsdf.pdf(wi); };
   const PathClass k =
       classOf(scatterings_ + 1, ctx_.lights->group(ls.light), ctx_.lights->source(ls.light), lit,

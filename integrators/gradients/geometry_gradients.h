@@ -81,6 +81,16 @@ void vertexMotion(const ShapeTangents& shapes, const GeometryScene& geometry, co
                   const std::vector<RayMotion>& rayMotion, const SurfaceHit& hit,
                   std::vector<VertexMotion>& out);
 
+/// Adds `rate` to slot's entry of an outline's rates (d phi / d slot), or appends one.
+inline void addRate(std::vector<std::pair<uint32_t, double>>& rates, uint32_t slot, double rate) {
+  for (auto& [s, r] : rates)
+    if (s == slot) {
+      r += rate;
+      return;
+    }
+  rates.push_back({slot, rate});
+}
+
 /// d value / d s at s = 0 of value(ng + s dng, ns + s dns, wo + s dwo, wi + s dwi), each
 /// argument renormalised: a central difference with steps of 1e-3 in the unit vectors.
 template <class Value>

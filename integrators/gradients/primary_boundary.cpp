@@ -81,15 +81,8 @@ Outline outlineOf(Outline::Kind kind, uint32_t shape, const Vec3d& from) {
 struct OutlinePoint {
   double x = 0, y = 0, nx = 0, ny = 0, grad = 0, speed = 0;
   std::vector<std::pair<uint32_t, double>> dPhi; ///< (slot, d phi / d slot)
-  // adds a slot's rate
-  void add(uint32_t slot, double rate) {
-    for (auto& [s, r] : dPhi)
-      if (s == slot) {
-        r += rate;
-        return;
-      }
-    dPhi.push_back({slot, rate});
-  }
+                                                 // adds a slot's rate
+  void add(uint32_t slot, double rate) { addRate(dPhi, slot, rate); }
 };
 
 // The rates of the camera's slots: phi's change as the ray through the point moves (by its
@@ -139,6 +132,18 @@ bool silhouettePoint(const IntegratorContext& ctx, const Outline& o, double u, O
   return true;
 }
 
+// True when the camera sees point x itself (nothing nearer on its ray).
+bool seenByCamera(const RenderScene& scene, const Vec3d& x, uint64_t& rays) {
+  const Vec3d cam = scene.camera.position();
+  Ray view;
+  view.o = Vec3(cam);
+  view.d = Vec3(normalize(x - cam));
+  SurfaceHit seen;
+  ++rays;
+  return scene.geometry->intersect(view, seen) &&
+         std::abs(static_cast<double>(seen.t) - length(x - cam)) <= 1e-4 * length(x - cam);
+}
+
 // The rates of the slots moving the surface a shadow falls on (at `hit`), at a fixed film
 // position: d phi / d x times x's motion with its surface.
 template <class Moved>
@@ -172,15 +177,7 @@ bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double u, Outli
   if (!scene.geometry->intersect(beyond, hit)) return false;
   const Vec3d x(hit.p), n(hit.ng);
   if (!proj.project(x, p.x, p.y)) return false;
-  // the camera must see x itself
-  Ray view;
-  view.o = Vec3(cam);
-  view.d = Vec3(normalize(x - cam));
-  SurfaceHit seen;
-  ++rays;
-  if (!scene.geometry->intersect(view, seen) ||
-      std::abs(static_cast<double>(seen.t) - length(x - cam)) > 1e-4 * length(x - cam))
-    return false;
+  if (!seenByCamera(scene, x, rays)) return false;
   // dx / d alpha: along the light's ray through m(alpha), kept on the surface's tangent plane
   const Vec3d dm = o.sil.tangent(alpha), lm = m - o.from;
   const double s = dot(n, x - o.from) / dot(n, lm);
@@ -311,14 +308,7 @@ bool meshShadowPoint(const IntegratorContext& ctx, const Outline& o, double u1, 
   if (!scene.geometry->intersect(beyond, hit)) return false;
   const Vec3d x(hit.p), n(hit.ng);
   if (!proj.project(x, p.x, p.y)) return false;
-  Ray view;
-  view.o = Vec3(cam);
-  view.d = Vec3(normalize(x - cam));
-  SurfaceHit seen;
-  ++rays;
-  if (!scene.geometry->intersect(view, seen) ||
-      std::abs(static_cast<double>(seen.t) - length(x - cam)) > 1e-4 * length(x - cam))
-    return false;
+  if (!seenByCamera(scene, x, rays)) return false;
   const double s = dot(n, x - o.from) / dot(n, lm);
   const Vec3d dm = v1 - v0, dxS = dm * s + lm * (-s * dot(n, dm) / dot(n, lm));
   double fx, fy;
