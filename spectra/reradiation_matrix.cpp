@@ -144,49 +144,83 @@ std::vector<double> emittedPhotonsPerBin(const ReradiationMatrix& m) {
   return out;
 }
 
+uint32_t MeasuredResampling::diagonal(int o) {
+  constexpr int n = ReradiationMatrix::kBins;
+  return static_cast<uint32_t>(n * n + o);
+}
+
+MeasuredResampling measuredResampling(const MeasuredMatrix& mm) {
+  using R = ReradiationMatrix;
+  constexpr int n = R::kBins;
+  MeasuredResampling map;
+  const size_t nEm = mm.emissionNm.size();
+  // Emission bin widths of the CSV grid (to turn fractions per CSV bin into densities per nm).
+  const std::vector<double> width = gridCellWidths(mm.emissionNm);
+  auto add = [&](size_t row, size_t col, uint32_t output, double w) {
+    // Off-diagonal density: cells with emission longer than excitation; the rest count as 0.
+    if (w != 0 && mm.emissionNm[col] > mm.excitationNm[row])
+      map.terms.push_back(
+          {static_cast<uint32_t>(row * nEm + col), output, w * R::kBinNm / width[col]});
+  };
+  for (int i = 0; i < n; ++i) {
+    size_t ri;
+    double ti;
+    if (!bracket(mm.excitationNm, R::centre(i), ri, ti)) continue;
+    for (int o = i + 1; o < n; ++o) {
+      size_t co;
+      double to;
+      if (!bracket(mm.emissionNm, R::centre(o), co, to)) continue;
+      const auto out = static_cast<uint32_t>(i * n + o);
+      add(ri, co, out, (1 - ti) * (1 - to));
+      add(ri, co + 1, out, (1 - ti) * to);
+      add(ri + 1, co, out, ti * (1 - to));
+      add(ri + 1, co + 1, out, ti * to);
+    }
+  }
+  // Diagonal: the reflectance where excitation and emission wavelengths coincide.
+  std::vector<double> diagNm;
+  std::vector<uint32_t> diagCell;
+  for (size_t row = 0; row < mm.excitationNm.size(); ++row)
+    for (size_t col = 0; col < nEm; ++col)
+      if (std::abs(mm.excitationNm[row] - mm.emissionNm[col]) < 1e-9) {
+        diagNm.push_back(mm.emissionNm[col]);
+        diagCell.push_back(static_cast<uint32_t>(row * nEm + col));
+      }
+  for (int o = 0; o < n && diagNm.size() >= 2; ++o) {
+    size_t k;
+    double t;
+    if (!bracket(diagNm, R::centre(o), k, t)) continue;
+    if (t != 1) map.terms.push_back({diagCell[k], MeasuredResampling::diagonal(o), 1 - t});
+    if (t != 0) map.terms.push_back({diagCell[k + 1], MeasuredResampling::diagonal(o), t});
+  }
+  return map;
+}
+
 ReradiationMatrix ReradiationMatrix::fromMeasured(const MeasuredMatrix& mm, const Spectrum* rho) {
   ReradiationMatrix r;
   r.measured_ = true;
   const size_t nEx = mm.excitationNm.size(), nEm = mm.emissionNm.size();
-  auto cell = [&](size_t row, size_t col) { return mm.cells[row * nEm + col]; };
-  // Emission bin widths of the CSV grid (to turn fractions per CSV bin into densities per nm).
-  const std::vector<double> width = gridCellWidths(mm.emissionNm);
-  // Off-diagonal density: cells with emission longer than excitation; the rest count as 0.
-  auto density = [&](size_t row, size_t col) {
-    return mm.emissionNm[col] > mm.excitationNm[row] ? cell(row, col) / width[col] : 0.0;
-  };
-  for (int i = 0; i < kBins; ++i) {
-    size_t ri;
-    double ti;
-    if (!bracket(mm.excitationNm, centre(i), ri, ti)) continue;
-    for (int o = i + 1; o < kBins; ++o) {
-      size_t co;
-      double to;
-      if (!bracket(mm.emissionNm, centre(o), co, to)) continue;
-      const double v = (1 - ti) * ((1 - to) * density(ri, co) + to * density(ri, co + 1)) +
-                       ti * ((1 - to) * density(ri + 1, co) + to * density(ri + 1, co + 1));
-      r.m_[static_cast<size_t>(i) * kBins + o] = v * kBinNm;
-    }
-  }
-  // Diagonal: the reflectance where excitation and emission wavelengths coincide.
-  std::vector<double> diagNm, diagValue;
+  // The diagonal's cells (where excitation and emission wavelengths coincide).
+  bool zeroDiagonal = true;
+  size_t diagonalCells = 0;
   for (size_t row = 0; row < nEx; ++row)
     for (size_t col = 0; col < nEm; ++col)
       if (std::abs(mm.excitationNm[row] - mm.emissionNm[col]) < 1e-9) {
-        diagNm.push_back(mm.emissionNm[col]);
-        diagValue.push_back(cell(row, col));
+        ++diagonalCells;
+        zeroDiagonal = zeroDiagonal && mm.cells[row * nEm + col] == 0;
       }
   // A diagonal of zeros is a fluorescence-only measurement written as a full matrix: like a
   // missing one, the elastic part is the surface's reflectance (else it reflected nothing and
   // its <reflectance> was ignored without a word).
-  r.zeroDiagonal_ = diagNm.size() >= 2 && std::all_of(diagValue.begin(), diagValue.end(),
-                                                      [](double v) { return v == 0; });
-  r.elasticFromRho_ = mm.fluorescenceOnly || diagNm.size() < 2 || r.zeroDiagonal_;
-  for (int o = 0; o < kBins && !r.elasticFromRho_; ++o) {
-    size_t k;
-    double t;
-    r.diagonal_[o] =
-        bracket(diagNm, centre(o), k, t) ? (1 - t) * diagValue[k] + t * diagValue[k + 1] : 0.0;
+  r.zeroDiagonal_ = diagonalCells >= 2 && zeroDiagonal;
+  r.elasticFromRho_ = mm.fluorescenceOnly || diagonalCells < 2 || r.zeroDiagonal_;
+  const uint32_t firstDiagonal = MeasuredResampling::diagonal(0);
+  for (const MeasuredResampling::Term& t : measuredResampling(mm).terms) {
+    const double v = t.w * mm.cells[t.input];
+    if (t.output < firstDiagonal)
+      r.m_[t.output] += v;
+    else if (!r.elasticFromRho_)
+      r.diagonal_[t.output - firstDiagonal] += v;
   }
   r.finish();
   // Energy: light arriving at excitation bin i is reflected elastically (the diagonal D(i)) or

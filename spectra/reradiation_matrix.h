@@ -32,6 +32,27 @@ struct MeasuredMatrix {
   bool fluorescenceOnly = false;
 };
 
+/// How ReradiationMatrix::fromMeasured resamples a measured matrix onto its 5 nm grid: a linear
+/// map from the measured cells to the grid's cells and diagonal bins. fromMeasured applies it;
+/// a gradient takes a measured cell's tangent from it (no resampled copies per cell).
+struct MeasuredResampling {
+  /// Measured cell `input` (row * columns + column) reaches `output` with weight w: grid cell
+  /// i * kBins + o, or kBins^2 + o for the diagonal (elastic part) of bin o.
+  struct Term {
+    uint32_t input, output;
+    double w;
+  };
+  std::vector<Term> terms; ///< grouped by output, in increasing order
+  /// Output index of bin o's diagonal.
+  static uint32_t diagonal(int o);
+};
+
+/// fromMeasured's resampling of a matrix of m's wavelengths (m's cells are not read): each
+/// off-diagonal grid cell bilinear in the four measured cells around it (as densities per nm
+/// of emission, times 5 nm; cells with emission not longer than excitation count as 0), each
+/// diagonal bin linear in the two measured diagonal cells around it.
+MeasuredResampling measuredResampling(const MeasuredMatrix& m);
+
 /// FNV-1a of a measured matrix's numbers (wavelengths and cells): its identity in render keys.
 uint64_t measuredMatrixDigest(const MeasuredMatrix& m);
 

@@ -8,6 +8,7 @@
 #include "integrators/gradients/shape_setup.h"
 #include "integrators/render_scene.h"
 #include "integrators/scene_params/parameter_numbers.h"
+#include "integrators/scene_params/scene_fields.h"
 #include "integrators/scene_params/scene_parameter_list.h"
 
 namespace nx {
@@ -37,6 +38,26 @@ GradientParameter gridParameter(SceneTangents& tangents, const SceneDesc& desc,
                     : addConcentrationSlots(tangents, name, base, *changed);
   p.slots = tangents.slots() - p.firstSlot;
   return p;
+}
+
+// A measured matrix's cells: fromMeasured resamples them linearly, so each cell's tangent is
+// its column of the resampling map; one resolved copy (every cell scaled down a little, which
+// every matrix allows) locates the material. Nullopt where that does not apply (a medium's dye,
+// a matrix not resolved as the plain resampling): then per cell.
+std::optional<GradientParameter>
+measuredMatrixParameter(SceneTangents& tangents, const SceneDesc& desc, const std::string& name,
+                        const ParameterNumbers& n, const RenderScene& base, bool fluorescence) {
+  const FieldValue field = sceneField(desc, name);
+  const auto* matrix = std::get_if<std::shared_ptr<const MeasuredMatrix>>(&field);
+  if (!fluorescence || !matrix || !*matrix) return std::nullopt;
+  std::vector<double> moved = n.values;
+  for (double& v : moved) v *= 1 - 1e-3;
+  const std::optional<RenderScene> changed = resolvedWith(desc, name, moved, fluorescence);
+  if (!changed) return std::nullopt;
+  const std::optional<uint32_t> first =
+      addMeasuredCellSlots(tangents, name, base, *changed, measuredResampling(**matrix), n.values);
+  if (!first) return std::nullopt;
+  return GradientParameter{name, *first, static_cast<uint32_t>(n.values.size()), true, n.shape};
 }
 
 // Written back as its numbers, the parameter must give the scene it is (a table's
@@ -121,6 +142,11 @@ GradientSetup gradientSetup(const SceneDesc& desc, const std::vector<std::string
                         n.indexed(),
                         n.form == ParameterNumbers::Form::Matrix ? n.shape : std::vector<long>{}};
     if (n.indexed()) requireNumbersGiveTheScene(desc, name, n, base, fluorescence);
+    if (n.form == ParameterNumbers::Form::Matrix)
+      if (auto cells = measuredMatrixParameter(r.tangents, desc, name, n, base, fluorescence)) {
+        r.parameters.push_back(std::move(*cells));
+        continue;
+      }
     for (size_t j = 0; j < n.values.size(); ++j)
       addNumberSlot(r.tangents, desc, name, n, j, base, fluorescence);
     r.parameters.push_back(p);

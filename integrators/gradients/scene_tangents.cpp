@@ -1,5 +1,6 @@
 #include "integrators/gradients/scene_tangents.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -181,6 +182,20 @@ void MatrixTangents::add(MatrixTangent t) {
       elastic_[o].push_back({t.slot, t.elasticScale[o], t.elasticConstant[o]});
 }
 
+void MatrixTangents::addSparse(uint32_t slot, std::span<const std::pair<uint32_t, float>> cells,
+                               std::span<const std::pair<uint32_t, float>> elasticConstants) {
+  constexpr int n = ReradiationMatrix::kBins;
+  if (!sparse_) {
+    cells_.resize(static_cast<size_t>(n) * n);
+    elastic_.resize(static_cast<size_t>(n));
+    sparse_ = true;
+  }
+  for (const auto& [c, d] : cells)
+    if (d != 0) cells_[c].push_back({slot, d});
+  for (const auto& [o, d] : elasticConstants)
+    if (d != 0) elastic_[o].push_back({slot, 0.0f, d});
+}
+
 SceneTangents SceneTangents::sizedFor(const RenderScene& scene) {
   SceneTangents t;
   t.reflectance.resize(scene.materials.size());
@@ -259,7 +274,10 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
           sum += weights[k] * v;
           size = std::max(size, std::abs(weights[k] * v));
         }
-        if (std::abs(sum) > 1e-9 * size && sum != 0) matrixChanged = true;
+        // Beyond rounding only: a cell the parameter does not reach stays 0 (else every cell
+        // of every slot is looked up at every fluorescent vertex).
+        if (!(std::abs(sum) > 1e-9 * size)) continue;
+        matrixChanged = true;
         mt.cells[static_cast<size_t>(i) * n + o] = static_cast<float>(sum);
       }
     for (int o = 0; o < n; ++o) {
@@ -271,9 +289,10 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
         constant += weights[k] * c;
         size = std::max({size, std::abs(weights[k] * s1), std::abs(weights[k] * c)});
       }
-      if ((std::abs(scale) > 1e-9 * size && scale != 0) ||
-          (std::abs(constant) > 1e-9 * size && constant != 0))
-        matrixChanged = true;
+      if (!(std::abs(scale) > 1e-9 * size)) scale = 0;
+      if (!(std::abs(constant) > 1e-9 * size)) constant = 0;
+      if (scale == 0 && constant == 0) continue;
+      matrixChanged = true;
       mt.elasticScale[static_cast<size_t>(o)] = static_cast<float>(scale);
       mt.elasticConstant[static_cast<size_t>(o)] = static_cast<float>(constant);
     }
@@ -392,6 +411,79 @@ uint32_t addTextureSlots(SceneTangents& t, const std::string& name, const Render
         return a.texture && b.texture && !a.texture->sameAs(*b.texture);
       }};
   return addGridSlots(t, name, base, changed, grid);
+}
+
+std::optional<uint32_t> addMeasuredCellSlots(SceneTangents& t, const std::string& name,
+                                             const RenderScene& base, const RenderScene& changed,
+                                             const MeasuredResampling& map,
+                                             std::span<const double> cells) {
+  constexpr int n = ReradiationMatrix::kBins;
+  // What moving every cell changed: the structure is checked as for any slot; only surfaces'
+  // matrices may differ (a medium's dye, or anything else, goes per cell).
+  SceneTangents probe = SceneTangents::sizedFor(base);
+  const RenderScene* pair[] = {&changed, &base};
+  const double unit[] = {1.0, -1.0};
+  addTangentSlot(probe, name, base, pair, unit);
+  auto emptyAll = [](const auto& v) {
+    return std::all_of(v.begin(), v.end(), [](const auto& x) { return x.empty(); });
+  };
+  if (!emptyAll(probe.reflectance) || !emptyAll(probe.roughness) || !emptyAll(probe.emission) ||
+      !emptyAll(probe.lights) || !emptyAll(probe.media) || !probe.background.empty())
+    return std::nullopt;
+  // The map applied to the cells must give each such material's matrix as it was resolved.
+  std::vector<double> resampled(static_cast<size_t>(n) * n + n, 0.0);
+  for (const MeasuredResampling::Term& term : map.terms)
+    resampled[term.output] += term.w * cells[term.input];
+  std::vector<size_t> materials;
+  for (size_t m = 0; m < base.materials.size(); ++m) {
+    if (probe.reradiation[m].empty()) continue;
+    const ReradiationMatrix& r = *base.materials[m].reradiation;
+    if (!r.measured()) return std::nullopt;
+    auto near = [](double a, double b) {
+      return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)) + 1e-300;
+    };
+    for (int i = 0; i < n; ++i)
+      for (int o = i + 1; o < n; ++o)
+        if (!near(r(i, o), resampled[static_cast<size_t>(i) * n + o])) return std::nullopt;
+    if (!r.elasticFromReflectance())
+      for (int o = 0; o < n; ++o)
+        if (!near(r.elastic(o, 0.0), resampled[MeasuredResampling::diagonal(o)]))
+          return std::nullopt;
+    materials.push_back(m);
+  }
+  if (materials.empty()) return std::nullopt;
+  // Each cell's column of the map (the terms regrouped by input cell).
+  std::vector<uint32_t> start(cells.size() + 1, 0);
+  for (const MeasuredResampling::Term& term : map.terms) ++start[term.input + 1];
+  for (size_t q = 0; q < cells.size(); ++q) start[q + 1] += start[q];
+  std::vector<const MeasuredResampling::Term*> byInput(map.terms.size());
+  std::vector<uint32_t> next(start.begin(), start.end() - 1);
+  for (const MeasuredResampling::Term& term : map.terms) byInput[next[term.input]++] = &term;
+  const uint32_t first = t.slots();
+  std::vector<std::pair<uint32_t, float>> cellTerms, elasticTerms;
+  for (size_t q = 0; q < cells.size(); ++q) {
+    const uint32_t slot = t.slots();
+    t.slotNames.push_back(name + "[" + std::to_string(q) + "]");
+    bool any = false;
+    for (size_t m : materials) {
+      cellTerms.clear();
+      elasticTerms.clear();
+      const bool elastic = !base.materials[m].reradiation->elasticFromReflectance();
+      for (uint32_t k = start[q]; k < start[q + 1]; ++k) {
+        const MeasuredResampling::Term& term = *byInput[k];
+        if (term.output < MeasuredResampling::diagonal(0))
+          cellTerms.emplace_back(term.output, static_cast<float>(term.w));
+        else if (elastic)
+          elasticTerms.emplace_back(term.output - MeasuredResampling::diagonal(0),
+                                    static_cast<float>(term.w));
+      }
+      if (cellTerms.empty() && elasticTerms.empty()) continue;
+      t.reradiation[m].addSparse(slot, cellTerms, elasticTerms);
+      any = true;
+    }
+    if (!any) t.inert.push_back(slot);
+  }
+  return first;
 }
 
 uint32_t addConcentrationSlots(SceneTangents& t, const std::string& name, const RenderScene& base,

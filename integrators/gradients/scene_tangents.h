@@ -9,8 +9,10 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrators/gradients/shape_tangents.h"
@@ -97,6 +99,10 @@ class MatrixTangents {
 public:
   /// Adds a slot's tangent (sparse when it changes at most kSparseCells cells).
   void add(MatrixTangent t);
+  /// Adds a slot's tangent given as its non-zero cells (i * kBins + o, d M[i][o]) and elastic
+  /// constants (bin o, d D(o)): what one measured cell's resampling reaches.
+  void addSparse(uint32_t slot, std::span<const std::pair<uint32_t, float>> cells,
+                 std::span<const std::pair<uint32_t, float>> elasticConstants);
   /// True when no slot changes the matrix.
   bool empty() const { return dense_.empty() && !sparse_; }
   /// Calls f(slot, d M[i][o]) for every slot changing cell (i, o).
@@ -193,6 +199,17 @@ uint32_t addTangentSlot(SceneTangents& tangents, const std::string& name, const 
 /// when no texture or a texture of another kind or size changed. Returns the first slot.
 uint32_t addTextureSlots(SceneTangents& tangents, const std::string& name, const RenderScene& base,
                          const RenderScene& changed);
+
+/// Adds one slot per cell of a measured matrix whose cells are `cells` and resampling `map`
+/// (fromMeasured's), named name[q] (q: row * columns + column), each cell's tangent taken from
+/// the map (the resampling is linear in the cells: no resolved copies per cell). `changed` is
+/// the scene resolved with every cell moved: the materials it differs in are the matrix's.
+/// Returns the first slot, or nullopt (no slot added) when the map does not reproduce those
+/// materials' matrices or more than their matrices changed (then differentiate per cell).
+std::optional<uint32_t> addMeasuredCellSlots(SceneTangents& tangents, const std::string& name,
+                                             const RenderScene& base, const RenderScene& changed,
+                                             const MeasuredResampling& map,
+                                             std::span<const double> cells);
 
 /// Adds one slot per value of the concentration map that differs between `base` and `changed`
 /// (a scene resolved with the map altered), named name[q] (q: row * width + column). Throws
