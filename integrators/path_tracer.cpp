@@ -826,7 +826,7 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::meshDirectionBoundary(
     const auto& meshes = tangents_->shapes.meshes;
     for (uint32_t k = 0; k < meshes.size(); ++k) {
       const MeshMotion& mm = meshes[k];
-      if (mm.firstSlot < 0 || mm.edges.empty()) continue;
+      if (!mm.moves() || mm.edges.empty()) continue;
       // An edge chosen uniformly (its share of the outline is E times what it holds), a point
       // uniformly along it; only the outline seen from x jumps.
       const TriangleMesh& mesh = scene_.geometry->meshes()[k];
@@ -857,10 +857,12 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::meshDirectionBoundary(
       rates.clear();
 
       const Vec3d d0 = cross(v1 - x, wd), d1 = cross(wd, v0 - x), dx = cross(dv, wd) * -1.0;
-      for (int c = 0; c < 3; ++c) {
-        addRate(rates, mm.slot(e.v0, c), dot(d0, mm.linear[c]));
-        addRate(rates, mm.slot(e.v1, c), dot(d1, mm.linear[c]));
-      }
+      mm.forEachVelocity(e.v0, [&](uint32_t slot, const Vec3d& velocity) {
+        addRate(rates, slot, dot(d0, velocity));
+      });
+      mm.forEachVelocity(e.v1, [&](uint32_t slot, const Vec3d& velocity) {
+        addRate(rates, slot, dot(d1, velocity));
+      });
       for (const VertexMotion& vm : motion) addRate(rates, vm.slot, dot(dx, Vec3d(vm.dp)));
       const Vec3d side = g * (1e-4 * dist / grad);
       const Vec3d targets[2] = {m - side, m + side};

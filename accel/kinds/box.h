@@ -32,10 +32,10 @@ struct BoxShapeKind {
            const Vec3d s = std::get<Vec3d>(v);
            return s.x > 0 && s.y > 0 && s.z > 0 ? nullptr : "positive box edge lengths";
          }},
-        {{"transform", ParamType::Transform, "scene units", nullptr,
-          "applied to its corners after it is placed: <translate>, <rotate> (axis, degrees), "
-          "<scale>, <matrix> steps in the order written",
-          "<rotate>0, 1, 0, 30</rotate>"},
+        {differentiable({"transform", ParamType::Transform, "scene units", nullptr,
+                         "applied to its corners after it is placed: <translate>, <rotate> "
+                         "(axis, degrees), <scale>, <matrix> steps in the order written",
+                         "<rotate>0, 1, 0, 30</rotate>"}),
          false},
     };
     return p;

@@ -46,10 +46,10 @@ struct MeshShapeKind {
           "per-vertex texture coordinates u v, one row per vertex (optional)", "0 0, 1 0, 0 1",
           "file", "u, v per vertex", 2},
          false},
-        {{"transform", ParamType::Transform, "scene units", nullptr,
-          "applied to its vertices: <translate>, <rotate> (axis, degrees), <scale>, <matrix> "
-          "steps in the order written",
-          "<translate>0, 1, 0</translate>"},
+        {differentiable({"transform", ParamType::Transform, "scene units", nullptr,
+                         "applied to its vertices: <translate>, <rotate> (axis, degrees), "
+                         "<scale>, <matrix> steps in the order written",
+                         "<translate>0, 1, 0</translate>"}),
          false},
     };
     return p;

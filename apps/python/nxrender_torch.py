@@ -9,7 +9,9 @@
 
 Each tensor gives a parameter's numbers (Scene.numbers shows their shape: () for a number,
 (n,) for a table's values or a colour, (excitation, emission) for a matrix, (height, width)
-for a concentration map, (height, width, bands) for a texture). The radiance comes back as a
+for a concentration map, (height, width, bands) for a texture, (3,) for a point, (N, 3) for a
+mesh's vertices, (3, 4) for an object's transform; affine() makes the last from a
+translation, a rotation and a scale). The radiance comes back as a
 float32 tensor (height, width, bands). Its backward calls reverse mode with the incoming
 gradient as the adjoint, on another seed than the image (grad_seed, default seed + 1): a loss
 computed from the image and a gradient from the same samples would correlate their noise
@@ -17,6 +19,40 @@ computed from the image and a gradient from the same samples would correlate the
 """
 
 _function = None
+
+
+def affine(translation, rotation=None, scale=None):
+    """An object's transform as nxrender takes it (Scene.numbers of "objects[i].transform"):
+    the (3, 4) rows [m | t] of p -> m p + t, with m = R diag(scale), made from tensors so that
+    the gradient reaches them. translation: (3,); rotation: an axis-angle vector (3,) in
+    radians (its direction the axis, its length the angle; Rodrigues' formula), None for
+    none; scale: a number or (3,), None for 1. Scaled first, then turned, then moved, as
+    <scale>, <rotate>, <translate> written in that order."""
+    import torch
+
+    t = torch.as_tensor(translation)
+    dtype = t.dtype if t.is_floating_point() else torch.float64
+    t = t.to(dtype).reshape(3)
+    eye = torch.eye(3, dtype=dtype, device=t.device)
+    r = eye
+    if rotation is not None:
+        w = torch.as_tensor(rotation).to(dtype).reshape(3)
+        zero = torch.zeros((), dtype=dtype, device=t.device)
+        W = torch.stack([torch.stack([zero, -w[2], w[1]]), torch.stack([w[2], zero, -w[0]]),
+                         torch.stack([-w[1], w[0], zero])])
+        # R = I + (sin a / a) W + ((1 - cos a) / a^2) W^2, a = |w|; near 0 by their series
+        # (the other branch kept finite there, so that no NaN reaches the gradient).
+        a2 = (w * w).sum()
+        small = a2 < 1e-8
+        a = torch.sqrt(torch.where(small, torch.ones_like(a2), a2))
+        first = torch.where(small, 1 - a2 / 6, torch.sin(a) / a)
+        second = torch.where(small, 0.5 - a2 / 24, (1 - torch.cos(a)) / (a * a))
+        r = eye + first * W + second * (W @ W)
+    m = r
+    if scale is not None:
+        s = torch.as_tensor(scale).to(dtype)
+        m = r * (s.reshape(1, 3) if s.numel() == 3 else s.reshape(1, 1))
+    return torch.cat([m, t.reshape(3, 1)], dim=1)
 
 
 def render(scene, parameters, spp=None, seed=0, grad_spp=None, grad_seed=None, **options):

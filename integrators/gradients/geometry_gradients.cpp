@@ -1,5 +1,7 @@
 #include "integrators/gradients/geometry_gradients.h"
 
+#include <array>
+
 #include "accel/shapes.h"
 
 namespace nx {
@@ -18,12 +20,13 @@ void surfaceSlots(const ShapeTangents& shapes, const GeometryScene& geometry, co
   out.clear();
   if (hit.kind == ShapeKind::Sphere && hit.index < shapes.spheres.size()) {
     for (const SphereMotion& m : shapes.spheres[hit.index])
-      out.push_back({m.slot, Vec3(m.dCenter) + hit.ng * static_cast<float>(m.dRadius), Vec3()});
+      out.push_back(
+          {m.slot, Vec3(m.dCenter) + hit.ng * static_cast<float>(m.dRadius), Vec3(), Vec3()});
     return;
   }
   if (hit.kind != ShapeKind::Triangle || hit.index >= shapes.meshes.size()) return;
   const MeshMotion& mm = shapes.meshes[hit.index];
-  if (mm.firstSlot < 0) return;
+  if (!mm.moves()) return;
   const TriangleMesh& mesh = geometry.meshes()[hit.index];
   const uint32_t* idx = mesh.triangle(hit.prim);
   const Vec3 a = mesh.position(idx[0]), e1 = mesh.position(idx[1]) - a,
@@ -36,15 +39,45 @@ void surfaceSlots(const ShapeTangents& shapes, const GeometryScene& geometry, co
   const float bary[3] = {1 - b1 - b2, b1, b2};
   const Vec3 nUnit = N / len;
   const float sign = dot(hit.ng, N) < 0 ? -1.0f : 1.0f;
+  // Each slot's velocities of the triangle's three vertices: a vertex's own coordinates move
+  // one of them, the transform's entries all three (at most 9 + 12 slots, no allocation).
+  struct Moving {
+    uint32_t slot;
+    Vec3 u[3];
+    Vec3 dns;
+  };
+  std::array<Moving, 21> moving;
+  size_t count = 0;
+  auto entry = [&](uint32_t slot) -> Moving& {
+    for (size_t i = 0; i < count; ++i)
+      if (moving[i].slot == slot) return moving[i];
+    moving[count] = {slot, {}, {}};
+    return moving[count++];
+  };
   for (int j = 0; j < 3; ++j)
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 u(mm.linear[k]);
-      const Vec3 dN = j == 0   ? cross(u * -1.0f, e2) + cross(e1, u * -1.0f)
-                      : j == 1 ? cross(u, e2)
-                               : cross(e1, u);
-      out.push_back(
-          {mm.slot(idx[j], k), u * bary[j], (dN - nUnit * dot(nUnit, dN)) * (sign / len)});
-    }
+    mm.forEachVelocity(idx[j], [&](uint32_t slot, const Vec3d& u) { entry(slot).u[j] = Vec3(u); });
+  if (mesh.hasNormals()) {
+    // The transform turns the vertex normals too: n_j = M^-T l_j / |M^-T l_j|, so entry (r, c)
+    // of M turns it by -n_j[r] (I - n_j n_j^T) q_c, q_c row c of M^-1; the shading normal
+    // +-normalize(sum_j b_j n_j) turns with them.
+    const Vec3 n[3] = {mesh.normal(idx[0]), mesh.normal(idx[1]), mesh.normal(idx[2])};
+    const Vec3 raw = n[0] * bary[0] + n[1] * bary[1] + n[2] * bary[2];
+    const float rawLength = length(raw);
+    const float shadingSign = dot(raw, hit.ns) < 0 ? -1.0f : 1.0f;
+    if (rawLength > 0)
+      mm.forEachTurningEntry([&](uint32_t slot, int r, int c) {
+        const Vec3 q(mm.inverseRows[c]);
+        Vec3 dRaw;
+        for (int j = 0; j < 3; ++j) dRaw += (q - n[j] * dot(n[j], q)) * (-n[j][r] * bary[j]);
+        entry(slot).dns = (dRaw - hit.ns * dot(hit.ns, dRaw)) * (shadingSign / rawLength);
+      });
+  }
+  for (size_t i = 0; i < count; ++i) {
+    const Moving& m = moving[i];
+    const Vec3 dN = cross(m.u[1] - m.u[0], e2) + cross(e1, m.u[2] - m.u[0]);
+    out.push_back({m.slot, m.u[0] * bary[0] + m.u[1] * bary[1] + m.u[2] * bary[2],
+                   (dN - nUnit * dot(nUnit, dN)) * (sign / len), m.dns});
+  }
 }
 
 namespace {
@@ -119,14 +152,14 @@ void vertexMotion(const ShapeTangents& shapes, const GeometryScene& geometry, co
     m.dp = along + d * (dot(n, s.v - along) / nd);
     const Vec3 turn = normalTurning(geometry, hit, m.dp - s.v);
     m.dng = (hit.kind == ShapeKind::Triangle ? Vec3() : turn) + s.dn;
-    m.dns = flat ? m.dng : turn;
+    m.dns = flat ? m.dng : turn + s.dns;
     m.dDir = dDir;
     out.push_back(m);
   };
   auto own = [&](uint32_t slot) {
     for (const SurfaceSlot& s : surface)
       if (s.slot == slot) return s;
-    return SurfaceSlot{slot, {}, {}};
+    return SurfaceSlot{slot, {}, {}, {}};
   };
   for (const RayMotion& r : rayMotion) add(r.slot, r.dOrigin, r.dDir, own(r.slot));
   for (const SurfaceSlot& s : surface) {

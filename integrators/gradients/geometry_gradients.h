@@ -61,11 +61,12 @@ struct PathMotion {
   std::vector<std::pair<uint32_t, double>> rates; ///< scratch: an outline's rates per slot
 };
 
-/// How one slot moves the surface at a hit: the velocity of its material point there and the
-/// turning of its geometric normal (a mesh's face as its vertices move).
+/// How one slot moves the surface at a hit: the velocity of its material point there, the
+/// turning of its geometric normal (a mesh's face as its vertices move) and the shading
+/// normal's own turning (a mesh's vertex normals turned by its transform).
 struct SurfaceSlot {
   uint32_t slot;
-  Vec3 v, dn;
+  Vec3 v, dn, dns;
 };
 
 /// The slots moving the surface at `hit` into `out`: a sphere's (x = c + r n: v = dc + dr n,

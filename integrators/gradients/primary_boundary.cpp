@@ -243,13 +243,11 @@ bool horizonPoint(const IntegratorContext& ctx, const Outline& o, double u, Outl
 }
 
 // The rates of the slots moving an edge's vertices: d phi / d v0 and d phi / d v1 (in the
-// scene), times each coordinate's velocity (the transform's columns).
+// scene), times each slot's velocity of the vertex.
 void edgeRates(const MeshMotion& mm, const MeshEdge& e, const Vec3d& dPhiDv0, const Vec3d& dPhiDv1,
                OutlinePoint& p) {
-  for (int k = 0; k < 3; ++k) {
-    p.add(mm.slot(e.v0, k), dot(dPhiDv0, mm.linear[k]));
-    p.add(mm.slot(e.v1, k), dot(dPhiDv1, mm.linear[k]));
-  }
+  mm.forEachVelocity(e.v0, [&](uint32_t slot, const Vec3d& u) { p.add(slot, dot(dPhiDv0, u)); });
+  mm.forEachVelocity(e.v1, [&](uint32_t slot, const Vec3d& u) { p.add(slot, dot(dPhiDv1, u)); });
 }
 
 // A moving mesh's outline seen from the camera (silhouette edges; every edge seen of a
@@ -455,7 +453,7 @@ std::vector<Outline> movingOutlines(const IntegratorContext& ctx, const PixelRec
   const auto& meshes = scene.geometry->meshes();
   for (uint32_t k = 0; k < shapes.meshes.size(); ++k) {
     const MeshMotion& mm = shapes.meshes[k];
-    if (mm.firstSlot < 0) continue;
+    if (!mm.moves()) continue;
     const Projection proj{scene.camera.calibration()};
     Outline o = outlineOf(Outline::Kind::MeshSilhouette, k, scene.camera.position());
     for (uint32_t e = 0; e < mm.edges.size(); ++e) {

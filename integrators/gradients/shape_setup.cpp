@@ -1,11 +1,13 @@
 #include "integrators/gradients/shape_setup.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <variant>
 
 #include "core/error.h"
+#include "core/matrix3.h"
 #include "integrators/render_scene.h"
 #include "integrators/scene_params/parameter_numbers.h"
 #include "integrators/scene_params/parameter_path.h"
@@ -36,14 +38,25 @@ int sphereOf(const RenderScene& scene, size_t object) {
   return -1;
 }
 
-// The edges of a mesh with the triangles sharing each.
-std::vector<MeshEdge> meshEdges(const TriangleMesh& mesh) {
+// The edges of a mesh with the triangles sharing each. `welded`: vertices at the same position
+// are one (a box's faces, or a file's vertices split at normal or uv seams, share corners but
+// not indices: counted apart, each such edge would be two border edges and its outline counted
+// twice); only where every slot moves coincident vertices alike (the transform), not where
+// vertices move one by one.
+std::vector<MeshEdge> meshEdges(const TriangleMesh& mesh, bool welded) {
+  std::vector<uint32_t> canonical(mesh.vertexCount());
+  std::map<std::array<float, 3>, uint32_t> at;
+  for (uint32_t v = 0; v < canonical.size(); ++v) {
+    const Vec3 p = mesh.position(v);
+    canonical[v] = welded ? at.try_emplace({p.x, p.y, p.z}, v).first->second : v;
+  }
   std::map<std::pair<uint32_t, uint32_t>, size_t> index;
   std::vector<MeshEdge> edges;
   for (size_t t = 0; t < mesh.triangleCount(); ++t) {
     const uint32_t* v = mesh.triangle(t);
     for (int e = 0; e < 3; ++e) {
-      const uint32_t a = std::min(v[e], v[(e + 1) % 3]), b = std::max(v[e], v[(e + 1) % 3]);
+      const uint32_t p = canonical[v[e]], q = canonical[v[(e + 1) % 3]];
+      const uint32_t a = std::min(p, q), b = std::max(p, q);
       const auto [it, fresh] = index.try_emplace({a, b}, edges.size());
       if (fresh)
         edges.push_back({a, b, static_cast<int64_t>(t), -1});
@@ -54,9 +67,9 @@ std::vector<MeshEdge> meshEdges(const TriangleMesh& mesh) {
   return edges;
 }
 
-// A mesh's vertices given as rows: one slot per coordinate, (vertices, 3).
-GradientParameter meshParameter(SceneTangents& tangents, const SceneDesc& desc, size_t object,
-                                const std::string& name, const RenderScene& base) {
+// The index among the render's meshes of object `object`'s mesh (a mesh or a box), refused
+// where shape derivatives do not apply (what uncoveredFeature names, an emitting mesh).
+size_t movingMesh(size_t object, const std::string& name, const RenderScene& base) {
   if (const std::string why = uncoveredFeature(base); !why.empty())
     throw Error(name + ": derivatives with respect to shape do not cover a scene with " + why +
                 " yet (docs/inverse.md, \"Shape and camera\")");
@@ -65,24 +78,60 @@ GradientParameter meshParameter(SceneTangents& tangents, const SceneDesc& desc, 
     if (base.meshes[k].perTriangle.empty() && base.meshes[k].whole.objectId == object + 1)
       mesh = static_cast<int>(k);
   if (mesh < 0) throw Error("internal error: " + name + ": its mesh was not built");
-  if (desc.objects[object].geometry.has("file"))
-    throw Error(name + ": the mesh is read from a file: give its vertices as rows (<vertices> "
-                       "and <faces>) to differentiate them");
   if (base.meshes[static_cast<size_t>(mesh)].whole.emission >= 0)
     throw Error(name + ": moving an emitter is not differentiated yet (its light samples would "
                        "move with it)");
+  return static_cast<size_t>(mesh);
+}
+
+// A mesh's vertices given as rows: one slot per coordinate, (vertices, 3).
+GradientParameter meshParameter(SceneTangents& tangents, const SceneDesc& desc, size_t object,
+                                const std::string& name, const RenderScene& base) {
+  if (desc.objects[object].geometry.has("file"))
+    throw Error(name + ": the mesh is read from a file: give its vertices as rows (<vertices> "
+                       "and <faces>) to differentiate them, or differentiate its transform");
+  const size_t mesh = movingMesh(object, name, base);
   const ParameterNumbers n = parameterNumbers(desc, name);
-  MeshMotion& motion = tangents.shapes.meshes.at(static_cast<size_t>(mesh));
+  MeshMotion& motion = tangents.shapes.meshes.at(mesh);
   motion.firstSlot = tangents.slots();
   const AffineDesc* t = desc.objects[object].geometry.get<AffineDesc>("transform");
   const AffineDesc identity;
   const auto& m = (t ? *t : identity).m;
   for (int k = 0; k < 3; ++k) motion.linear[k] = {m[0][k], m[1][k], m[2][k]};
-  motion.edges = meshEdges(base.geometry->meshes()[static_cast<size_t>(mesh)]);
+  // Vertices moved one by one: edges by index (replacing welded ones a transform made).
+  motion.edges = meshEdges(base.geometry->meshes()[mesh], false);
   GradientParameter p{name, tangents.slots(), static_cast<uint32_t>(n.values.size()), true,
                       n.shape};
   for (size_t j = 0; j < n.values.size(); ++j)
     tangents.slotNames.push_back(name + "[" + std::to_string(j / 3) + "][" + std::to_string(j % 3) +
+                                 "]");
+  return p;
+}
+
+// An object's transform p -> m p + t (a mesh's, read from a file or given as rows, or a box's):
+// one slot per entry of its rows [m | t], (3, 4). The vertices before it are recovered from the
+// built mesh, m^-1 (p - t).
+GradientParameter transformParameter(SceneTangents& tangents, const SceneDesc& desc, size_t object,
+                                     const std::string& name, const RenderScene& base) {
+  const ParameterNumbers n = parameterNumbers(desc, name); // refuses a transform not given
+  const size_t mesh = movingMesh(object, name, base);
+  const AffineDesc& t = *desc.objects[object].geometry.get<AffineDesc>("transform");
+  const Matrix3 inv = inverse(t.m);
+  MeshMotion& motion = tangents.shapes.meshes.at(mesh);
+  const TriangleMesh& built = base.geometry->meshes()[mesh];
+  motion.local.resize(built.vertexCount());
+  for (size_t v = 0; v < built.vertexCount(); ++v) {
+    const Vec3d p = Vec3d(built.position(static_cast<uint32_t>(v))) - t.t;
+    motion.local[v] = {inv[0][0] * p.x + inv[0][1] * p.y + inv[0][2] * p.z,
+                       inv[1][0] * p.x + inv[1][1] * p.y + inv[1][2] * p.z,
+                       inv[2][0] * p.x + inv[2][1] * p.y + inv[2][2] * p.z};
+  }
+  for (int c = 0; c < 3; ++c) motion.inverseRows[c] = {inv[c][0], inv[c][1], inv[c][2]};
+  motion.transformSlot = tangents.slots();
+  if (motion.firstSlot < 0) motion.edges = meshEdges(built, true);
+  GradientParameter p{name, tangents.slots(), 12, true, n.shape};
+  for (int j = 0; j < 12; ++j)
+    tangents.slotNames.push_back(name + "[" + std::to_string(j / 4) + "][" + std::to_string(j % 4) +
                                  "]");
   return p;
 }
@@ -137,6 +186,7 @@ std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const S
   const std::string& leaf = steps[1].attribute;
   if (o.shape == "mesh" && leaf == "vertices")
     return meshParameter(tangents, desc, object, name, base);
+  if (leaf == "transform") return transformParameter(tangents, desc, object, name, base);
   if (o.shape != "sphere" || (leaf != "center" && leaf != "radius")) return std::nullopt;
   if (const std::string why = uncoveredFeature(base); !why.empty())
     throw Error(name + ": derivatives with respect to shape do not cover a scene with " + why +

@@ -27,15 +27,44 @@ struct MeshEdge {
   int64_t face0 = -1, face1 = -1;
 };
 
-/// How slots move a mesh's vertices: vertex v's coordinate k (as written, before the mesh's
-/// transform) is slot firstSlot + 3 v + k; its velocity in the scene is column k of `linear`.
+/// How slots move a mesh's vertices. Its vertices as given (rows): vertex v's coordinate k
+/// (before the mesh's transform) is slot firstSlot + 3 v + k, its velocity in the scene column
+/// k of `linear`. Its transform p -> m p + t (rows of [m | t]): entry (r, c) is slot
+/// transformSlot + 4 r + c, moving vertex v by e_r times its coordinate c before the transform
+/// (1 for the translation's column).
 struct MeshMotion {
-  int64_t firstSlot = -1;      ///< -1: no slot moves the mesh
+  int64_t firstSlot = -1;      ///< -1: the vertices are not differentiated
   Vec3d linear[3];             ///< the transform's columns
+  int64_t transformSlot = -1;  ///< -1: the transform is not differentiated
+  std::vector<Vec3d> local;    ///< the vertices before the transform (with transformSlot)
+  Vec3d inverseRows[3];        ///< rows of m^-1 (how the transform turns the vertex normals)
   std::vector<MeshEdge> edges; ///< every edge, for the outlines
+  /// True when some slot moves the mesh.
+  bool moves() const { return firstSlot >= 0 || transformSlot >= 0; }
   /// The slot moving vertex v's coordinate k.
   uint32_t slot(uint32_t v, int k) const {
     return static_cast<uint32_t>(firstSlot + 3 * static_cast<int64_t>(v) + k);
+  }
+  /// Calls f(slot, d position / d slot) for every slot moving vertex v.
+  template <class F>
+  void forEachVelocity(uint32_t v, F&& f) const {
+    if (firstSlot >= 0)
+      for (int k = 0; k < 3; ++k) f(slot(v, k), linear[k]);
+    if (transformSlot < 0) return;
+    const Vec3d& x = local[v];
+    const double w[4] = {x.x, x.y, x.z, 1.0};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c)
+        if (w[c] != 0)
+          f(static_cast<uint32_t>(transformSlot + 4 * r + c),
+            Vec3d(r == 0 ? w[c] : 0, r == 1 ? w[c] : 0, r == 2 ? w[c] : 0));
+  }
+  /// Calls f(slot, r, c) for every transform entry that turns normals (m's, not t's).
+  template <class F>
+  void forEachTurningEntry(F&& f) const {
+    if (transformSlot < 0) return;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) f(static_cast<uint32_t>(transformSlot + 4 * r + c), r, c);
   }
 };
 
@@ -67,13 +96,13 @@ struct ShapeTangents {
     for (const auto& s : spheres)
       if (!s.empty()) return false;
     for (const MeshMotion& m : meshes)
-      if (m.firstSlot >= 0) return false;
+      if (m.moves()) return false;
     return camera.empty();
   }
   /// True when some slot moves a mesh.
   bool movesMeshes() const {
     for (const MeshMotion& m : meshes)
-      if (m.firstSlot >= 0) return true;
+      if (m.moves()) return true;
     return false;
   }
 };

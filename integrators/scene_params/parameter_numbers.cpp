@@ -19,10 +19,11 @@ namespace nx {
 namespace {
 
 // A parameter's value as far as its numbers go: a number, a colour, a point (a shape's or the
-// camera's), a spectrum, a measured matrix or a concentration map.
+// camera's), a spectrum, a measured matrix, a concentration map, rows of reals or an affine
+// transform.
 using NumberedValue = std::variant<double, std::array<double, 4>, Vec3d, SpectrumDesc,
                                    std::shared_ptr<const MeasuredMatrix>,
-                                   std::shared_ptr<const ConcentrationMap>, ArrayDesc>;
+                                   std::shared_ptr<const ConcentrationMap>, ArrayDesc, AffineDesc>;
 
 // The ParameterSet holding kind parameter `name` (an object's shape or material, its medium's,
 // a light's, a named material's) and its key there; throws for a field parameter's name, which
@@ -78,6 +79,7 @@ std::optional<NumberedValue> valueOf(const SceneDesc& d, const std::string& name
   if (const auto* x = std::get_if<Vec3d>(&p->value)) return *x;
   if (const auto* s = std::get_if<SpectrumDesc>(&p->value)) return *s;
   if (const auto* a = std::get_if<ArrayDesc>(&p->value); a && a->reals) return *a;
+  if (const auto* t = std::get_if<AffineDesc>(&p->value)) return *t;
   return std::nullopt; // no numbers (a name, a file, an index of refraction)
 }
 
@@ -97,6 +99,7 @@ void setValue(SceneDesc& d, const std::string& name, const NumberedValue& v) {
   if (const auto* x = std::get_if<Vec3d>(&v)) set->set({key, *x, loc});
   if (const auto* s = std::get_if<SpectrumDesc>(&v)) set->set({key, *s, loc});
   if (const auto* a = std::get_if<ArrayDesc>(&v)) set->set({key, *a, loc});
+  if (const auto* t = std::get_if<AffineDesc>(&v)) set->set({key, *t, loc});
 }
 
 ParameterNumbers spectrumNumbers(const SpectrumDesc& s, const std::string& name) {
@@ -139,6 +142,15 @@ ParameterNumbers numbersOf(const NumberedValue& v, const std::string& name) {
     n.form = ParameterNumbers::Form::Rows;
     n.values.assign(a->reals->begin(), a->reals->end());
     n.shape = {static_cast<long>(a->rows()), static_cast<long>(a->columns)};
+  } else if (const auto* t = std::get_if<AffineDesc>(&v)) {
+    // Rows of [m | t], as the transform's value reads: p -> m p + t.
+    n.form = ParameterNumbers::Form::Rows;
+    for (int r = 0; r < 3; ++r) {
+      n.values.insert(n.values.end(), t->m[static_cast<size_t>(r)].begin(),
+                      t->m[static_cast<size_t>(r)].end());
+      n.values.push_back(r == 0 ? t->t.x : r == 1 ? t->t.y : t->t.z);
+    }
+    n.shape = {3, 4};
   } else if (const auto* m = std::get_if<std::shared_ptr<const MeasuredMatrix>>(&v)) {
     n.form = ParameterNumbers::Form::Matrix;
     n.values = (*m)->cells;
@@ -174,6 +186,16 @@ std::optional<NumberedValue> withNumbers(const NumberedValue& current,
     for (size_t i = 0; i < 3; ++i)
       if (!std::isfinite(v[i]) || std::abs(v[i]) > 1e12) return std::nullopt;
     return Vec3d{v[0], v[1], v[2]};
+  }
+  if (std::holds_alternative<AffineDesc>(current)) {
+    AffineDesc t;
+    for (size_t r = 0; r < 3; ++r)
+      for (size_t c = 0; c < 3; ++c) t.m[r][c] = v[4 * r + c];
+    t.t = Vec3d(v[3], v[7], v[11]);
+    for (double x : v)
+      if (!std::isfinite(x) || std::abs(x) > kMaxMeshCoordinate) return std::nullopt;
+    if (!t.keepsVolume()) return std::nullopt; // as the scene's reader refuses it
+    return t;
   }
   if (const auto* a = std::get_if<ArrayDesc>(&current)) {
     for (double x : v) // float, and within the scene's coordinates
