@@ -322,6 +322,7 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
           src.name == "<string>" ? cls.attr("from_text")(sceneArg, "<string>") : cls(src.name);
     }
     request.emplace(gradientRequest(pyScene, gradients, *scene, fluorescence));
+    for (const std::string& w : request->warnings) py::module_::import("warnings").attr("warn")(w);
   }
   std::optional<nx::RenderJob> jobHolder;
   try {

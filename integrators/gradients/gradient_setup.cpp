@@ -152,6 +152,7 @@ GradientSetup gradientSetup(const SceneDesc& desc, const std::vector<std::string
     r.parameters.push_back(p);
   }
   if (r.parameters.empty()) throw Error("gradients: expected at least one name");
+  r.warnings = shapeCoverageWarnings(base, r.tangents);
   return r;
 }
 

@@ -27,6 +27,9 @@ struct GradientParameter {
 struct GradientSetup {
   std::vector<GradientParameter> parameters;
   SceneTangents tangents;
+  /// What the derivatives miss in this scene (a share of them, named with its cause), for the
+  /// render to warn of; empty when they cover it all.
+  std::vector<std::string> warnings;
 };
 
 /// The set-up for `names` (as sceneParameters names them) on `desc`, whose built scene is

@@ -212,4 +212,47 @@ std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const S
   return p;
 }
 
+std::vector<std::string> shapeCoverageWarnings(const RenderScene& scene,
+                                               const SceneTangents& tangents) {
+  const ShapeTangents& shapes = tangents.shapes;
+  std::vector<std::string> out;
+  if (shapes.empty()) return out;
+  const std::string where = " (docs/inverse.md, \"Shape and camera\", \"Not covered\")";
+  // Point and spot lights' shadow edges are sampled on the film only.
+  bool deltaLight = false;
+  for (const SceneLight& l : scene.lights)
+    deltaLight = deltaLight || !std::holds_alternative<EnvironmentLight>(l);
+  if (deltaLight && scene.settings.depth >= 2)
+    out.push_back("warning: shape derivatives: the edges of point and spot lights' shadows are "
+                  "sampled where the camera sees them, not where a surface sees them after a "
+                  "bounce: their share of the derivative there is missed" +
+                  where);
+  // Delta lobes: an outline seen in a mirror or through glass is not sampled.
+  for (const Material& m : scene.materials) {
+    const bool delta = m.kind == MaterialKind::Dielectric ||
+                       m.kind == MaterialKind::ThinDielectric ||
+                       m.kind == MaterialKind::CoatedDiffuse ||
+                       (m.kind == MaterialKind::Mixture && m.roughness < 1) ||
+                       (m.kind == MaterialKind::Conductor && (m.alphaU == 0 || m.alphaV == 0));
+    if (delta) {
+      out.push_back("warning: shape derivatives: outlines seen in a mirror reflection or "
+                    "through smooth glass or a clear coat are not sampled: their share of the "
+                    "derivative is missed" +
+                    where);
+      break;
+    }
+  }
+  // Outlines of shapes that do not move, seen from a point that does (spheres' are sampled).
+  if (shapes.camera.empty()) {
+    bool staticOutline = !scene.geometry->disks().empty() || !scene.geometry->cylinders().empty();
+    for (const MeshMotion& m : shapes.meshes) staticOutline = staticOutline || !m.moves();
+    if (staticOutline)
+      out.push_back("warning: shape derivatives: the outlines of meshes, quads, triangles, disks "
+                    "and cylinders that do not move, seen from a point on a shape that moves, "
+                    "are not sampled: their share of the derivative is missed" +
+                    where);
+  }
+  return out;
+}
+
 } // namespace nx

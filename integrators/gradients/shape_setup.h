@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "integrators/gradients/gradient_setup.h"
 
@@ -17,5 +18,12 @@ namespace nx {
 /// for the camera, shapes other than spheres and planes).
 std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const SceneDesc& desc,
                                                 const std::string& name, const RenderScene& base);
+
+/// What the geometric derivatives of `tangents`' shape and camera slots miss in `scene`, one
+/// message per cause (point and spot lights' shadows seen after a bounce, outlines seen through
+/// delta lobes, outlines of shapes that do not move seen from points that do); empty when no
+/// slot moves the geometry or nothing is missed.
+std::vector<std::string> shapeCoverageWarnings(const RenderScene& scene,
+                                               const SceneTangents& tangents);
 
 } // namespace nx

@@ -630,6 +630,40 @@ TEST(ShapeGradients, ObjectTransformMatchesDifferences) {
   }
 }
 
+TEST(ShapeGradients, WarnsOfWhatTheDerivativesMiss) {
+  // A sphere lamp over matte spheres and a floor: everything is covered, no warning. A point
+  // light with bounces, a glass sphere, a mesh that does not move: one warning each, naming
+  // what is missed.
+  auto warnings = [](const std::string& text, const std::string& name) {
+    const SceneDesc d = parseScene(text, "t.scn");
+    return gradientSetup(d, {name}, buildRenderScene(d), true).warnings;
+  };
+  const std::string lamp = "<sphere><center>0.3,3,-2.5</center><radius>0.1</radius><material>"
+                           "matte</material><reflectance>0</reflectance><emission scale=\"0.6\">"
+                           "D65</emission></sphere>";
+  const std::string covered = scene({0, 0.7, 0}, 0.5, kMatte, kFloor, lamp, 4, "");
+  EXPECT_TRUE(warnings(covered, "objects[1].center").empty());
+  const auto point =
+      warnings(scene({0, 0.7, 0}, 0.5, kMatte, kFloor, kPointLight, 4, ""), "objects[1].radius");
+  ASSERT_EQ(point.size(), 1u);
+  EXPECT_NE(point[0].find("point and spot lights' shadows"), std::string::npos) << point[0];
+  std::string glass = covered;
+  glass.insert(glass.find("</scene>"), "<sphere><center>1,0.5,0</center><radius>0.3</radius>"
+                                       "<material>glass</material><ior>1.5</ior></sphere>");
+  const auto delta = warnings(glass, "objects[1].radius");
+  ASSERT_EQ(delta.size(), 1u);
+  EXPECT_NE(delta[0].find("mirror reflection or through smooth glass"), std::string::npos)
+      << delta[0];
+  std::string mesh = covered;
+  mesh.insert(mesh.find("</scene>"),
+              "<box><center>1,0.5,0</center><size>0.3,0.3,0.3</size>" + kMatte + "</box>");
+  const auto still = warnings(mesh, "objects[1].center");
+  ASSERT_EQ(still.size(), 1u);
+  EXPECT_NE(still[0].find("that do not move"), std::string::npos) << still[0];
+  // appearance parameters alone: nothing moves, nothing to warn of
+  EXPECT_TRUE(warnings(mesh, "objects[0].reflectance").empty());
+}
+
 TEST(ShapeGradients, TransformSlotsAreRowsOfTheAffineMap) {
   // (3, 4) numbers named by row and column, whatever steps the scene wrote; a box's too.
   const std::string text =
