@@ -61,6 +61,23 @@ def at(scene, x):
     return s
 
 
+class Damped:
+    """Gauss-Newton steps with Levenberg-Marquardt damping: the damping grows tenfold after a
+    step that raised the cost and falls threefold otherwise."""
+
+    def __init__(self):
+        self.damping, self.cost = 1e-3, None
+
+    def step(self, x, A, g, cost):
+        """x minus the damped solution of A dx = g, A the Gauss-Newton matrix, g = J^T r."""
+        if self.cost is not None and cost > self.cost:
+            self.damping *= 10
+        else:
+            self.damping = max(self.damping / 3, 1e-6)
+        self.cost = cost
+        return x - np.linalg.solve(A + self.damping * np.diag(np.diag(A)), g)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--spp", type=int, default=32)
@@ -71,7 +88,7 @@ def main():
     truth = nxrender.Scene.from_text(SCENE, "pose.scn")
     capture = nxrender.render(truth, spp=32 * args.spp, seed=999).radiance.astype(np.float64)
     x = numbers(START)
-    damping, cost, renders = 1e-3, None, 0
+    damped, renders = Damped(), 0
     start = time.perf_counter()
     for step in range(args.steps):
         # the Jacobian: one forward-mode render (all four d I / d theta); the residual: a second
@@ -84,12 +101,9 @@ def main():
         r = (nxrender.render(s, spp=args.spp, seed=2 * step + 2, threads=2).radiance
              - capture).reshape(-1)
         renders += 2
-        new_cost = float(r @ r)
-        damping = damping * 10 if cost is not None and new_cost > cost else max(damping / 3, 1e-6)
-        cost = new_cost
-        A = J.T @ J
-        x = x - np.linalg.solve(A + damping * np.diag(np.diag(A)), J.T @ r)
-        print(f"step {step}  squared error {new_cost:.3e}  pose error {pose_error(pose_of(x)):.4f}")
+        cost = float(r @ r)
+        x = damped.step(x, J.T @ J, J.T @ r, cost)
+        print(f"step {step}  squared error {cost:.3e}  pose error {pose_error(pose_of(x)):.4f}")
     seconds = time.perf_counter() - start
     found = pose_of(x)
     for n in NAMES:
