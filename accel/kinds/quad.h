@@ -21,12 +21,12 @@ struct QuadShapeKind {
   /// Its parameters.
   static std::span<const ShapeParameter> parameters() {
     static const ShapeParameter p[] = {
-        {{"origin", ParamType::Point, "scene units", nullptr, "its corner at uv (0, 0)",
-          "-1, 0, -1", "", "a corner x, y, z"}},
-        {{"edge_u", ParamType::Point, "scene units", nullptr, "its edge along u", "2, 0, 0", "",
-          "an edge vector x, y, z"}},
-        {{"edge_v", ParamType::Point, "scene units", nullptr, "its edge along v", "0, 0, 2", "",
-          "an edge vector x, y, z"}},
+        {differentiable({"origin", ParamType::Point, "scene units", nullptr,
+                         "its corner at uv (0, 0)", "-1, 0, -1", "", "a corner x, y, z"})},
+        {differentiable({"edge_u", ParamType::Point, "scene units", nullptr, "its edge along u",
+                         "2, 0, 0", "", "an edge vector x, y, z"})},
+        {differentiable({"edge_v", ParamType::Point, "scene units", nullptr, "its edge along v",
+                         "0, 0, 2", "", "an edge vector x, y, z"})},
     };
     return p;
   }

@@ -39,12 +39,12 @@ struct TriangleShapeKind {
   /// Its parameters.
   static std::span<const ShapeParameter> parameters() {
     static const ShapeParameter p[] = {
-        {{"vA", ParamType::Point, "scene units", nullptr, "its first vertex", "0, 0, 0", "",
-          "a vertex x, y, z"}},
-        {{"vB", ParamType::Point, "scene units", nullptr, "its second vertex", "1, 0, 0", "",
-          "a vertex x, y, z"}},
-        {{"vC", ParamType::Point, "scene units", nullptr, "its third vertex", "0, 1, 0", "",
-          "a vertex x, y, z"}},
+        {differentiable({"vA", ParamType::Point, "scene units", nullptr, "its first vertex",
+                         "0, 0, 0", "", "a vertex x, y, z"})},
+        {differentiable({"vB", ParamType::Point, "scene units", nullptr, "its second vertex",
+                         "1, 0, 0", "", "a vertex x, y, z"})},
+        {differentiable({"vC", ParamType::Point, "scene units", nullptr, "its third vertex",
+                         "0, 1, 0", "", "a vertex x, y, z"})},
     };
     return p;
   }

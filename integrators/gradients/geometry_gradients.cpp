@@ -40,13 +40,14 @@ void surfaceSlots(const ShapeTangents& shapes, const GeometryScene& geometry, co
   const Vec3 nUnit = N / len;
   const float sign = dot(hit.ng, N) < 0 ? -1.0f : 1.0f;
   // Each slot's velocities of the triangle's three vertices: a vertex's own coordinates move
-  // one of them, the transform's entries all three (at most 9 + 12 slots, no allocation).
+  // one of them, the transform's entries all three, a quad's or a triangle's corners some (at
+  // most 9 + 12 + 9 slots, no allocation).
   struct Moving {
     uint32_t slot;
     Vec3 u[3];
     Vec3 dns;
   };
-  std::array<Moving, 21> moving;
+  std::array<Moving, 30> moving;
   size_t count = 0;
   auto entry = [&](uint32_t slot) -> Moving& {
     for (size_t i = 0; i < count; ++i)

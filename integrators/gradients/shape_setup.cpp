@@ -136,6 +136,57 @@ GradientParameter transformParameter(SceneTangents& tangents, const SceneDesc& d
   return p;
 }
 
+// A quad's `origin`, `edge_u` or `edge_v`, or a triangle's `vA`, `vB` or `vC`: three slots (x,
+// y, z) moving the corners it places (a quad's mesh: origin, +edge_u, +edge_u+edge_v, +edge_v;
+// the inline triangles' mesh: three vertices per triangle in the objects' order). Only the edges
+// of the moving corners are outlines that move.
+GradientParameter cornerParameter(SceneTangents& tangents, const SceneDesc& desc, size_t object,
+                                  const std::string& name, const std::string& leaf,
+                                  const RenderScene& base) {
+  if (const std::string why = uncoveredFeature(base); !why.empty())
+    throw Error(name + ": derivatives with respect to shape do not cover a scene with " + why +
+                " yet (docs/inverse.md, \"Shape and camera\")");
+  const bool quad = desc.objects[object].shape == "quad";
+  size_t mesh = base.meshes.size();
+  std::vector<uint32_t> corners;
+  for (size_t k = 0; k < base.meshes.size() && corners.empty(); ++k) {
+    const MeshAppearance& m = base.meshes[k];
+    if (quad && m.perTriangle.empty() && m.whole.objectId == object + 1) {
+      if (m.whole.emission >= 0)
+        throw Error(name + ": moving an emitter is not differentiated yet (its light samples "
+                           "would move with it)");
+      mesh = k;
+      corners = leaf == "origin"   ? std::vector<uint32_t>{0, 1, 2, 3}
+                : leaf == "edge_u" ? std::vector<uint32_t>{1, 2}
+                                   : std::vector<uint32_t>{2, 3};
+    }
+    for (size_t t = 0; !quad && t < m.perTriangle.size(); ++t)
+      if (m.perTriangle[t].objectId == object + 1) {
+        if (m.perTriangle[t].emission >= 0)
+          throw Error(name + ": moving an emitter is not differentiated yet (its light samples "
+                             "would move with it)");
+        mesh = k;
+        corners = {static_cast<uint32_t>(3 * t + (leaf == "vA" ? 0 : leaf == "vB" ? 1 : 2))};
+      }
+  }
+  if (corners.empty()) throw Error("internal error: " + name + ": its mesh was not built");
+  const TriangleMesh& built = base.geometry->meshes()[mesh];
+  MeshMotion& motion = tangents.shapes.meshes.at(mesh);
+  if (motion.listed.empty()) motion.listed.resize(built.vertexCount());
+  GradientParameter p{name, tangents.slots(), 3, true, {}};
+  for (int k = 0; k < 3; ++k) {
+    const uint32_t slot = tangents.slots();
+    const Vec3d e(k == 0 ? 1 : 0, k == 1 ? 1 : 0, k == 2 ? 1 : 0);
+    for (uint32_t v : corners) motion.listed[v].push_back({slot, e});
+    tangents.slotNames.push_back(name + "[" + std::to_string(k) + "]");
+  }
+  // The edges of the corners that move (of a gathered mesh of triangles, not every triangle's).
+  motion.edges.clear();
+  for (const MeshEdge& e : meshEdges(built, false))
+    if (!motion.listed[e.v0].empty() || !motion.listed[e.v1].empty()) motion.edges.push_back(e);
+  return p;
+}
+
 // The camera's parameter `name`: one slot per number, the camera resolved with it moved by a
 // small step each way.
 GradientParameter cameraParameter(SceneTangents& tangents, const SceneDesc& desc,
@@ -187,6 +238,9 @@ std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const S
   if (o.shape == "mesh" && leaf == "vertices")
     return meshParameter(tangents, desc, object, name, base);
   if (leaf == "transform") return transformParameter(tangents, desc, object, name, base);
+  if ((o.shape == "quad" && (leaf == "origin" || leaf == "edge_u" || leaf == "edge_v")) ||
+      (o.shape == "triangle" && (leaf == "vA" || leaf == "vB" || leaf == "vC")))
+    return cornerParameter(tangents, desc, object, name, leaf, base);
   if (o.shape != "sphere" || (leaf != "center" && leaf != "radius")) return std::nullopt;
   if (const std::string why = uncoveredFeature(base); !why.empty())
     throw Error(name + ": derivatives with respect to shape do not cover a scene with " + why +

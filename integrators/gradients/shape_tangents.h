@@ -27,20 +27,28 @@ struct MeshEdge {
   int64_t face0 = -1, face1 = -1;
 };
 
+/// One slot's velocity of one vertex, listed per vertex (a quad's or a triangle's corners).
+struct VertexVelocity {
+  uint32_t slot = 0;
+  Vec3d velocity;
+};
+
 /// How slots move a mesh's vertices. Its vertices as given (rows): vertex v's coordinate k
 /// (before the mesh's transform) is slot firstSlot + 3 v + k, its velocity in the scene column
 /// k of `linear`. Its transform p -> m p + t (rows of [m | t]): entry (r, c) is slot
 /// transformSlot + 4 r + c, moving vertex v by e_r times its coordinate c before the transform
-/// (1 for the translation's column).
+/// (1 for the translation's column). A quad's or a triangle's corners: listed per vertex.
 struct MeshMotion {
-  int64_t firstSlot = -1;      ///< -1: the vertices are not differentiated
-  Vec3d linear[3];             ///< the transform's columns
-  int64_t transformSlot = -1;  ///< -1: the transform is not differentiated
-  std::vector<Vec3d> local;    ///< the vertices before the transform (with transformSlot)
-  Vec3d inverseRows[3];        ///< rows of m^-1 (how the transform turns the vertex normals)
-  std::vector<MeshEdge> edges; ///< every edge, for the outlines
+  int64_t firstSlot = -1;     ///< -1: the vertices are not differentiated
+  Vec3d linear[3];            ///< the transform's columns
+  int64_t transformSlot = -1; ///< -1: the transform is not differentiated
+  std::vector<Vec3d> local;   ///< the vertices before the transform (with transformSlot)
+  Vec3d inverseRows[3];       ///< rows of m^-1 (how the transform turns the vertex normals)
+  /// Per vertex, the slots moving it besides those above (empty, or one list per vertex)
+  std::vector<std::vector<VertexVelocity>> listed;
+  std::vector<MeshEdge> edges; ///< every edge that can move, for the outlines
   /// True when some slot moves the mesh.
-  bool moves() const { return firstSlot >= 0 || transformSlot >= 0; }
+  bool moves() const { return firstSlot >= 0 || transformSlot >= 0 || !listed.empty(); }
   /// The slot moving vertex v's coordinate k.
   uint32_t slot(uint32_t v, int k) const {
     return static_cast<uint32_t>(firstSlot + 3 * static_cast<int64_t>(v) + k);
@@ -48,6 +56,8 @@ struct MeshMotion {
   /// Calls f(slot, d position / d slot) for every slot moving vertex v.
   template <class F>
   void forEachVelocity(uint32_t v, F&& f) const {
+    if (!listed.empty())
+      for (const VertexVelocity& l : listed[v]) f(l.slot, l.velocity);
     if (firstSlot >= 0)
       for (int k = 0; k < 3; ++k) f(slot(v, k), linear[k]);
     if (transformSlot < 0) return;

@@ -419,19 +419,24 @@ TEST(ShapeGradients, CameraRefusalsSayWhy) {
 const double kOctahedron[6][3] = {{0.55, 0.6, 0}, {-0.45, 0.6, 0},  {0.05, 1.1, 0},
                                   {0.05, 0.1, 0}, {0.05, 0.6, 0.5}, {0.05, 0.6, -0.5}};
 
+// The stage the mesh tests share: the camera, 4 bounces, `samples` spp and the floor's plane
+// up to its material (the caller closes it).
+std::string stage(int samples) {
+  return "<scene><settings><xres>" + std::to_string(kSize) + "</xres><yres>" +
+         std::to_string(kSize) + "</yres><mode>spectral_mcpt</mode><depth>4</depth><sampl>" +
+         std::to_string(samples) +
+         "</sampl><bands>400:700:100</bands></settings><camera><position>0,0.9,-2.6</position>"
+         "<look_at>0,0.5,0</look_at><fov>40</fov></camera><plane><normal>0,1,0</normal>"
+         "<distance>0</distance>";
+}
+
 std::string octahedronScene(const double (&d)[6][3], const std::string& material,
                             const std::string& lights, int samples) {
   std::string vertices;
   for (int i = 0; i < 6; ++i)
     vertices += (i ? ", " : "") + num(kOctahedron[i][0] + d[i][0]) + " " +
                 num(kOctahedron[i][1] + d[i][1]) + " " + num(kOctahedron[i][2] + d[i][2]);
-  return "<scene><settings><xres>" + std::to_string(kSize) + "</xres><yres>" +
-         std::to_string(kSize) + "</yres><mode>spectral_mcpt</mode><depth>4</depth><sampl>" +
-         std::to_string(samples) +
-         "</sampl><bands>400:700:100</bands></settings><camera><position>0,0.9,-2.6</position>"
-         "<look_at>0,0.5,0</look_at><fov>40</fov></camera><plane><normal>0,1,0</normal>"
-         "<distance>0</distance>" +
-         kFloor + "</plane><mesh><vertices>" + vertices +
+  return stage(samples) + kFloor + "</plane><mesh><vertices>" + vertices +
          "</vertices><faces>0 2 4, 2 1 4, 1 3 4, 3 0 4, 2 0 5, 1 2 5, 3 1 5, 0 3 5</faces>" +
          material + "</mesh>" + lights + "</scene>";
 }
@@ -509,14 +514,8 @@ std::string transformedScene(const std::array<double, 12>& rows,
   } else {
     mesh = "<mesh file=\"" + objFile + "\">";
   }
-  return "<scene><settings><xres>" + std::to_string(kSize) + "</xres><yres>" +
-         std::to_string(kSize) + "</yres><mode>spectral_mcpt</mode><depth>4</depth><sampl>" +
-         std::to_string(samples) +
-         "</sampl><bands>400:700:100</bands></settings><camera><position>0,0.9,-2.6</position>"
-         "<look_at>0,0.5,0</look_at><fov>40</fov></camera><plane><normal>0,1,0</normal>"
-         "<distance>0</distance>" +
-         kFloor + "</plane>" + mesh + "<transform><matrix>" + matrix + "</matrix></transform>" +
-         material + "</mesh>" + lights + "</scene>";
+  return stage(samples) + kFloor + "</plane>" + mesh + "<transform><matrix>" + matrix +
+         "</matrix></transform>" + material + "</mesh>" + lights + "</scene>";
 }
 
 // A sphere of radius 0.35 around the origin as an OBJ file of 12 x 24 quads (two triangles
@@ -628,6 +627,44 @@ TEST(ShapeGradients, ObjectTransformMatchesDifferences) {
           << "no power against sliding the normals: " << normalsOnly;
     }
   }
+}
+
+// A quad (object 1) and a triangle (object 2) standing over the floor under a point light,
+// `quad` and `triangle` their corner elements; `material` theirs.
+std::string cornersScene(const std::string& quad, const std::string& triangle,
+                         const std::string& material, int samples) {
+  return stage(samples) + kFluorescent + "</plane><quad>" + quad + material + "</quad><triangle>" +
+         triangle + material + "</triangle>" + kPointLight + "</scene>";
+}
+
+std::string corners(const char* a, const Vec3d& p, const char* b, const Vec3d& q, const char* c,
+                    const Vec3d& r) {
+  auto tag = [](const char* t, const Vec3d& v) {
+    return std::string("<") + t + ">" + num(v.x) + "," + num(v.y) + "," + num(v.z) + "</" + t + ">";
+  };
+  return tag(a, p) + tag(b, q) + tag(c, r);
+}
+
+TEST(ShapeGradients, QuadAndTriangleCornersMatchDifferences) {
+  // A card (quad) and a triangle over a fluorescent floor under a point light: their outlines
+  // and their shadows' edges move with their corners; the triangle shares the gathered mesh of
+  // inline triangles. Lit matte, so their faces' shading turns with them too.
+  const Vec3d origin(-0.7, 0.3, 0.2), edgeU(0.6, 0, -0.1), edgeV(0, 0.6, 0.05);
+  const Vec3d a(0.1, 0.2, 0), b(0.7, 0.25, 0.1), c(0.4, 0.9, 0.05);
+  auto text = [&](int which, int k, double h) {
+    const Vec3d d(k == 0 ? h : 0, k == 1 ? h : 0, k == 2 ? h : 0);
+    return cornersScene(corners("origin", origin + (which == 0 ? d : Vec3d()), "edge_u",
+                                edgeU + (which == 1 ? d : Vec3d()), "edge_v", edgeV),
+                        corners("vA", a, "vB", b, "vC", c + (which == 2 ? d : Vec3d())), kMatte,
+                        32);
+  };
+  const Region all = [](int, int) { return true; };
+  const char* names[] = {"objects[1].origin", "objects[1].edge_u", "objects[2].vC"};
+  for (int which = 0; which < 3; ++which)
+    for (int k : {1, 2}) // (up and back: the image's sum changes; sideways it shifts)
+      expectAgrees(compareOverSeeds([&](double h) { return text(which, k, h); }, names[which],
+                                    {{k, 1.0}}, 0.01, all),
+                   0.1, std::string(names[which]) + "[" + std::to_string(k) + "]");
 }
 
 TEST(ShapeGradients, WarnsOfWhatTheDerivativesMiss) {
