@@ -144,14 +144,45 @@ bool seenByCamera(const RenderScene& scene, const Vec3d& x, uint64_t& rays) {
          std::abs(static_cast<double>(seen.t) - length(x - cam)) <= 1e-4 * length(x - cam);
 }
 
+// A surface point x (normal n) the camera sees at film position (p.x, p.y): how it moves as
+// the camera ray through that film position moves and as its surface moves.
+struct SeenPoint {
+  Vec3d d, n, ddx, ddy; ///< the ray's unit direction, the normal, the direction's d / d film
+  double len = 1, t = 0, nd = 0;
+  SeenPoint(const Projection& proj, const OutlinePoint& p, const Vec3d& x, const Vec3d& normal,
+            const Vec3d& cam)
+      : n(normal) {
+    const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
+    len = length(dir);
+    d = dir / len;
+    t = length(x - cam);
+    nd = dot(n, d);
+  }
+  /// x's motion at a fixed film position as the camera ray moves (its origin and direction
+  /// giving `along`) and the surface at v: dx = along + d n . (v - along) / (n . d).
+  Vec3d moved(const Vec3d& along, const Vec3d& v) const {
+    return along + d * (dot(n, v - along) / nd);
+  }
+  /// Sets p's film gradient of phi (|grad|, its unit direction) from d phi / d x; false where
+  /// it vanishes or the outline does not move on the film.
+  bool filmGradient(const Vec3d& dPhiDx, OutlinePoint& p) const {
+    auto perFilm = [&](const Vec3d& dd) { return moved(((dd - d * dot(d, dd)) / len) * t, {}); };
+    const double gx = dot(dPhiDx, perFilm(ddx)), gy = dot(dPhiDx, perFilm(ddy));
+    p.grad = std::hypot(gx, gy);
+    if (!(p.grad > 0) || !(p.speed > 0)) return false;
+    p.nx = gx / p.grad, p.ny = gy / p.grad;
+    p.dPhi.clear();
+    return true;
+  }
+};
+
 // The rates of the slots moving the surface a shadow falls on (at `hit`), at a fixed film
 // position: d phi / d x times x's motion with its surface.
-template <class Moved>
 void receiverRates(const IntegratorContext& ctx, const SurfaceHit& hit, const Vec3d& dPhiDx,
-                   Moved&& moved, OutlinePoint& p) {
+                   const SeenPoint& seen, OutlinePoint& p) {
   thread_local std::vector<SurfaceSlot> surface;
   surfaceSlots(ctx.gradients->tangents->shapes, *ctx.scene->geometry, hit, surface);
-  for (const SurfaceSlot& s : surface) p.add(s.slot, dot(dPhiDx, moved(Vec3d{}, Vec3d(s.v))));
+  for (const SurfaceSlot& s : surface) p.add(s.slot, dot(dPhiDx, seen.moved(Vec3d{}, Vec3d(s.v))));
 }
 
 // A shadow's edge: the light's ray grazing the sphere at m goes on to a surface at x; phi(y) =
@@ -190,30 +221,16 @@ bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double u, Outli
   const Vec3d a = sphere.center - o.from;
   const double l = length(x - o.from);
   const Vec3d dPhiDx = w * (-dot(a, e) / l);
-  Vec3d ddx, ddy;
-  const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
-  const double len = length(dir);
-  const Vec3d d = dir / len;
-  const double t = length(x - cam), nd = dot(n, d);
-  // x's motion at a fixed film position as the camera ray moves (its origin and direction
-  // giving `along`) and the surface at v: dx = along + d n . (v - along) / (n . d)
-  auto moved = [&](const Vec3d& along, const Vec3d& v) {
-    return along + d * (dot(n, v - along) / nd);
-  };
-  auto dxdy = [&](const Vec3d& dd) { return moved(((dd - d * dot(d, dd)) / len) * t, {}); };
-  const double gx = dot(dPhiDx, dxdy(ddx)), gy = dot(dPhiDx, dxdy(ddy));
-  p.grad = std::hypot(gx, gy);
-  if (!(p.grad > 0) || !(p.speed > 0)) return false;
-  p.nx = gx / p.grad, p.ny = gy / p.grad;
-  p.dPhi.clear();
+  const SeenPoint seen(proj, p, x, n, cam);
+  if (!seen.filmGradient(dPhiDx, p)) return false;
   const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
   sphereRates(shapes, o.shape, w, p);
   if (hit.kind != ShapeKind::Sphere || hit.index != o.shape) // a moving receiver
-    receiverRates(ctx, hit, dPhiDx, moved, p);
+    receiverRates(ctx, hit, dPhiDx, seen, p);
   for (const CameraMotion& c : shapes.camera) {
     Vec3d dOrigin, dDirection;
     c.ray(p.x, p.y, dOrigin, dDirection);
-    p.add(c.slot, dot(dPhiDx, moved(dOrigin + dDirection * t, {})));
+    p.add(c.slot, dot(dPhiDx, seen.moved(dOrigin + dDirection * seen.t, {})));
   }
   return true;
 }
@@ -313,24 +330,12 @@ bool meshShadowPoint(const IntegratorContext& ctx, const Outline& o, double u1, 
   proj.along(x, dxS, fx, fy);
   p.speed = std::hypot(fx, fy) * o.edges.total() / share;
   const Vec3d nL = cross(v0 - o.from, v1 - o.from);
-  Vec3d ddx, ddy;
-  const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
-  const double len = length(dir);
-  const Vec3d d = dir / len;
-  const double t = length(x - cam), nd = dot(n, d);
-  auto moved = [&](const Vec3d& along, const Vec3d& v) {
-    return along + d * (dot(n, v - along) / nd);
-  };
-  auto dxdy = [&](const Vec3d& dd) { return moved(((dd - d * dot(d, dd)) / len) * t, {}); };
-  const double gx = dot(nL, dxdy(ddx)), gy = dot(nL, dxdy(ddy));
-  p.grad = std::hypot(gx, gy);
-  if (!(p.grad > 0) || !(p.speed > 0)) return false;
-  p.nx = gx / p.grad, p.ny = gy / p.grad;
-  p.dPhi.clear();
+  const SeenPoint seen(proj, p, x, n, cam);
+  if (!seen.filmGradient(nL, p)) return false;
   // n_L . (x - l) = (v0 - l) . ((v1 - l) x (x - l)): d / d v0 = (v1 - l) x (x - l),
   // d / d v1 = (x - l) x (v0 - l)
   edgeRates(mm, e, cross(v1 - o.from, x - o.from), cross(x - o.from, v0 - o.from), p);
-  receiverRates(ctx, hit, nL, moved, p);
+  receiverRates(ctx, hit, nL, seen, p);
   return true;
 }
 

@@ -15,6 +15,12 @@
 namespace nx {
 namespace {
 
+// A shape that emits cannot move yet: its light samples would move with it.
+[[noreturn]] void refuseMovingEmitter(const std::string& name) {
+  throw Error(name + ": moving an emitter is not differentiated yet (its light samples would "
+                     "move with it)");
+}
+
 // Why a render differentiated with respect to shape would miss a share of its derivative in
 // this scene (what the interior and boundary terms do not cover yet), or "".
 std::string uncoveredFeature(const RenderScene& scene) {
@@ -78,9 +84,7 @@ size_t movingMesh(size_t object, const std::string& name, const RenderScene& bas
     if (base.meshes[k].perTriangle.empty() && base.meshes[k].whole.objectId == object + 1)
       mesh = static_cast<int>(k);
   if (mesh < 0) throw Error("internal error: " + name + ": its mesh was not built");
-  if (base.meshes[static_cast<size_t>(mesh)].whole.emission >= 0)
-    throw Error(name + ": moving an emitter is not differentiated yet (its light samples would "
-                       "move with it)");
+  if (base.meshes[static_cast<size_t>(mesh)].whole.emission >= 0) refuseMovingEmitter(name);
   return static_cast<size_t>(mesh);
 }
 
@@ -152,9 +156,7 @@ GradientParameter cornerParameter(SceneTangents& tangents, const SceneDesc& desc
   for (size_t k = 0; k < base.meshes.size() && corners.empty(); ++k) {
     const MeshAppearance& m = base.meshes[k];
     if (quad && m.perTriangle.empty() && m.whole.objectId == object + 1) {
-      if (m.whole.emission >= 0)
-        throw Error(name + ": moving an emitter is not differentiated yet (its light samples "
-                           "would move with it)");
+      if (m.whole.emission >= 0) refuseMovingEmitter(name);
       mesh = k;
       corners = leaf == "origin"   ? std::vector<uint32_t>{0, 1, 2, 3}
                 : leaf == "edge_u" ? std::vector<uint32_t>{1, 2}
@@ -162,9 +164,7 @@ GradientParameter cornerParameter(SceneTangents& tangents, const SceneDesc& desc
     }
     for (size_t t = 0; !quad && t < m.perTriangle.size(); ++t)
       if (m.perTriangle[t].objectId == object + 1) {
-        if (m.perTriangle[t].emission >= 0)
-          throw Error(name + ": moving an emitter is not differentiated yet (its light samples "
-                             "would move with it)");
+        if (m.perTriangle[t].emission >= 0) refuseMovingEmitter(name);
         mesh = k;
         corners = {static_cast<uint32_t>(3 * t + (leaf == "vA" ? 0 : leaf == "vB" ? 1 : 2))};
       }
@@ -248,9 +248,7 @@ std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const S
   const int sphere = sphereOf(base, object);
   if (sphere < 0) throw Error("internal error: " + name + ": its sphere was not built");
   const ShapeAppearance& app = base.spheres[static_cast<size_t>(sphere)];
-  if (app.emission >= 0)
-    throw Error(name + ": moving an emitter is not differentiated yet (its light samples would "
-                       "move with it)");
+  if (app.emission >= 0) refuseMovingEmitter(name);
   auto& motions = tangents.shapes.spheres.at(static_cast<size_t>(sphere));
   GradientParameter p{name, tangents.slots(), leaf == "center" ? 3u : 1u, leaf == "center", {}};
   for (uint32_t j = 0; j < p.slots; ++j) {

@@ -482,15 +482,24 @@ TEST(ShapeGradients, MeshVerticesMatchDifferences) {
   expectAgrees(compareVertices(kFluorescent, lamp, {{0, 0}}, 768), 0.07, "a silhouette vertex");
 }
 
+// The set-up of `name` in `text`: one parameter of `slots` slots shaped `shape`, slot k named
+// `slotName`. Returns the scene's description.
+SceneDesc expectSlots(const std::string& text, const std::string& name, uint32_t slots,
+                      const std::vector<long>& shape, size_t k, const std::string& slotName) {
+  const SceneDesc d = parseScene(text, "t.scn");
+  const GradientSetup s = gradientSetup(d, {name}, buildRenderScene(d), true);
+  EXPECT_EQ(s.parameters.size(), 1u);
+  if (s.parameters.size() != 1) return d;
+  EXPECT_EQ(s.parameters[0].slots, slots);
+  EXPECT_EQ(s.parameters[0].shape, shape);
+  EXPECT_EQ(s.tangents.slotNames.at(k), slotName);
+  return d;
+}
+
 TEST(ShapeGradients, MeshVerticesRefusalsSayWhy) {
   const double none[6][3] = {};
-  const std::string rows = octahedronScene(none, kMatte, kPointLight, 4);
-  const SceneDesc d = parseScene(rows, "t.scn");
-  const GradientSetup s = gradientSetup(d, {"objects[1].vertices"}, buildRenderScene(d), true);
-  ASSERT_EQ(s.parameters.size(), 1u);
-  EXPECT_EQ(s.parameters[0].slots, 18u);
-  EXPECT_EQ(s.parameters[0].shape, (std::vector<long>{6, 3}));
-  EXPECT_EQ(s.tangents.slotNames[4], "objects[1].vertices[1][1]");
+  expectSlots(octahedronScene(none, kMatte, kPointLight, 4), "objects[1].vertices", 18, {6, 3}, 4,
+              "objects[1].vertices[1][1]");
 }
 
 // The octahedron as an object with a transform p -> m p + t (rows of [m | t], `rows` plus
@@ -709,12 +718,8 @@ TEST(ShapeGradients, TransformSlotsAreRowsOfTheAffineMap) {
       "</camera><box><center>0,0.5,0</center><size>1,1,1</size><transform><rotate>0,1,0,30"
       "</rotate><translate>0,0.2,0</translate></transform>" +
       kMatte + "</box>" + kPointLight + "</scene>";
-  const SceneDesc d = parseScene(text, "t.scn");
-  const GradientSetup s = gradientSetup(d, {"objects[0].transform"}, buildRenderScene(d), true);
-  ASSERT_EQ(s.parameters.size(), 1u);
-  EXPECT_EQ(s.parameters[0].slots, 12u);
-  EXPECT_EQ(s.parameters[0].shape, (std::vector<long>{3, 4}));
-  EXPECT_EQ(s.tangents.slotNames[7], "objects[0].transform[1][3]");
+  const SceneDesc d =
+      expectSlots(text, "objects[0].transform", 12, {3, 4}, 7, "objects[0].transform[1][3]");
   const ParameterNumbers n = parameterNumbers(d, "objects[0].transform");
   EXPECT_NEAR(n.values[7], 0.2, 1e-12);                      // t.y
   EXPECT_NEAR(n.values[2], std::sin(30 * kPi / 180), 1e-12); // m[0][2]
