@@ -234,6 +234,10 @@ int run(int argc, char** argv) {
   row("forward, sphere centre (3)", forward(centre));
   row("reverse, sphere centre + radius", reverse(pose, spp));
   row("forward, camera position (3)", forward(camera));
+  const double knotSetup = bench::fastestSeconds(
+      3, [&] { gradientSetup(desc, {"objects[0].reflectance"}, scene, true); });
+  const std::string setupLabel = "set-up of " + std::to_string(knots) + " knots' tangents";
+  row(setupLabel.c_str(), knotSetup);
   const std::string label = "reverse, 4 + " + std::to_string(knots) + " knots";
   row(label.c_str(), reverse(many, spp));
   const std::string fd = "differences, " + std::to_string(4 + knots) + " parameters";

@@ -60,6 +60,27 @@ measuredMatrixParameter(SceneTangents& tangents, const SceneDesc& desc, const st
   return GradientParameter{name, *first, static_cast<uint32_t>(n.values.size()), true, n.shape};
 }
 
+// A table's knots where the scene renders the table itself: each knot's tangent is its hat
+// (addTableKnotSlots), located by one resolved copy with the knots moved unevenly (an even
+// scaling would pass a normalised spectrum as linear). Nullopt where the table reaches more
+// (a dye's spectra, a medium's coefficients): then per knot.
+std::optional<GradientParameter> tableKnotParameter(SceneTangents& tangents, const SceneDesc& desc,
+                                                    const std::string& name,
+                                                    const ParameterNumbers& n,
+                                                    const RenderScene& base, bool fluorescence) {
+  double size = 1e-2;
+  for (double v : n.values) size = std::max(size, std::abs(v));
+  std::vector<double> moved = n.values;
+  for (size_t k = 0; k < moved.size(); ++k)
+    moved[k] += 1e-3 * size * static_cast<double>(1 + k % 3);
+  const std::optional<RenderScene> changed = resolvedWith(desc, name, moved, fluorescence);
+  if (!changed) return std::nullopt;
+  const std::optional<uint32_t> first =
+      addTableKnotSlots(tangents, name, base, *changed, n.values, moved);
+  if (!first) return std::nullopt;
+  return GradientParameter{name, *first, static_cast<uint32_t>(n.values.size()), true, {}};
+}
+
 // Written back as its numbers, the parameter must give the scene it is (a table's
 // extrapolate="..." is not one of its numbers): else the derivative would be another scene's.
 void requireNumbersGiveTheScene(const SceneDesc& desc, const std::string& name,
@@ -145,6 +166,11 @@ GradientSetup gradientSetup(const SceneDesc& desc, const std::vector<std::string
     if (n.form == ParameterNumbers::Form::Matrix)
       if (auto cells = measuredMatrixParameter(r.tangents, desc, name, n, base, fluorescence)) {
         r.parameters.push_back(std::move(*cells));
+        continue;
+      }
+    if (n.form == ParameterNumbers::Form::Table)
+      if (auto knots = tableKnotParameter(r.tangents, desc, name, n, base, fluorescence)) {
+        r.parameters.push_back(std::move(*knots));
         continue;
       }
     for (size_t j = 0; j < n.values.size(); ++j)

@@ -140,23 +140,27 @@ void SpectrumTangents::add(uint32_t slot, Spectrum d) {
     size_t nonZero = 0, at = 0;
     for (size_t j = 0; j < t->value.size(); ++j)
       if (t->value[j] != 0) ++nonZero, at = j;
-    if (nonZero == 1) {
-      Knots* k = nullptr;
-      for (Knots& existing : knots_)
-        if (existing.nm == t->nm && existing.holdEnds == t->holdEnds) k = &existing;
-      if (!k) {
-        knots_.push_back({t->nm, t->holdEnds, std::vector<int64_t>(t->nm.size(), -1),
-                          std::vector<float>(t->nm.size(), 0.0f)});
-        k = &knots_.back();
-      }
-      if (k->slotOf[at] < 0) {
-        k->slotOf[at] = slot;
-        k->valueOf[at] = static_cast<float>(d.scale() * t->value[at]);
-        return;
-      }
-    }
+    if (nonZero == 1 &&
+        addKnot(slot, knotsOf(*t), at, static_cast<float>(d.scale() * t->value[at])))
+      return;
   }
   dense_.push_back({slot, std::move(d)});
+}
+
+size_t SpectrumTangents::knotsOf(const TabulatedSpectrum& table) {
+  for (size_t e = 0; e < knots_.size(); ++e)
+    if (knots_[e].nm == table.nm && knots_[e].holdEnds == table.holdEnds) return e;
+  knots_.push_back({table.nm, table.holdEnds, std::vector<int64_t>(table.nm.size(), -1),
+                    std::vector<float>(table.nm.size(), 0.0f)});
+  return knots_.size() - 1;
+}
+
+bool SpectrumTangents::addKnot(uint32_t slot, size_t table, size_t j, float value) {
+  Knots& k = knots_[table];
+  if (k.slotOf[j] >= 0) return false;
+  k.slotOf[j] = slot;
+  k.valueOf[j] = value;
+  return true;
 }
 
 void MatrixTangents::add(MatrixTangent t) {
@@ -482,6 +486,76 @@ std::optional<uint32_t> addMeasuredCellSlots(SceneTangents& t, const std::string
       any = true;
     }
     if (!any) t.inert.push_back(slot);
+  }
+  return first;
+}
+
+std::optional<uint32_t> addTableKnotSlots(SceneTangents& t, const std::string& name,
+                                          const RenderScene& base, const RenderScene& changed,
+                                          std::span<const double> values,
+                                          std::span<const double> moved) {
+  if (values.empty() || moved.size() != values.size()) return std::nullopt;
+  SceneTangents probe = SceneTangents::sizedFor(base);
+  const RenderScene* pair[] = {&changed, &base};
+  const double unit[] = {1.0, -1.0};
+  addTangentSlot(probe, name, base, pair, unit);
+  auto emptyAll = [](const auto& v) {
+    return std::all_of(v.begin(), v.end(), [](const auto& x) { return x.empty(); });
+  };
+  if (!emptyAll(probe.reradiation) || !emptyAll(probe.roughness) || !emptyAll(probe.media))
+    return std::nullopt;
+  // The spectra the knots reach, each checked to be c times the knots in both scenes.
+  struct Reached {
+    SpectrumTangents* into;
+    const TabulatedSpectrum* table;
+    double c;
+    size_t knots; ///< into's entry for the table
+  };
+  std::vector<Reached> reached;
+  size_t top = 0;
+  for (size_t k = 0; k < moved.size(); ++k)
+    if (std::abs(moved[k]) > std::abs(moved[top])) top = k;
+  auto reach = [&](const SpectrumTangents& located, SpectrumTangents& into, const Spectrum* a,
+                   const Spectrum* b) {
+    if (located.empty()) return true;
+    if (!a || !b) return false;
+    const auto* ta = std::get_if<TabulatedSpectrum>(&a->kind());
+    const auto* tb = std::get_if<TabulatedSpectrum>(&b->kind());
+    if (!ta || !tb || ta->nm.size() != values.size() || ta->nm != tb->nm ||
+        ta->holdEnds != tb->holdEnds)
+      return false;
+    const double c = b->scale() * tb->value[top] / moved[top];
+    const double tolerance = 1e-9 * std::abs(c * moved[top]);
+    for (size_t k = 0; k < values.size(); ++k)
+      if (std::abs(a->scale() * ta->value[k] - c * values[k]) > tolerance ||
+          std::abs(b->scale() * tb->value[k] - c * moved[k]) > tolerance)
+        return false;
+    reached.push_back({&into, ta, c, into.knotsOf(*ta)});
+    return true;
+  };
+  bool linear = moved[top] != 0;
+  for (size_t m = 0; linear && m < base.materials.size(); ++m)
+    linear = reach(probe.reflectance[m], t.reflectance[m], &base.materials[m].reflectance,
+                   &changed.materials[m].reflectance);
+  for (size_t e = 0; linear && e < base.emission.size(); ++e)
+    linear = reach(probe.emission[e], t.emission[e], &base.emission[e], &changed.emission[e]);
+  for (size_t l = 0; linear && l < base.lights.size(); ++l)
+    linear = reach(probe.lights[l], t.lights[l], differentiatedLightSpectrum(base.lights[l]),
+                   differentiatedLightSpectrum(changed.lights[l]));
+  if (linear && base.background)
+    linear = reach(probe.background, t.background, &*base.background, &*changed.background);
+  if (!linear || reached.empty()) return std::nullopt;
+  const uint32_t first = t.slots();
+  for (size_t j = 0; j < values.size(); ++j) {
+    const uint32_t slot = t.slots();
+    t.slotNames.push_back(name + "[" + std::to_string(j) + "]");
+    for (const Reached& r : reached) {
+      if (r.into->addKnot(slot, r.knots, j, static_cast<float>(r.c))) continue;
+      TabulatedSpectrum hat = *r.table;
+      std::fill(hat.value.begin(), hat.value.end(), 0.0);
+      hat.value[j] = r.c;
+      r.into->add(slot, Spectrum(std::move(hat)));
+    }
   }
   return first;
 }

@@ -3,8 +3,9 @@
 // differentiated (docs/inverse.md): per parameter component ("slot"), what changes in which
 // material, emitter or light, as tables the path tracer reads next to the scene's own. Made by
 // differencing scenes resolved at nearby parameter values (the resolution is deterministic and
-// smooth in every differentiable parameter), so every parameter of every kind is covered by
-// the same code; the render's derivative itself is estimated along the paths (path_gradients.h).
+// smooth in every differentiable parameter; linear ones take theirs from the linear map), so every
+// parameter of every kind is covered by the same code; the render's derivative itself is estimated
+// along the paths (path_gradients.h).
 
 #include <algorithm>
 #include <array>
@@ -35,6 +36,11 @@ class SpectrumTangents {
 public:
   /// Adds slot's derivative `d` (a hat function when d is a table with one non-zero value).
   void add(uint32_t slot, Spectrum d);
+  /// The entry for tables on `table`'s wavelengths and ends (made when new), for addKnot.
+  size_t knotsOf(const TabulatedSpectrum& table);
+  /// Adds slot's derivative `value` times the hat of knot j of the tables of entry `table`
+  /// (knotsOf's). False, adding nothing, when that knot already has a slot.
+  bool addKnot(uint32_t slot, size_t table, size_t j, float value);
   /// True when no slot changes this spectrum.
   bool empty() const { return dense_.empty() && knots_.empty(); }
   /// Calls f(slot, lane, d) for every slot whose derivative d at a lane's wavelength is not 0.
@@ -210,6 +216,19 @@ std::optional<uint32_t> addMeasuredCellSlots(SceneTangents& tangents, const std:
                                              const RenderScene& base, const RenderScene& changed,
                                              const MeasuredResampling& map,
                                              std::span<const double> cells);
+
+/// Adds one slot per knot of a table whose values are `values`, where the scene renders the
+/// table itself: every spectrum that `changed` (the scene resolved with the knots at `moved`)
+/// differs in (a reflectance, an emission, a light's or the background's spectrum) is, in both
+/// scenes, a table on the knots' wavelengths whose values are one constant c times the knots'.
+/// Knot j's tangent is then c times its hat (the table is linear in its knots: no resolved
+/// copies per knot). Named name[j]. Returns the first slot, or nullopt (no slot added) where
+/// anything else changed (a dye built from the table, a normalised spectrum, a medium's
+/// coefficients): then differentiate per knot.
+std::optional<uint32_t> addTableKnotSlots(SceneTangents& tangents, const std::string& name,
+                                          const RenderScene& base, const RenderScene& changed,
+                                          std::span<const double> values,
+                                          std::span<const double> moved);
 
 /// Adds one slot per value of the concentration map that differs between `base` and `changed`
 /// (a scene resolved with the map altered), named name[q] (q: row * width + column). Throws
