@@ -298,9 +298,15 @@ private:
   // on the silhouettes of the spheres that move relative to it and of the moving meshes.
   [[gnu::noinline]] void directionBoundary(const SampledWavelengths& current,
                                            const SurfaceVertex& v);
-  // The moving meshes' part of directionBoundary: a silhouette edge seen from the vertex.
+  // The meshes' part of directionBoundary: a silhouette edge seen from the vertex, of each
+  // moving mesh (its moving edges, the slots moving them and the vertex's other slots), and
+  // as the camera moves the vertex, of every mesh (all its edges, the camera's slots).
   [[gnu::noinline]] void meshDirectionBoundary(const SampledWavelengths& lit,
                                                const SurfaceVertex& v);
+  // One edge of mesh k chosen uniformly from `edges` seen from the vertex: the camera's slots'
+  // share (`camera`) or the other slots' (the edge's vertices' velocities included).
+  void meshEdgeBoundary(const SampledWavelengths& lit, const SurfaceVertex& v, uint32_t k,
+                        const std::vector<MeshEdge>& edges, bool camera);
   // The radiance arriving at the vertex from targets[0] and targets[1] (either side of an
   // outline), traced with the same random numbers of the boundary stream (advanced past them).
   [[gnu::noinline]] void radianceEitherSide(const SurfaceVertex& v, const Vec3d (&targets)[2],
@@ -308,6 +314,20 @@ private:
   // The boundary terms of a jump `term` (the path's weight times the jump across an outline):
   // term * (-d phi / d slot) * scale per slot of the tape's rates.
   [[gnu::noinline]] void boundaryTerms(const SampledSpectrum& term, double scale);
+  // Emitters either side of an outline (phi's gradient over directions dPhiDw, phi < 0 on
+  // side 0), whose light is differentiated with its point held (next-event estimation's area
+  // measure): the emitted radiance of the outline's own shape (kind, index) is taken out of
+  // L (its outline is no discontinuity there); another emitter's outline crossing is measured
+  // against its held point, not a held direction, so each slot moving the vertex (those of
+  // `which`) gains weight * (Le_1 - Le_0 ... ) * (dPhiDw . d omega_y) * scale (omega_y the held
+  // point's direction; its emitted radiance Le_s at distance t_s).
+  enum class VertexSlots { All, Camera, NotCamera };
+  void heldEmitterTerms(const SurfaceVertex& v, const Vec3d (&targets)[2],
+                        const SampledWavelengths& lit, ShapeKind ownKind, uint32_t own,
+                        const Vec3d& dPhiDw, const SampledSpectrum& weight, double scale,
+                        VertexSlots which, SampledSpectrum (&L)[2]);
+  // True when `slot` moves the camera.
+  bool cameraSlot(uint32_t slot) const;
   // Next-event estimation with the excitation also drawn guided by the light (fluorescent
   // vertices of plain renders); false where it does not apply.
   [[gnu::always_inline]] inline bool
@@ -763,22 +783,12 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directionBoundary(
                                 m + (m - sil.q) * 1e-4};
       SampledSpectrum L[2];
       radianceEitherSide(v, targets, lit, L);
-      // An emitting sphere's own outline: light arriving from its surface is differentiated
-      // with its point held (next-event estimation's area measure, where its outline is no
-      // discontinuity: |cos| falls to 0 there), so only what lies behind it jumps here.
-      if (scene_.spheres[k].emission >= 0) {
-        SurfaceHit first;
-        Ray in;
-        in.d = Vec3(normalize(targets[0] - x));
-        in.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, in.d);
-        if (scene_.geometry->intersect(in, first) && first.kind == ShapeKind::Sphere &&
-            first.index == k)
-          L[0] = L[0] +
-                 evaluate(scene_.emission[static_cast<size_t>(scene_.spheres[k].emission)], lit) *
-                     -1.0f;
-      }
-      // alpha uniform: the outline's length per sample 2 pi speed; v_n = -(d phi) / |grad phi|
-      boundaryTerms(beta_ * f * (L[0] + L[1] * -1.0f), 2 * kPi * speed / grad);
+      // alpha uniform: the outline's length per sample 2 pi speed; v_n = -(d phi) / |grad phi|;
+      // d phi = -(a . omega)(w . d omega) over directions (a = c - x)
+      const double scale = 2 * kPi * speed / grad;
+      heldEmitterTerms(v, targets, lit, ShapeKind::Sphere, k, w * -grad, beta_ * f, scale,
+                       VertexSlots::All, L);
+      boundaryTerms(beta_ * f * (L[0] + L[1] * -1.0f), scale);
     }
     meshDirectionBoundary(lit, v);
   }
@@ -818,57 +828,128 @@ template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
 void PathWalk<kFluorescence, kMedia, kWhite, Sink>::meshDirectionBoundary(
     [[maybe_unused]] const SampledWavelengths& lit, [[maybe_unused]] const SurfaceVertex& v) {
   if constexpr (kGradients) {
+    const ShapeTangents& shapes = tangents_->shapes;
+    bool cameraMovesVertex = false;
+    for (const VertexMotion& vm : sink_.tape->motion.vertex)
+      cameraMovesVertex = cameraMovesVertex || cameraSlot(vm.slot);
+    for (uint32_t k = 0; k < shapes.meshes.size(); ++k) {
+      const MeshMotion& mm = shapes.meshes[k];
+      if (mm.moves() && !mm.edges.empty()) meshEdgeBoundary(lit, v, k, mm.edges, false);
+      if (cameraMovesVertex && !mm.cameraEdges.empty())
+        meshEdgeBoundary(lit, v, k, mm.cameraEdges, true);
+    }
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::meshEdgeBoundary(
+    [[maybe_unused]] const SampledWavelengths& lit, [[maybe_unused]] const SurfaceVertex& v,
+    [[maybe_unused]] uint32_t k, [[maybe_unused]] const std::vector<MeshEdge>& edges,
+    [[maybe_unused]] bool camera) {
+  if constexpr (kGradients) {
     GradientTape& tape = *sink_.tape;
     const std::vector<VertexMotion>& motion = tape.motion.vertex;
     const SurfaceHit& hit = v.hit;
     const Vec3d x(hit.p);
     std::vector<std::pair<uint32_t, double>>& rates = tape.motion.rates;
-    const auto& meshes = tangents_->shapes.meshes;
-    for (uint32_t k = 0; k < meshes.size(); ++k) {
-      const MeshMotion& mm = meshes[k];
-      if (!mm.moves() || mm.edges.empty()) continue;
-      // An edge chosen uniformly (its share of the outline is E times what it holds), a point
-      // uniformly along it; only the outline seen from x jumps.
-      const TriangleMesh& mesh = scene_.geometry->meshes()[k];
-      PixelSampleStream& brng = *tape.boundaryRng;
-      const Sample2 u = brng.next2D();
-      const size_t count = mm.edges.size();
-      const MeshEdge& e =
-          mm.edges[std::min(count - 1, static_cast<size_t>(u.u * static_cast<double>(count)))];
-      if (!outlineEdge(mesh, e, x)) continue;
-      if (hit.kind == ShapeKind::Triangle && hit.index == k &&
-          (e.face0 == hit.prim || e.face1 == hit.prim))
-        continue; // an edge of x's own triangle: seen edge-on
-      const Vec3d v0(mesh.position(e.v0)), v1(mesh.position(e.v1));
-      const Vec3d m = v0 + (v1 - v0) * static_cast<double>(u.v), toM = m - x;
-      const double dist = length(toM);
-      const Vec3d wd = toM / dist;
-      const Vec3 wi(wd);
-      const SampledSpectrum f = scattered(v, wi);
-      if (f.isBlack()) continue;
-      // phi(omega) = n_e . omega, n_e = (v0 - x) x (v1 - x): its gradient on the sphere of
-      // directions n_e - omega (omega . n_e); d phi / d v0 = (v1 - x) x omega, d phi / d v1 =
-      // omega x (v0 - x), d phi / d x = -(v1 - v0) x omega.
-      const Vec3d ne = cross(v0 - x, v1 - x), g = ne - wd * dot(wd, ne);
-      const double grad = length(g);
-      const Vec3d dv = v1 - v0;
-      const double speed = length(dv - wd * dot(wd, dv)) / dist;
-      if (!(grad > 0) || !(speed > 0)) continue;
-      rates.clear();
-
-      const Vec3d d0 = cross(v1 - x, wd), d1 = cross(wd, v0 - x), dx = cross(dv, wd) * -1.0;
+    const ShapeTangents& shapes = tangents_->shapes;
+    const MeshMotion& mm = shapes.meshes[k];
+    // An edge chosen uniformly (its share of the outline is E times what it holds), a point
+    // uniformly along it; only the outline seen from x jumps.
+    const TriangleMesh& mesh = scene_.geometry->meshes()[k];
+    PixelSampleStream& brng = *tape.boundaryRng;
+    const Sample2 u = brng.next2D();
+    const size_t count = edges.size();
+    const MeshEdge& e =
+        edges[std::min(count - 1, static_cast<size_t>(u.u * static_cast<double>(count)))];
+    if (!outlineEdge(mesh, e, x)) return;
+    if (hit.kind == ShapeKind::Triangle && hit.index == k &&
+        (e.face0 == hit.prim || e.face1 == hit.prim))
+      return; // an edge of x's own triangle: seen edge-on
+    const Vec3d v0(mesh.position(e.v0)), v1(mesh.position(e.v1));
+    const Vec3d m = v0 + (v1 - v0) * static_cast<double>(u.v), toM = m - x;
+    const double dist = length(toM);
+    const Vec3d wd = toM / dist;
+    const Vec3 wi(wd);
+    const SampledSpectrum f = scattered(v, wi);
+    if (f.isBlack()) return;
+    // phi(omega) = n_e . omega, n_e = (v0 - x) x (v1 - x): its gradient on the sphere of
+    // directions n_e - omega (omega . n_e); d phi / d v0 = (v1 - x) x omega, d phi / d v1 =
+    // omega x (v0 - x), d phi / d x = -(v1 - v0) x omega.
+    const Vec3d ne = cross(v0 - x, v1 - x), g = ne - wd * dot(wd, ne);
+    const double grad = length(g);
+    const Vec3d dv = v1 - v0;
+    const double speed = length(dv - wd * dot(wd, dv)) / dist;
+    if (!(grad > 0) || !(speed > 0)) return;
+    rates.clear();
+    const Vec3d d0 = cross(v1 - x, wd), d1 = cross(wd, v0 - x), dx = cross(dv, wd) * -1.0;
+    if (!camera) {
       mm.forEachVelocity(e.v0, [&](uint32_t slot, const Vec3d& velocity) {
         addRate(rates, slot, dot(d0, velocity));
       });
       mm.forEachVelocity(e.v1, [&](uint32_t slot, const Vec3d& velocity) {
         addRate(rates, slot, dot(d1, velocity));
       });
-      for (const VertexMotion& vm : motion) addRate(rates, vm.slot, dot(dx, Vec3d(vm.dp)));
-      const Vec3d side = g * (1e-4 * dist / grad);
-      const Vec3d targets[2] = {m - side, m + side};
-      SampledSpectrum L[2];
-      radianceEitherSide(v, targets, lit, L);
-      boundaryTerms(beta_ * f * (L[0] + L[1] * -1.0f), static_cast<double>(count) * speed / grad);
+    }
+    for (const VertexMotion& vm : motion)
+      if (cameraSlot(vm.slot) == camera) addRate(rates, vm.slot, dot(dx, Vec3d(vm.dp)));
+    if (rates.empty()) return;
+    const Vec3d side = g * (1e-4 * dist / grad);
+    const Vec3d targets[2] = {m - side, m + side};
+    SampledSpectrum L[2];
+    radianceEitherSide(v, targets, lit, L);
+    const double scale = static_cast<double>(count) * speed / grad;
+    heldEmitterTerms(v, targets, lit, ShapeKind::Triangle, k, ne, beta_ * f, scale,
+                     camera ? VertexSlots::Camera : VertexSlots::NotCamera, L);
+    boundaryTerms(beta_ * f * (L[0] + L[1] * -1.0f), scale);
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+bool PathWalk<kFluorescence, kMedia, kWhite, Sink>::cameraSlot(uint32_t slot) const {
+  for (const CameraMotion& c : tangents_->shapes.camera)
+    if (c.slot == slot) return true;
+  return false;
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::heldEmitterTerms(
+    [[maybe_unused]] const SurfaceVertex& v, [[maybe_unused]] const Vec3d (&targets)[2],
+    [[maybe_unused]] const SampledWavelengths& lit, [[maybe_unused]] ShapeKind ownKind,
+    [[maybe_unused]] uint32_t own, [[maybe_unused]] const Vec3d& dPhiDw,
+    [[maybe_unused]] const SampledSpectrum& weight, [[maybe_unused]] double scale,
+    [[maybe_unused]] VertexSlots which, [[maybe_unused]] SampledSpectrum (&L)[2]) {
+  if constexpr (kGradients) {
+    if (scene_.emission.empty()) return; // (no shape emits)
+    const SurfaceHit& hit = v.hit;
+    const Vec3d x(hit.p);
+    const std::vector<VertexMotion>& motion = sink_.tape->motion.vertex;
+    for (int s = 0; s < 2; ++s) {
+      Ray in;
+      in.d = Vec3(normalize(targets[s] - x));
+      in.o = offsetRayOrigin(hit.p, hit.pError, hit.ng, in.d);
+      SurfaceHit first;
+      ++counters_.rays;
+      if (!scene_.geometry->intersect(in, first)) continue;
+      const int32_t e = scene_.appearance(first).emission;
+      if (e < 0) continue;
+      const SampledSpectrum le = evaluate(scene_.emission[static_cast<size_t>(e)], lit);
+      if (first.kind == ownKind && first.index == own) {
+        L[s] = L[s] + le * -1.0f;
+        continue;
+      }
+      // phi at the held point's direction: d phi = dPhiDw . d omega_y; side 0 (phi < 0)
+      // enters the jump with +, side 1 with -, each as -d phi.
+      const SampledSpectrum term = weight * le * static_cast<float>((s == 0 ? -1 : 1) * scale);
+      for (const VertexMotion& vm : motion) {
+        if (which != VertexSlots::All && cameraSlot(vm.slot) != (which == VertexSlots::Camera))
+          continue;
+        const Vec3 dw = towardsFixedPoint(in.d, first.t, vm.dp);
+        const float rate = static_cast<float>(dot(dPhiDw, Vec3d(dw)));
+        if (rate == 0) continue;
+        for (int i = 0; i < kLanes; ++i)
+          if (term[i] != 0) sink_.direct(vm.slot, i, term[i] * rate);
+      }
     }
   }
 }

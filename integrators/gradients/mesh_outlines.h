@@ -27,12 +27,18 @@ inline bool silhouetteEdge(const TriangleMesh& mesh, const MeshEdge& e, const Ve
 
 /// True when edge e can separate two different radiances seen from p: a silhouette edge; and
 /// on a flat-shaded mesh (no vertex normals: its faces' normals jump at every edge) any edge
-/// of a triangle facing p.
+/// of a triangle facing p between faces that are not coplanar (a quad's diagonal is not).
 inline bool outlineEdge(const TriangleMesh& mesh, const MeshEdge& e, const Vec3d& p) {
   if (silhouetteEdge(mesh, e, p)) return true;
   if (mesh.hasNormals()) return false;
+  auto normal = [&](int64_t f) {
+    const TriangleShape t = mesh.corners(static_cast<size_t>(f));
+    return Vec3d(cross(t.b - t.a, t.c - t.a));
+  };
+  const Vec3d n0 = normal(e.face0), n1 = normal(e.face1);
+  if (length(cross(n0, n1)) <= 1e-9 * length(n0) * length(n1)) return false;
   const TriangleShape t = mesh.corners(static_cast<size_t>(e.face0));
-  return dot(cross(t.b - t.a, t.c - t.a), p - t.a) > 0; // (both face the same way here)
+  return dot(n0, p - Vec3d(t.a)) > 0; // (both face the same way here)
 }
 
 /// The silhouette edges seen from a fixed point, chosen in proportion to a length each.

@@ -66,7 +66,15 @@ struct Outline {
   SphereSilhouette sil;                  ///< the sphere's silhouette seen from `from`
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0; ///< a horizon's segment on the film
   EdgeSet edges; ///< a mesh's silhouette edges seen from `from` (by film or scene length)
+  /// A mesh's outline as the camera moves it on the film: its edges are MeshMotion::cameraEdges
+  /// and its rates the camera's slots' (else MeshMotion::edges and the slots moving vertices)
+  bool camera = false;
 };
+
+// The edges a mesh outline chooses from.
+const std::vector<MeshEdge>& outlineEdges(const MeshMotion& mm, const Outline& o) {
+  return o.camera ? mm.cameraEdges : mm.edges;
+}
 
 // An outline of `kind` of shape `shape` seen from `from`.
 Outline outlineOf(Outline::Kind kind, uint32_t shape, const Vec3d& from) {
@@ -185,6 +193,17 @@ void receiverRates(const IntegratorContext& ctx, const SurfaceHit& hit, const Ve
   for (const SurfaceSlot& s : surface) p.add(s.slot, dot(dPhiDx, seen.moved(Vec3d{}, Vec3d(s.v))));
 }
 
+// The rates of the camera's slots at a shadow's edge on a static surface: d phi / d x times the
+// seen point's motion as the camera ray through (p.x, p.y) moves.
+void seenPointCameraRates(const ShapeTangents& shapes, const Vec3d& dPhiDx, const SeenPoint& seen,
+                          OutlinePoint& p) {
+  for (const CameraMotion& c : shapes.camera) {
+    Vec3d dOrigin, dDirection;
+    c.ray(p.x, p.y, dOrigin, dDirection);
+    p.add(c.slot, dot(dPhiDx, seen.moved(dOrigin + dDirection * seen.t, {})));
+  }
+}
+
 // A shadow's edge: the light's ray grazing the sphere at m goes on to a surface at x; phi(y) =
 // (distance of the line light -> x(y) from the centre) - r, x(y) what the camera sees at y.
 bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double u, OutlinePoint& p,
@@ -227,11 +246,7 @@ bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double u, Outli
   sphereRates(shapes, o.shape, w, p);
   if (hit.kind != ShapeKind::Sphere || hit.index != o.shape) // a moving receiver
     receiverRates(ctx, hit, dPhiDx, seen, p);
-  for (const CameraMotion& c : shapes.camera) {
-    Vec3d dOrigin, dDirection;
-    c.ray(p.x, p.y, dOrigin, dDirection);
-    p.add(c.slot, dot(dPhiDx, seen.moved(dOrigin + dDirection * seen.t, {})));
-  }
+  seenPointCameraRates(shapes, dPhiDx, seen, p);
   return true;
 }
 
@@ -277,7 +292,7 @@ bool meshSilhouettePoint(const IntegratorContext& ctx, const Outline& o, double 
   const MeshMotion& mm = ctx.gradients->tangents->shapes.meshes[o.shape];
   const Projection proj{scene.camera.calibration()};
   double share = 0;
-  const MeshEdge& e = mm.edges[o.edges.choose(u1, share)];
+  const MeshEdge& e = outlineEdges(mm, o)[o.edges.choose(u1, share)];
   const Vec3d v0(mesh.position(e.v0)), v1(mesh.position(e.v1));
   double x0, y0, x1, y1;
   if (!proj.project(v0, x0, y0) || !proj.project(v1, x1, y1)) return false;
@@ -294,8 +309,10 @@ bool meshSilhouettePoint(const IntegratorContext& ctx, const Outline& o, double 
   if (!(p.grad > 0) || !(share > 0)) return false;
   p.nx = gx / p.grad, p.ny = gy / p.grad;
   p.dPhi.clear();
-  // n_e . d = (v0 - o) . ((v1 - o) x d): d / d v0 = (v1 - o) x d, d / d v1 = d x (v0 - o)
-  edgeRates(mm, e, cross(v1 - o.from, d), cross(d, v0 - o.from), p);
+  if (o.camera) // d phi / d o = d x (v1 - v0), d phi / d d = n_e
+    cameraRates(ctx.gradients->tangents->shapes, p.x, p.y, cross(d, v1 - v0), ne, p);
+  else // n_e . d = (v0 - o) . ((v1 - o) x d): d / d v0 = (v1 - o) x d, d / d v1 = d x (v0 - o)
+    edgeRates(mm, e, cross(v1 - o.from, d), cross(d, v0 - o.from), p);
   return true;
 }
 
@@ -310,7 +327,7 @@ bool meshShadowPoint(const IntegratorContext& ctx, const Outline& o, double u1, 
   const Projection proj{scene.camera.calibration()};
   const Vec3d cam = scene.camera.position();
   double share = 0;
-  const MeshEdge& e = mm.edges[o.edges.choose(u1, share)];
+  const MeshEdge& e = outlineEdges(mm, o)[o.edges.choose(u1, share)];
   const Vec3d v0(mesh.position(e.v0)), v1(mesh.position(e.v1));
   const Vec3d m = v0 + (v1 - v0) * u2, lm = m - o.from;
   // past the edge (a silhouette edge's triangles lie on one side of the light's ray)
@@ -332,6 +349,10 @@ bool meshShadowPoint(const IntegratorContext& ctx, const Outline& o, double u1, 
   const Vec3d nL = cross(v0 - o.from, v1 - o.from);
   const SeenPoint seen(proj, p, x, n, cam);
   if (!seen.filmGradient(nL, p)) return false;
+  if (o.camera) {
+    seenPointCameraRates(ctx.gradients->tangents->shapes, nL, seen, p);
+    return true;
+  }
   // n_L . (x - l) = (v0 - l) . ((v1 - l) x (x - l)): d / d v0 = (v1 - l) x (x - l),
   // d / d v1 = (x - l) x (v0 - l)
   edgeRates(mm, e, cross(v1 - o.from, x - o.from), cross(x - o.from, v0 - o.from), p);
@@ -429,9 +450,37 @@ bool clipLine(double A, double B, double C, const PixelRect& r, Outline& o) {
   return std::hypot(o.x1 - o.x0, o.y1 - o.y0) > 0;
 }
 
+// Mesh k's silhouette seen from the camera and its shadows' edges under `lights`, over its
+// moving edges (`camera` false) or, as the camera moves, over all its edges.
+void meshOutlines(const RenderScene& scene, const MeshMotion& mm, uint32_t k,
+                  const std::vector<Vec3d>& lights, bool camera, std::vector<Outline>& out) {
+  const TriangleMesh& mesh = scene.geometry->meshes()[k];
+  const Projection proj{scene.camera.calibration()};
+  Outline o = outlineOf(Outline::Kind::MeshSilhouette, k, scene.camera.position());
+  o.camera = camera;
+  const std::vector<MeshEdge>& edges = outlineEdges(mm, o);
+  for (uint32_t e = 0; e < edges.size(); ++e) {
+    double x0, y0, x1, y1;
+    const MeshEdge& edge = edges[e];
+    if (outlineEdge(mesh, edge, o.from) && proj.project(Vec3d(mesh.position(edge.v0)), x0, y0) &&
+        proj.project(Vec3d(mesh.position(edge.v1)), x1, y1))
+      o.edges.add(e, std::hypot(x1 - x0, y1 - y0));
+  }
+  if (o.edges.total() > 0) out.push_back(std::move(o));
+  for (const Vec3d& p : lights) {
+    Outline s = outlineOf(Outline::Kind::MeshShadow, k, p);
+    s.camera = camera;
+    for (uint32_t e = 0; e < edges.size(); ++e)
+      if (const MeshEdge& edge = edges[e]; silhouetteEdge(mesh, edge, p))
+        s.edges.add(e, length(Vec3d(mesh.position(edge.v1) - mesh.position(edge.v0))));
+    if (s.edges.total() > 0) out.push_back(std::move(s));
+  }
+}
+
 // Every outline a slot moves: the moving spheres' silhouettes and the shadows' edges under each
 // point and spot light (every sphere's, once a sphere moves: a moving receiver moves them too);
-// when the camera moves, every sphere's silhouette and every plane's horizon as well.
+// the moving meshes' outlines and shadows' edges; when the camera moves, every sphere's
+// silhouette, every mesh's outline and shadows' edges, and every plane's horizon as well.
 std::vector<Outline> movingOutlines(const IntegratorContext& ctx, const PixelRect& rect) {
   const RenderScene& scene = *ctx.scene;
   const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
@@ -455,28 +504,9 @@ std::vector<Outline> movingOutlines(const IntegratorContext& ctx, const PixelRec
       if (sphereSilhouette(sphere, p, s.sil)) out.push_back(s);
     }
   }
-  const auto& meshes = scene.geometry->meshes();
   for (uint32_t k = 0; k < shapes.meshes.size(); ++k) {
-    const MeshMotion& mm = shapes.meshes[k];
-    if (!mm.moves()) continue;
-    const Projection proj{scene.camera.calibration()};
-    Outline o = outlineOf(Outline::Kind::MeshSilhouette, k, scene.camera.position());
-    for (uint32_t e = 0; e < mm.edges.size(); ++e) {
-      double x0, y0, x1, y1;
-      const MeshEdge& edge = mm.edges[e];
-      if (outlineEdge(meshes[k], edge, o.from) &&
-          proj.project(Vec3d(meshes[k].position(edge.v0)), x0, y0) &&
-          proj.project(Vec3d(meshes[k].position(edge.v1)), x1, y1))
-        o.edges.add(e, std::hypot(x1 - x0, y1 - y0));
-    }
-    if (o.edges.total() > 0) out.push_back(std::move(o));
-    for (const Vec3d& p : lights) {
-      Outline s = outlineOf(Outline::Kind::MeshShadow, k, p);
-      for (uint32_t e = 0; e < mm.edges.size(); ++e)
-        if (const MeshEdge& edge = mm.edges[e]; silhouetteEdge(meshes[k], edge, p))
-          s.edges.add(e, length(Vec3d(meshes[k].position(edge.v1) - meshes[k].position(edge.v0))));
-      if (s.edges.total() > 0) out.push_back(std::move(s));
-    }
+    if (shapes.meshes[k].moves()) meshOutlines(scene, shapes.meshes[k], k, lights, false, out);
+    if (camera) meshOutlines(scene, shapes.meshes[k], k, lights, true, out);
   }
   if (camera)
     for (uint32_t k = 0; k < scene.geometry->planes().size(); ++k) {

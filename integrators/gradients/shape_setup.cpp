@@ -195,10 +195,14 @@ GradientParameter cameraParameter(SceneTangents& tangents, const SceneDesc& desc
     throw Error(name + ": derivatives with respect to the camera do not cover a scene with " + why +
                 " yet (docs/inverse.md, \"Shape and camera\")");
   const GeometryScene& g = *base.geometry;
-  if (!g.meshes().empty() || !g.disks().empty() || !g.cylinders().empty())
-    throw Error(name + ": derivatives with respect to the camera do not cover meshes, quads, "
-                       "disks or cylinders yet (the outlines of every shape move in the image, "
-                       "and theirs are not sampled)");
+  if (!g.disks().empty() || !g.cylinders().empty())
+    throw Error(name + ": derivatives with respect to the camera do not cover disks or "
+                       "cylinders yet (the outlines of every shape move in the image, and "
+                       "theirs are not sampled)");
+  // Every mesh's outline moves on the film and as seen from every vertex the camera moves.
+  for (size_t k = 0; k < g.meshes().size(); ++k)
+    if (tangents.shapes.meshes[k].cameraEdges.empty())
+      tangents.shapes.meshes[k].cameraEdges = meshEdges(g.meshes()[k], true);
   const ParameterNumbers n = parameterNumbers(desc, name);
   GradientParameter p{
       name, tangents.slots(), static_cast<uint32_t>(n.values.size()), n.indexed(), {}};
@@ -294,8 +298,11 @@ std::vector<std::string> shapeCoverageWarnings(const RenderScene& scene,
       break;
     }
   }
-  // Outlines of shapes that do not move, seen from a point that does (spheres' are sampled).
-  if (shapes.camera.empty()) {
+  // Outlines of shapes that do not move, seen from a point a shape's slot moves (spheres' are
+  // sampled; as the camera moves, every mesh's is).
+  bool shapeMoves = shapes.movesMeshes();
+  for (const auto& s : shapes.spheres) shapeMoves = shapeMoves || !s.empty();
+  if (shapeMoves) {
     bool staticOutline = !scene.geometry->disks().empty() || !scene.geometry->cylinders().empty();
     for (const MeshMotion& m : shapes.meshes) staticOutline = staticOutline || !m.moves();
     if (staticOutline)

@@ -47,6 +47,9 @@ struct MeshMotion {
   /// Per vertex, the slots moving it besides those above (empty, or one list per vertex)
   std::vector<std::vector<VertexVelocity>> listed;
   std::vector<MeshEdge> edges; ///< every edge that can move, for the outlines
+  /// Every edge, welded (coincident vertices one): the outlines that move on the film as the
+  /// camera moves (empty unless the camera is differentiated)
+  std::vector<MeshEdge> cameraEdges;
   /// True when some slot moves the mesh.
   bool moves() const { return firstSlot >= 0 || transformSlot >= 0 || !listed.empty(); }
   /// The slot moving vertex v's coordinate k.
