@@ -97,7 +97,23 @@ Sensor sensorFromOption(const std::string& text, const std::string& option) {
   return Sensor::readCsv(text);
 }
 
+// The ground-truth layers in a render key ("aov:normals,albedo|"; "" without them), in the
+// order they are stored.
+std::string aovKey(std::vector<AovKind> kinds) {
+  std::string key;
+  for (AovKind k : kAovKinds)
+    if (std::find(kinds.begin(), kinds.end(), k) != kinds.end())
+      key += (key.empty() ? "aov:" : ",") + std::string(aovName(k));
+  return key.empty() ? key : key + "|";
+}
+
 bool addAov(RenderChoices& choices, const std::string& name) {
+  if (const auto kind = aovKindNamed(name)) {
+    if (std::find(choices.aovKinds.begin(), choices.aovKinds.end(), *kind) ==
+        choices.aovKinds.end())
+      choices.aovKinds.push_back(*kind);
+    return true;
+  }
   bool* flag = name == "white"         ? &choices.aovWhite
                : name == "ids"         ? &choices.aovIds
                : name == "depth"       ? &choices.aovDepth
@@ -146,6 +162,7 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
   options_.whiteReference = choices.aovWhite;
   options_.components = choices.aovComponents;
   options_.lightGroups = choices.aovLightGroups;
+  options_.aovs = choices.aovKinds;
   options_.targetRelativeError = choices.targetError;
   options_.errorMeasure = errorMeasureFrom(choices.errorOf);
   options_.timeLimitSeconds = choices.timeLimit;
@@ -169,7 +186,7 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
       std::string(NX_VERSION) + "|" + choices.sampler + "|" + choices.lightSampling + "|" +
           choices.lightSelection + "|" + choices.density + "|" +
           (choices.aovWhite ? "white|" : "") + (choices.aovComponents ? "components|" : "") +
-          (choices.aovLightGroups ? "lightgroups|" : "") +
+          (choices.aovLightGroups ? "lightgroups|" : "") + aovKey(choices.aovKinds) +
           (choices.relightable ? "relight:" + numberText(choices.relightStepNm) + "|" : "") +
           (choices.noFluorescence ? "nofl" : "fl") + "|" + std::to_string(kLanes),
       scene.contentDigest));

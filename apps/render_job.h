@@ -29,6 +29,7 @@ struct RenderChoices {
   bool noFluorescence = false;          ///< fluorescent materials as their plain reflectance
   bool aovWhite = false, aovIds = false, aovDepth = false; ///< extra channels
   bool aovComponents = false, aovLightGroups = false;      ///< component layers
+  std::vector<AovKind> aovKinds; ///< ground-truth layers (normals, position, albedo, ...)
   /// Keep the transport per light group (--relightable; the scene built with
   /// SceneDesc::relightable) on an excitation grid of relightStepNm (--relight-step).
   bool relightable = false;

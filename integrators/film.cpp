@@ -64,6 +64,7 @@ Film::Pixel Film::newPixel() const {
   for (auto& b : p.bands) b.assign(static_cast<size_t>(nBands_), 0.0);
   for (auto& l : p.layers) l.assign(layerNames_.size() * static_cast<size_t>(nBands_), 0.0);
   if (hasWhite()) p.white.assign(static_cast<size_t>(nBands_), 0.0);
+  p.aov.assign(static_cast<size_t>(aovChannels_), 0.0);
   return p;
 }
 
@@ -157,8 +158,23 @@ double Film::whiteMean(int x, int y, int b) const {
   return counts_[i] && hasWhite() ? whiteSums_[i * nBands_ + b] / counts_[i] : 0.0;
 }
 
+void Film::setAovs(std::vector<AovKind> kinds) {
+  int channels = 0;
+  for (AovKind k : kinds) channels += aovChannelCount(k, nBands_);
+  aovKinds_ = std::move(kinds);
+  aovChannels_ = channels;
+  aovSums_.assign(counts_.size() * static_cast<size_t>(channels), 0.0);
+}
+
+void Film::setAovFromMeans(int x, int y, const float* means) {
+  const size_t i = index(x, y), n = static_cast<size_t>(aovChannels_);
+  for (size_t c = 0; c < n; ++c) aovSums_[i * n + c] = static_cast<double>(means[c]) * counts_[i];
+}
+
 void Film::add(int x, int y, const Pixel& pixel) {
   const size_t i = index(x, y);
+  const size_t na = static_cast<size_t>(aovChannels_);
+  for (size_t c = 0; c < na; ++c) aovSums_[i * na + c] += pixel.aov[c];
   if (hasWhite())
     for (int b = 0; b < nBands_; ++b) whiteSums_[i * nBands_ + b] += pixel.white[b];
   for (int b = 0; b < nBands_; ++b) {
@@ -261,6 +277,8 @@ Film Film::cropped(const PixelRect& r) const {
   Film out(width_, height_, r, bands_, hasWhite());
   out.setLayers(layerNames_);
   out.setRelight(relightPattern_, relightSourceNames_, relightSourceSpectra_);
+  out.setAovs(aovKinds_);
+  const size_t na = static_cast<size_t>(aovChannels_);
   const size_t nl = layerNames_.size() * static_cast<size_t>(nBands_);
   const size_t nr =
       relightPattern_ ? static_cast<size_t>(relightSources()) * relightPattern_->size() : 0;
@@ -271,6 +289,7 @@ Film Film::cropped(const PixelRect& r) const {
       std::copy_n(&bandSums_[i * nb], nb, &out.bandSums_[o * nb]);
       std::copy_n(&bandOddSums_[i * nb], nb, &out.bandOddSums_[o * nb]);
       if (hasWhite()) std::copy_n(&whiteSums_[i * nb], nb, &out.whiteSums_[o * nb]);
+      std::copy_n(aovSums_.data() + i * na, na, out.aovSums_.data() + o * na);
       std::copy_n(&xyzSums_[i * 3], 3, &out.xyzSums_[o * 3]);
       std::copy_n(layerSums_.data() + i * nl, nl, out.layerSums_.data() + o * nl);
       std::copy_n(layerOddSums_.data() + i * nl, nl, out.layerOddSums_.data() + o * nl);

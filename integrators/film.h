@@ -10,6 +10,7 @@
 
 #include "integrators/path_contributions.h"
 #include "integrators/relight_pattern.h"
+#include "io/aov_names.h"
 #include "spectra/cie.h"
 #include "spectra/sampled_wavelengths.h"
 #include "spectra/sensor.h"
@@ -40,6 +41,13 @@ public:
   /// Keeps component layers (EXR layers "<name>.S0.<band>nm", e.g. "reflected", "light.lamp"),
   /// each estimated per band like the radiance, with its variance; zeroes them.
   void setLayers(std::vector<std::string> names);
+  /// Keeps the ground-truth layers `kinds` (their channels in that order, as AovEvaluator
+  /// fills them), averaged over the samples like the radiance; zeroes them.
+  void setAovs(std::vector<AovKind> kinds);
+  /// The ground-truth layers kept (none unless setAovs was called).
+  const std::vector<AovKind>& aovKinds() const { return aovKinds_; }
+  /// Their channels.
+  int aovChannels() const { return aovChannels_; }
   /// Component layers kept (0 unless setLayers was called).
   int layerCount() const { return static_cast<int>(layerNames_.size()); }
   /// The name of layer l.
@@ -88,6 +96,7 @@ public:
     std::vector<double> white;      ///< sums of white-reference band estimates (if kept)
     std::vector<double> layers[2];  ///< sums of component layers' band estimates, [layer][band]
     std::vector<double> relight[2]; ///< sums of the transport, [group][entry]
+    std::vector<double> aov;        ///< sums of the ground-truth channels (if kept)
     uint32_t samples[2] = {0, 0};
   };
 
@@ -103,6 +112,7 @@ public:
       std::fill(p.relight[r].begin(), p.relight[r].end(), 0.0);
     }
     std::fill(p.white.begin(), p.white.end(), 0.0);
+    std::fill(p.aov.begin(), p.aov.end(), 0.0);
   }
   /// Samples an accumulator holds.
   static uint32_t samplesIn(const Pixel& p) { return p.samples[0] + p.samples[1]; }
@@ -138,6 +148,11 @@ public:
   bool addWhiteSample(Pixel& pixel, const SampledWavelengths& lambda,
                       const SampledSpectrum& L) const;
 
+  /// Adds one sample's ground-truth channels (aovChannels() values).
+  static void addAovSample(Pixel& pixel, const float* values) {
+    for (size_t c = 0; c < pixel.aov.size(); ++c) pixel.aov[c] += values[c];
+  }
+
   /// Adds a pixel's accumulated samples (each pixel is written by one tile task at a time).
   void add(int x, int y, const Pixel& pixel);
   /// Sets a pixel from stored means, variances of the means (null: unknown) and their sample
@@ -145,6 +160,16 @@ public:
   void setFromMeans(int x, int y, const float* bandMeans, const float* bandVariances,
                     const double xyzMean[3], double yVariance, uint32_t samples,
                     uint32_t oddSamples, const float* whiteMeans = nullptr);
+
+  /// Sets the ground-truth channels of a pixel already set by setFromMeans from stored means.
+  void setAovFromMeans(int x, int y, const float* means);
+  /// Mean of ground-truth channel c in pixel (x, y) (0 before a sample).
+  double aovMean(int x, int y, int c) const {
+    const size_t i = index(x, y);
+    return counts_[i] ? aovSums_[i * static_cast<size_t>(aovChannels_) + static_cast<size_t>(c)] /
+                            counts_[i]
+                      : 0.0;
+  }
 
   /// Sets layer l of a pixel already set by setFromMeans from stored means and variances of the
   /// means (null: unknown).
@@ -203,6 +228,9 @@ private:
   std::vector<uint32_t> oddCounts_; ///< [pixel]
   std::vector<uint32_t> counts_;
   std::vector<double> whiteSums_; ///< [pixel][band]; empty without the white reference
+  std::vector<AovKind> aovKinds_;
+  int aovChannels_ = 0;
+  std::vector<double> aovSums_; ///< [pixel][channel]
   std::vector<std::string> layerNames_;
   std::vector<double> layerSums_;    ///< [pixel][layer][band]
   std::vector<double> layerOddSums_; ///< [pixel][layer][band]

@@ -1,5 +1,7 @@
 #include "integrators/renderer.h"
 
+#include "integrators/aov_layers.h"
+
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
@@ -40,6 +42,7 @@ SampledWavelengths sampleStratifiedLanes(const WavelengthSampler& wavelengths,
 
 constexpr uint32_t kOddReplicateSalt = 0x68e31da4U;
 constexpr uint32_t kWhiteSalt = 0x1b56c4e9U;
+constexpr uint32_t kAovSalt = 0x5f3759dfU;
 constexpr uint32_t kPathBoundarySalt = 0x510e527fU;
 
 // Samples of [first, first + n) with odd numbers.
@@ -69,6 +72,7 @@ struct RenderTarget {
   PixelRect rect;
   RenderOutput out;
   ComponentLayout layout;
+  std::shared_ptr<const AovEvaluator> aovs; ///< the ground-truth layers kept, or null
   bool differentiated = false, reverse = false, relightable = false;
   uint32_t seed = 0;
   int begin = 0, end = 0; ///< the sample numbers to render
@@ -183,6 +187,7 @@ RenderTarget renderTarget(const RenderScene& scene, const RenderOptions& options
                               0,
                               {},
                               {}},
+                 {},
                  {}};
   // Component layers: set on a new film, the same names on a resumed one.
   const std::vector<std::string> layerNames = componentLayerNames(scene, options);
@@ -203,6 +208,24 @@ RenderTarget renderTarget(const RenderScene& scene, const RenderOptions& options
                   std::to_string(held.size()) + " (" + (held.empty() ? "none" : held.front()) +
                   (held.size() > 1 ? ", ..." : "") + "), this one asks for " +
                   std::to_string(layerNames.size()) + " (use the same --aov as the first run)");
+  }
+  // Ground-truth layers: set on a new film, the same ones on a resumed one.
+  if (!options.aovs.empty())
+    t.aovs = std::make_shared<const AovEvaluator>(scene, options.aovs, t.bands);
+  if (options.resumeFrom) {
+    const std::vector<AovKind> asked = t.aovs ? t.aovs->kinds() : std::vector<AovKind>{};
+    if (t.out.film.aovKinds() != asked) {
+      auto names = [](const std::vector<AovKind>& kinds) {
+        std::string s;
+        for (AovKind k : kinds) s += (s.empty() ? "" : ",") + std::string(aovName(k));
+        return s.empty() ? std::string("none") : s;
+      };
+      throw Error("cannot continue a render with other ground-truth layers: it holds " +
+                  names(t.out.film.aovKinds()) + ", this one asks for " + names(asked) +
+                  " (use the same --aov as the first run)");
+    }
+  } else if (t.aovs) {
+    t.out.film.setAovs(t.aovs->kinds());
   }
   // A relightable scene: the transport per light group on the excitation grid.
   t.relightable = scene.relight.enabled;
@@ -311,6 +334,7 @@ private:
     GradientTape tape;
     std::vector<SampledSpectrum> forward;
     std::vector<double> tileSums[2];
+    std::vector<float> aov; ///< one sample's ground-truth channels
   };
   struct TileGradient {
     uint32_t slot;
@@ -470,6 +494,13 @@ bool PassRunner::renderPixel(int x, int y, int uniformEnd, const AdaptivePlan* p
     boundarySequences[1].emplace(options_.sampler, pixelIndex,
                                  t_.seed ^ kPathBoundarySalt ^ kOddReplicateSalt);
   }
+  // The ground-truth layers' own sequences (the albedo's directions), made only when kept.
+  std::optional<PixelSequence> aovSequences[2];
+  if (t_.aovs) {
+    aovSequences[0].emplace(options_.sampler, pixelIndex, t_.seed ^ kAovSalt);
+    aovSequences[1].emplace(options_.sampler, pixelIndex, t_.seed ^ kAovSalt ^ kOddReplicateSalt);
+    st.aov.resize(static_cast<size_t>(t_.aovs->channels()));
+  }
   bool halted = false;
   // Each pixel continues after the samples it already has (a resumed film or an adaptive plan
   // may hold more in some pixels than in others).
@@ -498,6 +529,11 @@ bool PassRunner::renderPixel(int x, int y, int uniformEnd, const AdaptivePlan* p
       boundaryRng.emplace(*boundarySequences[odd], static_cast<uint32_t>(s) >> 1);
     st.tape.boundaryRng = boundaryRng ? &*boundaryRng : nullptr;
     traceSample(ray, lambda, rng, odd, x, y, st);
+    if (t_.aovs) { // at the sample's own film position
+      PixelSampleStream aovRng(*aovSequences[odd], static_cast<uint32_t>(s) >> 1);
+      t_.aovs->evaluate(ray, aovRng, st.aov.data());
+      Film::addAovSample(st.pixel, st.aov.data());
+    }
     if (out_.film.hasWhite()) {
       // Its own random numbers (a salted seed): the same for every thread count.
       PixelSampleStream whiteRng(*whiteSequences[odd], static_cast<uint32_t>(s) >> 1);
@@ -782,6 +818,14 @@ SpectralImage toSpectralImage(const Film& film) {
   for (int l = 0; l < film.layerCount(); ++l)
     img.layers.push_back(
         {film.layerName(l), std::vector<float>(pixels * nb), std::vector<float>(pixels * nb)});
+  // Ground-truth layers: each its share of the film's channels, in order.
+  std::vector<int> aovFirst;
+  for (int at = 0; AovKind k : film.aovKinds()) {
+    const int n = aovChannelCount(k, nb);
+    img.aovs.push_back({aovName(k), std::vector<float>(pixels * static_cast<size_t>(n))});
+    aovFirst.push_back(at);
+    at += n;
+  }
   if (const RelightPattern* pattern = film.relightPattern()) {
     RelightLayers& rl = img.relight;
     rl.grid = pattern->grid();
@@ -798,6 +842,12 @@ SpectralImage toSpectralImage(const Film& film) {
     const int y = r.y0 + row;
     for (int x = r.x0; x < r.x1; ++x) {
       const size_t i = static_cast<size_t>(row) * img.width + static_cast<size_t>(x - r.x0);
+      for (size_t l = 0; l < img.aovs.size(); ++l) {
+        const size_t n = img.aovs[l].values.size() / pixels;
+        for (size_t c = 0; c < n; ++c)
+          img.aovs[l].values[i * n + c] =
+              static_cast<float>(film.aovMean(x, y, aovFirst[l] + static_cast<int>(c)));
+      }
       for (int b = 0; b < nb; ++b) {
         img.radiance[i * nb + b] = static_cast<float>(film.bandMean(x, y, b));
         img.bandVariance[i * nb + b] = static_cast<float>(film.bandVariance(x, y, b));
@@ -860,6 +910,19 @@ Film filmFromImage(const SpectralImage& img, int firstSample, int maxSamples) {
   std::vector<std::string> layerNames;
   for (const ImageLayer& l : img.layers) layerNames.push_back(l.name);
   film.setLayers(layerNames);
+  // Ground-truth layers: finite values (normals and positions may be negative).
+  std::vector<AovKind> aovKinds;
+  for (const AovImageLayer& l : img.aovs) {
+    const auto k = aovKindNamed(l.name);
+    if (!k) throw Error("the image holds a ground-truth layer nxrender does not make: " + l.name);
+    aovKinds.push_back(*k);
+    for (size_t v = 0; v < l.values.size(); ++v)
+      if (!std::isfinite(l.values[v]))
+        throw Error(where(v / (l.values.size() / pixels)) + ": expected finite values in the " +
+                    l.name + " layer to continue from, found " + numberText(l.values[v]));
+  }
+  film.setAovs(aovKinds);
+  std::vector<float> aovMeans(static_cast<size_t>(film.aovChannels()));
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const size_t i = static_cast<size_t>(y) * img.width + x;
@@ -869,6 +932,13 @@ Film filmFromImage(const SpectralImage& img, int firstSample, int maxSamples) {
                         img.yVariance.empty() ? 0.0 : img.yVariance[i], img.sampleCount[i],
                         oddSamplesIn(firstSample, img.sampleCount[i]),
                         img.white.empty() ? nullptr : &img.white[i * nb]);
+      for (size_t l = 0, at = 0; l < img.aovs.size(); ++l) {
+        const size_t n = img.aovs[l].values.size() / pixels;
+        std::copy_n(&img.aovs[l].values[i * n], n, aovMeans.begin() + static_cast<long>(at));
+        at += n;
+      }
+      if (!aovMeans.empty())
+        film.setAovFromMeans(img.originX + x, img.originY + y, aovMeans.data());
       for (size_t l = 0; l < img.layers.size(); ++l)
         film.setLayerFromMeans(
             img.originX + x, img.originY + y, static_cast<int>(l), &img.layers[l].values[i * nb],

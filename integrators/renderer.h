@@ -55,6 +55,9 @@ struct RenderOptions {
   /// direct, indirect (components) and one layer per light group (lightGroups); see
   /// componentLayerNames.
   bool components = false, lightGroups = false;
+  /// Also keep these ground-truth layers of the first hit (integrators/aov_layers.h), averaged
+  /// over each pixel's samples like the radiance.
+  std::vector<AovKind> aovs;
   /// Excitation grid step (nm) of a relightable render (a scene built with
   /// SceneDesc::relightable): the film keeps the transport per light group on it.
   double relightStepNm = 5;

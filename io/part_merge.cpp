@@ -163,6 +163,24 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
                        [](const ImageLayer& l) { return !l.variances.empty(); });
   });
   std::vector<std::vector<double>> layerSum(nLayers, std::vector<double>(pixels * nb, 0.0));
+  // Ground-truth layers: the same ones in every part, averaged like the bands.
+  auto aovNames = [](const SpectralImage& img) {
+    std::string names;
+    for (const AovImageLayer& l : img.aovs) names += (names.empty() ? "" : ",") + l.name;
+    return names;
+  };
+  for (const ImagePart& p : parts)
+    if (aovNames(p.image) != aovNames(first.image))
+      throw Error(p.name + ": does not belong with " + first.name +
+                  ": its ground-truth layers are '" + aovNames(p.image) + "', not '" +
+                  aovNames(first.image) + "'");
+  std::vector<size_t> aovWidth;
+  std::vector<std::vector<double>> aovSum;
+  for (const AovImageLayer& l : first.image.aovs) {
+    aovWidth.push_back(l.values.size() / (static_cast<size_t>(first.image.width) *
+                                          static_cast<size_t>(first.image.height)));
+    aovSum.emplace_back(pixels * aovWidth.back(), 0.0);
+  }
   std::vector<std::vector<double>> layerVar(
       nLayers, std::vector<double>(layerVariances ? pixels * nb : 0, 0.0));
   if (ids) out.objectId.assign(pixels, 0), out.materialId.assign(pixels, 0);
@@ -213,6 +231,10 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
             if (layerVariances)
               layerVar[l][dst * nb + b] += p.layers[l].variances[src * nb + b] * n * n;
           }
+        for (size_t l = 0; l < aovSum.size(); ++l)
+          for (size_t c = 0; c < aovWidth[l]; ++c)
+            aovSum[l][dst * aovWidth[l] + c] +=
+                static_cast<double>(p.aovs[l].values[src * aovWidth[l] + c]) * n;
         if (ids) out.objectId[dst] = p.objectId[src], out.materialId[dst] = p.materialId[src];
         if (depth) out.depth[dst] = p.depth[src];
         count[dst] += p.sampleCount[src];
@@ -271,6 +293,8 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
   for (size_t l = 0; l < nLayers; ++l)
     out.layers.push_back({first.image.layers[l].name, std::vector<float>(pixels * nb),
                           std::vector<float>(layerVariances ? pixels * nb : 0)});
+  for (size_t l = 0; l < aovSum.size(); ++l)
+    out.aovs.push_back({first.image.aovs[l].name, std::vector<float>(pixels * aovWidth[l])});
   for (size_t i = 0; i < pixels; ++i) {
     out.sampleCount[i] = static_cast<uint32_t>(count[i]);
     if (covering[i] == 1) { // a single part: its values, bit for bit
@@ -281,6 +305,9 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
       std::copy_n(&p.xyz[src * 3], 3, &out.xyz[i * 3]);
       std::copy_n(&p.rgb[src * 3], 3, &out.rgb[i * 3]);
       if (white) std::copy_n(&p.white[src * nb], nb, &out.white[i * nb]);
+      for (size_t l = 0; l < aovSum.size(); ++l)
+        std::copy_n(&p.aovs[l].values[src * aovWidth[l]], aovWidth[l],
+                    &out.aovs[l].values[i * aovWidth[l]]);
       for (size_t l = 0; l < nLayers; ++l) {
         std::copy_n(&p.layers[l].values[src * nb], nb, &out.layers[l].values[i * nb]);
         if (layerVariances)
@@ -297,6 +324,10 @@ SpectralImage mergeSameBands(const std::vector<ImagePart>& parts) {
       out.radiance[i * nb + b] = static_cast<float>(bandSum[i * nb + b] / n);
     for (int b = 0; b < nb && white; ++b)
       out.white[i * nb + b] = static_cast<float>(whiteSum[i * nb + b] / n);
+    for (size_t l = 0; l < aovSum.size(); ++l)
+      for (size_t c = 0; c < aovWidth[l]; ++c)
+        out.aovs[l].values[i * aovWidth[l] + c] =
+            static_cast<float>(aovSum[l][i * aovWidth[l] + c] / n);
     for (size_t l = 0; l < nLayers; ++l)
       for (int b = 0; b < nb; ++b) {
         out.layers[l].values[i * nb + b] = static_cast<float>(layerSum[l][i * nb + b] / n);
@@ -418,6 +449,12 @@ SpectralImage stitchBands(const std::vector<ImagePart>& images) {
   out.radiance.assign(pixels * nb, 0.0f);
   out.bandVariance.assign(variances ? pixels * nb : 0, 0.0f);
   out.white.assign(white ? pixels * nb : 0, 0.0f);
+  for (const ImagePart& p : images)
+    if (!p.image.aovs.empty())
+      throw Error(p.name +
+                  ": cannot be stitched with other band sets: it holds ground-truth "
+                  "layers (--aov " +
+                  p.image.aovs.front().name + "); render them with one band set");
   // Component layers: the same ones in every image, stitched like the bands.
   for (const ImagePart& p : images) {
     bool same = p.image.layers.size() == a.layers.size();

@@ -1,5 +1,7 @@
 #include "io/spectral_exr.h"
 
+#include "io/aov_names.h"
+
 #include <Imath/half.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -125,6 +127,9 @@ bool fitsInHalf(const SpectralImage& image) {
     for (const std::vector<float>* v : {&l.values, &l.variances})
       for (float x : *v)
         if (!(std::abs(x) <= 65504.0f)) return false;
+  for (const AovImageLayer& l : image.aovs)
+    for (float x : l.values)
+      if (!(std::abs(x) <= 65504.0f)) return false;
   for (const std::vector<float>* v : {&image.relight.values, &image.relight.halfDifferences})
     for (float x : *v)
       if (!(std::abs(x) <= 65504.0f)) return false;
@@ -158,6 +163,10 @@ void checkFiniteValues(const std::string& path, const SpectralImage& image) {
     check(l.values, nb, ("the " + l.name + " layer").c_str());
     check(l.variances, nb, ("the " + l.name + " layer's variances").c_str());
   }
+  for (const AovImageLayer& l : image.aovs)
+    if (const auto k = aovKindNamed(l.name))
+      check(l.values, static_cast<size_t>(aovChannelCount(*k, image.bands.count())),
+            ("the " + l.name + " layer").c_str());
   // The transport is planar ([group][entry][pixel]): name the pixel within its plane.
   const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
   for (const std::vector<float>* v : {&image.relight.values, &image.relight.halfDifferences})
@@ -202,6 +211,12 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
                            (!l.variances.empty() && l.variances.size() != pixels * nBands) ||
                            l.name.empty() || l.name.find(',') != std::string::npos;
                   }) ||
+      std::any_of(image.aovs.begin(), image.aovs.end(),
+                  [&](const AovImageLayer& l) {
+                    const auto k = aovKindNamed(l.name);
+                    return !k || l.values.size() != pixels * static_cast<size_t>(aovChannelCount(
+                                                                 *k, image.bands.count()));
+                  }) ||
       image.relight.values.size() !=
           image.relight.sources.size() * image.relight.entries.size() * pixels ||
       image.relight.halfDifferences.size() != image.relight.values.size() ||
@@ -245,6 +260,11 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
       for (const ImageLayer& l : image.layers) names += (names.empty() ? "" : ",") + l.name;
       insertAttribute(kComponentLayersAttribute, names);
     }
+    if (!image.aovs.empty()) {
+      std::string names;
+      for (const AovImageLayer& l : image.aovs) names += (names.empty() ? "" : ",") + l.name;
+      insertAttribute(kAovLayersAttribute, names);
+    }
     if (image.relight.present())
       for (const auto& [key, value] : relightAttributes(image.relight)) insertAttribute(key, value);
 
@@ -253,7 +273,10 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
     // channels get converted copies (OpenEXR converts half to float when reading, not float to
     // half when writing).
     std::vector<std::vector<half>> halves;
-    halves.reserve((2 + 2 * image.layers.size()) * static_cast<size_t>(nBands) + 8 +
+    size_t aovChannels = 0;
+    for (const AovImageLayer& l : image.aovs)
+      aovChannels += static_cast<size_t>(aovChannelCount(*aovKindNamed(l.name), nBands));
+    halves.reserve((2 + 2 * image.layers.size()) * static_cast<size_t>(nBands) + 8 + aovChannels +
                    2 * image.relight.sources.size() * image.relight.entries.size());
     auto addChannel = [&](const std::string& name, const float* first, size_t stride) {
       checkExrName(path, name, "channel");
@@ -293,6 +316,11 @@ void writeExr(const std::string& path, const SpectralImage& image, Imf::PixelTyp
         addChannel(channel, l.values.data() + b, nb);
         if (!l.variances.empty()) addChannel(kVariancePrefix + channel, l.variances.data() + b, nb);
       }
+    for (const AovImageLayer& l : image.aovs) {
+      const std::vector<std::string> channels = aovChannelNames(*aovKindNamed(l.name), image.bands);
+      for (size_t c = 0; c < channels.size(); ++c)
+        addChannel(l.name + "." + channels[c], l.values.data() + c, channels.size());
+    }
     if (image.relight.present()) {
       std::vector<std::string> bandChannels;
       for (int b = 0; b < nBands; ++b)
@@ -450,6 +478,33 @@ SpectralImage readSpectralExr(const std::string& path) {
         fb.insert(kWhitePrefix + bandChannels[static_cast<size_t>(b)],
                   Imf::Slice::Make(Imf::FLOAT, img.white.data() + b, dw, sizeof(float) * nb,
                                    sizeof(float) * nb * img.width));
+    }
+    // Ground-truth layers: the channels of each kind the attribute names, each one required.
+    if (const auto it = img.attributes.find(kAovLayersAttribute); it != img.attributes.end()) {
+      std::string rest = it->second;
+      img.attributes.erase(it);
+      while (!rest.empty()) {
+        const size_t comma = rest.find(',');
+        const std::string name = rest.substr(0, comma);
+        rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+        const auto kind = aovKindNamed(name);
+        if (!kind)
+          throw Error(path + ": expected ground-truth layers named as nxrender names them in " +
+                      kAovLayersAttribute + ", found '" + name + "'");
+        AovImageLayer& l = img.aovs.emplace_back();
+        l.name = name;
+        const std::vector<std::string> channels = aovChannelNames(*kind, img.bands);
+        l.values.assign(pixels * channels.size(), 0.0f);
+        for (size_t c = 0; c < channels.size(); ++c) {
+          const std::string channel = name + "." + channels[c];
+          if (!h.channels().findChannel(channel))
+            throw Error(path + ": expected a channel " + channel + " (" + kAovLayersAttribute +
+                        " lists the layer " + name + "), found none");
+          fb.insert(channel, Imf::Slice::Make(Imf::FLOAT, l.values.data() + c, dw,
+                                              sizeof(float) * channels.size(),
+                                              sizeof(float) * channels.size() * img.width));
+        }
+      }
     }
     // Component layers: the channels the attribute names, each one required.
     if (const auto it = img.attributes.find(kComponentLayersAttribute);

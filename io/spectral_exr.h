@@ -23,6 +23,13 @@ struct ImageLayer {
   std::vector<float> variances; ///< [pixel][band]; empty: not stored
 };
 
+/// A ground-truth layer (--aov normals, position, uv, albedo, ...; io/aov_names.h): per pixel
+/// the mean of its channels over the pixel's samples, like the radiance.
+struct AovImageLayer {
+  std::string name;          ///< "normals", "albedo", ... (aovName)
+  std::vector<float> values; ///< [pixel][channel], channels as aovChannelNames lists them
+};
+
 /// A spectral image, or a rectangular part (crop) of one: band radiances, a linear sRGB
 /// preview and per-pixel sample counts.
 struct SpectralImage {
@@ -45,6 +52,9 @@ struct SpectralImage {
   /// Component layers, as EXR channels <name>.S0.<band>nm and Variance.<name>.S0.<band>nm,
   /// listed in the attribute nxrender.componentLayers
   std::vector<ImageLayer> layers;
+  /// Ground-truth layers, as EXR channels <name>.<channel> (normals.X, albedo.T.550,000000nm),
+  /// listed in the attribute nxrender.aovLayers
+  std::vector<AovImageLayer> aovs;
   /// The transport of a relightable render (--relightable), as EXR channels
   /// relight.<group>.T.<excitation>nm.<band>nm (and .X, .Y, .Z) with HalfDifference.<...>
   RelightLayers relight;
@@ -72,6 +82,8 @@ inline constexpr const char* kSampleCountChannel = "SampleCount";
 inline constexpr const char* kVariancePrefix = "Variance.";
 /// Prefix of the white-reference channels ("white.S0.550,000000nm").
 inline constexpr const char* kWhitePrefix = "white.";
+/// The attribute listing an image's ground-truth layers (comma-separated).
+inline constexpr const char* kAovLayersAttribute = "nxrender.aovLayers";
 /// The attribute listing an image's component layers (comma-separated, in channel order).
 inline constexpr const char* kComponentLayersAttribute = "nxrender.componentLayers";
 /// Names of the id and depth channels.
