@@ -49,6 +49,28 @@ py::dict layerViews(const py::object& self, std::vector<float> nx::ImageLayer::*
   return out;
 }
 
+// The ground-truth layers of the image owned by `self` by name, (H, W, channels) views: the
+// fluorescence as two, 'fluorescence.absorption' and 'fluorescence.emission' (H, W, bands).
+py::dict aovViews(const py::object& self) {
+  auto& image = self.cast<PyImage&>().image;
+  py::dict out;
+  const auto h = static_cast<py::ssize_t>(image.height), w = static_cast<py::ssize_t>(image.width);
+  const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+  for (nx::AovImageLayer& l : image.aovs) {
+    const auto n = static_cast<py::ssize_t>(l.values.size() / pixels);
+    if (l.name != "fluorescence") {
+      out[py::str(l.name)] = view(self, l.values, static_cast<int>(n));
+      continue;
+    }
+    const py::ssize_t nb = n / 2, s = sizeof(float);
+    for (const auto& [part, first] : {std::pair{"absorption", 0}, std::pair{"emission", 1}})
+      out[py::str(l.name + "." + part)] = py::array_t<float>(
+          std::vector<py::ssize_t>{h, w, nb}, std::vector<py::ssize_t>{w * n * s, n * s, s},
+          l.values.data() + first * nb, self);
+  }
+  return out;
+}
+
 // A differentiated render's gradients by parameter name (their values or variances): the
 // layers "gradient.<slot>", one (H, W, bands) array per number, stacked (n, H, W, bands) for
 // a vector parameter.
@@ -231,6 +253,12 @@ void bindImageClass(py::module_& m) {
           "component_variances",
           [](py::object self) { return layerViews(self, &nx::ImageLayer::variances); },
           "dict of component layer name -> (H, W, bands) float32 variance of its means")
+      .def_property_readonly(
+          "aovs", [](py::object self) { return aovViews(self); },
+          "dict of ground-truth layer name -> float32 array (aovs=[...], docs/datasets.md): "
+          "'normals', 'geometric_normals', 'position' (H, W, 3, world space), 'uv' (H, W, 2), "
+          "'albedo' (H, W, bands), 'fluorescence.absorption' and 'fluorescence.emission' (H, W, "
+          "bands); empty without them")
       .def_property_readonly(
           "object_id",
           [](py::object self) { return view(self, self.cast<PyImage&>().image.objectId, 1); },

@@ -155,13 +155,15 @@ nx::RenderChoices choicesFrom(const RenderArguments& a) {
   }
   if (py::isinstance<py::str>(a.aovs) || !py::hasattr(a.aovs, "__iter__"))
     throw py::type_error("aovs: expected a list of 'white', 'ids', 'depth', 'components', "
-                         "'lightgroups', found " +
+                         "'lightgroups', 'normals', 'geometric_normals', 'position', 'uv', "
+                         "'albedo', 'fluorescence', found " +
                          typeName(a.aovs));
   for (const py::handle aov : a.aovs) {
     const std::string name = stringArgument(aov, "aovs");
     if (!nx::addAov(choices, name))
-      throw py::value_error("aovs: expected 'white', 'ids', 'depth', 'components' or "
-                            "'lightgroups', found '" +
+      throw py::value_error("aovs: expected 'white', 'ids', 'depth', 'components', "
+                            "'lightgroups', 'normals', 'geometric_normals', 'position', 'uv', "
+                            "'albedo' or 'fluorescence', found '" +
                             name + "'");
   }
   if (!a.targetError.is_none())
