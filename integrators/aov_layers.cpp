@@ -49,27 +49,72 @@ AovEvaluator::AovEvaluator(const RenderScene& scene, std::vector<AovKind> kinds,
   }
   for (AovKind k : kinds_) channels_ += static_cast<int>(aovChannelNames(k, bands).size());
   nodes_ = bandNodes(bands, kNodes);
-  dyes_.resize(scene.materials.size());
-  if (offset(AovKind::Fluorescence) < 0) return;
+  materials_.resize(scene.materials.size());
   constexpr int n = ReradiationMatrix::kBins;
   for (size_t m = 0; m < scene.materials.size(); ++m) {
-    const ReradiationMatrix* r = scene.materials[m].reradiation.get();
-    if (!r) continue;
-    DyeSpectra& d = dyes_[m];
-    d.absorption.assign(n, 0.0f);
-    d.emission.assign(n, 0.0f);
+    const Material& material = scene.materials[m];
+    const ReradiationMatrix* r = material.reradiation.get();
+    MaterialBands& mb = materials_[m];
+    if (material.kind == MaterialKind::Mixture && !material.texture) {
+      mb.reflectance = bandMeans([&](const SampledWavelengths& l) {
+        SampledSpectrum rho;
+        material.reflectance.evaluate(l, rho);
+        return rho;
+      });
+      if (r)
+        mb.elastic = bandMeans([&](const SampledWavelengths& l) {
+          SampledSpectrum rho;
+          material.reflectance.evaluate(l, rho);
+          for (int i = 0; i < kLanes; ++i)
+            if (const int bin = ReradiationMatrix::binOf(l.lambda[static_cast<size_t>(i)]);
+                bin >= 0)
+              rho[i] = static_cast<float>(r->elastic(bin, rho[i]));
+          return rho;
+        });
+    }
+    if (!r || offset(AovKind::Fluorescence) < 0) continue;
+    std::vector<float> absorption(n, 0.0f), emission(n, 0.0f);
     double emitted = 0;
     for (int o = 0; o < n; ++o) emitted += r->columnSum(o);
     for (int i = 0; i < n; ++i) {
       double photons = 0;
       for (int o = i + 1; o < n; ++o)
         photons += (*r)(i, o) * ReradiationMatrix::centre(o) / ReradiationMatrix::centre(i);
-      d.absorption[static_cast<size_t>(i)] = static_cast<float>(photons);
+      absorption[static_cast<size_t>(i)] = static_cast<float>(photons);
       if (emitted > 0)
-        d.emission[static_cast<size_t>(i)] =
+        emission[static_cast<size_t>(i)] =
             static_cast<float>(r->columnSum(i) / (emitted * ReradiationMatrix::kBinNm));
     }
+    auto perBin = [](const std::vector<float>& v) {
+      return [&v](const SampledWavelengths& l) {
+        SampledSpectrum out = SampledSpectrum::filled(0.0f);
+        for (int i = 0; i < kLanes; ++i)
+          if (const int bin = ReradiationMatrix::binOf(l.lambda[static_cast<size_t>(i)]); bin >= 0)
+            out[i] = v[static_cast<size_t>(bin)];
+        return out;
+      };
+    };
+    mb.absorption = bandMeans(perBin(absorption));
+    mb.emission = bandMeans(perBin(emission));
   }
+}
+
+template <class F>
+std::vector<float> AovEvaluator::bandMeans(F&& lanes) const {
+  std::vector<float> out(static_cast<size_t>(bands_), 0.0f);
+  const int total = bands_ * kNodes;
+  for (int first = 0; first < total; first += kLanes) {
+    SampledWavelengths lambda;
+    for (int i = 0; i < kLanes; ++i) {
+      lambda.lambda[static_cast<size_t>(i)] =
+          nodes_[static_cast<size_t>(std::min(first + i, total - 1))];
+      lambda.pdf[static_cast<size_t>(i)] = 1;
+    }
+    const SampledSpectrum v = lanes(lambda);
+    for (int i = 0; i < kLanes && first + i < total; ++i)
+      out[static_cast<size_t>((first + i) / kNodes)] += v[i] / kNodes;
+  }
+  return out;
 }
 
 int AovEvaluator::offset(AovKind k) const {
@@ -108,6 +153,15 @@ void AovEvaluator::albedo(const SurfaceHit& h, const Ray& ray, PixelSampleStream
   const Vec3 wo = -ray.d;
   // Matte and the mirror mixtures reflect their reflectance in all: rho = (1 - r) rho + r rho.
   const bool exact = material.kind == MaterialKind::Mixture;
+  const MaterialBands& mb = materials_[app.material];
+  if (exact && !mb.reflectance.empty()) { // (untextured: the same everywhere)
+    if (dot(wo, hit.ng) * dot(wo, hit.ns) <= 0) return;
+    for (int b = 0; b < bands_; ++b)
+      out[b] = mb.elastic.empty() ? mb.reflectance[static_cast<size_t>(b)]
+                                  : (1 - k) * mb.reflectance[static_cast<size_t>(b)] +
+                                        k * mb.elastic[static_cast<size_t>(b)];
+    return;
+  }
   const int total = bands_ * kNodes;
   for (int first = 0; first < total; first += kLanes) {
     SampledWavelengths lambda;
@@ -152,16 +206,13 @@ void AovEvaluator::albedo(const SurfaceHit& h, const Ray& ray, PixelSampleStream
 
 void AovEvaluator::fluorescence(SurfaceHit& hit, float* out) const {
   const ShapeAppearance& app = scene_.appearance(hit);
-  const DyeSpectra& d = dyes_[app.material];
-  if (d.absorption.empty()) return;
+  const MaterialBands& mb = materials_[app.material];
+  if (mb.absorption.empty()) return;
   const float k = scene_.concentrationAt(scene_.materials[app.material], hit);
-  for (int b = 0; b < bands_; ++b)
-    for (int j = 0; j < kNodes; ++j) {
-      const int bin = ReradiationMatrix::binOf(nodes_[static_cast<size_t>(b * kNodes + j)]);
-      if (bin < 0) continue;
-      out[b] += k * d.absorption[static_cast<size_t>(bin)] / kNodes;
-      out[bands_ + b] += d.emission[static_cast<size_t>(bin)] / kNodes;
-    }
+  for (int b = 0; b < bands_; ++b) {
+    out[b] = k * mb.absorption[static_cast<size_t>(b)];
+    out[bands_ + b] = mb.emission[static_cast<size_t>(b)];
+  }
 }
 
 } // namespace nx

@@ -47,12 +47,17 @@ private:
   /// band's mean of a spectrum is the mean over its nodes.
   static constexpr int kNodes = 4;
   std::vector<float> nodes_; ///< [band][node]
-  /// Per material with a dye: photons re-emitted per photon absorbed in each excitation bin
-  /// (sum_o M[i][o] l_o / l_i) and the emission per nm in each bin (c(o) normalised to area 1).
-  struct DyeSpectra {
-    std::vector<float> absorption, emission;
+  /// What a hit on a material gives without tracing, per band (empty where it does not apply):
+  /// a matte's (a mixture's) reflectance and, with a dye, its elastic part at concentration 1
+  /// (untextured materials); the dye's photons re-emitted per photon absorbed at each excitation
+  /// wavelength (sum_o M[i][o] l_o / l_i) and its emission per nm (c(o) normalised to area 1).
+  struct MaterialBands {
+    std::vector<float> reflectance, elastic, absorption, emission;
   };
-  std::vector<DyeSpectra> dyes_; ///< [material]; empty vectors without a dye
+  std::vector<MaterialBands> materials_; ///< [material]
+  /// The band means of the spectrum `lanes` gives for a set of wavelengths.
+  template <class F>
+  std::vector<float> bandMeans(F&& lanes) const;
 };
 
 } // namespace nx
