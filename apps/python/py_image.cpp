@@ -16,6 +16,7 @@
 #include "core/hash.h"
 #include "integrators/render_scene.h"
 #include "io/envi_export.h"
+#include "io/exr_compression.h"
 #include "io/spectral_cube.h"
 #include "spectra/band_colour.h"
 
@@ -394,17 +395,32 @@ void bindImageFiles(py::module_& m) {
       "Gaussians; values as stored (no scaling).");
   m.def(
       "write_exr",
-      [](const py::object& path, const PyImage& image, bool half) {
+      [](const py::object& path, const PyImage& image, bool half, const py::object& compression,
+         const py::object& zipLevel) {
         const std::string p = pathArgument(path, "path");
+        nx::ExrEncoding encoding;
+        try {
+          if (!compression.is_none())
+            encoding.compression =
+                nx::parseExrCompression(stringArgument(compression, "compression"), "compression");
+        } catch (const nx::Error& e) {
+          throw py::value_error(e.what());
+        }
+        if (!zipLevel.is_none())
+          encoding.zipLevel = static_cast<int>(numberArgument(zipLevel, "zip_level", 1, 9));
         py::gil_scoped_release release;
         if (half)
-          nx::writeSpectralExrHalf(p, image.image);
+          nx::writeSpectralExrHalf(p, image.image, encoding);
         else
-          nx::writeSpectralExr(p, image.image);
+          nx::writeSpectralExr(p, image.image, encoding);
       },
       py::arg("path"), py::arg("image"), py::arg("half") = false,
+      py::arg("compression") = py::none(), py::arg("zip_level") = py::none(),
       "Writes an Image as a spectral OpenEXR (Fichet et al. 2021 layout; the file appears "
-      "complete or not at all). half=True stores half floats (error if a value does not fit).");
+      "complete or not at all). half=True stores half floats (error if a value does not fit). "
+      "compression: as nxrender's --compression ('none', the default for floats; 'piz', the "
+      "default for half; 'zip', 'zips', 'rle', or the lossy 'pxr24', 'b44', 'b44a', 'dwaa', "
+      "'dwab'); zip_level 1-9 for zip and zips (default 4).");
   m.def(
       "write_envi",
       [](const py::object& path, const PyImage& image) {

@@ -161,3 +161,20 @@ def test_read_cube_envi_and_png_stack(tmp_path):
     np.testing.assert_allclose(cube.wavelengths, [500, 600, 700], atol=1e-6)
     with pytest.raises(nxrender.Error, match="wavelength"):
         nxrender.read_cube(stack)
+
+
+def test_write_exr_takes_the_command_lines_compression(scenes, tmp_path):
+    image = nxrender.render(str(scenes / "thesis.scn"), spp=2, aovs=["components"])
+    sizes = {}
+    for compression in (None, "zip", "piz"):
+        path = tmp_path / f"{compression}.exr"
+        nxrender.write_exr(path, image, half=True, compression=compression, zip_level=6)
+        back = nxrender.read_exr(path)
+        # lossless: the half floats come back as written
+        np.testing.assert_array_equal(back.radiance, image.radiance.astype(np.float16))
+        sizes[compression] = path.stat().st_size
+    assert sizes["zip"] < sizes[None]
+    with pytest.raises(ValueError, match="zipp"):
+        nxrender.write_exr(tmp_path / "x.exr", image, compression="zipp")
+    with pytest.raises(ValueError, match="zip_level"):
+        nxrender.write_exr(tmp_path / "x.exr", image, compression="zip", zip_level=10)
