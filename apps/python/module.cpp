@@ -15,6 +15,7 @@
 
 namespace nx {
 extern const char* const kTorchBridgePy; // apps/python/nxrender_torch.py
+extern const char* const kDatasetPy;     // apps/python/nxrender_dataset.py
 } // namespace nx
 
 PYBIND11_MODULE(nxrender, m) {
@@ -34,4 +35,10 @@ PYBIND11_MODULE(nxrender, m) {
       m.def_submodule("torch", "A render as a differentiable PyTorch operation (docs/python.md)");
   pybind11::exec(nx::kTorchBridgePy, torch.attr("__dict__"));
   pybind11::module_::import("sys").attr("modules")["nxrender.torch"] = torch;
+  // nxrender.dataset: many scenes rendered into a dataset, read back as a map-style dataset
+  // (apps/python/nxrender_dataset.py; nxdataset is its command line).
+  pybind11::module_ dataset =
+      m.def_submodule("dataset", "Datasets of many scenes (docs/datasets.md)");
+  pybind11::exec(nx::kDatasetPy, dataset.attr("__dict__"));
+  pybind11::module_::import("sys").attr("modules")["nxrender.dataset"] = dataset;
 }

@@ -1,0 +1,352 @@
+"""nxrender.dataset: datasets of many scenes (docs/datasets.md).
+
+    import nxrender, nxrender.dataset
+    def scene(index):                      # an nxrender.Scene, or a dict for Scene.from_dict
+        ...
+    report = nxrender.dataset.generate(scene, 1000, "out", spp=64,
+                                       aovs=["components", "normals", "albedo"])
+    data = nxrender.dataset.Dataset("out")  # len(data); data[i] -> dict of arrays
+    loader = torch.utils.data.DataLoader(data, batch_size=16, shuffle=True)
+
+The command line is nxdataset (a program of the build): nxdataset GENERATOR.py --count N -o DIR
+[--spp S] [--aov LIST] [--seed S] [--task I/N] [--jobs K] [--threads T], GENERATOR.py
+defining scene(index). Item i is rendered with a seed derived from i and the dataset's seed
+(recorded); a Slurm job array splits the indices by SLURM_ARRAY_TASK_ID and
+SLURM_ARRAY_TASK_COUNT (or --task I/N), item i going to task i mod N; an item is written
+atomically (a temporary file renamed) with its scene as text, the options and the render key,
+so a rerun skips finished items and redoes broken or missing ones.
+"""
+
+import json
+import os
+import sys
+import time
+
+FORMAT = "nxrender-dataset-1"
+_MANIFEST = "dataset.json"
+
+
+def item_seed(dataset_seed, index):
+    """The seed item `index` renders with: a 31-bit hash of the dataset's seed and the index
+    (FNV-1a), the same on every machine and task."""
+    h = 0xcbf29ce484222325
+    for byte in f"{int(dataset_seed)}:{int(index)}".encode():
+        h = ((h ^ byte) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    return int((h ^ (h >> 31)) & 0x7FFFFFFF)
+
+
+def item_path(out, index):
+    """The file of item `index` in dataset directory `out`."""
+    return os.path.join(out, "items", f"item_{int(index):07d}.npz")
+
+
+def task_split(task=None, environ=None):
+    """(I, N): this task's share of the indices, those i with i mod N == I. `task` as "I/N" or
+    (I, N); else a Slurm array task's SLURM_ARRAY_TASK_ID (minus SLURM_ARRAY_TASK_MIN) of
+    SLURM_ARRAY_TASK_COUNT; else (0, 1)."""
+    env = os.environ if environ is None else environ
+    if task is None and "SLURM_ARRAY_TASK_ID" in env:
+        try:
+            first = int(env.get("SLURM_ARRAY_TASK_MIN", "0"))
+            ident = int(env["SLURM_ARRAY_TASK_ID"]) - first
+            count = int(env["SLURM_ARRAY_TASK_COUNT"])
+        except KeyError as e:
+            raise ValueError(f"task: a Slurm array task needs {e.args[0]} too") from None
+        except ValueError:
+            raise ValueError("task: expected whole numbers in SLURM_ARRAY_TASK_ID, "
+                             "SLURM_ARRAY_TASK_MIN and SLURM_ARRAY_TASK_COUNT, found "
+                             f"{env.get('SLURM_ARRAY_TASK_ID')!r}, "
+                             f"{env.get('SLURM_ARRAY_TASK_MIN')!r}, "
+                             f"{env.get('SLURM_ARRAY_TASK_COUNT')!r}") from None
+        task = (ident, count)
+    if task is None:
+        return 0, 1
+    if isinstance(task, str):
+        parts = task.split("/")
+        try:
+            task = (int(parts[0]), int(parts[1])) if len(parts) == 2 else None
+        except ValueError:
+            task = None
+        if task is None:
+            raise ValueError(f"task: expected I/N (e.g. 0/4), found {task!r}")
+    ident, count = int(task[0]), int(task[1])
+    if not (count >= 1 and 0 <= ident < count):
+        raise ValueError(f"task: expected 0 <= I < N, found {ident}/{count}")
+    return ident, count
+
+
+def _settings(count, spp, aovs, seed):
+    return {"format": FORMAT, "count": int(count), "spp": spp, "aovs": list(aovs),
+            "seed": int(seed)}
+
+
+def _open_manifest(out, settings):
+    """Writes the dataset's manifest, or checks that an existing one has these settings (a
+    dataset is never mixed from two configurations)."""
+    import nxrender
+    path = os.path.join(out, _MANIFEST)
+    os.makedirs(os.path.join(out, "items"), exist_ok=True)
+    if os.path.exists(path):
+        with open(path) as f:
+            held = json.load(f)
+        mine = dict(settings, version=held.get("version"))
+        if held != mine:
+            raise ValueError(f"{path}: the dataset there was made with {held}, not {mine}: "
+                             "give another directory, or the same settings to continue it")
+        return
+    data = dict(settings, version=nxrender.__version__)
+    temp = f"{path}.tmp{os.getpid()}"
+    with open(temp, "w") as f:
+        json.dump(data, f, indent=1)
+    os.replace(temp, path)
+
+
+def _valid(path, index, settings):
+    """True when the item file is complete and was made with these settings."""
+    import numpy as np
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            meta = json.loads(str(z["meta"]))
+            names = set(z.files)
+            ok = meta.get("index") == index and all(meta.get(k) == v for k, v in
+                                                    settings.items() if k != "count")
+            return ok and all(n in names for n in meta.get("arrays", []))
+    except Exception:  # a truncated or foreign file: redo it
+        return False
+
+
+def _arrays(image, aovs):
+    """The arrays an item stores, by name, and their storage types: float16 for radiance-like
+    layers and ground truth (far below the Monte Carlo noise and the geometry's precision at
+    these sizes), uint32 for ids."""
+    import numpy as np
+    out = {"radiance": np.asarray(image.radiance, np.float16)}
+    for name, array in image.components.items():
+        out[name] = np.asarray(array, np.float16)
+    for name, array in image.aovs.items():
+        out[name] = np.asarray(array, np.float16)
+    if "white" in aovs and image.white is not None:
+        out["white"] = np.asarray(image.white, np.float16)
+    if image.object_id is not None:
+        out["object_id"] = np.asarray(image.object_id, np.uint32)
+        out["material_id"] = np.asarray(image.material_id, np.uint32)
+    if image.depth is not None:
+        out["depth"] = np.asarray(image.depth, np.float32)
+    return out
+
+
+def _write_item(path, index, seed, scene_text, settings, image, aovs):
+    import numpy as np
+    arrays = _arrays(image, aovs)
+    meta = dict(settings, index=int(index), item_seed=int(seed),
+                render_key=image.attributes.get("nxrender.renderKey", ""),
+                wavelengths=[float(w) for w in image.wavelengths],
+                arrays=sorted(arrays), scene=scene_text)
+    temp = f"{path}.tmp{os.getpid()}.{threading_ident()}"
+    with open(temp, "wb") as f:
+        np.savez(f, meta=np.array(json.dumps(meta)), **arrays)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(temp, path)
+    return {name: a.nbytes for name, a in arrays.items()}
+
+
+def threading_ident():
+    import threading
+    return threading.get_ident()
+
+
+def _scene_of(scene_fn, index):
+    import nxrender
+    scene = scene_fn(index)
+    if isinstance(scene, dict):
+        scene = nxrender.Scene.from_dict(scene, f"scene({index})")
+    if not isinstance(scene, nxrender.Scene):
+        raise TypeError(f"scene({index}): expected an nxrender.Scene or a dict, found "
+                        f"{type(scene).__name__}")
+    return scene
+
+
+def generate(scene_fn, count, out, spp=None, aovs=("components",), seed=0, task=None,
+             jobs=1, threads=None, log=None):
+    """Renders items scene_fn(i) of range(count) that belong to this task (see task_split)
+    into dataset directory `out`, skipping finished ones; returns a report dict (items
+    rendered and skipped, seconds, items per hour, bytes per item per layer). `jobs` items
+    render at once, each on threads // jobs of the machine's threads (or `threads`)."""
+    import concurrent.futures
+    import nxrender
+    if not isinstance(count, int) or count < 1:
+        raise ValueError(f"count: expected a whole number >= 1, found {count!r}")
+    if not isinstance(jobs, int) or jobs < 1:
+        raise ValueError(f"jobs: expected a whole number >= 1, found {jobs!r}")
+    aovs = list(aovs)
+    for a in aovs:
+        if a in ("lightgroups",):
+            raise ValueError("aovs: light groups differ between scenes: not in datasets")
+    ident, tasks = task_split(task)
+    settings = _settings(count, spp, aovs, seed)
+    out = os.fspath(out)
+    _open_manifest(out, settings)
+    log = log if log is not None else (lambda text: print(text, file=sys.stderr, flush=True))
+    mine = [i for i in range(count) if i % tasks == ident]
+    todo = [i for i in mine if not _valid(item_path(out, i), i, settings)]
+    cores = os.cpu_count() or 1
+    per_job = threads if threads is not None else max(1, cores // jobs)
+    start = time.monotonic()
+    sizes, done = {}, 0
+    render_seconds = 0.0
+
+    def render_one(index, scene):
+        t = time.monotonic()
+        image = nxrender.render(scene, spp=spp, seed=item_seed(seed, index), threads=per_job,
+                                aovs=aovs)
+        took = time.monotonic() - t
+        written = _write_item(item_path(out, index), index, item_seed(seed, index),
+                              scene.to_text(), settings, image, aovs)
+        return written, took
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        pending = set()
+        queue = iter(todo)
+        exhausted = False
+        while pending or not exhausted:
+            while not exhausted and len(pending) < jobs:
+                index = next(queue, None)
+                if index is None:
+                    exhausted = True
+                    break
+                scene = _scene_of(scene_fn, index)  # (the generator runs on this thread)
+                pending.add(pool.submit(render_one, index, scene))
+            if not pending:
+                break
+            finished, pending = concurrent.futures.wait(
+                pending, return_when=concurrent.futures.FIRST_COMPLETED)
+            for f in finished:
+                written, took = f.result()
+                render_seconds += took
+                done += 1
+                for name, n in written.items():
+                    sizes[name] = sizes.get(name, 0) + n
+                elapsed = time.monotonic() - start
+                log(f"nxdataset: {done}/{len(todo)} items of task {ident}/{tasks} "
+                    f"({3600 * done / max(elapsed, 1e-9):.0f} items/hour)")
+    seconds = time.monotonic() - start
+    report = {"task": f"{ident}/{tasks}", "items": len(mine), "rendered": done,
+              "skipped": len(mine) - len(todo), "seconds": seconds,
+              "items_per_hour": 3600 * done / seconds if done and seconds > 0 else 0.0,
+              "render_seconds": render_seconds,
+              "bytes_per_item": {k: v / done for k, v in sorted(sizes.items())} if done else {}}
+    if done:
+        report["bytes_per_item_total"] = sum(report["bytes_per_item"].values())
+    return report
+
+
+class Dataset:
+    """A dataset directory made by generate or nxdataset as a map-style dataset:
+    len(data) items, data[i] a dict of numpy arrays (float32; ids uint32) by layer name
+    (`radiance` (H, W, bands), the component layers, the ground-truth layers), `seed` and
+    `index`, as torch.utils.data.DataLoader takes it. Missing or broken items are refused at
+    construction (rerun nxdataset), unless allow_missing=True (then only those present)."""
+
+    def __init__(self, root, allow_missing=False):
+        import numpy as np  # noqa: F401 (numpy is needed to read items)
+        self.root = os.fspath(root)
+        manifest = os.path.join(self.root, _MANIFEST)
+        try:
+            with open(manifest) as f:
+                self.settings = json.load(f)
+        except FileNotFoundError:
+            raise FileNotFoundError(f"{manifest}: not found: not a dataset directory "
+                                    "(nxdataset writes one)") from None
+        if self.settings.get("format") != FORMAT:
+            raise ValueError(f"{manifest}: expected format {FORMAT}, found "
+                             f"{self.settings.get('format')!r}")
+        count = int(self.settings["count"])
+        present = [i for i in range(count) if os.path.exists(item_path(self.root, i))]
+        if len(present) < count and not allow_missing:
+            missing = [i for i in range(count) if i not in set(present)]
+            raise ValueError(f"{self.root}: {len(missing)} of {count} items missing (first: "
+                             f"{missing[0]}): rerun nxdataset to finish it, or pass "
+                             "allow_missing=True")
+        self.indices = present
+
+    def __len__(self):
+        return len(self.indices)
+
+    def __getitem__(self, i):
+        import numpy as np
+        if not -len(self) <= i < len(self):
+            raise IndexError(f"item {i} of a dataset of {len(self)}")
+        index = self.indices[i]
+        path = item_path(self.root, index)
+        try:
+            with np.load(path, allow_pickle=False) as z:
+                meta = json.loads(str(z["meta"]))
+                item = {}
+                for name in meta["arrays"]:
+                    a = z[name]
+                    item[name] = a.astype(np.float32) if a.dtype == np.float16 else a
+        except Exception as e:
+            raise ValueError(f"{path}: cannot read item {index} ({e}): rerun nxdataset, "
+                             "which redoes broken items") from None
+        item["seed"] = int(meta["item_seed"])
+        item["index"] = int(index)
+        return item
+
+    def meta(self, i):
+        """Item i's record: its index, seed, scene text, options and render key."""
+        import numpy as np
+        with np.load(item_path(self.root, self.indices[i]), allow_pickle=False) as z:
+            return json.loads(str(z["meta"]))
+
+
+def _load_generator(path):
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("nxdataset_generator", path)
+    if spec is None:
+        raise ValueError(f"{path}: expected a Python file defining scene(index)")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    if not callable(getattr(module, "scene", None)):
+        raise ValueError(f"{path}: expected a function scene(index), found none")
+    return module.scene
+
+
+def main(argv=None):
+    """nxdataset's command line; returns its exit status."""
+    import argparse
+    parser = argparse.ArgumentParser(
+        prog="nxdataset", description="Renders a dataset of many scenes (docs/datasets.md).")
+    parser.add_argument("generator", help="a Python file defining scene(index)")
+    parser.add_argument("--count", type=int, required=True, help="items 0..N-1")
+    parser.add_argument("-o", "--output", required=True, help="the dataset directory")
+    parser.add_argument("--spp", type=int, default=None, help="samples per pixel (default: "
+                        "the scenes')")
+    parser.add_argument("--aov", default="components",
+                        help="comma list of layers, as nxrender's --aov (default components)")
+    parser.add_argument("--seed", type=int, default=0, help="the dataset's seed (default 0)")
+    parser.add_argument("--task", default=None, help="I/N: this task's share (default: a Slurm "
+                        "array task's, else all)")
+    parser.add_argument("--jobs", type=int, default=1, help="items rendered at once")
+    parser.add_argument("--threads", type=int, default=None, help="threads per item")
+    args = parser.parse_args(argv)
+    try:
+        scene_fn = _load_generator(args.generator)
+        aovs = [a for a in args.aov.split(",") if a] if args.aov else []
+        report = generate(scene_fn, args.count, args.output, spp=args.spp, aovs=aovs,
+                          seed=args.seed, task=args.task, jobs=args.jobs, threads=args.threads)
+    except (ValueError, TypeError, OSError) as e:
+        print(f"nxdataset: error: {e}", file=sys.stderr)
+        return 2
+    except Exception as e:  # nxrender.Error and what a generator raises
+        print(f"nxdataset: error: {type(e).__name__}: {e}", file=sys.stderr)
+        return 1
+    per = report.get("bytes_per_item", {})
+    print(f"nxdataset: task {report['task']}: {report['rendered']} items rendered, "
+          f"{report['skipped']} already done, {report['seconds']:.1f} s, "
+          f"{report['items_per_hour']:.0f} items/hour")
+    if per:
+        print("nxdataset: bytes per item: " +
+              ", ".join(f"{k} {v / 1e6:.3f} MB" for k, v in per.items()) +
+              f"; total {report['bytes_per_item_total'] / 1e6:.3f} MB")
+    return 0

@@ -1,0 +1,137 @@
+"""Datasets of many scenes (docs/datasets.md): nxdataset as a two-task Slurm array (by its
+environment variables), one task killed and rerun, a broken item redone, every item read back
+through Dataset (and a torch DataLoader when torch is installed) equal to a direct render of
+scene(i) with its recorded seed; settings never mixed; missing items refused."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+import nxrender
+import nxrender.dataset
+
+GENERATOR = '''
+import os, time
+def scene(index):
+    # (a task told to stall does so after its first item: the test kills it there)
+    if os.environ.get("NX_TEST_STALL") and index >= int(os.environ["NX_TEST_STALL"]):
+        time.sleep(60)
+    return {
+        "settings": {"xres": 24, "yres": 16, "mode": "spectral_mcpt", "sampl": 4,
+                     "bands": "400:700:50"},
+        "camera": {"position": [0, 2, -6], "look_at": [0, 0.5, 0]},
+        "objects": [
+            {"shape": "sphere", "center": [0.2 * index - 0.5, 1, 0], "radius": 0.4 + 0.05 * index,
+             "material": "matte", "reflectance": 0.6,
+             "fluorescence": {"absorption": "blue", "stokes": 80}},
+            {"shape": "plane", "normal": [0, 1, 0], "distance": 0, "material": "matte",
+             "reflectance": 0.5},
+        ],
+        "lights": [{"type": "point", "position": [0, 3, -2], "color": [1, 1, 1]}],
+    }
+'''
+COUNT = 7
+
+
+def nxdataset():
+    return os.path.join(os.path.dirname(os.environ["NXRENDER_CLI"]), "nxdataset")
+
+
+def run(generator, out, task, extra=(), env=None, wait=True):
+    e = dict(os.environ, SLURM_ARRAY_TASK_ID=str(task), SLURM_ARRAY_TASK_COUNT="2",
+             **(env or {}))
+    cmd = [nxdataset(), str(generator), "--count", str(COUNT), "-o", str(out),
+           "--aov", "components,normals", "--threads", "1", *extra]
+    if not wait:
+        return subprocess.Popen(cmd, env=e, stderr=subprocess.PIPE, stdout=subprocess.PIPE)
+    return subprocess.run(cmd, env=e, capture_output=True, text=True, timeout=300)
+
+
+def load_generator(path):
+    namespace = {}
+    exec(compile(path.read_text(), str(path), "exec"), namespace)
+    return namespace["scene"]
+
+
+def test_two_tasks_interrupted_and_rerun_read_back_as_rendered(tmp_path):
+    gen = tmp_path / "gen.py"
+    gen.write_text(GENERATOR)
+    out = tmp_path / "data"
+    first = run(gen, out, 0, extra=["--jobs", "2"])
+    assert first.returncode == 0, first.stderr
+    assert "4 items rendered" in first.stdout and "bytes per item" in first.stdout
+    # Task 1 (items 1, 3, 5) stalls at item 3: killed once item 1 is written.
+    stalled = run(gen, out, 1, env={"NX_TEST_STALL": "3"}, wait=False)
+    deadline = time.monotonic() + 120
+    while not os.path.exists(nxrender.dataset.item_path(out, 1)):
+        assert stalled.poll() is None, stalled.stderr.read()
+        assert time.monotonic() < deadline
+        time.sleep(0.05)
+    stalled.send_signal(signal.SIGKILL)
+    stalled.wait()
+    with pytest.raises(ValueError, match="2 of 7 items missing"):
+        nxrender.dataset.Dataset(out)
+    partial = nxrender.dataset.Dataset(out, allow_missing=True)
+    assert len(partial) == 5
+    # A broken item (a truncated file) is redone by the rerun; finished ones are skipped.
+    broken = nxrender.dataset.item_path(out, 2)
+    with open(broken, "r+b") as f:
+        f.truncate(100)
+    again = run(gen, out, 0)
+    assert again.returncode == 0 and "1 items rendered, 3 already done" in again.stdout, \
+        again.stdout + again.stderr
+    rest = run(gen, out, 1)
+    assert rest.returncode == 0 and "2 items rendered, 1 already done" in rest.stdout, \
+        rest.stdout + rest.stderr
+    data = nxrender.dataset.Dataset(out)
+    assert len(data) == COUNT
+    scene = load_generator(gen)
+    for i in range(COUNT):
+        item = data[i]
+        assert item["index"] == i and item["seed"] == nxrender.dataset.item_seed(0, i)
+        direct = nxrender.render(nxrender.Scene.from_dict(scene(i)), seed=item["seed"],
+                                 threads=2, aovs=["components", "normals"])
+        np.testing.assert_array_equal(item["radiance"],
+                                      direct.radiance.astype(np.float16).astype(np.float32))
+        for name in ("reflected", "fluoresced", "direct", "indirect"):
+            np.testing.assert_array_equal(
+                item[name], direct.components[name].astype(np.float16).astype(np.float32))
+        np.testing.assert_array_equal(
+            item["normals"], direct.aovs["normals"].astype(np.float16).astype(np.float32))
+        assert nxrender.Scene.from_text(data.meta(i)["scene"]).to_text() == \
+            nxrender.Scene.from_dict(scene(i)).to_text()
+    # Through a DataLoader as it is.
+    try:
+        import torch.utils.data
+    except ImportError:
+        return
+    batches = list(torch.utils.data.DataLoader(data, batch_size=3))
+    assert [b["radiance"].shape[0] for b in batches] == [3, 3, 1]
+    assert batches[0]["radiance"].shape[1:] == (16, 24, 7)
+    assert batches[0]["seed"].tolist() == [nxrender.dataset.item_seed(0, i) for i in range(3)]
+
+
+def test_settings_are_never_mixed_and_bad_tasks_refused(tmp_path):
+    gen = tmp_path / "gen.py"
+    gen.write_text(GENERATOR)
+    out = tmp_path / "data"
+    assert run(gen, out, 0).returncode == 0
+    other = run(gen, out, 1, extra=["--spp", "8"])
+    assert other.returncode == 2 and "made with" in other.stderr, other.stderr
+    with pytest.raises(ValueError, match="0 <= I < N"):
+        nxrender.dataset.task_split("2/2")
+    with pytest.raises(ValueError, match="SLURM_ARRAY_TASK_COUNT"):
+        nxrender.dataset.task_split(environ={"SLURM_ARRAY_TASK_ID": "1"})
+    assert nxrender.dataset.task_split(environ={"SLURM_ARRAY_TASK_ID": "5",
+                                                "SLURM_ARRAY_TASK_MIN": "4",
+                                                "SLURM_ARRAY_TASK_COUNT": "3"}) == (1, 3)
+    bad = tmp_path / "bad.py"
+    bad.write_text("def scene(index):\n    return 42\n")
+    res = subprocess.run([nxdataset(), str(bad), "--count", "1", "-o", str(tmp_path / "b")],
+                         capture_output=True, text=True)
+    assert res.returncode != 0 and "expected an nxrender.Scene or a dict" in res.stderr
