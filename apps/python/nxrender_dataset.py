@@ -156,6 +156,20 @@ def threading_ident():
     return threading.get_ident()
 
 
+def _remove_leftovers(out, indices):
+    """Removes the temporary files an interrupted run of these items left (each item belongs
+    to one task, so no other task is writing them)."""
+    mine = {os.path.basename(item_path(out, i)) for i in indices}
+    folder = os.path.join(out, "items")
+    for name in os.listdir(folder):
+        stem, sep, _ = name.partition(".npz.tmp")
+        if sep and stem + ".npz" in mine:
+            try:
+                os.remove(os.path.join(folder, name))
+            except FileNotFoundError:
+                pass
+
+
 def _scene_of(scene_fn, index):
     import nxrender
     scene = scene_fn(index)
@@ -189,6 +203,7 @@ def generate(scene_fn, count, out, spp=None, aovs=("components",), seed=0, task=
     _open_manifest(out, settings)
     log = log if log is not None else (lambda text: print(text, file=sys.stderr, flush=True))
     mine = [i for i in range(count) if i % tasks == ident]
+    _remove_leftovers(out, mine)
     todo = [i for i in mine if not _valid(item_path(out, i), i, settings)]
     cores = os.cpu_count() or 1
     per_job = threads if threads is not None else max(1, cores // jobs)
