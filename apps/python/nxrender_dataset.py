@@ -115,14 +115,21 @@ def _valid(path, index, settings):
         return False
 
 
+# Component layers that are the radiance minus another stored one: derived when read, not
+# stored (the reflected and fluoresced parts sum to the radiance, as do direct and indirect).
+_DERIVED = {"fluoresced": "reflected", "indirect": "direct"}
+
+
 def _arrays(image, aovs):
     """The arrays an item stores, by name, and their storage types: float16 for radiance-like
     layers and ground truth (far below the Monte Carlo noise and the geometry's precision at
-    these sizes), uint32 for ids."""
+    these sizes), uint32 for ids; the layers of _DERIVED left out."""
     import numpy as np
     out = {"radiance": np.asarray(image.radiance, np.float16)}
-    for name, array in image.components.items():
-        out[name] = np.asarray(array, np.float16)
+    layers = image.components
+    for name, array in layers.items():
+        if _DERIVED.get(name) not in layers:
+            out[name] = np.asarray(array, np.float16)
     for name, array in image.aovs.items():
         out[name] = np.asarray(array, np.float16)
     if "white" in aovs and image.white is not None:
@@ -138,7 +145,8 @@ def _arrays(image, aovs):
 def _write_item(path, index, seed, scene_text, settings, image, aovs):
     import numpy as np
     arrays = _arrays(image, aovs)
-    meta = dict(settings, index=int(index), item_seed=int(seed),
+    derived = [n for n, other in _DERIVED.items() if other in arrays and n in image.components]
+    meta = dict(settings, index=int(index), item_seed=int(seed), derived=derived,
                 render_key=image.attributes.get("nxrender.renderKey", ""),
                 wavelengths=[float(w) for w in image.wavelengths],
                 arrays=sorted(arrays), scene=scene_text)
@@ -301,6 +309,9 @@ class Dataset:
                 for name in meta["arrays"]:
                     a = z[name]
                     item[name] = a.astype(np.float32) if a.dtype == np.float16 else a
+                for name, other in _DERIVED.items():
+                    if other in item and name in meta.get("derived", []):
+                        item[name] = item["radiance"] - item[other]
         except Exception as e:
             raise ValueError(f"{path}: cannot read item {index} ({e}): rerun nxdataset, "
                              "which redoes broken items") from None
