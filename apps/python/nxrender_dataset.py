@@ -120,33 +120,54 @@ def _valid(path, index, settings):
 _DERIVED = {"fluoresced": "reflected", "indirect": "direct"}
 
 
-def _arrays(image, aovs):
-    """The arrays an item stores, by name, and their storage types: float16 for radiance-like
-    layers and ground truth (far below the Monte Carlo noise and the geometry's precision at
-    these sizes), uint32 for ids; the layers of _DERIVED left out."""
+def to_half(array):
+    """(float16 array, k): `array` times 2^k in float16, k chosen so that its largest magnitude
+    lies in [2^14, 2^15) (radiance can be far below float16's smallest normal number, 6e-5,
+    where it would lose its precision; a power of 2 scales exactly). k = 0 for an array of
+    zeros."""
     import numpy as np
-    out = {"radiance": np.asarray(image.radiance, np.float16)}
+    a = np.asarray(array, np.float32)
+    largest = float(np.max(np.abs(a))) if a.size else 0.0
+    k = int(np.floor(np.log2(16384.0 / largest))) if largest > 0 else 0
+    return np.ldexp(a, k).astype(np.float16), k
+
+
+def from_half(half, k):
+    """The float32 values to_half stored as (half, k)."""
+    import numpy as np
+    return np.ldexp(half.astype(np.float32), -k)
+
+
+def _arrays(image, aovs):
+    """The arrays an item stores, by name, and the power-of-2 scales of its float16 ones:
+    float16 for radiance-like layers and ground truth (11 significant bits: far below the Monte
+    Carlo noise and the geometry's precision at these sizes), uint32 for ids; the layers of
+    _DERIVED left out."""
+    import numpy as np
+    halves = {"radiance": image.radiance}
     layers = image.components
     for name, array in layers.items():
         if _DERIVED.get(name) not in layers:
-            out[name] = np.asarray(array, np.float16)
-    for name, array in image.aovs.items():
-        out[name] = np.asarray(array, np.float16)
+            halves[name] = array
+    halves.update(image.aovs)
     if "white" in aovs and image.white is not None:
-        out["white"] = np.asarray(image.white, np.float16)
+        halves["white"] = image.white
+    out, scales = {}, {}
+    for name, array in halves.items():
+        out[name], scales[name] = to_half(array)
     if image.object_id is not None:
         out["object_id"] = np.asarray(image.object_id, np.uint32)
         out["material_id"] = np.asarray(image.material_id, np.uint32)
     if image.depth is not None:
         out["depth"] = np.asarray(image.depth, np.float32)
-    return out
+    return out, scales
 
 
 def _write_item(path, index, seed, scene_text, settings, image, aovs):
     import numpy as np
-    arrays = _arrays(image, aovs)
+    arrays, scales = _arrays(image, aovs)
     derived = [n for n, other in _DERIVED.items() if other in arrays and n in image.components]
-    meta = dict(settings, index=int(index), item_seed=int(seed), derived=derived,
+    meta = dict(settings, index=int(index), item_seed=int(seed), derived=derived, scales=scales,
                 render_key=image.attributes.get("nxrender.renderKey", ""),
                 wavelengths=[float(w) for w in image.wavelengths],
                 arrays=sorted(arrays), scene=scene_text)
@@ -306,9 +327,10 @@ class Dataset:
             with np.load(path, allow_pickle=False) as z:
                 meta = json.loads(str(z["meta"]))
                 item = {}
+                scales = meta.get("scales", {})
                 for name in meta["arrays"]:
                     a = z[name]
-                    item[name] = a.astype(np.float32) if a.dtype == np.float16 else a
+                    item[name] = from_half(a, scales.get(name, 0)) if a.dtype == np.float16 else a
                 for name, other in _DERIVED.items():
                     if other in item and name in meta.get("derived", []):
                         item[name] = item["radiance"] - item[other]
@@ -324,6 +346,113 @@ class Dataset:
         import numpy as np
         with np.load(item_path(self.root, self.indices[i]), allow_pickle=False) as z:
             return json.loads(str(z["meta"]))
+
+
+# ---- Random scenes that are plausible (docs/datasets.md, "Random scenes") ----
+# Each helper takes a numpy Generator (numpy.random.default_rng(seed)), so a generator seeded
+# from its index makes the same scene every time.
+
+_GRID_NM = list(range(360, 831, 10))
+
+
+def random_reflectance(rng, lo=0.02, hi=0.9):
+    """A smooth reflectance spectrum, (wavelengths_nm, values) on 360-830 nm every 10 nm: the
+    sigmoid of a random quadratic in the wavelength, the form that represents every sRGB
+    reflectance smoothly (Jakob and Hanika, "A Low-Dimensional Function Space for Efficient
+    Spectral Upsampling", 2019), mapped into [lo, hi] (natural reflectances lie within about
+    0.02-0.9 and vary slowly with wavelength: Maloney 1986, Parkkinen et al. 1989)."""
+    import numpy as np
+    x = (np.array(_GRID_NM, float) - 595) / 235
+    c0, c1, c2 = rng.uniform(-2.5, 2.5), rng.uniform(-5, 5), rng.uniform(-6, 6)
+    s = 1 / (1 + np.exp(-(c0 + c1 * x + c2 * x * x)))
+    return (list(_GRID_NM), [float(v) for v in lo + (hi - lo) * s])
+
+
+# Ranges of organic dyes' skew-Cauchy parameters, from the absorption and emission maxima and
+# quantum yields of common fluorophores (coumarins, fluorescein, rhodamines, cyanines; J. R.
+# Lakowicz, "Principles of Fluorescence Spectroscopy", 3rd ed., Springer 2006, ch. 3): absorption
+# peaks 350-650 nm, Stokes shifts 20-120 nm, quantum yields 0.1-0.95; widths as the model's
+# curves fit such bands (docs/fluorescence.md).
+DYE_RANGES = {"absorption": (350.0, 650.0), "stokes": (20.0, 120.0), "width": (15.0, 40.0),
+              "yield": (0.1, 0.95)}
+
+
+def random_dye(rng):
+    """A fluorescent dye within DYE_RANGES, as the scene format's <fluorescence> dict."""
+    return {k: round(float(rng.uniform(*r)), 3) for k, r in DYE_RANGES.items()}
+
+
+# Built-in lamp spectra (docs/spectral-library.md) a scene may be lit by.
+LAMPS = ("D65", "D50", "A", "blackbody:3000", "bl")
+# Narrow-band LEDs: peaks 400-650 nm, FWHM 15-40 nm (E. F. Schubert, "Light-Emitting Diodes",
+# 2nd ed., Cambridge 2006, ch. 12: about 1.8 kT wide in energy, 20-30 nm in the visible).
+LED_RANGES = {"peak": (400.0, 650.0), "fwhm": (15.0, 40.0)}
+
+
+def random_led(rng):
+    """A narrow-band LED's spectrum, (wavelengths_nm, values): a Gaussian of a peak and FWHM
+    within LED_RANGES, on 360-830 nm every 2 nm, peak 100 (as the CIE illuminants are 100 at
+    560 nm)."""
+    import numpy as np
+    peak, fwhm = rng.uniform(*LED_RANGES["peak"]), rng.uniform(*LED_RANGES["fwhm"])
+    nm = np.arange(360, 831, 2.0)
+    return ([float(v) for v in nm],
+            [float(v) for v in 100 * np.exp(-4 * np.log(2) * ((nm - peak) / fwhm) ** 2)])
+
+
+def random_lamp(rng, led_share=0.5):
+    """A lamp spectrum: a random LED with probability led_share, else one of LAMPS by name."""
+    if rng.uniform() < led_share:
+        return random_led(rng)
+    return str(LAMPS[int(rng.integers(len(LAMPS)))])
+
+
+def place_on_plane(rng, count, kinds=("sphere", "box", "cylinder"), extent=2.0,
+                   size=(0.25, 0.6), gap=0.05, tries=1000):
+    """`count` objects of the primitive kinds resting on the plane y = 0 within
+    |x|, |z| <= extent, none intersecting another: each placed where its bounding circle on
+    the plane, widened by `gap`, meets no other (rejection sampling; fewer objects when there
+    is no room after `tries`). Returns shape dicts without materials (add them)."""
+    import math
+    placed, out = [], []
+    for _ in range(tries):
+        if len(out) == count:
+            break
+        kind = kinds[int(rng.integers(len(kinds)))]
+        r = float(rng.uniform(*size))
+        x, z = (float(v) for v in rng.uniform(-extent + r, extent - r, 2))
+        if any(math.hypot(x - px, z - pz) < r + pr + gap for px, pz, pr in placed):
+            continue
+        placed.append((x, z, r))
+        if kind == "sphere":
+            out.append({"shape": "sphere", "center": [x, r, z], "radius": r})
+        elif kind == "box":
+            side = r * math.sqrt(2)  # its diagonal on the plane is the circle's diameter
+            turn = float(rng.uniform(0, 90))
+            out.append({"shape": "box", "center": [0, side / 2, 0], "size": [side] * 3,
+                        "transform": [{"rotate": [0, 1, 0, turn]}, {"translate": [x, 0, z]}]})
+        elif kind == "cylinder":
+            height = float(rng.uniform(0.5, 2.0)) * r
+            out.append({"shape": "cylinder", "p0": [x, 0, z], "p1": [x, height, z],
+                        "radius": r, "capped": "true"})
+        else:
+            raise ValueError(f"kinds: expected sphere, box or cylinder, found {kind!r}")
+    return out
+
+
+def orbit_camera(rng, target=(0.0, 0.3, 0.0), distance=(4.0, 7.0), elevation=(10.0, 45.0),
+                 fov=(30.0, 45.0)):
+    """A camera on an orbit around `target`: azimuth uniform, elevation (degrees above the
+    plane), distance and field of view uniform in their ranges; the scene format's camera
+    dict."""
+    import math
+    a = float(rng.uniform(0, 2 * math.pi))
+    e = math.radians(float(rng.uniform(*elevation)))
+    d = float(rng.uniform(*distance))
+    tx, ty, tz = target
+    return {"position": [tx + d * math.cos(e) * math.sin(a), ty + d * math.sin(e),
+                         tz - d * math.cos(e) * math.cos(a)],
+            "look_at": list(target), "fov": round(float(rng.uniform(*fov)), 3)}
 
 
 def _load_generator(path):
