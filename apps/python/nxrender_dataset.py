@@ -20,6 +20,7 @@ so a rerun skips finished items and redoes broken or missing ones.
 import json
 import os
 import sys
+import threading
 import time
 
 FORMAT = "nxrender-dataset-1"
@@ -171,18 +172,13 @@ def _write_item(path, index, seed, scene_text, settings, image, aovs):
                 render_key=image.attributes.get("nxrender.renderKey", ""),
                 wavelengths=[float(w) for w in image.wavelengths],
                 arrays=sorted(arrays), scene=scene_text)
-    temp = f"{path}.tmp{os.getpid()}.{threading_ident()}"
+    temp = f"{path}.tmp{os.getpid()}.{threading.get_ident()}"
     with open(temp, "wb") as f:
         np.savez(f, meta=np.array(json.dumps(meta)), **arrays)
         f.flush()
         os.fsync(f.fileno())
     os.replace(temp, path)
     return {name: a.nbytes for name, a in arrays.items()}
-
-
-def threading_ident():
-    import threading
-    return threading.get_ident()
 
 
 def _remove_leftovers(out, indices):
@@ -240,21 +236,26 @@ def generate(scene_fn, count, out, spp=None, aovs=("components",), seed=0, task=
     sizes, done = {}, 0
     render_seconds = 0.0
 
+    # `jobs` renders at a time; one more worker writes an item while the next renders (the
+    # render and numpy's conversions release the GIL).
+    renders = threading.Semaphore(jobs)
+
     def render_one(index, scene):
-        t = time.monotonic()
-        image = nxrender.render(scene, spp=spp, seed=item_seed(seed, index), threads=per_job,
-                                aovs=aovs)
-        took = time.monotonic() - t
+        with renders:
+            t = time.monotonic()
+            image = nxrender.render(scene, spp=spp, seed=item_seed(seed, index),
+                                    threads=per_job, aovs=aovs)
+            took = time.monotonic() - t
         written = _write_item(item_path(out, index), index, item_seed(seed, index),
                               scene.to_text(), settings, image, aovs)
         return written, took
 
-    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs + 1) as pool:
         pending = set()
         queue = iter(todo)
         exhausted = False
         while pending or not exhausted:
-            while not exhausted and len(pending) < jobs:
+            while not exhausted and len(pending) < jobs + 1:
                 index = next(queue, None)
                 if index is None:
                     exhausted = True
