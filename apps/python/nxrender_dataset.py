@@ -23,7 +23,7 @@ import sys
 import threading
 import time
 
-FORMAT = "nxrender-dataset-1"
+FORMAT = "nxrender-dataset-2"
 _MANIFEST = "dataset.json"
 
 
@@ -38,7 +38,7 @@ def item_seed(dataset_seed, index):
 
 def item_path(out, index):
     """The file of item `index` in dataset directory `out`."""
-    return os.path.join(out, "items", f"item_{int(index):07d}.npz")
+    return os.path.join(out, "items", f"item_{int(index):07d}.nxi")
 
 
 def task_split(task=None, environ=None):
@@ -102,83 +102,188 @@ def _open_manifest(out, settings):
     os.replace(temp, path)
 
 
+_MAGIC = b"NXDATASET-ITEM-1\n"
+
+
+def _read_item(path):
+    """(record, blobs) of an item file: its JSON record and its bytes after it. Raises
+    ValueError for a file that is not a complete item."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if not data.startswith(_MAGIC) or len(data) < len(_MAGIC) + 8:
+        raise ValueError("not an item file")
+    n = int.from_bytes(data[len(_MAGIC):len(_MAGIC) + 8], "little")
+    start = len(_MAGIC) + 8 + n
+    meta = json.loads(data[len(_MAGIC) + 8:start].decode())
+    blobs = memoryview(data)[start:]
+    if len(blobs) != sum(a["bytes"] for a in meta["arrays"].values()):
+        raise ValueError("truncated")
+    return meta, blobs
+
+
 def _valid(path, index, settings):
     """True when the item file is complete and was made with these settings."""
-    import numpy as np
     try:
-        with np.load(path, allow_pickle=False) as z:
-            meta = json.loads(str(z["meta"]))
-            names = set(z.files)
-            ok = meta.get("index") == index and all(meta.get(k) == v for k, v in
-                                                    settings.items() if k != "count")
-            return ok and all(n in names for n in meta.get("arrays", []))
+        meta, _ = _read_item(path)
     except Exception:  # a truncated or foreign file: redo it
         return False
+    return meta.get("index") == index and all(meta.get(k) == v for k, v in settings.items()
+                                              if k != "count")
 
 
 # Component layers that are the radiance minus another stored one: derived when read, not
 # stored (the reflected and fluoresced parts sum to the radiance, as do direct and indirect).
 _DERIVED = {"fluoresced": "reflected", "indirect": "direct"}
+# The quantisation's share of the noise it may add: the error from dropping low bits stays
+# below this fraction of the layer's median relative Monte Carlo standard deviation (so the
+# noise variance grows by at most its square, 1%).
+NOISE_SHARE = 0.1
+_ZSTD_LEVEL = 3
 
 
-def to_half(array):
-    """(float16 array, k): `array` times 2^k in float16, k chosen so that its largest magnitude
-    lies in [2^14, 2^15) (radiance can be far below float16's smallest normal number, 6e-5,
-    where it would lose its precision; a power of 2 scales exactly). k = 0 for an array of
-    zeros."""
+def to_half(array, drop=0, k=None):
+    """(uint16 bits of float16 values, k): `array` times 2^k as float16, k chosen so that its
+    largest magnitude lies in [2^14, 2^15) (radiance can be far below float16's smallest normal
+    number, 6e-5, where it would lose precision; a power of 2 scales exactly), rounded to
+    10 - drop mantissa bits. k = 0 for an array of zeros; `k` given: that scale."""
     import numpy as np
     a = np.asarray(array, np.float32)
-    largest = float(np.max(np.abs(a))) if a.size else 0.0
-    k = int(np.floor(np.log2(16384.0 / largest))) if largest > 0 else 0
-    return np.ldexp(a, k).astype(np.float16), k
+    if k is None:
+        largest = float(np.max(np.abs(a))) if a.size else 0.0
+        k = int(np.floor(np.log2(16384.0 / largest))) if largest > 0 else 0
+    bits = (a * np.float32(2.0 ** k)).astype(np.float16).view(np.uint16)
+    if drop:
+        wide = bits.astype(np.uint32) + (1 << (drop - 1))
+        bits = (wide & (0xFFFF & ~((1 << drop) - 1))).astype(np.uint16)
+    return bits, k
 
 
-def from_half(half, k):
-    """The float32 values to_half stored as (half, k)."""
+def from_half(bits, k):
+    """The float32 values to_half stored as (bits, k)."""
     import numpy as np
-    return np.ldexp(half.astype(np.float32), -k)
+    out = bits.view(np.float16).astype(np.float32)
+    out *= np.float32(2.0 ** -k)  # (a power of 2: exact)
+    return out
+
+
+def stored_values(array, encoding):
+    """`array` as an item stores it with `encoding` (its record's "arrays" entry): what the
+    item reads back, exactly."""
+    bits, k = to_half(array, encoding.get("drop", 0))
+    if k != encoding["k"]:
+        raise ValueError(f"not the array this encoding was made for (scale 2^{k}, not "
+                         f"2^{encoding['k']})")
+    return from_half(bits, k)
+
+
+def _noise_drop(values, variance):
+    """The most low mantissa bits (0-6) that can be dropped from `values` with the rounding
+    error below NOISE_SHARE of their median relative standard deviation (from `variance`,
+    the variance of each mean), and that ratio."""
+    import numpy as np
+    v = np.asarray(values, np.float32)
+    var = np.asarray(variance, np.float32)
+    seen = (v > 0) & (var > 0)
+    if not seen.any():
+        return 0, 0.0
+    noise = float(np.median(np.sqrt(var[seen]) / v[seen]))
+    # (the rounding error's statistics from every 7th value: the scale from the whole array)
+    k = to_half(v)[1]
+    sample = v[seen][::7]
+    best, ratio = 0, 0.0
+    for drop in range(1, 7):
+        back = from_half(to_half(sample, drop, k)[0], k) if sample.size else sample
+        error = float(np.sqrt(np.mean(((back - sample) / sample) ** 2))) if sample.size else 0.0
+        if error > NOISE_SHARE * noise:
+            break
+        best, ratio = drop, error / noise
+    return best, ratio
+
+
+def _encode(arrays):
+    """(records, blobs): each array as zstd-compressed bytes; float16 bits byte-shuffled (low
+    bytes, then high bytes: the high bytes of smooth or noisy values compress well apart)."""
+    import numpy as np
+    import zstandard
+    zc = zstandard.ZstdCompressor(level=_ZSTD_LEVEL)
+    records, blobs = {}, []
+    for name, (array, extra) in arrays.items():
+        a = np.ascontiguousarray(array)
+        if a.dtype == np.uint16:  # float16 bits
+            raw = np.concatenate([(a & 0xFF).astype(np.uint8).ravel(),
+                                  (a >> 8).astype(np.uint8).ravel()]).tobytes()
+            kind = "f16"
+        else:
+            raw, kind = a.tobytes(), str(a.dtype)
+        blob = zc.compress(raw)
+        records[name] = dict(extra, kind=kind, shape=list(a.shape), bytes=len(blob))
+        blobs.append(blob)
+    return records, blobs
+
+
+def _decode(record, blob):
+    import numpy as np
+    import zstandard
+    raw = zstandard.ZstdDecompressor().decompress(bytes(blob))
+    if record["kind"] == "f16":
+        b = np.frombuffer(raw, np.uint8)
+        n = b.size // 2
+        pairs = np.empty((n, 2), np.uint8)  # (low, high) bytes of each value, little-endian
+        pairs[:, 0] = b[:n]
+        pairs[:, 1] = b[n:]
+        return from_half(pairs.view(np.uint16).reshape(record["shape"]), record["k"])
+    a = np.frombuffer(raw, np.dtype(record["kind"])).reshape(record["shape"])
+    # (ids as int32: torch takes no uint32)
+    return a.astype(np.int32) if a.dtype == np.uint32 else a.copy()
 
 
 def _arrays(image, aovs):
-    """The arrays an item stores, by name, and the power-of-2 scales of its float16 ones:
-    float16 for radiance-like layers and ground truth (11 significant bits: far below the Monte
-    Carlo noise and the geometry's precision at these sizes), uint32 for ids; the layers of
-    _DERIVED left out."""
+    """The arrays an item stores, by name, with their encodings: radiance-like layers as
+    float16 scaled by a power of 2 with the low bits the noise allows dropped (_noise_drop);
+    ground truth as float16 scaled so, all its bits kept; ids as uint32 and depth as float32;
+    the layers of _DERIVED left out."""
     import numpy as np
-    halves = {"radiance": image.radiance}
-    layers = image.components
+    noisy = {"radiance": (image.radiance, image.variance)}
+    layers, variances = image.components, image.component_variances
     for name, array in layers.items():
         if _DERIVED.get(name) not in layers:
-            halves[name] = array
-    halves.update(image.aovs)
+            noisy[name] = (array, variances.get(name))
+    out = {}
+    for name, (array, variance) in noisy.items():
+        drop, ratio = _noise_drop(array, variance) if variance is not None else (0, 0.0)
+        bits, k = to_half(array, drop)
+        out[name] = (bits, {"k": k, "drop": drop, "quantisation_to_noise": round(ratio, 4)})
+    exact = dict(image.aovs)
     if "white" in aovs and image.white is not None:
-        halves["white"] = image.white
-    out, scales = {}, {}
-    for name, array in halves.items():
-        out[name], scales[name] = to_half(array)
+        exact["white"] = image.white
+    for name, array in exact.items():
+        bits, k = to_half(array)
+        out[name] = (bits, {"k": k, "drop": 0})
     if image.object_id is not None:
-        out["object_id"] = np.asarray(image.object_id, np.uint32)
-        out["material_id"] = np.asarray(image.material_id, np.uint32)
+        out["object_id"] = (np.asarray(image.object_id, np.uint32), {})
+        out["material_id"] = (np.asarray(image.material_id, np.uint32), {})
     if image.depth is not None:
-        out["depth"] = np.asarray(image.depth, np.float32)
-    return out, scales
+        out["depth"] = (np.asarray(image.depth, np.float32), {})
+    return out
 
 
 def _write_item(path, index, seed, scene_text, settings, image, aovs):
-    import numpy as np
-    arrays, scales = _arrays(image, aovs)
-    derived = [n for n, other in _DERIVED.items() if other in arrays and n in image.components]
-    meta = dict(settings, index=int(index), item_seed=int(seed), derived=derived, scales=scales,
+    records, blobs = _encode(_arrays(image, aovs))
+    derived = [n for n, other in _DERIVED.items() if other in records and n in image.components]
+    meta = dict(settings, index=int(index), item_seed=int(seed), derived=derived,
                 render_key=image.attributes.get("nxrender.renderKey", ""),
                 wavelengths=[float(w) for w in image.wavelengths],
-                arrays=sorted(arrays), scene=scene_text)
+                arrays=records, scene=scene_text)
+    head = json.dumps(meta).encode()
     temp = f"{path}.tmp{os.getpid()}.{threading.get_ident()}"
     with open(temp, "wb") as f:
-        np.savez(f, meta=np.array(json.dumps(meta)), **arrays)
+        f.write(_MAGIC + len(head).to_bytes(8, "little") + head)
+        for blob in blobs:
+            f.write(blob)
         f.flush()
         os.fsync(f.fileno())
     os.replace(temp, path)
-    return {name: a.nbytes for name, a in arrays.items()}
+    return {name: r["bytes"] for name, r in records.items()}
 
 
 def _remove_leftovers(out, indices):
@@ -187,8 +292,8 @@ def _remove_leftovers(out, indices):
     mine = {os.path.basename(item_path(out, i)) for i in indices}
     folder = os.path.join(out, "items")
     for name in os.listdir(folder):
-        stem, sep, _ = name.partition(".npz.tmp")
-        if sep and stem + ".npz" in mine:
+        stem, sep, _ = name.partition(".nxi.tmp")
+        if sep and stem + ".nxi" in mine:
             try:
                 os.remove(os.path.join(folder, name))
             except FileNotFoundError:
@@ -288,14 +393,16 @@ def generate(scene_fn, count, out, spp=None, aovs=("components",), seed=0, task=
 
 class Dataset:
     """A dataset directory made by generate or nxdataset as a map-style dataset:
-    len(data) items, data[i] a dict of numpy arrays (float32; ids uint32) by layer name
+    len(data) items, data[i] a dict of numpy arrays (float32; ids int32) by layer name
     (`radiance` (H, W, bands), the component layers, the ground-truth layers), `seed` and
-    `index`, as torch.utils.data.DataLoader takes it. Missing or broken items are refused at
-    construction (rerun nxdataset), unless allow_missing=True (then only those present)."""
+    `index`, as torch.utils.data.DataLoader takes it; `layers` (names) keeps only those (and
+    decodes only what they need). Missing or broken items are refused at construction (rerun
+    nxdataset), unless allow_missing=True (then only those present)."""
 
-    def __init__(self, root, allow_missing=False):
-        import numpy as np  # noqa: F401 (numpy is needed to read items)
+    def __init__(self, root, allow_missing=False, layers=None):
         self.root = os.fspath(root)
+        # (None: every layer; else only these are decoded, a derived one with what it needs)
+        self.layers = None if layers is None else list(layers)
         manifest = os.path.join(self.root, _MANIFEST)
         try:
             with open(manifest) as f:
@@ -319,22 +426,32 @@ class Dataset:
         return len(self.indices)
 
     def __getitem__(self, i):
-        import numpy as np
         if not -len(self) <= i < len(self):
             raise IndexError(f"item {i} of a dataset of {len(self)}")
         index = self.indices[i]
         path = item_path(self.root, index)
         try:
-            with np.load(path, allow_pickle=False) as z:
-                meta = json.loads(str(z["meta"]))
-                item = {}
-                scales = meta.get("scales", {})
-                for name in meta["arrays"]:
-                    a = z[name]
-                    item[name] = from_half(a, scales.get(name, 0)) if a.dtype == np.float16 else a
+            meta, blobs = _read_item(path)
+            wanted = set(meta["arrays"]) | set(meta.get("derived", []))
+            if self.layers is not None:
+                unknown = [n for n in self.layers if n not in wanted]
+                if unknown:
+                    raise KeyError(f"no layer {unknown[0]!r} (the items hold "
+                                   f"{', '.join(sorted(wanted))})")
+                wanted = set(self.layers)
                 for name, other in _DERIVED.items():
-                    if other in item and name in meta.get("derived", []):
-                        item[name] = item["radiance"] - item[other]
+                    if name in wanted:
+                        wanted |= {"radiance", other}
+            item, at = {}, 0
+            for name, record in meta["arrays"].items():
+                if name in wanted:
+                    item[name] = _decode(record, blobs[at:at + record["bytes"]])
+                at += record["bytes"]
+            for name, other in _DERIVED.items():
+                if name in wanted and name in meta.get("derived", []):
+                    item[name] = item["radiance"] - item[other]
+            if self.layers is not None:
+                item = {name: item[name] for name in self.layers}
         except Exception as e:
             raise ValueError(f"{path}: cannot read item {index} ({e}): rerun nxdataset, "
                              "which redoes broken items") from None
@@ -344,9 +461,7 @@ class Dataset:
 
     def meta(self, i):
         """Item i's record: its index, seed, scene text, options and render key."""
-        import numpy as np
-        with np.load(item_path(self.root, self.indices[i]), allow_pickle=False) as z:
-            return json.loads(str(z["meta"]))
+        return _read_item(item_path(self.root, self.indices[i]))[0]
 
 
 # ---- Random scenes that are plausible (docs/datasets.md, "Random scenes") ----

@@ -131,7 +131,7 @@ for i in range(len(data)):
     item = data[i]
     direct = nxrender.render(nxrender.Scene.from_dict(ns["scene"](i)), seed=item["seed"], spp=4,
                              aovs=["components"])
-    stored = nxrender.dataset.from_half(*nxrender.dataset.to_half(direct.radiance))
+    stored = nxrender.dataset.stored_values(direct.radiance, data.meta(i)["arrays"]["radiance"])
     assert np.array_equal(item["radiance"], stored), i
 PY
 echo "slurm test passed: merged image equals the single-machine render; a failed task stops the merge; a dataset array's items equal direct renders"

@@ -46,7 +46,7 @@ def run(generator, out, task, extra=(), env=None, wait=True):
     e = dict(os.environ, SLURM_ARRAY_TASK_ID=str(task), SLURM_ARRAY_TASK_COUNT="2",
              **(env or {}))
     cmd = [nxdataset(), str(generator), "--count", str(COUNT), "-o", str(out),
-           "--aov", "components,normals", "--threads", "1", *extra]
+           "--aov", "components,normals,ids", "--threads", "1", *extra]
     if not wait:
         return subprocess.Popen(cmd, env=e, stderr=subprocess.PIPE, stdout=subprocess.PIPE)
     return subprocess.run(cmd, env=e, capture_output=True, text=True, timeout=300)
@@ -84,7 +84,7 @@ def test_two_tasks_interrupted_and_rerun_read_back_as_rendered(tmp_path):
     # A broken item (a truncated file) is redone by the rerun; finished ones are skipped.
     broken = nxrender.dataset.item_path(out, 2)
     with open(broken, "r+b") as f:
-        f.truncate(100)
+        f.truncate(os.path.getsize(broken) - 10)
     again = run(gen, out, 0)
     assert again.returncode == 0 and "1 items rendered, 3 already done" in again.stdout, \
         again.stdout + again.stderr
@@ -99,22 +99,37 @@ def test_two_tasks_interrupted_and_rerun_read_back_as_rendered(tmp_path):
         item = data[i]
         assert item["index"] == i and item["seed"] == nxrender.dataset.item_seed(0, i)
         direct = nxrender.render(nxrender.Scene.from_dict(scene(i)), seed=item["seed"],
-                                 threads=2, aovs=["components", "normals"])
-        def half(a):  # as stored: float16 scaled by a power of 2
-            return nxrender.dataset.from_half(*nxrender.dataset.to_half(a))
-        np.testing.assert_array_equal(item["radiance"], half(direct.radiance))
+                                 threads=2, aovs=["components", "normals", "ids"])
+        assert item["object_id"].dtype == np.int32  # (torch takes no uint32)
+        np.testing.assert_array_equal(item["object_id"], direct.object_id)
+        arrays = data.meta(i)["arrays"]
+
+        def stored(name, a):  # as the item stores it: float16 scaled, low bits as recorded
+            return nxrender.dataset.stored_values(a, arrays[name])
+        np.testing.assert_array_equal(item["radiance"], stored("radiance", direct.radiance))
         for name in ("reflected", "direct"):
-            np.testing.assert_array_equal(item[name], half(direct.components[name]))
-        # derived from the radiance and the stored part, within the parts' float16 rounding
+            np.testing.assert_array_equal(item[name], stored(name, direct.components[name]))
+        # derived from the radiance and the stored part, within the two parts' rounding
         for name, other in (("fluoresced", "reflected"), ("indirect", "direct")):
             np.testing.assert_array_equal(item[name], item["radiance"] - item[other])
-            scale = np.abs(direct.radiance).max()
-            assert np.abs(item[name] - direct.components[name]).max() <= 2e-3 * scale, name
-        np.testing.assert_array_equal(item["normals"], half(direct.aovs["normals"]))
+            bound = sum(np.abs(a).max() * 2.0 ** (arrays[n]["drop"] - 11) for n, a in
+                        (("radiance", direct.radiance), (other, direct.components[other])))
+            assert np.abs(item[name] - direct.components[name]).max() <= bound, name
+        np.testing.assert_array_equal(item["normals"], stored("normals", direct.aovs["normals"]))
+        assert arrays["normals"]["drop"] == 0  # ground truth keeps every float16 bit
+        # the rounding stays within its noise share: at most 2^-(11 - drop) of the largest
+        drop = arrays["radiance"]["drop"]
         assert np.max(np.abs(item["radiance"] - direct.radiance)) <= \
-            np.max(np.abs(direct.radiance)) / 2048
+            np.max(np.abs(direct.radiance)) * 2.0 ** (drop - 11)
+        assert arrays["radiance"]["quantisation_to_noise"] <= nxrender.dataset.NOISE_SHARE
         assert nxrender.Scene.from_text(data.meta(i)["scene"]).to_text() == \
             nxrender.Scene.from_dict(scene(i)).to_text()
+    # Only some layers, a derived one among them; an unknown one named.
+    some = nxrender.dataset.Dataset(out, layers=["fluoresced", "normals"])[2]
+    assert set(some) == {"fluoresced", "normals", "seed", "index"}
+    np.testing.assert_array_equal(some["fluoresced"], data[2]["fluoresced"])
+    with pytest.raises(ValueError, match="no layer 'albedo'"):
+        nxrender.dataset.Dataset(out, layers=["albedo"])[0]
     # Through a DataLoader as it is.
     try:
         import torch.utils.data
