@@ -177,9 +177,11 @@ def stored_values(array, encoding):
 
 
 def _noise_drop(values, variance):
-    """The most low mantissa bits (0-6) that can be dropped from `values` with the rounding
-    error below NOISE_SHARE of their median relative standard deviation (from `variance`,
-    the variance of each mean), and that ratio."""
+    """The most low mantissa bits (0-6) that can be dropped from `values` while the rounding
+    this adds stays below NOISE_SHARE of their median relative standard deviation (from
+    `variance`, the variance of each mean), and that ratio. The rounding is measured relative
+    to each value, over the values float16 keeps as normal numbers (those below, tiny beside
+    the layer's largest, hold fewer bits whatever is dropped)."""
     import numpy as np
     v = np.asarray(values, np.float32)
     var = np.asarray(variance, np.float32)
@@ -187,25 +189,37 @@ def _noise_drop(values, variance):
     if not seen.any():
         return 0, 0.0
     noise = float(np.median(np.sqrt(var[seen]) / v[seen]))
-    # (the rounding error's statistics from every 7th value: the scale from the whole array)
-    k = to_half(v)[1]
-    sample = v[seen][::7]
+    # (the rounding's statistics from every 7th value: the scale from the whole array)
+    bits, k = to_half(v)
+    kept = v[seen][::7]
+    kept = kept[np.abs(kept * np.float32(2.0 ** k)) >= 2.0 ** -14]
+    if not kept.size:
+        return 0, 0.0
+    exact = from_half(to_half(kept, 0, k)[0], k)
     best, ratio = 0, 0.0
     for drop in range(1, 7):
-        back = from_half(to_half(sample, drop, k)[0], k) if sample.size else sample
-        error = float(np.sqrt(np.mean(((back - sample) / sample) ** 2))) if sample.size else 0.0
+        back = from_half(to_half(kept, drop, k)[0], k)
+        error = float(np.sqrt(np.mean(((back - exact) / kept) ** 2)))
         if error > NOISE_SHARE * noise:
             break
         best, ratio = drop, error / noise
     return best, ratio
 
 
+def _zstd():
+    try:
+        import zstandard
+    except ImportError:
+        raise ImportError("nxrender.dataset stores items with zstd: install python3-zstandard "
+                          "(apt-get install python3-zstandard)") from None
+    return zstandard
+
+
 def _encode(arrays):
     """(records, blobs): each array as zstd-compressed bytes; float16 bits byte-shuffled (low
     bytes, then high bytes: the high bytes of smooth or noisy values compress well apart)."""
     import numpy as np
-    import zstandard
-    zc = zstandard.ZstdCompressor(level=_ZSTD_LEVEL)
+    zc = _zstd().ZstdCompressor(level=_ZSTD_LEVEL)
     records, blobs = {}, []
     for name, (array, extra) in arrays.items():
         a = np.ascontiguousarray(array)
@@ -223,8 +237,7 @@ def _encode(arrays):
 
 def _decode(record, blob):
     import numpy as np
-    import zstandard
-    raw = zstandard.ZstdDecompressor().decompress(bytes(blob))
+    raw = _zstd().ZstdDecompressor().decompress(bytes(blob))
     if record["kind"] == "f16":
         b = np.frombuffer(raw, np.uint8)
         n = b.size // 2
