@@ -73,7 +73,7 @@ def test_missing_files(tmp_path):
     (dict(sampler="halton"), ValueError, "^sampler: expected one of 'stratified', 'sobol', 'independent'"),
     (dict(light_sampling=3), TypeError, "^light_sampling: expected a str"),
     (dict(aovs="ids"), TypeError, "^aovs: "),
-    (dict(aovs=["normals"]), ValueError, "^aovs: "),
+    (dict(aovs=["normal"]), ValueError, "^aovs: "),
     (dict(progress=5), TypeError, "^progress: expected a callable"),
     (dict(target_error=float("nan")), ValueError, "^target_error: "),
     (dict(error_of="chroma"), ValueError, "^error_of: expected luminance, bands or bands:LO-HI"),
