@@ -99,17 +99,23 @@ AovEvaluator::AovEvaluator(const RenderScene& scene, std::vector<AovKind> kinds,
   }
 }
 
+SampledWavelengths AovEvaluator::nodeLanes(int first) const {
+  const int total = bands_ * kNodes;
+  SampledWavelengths lambda;
+  for (int i = 0; i < kLanes; ++i) {
+    lambda.lambda[static_cast<size_t>(i)] =
+        nodes_[static_cast<size_t>(std::min(first + i, total - 1))];
+    lambda.pdf[static_cast<size_t>(i)] = 1;
+  }
+  return lambda;
+}
+
 template <class F>
 std::vector<float> AovEvaluator::bandMeans(F&& lanes) const {
   std::vector<float> out(static_cast<size_t>(bands_), 0.0f);
   const int total = bands_ * kNodes;
   for (int first = 0; first < total; first += kLanes) {
-    SampledWavelengths lambda;
-    for (int i = 0; i < kLanes; ++i) {
-      lambda.lambda[static_cast<size_t>(i)] =
-          nodes_[static_cast<size_t>(std::min(first + i, total - 1))];
-      lambda.pdf[static_cast<size_t>(i)] = 1;
-    }
+    const SampledWavelengths lambda = nodeLanes(first);
     const SampledSpectrum v = lanes(lambda);
     for (int i = 0; i < kLanes && first + i < total; ++i)
       out[static_cast<size_t>((first + i) / kNodes)] += v[i] / kNodes;
@@ -164,12 +170,7 @@ void AovEvaluator::albedo(const SurfaceHit& h, const Ray& ray, PixelSampleStream
   }
   const int total = bands_ * kNodes;
   for (int first = 0; first < total; first += kLanes) {
-    SampledWavelengths lambda;
-    for (int i = 0; i < kLanes; ++i) {
-      lambda.lambda[static_cast<size_t>(i)] =
-          nodes_[static_cast<size_t>(std::min(first + i, total - 1))];
-      lambda.pdf[static_cast<size_t>(i)] = 1;
-    }
+    const SampledWavelengths lambda = nodeLanes(first);
     SampledSpectrum rho = scene_.reflectanceAt(material, hit, lambda);
     // A dye reflects its elastic part (fluorescence is the other layer): (1 - k) rho + k D.
     if (const ReradiationMatrix* r = material.reradiation.get())

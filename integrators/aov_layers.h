@@ -13,6 +13,7 @@
 #include "core/sampler.h"
 #include "io/aov_names.h"
 #include "spectra/reradiation_matrix.h"
+#include "spectra/sampled_wavelengths.h"
 #include "spectra/sensor.h"
 
 namespace nx {
@@ -55,6 +56,8 @@ private:
     std::vector<float> reflectance, elastic, absorption, emission;
   };
   std::vector<MaterialBands> materials_; ///< [material]
+  /// The band nodes first, first + 1, ... in the lanes (the last node repeated past the end).
+  SampledWavelengths nodeLanes(int first) const;
   /// The band means of the spectrum `lanes` gives for a set of wavelengths.
   template <class F>
   std::vector<float> bandMeans(F&& lanes) const;

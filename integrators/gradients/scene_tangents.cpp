@@ -417,6 +417,27 @@ uint32_t addTextureSlots(SceneTangents& t, const std::string& name, const Render
   return addGridSlots(t, name, base, changed, grid);
 }
 
+namespace {
+
+// What differs between `changed` and `base`, as the tangents of one slot (checked as any slot's:
+// a change of what is not differentiated throws, naming `name`).
+SceneTangents changeOf(const std::string& name, const RenderScene& base,
+                       const RenderScene& changed) {
+  SceneTangents probe = SceneTangents::sizedFor(base);
+  const RenderScene* pair[] = {&changed, &base};
+  const double unit[] = {1.0, -1.0};
+  addTangentSlot(probe, name, base, pair, unit);
+  return probe;
+}
+
+// True when no entry of the per-material (or per-emitter, ...) tangents holds a slot.
+template <class V>
+bool emptyAll(const V& v) {
+  return std::all_of(v.begin(), v.end(), [](const auto& x) { return x.empty(); });
+}
+
+} // namespace
+
 std::optional<uint32_t> addMeasuredCellSlots(SceneTangents& t, const std::string& name,
                                              const RenderScene& base, const RenderScene& changed,
                                              const MeasuredResampling& map,
@@ -424,13 +445,7 @@ std::optional<uint32_t> addMeasuredCellSlots(SceneTangents& t, const std::string
   constexpr int n = ReradiationMatrix::kBins;
   // What moving every cell changed: the structure is checked as for any slot; only surfaces'
   // matrices may differ (a medium's dye, or anything else, goes per cell).
-  SceneTangents probe = SceneTangents::sizedFor(base);
-  const RenderScene* pair[] = {&changed, &base};
-  const double unit[] = {1.0, -1.0};
-  addTangentSlot(probe, name, base, pair, unit);
-  auto emptyAll = [](const auto& v) {
-    return std::all_of(v.begin(), v.end(), [](const auto& x) { return x.empty(); });
-  };
+  const SceneTangents probe = changeOf(name, base, changed);
   if (!emptyAll(probe.reflectance) || !emptyAll(probe.roughness) || !emptyAll(probe.emission) ||
       !emptyAll(probe.lights) || !emptyAll(probe.media) || !probe.background.empty())
     return std::nullopt;
@@ -495,13 +510,7 @@ std::optional<uint32_t> addTableKnotSlots(SceneTangents& t, const std::string& n
                                           std::span<const double> values,
                                           std::span<const double> moved) {
   if (values.empty() || moved.size() != values.size()) return std::nullopt;
-  SceneTangents probe = SceneTangents::sizedFor(base);
-  const RenderScene* pair[] = {&changed, &base};
-  const double unit[] = {1.0, -1.0};
-  addTangentSlot(probe, name, base, pair, unit);
-  auto emptyAll = [](const auto& v) {
-    return std::all_of(v.begin(), v.end(), [](const auto& x) { return x.empty(); });
-  };
+  const SceneTangents probe = changeOf(name, base, changed);
   if (!emptyAll(probe.reradiation) || !emptyAll(probe.roughness) || !emptyAll(probe.media))
     return std::nullopt;
   // The spectra the knots reach, each checked to be c times the knots in both scenes.

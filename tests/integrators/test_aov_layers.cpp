@@ -17,6 +17,7 @@
 #include "io/part_merge.h"
 #include "io/spectral_exr.h"
 #include "support/errors.h"
+#include "support/part_attributes.h"
 #include "support/statistics.h"
 
 namespace nx {
@@ -45,13 +46,7 @@ SpectralImage renderAovs(const std::string& text, std::vector<AovKind> kinds, ui
   o.firstSample = first;
   o.samples = samples;
   SpectralImage img = toSpectralImage(render(scene, o).film);
-  // (the attributes nxrender writes for merging)
-  img.attributes["nxrender.sampler"] = "stratified";
-  img.attributes["nxrender.renderKey"] = "key";
-  img.attributes["nxrender.seed"] = std::to_string(seed);
-  img.attributes["nxrender.bands"] = img.bands.toString();
-  img.attributes["nxrender.sampleRange"] =
-      std::to_string(first) + ":" + std::to_string(first + (samples ? samples : 0));
+  test::setPartAttributes(img, seed, first, samples);
   return img;
 }
 

@@ -24,6 +24,7 @@
 #include "io/part_merge.h"
 #include "io/relight_channels.h"
 #include "support/errors.h"
+#include "support/part_attributes.h"
 #include "support/render_checks.h"
 
 namespace nx {
@@ -402,12 +403,7 @@ TEST(Relight, PartsMergeLikeTheBands) {
     o.firstSample = first;
     o.samples = count;
     SpectralImage img = toSpectralImage(render(scene, o).film);
-    img.attributes["nxrender.sampler"] = "stratified";
-    img.attributes["nxrender.renderKey"] = "key";
-    img.attributes["nxrender.seed"] = "0";
-    img.attributes["nxrender.bands"] = img.bands.toString();
-    img.attributes["nxrender.sampleRange"] =
-        std::to_string(first) + ":" + std::to_string(first + count);
+    test::setPartAttributes(img, 0, first, count);
     return ImagePart{name, img};
   };
   const SpectralImage whole = part("whole", std::nullopt, 0, 4).image;
