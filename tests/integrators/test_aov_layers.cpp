@@ -264,3 +264,50 @@ TEST(AovLayers, MergedAndResumedEqualOneRender) {
 
 } // namespace
 } // namespace nx
+
+namespace nx {
+namespace {
+
+TEST(AovLayers, MismatchedPartsAndBrokenFilesAreRefused) {
+  const std::string text = "<scene>" + settings(4) + kCamera +
+                           "<sphere><center>0,0,0</center><radius>1</radius><material>matte"
+                           "</material><reflectance>0.5</reflectance></sphere>" +
+                           kLight + "</scene>";
+  const SpectralImage a = renderAovs(text, {AovKind::Normals}, 0, 0, 2);
+  const SpectralImage b = renderAovs(text, {AovKind::Albedo}, 0, 2, 2);
+  EXPECT_NE(test::errorMessage([&] {
+              mergeParts({{"a", a}, {"b", b}});
+            })
+                .find("b: does not belong with a: its ground-truth layers are 'albedo', not "
+                      "'normals'"),
+            std::string::npos);
+  // Band sets are not stitched with ground-truth layers.
+  SpectralImage other = a;
+  other.bands = Sensor(SpectralBands{750, 800, 50});
+  other.attributes["nxrender.bands"] = other.bands.toString();
+  other.radiance.assign(static_cast<size_t>(a.width * a.height) * 2, 0.0f);
+  other.bandVariance.clear();
+  other.aovs.clear();
+  EXPECT_NE(test::errorMessage([&] {
+              mergeParts({{"a", a}, {"c", other}});
+            }).find("cannot be stitched with other band sets: it holds ground-truth layers"),
+            std::string::npos);
+  // A file whose attribute lists a layer nxrender does not make, or one without its channels.
+  SpectralImage plain = renderAovs(text, {}, 0, 0, 2);
+  const std::string path = ::testing::TempDir() + "/aov_broken.exr";
+  plain.attributes["nxrender.aovLayers"] = "normals";
+  writeSpectralExr(path, plain);
+  EXPECT_NE(test::errorMessage([&] {
+              readSpectralExr(path);
+            }).find("expected a channel normals.X (nxrender.aovLayers lists the layer normals)"),
+            std::string::npos);
+  plain.attributes["nxrender.aovLayers"] = "curvature";
+  writeSpectralExr(path, plain);
+  EXPECT_NE(test::errorMessage([&] { readSpectralExr(path); })
+                .find("expected ground-truth layers named as nxrender names them in "
+                      "nxrender.aovLayers, found 'curvature'"),
+            std::string::npos);
+}
+
+} // namespace
+} // namespace nx
