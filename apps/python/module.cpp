@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "apps/python/py_dataset_codec.h"
 #include "apps/python/py_image.h"
 #include "apps/python/py_readonly.h"
 #include "apps/python/py_relight.h"
@@ -29,6 +30,7 @@ PYBIND11_MODULE(nxrender, m) {
   nxpy::bindScene(m);
   nxpy::bindSceneParameters(m);
   nxpy::bindRender(m);
+  nxpy::bindDatasetCodec(m);
   // nxrender.torch: its Python source compiled in (apps/python/nxrender_torch.py); it imports
   // torch at its first use only.
   pybind11::module_ torch =

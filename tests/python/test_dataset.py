@@ -134,11 +134,19 @@ def test_two_tasks_interrupted_and_rerun_read_back_as_rendered(tmp_path):
     try:
         import torch.utils.data
     except ImportError:
-        return
-    batches = list(torch.utils.data.DataLoader(data, batch_size=3))
-    assert [b["radiance"].shape[0] for b in batches] == [3, 3, 1]
-    assert batches[0]["radiance"].shape[1:] == (16, 24, 7)
-    assert batches[0]["seed"].tolist() == [nxrender.dataset.item_seed(0, i) for i in range(3)]
+        torch = None
+    if torch is not None:
+        batches = list(torch.utils.data.DataLoader(data, batch_size=3))
+        assert [b["radiance"].shape[0] for b in batches] == [3, 3, 1]
+        assert batches[0]["radiance"].shape[1:] == (16, 24, 7)
+        assert batches[0]["seed"].tolist() == [nxrender.dataset.item_seed(0, i) for i in range(3)]
+    # An item whose first frame was overwritten is refused, naming it (decoded in the library).
+    meta, blobs = nxrender.dataset._read_item(nxrender.dataset.item_path(out, 4))
+    with open(nxrender.dataset.item_path(out, 4), "r+b") as f:
+        f.seek(os.path.getsize(f.name) - len(blobs))
+        f.write(b"\0\0\0\0")
+    with pytest.raises(ValueError, match=r"cannot read item 4 \(expected a zstd frame of"):
+        data[4]
 
 
 def test_settings_are_never_mixed_and_bad_tasks_refused(tmp_path):
