@@ -10,6 +10,9 @@
 // only by S(mu) against the bin average of S, so the mean over pixels of (relit - render) per
 // band is the grid's error, measured with a paired standard error; printed as the worst and the
 // mean relative error over the bands.
+// Noise: the group given narrow LEDs, CIE A and F11, relit to each from relightable renders
+// without targets, with that lamp as target and with all of them, against direct renders (RMS
+// errors against a reference of 16x the samples), with relighting's own estimate.
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
@@ -23,6 +26,7 @@
 #include "apps/program_main.h"
 #include "core/error.h"
 #include "integrators/relight_image.h"
+#include "integrators/relight_targets.h"
 #include "integrators/renderer.h"
 #include "integrators/scene_reader.h"
 #include "io/spectral_exr.h"
@@ -44,6 +48,130 @@ SceneDesc variant(const SceneDesc& base, int width, const std::string& group,
         o.emission->name = lamp;
       }
   return d;
+}
+
+// An LED: a Gaussian of `fwhm` nm around `peak`, tabulated every nm.
+SpectrumDesc ledSpectrum(double peak, double fwhm) {
+  SpectrumDesc s;
+  s.kind = SpectrumDesc::Kind::Pairs;
+  const double sigma = fwhm / 2.3548;
+  for (int nm = 300; nm <= 1100; ++nm) {
+    s.nm.push_back(nm);
+    s.value.push_back(std::exp(-0.5 * (nm - peak) * (nm - peak) / (sigma * sigma)));
+  }
+  return s;
+}
+
+// The scene's group given the lamp `lamp` (a spectrum description).
+SceneDesc withLamp(const SceneDesc& base, const std::string& group, const SpectrumDesc& lamp) {
+  SceneDesc d = base;
+  for (ObjectDesc& o : d.objects)
+    if (o.emission && o.group == group) {
+      const SourceLocation loc = o.emission->loc;
+      *o.emission = lamp;
+      o.emission->loc = loc;
+    }
+  return d;
+}
+
+// The noise of `img`: its squared error against `reference` (less the reference's own variance),
+// relative to the reference's squared values, pooled over the pixels and bands (those with at
+// least 5% of the brightest band's light in the reference); with `fluorescent`, only where
+// fluoresced light is most of the pixel's band in the reference (which has its component
+// layers), the bands' light counted there.
+double relativeNoise(const SpectralImage& img, const SpectralImage& reference, bool fluorescent) {
+  const int nb = reference.bands.count();
+  const size_t n = reference.sampleCount.size();
+  const auto inside = [&](size_t k) {
+    return !fluorescent || reference.layers.at(1).values[k] > 0.5 * reference.radiance[k];
+  };
+  std::vector<double> light(static_cast<size_t>(nb), 0.0);
+  for (size_t i = 0; i < n; ++i)
+    for (int b = 0; b < nb; ++b)
+      if (inside(i * nb + b)) light[b] += reference.radiance[i * nb + b];
+  const double brightest = *std::max_element(light.begin(), light.end());
+  double error = 0, signal = 0;
+  for (size_t i = 0; i < n; ++i)
+    for (int b = 0; b < nb; ++b) {
+      const size_t k = i * nb + b;
+      if (light[b] < 0.05 * brightest || !inside(k)) continue;
+      const double d = img.radiance[k] - reference.radiance[k];
+      error += d * d - reference.bandVariance[k];
+      signal += reference.radiance[k] * reference.radiance[k];
+    }
+  return signal > 0 ? std::sqrt(std::max(error, 0.0) / signal) : 0.0;
+}
+
+// Noise of relit images against direct renders at equal samples: the group given each lamp
+// directly, and relit to it from a relightable render without targets, told that lamp as its
+// target, and told all the lamps at once (each then relit in turn).
+void noiseAgainstDirect(const SceneDesc& base, int width, const std::string& group,
+                        const RenderOptions& options) {
+  const std::vector<std::pair<std::string, SpectrumDesc>> lamps = [] {
+    SpectrumDesc a, f11;
+    a.kind = f11.kind = SpectrumDesc::Kind::Name;
+    a.name = "A";
+    f11.name = "F11";
+    return std::vector<std::pair<std::string, SpectrumDesc>>{{"LED 450/20", ledSpectrum(450, 20)},
+                                                             {"LED 520/30", ledSpectrum(520, 30)},
+                                                             {"CIE A", a},
+                                                             {"F11", f11}};
+  }();
+  const SceneDesc scaled = variant(base, width, group, "");
+  // Each lamp's spectrum as its emitters are written with it (a target for the render).
+  std::vector<Spectrum> written;
+  for (const auto& [name, lamp] : lamps) {
+    SceneDesc d = withLamp(scaled, group, lamp);
+    d.relightable = true;
+    const RenderScene s = buildRenderScene(d);
+    for (size_t k = 0; k < s.relight.ofSource.size(); ++k)
+      if (s.lightGroups.names[s.relight.groupOfSource[k]] == group)
+        written.push_back(s.relight.ofSource[k]);
+  }
+  RenderOptions direct = options, relightable = options, reference = options;
+  direct.seed = 11;
+  relightable.seed = 12;
+  reference.seed = 13;
+  reference.samples = 16 * options.samples;
+  reference.components = true;
+  const auto relit = [&](const std::vector<RelightTargetDesc>& targets, size_t lamp) {
+    SceneDesc d = scaled;
+    d.relightable = true;
+    d.relightTargets = targets;
+    const RenderScene scene = buildRenderScene(d);
+    const SpectralImage img = toSpectralImage(render(scene, relightable).film);
+    std::vector<std::string> warnings;
+    const GroupSpectrum g =
+        groupSpectrum(img, group, written[lamp], 300, 1100, lamps[lamp].first, warnings);
+    return std::make_pair(relightImage(img, {g}),
+                          relitNoiseFactor(img, relightSourcesOf(img, group), g.binned));
+  };
+  std::printf("\nnoise: group '%s' relit to each lamp, against a direct render under it at equal "
+              "samples: ratio of RMS errors against a reference of 16x the samples, relative, in "
+              "the pixels and bands where fluoresced light is most of the light (whole image in "
+              "brackets)\n%-12s %16s %9s %16s %16s\n",
+              group.c_str(), "lamp", "no targets", "estimate", "this target", "all targets");
+  std::vector<RelightTargetDesc> all;
+  for (size_t k = 0; k < lamps.size(); ++k) all.push_back({group, written[k], lamps[k].first});
+  for (size_t k = 0; k < lamps.size(); ++k) {
+    const RenderScene scene = buildRenderScene(withLamp(scaled, group, lamps[k].second));
+    const SpectralImage d = toSpectralImage(render(scene, direct).film);
+    const SpectralImage ref = toSpectralImage(render(scene, reference).film);
+    const auto [plain, estimate] = relit({}, k);
+    const SpectralImage one = relit({{group, written[k], lamps[k].first}}, k).first;
+    const SpectralImage every = relit(all, k).first;
+    const auto column = [&](const SpectralImage& r) {
+      char fluorescent[16] = "     -", text[64];
+      if (const double noise = relativeNoise(d, ref, true); noise > 0) // none: nothing fluoresces
+        std::snprintf(fluorescent, sizeof fluorescent, "%6.2f",
+                      relativeNoise(r, ref, true) / noise);
+      std::snprintf(text, sizeof text, "%s (%5.2f)", fluorescent,
+                    relativeNoise(r, ref, false) / relativeNoise(d, ref, false));
+      return std::string(text);
+    };
+    std::printf("%-12s %16s %9.2f %16s %16s\n", lamps[k].first.c_str(), column(plain).c_str(),
+                estimate.factor, column(one).c_str(), column(every).c_str());
+  }
 }
 
 int run(int argc, char** argv) {
@@ -131,6 +259,7 @@ int run(int argc, char** argv) {
                   100 * sum / std::max(counted, 1), worstZ);
     }
   }
+  noiseAgainstDirect(base, width, group, options);
   return 0;
 }
 

@@ -25,6 +25,7 @@
 #include "core/input_files.h"
 #include "core/memory.h"
 #include "core/text_table.h"
+#include "integrators/relight_targets.h"
 #include "integrators/renderer.h"
 #include "integrators/scene_reader.h"
 #include "io/atomic_file.h"
@@ -184,6 +185,7 @@ int run(int argc, char** argv) {
   bool noFluorescence = false, tileOfArray = false, noVariance = false, halfFloat = false,
        envi = false, timings = false, adaptive = false, relightable = false;
   double relightStep = 5;
+  std::vector<std::string> relightFor;
   int adaptiveMinSpp = 16;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(nx::numberIn(1, 4096));
@@ -234,6 +236,12 @@ int run(int argc, char** argv) {
   app.add_option("--relight-step", relightStep,
                  "Width of the excitation bins of --relightable in nm: a divisor of 5 (1, 2.5, "
                  "5) or a multiple of 5 (default 5; finer for line spectra, docs/relighting.md)");
+  app.add_option("--relight-for", relightFor,
+                 "With --relightable: a spectrum the render will be relit to, [GROUP=]FILE|NAME "
+                 "(a CSV nm,value or a built-in emission such as D65, F11; without GROUP for "
+                 "every light group; repeatable): lights are chosen and fluorescent excitation "
+                 "drawn for the targets, so that relit images under narrow lamps are about as "
+                 "noisy as direct renders (docs/relighting.md)");
   app.add_flag("--envi", envi,
                "Also write the bands as an ENVI cube beside the EXR: OUT.img (BSQ float32) and "
                "OUT.hdr (wavelength and fwhm lists), for spectral-imaging tools");
@@ -290,6 +298,10 @@ int run(int argc, char** argv) {
     throw nx::Error("--relight-step: only with --relightable (the excitation grid it keeps)");
   if (relightable) nx::checkRelightStep(relightStep, "--relight-step");
   desc.relightable = relightable;
+  if (!relightFor.empty() && !relightable)
+    throw nx::Error("--relight-for: only with --relightable (the targets it draws for)");
+  for (const std::string& t : relightFor)
+    desc.relightTargets.push_back(nx::relightTargetFromText(t, "--relight-for"));
   const nx::RenderScene scene = nx::buildRenderScene(desc);
   for (const auto& w : scene.warnings) std::fprintf(stderr, "%s\n", w.c_str());
   clock.mark("build scene (spectra, BVH)");

@@ -182,13 +182,25 @@ RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const Rend
     throw Error("internal error: --relightable needs the scene built relightable");
   options_.relightStepNm = choices.relightStepNm;
 
+  // Relighting targets change what a relightable render draws (not what it estimates).
+  std::string targets;
+  if (!scene.relight.targetsOfSource.empty()) {
+    uint64_t h = fnv1a64("relightFor");
+    for (const std::vector<Spectrum>& ofSource : scene.relight.targetsOfSource)
+      for (const Spectrum& t : ofSource)
+        for (int nm = 300; nm <= 1100; ++nm) {
+          const double v = t(nm);
+          h = fnv1a64({reinterpret_cast<const char*>(&v), sizeof v}, h);
+        }
+    targets = "relightFor:" + hex(h) + "|";
+  }
   renderKey_ = hex(fnv1a64(
       std::string(NX_VERSION) + "|" + choices.sampler + "|" + choices.lightSampling + "|" +
           choices.lightSelection + "|" + choices.density + "|" +
           (choices.aovWhite ? "white|" : "") + (choices.aovComponents ? "components|" : "") +
           (choices.aovLightGroups ? "lightgroups|" : "") + aovKey(choices.aovKinds) +
           (choices.relightable ? "relight:" + numberText(choices.relightStepNm) + "|" : "") +
-          (choices.noFluorescence ? "nofl" : "fl") + "|" + std::to_string(kLanes),
+          targets + (choices.noFluorescence ? "nofl" : "fl") + "|" + std::to_string(kLanes),
       scene.contentDigest));
   seed_ = choices.seed ? *choices.seed : scene.settings.seed;
   bands_ = choices.bands ? *choices.bands : scene.settings.bands;

@@ -131,10 +131,25 @@ uint64_t Film::addRelightSamples(Pixel& pixel, const SampledWavelengths& lambda,
     double* group = sums + c.group * perGroup;
     responses_.forEach(nm, [&](int b, float w) {
       const int e = pattern.index(b, c.bin);
-      if (e < 0)
+      if (e < 0) {
         ++missed;
-      else
-        group[e] += static_cast<double>(v * w);
+        return;
+      }
+      const double add = static_cast<double>(v * w);
+      group[e] += add;
+      // Fluoresced light in a pair reflected light also reaches: its part kept beside.
+      // (Reflected light off the diagonal, or fluoresced light on it without a part, would
+      // be split wrongly: counted as missed, which the tests require to be none.)
+      const bool diagonal = pattern.entries()[static_cast<size_t>(e)].diagonal != 0;
+      if (!c.shifted) {
+        missed += !diagonal;
+      } else if (diagonal) {
+        const int f = pattern.fluorescedIndex(b, c.bin);
+        if (f < 0)
+          ++missed;
+        else
+          group[f] += add;
+      }
     });
   }
   return missed;
@@ -277,6 +292,7 @@ Film Film::cropped(const PixelRect& r) const {
   Film out(width_, height_, r, bands_, hasWhite());
   out.setLayers(layerNames_);
   out.setRelight(relightPattern_, relightSourceNames_, relightSourceSpectra_);
+  out.setRelightGuides(relightGuides_);
   out.setAovs(aovKinds_);
   const size_t na = static_cast<size_t>(aovChannels_);
   const size_t nl = layerNames_.size() * static_cast<size_t>(nBands_);

@@ -68,6 +68,15 @@ public:
   const std::vector<std::vector<double>>& relightSourceSpectra() const {
     return relightSourceSpectra_;
   }
+  /// Sets the sources' excitation guides per bin (a render told its relighting targets;
+  /// RelightLayers::guides), kept for the image.
+  void setRelightGuides(std::vector<std::vector<std::vector<double>>> guides) {
+    relightGuides_ = std::move(guides);
+  }
+  /// The sources' excitation guides per bin; empty without targets.
+  const std::vector<std::vector<std::vector<double>>>& relightGuides() const {
+    return relightGuides_;
+  }
 
   int width() const { return width_; }   ///< full image width
   int height() const { return height_; } ///< full image height
@@ -237,6 +246,7 @@ private:
   std::shared_ptr<const RelightPattern> relightPattern_;
   std::vector<std::string> relightSourceNames_;
   std::vector<std::vector<double>> relightSourceSpectra_;
+  std::vector<std::vector<std::vector<double>>> relightGuides_;
   std::vector<float> relightSums_;    ///< [pixel][group][entry]
   std::vector<float> relightOddSums_; ///< [pixel][group][entry]
 };

@@ -57,28 +57,39 @@ inline FluorescentShift sampleFluorescentShift(const ReradiationMatrix& matrix,
 }
 
 /// Next-event estimation's excitation at a fluorescent vertex towards one light: per lane the
-/// column's event (the vertex's shift) and one guided by the light's spectrum, with their MIS
-/// weights (ReradiationMatrix::guidedExcitation).
+/// column's event (the vertex's shift) and one per guide of the light (its spectrum's, or one
+/// per relighting target), with their MIS weights (ReradiationMatrix::guidedExcitations).
 struct GuidedShift {
-  SampledWavelengths guided;    ///< the guided events' excitation wavelengths
-  SampledSpectrum columnWeight; ///< weight of the light at shift.excited
-  SampledSpectrum guidedWeight; ///< weight of the light at `guided`
+  SampledWavelengths guided[kMaxExcitationGuides];    ///< each guide's events' wavelengths
+  SampledSpectrum columnWeight;                       ///< weight of the light at shift.excited
+  SampledSpectrum guidedWeight[kMaxExcitationGuides]; ///< weight of the light at guided[t]
+  int count = 0;                                      ///< guides
 };
 
-/// The guided events of every lane from one 2D sample (stratified across lanes as the shift's).
+/// The guided events of every lane, guide t's from u[t] (stratified across lanes as the
+/// shift's).
 inline GuidedShift guideFluorescentShift(const ReradiationMatrix& matrix,
                                          const SampledWavelengths& current,
                                          const FluorescentShift& shift, const SampledSpectrum& rho,
-                                         float concentration, const ExcitationGuide& guide,
-                                         Sample2 u) {
-  GuidedShift g{current, {}, {}};
+                                         float concentration, const ExcitationGuides& guides,
+                                         const Sample2* u) {
+  GuidedShift g;
+  g.count = guides.count;
+  for (int t = 0; t < g.count; ++t) g.guided[t] = current;
   for (int i = 0; i < kLanes; ++i) {
-    const Sample2 ui = laneSample(u, i);
-    const GuidedExcitation e = matrix.guidedExcitation(current.lambda[i], shift.excited.lambda[i],
-                                                       rho[i], concentration, guide, ui.u, ui.v);
-    g.guided.lambda[i] = e.nm[1];
+    ReradiationMatrix::Sample2Pair uv[kMaxExcitationGuides];
+    for (int t = 0; t < g.count; ++t) {
+      const Sample2 ui = laneSample(u[t], i);
+      uv[t] = {ui.u, ui.v};
+    }
+    GuidedExcitations e;
+    matrix.guidedExcitations(current.lambda[i], shift.excited.lambda[i], rho[i], concentration,
+                             guides, uv, e);
     g.columnWeight[i] = e.weight[0];
-    g.guidedWeight[i] = e.weight[1];
+    for (int t = 0; t < g.count; ++t) {
+      g.guided[t].lambda[i] = e.nm[t + 1];
+      g.guidedWeight[t][i] = e.weight[t + 1];
+    }
   }
   return g;
 }

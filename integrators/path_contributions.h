@@ -77,10 +77,11 @@ struct ComponentSink {
 /// One lane of a contribution to a relightable render: its transport per unit emission
 /// spectrum, the relight source and the excitation bin it left the emitter in.
 struct RelightContribution {
-  float value;    ///< the contribution with the group's spectrum taken out (its factor kept)
-  int32_t bin;    ///< excitation bin (RelightGrid), -1 outside the grid
-  uint16_t group; ///< light group
-  uint8_t lane;   ///< the lane (its sensor wavelength)
+  float value;     ///< the contribution with the group's spectrum taken out (its factor kept)
+  int32_t bin;     ///< excitation bin (RelightGrid), -1 outside the grid
+  uint16_t group;  ///< light group
+  uint8_t lane;    ///< the lane (its sensor wavelength)
+  uint8_t shifted; ///< 1 when the path re-radiated the lane (fluoresced light), 0 reflected
 };
 
 /// Where a relightable render's sink puts a sample's contributions (cleared per sample).
@@ -107,8 +108,9 @@ struct RelightSink {
     if (!recorder) return;
     for (int i = 0; i < kLanes; ++i)
       if (c[i] != 0)
-        recorder->contributions.push_back(
-            {c[i], recorder->grid.binOf(k.emitted->lambda[i]), k.source, static_cast<uint8_t>(i)});
+        recorder->contributions.push_back({c[i], recorder->grid.binOf(k.emitted->lambda[i]),
+                                           k.source, static_cast<uint8_t>(i),
+                                           static_cast<uint8_t>((k.shifted >> i) & 1u)});
   }
 };
 

@@ -170,10 +170,11 @@ private:
   // contribution, or the next one only).
   static constexpr bool kGradients = recordsGradients<Sink>();
   // Next-event estimation at a fluorescent vertex of a plain render: the excitation is also
-  // drawn guided by the chosen light's spectrum (fluorescent_vertex.h); differentiated,
-  // relightable and media renders keep the column's choice alone.
-  static constexpr bool kGuidedExcitation =
-      kFluorescence && !kMedia && !kGradients && !std::is_same_v<Sink, RelightSink>;
+  // drawn guided by the chosen light's spectrum (fluorescent_vertex.h), and in a relightable
+  // render told its targets by their spectra (RelightSpectra::samplingOfSource);
+  // differentiated and media renders, and relightable ones without targets, keep the column's
+  // choice alone.
+  static constexpr bool kGuidedExcitation = kFluorescence && !kMedia && !kGradients;
   // What a ray's flight through a medium did.
   enum class Flight { Through, Scattered, PathEnds };
 
@@ -961,23 +962,38 @@ bool PathWalk<kFluorescence, kMedia, kWhite, Sink>::guidedDirectLight(
   if (!(v.fluorescent && !ctx_.columnOnlyExcitation && v.bsdf.hasNonSpecular() &&
         ctx_.lightSampling != LightSampling::BsdfOnly && ctx_.lights->count() > 0))
     return false;
+  if constexpr (std::is_same_v<Sink, RelightSink>)
+    if (scene_.relight.samplingOfSource.empty()) return false; // lights of unknown spectra
   const SurfaceHit& hit = v.hit;
   const float uChoice = rng_.next1D();
   const Sample2 uLight = rng_.next2D();
   const Sample2 uGuide = rng_.next2D();
   float share = 0, uRest = 0;
   const int l = ctx_.lights->choose(hit.p, hit.ns, uChoice, share, uRest, &weightsHere);
-  LightSample ls, lsGuided;
+  LightSample ls, lsGuided[kMaxExcitationGuides];
   if (l >= 0 &&
       ctx_.lights->sampleChosen(l, share, hit.p, uRest, uLight, v.shift.excited, ls, hit.ns)) {
     // Where the light meets the column evenly the column's event alone, at its weight.
     const bool guide = ctx_.lights->guidanceHelps(l, v.app.material, current_);
-    const GuidedShift g =
-        guide ? guideFluorescentShift(*v.material.reradiation, current_, v.shift, v.rho,
-                                      v.concentration, *ctx_.lights->excitationGuide(l), uGuide)
-              : GuidedShift{current_, v.shift.albedo, SampledSpectrum::filled(0.0f)};
-    if (guide)
-      ctx_.lights->sampleChosen(l, share, hit.p, uRest, uLight, g.guided, lsGuided, hit.ns);
+    GuidedShift g;
+    if (guide) {
+      // Guide t's sample: uGuide shifted by t times the R2 sequence's steps (each uniform, so
+      // each technique's events are drawn as they should be; no further dimensions used).
+      const ExcitationGuides guides = ctx_.lights->excitationGuides(l);
+      Sample2 u[kMaxExcitationGuides];
+      for (int t = 0; t < guides.count; ++t) {
+        const float su = 0.7548776662f * static_cast<float>(t),
+                    sv = 0.5698402910f * static_cast<float>(t);
+        u[t] = {rotateUnit(uGuide.u, su - std::floor(su)),
+                rotateUnit(uGuide.v, sv - std::floor(sv))};
+      }
+      g = guideFluorescentShift(*v.material.reradiation, current_, v.shift, v.rho, v.concentration,
+                                guides, u);
+      for (int t = 0; t < g.count; ++t)
+        ctx_.lights->sampleChosen(l, share, hit.p, uRest, uLight, g.guided[t], lsGuided[t], hit.ns);
+    } else {
+      g.columnWeight = v.shift.albedo;
+    }
     // One shadow ray for both events: the light's geometry with unit radiance.
     LightSample unit = ls;
     unit.radiance = SampledSpectrum::filled(1.0f);
@@ -993,9 +1009,9 @@ bool PathWalk<kFluorescence, kMedia, kWhite, Sink>::guidedDirectLight(
       sink_.add(
           beta_ * geometric * g.columnWeight * ls.radiance,
           classOf(scatterings_ + 1, group, source, v.shift.excited, lanesOf(v.shift.excited)));
-      if (guide)
-        sink_.add(beta_ * geometric * g.guidedWeight * lsGuided.radiance,
-                  classOf(scatterings_ + 1, group, source, g.guided, lanesOf(g.guided)));
+      for (int t = 0; t < g.count; ++t)
+        sink_.add(beta_ * geometric * g.guidedWeight[t] * lsGuided[t].radiance,
+                  classOf(scatterings_ + 1, group, source, g.guided[t], lanesOf(g.guided[t])));
     }
   }
   return true;

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "integrators/relight_pattern.h"
+#include "integrators/relight_targets.h"
 #include "spectra/band_colour.h"
 #include "spectra/colour.h"
 #include "spectra/illuminants.h"
@@ -24,8 +25,9 @@ void requireTransport(const SpectralImage& image) {
                 "relight channels");
 }
 
-// The sources of light group `group` (its emitters' spectra), or an error listing the groups.
-std::vector<size_t> sourcesOf(const SpectralImage& image, const std::string& group) {
+} // namespace
+
+std::vector<size_t> relightSourcesOf(const SpectralImage& image, const std::string& group) {
   requireTransport(image);
   const RelightLayers& rl = image.relight;
   std::vector<size_t> out;
@@ -39,12 +41,10 @@ std::vector<size_t> sourcesOf(const SpectralImage& image, const std::string& gro
   return out;
 }
 
-} // namespace
-
 GroupSpectrum groupSpectrum(const SpectralImage& image, const std::string& group, const Spectrum& s,
                             double tableLoNm, double tableHiNm, const std::string& source,
                             std::vector<std::string>& warnings) {
-  const std::vector<size_t> ofGroup = sourcesOf(image, group);
+  const std::vector<size_t> ofGroup = relightSourcesOf(image, group);
   const RelightLayers& rl = image.relight;
   // The scene's own check of an emission (blackbody:100 and values beyond 1e12 overflowed
   // only at the write).
@@ -74,37 +74,32 @@ GroupSpectrum groupSpectrum(const SpectralImage& image, const std::string& group
                        "' reaches " + numberText(rl.grid.lo(lo)) + "-" +
                        numberText(rl.grid.lo(hi + 1)) +
                        " nm: it is 0 beyond its table, as a render would take it");
+  // A spectrum much narrower than what the render drew: the relit image is noisier than a
+  // direct render's (docs/relighting.md, "Relighting targets").
+  const RelitNoise noise = relitNoiseFactor(image, ofGroup, out.binned);
+  if (noise.factor >= kRelitNoiseWarning) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "%.1fx as noisy (standard deviation) as a direct render under it at equal "
+                  "samples, in band %s nm (%.0f%% of it fluoresced light)",
+                  noise.factor, numberText(image.bands.centroid(noise.band)).c_str(),
+                  100 * noise.fluorescedShare);
+    warnings.push_back(
+        source + ": warning: light group '" + group +
+        "' relit to a spectrum much narrower than what the render drew for: expected about " +
+        text +
+        (rl.guides.empty() ? "; render with --relight-for " + group + "=" + source +
+                                 " (Python relight_for=) to draw for it"
+                           : " (the render drew for other --relight-for targets: add it to them)"));
+  }
   return out;
-}
-
-GroupSpectrum groupSpectrumFromCsv(const SpectralImage& image, const std::string& group,
-                                   const std::string& path, std::vector<std::string>& warnings) {
-  sourcesOf(image, group); // an unknown group before reading the file
-  TabulatedSpectrum t = readSpectrumCsv(path);
-  const double lo = t.nm.front(), hi = t.nm.back();
-  for (size_t i = 0; i < t.value.size(); ++i)
-    if (!(t.value[i] >= 0 && std::isfinite(t.value[i])))
-      throw Error(path + ": expected an emission spectrum of values >= 0, found " +
-                  numberText(t.value[i]) + " at " + numberText(t.nm[i]) + " nm");
-  t.buildIndex();
-  return groupSpectrum(image, group, Spectrum(std::move(t)), lo, hi, path, warnings);
 }
 
 GroupSpectrum groupSpectrumFromText(const SpectralImage& image, const std::string& group,
                                     const std::string& text, std::vector<std::string>& warnings) {
-  std::error_code ec;
-  if (std::filesystem::exists(text, ec)) return groupSpectrumFromCsv(image, group, text, warnings);
-  sourcesOf(image, group);
-  const std::optional<Spectrum> named = namedEmission(text);
-  if (!named)
-    throw Error("expected a CSV file (nm,value) or a built-in emission name (A, D65, F1-F12, "
-                "blackbody:K, ...), found '" +
-                text + "' (no such file)");
-  // Where the built-in is not 0: a table (D illuminants, F1-F12) is 0 beyond its data.
-  double lo = 1e9, hi = -1e9;
-  for (int nm = 300; nm <= 1100; ++nm)
-    if ((*named)(nm) > 0) lo = std::min(lo, double(nm)), hi = std::max(hi, double(nm));
-  return groupSpectrum(image, group, *named, lo, hi, text, warnings);
+  relightSourcesOf(image, group); // an unknown group before reading a file
+  const TextSpectrum t = spectrumFromText(text);
+  return groupSpectrum(image, group, t.spectrum, t.loNm, t.hiNm, text, warnings);
 }
 
 SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSpectrum>& spectra) {
@@ -118,7 +113,7 @@ SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSp
   for (const GroupSpectrum& s : spectra) {
     if (s.binned.size() != static_cast<size_t>(rl.grid.bins))
       throw Error("internal error: a spectrum binned on another grid");
-    for (const size_t g : sourcesOf(image, s.group)) {
+    for (const size_t g : relightSourcesOf(image, s.group)) {
       if (given[g]) throw Error("expected each light group once, found '" + s.group + "' twice");
       given[g] = true;
       use[g] = &s.binned;
@@ -168,18 +163,40 @@ SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSp
   std::vector<double> nm;
   for (int b : order) nm.push_back(image.bands.centroid(b));
   const BandColour colour(nm);
+  // The components, when the transport tells them apart: the fluoresced light is the entries
+  // only re-radiated light reaches and the fluoresced parts; the reflected the rest.
+  if (rl.split)
+    for (const char* name : {"reflected", "fluoresced"})
+      out.layers.push_back(
+          {name, std::vector<float>(pixels * nb, 0.0f), std::vector<float>(pixels * nb, 0.0f)});
   tbb::parallel_for(size_t{0}, pixels, [&](size_t i) {
-    std::vector<double> mean(static_cast<size_t>(nb), 0.0), half(static_cast<size_t>(nb), 0.0);
+    // [0] all light, [1] reflected, [2] fluoresced: sums over the entries with the entry's
+    // coefficient in each (a fluoresced part moves its light from reflected to fluoresced).
+    std::vector<double> mean(3 * static_cast<size_t>(nb), 0.0), half(mean.size(), 0.0);
     for (size_t g = 0; g < rl.sources.size(); ++g) {
       const std::vector<double>& s = *use[g];
       for (size_t e = 0; e < entries; ++e) {
         const size_t k = (g * entries + e) * pixels + i;
         const RelightEntry& en = rl.entries[e];
         const double w = s[static_cast<size_t>(en.bin)];
-        mean[static_cast<size_t>(en.row)] += w * rl.values[k];
-        half[static_cast<size_t>(en.row)] += w * rl.halfDifferences[k];
+        const double m = w * rl.values[k], h = w * rl.halfDifferences[k];
+        const size_t row = static_cast<size_t>(en.row);
+        if (en.fluoresced) {
+          mean[nb + row] -= m, half[nb + row] -= h;
+          mean[2 * nb + row] += m, half[2 * nb + row] += h;
+          continue;
+        }
+        mean[row] += m, half[row] += h;
+        const size_t part = (en.diagonal ? 1 : 2) * static_cast<size_t>(nb) + row;
+        mean[part] += m, half[part] += h;
       }
     }
+    for (size_t l = 0; l < out.layers.size(); ++l)
+      for (int b = 0; b < nb; ++b) {
+        const size_t u = (l + 1) * static_cast<size_t>(nb) + static_cast<size_t>(b);
+        out.layers[l].values[i * nb + b] = static_cast<float>(mean[u]);
+        out.layers[l].variances[i * nb + b] = static_cast<float>(half[u] * half[u]);
+      }
     std::vector<float> sortedMean(static_cast<size_t>(nb)), sortedHalf(static_cast<size_t>(nb));
     for (int b = 0; b < nb; ++b) {
       const size_t u = static_cast<size_t>(b);
@@ -195,7 +212,11 @@ SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSp
   });
   // Every value a float holds (the new spectra times the transport, and their squares in the
   // variances): what overflowed was found only at the write, or returned as inf to Python.
-  for (const auto* v : {&out.radiance, &out.bandVariance, &out.xyz, &out.yVariance})
+  std::vector<const std::vector<float>*> checked{&out.radiance, &out.bandVariance, &out.xyz,
+                                                 &out.yVariance};
+  for (const ImageLayer& l : out.layers)
+    checked.push_back(&l.values), checked.push_back(&l.variances);
+  for (const auto* v : checked)
     for (size_t k = 0; k < v->size(); ++k)
       if (!std::isfinite((*v)[k])) {
         const size_t per = v->size() / pixels, i = k / per;
@@ -204,7 +225,7 @@ SpectralImage relightImage(const SpectralImage& image, const std::vector<GroupSp
             "found an overflow at pixel " +
             std::to_string(i % static_cast<size_t>(image.width)) + "," +
             std::to_string(i / static_cast<size_t>(image.width)) +
-            (v == &out.radiance || v == &out.bandVariance
+            (per == static_cast<size_t>(nb)
                  ? " in band " + numberText(image.bands.centroid(static_cast<int>(k % per))) + " nm"
                  : std::string()) +
             (relit.empty() ? std::string(" (its rendered spectra)") : " relit with " + relit));

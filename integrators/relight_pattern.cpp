@@ -64,8 +64,9 @@ RelightPattern::RelightPattern(const RelightGrid& grid, const Sensor& bands,
       }
     for (int j = 0; j < grid.bins; ++j) {
       const bool diagonal = grid.lo(j) < hi && grid.lo(j + 1) > lo;
-      if (diagonal || (excitation & ofBin[static_cast<size_t>(j)]).any())
-        entries_.push_back({r, j});
+      const bool shifted = (excitation & ofBin[static_cast<size_t>(j)]).any();
+      if (diagonal || shifted) entries_.push_back({r, j, 0, diagonal ? 1 : 0});
+      if (diagonal && shifted) entries_.push_back({r, j, 1, 1});
     }
   }
   indexEntries();
@@ -89,8 +90,11 @@ std::vector<double> binAverages(const Spectrum& s, const RelightGrid& grid) {
 
 void RelightPattern::indexEntries() {
   index_.assign(static_cast<size_t>(rows_) * static_cast<size_t>(grid_.bins), -1);
+  fluorescedIndex_ = index_;
   for (size_t e = 0; e < entries_.size(); ++e)
-    index_[static_cast<size_t>(entries_[e].row) * grid_.bins + entries_[e].bin] =
+    (entries_[e].fluoresced
+         ? fluorescedIndex_
+         : index_)[static_cast<size_t>(entries_[e].row) * grid_.bins + entries_[e].bin] =
         static_cast<int32_t>(e);
 }
 

@@ -113,6 +113,14 @@ struct RelightSpectra {
   bool enabled = false;
   std::vector<Spectrum> ofSource;      ///< per source: its emitters' spectrum
   std::vector<uint16_t> groupOfSource; ///< per source: its light group
+  /// Per source, the spectrum its lights are chosen by and fluorescent excitation is guided
+  /// by (relighting targets: the mixture of its group's targets, or its own spectrum for a group
+  /// without one); empty without targets (lights chosen by their factors, excitation by the
+  /// re-radiation matrices alone). It moves samples only: the transport stays per unit spectrum.
+  std::vector<Spectrum> samplingOfSource;
+  /// Per source, the targets its fluorescent excitation is guided by, one guide each (its own
+  /// spectrum for a group without targets); empty without targets.
+  std::vector<std::vector<Spectrum>> targetsOfSource;
   /// The name of source s: its group's, and ".2", ".3", ... for a group's further spectra (a
   /// group name holds no dot).
   std::string name(size_t s, const LightGroups& groups) const {

@@ -126,6 +126,7 @@ PixelRect renderRect(const RenderSettings& settings, const RenderOptions& option
 struct RelightSetup {
   std::shared_ptr<const RelightPattern> pattern;
   std::vector<std::vector<double>> sourceSpectra;
+  std::vector<std::vector<std::vector<double>>> guides; ///< per source (RelightLayers::guides)
   std::vector<std::string> sources;
 };
 template <class StopIfAsked>
@@ -144,6 +145,11 @@ RelightSetup relightSetup(const RenderScene& scene, const RenderOptions& options
     stopIfAsked(); // thousands of sources at a fine step take a while
     r.sourceSpectra.push_back(binAverages(scene.relight.ofSource[s], grid));
     r.sources.push_back(scene.relight.name(s, scene.lightGroups));
+    if (!scene.relight.targetsOfSource.empty()) {
+      r.guides.emplace_back();
+      for (const Spectrum& t : scene.relight.targetsOfSource[s])
+        r.guides.back().push_back(binAverages(t, grid));
+    }
   }
   stopIfAsked();
   r.pattern = std::make_shared<const RelightPattern>(grid, bands, scene);
@@ -234,9 +240,11 @@ RenderTarget renderTarget(const RenderScene& scene, const RenderOptions& options
   stopIfAsked();
   requireExtrasMemory(scene, options, t, relight);
   if (!options.resumeFrom) t.out.film.setLayers(layerNames);
-  if (t.relightable)
+  if (t.relightable) {
     t.out.film.setRelight(std::move(relight.pattern), std::move(relight.sources),
                           std::move(relight.sourceSpectra));
+    t.out.film.setRelightGuides(std::move(relight.guides));
+  }
   t.out.samplesPerPixel = options.samples > 0 ? options.samples : settings.samples;
   t.out.seed = options.seed ? *options.seed : settings.seed;
   t.seed = t.out.seed;
@@ -775,9 +783,10 @@ std::vector<std::string> warningsOf(const RenderStats& stats) {
   }
   if (stats.relightMissed > 0)
     out.push_back(count(stats.relightMissed) +
-                  " contributions of the relightable transport fell outside its pattern and "
-                  "were dropped from it (the radiance keeps them): relit images miss that light; "
-                  "this is a defect, please report the scene");
+                  " contributions of the relightable transport fell outside its pattern, or "
+                  "outside its split into reflected and fluoresced light, and were dropped from "
+                  "it (the radiance keeps them): relit images or their components miss that "
+                  "light; this is a defect, please report the scene");
   if (stats.gradientZeroValues > 0)
     out.push_back(count(stats.gradientZeroValues) +
                   " path vertices met a differentiated value of 0 (a reflectance, an emission) "
@@ -830,8 +839,10 @@ SpectralImage toSpectralImage(const Film& film) {
     RelightLayers& rl = img.relight;
     rl.grid = pattern->grid();
     rl.entries = pattern->entries();
+    rl.split = true;
     rl.sources = film.relightSourceNames();
     rl.spectra = film.relightSourceSpectra();
+    rl.guides = film.relightGuides();
     const size_t n = static_cast<size_t>(film.relightSources()) * rl.size() * pixels;
     rl.values.resize(n);
     rl.halfDifferences.resize(n);

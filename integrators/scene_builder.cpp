@@ -14,6 +14,7 @@
 #include "integrators/lights/measured_emitter.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
+#include "integrators/relight_targets.h"
 #include "integrators/render_scene.h"
 #include "integrators/scene_references.h"
 #include "io/camera_from_desc.h"
@@ -223,6 +224,11 @@ public:
       scene.lightGroups.sourceOfLight.push_back(
           desc_.relightable && shape ? relightSource(*shape, group, l.loc, scene) : uint16_t{0});
     }
+    if (desc_.relightable)
+      setRelightTargets(scene, desc_.relightTargets);
+    else if (!desc_.relightTargets.empty())
+      throw Error(desc_.file + ": --relight-for: only with --relightable (the targets a "
+                               "relightable render draws for)");
     if (!triangles.empty()) {
       meshes.push_back(TriangleMesh::fromTriangles(triangles));
       scene.meshes.push_back(std::move(inlineTriangles));

@@ -17,8 +17,9 @@ size_t longestExrNameOfLightGroup(const std::string& group) {
   const std::string wavelength = band.substr(band.find('.') + 1);
   const std::string layer = kVariancePrefix + lightLayerName(group) + "." + band;
   const std::string transport =
-      kHalfDifferencePrefix + relightChannelText(group + ".65535", wavelength, wavelength);
-  const std::string attribute = kRelightSpectrumAttribute + group + ".65535";
+      kHalfDifferencePrefix +
+      relightChannelText(group + ".65535." + kRelightFluorescedLayer, wavelength, wavelength);
+  const std::string attribute = kRelightGuideAttribute + group + ".65535.8";
   return std::max({layer.size(), transport.size(), attribute.size()});
 }
 

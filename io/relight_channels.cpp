@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <tuple>
 
 #include "core/error.h"
 #include "core/text_table.h"
@@ -43,6 +44,54 @@ std::vector<std::string> splitCommas(const std::string& s) {
   return out;
 }
 
+// The diagonal flags of rl's entries from kRelightDiagonalAttribute (removed), which makes the
+// transport split; without it a fluoresced part is refused (it cannot be told apart).
+void readDiagonal(std::map<std::string, std::string>& attributes, int bands,
+                  const std::string& path, RelightLayers& rl) {
+  const auto it = attributes.find(kRelightDiagonalAttribute);
+  const std::string where = path + ": " + kRelightDiagonalAttribute;
+  if (it == attributes.end()) {
+    for (const RelightEntry& e : rl.entries)
+      if (e.fluoresced)
+        throw Error(path + ": expected the attribute " + kRelightDiagonalAttribute +
+                    " beside fluoresced relight channels, found none");
+    return;
+  }
+  const std::vector<std::string> ranges = splitCommas(it->second);
+  if (ranges.size() != static_cast<size_t>(bands))
+    throw Error(where + ": expected one range per band (" + std::to_string(bands) + "), found " +
+                std::to_string(ranges.size()));
+  std::vector<std::pair<double, double>> nm;
+  for (const std::string& r : ranges) {
+    const size_t colon = r.find(':');
+    if (r == "none") {
+      nm.push_back({0, 0});
+      continue;
+    }
+    if (colon == std::string::npos)
+      throw Error(where + ": expected LO:HI in nm or none, found '" + r + "'");
+    nm.push_back({parseNumber(r.substr(0, colon), where, "a wavelength in nm"),
+                  parseNumber(r.substr(colon + 1), where, "a wavelength in nm")});
+  }
+  for (size_t k = 0; k < rl.entries.size(); ++k) {
+    RelightEntry& e = rl.entries[k];
+    if (e.fluoresced && !(k > 0 && rl.entries[k - 1].row == e.row &&
+                          rl.entries[k - 1].bin == e.bin && !rl.entries[k - 1].fluoresced))
+      throw Error(path +
+                  ": expected a fluoresced relight channel beside the total of its pair, "
+                  "found one alone at " +
+                  numberText(rl.grid.centre(e.bin)) + " nm");
+    const auto& [lo, hi] = nm[static_cast<size_t>(e.row)];
+    e.diagonal = rl.grid.lo(e.bin) >= lo - 1e-6 && rl.grid.lo(e.bin + 1) <= hi + 1e-6;
+    if (e.fluoresced && !e.diagonal)
+      throw Error(where + ": expected the fluoresced part's bin " +
+                  numberText(rl.grid.centre(e.bin)) + " nm inside the range of its band (" +
+                  ranges[static_cast<size_t>(e.row)] + "), found it outside");
+  }
+  rl.split = true;
+  attributes.erase(it);
+}
+
 } // namespace
 
 std::string relightChannelText(const std::string& source, const std::string& excitation,
@@ -53,8 +102,9 @@ std::string relightChannelText(const std::string& source, const std::string& exc
 std::string relightChannelName(const RelightLayers& rl, size_t g, size_t e,
                                const std::vector<std::string>& bandText) {
   const RelightEntry& en = rl.entries[e];
-  return relightChannelText(rl.sources[g], wavelengthText(rl.grid.centre(en.bin)),
-                            bandText[static_cast<size_t>(en.row)]);
+  return relightChannelText(
+      rl.sources[g] + (en.fluoresced ? std::string(".") + kRelightFluorescedLayer : std::string()),
+      wavelengthText(rl.grid.centre(en.bin)), bandText[static_cast<size_t>(en.row)]);
 }
 
 void checkRelightValues(const RelightLayers& rl, const std::vector<std::string>& channels,
@@ -85,15 +135,42 @@ std::map<std::string, std::string> relightAttributes(const RelightLayers& rl) {
   std::snprintf(grid, sizeof grid, "%.9g:%.9g:%.9g", rl.grid.firstNm, rl.grid.lo(rl.grid.bins),
                 rl.grid.stepNm);
   out[kRelightGridAttribute] = grid;
-  for (size_t g = 0; g < rl.sources.size(); ++g) {
+  if (rl.split) { // per row, the excitation range of its diagonal entries
+    int rows = 0;
+    for (const RelightEntry& e : rl.entries) rows = std::max(rows, e.row + 1);
+    std::vector<std::pair<int, int>> range(static_cast<size_t>(rows), {-1, -1});
+    for (const RelightEntry& e : rl.entries)
+      if (e.diagonal) {
+        auto& r = range[static_cast<size_t>(e.row)];
+        r = {r.first < 0 ? e.bin : std::min(r.first, e.bin), std::max(r.second, e.bin)};
+      }
+    std::string text;
+    for (const auto& [first, last] : range) {
+      char buf[64];
+      if (first < 0)
+        std::snprintf(buf, sizeof buf, "none");
+      else
+        std::snprintf(buf, sizeof buf, "%.9g:%.9g", rl.grid.lo(first), rl.grid.lo(last + 1));
+      text += (text.empty() ? "" : ",") + std::string(buf);
+    }
+    out[kRelightDiagonalAttribute] = text;
+  }
+  const auto listed = [](const std::vector<double>& bins) {
     std::string values;
-    for (double v : rl.spectra[g]) {
+    for (double v : bins) {
       char buf[32];
       std::snprintf(buf, sizeof buf, "%.9g", v);
       if (!values.empty()) values += ',';
       values += buf;
     }
-    out[kRelightSpectrumAttribute + rl.sources[g]] = values;
+    return values;
+  };
+  for (size_t g = 0; g < rl.sources.size(); ++g) {
+    out[kRelightSpectrumAttribute + rl.sources[g]] = listed(rl.spectra[g]);
+    if (!rl.guides.empty())
+      for (size_t k = 0; k < rl.guides[g].size(); ++k)
+        out[kRelightGuideAttribute + rl.sources[g] + "." + std::to_string(k + 1)] =
+            listed(rl.guides[g][k]);
   }
   return out;
 }
@@ -122,15 +199,18 @@ std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>
     throw Error(path + ": expected " + kRelightGridAttribute + " from " +
                 std::to_string(static_cast<int>(rl.grid.firstNm)) + " nm, found '" +
                 std::to_string(first) + "'");
-  for (const std::string& g : rl.sources) {
-    const auto it = attributes.find(kRelightSpectrumAttribute + g);
-    if (it == attributes.end())
-      throw Error(path + ": expected the attribute " + kRelightSpectrumAttribute + g +
-                  " (the source's spectrum), found none");
+  // A source's spectrum attribute (an emission's bin averages, checked as a scene's would be),
+  // removed; empty when it is optional and absent.
+  const auto binnedAttribute = [&](const std::string& name, const char* what, bool required) {
+    const auto it = attributes.find(name);
     std::vector<double> values;
+    if (it == attributes.end()) {
+      if (required)
+        throw Error(path + ": expected the attribute " + name + " (" + what + "), found none");
+      return values;
+    }
     for (const std::string& v : splitCommas(it->second)) {
       values.push_back(parseNumber(v, path + ": " + it->first, "a number"));
-      // The spectrum it was rendered with: an emission, as a scene's would be checked.
       if (!(values.back() >= 0 && values.back() <= kMaxEmission))
         throw Error(path + ": " + it->first + ": expected bin averages of an emission within [0, " +
                     numberText(kMaxEmission) + "], found " + numberText(values.back()));
@@ -138,22 +218,47 @@ std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>
     if (values.size() != static_cast<size_t>(rl.grid.bins))
       throw Error(path + ": expected " + std::to_string(rl.grid.bins) + " values in " + it->first +
                   " (one per bin), found " + std::to_string(values.size()));
-    rl.spectra.push_back(std::move(values));
     attributes.erase(it);
+    return values;
+  };
+  for (const std::string& g : rl.sources)
+    rl.spectra.push_back(
+        binnedAttribute(kRelightSpectrumAttribute + g, "the source's spectrum", true));
+  // The excitation guides of a render told its targets: at least one for every source, or none.
+  for (const std::string& g : rl.sources) {
+    std::vector<std::vector<double>> guides;
+    for (int k = 1;; ++k) {
+      std::vector<double> guide =
+          binnedAttribute(kRelightGuideAttribute + g + "." + std::to_string(k),
+                          "the source's excitation guide", k == 1 && !rl.guides.empty());
+      if (guide.empty()) break;
+      guides.push_back(std::move(guide));
+    }
+    if (guides.empty()) break;
+    rl.guides.push_back(std::move(guides));
   }
   // The entries of each source from its channel names; every source has the same ones.
   const int bands = static_cast<int>(bandText.size());
-  std::vector<std::set<std::pair<int, int>>> ofGroup(rl.sources.size());
+  std::vector<std::set<std::tuple<int, int, int>>> ofGroup(rl.sources.size());
+  const std::string fluorescedLayer = std::string(".") + kRelightFluorescedLayer;
   for (const std::string& c : channels) {
     if (c.rfind("relight.", 0) != 0) continue;
     size_t g = 0;
-    // (a source's name is a prefix of its group's further sources': the rest must start "T.")
-    for (; g < rl.sources.size(); ++g)
+    int part = 0;
+    // (a source's name is a prefix of its group's further sources': the rest must start "T.",
+    // or "fluoresced.T." for a fluoresced part)
+    for (; g < rl.sources.size(); ++g) {
       if (c.rfind("relight." + rl.sources[g] + ".T.", 0) == 0) break;
+      if (c.rfind("relight." + rl.sources[g] + fluorescedLayer + ".T.", 0) == 0) {
+        part = 1;
+        break;
+      }
+    }
     if (g == rl.sources.size())
       throw Error(path + ": expected relight channels of the sources " + kRelightSourcesAttribute +
                   " lists, found " + c);
-    const std::string rest = c.substr(("relight." + rl.sources[g] + ".").size());
+    const std::string rest =
+        c.substr(("relight." + rl.sources[g] + (part ? fluorescedLayer : "") + ".").size());
     if (rest.rfind("T.", 0) != 0 || rest.find('.', 2) == std::string::npos)
       throw Error(path + ": expected relight." + rl.sources[g] +
                   ".T.<excitation>nm.<band>nm, found " + c);
@@ -169,14 +274,15 @@ std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>
     if (bin < 0 || std::abs(rl.grid.centre(bin) - nm) > 1e-3)
       throw Error(path + ": expected an excitation bin centre of the grid in the channel " + c +
                   ", found " + excitation);
-    ofGroup[g].insert({row, bin});
+    ofGroup[g].insert({row, bin, part});
   }
   for (size_t g = 1; g < ofGroup.size(); ++g)
     if (ofGroup[g] != ofGroup[0])
       throw Error(path + ": expected the same transport channels for every light group, found " +
                   std::to_string(ofGroup[0].size()) + " for " + rl.sources[0] + " and " +
                   std::to_string(ofGroup[g].size()) + " for " + rl.sources[g]);
-  for (const auto& [row, bin] : ofGroup[0]) rl.entries.push_back({row, bin});
+  for (const auto& [row, bin, part] : ofGroup[0]) rl.entries.push_back({row, bin, part, 0});
+  readDiagonal(attributes, bands, path, rl);
   std::vector<std::string> out;
   for (size_t g = 0; g < rl.sources.size(); ++g)
     for (size_t e = 0; e < rl.entries.size(); ++e) {

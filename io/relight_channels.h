@@ -2,9 +2,12 @@
 // How a relightable render's transport is stored in its EXR (docs/relighting.md): one float
 // channel per light group and pattern entry, named by both wavelengths in the bispectral
 // spirit of Fichet et al. 2021 ("T.<excitation>.<emission>" within a layer per group):
-//   relight.<source>.T.<excitation bin centre>nm.<band>nm
-// each with HalfDifference.<channel> (the replicates' signed half-difference), and the
-// attributes nxrender.relightSources, nxrender.relightGrid and nxrender.relightSpectrum.<source>.
+//   relight.<source>.T.<excitation bin centre>nm.<band>nm             all light of the pair
+//   relight.<source>.fluoresced.T.<excitation bin centre>nm.<band>nm  its fluoresced part
+// (the second where both reflected and re-radiated light reach the pair), each with
+// HalfDifference.<channel> (the replicates' signed half-difference), and the attributes
+// nxrender.relightSources, nxrender.relightGrid, nxrender.relightSpectrum.<source> and
+// nxrender.relightDiagonal (which bins reflected light reaches in each band).
 
 #include <map>
 #include <string>
@@ -23,6 +26,16 @@ inline constexpr const char* kRelightSourcesAttribute = "nxrender.relightSources
 inline constexpr const char* kRelightGridAttribute = "nxrender.relightGrid";
 /// The attribute prefix of each group's rendered spectrum (bin averages, comma-separated).
 inline constexpr const char* kRelightSpectrumAttribute = "nxrender.relightSpectrum.";
+
+/// The attribute prefix of each source's excitation guides (bin averages) in a render told its
+/// relighting targets (--relight-for): nxrender.relightGuide.<source>.<k>, k from 1.
+inline constexpr const char* kRelightGuideAttribute = "nxrender.relightGuide.";
+/// The attribute giving, per band row, the excitation range reflected light reaches (the bins
+/// overlapping the band's support), "LO:HI" in nm or "none", comma-separated: the entries
+/// outside it hold fluoresced light only. Files without it do not split the transport.
+inline constexpr const char* kRelightDiagonalAttribute = "nxrender.relightDiagonal";
+/// The layer of a source's fluoresced parts: relight.<source>.fluoresced.T.<...>.
+inline constexpr const char* kRelightFluorescedLayer = "fluoresced";
 
 /// relight.<source>.T.<excitation>.<band>: the channel of a source's transport from the
 /// excitation wavelength to the band, both as the spectral channels write them.

@@ -40,22 +40,42 @@ inline constexpr double kMinRelightStepNm = 0.1;
 /// Throws nx::Error naming `option`.
 void checkRelightStep(double stepNm, const std::string& option);
 
-/// One pair of the pattern: output row (a band) and excitation bin.
+/// One entry of the pattern: output row (a band), excitation bin and which light it holds.
 struct RelightEntry {
   int32_t row = 0; ///< band index
   int32_t bin = 0; ///< excitation bin of the grid
+  /// 1: the fluoresced part of the entry (row, bin) before it, kept where light of the bin
+  /// reaches the band both reflected and re-radiated; 0: all light of (row, bin)
+  int32_t fluoresced = 0;
+  /// 1 when the bin overlaps the band's support, so that reflected light can reach it; 0: only
+  /// re-radiated light can (unknown, 0, in files without the split: RelightLayers::split)
+  int32_t diagonal = 0;
 };
+
+/// True when a and b are the same entry of a pattern.
+inline bool sameEntry(const RelightEntry& a, const RelightEntry& b) {
+  return a.row == b.row && a.bin == b.bin && a.fluoresced == b.fluoresced &&
+         a.diagonal == b.diagonal;
+}
 
 /// The relightable part of a spectral image.
 struct RelightLayers {
   RelightGrid grid;
-  std::vector<RelightEntry> entries; ///< the pattern, ordered by row then bin
+  std::vector<RelightEntry> entries; ///< the pattern, ordered by row, bin, then part
+  /// True when the entries tell reflected from fluoresced light (their diagonal flags and the
+  /// fluoresced parts are known): the relit image then carries both components. Files written
+  /// before the split hold only totals.
+  bool split = false;
   /// The sources, in layer order: a light group's name, and NAME.2, NAME.3, ... for its further
   /// spectra (group names hold no dot)
   std::vector<std::string> sources;
   /// Per source, the bin averages (over the grid) of the spectrum its emitters were rendered
   /// with: relighting a group not given a new spectrum uses these.
   std::vector<std::vector<double>> spectra;
+  /// Per source, the bin averages of each spectrum its fluorescent excitation was guided towards
+  /// (a render told its relighting targets: one per target of its group, or the source's own
+  /// spectrum for a group without targets); empty: none (the re-radiation matrices alone)
+  std::vector<std::vector<std::vector<double>>> guides;
   /// [source][entry][pixel] transport means per unit emission spectrum
   std::vector<float> values;
   /// [source][entry][pixel] signed half-differences (A - B) / 2 of the two replicates' means:

@@ -12,29 +12,29 @@ RelightLayers mergeRelight(const std::vector<ImagePart>& parts, int width, int h
     const RelightLayers& r = p.image.relight;
     const bool same = r.present() == a.present() && r.sources == a.sources &&
                       r.grid.stepNm == a.grid.stepNm && r.spectra == a.spectra &&
+                      r.guides == a.guides && r.split == a.split &&
                       r.entries.size() == a.entries.size() &&
-                      std::equal(r.entries.begin(), r.entries.end(), a.entries.begin(),
-                                 [](const RelightEntry& x, const RelightEntry& y) {
-                                   return x.row == y.row && x.bin == y.bin;
-                                 });
+                      std::equal(r.entries.begin(), r.entries.end(), a.entries.begin(), sameEntry);
     if (!same)
-      throw Error(p.name + ": does not belong with " + first.name +
-                  ": their relight transports differ (" +
-                  (r.present() ? std::to_string(r.sources.size()) + " groups, " +
-                                     std::to_string(r.entries.size()) + " entries"
-                               : std::string("none")) +
-                  " against " +
-                  (a.present() ? std::to_string(a.sources.size()) + " groups, " +
-                                     std::to_string(a.entries.size()) + " entries"
-                               : std::string("none")) +
-                  "; render every part with the same --relightable and --relight-step)");
+      throw Error(
+          p.name + ": does not belong with " + first.name + ": their relight transports differ (" +
+          (r.present() ? std::to_string(r.sources.size()) + " groups, " +
+                             std::to_string(r.entries.size()) + " entries"
+                       : std::string("none")) +
+          " against " +
+          (a.present() ? std::to_string(a.sources.size()) + " groups, " +
+                             std::to_string(a.entries.size()) + " entries"
+                       : std::string("none")) +
+          "; render every part with the same --relightable, --relight-step and --relight-for)");
   }
   RelightLayers out;
   if (!a.present()) return out;
   out.grid = a.grid;
   out.entries = a.entries;
+  out.split = a.split;
   out.sources = a.sources;
   out.spectra = a.spectra;
+  out.guides = a.guides;
   const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
   const size_t planes = a.sources.size() * a.entries.size();
   std::vector<double> sum(planes * pixels, 0.0), half(planes * pixels, 0.0);

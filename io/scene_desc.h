@@ -15,6 +15,7 @@
 #include "core/vec3.h"
 #include "io/scene_tree.h"
 #include "spectra/sensor.h"
+#include "spectra/spectrum.h"
 
 namespace nx {
 
@@ -130,6 +131,14 @@ struct SettingsDesc {
   SourceLocation loc, widthLoc, modeLoc;
 };
 
+/// A relighting target (--relight-for [GROUP=]SPEC, relight_for=): a spectrum the emitters of a
+/// light group will be relit to.
+struct RelightTargetDesc {
+  std::string group;  ///< the light group; empty: every group
+  Spectrum spectrum;  ///< the spectrum, as an <emission> would give it
+  std::string source; ///< what it came from (a file or a name), for messages
+};
+
 /// Everything a scene file says.
 struct SceneDesc {
   std::string file; ///< the scene file as given
@@ -146,6 +155,9 @@ struct SceneDesc {
   /// Build for a relightable render (--relightable; never read from the file): every emitter
   /// traced as its factor times a flat unit spectrum, its own spectrum kept per light group.
   bool relightable = false;
+  /// The spectra a relightable render will be relit to (--relight-for, relight_for=; never
+  /// read from the file): its excitation and light choices are drawn for them
+  std::vector<RelightTargetDesc> relightTargets;
 };
 
 class SceneKindSchemas; // io/scene_kind_schemas.h

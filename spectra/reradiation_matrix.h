@@ -75,6 +75,23 @@ struct GuidedExcitation {
   float weight[2]; ///< what each event's light is multiplied by
 };
 
+/// Most guides one light's excitation events are drawn for (a relightable render's relighting
+/// targets of one light group; a plain render's light has one).
+inline constexpr int kMaxExcitationGuides = 8;
+
+/// The guides of one light: its spectrum's, or one per relighting target of its group.
+struct ExcitationGuides {
+  const ExcitationGuide* guide[kMaxExcitationGuides] = {}; ///< the first `count` are set
+  int count = 0;
+};
+
+/// The column's event and one per guide (ReradiationMatrix::guidedExcitations): [0] the
+/// column's, [1 + t] guide t's.
+struct GuidedExcitations {
+  float nm[1 + kMaxExcitationGuides];     ///< excitation wavelengths
+  float weight[1 + kMaxExcitationGuides]; ///< what each event's light is multiplied by
+};
+
 /// M[i][o] (energy re-radiated from excitation bin i into emission bin o, o > i), the
 /// absorptance a per bin, and per-column sampling tables.
 class ReradiationMatrix {
@@ -200,65 +217,104 @@ public:
   /// column's its plain weight C.
   GuidedExcitation guidedExcitation(float nm, float columnNm, float rhoValue, float k,
                                     const ExcitationGuide& guide, float u, float v) const {
-    GuidedExcitation out{{columnNm, nm}, {0, 0}};
+    ExcitationGuides one;
+    one.guide[0] = &guide;
+    one.count = 1;
+    const Sample2Pair uv{u, v};
+    GuidedExcitations e;
+    guidedExcitations(nm, columnNm, rhoValue, k, one, &uv, e);
+    return {{e.nm[0], e.nm[1]}, {e.weight[0], e.weight[1]}};
+  }
+
+  /// A (u, v) pair of one guided draw (u picks the event, v its position in the bin).
+  struct Sample2Pair {
+    float u, v;
+  };
+
+  /// guidedExcitation for several guides at once (a relightable render told several relighting
+  /// targets): the column's event and one event per guide t, drawn in proportion to v(e) g_t(e)
+  /// with uv[t], each with its power-heuristic weight among all the techniques (Veach & Guibas
+  /// 1995): with q_c = 1 / C and q_t(e) = g_t(e) / Z_t, the event of technique s multiplies its
+  /// light by q_s(e) / sum over techniques of q(e)^2, i.e. C / (1 + sum r_t^2) for the column's
+  /// and C r_s / (1 + sum r_t^2) for guide s's, r_t = g_t(e) C / Z_t. For one guide these are
+  /// guidedExcitation's weights; E[sum of weighted lights] = D L(nm) + sum_i k M[i][o] Lbar_i for
+  /// any light. A guide dark on the column (Z_t = 0) gets an elastic event of weight 0; with no
+  /// event at all (C = 0) every weight is 0.
+  void guidedExcitations(float nm, float columnNm, float rhoValue, float k,
+                         const ExcitationGuides& guides, const Sample2Pair* uv,
+                         GuidedExcitations& out) const {
+    const int n = guides.count;
+    for (int t = 0; t <= n; ++t) out.weight[t] = 0, out.nm[t] = nm;
+    out.nm[0] = columnNm;
     const float x = (nm - static_cast<float>(kMinNm)) * static_cast<float>(1.0 / kBinNm);
     if (!(x >= 0 && x < static_cast<float>(kBins))) { // an ordinary reflector (or black)
       const float d = measured_ && !elasticFromRho_ ? 0.0f : rhoValue;
-      out.weight[0] = out.weight[1] = 0.5f * d;
-      return out;
+      for (int t = 0; t <= n; ++t) out.weight[t] = d / static_cast<float>(n + 1);
+      return;
     }
     const int o = static_cast<int>(x);
     const ColumnSampling& col = columns_[o];
     const float d = k == 1 ? col.elasticScale * rhoValue + col.elasticConstant
                            : (1 - k * (1 - col.elasticScale)) * rhoValue;
     const float columnTotal = d + k * col.sum;
-    if (!(columnTotal > 0)) return out;
-    // Running sums of M[i][o] g_i over the guide's support below o (no allocation).
+    if (!(columnTotal > 0)) return;
     const float* cdf = &cdf_[static_cast<size_t>(o) * kBins];
-    std::array<float, kBins> running;
-    const int lo = guide.lo, hi = std::min(guide.hi, o);
-    float sum = 0;
-    for (int i = lo; i < hi; ++i) {
-      const float cell = cdf[i] - (i > 0 ? cdf[i - 1] : 0.0f);
-      running[static_cast<size_t>(i - lo)] = sum += cell * guide.mean[static_cast<size_t>(i)];
+    // Per guide: Z_t and the drawn event's bin (o for the elastic event, -1 for none).
+    float z[kMaxExcitationGuides];
+    int event[kMaxExcitationGuides];
+    for (int t = 0; t < n; ++t) {
+      const ExcitationGuide& guide = *guides.guide[t];
+      // Running sums of M[i][o] g_i over the guide's support below o (no allocation).
+      std::array<float, kBins> running;
+      const int lo = guide.lo, hi = std::min(guide.hi, o);
+      float sum = 0;
+      for (int i = lo; i < hi; ++i) {
+        const float cell = cdf[i] - (i > 0 ? cdf[i - 1] : 0.0f);
+        running[static_cast<size_t>(i - lo)] = sum += cell * guide.mean[static_cast<size_t>(i)];
+      }
+      const float elasticGuided = d * guide.mean[static_cast<size_t>(o)];
+      z[t] = elasticGuided + k * sum;
+      event[t] = -1;
+      if (!(z[t] > 0)) continue;
+      const float target = uv[t].u * z[t] - elasticGuided;
+      if (!(target >= 0) || !(sum > 0)) { // elastic
+        event[t] = o;
+        continue;
+      }
+      const int count = hi - lo;
+      const auto first = running.begin();
+      int i = lo +
+              std::min(static_cast<int>(std::upper_bound(first, first + count, target / k) - first),
+                       count - 1);
+      while (i > lo &&
+             running[static_cast<size_t>(i - lo)] == running[static_cast<size_t>(i - lo - 1)])
+        --i; // only after the clamp: never an empty bin
+      event[t] = i;
+      out.nm[t + 1] = static_cast<float>(kMinNm) +
+                      (static_cast<float>(i) + uv[t].v) * static_cast<float>(kBinNm);
     }
-    const float elasticGuided = d * guide.mean[static_cast<size_t>(o)];
-    const float z = elasticGuided + k * sum;
-    // Power heuristic (beta = 2), with r = p_guided / p_column = g C / Z (C = D + k c): the
-    // column's event multiplies its light by C w_c = C / (1 + r^2), the guided one by
-    // (Z / g) w_g = C / (r + 1 / r); written in r so that no square overflows.
-    const auto ratioOf = [&](float g) { return g * columnTotal / z; };
-    const auto columnWeightOf = [&](float g) {
-      const float r = ratioOf(g);
-      return columnTotal / (1 + r * r);
+    // r_t(e) at event e (a bin, or o for the elastic one); 1 + the sum of the r^2 of the guides
+    // other than `skip`. Written in r so that no square of a density overflows.
+    const auto ratio = [&](int t, int e) {
+      return z[t] > 0 && e >= 0 ? guides.guide[t]->mean[static_cast<size_t>(e)] * columnTotal / z[t]
+                                : 0.0f;
     };
-    const auto weightOf = [&](float g) {
-      const float r = ratioOf(g);
-      return columnTotal / (r + 1 / r);
+    const auto others = [&](int e, int skip) {
+      float sum = 1;
+      for (int t = 0; t < n; ++t)
+        if (t != skip) {
+          const float r = ratio(t, e);
+          sum += r * r;
+        }
+      return sum;
     };
-    if (!(z > 0)) {
-      out.weight[0] = columnTotal;
-      return out;
-    }
     const int columnBin = columnNm == nm ? o : binOf(columnNm);
-    out.weight[0] =
-        columnWeightOf(columnBin >= 0 ? guide.mean[static_cast<size_t>(columnBin)] : 0.0f);
-    const float target = u * z - elasticGuided;
-    if (!(target >= 0) || !(sum > 0)) { // elastic
-      out.weight[1] = weightOf(guide.mean[static_cast<size_t>(o)]);
-      return out;
-    }
-    const int n = hi - lo;
-    const auto first = running.begin();
-    int i = lo + std::min(static_cast<int>(std::upper_bound(first, first + n, target / k) - first),
-                          n - 1);
-    while (i > lo &&
-           running[static_cast<size_t>(i - lo)] == running[static_cast<size_t>(i - lo - 1)])
-      --i; // only after the clamp: never an empty bin
-    out.nm[1] =
-        static_cast<float>(kMinNm) + (static_cast<float>(i) + v) * static_cast<float>(kBinNm);
-    out.weight[1] = weightOf(guide.mean[static_cast<size_t>(i)]);
-    return out;
+    out.weight[0] = columnTotal / others(columnBin, -1);
+    for (int t = 0; t < n; ++t)
+      if (event[t] >= 0) { // C r / (r^2 + others) = C / (r + others / r)
+        const float r = ratio(t, event[t]);
+        out.weight[t + 1] = columnTotal / (r + others(event[t], t) / r);
+      }
   }
 
   /// How unevenly the light whose bin means are `guide` is met by column o's own sampling:

@@ -8,22 +8,16 @@
 #include "apps/python/py_image.h"
 #include "core/error.h"
 #include "integrators/relight_image.h"
+#include "integrators/relight_targets.h"
 
 namespace nxpy {
-namespace {
 
-// The new spectrum of `group` from a Python value: a CSV file name (two columns nm,value) or a
-// built-in emission name ("D65"), a pair (wavelengths, values) of a piecewise-linear table, or
-// one number (flat).
-nx::GroupSpectrum spectrumArgument(const nx::SpectralImage& image, const std::string& group,
-                                   const py::handle& value, std::vector<std::string>& warnings) {
-  const std::string param = "lights['" + group + "']";
+nx::TextSpectrum spectrumFromPython(const py::handle& value, const std::string& param) {
   if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"))
-    return nx::groupSpectrumFromText(image, group, pathArgument(value, param.c_str()), warnings);
+    return nx::spectrumFromText(pathArgument(value, param.c_str()));
   if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
     const double v = numberArgument(value, param.c_str(), 0, 1e12);
-    return nx::groupSpectrum(image, group, nx::Spectrum(nx::ConstantSpectrum{v}), 0, 1e9, param,
-                             warnings);
+    return {nx::Spectrum(nx::ConstantSpectrum{v}), 0, 1e9};
   }
   if (!py::isinstance<py::tuple>(value) || py::len(value) != 2)
     throw py::type_error(param + ": expected a CSV file name, (wavelengths, values) or a number");
@@ -45,7 +39,52 @@ nx::GroupSpectrum spectrumArgument(const nx::SpectralImage& image, const std::st
   nx::TabulatedSpectrum table;
   table.nm = std::move(nm);
   table.value = std::move(v);
-  return nx::groupSpectrum(image, group, nx::Spectrum(std::move(table)), lo, hi, param, warnings);
+  table.buildIndex();
+  return {nx::Spectrum(std::move(table)), lo, hi};
+}
+
+std::vector<nx::RelightTargetDesc> relightTargetsArgument(const py::handle& value) {
+  std::vector<nx::RelightTargetDesc> out;
+  // One spectrum or a list of them, for `group` ("" for every group).
+  const auto add = [&](const std::string& group, const py::handle& v, const std::string& param) {
+    const bool several = py::isinstance<py::list>(v);
+    py::list items = several ? v.cast<py::list>() : py::list();
+    if (!several) items.append(v);
+    for (size_t i = 0; i < items.size(); ++i) {
+      const std::string p = several ? param + "[" + std::to_string(i) + "]" : param;
+      nx::RelightTargetDesc t;
+      t.group = group;
+      t.spectrum = spectrumFromPython(items[i], p).spectrum;
+      t.source = py::isinstance<py::str>(items[i]) ? items[i].cast<std::string>() : p;
+      try {
+        nx::checkRelightTarget(t, p);
+      } catch (const nx::Error& e) {
+        throw py::value_error(e.what());
+      }
+      out.push_back(std::move(t));
+    }
+  };
+  if (py::isinstance<py::dict>(value)) {
+    for (auto [k, v] : value.cast<py::dict>()) {
+      const std::string group = stringArgument(k, "relight_for (key)");
+      add(group, v, "relight_for['" + group + "']");
+    }
+  } else {
+    add("", value, "relight_for");
+  }
+  return out;
+}
+
+namespace {
+
+// The new spectrum of `group` from a Python value (spectrumFromPython).
+nx::GroupSpectrum spectrumArgument(const nx::SpectralImage& image, const std::string& group,
+                                   const py::handle& value, std::vector<std::string>& warnings) {
+  const std::string param = "lights['" + group + "']";
+  if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"))
+    return nx::groupSpectrumFromText(image, group, pathArgument(value, param.c_str()), warnings);
+  const nx::TextSpectrum t = spectrumFromPython(value, param);
+  return nx::groupSpectrum(image, group, t.spectrum, t.loNm, t.hiNm, param, warnings);
 }
 
 } // namespace

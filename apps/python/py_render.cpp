@@ -21,6 +21,7 @@
 #include "apps/python/py_arrays.h"
 #include "apps/python/py_gradients.h"
 #include "apps/python/py_image.h"
+#include "apps/python/py_relight.h"
 #include "apps/python/py_scene.h"
 #include "apps/render_job.h"
 #include "core/error.h"
@@ -280,8 +281,8 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
                   const py::object& lightSelection, const py::object& density, bool fluorescence,
                   const py::object& aovs, const py::object& targetError, const py::object& errorOf,
                   const py::object& timeLimit, bool adaptive, bool relightable,
-                  const py::object& relightStep, const py::object& gradients,
-                  const py::object& adjoint) {
+                  const py::object& relightStep, const py::object& relightFor,
+                  const py::object& gradients, const py::object& adjoint) {
   // Every argument is checked before the (possibly long) scene build.
   nx::RenderChoices choices = choicesFrom(
       {spp, seed, bands, sensor, sppRange, sampler, lightSampling, lightSelection, density,
@@ -295,6 +296,12 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
     throw py::type_error("progress: expected a callable progress(done, total), found " +
                          typeName(progress));
 
+  std::vector<nx::RelightTargetDesc> targets;
+  if (!relightFor.is_none()) {
+    if (!relightable)
+      throw py::value_error("relight_for: only with relightable=True (the targets it draws for)");
+    targets = relightTargetsArgument(relightFor);
+  }
   SceneSource src = sceneArgument(sceneArg);
   if (!src.desc.warnings.empty()) {
     const py::object warn = py::module_::import("warnings").attr("warn");
@@ -302,6 +309,7 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   }
   if (!fluorescence) nx::removeFluorescence(src.desc);
   src.desc.relightable = relightable;
+  src.desc.relightTargets = std::move(targets);
   std::optional<nx::RenderScene> scene;
   {
     py::gil_scoped_release release;
@@ -399,8 +407,8 @@ void bindRender(py::module_& m) {
         py::arg("aovs") = py::tuple(), py::arg("target_error") = py::none(),
         py::arg("error_of") = "luminance", py::arg("time_limit") = py::none(),
         py::arg("adaptive") = false, py::arg("relightable") = false,
-        py::arg("relight_step") = py::none(), py::arg("gradients") = py::none(),
-        py::arg("adjoint") = py::none(),
+        py::arg("relight_step") = py::none(), py::arg("relight_for") = py::none(),
+        py::arg("gradients") = py::none(), py::arg("adjoint") = py::none(),
         "Renders a scene (an nxrender.Scene, a scene file name, or scene XML text) and returns "
         "an nxrender.Image, the same bit for bit as nxrender's EXR for the same scene, seed and "
         "samples. The GIL is released while rendering; Ctrl-C raises KeyboardInterrupt after "
@@ -419,7 +427,7 @@ void bindRender(py::module_& m) {
         return render(scene, spp, seed, threads, bands, sensor, crop, py::none(), py::none(),
                       sampler, lightSampling, lightSelection, density, fluorescence, py::tuple(),
                       py::none(), py::str("luminance"), py::none(), false, false, py::none(),
-                      gradients, adjoint);
+                      py::none(), gradients, adjoint);
       },
       py::arg("scene"), py::arg("adjoint"), py::arg("gradients"), py::arg("spp") = py::none(),
       py::arg("seed") = py::none(), py::arg("threads") = py::none(), py::arg("bands") = py::none(),

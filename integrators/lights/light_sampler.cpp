@@ -102,8 +102,9 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
   addBackground();
   if (selection_ == LightSelection::Local && count() > kMaxLocalLights)
     selection_ = LightSelection::Tree;
-  if (selection_ == LightSelection::Tree) buildTree();
   assignGroupsAndSources();
+  weighBySamplingSpectra();
+  if (selection_ == LightSelection::Tree) buildTree();
   buildExcitationGuides();
   buildChoiceTables();
 }
@@ -378,6 +379,21 @@ void LightSampler::assignGroupsAndSources() {
   }
 }
 
+void LightSampler::weighBySamplingSpectra() {
+  // A relightable build's emitters are flat unit spectra times their factors; a render told its
+  // relighting targets weighs each by its source's sampling spectrum instead (the mean of its
+  // targets): its radiance and power scaled by the spectrum's mean over the traced range.
+  const std::vector<Spectrum>& sampling = scene_->relight.samplingOfSource;
+  if (sampling.empty()) return;
+  std::vector<double> mean;
+  for (const Spectrum& s : sampling)
+    mean.push_back(tracedIntegral(s) / (kTraceMaxNm - kTraceMinNm));
+  for (size_t k = 0; k < lights_.size(); ++k) {
+    lights_[k].radiance *= mean[source_[k]];
+    lights_[k].power *= mean[source_[k]];
+  }
+}
+
 void LightSampler::buildExcitationGuides() {
   const RenderScene& scene = *scene_;
   // Excitation guides, for scenes with a fluorescent surface only: the emission of shapes and
@@ -385,7 +401,25 @@ void LightSampler::buildExcitationGuides() {
   if (std::any_of(scene.materials.begin(), scene.materials.end(),
                   [](const Material& m) { return m.reradiation != nullptr; })) {
     std::vector<const Spectrum*> spectra; // of guides_, to share one per spectrum
-    for (const Light& l : lights_) {
+    const auto guideOf = [&](const Spectrum* s) {
+      const auto known = std::find(spectra.begin(), spectra.end(), s);
+      if (known == spectra.end()) {
+        spectra.push_back(s);
+        guides_.push_back(excitationGuideOf(s));
+      }
+      guideIndex_.push_back(
+          static_cast<int32_t>(std::find(spectra.begin(), spectra.end(), s) - spectra.begin()));
+    };
+    const RelightSpectra& relight = scene.relight;
+    for (size_t k = 0; k < lights_.size(); ++k) {
+      const Light& l = lights_[k];
+      guideFirst_.push_back(static_cast<uint32_t>(guideIndex_.size()));
+      // A targeted relightable render: one guide per target of the light's group (its own
+      // spectrum, as built, is the flat unit).
+      if (!relight.targetsOfSource.empty()) {
+        for (const Spectrum& t : relight.targetsOfSource[source_[k]]) guideOf(&t);
+        continue;
+      }
       const Spectrum* s = l.emission;
       if (l.kind == LightKind::Point)
         std::visit(
@@ -393,13 +427,9 @@ void LightSampler::buildExcitationGuides() {
               if constexpr (requires { light.intensity; }) s = &light.intensity;
             },
             scene.lights[l.shape]);
-      const auto known = std::find(spectra.begin(), spectra.end(), s);
-      guideOf_.push_back(static_cast<int32_t>(known - spectra.begin()));
-      if (known == spectra.end()) {
-        spectra.push_back(s);
-        guides_.push_back(excitationGuideOf(s));
-      }
+      guideOf(s);
     }
+    guideFirst_.push_back(static_cast<uint32_t>(guideIndex_.size()));
     // Where guiding pays, per fluorescent material and guide: emission bins whose column meets
     // the light unevenly (ReradiationMatrix::guideMismatch above kGuidedMismatch).
     for (const Material& m : scene.materials) {

@@ -123,25 +123,34 @@ public:
   bool sampleChosen(int k, float share, const Vec3& p, float uRest, Sample2 u,
                     const SampledWavelengths& lambda, LightSample& out,
                     const Vec3& n = Vec3()) const;
-  /// Light k's spectrum on the re-radiation matrix's grid (for excitation sampling at
-  /// fluorescent vertices); built only for scenes with a fluorescent surface, else null. A
-  /// light whose spectrum varies over it (an environment map) has a flat guide.
-  const ExcitationGuide* excitationGuide(int k) const {
-    return guides_.empty() ? nullptr
-                           : &guides_[static_cast<size_t>(guideOf_[static_cast<size_t>(k)])];
+  /// Light k's excitation guides (for excitation sampling at fluorescent vertices): its
+  /// spectrum on the re-radiation matrix's grid, or in a relightable render told its targets one
+  /// per target of its group; none for scenes without a fluorescent surface. A light whose
+  /// spectrum varies over it (an environment map) has a flat guide.
+  ExcitationGuides excitationGuides(int k) const {
+    ExcitationGuides out;
+    if (guides_.empty()) return out;
+    const size_t first = guideFirst_[static_cast<size_t>(k)],
+                 end = guideFirst_[static_cast<size_t>(k) + 1];
+    for (size_t i = first; i < end; ++i)
+      out.guide[out.count++] = &guides_[static_cast<size_t>(guideIndex_[i])];
+    return out;
   }
-  /// Whether drawing the excitation guided by light k's spectrum pays at a vertex of
-  /// `material` for some lane of lambda: its column meets the light unevenly there
+  /// Whether drawing the excitation guided by light k's guides pays at a vertex of
+  /// `material` for some lane of lambda: its column meets one of them unevenly there
   /// (ReradiationMatrix::guideMismatch); false for a material that does not fluoresce.
   bool guidanceHelps(int k, uint32_t material, const SampledWavelengths& lambda) const {
     if (guides_.empty()) return false;
     const int32_t slot = fluorescentSlot_[material];
     if (slot < 0) return false;
-    const auto& worth = guideWorth_[static_cast<size_t>(slot) * guides_.size() +
-                                    static_cast<size_t>(guideOf_[static_cast<size_t>(k)])];
-    for (int i = 0; i < kLanes; ++i) {
-      const int o = ReradiationMatrix::binOf(lambda.lambda[i]);
-      if (o >= 0 && worth[static_cast<size_t>(o)]) return true;
+    for (size_t g = guideFirst_[static_cast<size_t>(k)];
+         g < guideFirst_[static_cast<size_t>(k) + 1]; ++g) {
+      const auto& worth = guideWorth_[static_cast<size_t>(slot) * guides_.size() +
+                                      static_cast<size_t>(guideIndex_[g])];
+      for (int i = 0; i < kLanes; ++i) {
+        const int o = ReradiationMatrix::binOf(lambda.lambda[i]);
+        if (o >= 0 && worth[static_cast<size_t>(o)]) return true;
+      }
     }
     return false;
   }
@@ -211,6 +220,9 @@ private:
   void assignGroupsAndSources();
   /// Excitation guides and where they pay (scenes with a fluorescent surface only).
   void buildExcitationGuides();
+  /// Scales the lights' radiance and power by their sources' sampling spectra (a relightable
+  /// render told its targets: RelightSpectra::samplingOfSource).
+  void weighBySamplingSpectra();
   /// Power and Uniform's choice probabilities and their running sums.
   void buildChoiceTables();
   /// Builds tree_ and unbounded_ (LightSelection::Tree).
@@ -265,7 +277,8 @@ private:
   std::vector<uint16_t> group_;          ///< light group per light
   std::vector<uint16_t> source_;         ///< relight source per light
   std::vector<ExcitationGuide> guides_;  ///< one per light spectrum, for fluorescent scenes only
-  std::vector<int32_t> guideOf_;         ///< per light: its guide in guides_
+  std::vector<uint32_t> guideFirst_;     ///< per light (and one past): its first in guideIndex_
+  std::vector<int32_t> guideIndex_;      ///< the lights' guides in guides_, light after light
   std::vector<int32_t> fluorescentSlot_; ///< per material: its row of guideWorth_, or -1
   /// Per (fluorescent material, guide): the emission bins where guiding pays.
   std::vector<std::bitset<ReradiationMatrix::kBins>> guideWorth_;

@@ -25,126 +25,11 @@
 #include "io/relight_channels.h"
 #include "support/errors.h"
 #include "support/part_attributes.h"
+#include "support/relight_checks.h"
 #include "support/render_checks.h"
 
 namespace nx {
 namespace {
-
-// A floor, a fluorescent sphere and a sphere lamp of group "lamp" with the <emission> element
-// `lamp`; a second lamp of group "fill" (emission element `fill`) when that is not empty.
-std::string benchScene(const std::string& lamp, const std::string& fill = "", int samples = 64,
-                       const std::string& bands = "400:700:20") {
-  return "<scene><settings><xres>32</xres><yres>32</yres><mode>spectral_mcpt</mode><depth>4</"
-         "depth><sampl>" +
-         std::to_string(samples) + "</sampl><bands>" + bands +
-         "</bands></settings><camera><position>0,1,-5</position><look_at>0,0.5,0</look_at><fov>"
-         "40</fov></camera><plane><normal>0,1,0</normal><distance>0</distance><material>matte</"
-         "material><reflectance>400:0.3, 700:0.8</reflectance></plane>"
-         "<sphere><center>0,0.7,0</center><radius>0.7</radius><material>matte</material>"
-         "<reflectance>0.5</reflectance><fluorescence><absorption>blue</absorption><stokes>100</"
-         "stokes></fluorescence></sphere>"
-         "<sphere group=\"lamp\"><center>-1.5,2.5,-1</center><radius>0.5</radius><material>matte"
-         "</material><reflectance>0</reflectance>" +
-         lamp + "</sphere>" +
-         (fill.empty() ? ""
-                       : "<sphere group=\"fill\"><center>1.8,1.5,-1.5</center><radius>0.3</"
-                         "radius><material>matte</material><reflectance>0</reflectance>" +
-                             fill + "</sphere>") +
-         "</scene>";
-}
-
-// Smooth and red-heavy; an LED-like shape; black but for 430-470 nm.
-const std::string kLampS1 = "<emission scale=\"2e-4\">blackbody:4000</emission>";
-const std::string kLampS2 =
-    "<emission scale=\"2e-4\">380:0.2, 450:3, 500:0.5, 560:2, 650:1, 800:0.1</emission>";
-const std::string kNarrowLamp = "<emission scale=\"2e-4\">430:0, 440:5, 460:5, 470:0</emission>";
-
-RenderScene relightableScene(const std::string& text) {
-  SceneDesc d = parseScene(text, "t.scn");
-  d.relightable = true;
-  return buildRenderScene(d);
-}
-
-RenderOutput renderRelightable(const std::string& text, double stepNm = 5,
-                               const RenderOptions& base = {}) {
-  const RenderScene scene = relightableScene(text);
-  RenderOptions o = base;
-  o.relightStepNm = stepNm;
-  RenderOutput out = render(scene, o);
-  EXPECT_EQ(out.stats.relightMissed, 0u);
-  return out;
-}
-
-// Image mean and standard error (over pixels) of band b of an image.
-test::RunningStats imageBand(const SpectralImage& img, int b) {
-  test::RunningStats s;
-  const int nb = img.bands.count();
-  for (size_t i = 0; i < img.sampleCount.size(); ++i)
-    s.add(img.radiance[i * static_cast<size_t>(nb) + static_cast<size_t>(b)]);
-  return s;
-}
-
-// Every band of `a` equals `b`'s (an independent render) within 5 standard errors of the
-// mean pixel difference (pixels are independent estimates; the t critical value for their
-// count), and within 5 standard errors from both images' own variance channels; the test has
-// power: the standard errors, relative to the bands' means as an RMS over the bands, are below
-// 5% (one band's alone is too uncertain a measure of it: see expectBands).
-void expectSameBands(const SpectralImage& a, const SpectralImage& b, const std::string& what) {
-  const size_t nb = static_cast<size_t>(a.bands.count());
-  const double pixels = static_cast<double>(a.sampleCount.size());
-  const double critical = test::studentCritical(5, static_cast<int>(a.sampleCount.size()));
-  double relativeSquares = 0;
-  for (size_t k = 0; k < nb; ++k) {
-    test::RunningStats d, y;
-    double variances = 0; // sum over pixels of both images' variances of the pixel means
-    for (size_t i = 0; i < a.sampleCount.size(); ++i) {
-      d.add(a.radiance[i * nb + k] - b.radiance[i * nb + k]);
-      y.add(b.radiance[i * nb + k]);
-      variances += a.bandVariance[i * nb + k] + b.bandVariance[i * nb + k];
-    }
-    EXPECT_LT(std::abs(d.mean), 5 * std::sqrt(variances) / pixels)
-        << what << " band " << a.bands.centroid(static_cast<int>(k))
-        << " (z from the variance channels)";
-    ASSERT_GT(y.mean, 0.0) << what;
-    relativeSquares += (d.standardError() / y.mean) * (d.standardError() / y.mean);
-    EXPECT_LT(std::abs(d.mean), critical * d.standardError())
-        << what << " band " << a.bands.centroid(static_cast<int>(k)) << ": difference " << d.mean
-        << " se " << d.standardError() << " of " << y.mean;
-  }
-  EXPECT_LT(std::sqrt(relativeSquares / static_cast<double>(nb)), 0.05)
-      << what << ": the bands' standard errors (RMS, relative)";
-}
-
-// A direct render of scene text with another seed than the relightable one.
-SpectralImage directRender(const std::string& text) {
-  RenderOptions o;
-  o.seed = 7;
-  return toSpectralImage(renderText(text, o).film);
-}
-
-// The mean variance channel of band b over the image.
-double meanVariance(const SpectralImage& img, int b) {
-  double sum = 0;
-  const int nb = img.bands.count();
-  for (size_t i = 0; i < img.sampleCount.size(); ++i)
-    sum += img.bandVariance[i * static_cast<size_t>(nb) + static_cast<size_t>(b)];
-  return sum / static_cast<double>(img.sampleCount.size());
-}
-
-// The spectrum an <emission> element is, as written (without its scale).
-Spectrum writtenSpectrum(const std::string& element) {
-  const RenderScene s = relightableScene(benchScene(element));
-  return s.relight.ofSource[s.lightGroups.sourceOfEmission.back()];
-}
-
-GroupSpectrum binned(const SpectralImage& img, const std::string& group,
-                     const std::string& element) {
-  std::vector<std::string> warnings;
-  GroupSpectrum g =
-      groupSpectrum(img, group, writtenSpectrum(element), 300, 1100, element, warnings);
-  EXPECT_TRUE(warnings.empty());
-  return g;
-}
 
 // A render under S1 relit to S2 equals a direct render under S2 in every band (z-test), with
 // fluorescence (the sphere re-radiates the lamp's blue into the green); the relit variances
@@ -432,7 +317,8 @@ TEST(Relight, PartsMergeLikeTheBands) {
             "plain: does not belong with r1: their relight transports differ (none against 1 "
             "groups, " +
                 std::to_string(whole.relight.entries.size()) +
-                " entries; render every part with the same --relightable and --relight-step)");
+                " entries; render every part with the same --relightable, --relight-step and "
+                "--relight-for)");
   // Band ranges of a relightable render do not stitch (the pattern is the bands').
   auto bandsPart = [&](const std::string& name, const char* bands) {
     RenderOptions o;

@@ -122,3 +122,67 @@ def test_an_image_is_never_written_over_its_own_source(relightable, tmp_path):
     # Anywhere else it is written, and a fresh render may replace the file.
     nxrender.write_exr(tmp_path / "relit.exr", image.relight({"lamp": "D65"}))
     nxrender.write_exr(src, nxrender.render(SCENE, spp=1))
+
+
+def test_relit_components_and_the_command_line(relightable, tmp_path):
+    relit = relightable.relight({"lamp": LED})
+    assert sorted(relit.components) == ["fluoresced", "reflected"]
+    c = relit.components
+    np.testing.assert_allclose(c["reflected"] + c["fluoresced"], relit.radiance,
+                               rtol=1e-5, atol=1e-12)
+    assert c["fluoresced"].sum() > 0 and c["reflected"].sum() > 0
+    assert np.all(relit.component_variances["fluoresced"] >= 0)
+    # the command line writes the same layers
+    cli = Path(os.environ["NXRENDER_CLI"]).parent / "nxrelight"
+    nxrender.write_exr(tmp_path / "in.exr", relightable)
+    subprocess.run([str(cli), str(tmp_path / "in.exr"), "--light", "lamp=D65", "-o",
+                    str(tmp_path / "out.exr")], check=True, capture_output=True)
+    from_cli = nxrender.read_exr(tmp_path / "out.exr")
+    np.testing.assert_array_equal(from_cli.components["fluoresced"],
+                                  relightable.relight({"lamp": "D65"}).components["fluoresced"])
+
+
+NARROW = (np.array([300.0, 430, 440, 460, 470, 1100]), np.array([0.0, 0, 5, 5, 0, 0]))
+
+
+def test_relight_for_forms_and_the_warning(tmp_path):
+    # without targets, a narrow lamp's relit image warns with its expected noise factor
+    plain = nxrender.render(SCENE, relightable=True, seed=3)
+    with pytest.warns(UserWarning, match=r"light group 'lamp' relit to a spectrum much narrower "
+                                         r"than what the render drew for: expected about "
+                                         r"[0-9.]+x as noisy .* relight_for="):
+        plain.relight({"lamp": NARROW})
+    csv = tmp_path / "narrow.csv"
+    csv.write_text("".join(f"{a},{b}\n" for a, b in zip(*NARROW)))
+    # the forms: one spectrum for every group, a list, a dict of a spectrum or a list
+    images = [nxrender.render(SCENE, relightable=True, seed=3, relight_for=form)
+              for form in (NARROW, [NARROW, "D65"], {"lamp": str(csv)}, {"lamp": [csv, 1.0]})]
+    for image in images:
+        import warnings
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # told its target: no warning
+            image.relight({"lamp": NARROW})
+    # the target is in the render key (it draws other samples) and in the attributes
+    assert images[0].attributes["nxrender.renderKey"] != plain.attributes["nxrender.renderKey"]
+    np.testing.assert_array_equal(images[2].radiance, nxrender.render(
+        SCENE, relightable=True, seed=3, relight_for={"lamp": NARROW}).radiance)
+    # the command line's --relight-for gives the Python image bit for bit
+    cli = os.environ["NXRENDER_CLI"]
+    scene = tmp_path / "s.scn"
+    scene.write_text(SCENE)
+    subprocess.run([cli, "--seed", "3", "--relightable", "--relight-for", f"lamp={csv}", "-o",
+                    str(tmp_path / "t.exr"), str(scene)], check=True, capture_output=True)
+    np.testing.assert_array_equal(nxrender.read_exr(tmp_path / "t.exr").radiance, images[2].radiance)
+    # refusals
+    with pytest.raises(ValueError, match="relight_for: only with relightable=True"):
+        nxrender.render(SCENE, relight_for="D65")
+    with pytest.raises(ValueError, match=r"expected a light group of the scene \(lamp, spot\), "
+                                         r"found 'sky'"):
+        nxrender.render(SCENE, relightable=True, relight_for={"sky": "D65"})
+    with pytest.raises(ValueError, match=r"relight_for\[1\]: expected a spectrum with light "
+                                         r"somewhere in 300-1100 nm, found 0 everywhere"):
+        nxrender.render(SCENE, relightable=True, relight_for=["D65", 0])
+    with pytest.raises(ValueError, match="expected a CSV file .* or a built-in emission name"):
+        nxrender.render(SCENE, relightable=True, relight_for="no-such-lamp")
+    bad = subprocess.run([cli, "--relight-for", "D65", str(scene)], capture_output=True, text=True)
+    assert bad.returncode != 0 and "--relight-for: only with --relightable" in bad.stderr

@@ -276,6 +276,28 @@ TEST(ReradiationMatrix, GuidedExcitationSamplingMatchesColumnTimesGuide) {
       }
 }
 
+// The lights the MIS tests check the guided excitation's expectation for: the guide's own LED,
+// a broadband light it does not describe, and a band where the LED is dark.
+std::vector<std::function<double(double)>> misTestLights() {
+  return {royalBlue, [](double nm) { return 0.2 + nm / 1000; },
+          [](double nm) { return nm > 500 && nm < 520 ? 1.0 : 0.0; }};
+}
+
+// Calls f(light index, its guide, nm, bin o, elastic D, column total) for each light of
+// misTestLights at three wavelengths.
+template <class F>
+void forEachMisCase(const RM& m, double rho, F&& f) {
+  const std::vector<std::function<double(double)>> lights = misTestLights();
+  for (size_t li = 0; li < lights.size(); ++li) {
+    const ExcitationGuide lbar = guideOf(lights[li]);
+    for (double nm : {452.0, 530.0, 601.0}) {
+      const int o = RM::binOf(nm);
+      const double d = m.elastic(o, rho);
+      f(li, lbar, nm, o, d, d + m.columnSum(o));
+    }
+  }
+}
+
 // The multi-sample MIS combination is unbiased for any light, not only the guide's. Each event
 // e is drawn by the column with p_c = v(e) / (D + c) (tested above) and by the guide with
 // p_g = v(e) g(e) / Z (tested above); its weight as the column's event is read back from
@@ -288,50 +310,44 @@ TEST(ReradiationMatrix, GuidedExcitationMisIsUnbiasedForAnyLight) {
   const RM m = RM::fromModel({440, 80, 20, 10, 0.9, 0.8});
   const ExcitationGuide led = guideOf(royalBlue);
   const double rho = 0.5;
-  const std::vector<std::function<double(double)>> lights = {
-      royalBlue, [](double nm) { return 0.2 + nm / 1000; },
-      [](double nm) { return nm > 500 && nm < 520 ? 1.0 : 0.0; }};
-  for (size_t li = 0; li < lights.size(); ++li) {
-    const ExcitationGuide lbar = guideOf(lights[li]);
-    for (double nm : {452.0, 530.0, 601.0}) {
-      const int o = RM::binOf(nm);
-      const double d = m.elastic(o, rho), total = d + m.columnSum(o);
-      double z = d * led.mean[static_cast<size_t>(o)];
-      for (int i = 0; i < o; ++i) z += m(i, o) * led.mean[static_cast<size_t>(i)];
-      // The guided draw's events in its order (elastic first, then bins upwards): event e is
-      // drawn for u in [before(e), before(e) + v g) / z, so its middle lands on it.
-      std::vector<double> before(static_cast<size_t>(o) + 1, 0.0);
-      double running = d * led.mean[static_cast<size_t>(o)];
-      for (int e = 0; e < o; ++e) {
-        before[static_cast<size_t>(e)] = running;
-        running += m(e, o) * led.mean[static_cast<size_t>(e)];
-      }
-      double expected = 0, combined = 0;
-      for (int e = 0; e <= o; ++e) { // e = o: the elastic event
-        const double v = e == o ? d : m(e, o);
-        const double l = lbar.mean[static_cast<size_t>(e)], g = led.mean[static_cast<size_t>(e)];
-        const float eventNm = e == o ? static_cast<float>(nm) : static_cast<float>(RM::centre(e));
-        const float w = m.guidedExcitation(static_cast<float>(nm), eventNm, static_cast<float>(rho),
-                                           1.0f, led, 0.5f, 0.5f)
-                            .weight[0];
-        EXPECT_GE(w, 0);
-        EXPECT_LE(w, total * (1 + 1e-6)); // never more than the column alone
-        expected += v * l;
-        combined += v / total * w * l;
-        if (v * g > 1e-6 * z) { // the guided technique draws e: its own weight there
-          const double u = (before[static_cast<size_t>(e)] + 0.5 * v * g) / z;
-          const GuidedExcitation ge =
-              m.guidedExcitation(static_cast<float>(nm), eventNm, static_cast<float>(rho), 1.0f,
-                                 led, static_cast<float>(u), 0.5f);
-          ASSERT_NEAR(ge.nm[1], e == o ? nm : RM::centre(e), 1e-3) << "event " << e;
-          EXPECT_LE(ge.weight[1], z / g * (1 + 1e-5)); // never more than the guide alone
-          combined += v * g / z * ge.weight[1] * l;
+  forEachMisCase(
+      m, rho,
+      [&](size_t li, const ExcitationGuide& lbar, double nm, int o, double d, double total) {
+        double z = d * led.mean[static_cast<size_t>(o)];
+        for (int i = 0; i < o; ++i) z += m(i, o) * led.mean[static_cast<size_t>(i)];
+        // The guided draw's events in its order (elastic first, then bins upwards): event e is
+        // drawn for u in [before(e), before(e) + v g) / z, so its middle lands on it.
+        std::vector<double> before(static_cast<size_t>(o) + 1, 0.0);
+        double running = d * led.mean[static_cast<size_t>(o)];
+        for (int e = 0; e < o; ++e) {
+          before[static_cast<size_t>(e)] = running;
+          running += m(e, o) * led.mean[static_cast<size_t>(e)];
         }
-      }
-      EXPECT_NEAR(combined, expected, 1e-5 * expected + 1e-12)
-          << "light " << li << ", " << nm << " nm";
-    }
-  }
+        double expected = 0, combined = 0;
+        for (int e = 0; e <= o; ++e) { // e = o: the elastic event
+          const double v = e == o ? d : m(e, o);
+          const double l = lbar.mean[static_cast<size_t>(e)], g = led.mean[static_cast<size_t>(e)];
+          const float eventNm = e == o ? static_cast<float>(nm) : static_cast<float>(RM::centre(e));
+          const float w = m.guidedExcitation(static_cast<float>(nm), eventNm,
+                                             static_cast<float>(rho), 1.0f, led, 0.5f, 0.5f)
+                              .weight[0];
+          EXPECT_GE(w, 0);
+          EXPECT_LE(w, total * (1 + 1e-6)); // never more than the column alone
+          expected += v * l;
+          combined += v / total * w * l;
+          if (v * g > 1e-6 * z) { // the guided technique draws e: its own weight there
+            const double u = (before[static_cast<size_t>(e)] + 0.5 * v * g) / z;
+            const GuidedExcitation ge =
+                m.guidedExcitation(static_cast<float>(nm), eventNm, static_cast<float>(rho), 1.0f,
+                                   led, static_cast<float>(u), 0.5f);
+            ASSERT_NEAR(ge.nm[1], e == o ? nm : RM::centre(e), 1e-3) << "event " << e;
+            EXPECT_LE(ge.weight[1], z / g * (1 + 1e-5)); // never more than the guide alone
+            combined += v * g / z * ge.weight[1] * l;
+          }
+        }
+        EXPECT_NEAR(combined, expected, 1e-5 * expected + 1e-12)
+            << "light " << li << ", " << nm << " nm";
+      });
   ExcitationGuide flat;
   flat.mean.fill(1.0f);
   float w = 1;
@@ -339,6 +355,68 @@ TEST(ReradiationMatrix, GuidedExcitationMisIsUnbiasedForAnyLight) {
   const GuidedExcitation e = m.guidedExcitation(530, column, 0.5f, 1.0f, flat, 0.7f, 0.5f);
   EXPECT_NEAR(e.weight[0], 0.5 * w, 1e-6);
   EXPECT_NEAR(e.weight[1], 0.5 * w, 1e-6);
+}
+
+// With several guides (a relightable render's targets: a blue LED, a green one and a flat
+// daylight-like guide), the column's event and each guide's together are still unbiased for any
+// light: sum over e of p_c(e) w_c(e) L(e) + sum over t of p_t(e) w_t(e) L(e) equals
+// D L_o + sum_i M[i][o] L_i, each weight read back as in the one-guide test (guide t's event
+// placed on e by its own u, the others' anywhere; events a guide draws with less than 1e-6 of
+// its probability are left out, which with three guides' float weights moves the sum by up to
+// 3e-5 of it: the tolerance is 1e-4); with one guide the weights are guidedExcitation's.
+TEST(ReradiationMatrix, SeveralGuidesMisIsUnbiasedForAnyLight) {
+  const RM m = RM::fromModel({440, 80, 20, 10, 0.9, 0.8});
+  const ExcitationGuide blue = guideOf(royalBlue);
+  const ExcitationGuide green = guideOf([](double nm) { return royalBlue(nm - 70); });
+  const ExcitationGuide day = guideOf([](double nm) { return 0.5 + nm / 2000; });
+  ExcitationGuides guides;
+  for (const ExcitationGuide* g : {&blue, &green, &day}) guides.guide[guides.count++] = g;
+  const double rho = 0.5;
+  forEachMisCase(
+      m, rho,
+      [&](size_t li, const ExcitationGuide& lbar, double nm, int o, double d, double total) {
+        double expected = 0, combined = 0;
+        for (int e = 0; e <= o; ++e) { // e = o: the elastic event
+          const double v = e == o ? d : m(e, o), l = lbar.mean[static_cast<size_t>(e)];
+          const float eventNm = e == o ? static_cast<float>(nm) : static_cast<float>(RM::centre(e));
+          expected += v * l;
+          RM::Sample2Pair uv[kMaxExcitationGuides];
+          for (auto& x : uv) x = {0.5f, 0.5f};
+          GuidedExcitations ge;
+          m.guidedExcitations(static_cast<float>(nm), eventNm, static_cast<float>(rho), 1.0f,
+                              guides, uv, ge);
+          EXPECT_LE(ge.weight[0], total * (1 + 1e-6));
+          combined += v / total * ge.weight[0] * l;
+          for (int t = 0; t < guides.count; ++t) {
+            const ExcitationGuide& g = *guides.guide[t];
+            double z = d * g.mean[static_cast<size_t>(o)], before = z;
+            for (int i = 0; i < o; ++i) z += m(i, o) * g.mean[static_cast<size_t>(i)];
+            for (int i = 0; i < e && e < o; ++i) before += m(i, o) * g.mean[static_cast<size_t>(i)];
+            const double ge_ =
+                e == o ? d * g.mean[static_cast<size_t>(o)] : v * g.mean[static_cast<size_t>(e)];
+            if (!(ge_ > 1e-6 * z)) continue; // guide t does not draw e
+            uv[t].u = static_cast<float>(((e == o ? 0.0 : before) + 0.5 * ge_) / z);
+            m.guidedExcitations(static_cast<float>(nm), eventNm, static_cast<float>(rho), 1.0f,
+                                guides, uv, ge);
+            ASSERT_NEAR(ge.nm[t + 1], e == o ? nm : RM::centre(e), 1e-3) << "event " << e;
+            combined += ge_ / z * ge.weight[t + 1] * l;
+            uv[t].u = 0.5f;
+          }
+        }
+        EXPECT_NEAR(combined, expected, 1e-4 * expected + 1e-12)
+            << "light " << li << ", " << nm << " nm";
+      });
+  // One guide: guidedExcitation's weights.
+  ExcitationGuides one;
+  one.guide[0] = &blue;
+  one.count = 1;
+  const RM::Sample2Pair uv{0.3f, 0.6f};
+  GuidedExcitations ge;
+  m.guidedExcitations(530, 480, 0.5f, 1.0f, one, &uv, ge);
+  const GuidedExcitation e = m.guidedExcitation(530, 480, 0.5f, 1.0f, blue, 0.3f, 0.6f);
+  EXPECT_EQ(ge.nm[1], e.nm[1]);
+  EXPECT_NEAR(ge.weight[0], e.weight[0], 1e-6 * e.weight[0]);
+  EXPECT_NEAR(ge.weight[1], e.weight[1], 1e-6 * e.weight[1]);
 }
 
 // guideMismatch is E[g^2] / E[g]^2 over the column's events: 1 for a flat guide; 1 / f for a
