@@ -14,7 +14,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -69,42 +68,34 @@ void halvesToFloats(const uint8_t* low, const uint8_t* high, size_t n, float sca
         halfToFloat(static_cast<uint32_t>(low[i]) | (static_cast<uint32_t>(high[i]) << 8)) * scale;
 }
 
-// One array to decode: where its frame lies, what it holds, and where it goes.
-struct Job {
-  size_t offset = 0, bytes = 0; ///< its zstd frame within the blobs
-  std::string kind;             ///< "f16" (shuffled bits, scale 2^k), "uint32", "float32"
-  int k = 0;                    ///< the float16 arrays' power-of-2 scale
-  size_t count = 0;             ///< values
-  void* out = nullptr;          ///< float32 (f16, float32) or int32 (uint32) values
+// One zstd frame to decompress: where it lies and where its bytes go.
+struct Frame {
+  size_t offset = 0, bytes = 0; ///< within the blobs
+  uint8_t* out = nullptr;       ///< its content's place
+  size_t size = 0;              ///< the content's expected size
   std::string error;            ///< what went wrong, if anything
 };
 
-void decode(const uint8_t* blobs, Job& job) {
-  const uint8_t* frame = blobs + job.offset;
-  const unsigned long long size = ZSTD_getFrameContentSize(frame, job.bytes);
-  const size_t width = job.kind == "f16" ? 2 : 4;
-  if (size == ZSTD_CONTENTSIZE_UNKNOWN || size == ZSTD_CONTENTSIZE_ERROR ||
-      size != job.count * width) {
-    job.error = "expected a zstd frame of " + std::to_string(job.count * width) + " bytes";
+void decompress(const uint8_t* blobs, Frame& f) {
+  const uint8_t* frame = blobs + f.offset;
+  const unsigned long long size = ZSTD_getFrameContentSize(frame, f.bytes);
+  if (size == ZSTD_CONTENTSIZE_UNKNOWN || size == ZSTD_CONTENTSIZE_ERROR || size != f.size) {
+    f.error = "expected a zstd frame of " + std::to_string(f.size) + " bytes";
     return;
   }
-  // (a thread's buffer kept between items: a fresh megabyte each time cost a third of the time
-  // in the kernel's page faults)
-  thread_local std::vector<uint8_t> buffer;
-  if (buffer.size() < job.count * width) buffer.resize(job.count * width);
-  const std::span<uint8_t> raw(buffer.data(), job.count * width);
-  const size_t got = ZSTD_decompress(raw.data(), raw.size(), frame, job.bytes);
-  if (ZSTD_isError(got) || got != raw.size()) {
-    job.error = std::string("zstd: ") + (ZSTD_isError(got) ? ZSTD_getErrorName(got) : "short");
-    return;
-  }
-  if (job.kind == "f16") { // low bytes, then high bytes; then times 2^-k (exact, as numpy)
-    halvesToFloats(raw.data(), raw.data() + job.count, job.count, std::ldexp(1.0f, -job.k),
-                   static_cast<float*>(job.out));
-  } else { // uint32 ids (read as int32: torch takes no uint32) and float32 values, as stored
-    std::memcpy(job.out, raw.data(), raw.size());
-  }
+  const size_t got = ZSTD_decompress(f.out, f.size, frame, f.bytes);
+  if (ZSTD_isError(got) || got != f.size)
+    f.error = std::string("zstd: ") + (ZSTD_isError(got) ? ZSTD_getErrorName(got) : "short");
 }
+
+// One float16 array to convert once its two planes are in: low bytes, then high bytes, times
+// 2^-k (exact, as numpy's conversion and multiply).
+struct Conversion {
+  const uint8_t* planes = nullptr; ///< count low bytes, then count high bytes
+  size_t count = 0;
+  float scale = 1;
+  float* out = nullptr;
+};
 
 } // namespace
 
@@ -122,63 +113,99 @@ void bindDatasetCodec(py::module_& m) {
         const py::buffer_info info = blobs.request();
         const auto* data = static_cast<const uint8_t*>(info.ptr);
         const size_t total = static_cast<size_t>(info.size * info.itemsize);
-        std::vector<Job> jobs;
+        std::vector<Frame> frames;
+        std::vector<Conversion> conversions;
+        std::vector<std::vector<uint8_t>> planes;      // per float16 array, its two byte planes
+        std::vector<std::pair<float*, size_t>> floats; // per array, its float values (or null)
         py::list arrays;
+        size_t f16 = 0;
+        for (const py::handle spec : specs)
+          f16 += spec.cast<py::tuple>()[2].cast<std::string>() == "f16";
+        planes.reserve(f16);
         for (const py::handle spec : specs) {
           const py::tuple t = spec.cast<py::tuple>();
-          Job job;
-          job.offset = t[0].cast<size_t>();
-          job.bytes = t[1].cast<size_t>();
-          job.kind = t[2].cast<std::string>();
+          size_t offset = t[0].cast<size_t>();
+          const std::vector<size_t> sizes = t[1].cast<std::vector<size_t>>();
+          const std::string kind = t[2].cast<std::string>();
           const std::vector<py::ssize_t> shape = t[3].cast<std::vector<py::ssize_t>>();
-          job.k = t[4].cast<int>();
-          if (job.offset + job.bytes > total)
-            throw py::value_error("an array's frame reaches beyond the item's bytes");
-          if (job.kind != "f16" && job.kind != "uint32" && job.kind != "float32")
-            throw py::value_error("expected arrays of kind f16, uint32 or float32, found " +
-                                  job.kind);
-          job.count = 1;
-          for (const py::ssize_t n : shape) job.count *= static_cast<size_t>(n);
-          py::array a = job.kind == "uint32" ? py::array(py::array_t<int32_t>(shape))
-                                             : py::array(py::array_t<float>(shape));
-          job.out = a.mutable_data();
+          const int k = t[4].cast<int>();
+          if (kind != "f16" && kind != "uint32" && kind != "float32")
+            throw py::value_error("expected arrays of kind f16, uint32 or float32, found " + kind);
+          if (sizes.size() != (kind == "f16" ? 2u : 1u))
+            throw py::value_error(
+                "expected " + std::string(kind == "f16" ? "two frames" : "one frame") +
+                " for an array of kind " + kind + ", found " + std::to_string(sizes.size()));
+          size_t count = 1;
+          for (const py::ssize_t n : shape) count *= static_cast<size_t>(n);
+          py::array a = kind == "uint32" ? py::array(py::array_t<int32_t>(shape))
+                                         : py::array(py::array_t<float>(shape));
           arrays.append(a);
-          jobs.push_back(std::move(job));
+          if (kind == "f16") { // two planes, then a conversion
+            planes.emplace_back(2 * count);
+            conversions.push_back({planes.back().data(), count, std::ldexp(1.0f, -k),
+                                   static_cast<float*>(a.mutable_data())});
+            floats.push_back({static_cast<float*>(a.mutable_data()), count});
+          } else { // uint32 ids (read as int32: torch takes no uint32) and float32, as stored
+            floats.push_back({nullptr, count});
+          }
+          for (size_t p = 0; p < sizes.size(); ++p) {
+            if (offset + sizes[p] > total)
+              throw py::value_error("an array's frame reaches beyond the item's bytes");
+            uint8_t* out = kind == "f16" ? planes.back().data() + p * count
+                                         : static_cast<uint8_t*>(a.mutable_data());
+            frames.push_back({offset, sizes[p], out, kind == "f16" ? count : 4 * count, {}});
+            offset += sizes[p];
+          }
         }
-        // The derived layers: a - b of two decoded float arrays of one shape.
+        // The derived layers: a - b of two decoded float16 arrays of one shape.
         std::vector<std::array<float*, 3>> derived;
         std::vector<size_t> derivedCount;
         for (const py::handle d : differences) {
           const auto [a, b] = d.cast<std::pair<size_t, size_t>>();
-          if (a >= jobs.size() || b >= jobs.size() || jobs[a].kind != "f16" ||
-              jobs[b].kind != "f16" || jobs[a].count != jobs[b].count)
+          if (a >= floats.size() || b >= floats.size() || !floats[a].first || !floats[b].first ||
+              floats[a].second != floats[b].second)
             throw py::value_error("expected differences of two float16 arrays of one shape");
           py::array out = py::array_t<float>(arrays[a].cast<py::array>().request().shape);
-          derived.push_back({static_cast<float*>(out.mutable_data()),
-                             static_cast<float*>(jobs[a].out), static_cast<float*>(jobs[b].out)});
-          derivedCount.push_back(jobs[a].count);
+          derived.push_back(
+              {static_cast<float*>(out.mutable_data()), floats[a].first, floats[b].first});
+          derivedCount.push_back(floats[a].second);
           arrays.append(out);
         }
+        bool failed = false;
         {
           py::gil_scoped_release release;
-          tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t j) { decode(data, jobs[j]); });
-          for (const Job& j : jobs)
-            if (!j.error.empty()) break;
-          for (size_t d = 0; d < derived.size(); ++d)
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, derivedCount[d], 1 << 16),
-                              [&](const tbb::blocked_range<size_t>& r) {
-                                const auto [out, a, b] = derived[d];
-                                for (size_t i = r.begin(); i < r.end(); ++i) out[i] = a[i] - b[i];
-                              });
+          tbb::parallel_for(size_t{0}, frames.size(),
+                            [&](size_t f) { decompress(data, frames[f]); });
+          for (const Frame& f : frames) failed = failed || !f.error.empty();
+          // Conversions and differences in chunks of 64 K values, over both cores.
+          constexpr size_t kChunk = 1 << 16;
+          if (!failed) {
+            tbb::parallel_for(size_t{0}, conversions.size(), [&](size_t c) {
+              const Conversion& v = conversions[c];
+              tbb::parallel_for(tbb::blocked_range<size_t>(0, v.count, kChunk),
+                                [&](const tbb::blocked_range<size_t>& r) {
+                                  halvesToFloats(v.planes + r.begin(),
+                                                 v.planes + v.count + r.begin(), r.size(), v.scale,
+                                                 v.out + r.begin());
+                                });
+            });
+            for (size_t d = 0; d < derived.size(); ++d)
+              tbb::parallel_for(tbb::blocked_range<size_t>(0, derivedCount[d], kChunk),
+                                [&](const tbb::blocked_range<size_t>& r) {
+                                  const auto [out, a, b] = derived[d];
+                                  for (size_t i = r.begin(); i < r.end(); ++i) out[i] = a[i] - b[i];
+                                });
+          }
         }
-        for (const Job& j : jobs)
-          if (!j.error.empty()) throw py::value_error(j.error);
+        for (const Frame& f : frames)
+          if (!f.error.empty()) throw py::value_error(f.error);
         return arrays;
       },
       py::arg("blobs"), py::arg("specs"), py::arg("differences") = py::list(),
-      "An item's arrays from its bytes: specs are (offset, bytes, kind, shape, k) of each zstd "
-      "frame (kind f16: byte-shuffled float16 bits times 2^k, read as float32; uint32: read as "
-      "int32; float32), decoded in parallel without the GIL, then for each (a, b) of "
+      "An item's arrays from its bytes: specs are (offset, frame sizes, kind, shape, k) of each "
+      "array (kind f16: two zstd frames, the low and the high bytes of float16 bits times 2^k, "
+      "read as float32; uint32: one frame, read as int32; float32: one frame), decoded in parallel "
+      "without the GIL, then for each (a, b) of "
       "differences the array a - b (a derived layer) appended (nxrender.dataset's reader). "
       "Keeps freed memory in the process for reuse (glibc's trim threshold raised to 512 MB).");
 }
