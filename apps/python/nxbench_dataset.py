@@ -5,9 +5,10 @@
 Renders COUNT items of the trial's kind of scene (a plane, a fluorescent sphere, a box and a
 rough gold sphere under a point light, from an orbiting camera; 128 x 128, 31 bands, 64 spp,
 components, ids and depth) with nxrender.dataset.generate, then prints the bytes per item and
-the items per second of Dataset (every layer; radiance and reflected; radiance alone) and of a
-torch DataLoader (batches of 8) when torch is installed, from the page cache (the fastest of
-`repeat` passes). docs/datasets.md quotes its figures."""
+the items per second of Dataset (every layer; radiance and reflected; radiance alone; batches
+of 8 as data[[i, ...]]) and of torch DataLoaders (batches of 8: collated from single items, and
+Dataset.loader's, decoded into place) when torch is installed, from the page cache (the fastest
+of `repeat` passes). docs/datasets.md quotes its figures."""
 
 import argparse
 import os
@@ -72,21 +73,31 @@ def main(argv=None):
             data = nxrender.dataset.Dataset(out, layers=layers)
             print(f"Dataset[i], {label}: {rate(data.__getitem__, len(data), args.repeat):.0f} "
                   "items/s")
+        data = nxrender.dataset.Dataset(out)
+        batches = [list(range(i, min(i + 8, len(data)))) for i in range(0, len(data), 8)]
+        best = float("inf")
+        for _ in range(args.repeat):
+            start = time.perf_counter()
+            for batch in batches:
+                data[batch]
+            best = min(best, time.perf_counter() - start)
+        print(f"Dataset[[i, ...]], batches of 8, every layer: {len(data) / best:.0f} items/s")
         try:
             import torch.utils.data
         except ImportError:
             print("DataLoader: torch not installed")
             return 0
         data = nxrender.dataset.Dataset(out)
-        for workers in (0, 2):
-            loader = torch.utils.data.DataLoader(data, batch_size=8, num_workers=workers)
+        for workers, how in ((0, "collated"), (0, "loader()"), (2, "collated"), (2, "loader()")):
+            loader = torch.utils.data.DataLoader(data, batch_size=8, num_workers=workers) \
+                if how == "collated" else data.loader(8, num_workers=workers)
             best = float("inf")
             for _ in range(args.repeat):
                 start = time.perf_counter()
                 for _batch in loader:
                     pass
                 best = min(best, time.perf_counter() - start)
-            print(f"DataLoader, batches of 8, {workers} workers, every layer: "
+            print(f"DataLoader, batches of 8, {how}, {workers} workers, every layer: "
                   f"{len(data) / best:.0f} items/s")
     return 0
 

@@ -7,10 +7,10 @@
 
 #include <immintrin.h>
 #include <malloc.h>
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <zstd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -68,41 +68,141 @@ void halvesToFloats(const uint8_t* low, const uint8_t* high, size_t n, float sca
         halfToFloat(static_cast<uint32_t>(low[i]) | (static_cast<uint32_t>(high[i]) << 8)) * scale;
 }
 
-// One zstd frame to decompress: where it lies and where its bytes go.
-struct Frame {
-  size_t offset = 0, bytes = 0; ///< within the blobs
-  uint8_t* out = nullptr;       ///< its content's place
-  size_t size = 0;              ///< the content's expected size
-  std::string error;            ///< what went wrong, if anything
-};
-
-void decompress(const uint8_t* blobs, Frame& f) {
-  const uint8_t* frame = blobs + f.offset;
-  const unsigned long long size = ZSTD_getFrameContentSize(frame, f.bytes);
-  if (size == ZSTD_CONTENTSIZE_UNKNOWN || size == ZSTD_CONTENTSIZE_ERROR || size != f.size) {
-    f.error = "expected a zstd frame of " + std::to_string(f.size) + " bytes";
-    return;
-  }
-  const size_t got = ZSTD_decompress(f.out, f.size, frame, f.bytes);
-  if (ZSTD_isError(got) || got != f.size)
-    f.error = std::string("zstd: ") + (ZSTD_isError(got) ? ZSTD_getErrorName(got) : "short");
+// out[i] = x[i] - y[i] for i < n, 8 at a time where the processor has AVX.
+__attribute__((target("avx"))) void subtractAvx(const float* x, const float* y, size_t n,
+                                                float* out) {
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8)
+    _mm256_storeu_ps(out + i, _mm256_sub_ps(_mm256_loadu_ps(x + i), _mm256_loadu_ps(y + i)));
+  for (; i < n; ++i) out[i] = x[i] - y[i];
 }
 
-// One float16 array to convert once its two planes are in: low bytes, then high bytes, times
-// 2^-k (exact, as numpy's conversion and multiply).
-struct Conversion {
-  const uint8_t* planes = nullptr; ///< count low bytes, then count high bytes
-  size_t count = 0;
+void subtract(const float* x, const float* y, size_t n, float* out) {
+  static const bool avx = __builtin_cpu_supports("avx");
+  if (avx) return subtractAvx(x, y, n, out);
+  for (size_t i = 0; i < n; ++i) out[i] = x[i] - y[i];
+}
+
+// Every low byte of n values from their packed high nibbles (format 4, when at least 4 low bits
+// were dropped): value 2j's in byte j's low nibble, value 2j+1's in its high nibble.
+void expandNibbles(const uint8_t* packed, size_t n, uint8_t* low) {
+  size_t j = 0;
+  const __m128i mask = _mm_set1_epi8(static_cast<char>(0xF0));
+  for (; 2 * j + 32 <= n; j += 16) { // (SSE2: 16 packed bytes to 32 low bytes)
+    const __m128i p = _mm_loadu_si128(reinterpret_cast<const __m128i*>(packed + j));
+    const __m128i even = _mm_and_si128(_mm_slli_epi16(p, 4), mask), odd = _mm_and_si128(p, mask);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(low + 2 * j), _mm_unpacklo_epi8(even, odd));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(low + 2 * j + 16), _mm_unpackhi_epi8(even, odd));
+  }
+  for (; 2 * j < n; ++j) {
+    low[2 * j] = static_cast<uint8_t>(packed[j] << 4);
+    if (2 * j + 1 < n) low[2 * j + 1] = static_cast<uint8_t>(packed[j] & 0xF0u);
+  }
+}
+
+// Where one zstd frame lies within the item's bytes.
+struct FrameRef {
+  size_t offset = 0, bytes = 0;
+};
+
+// A float16 array: its frames (per chunk of `chunk` values, its low bytes' then its high
+// bytes'), the scale back and where its float32 values go.
+struct HalfArray {
+  std::vector<FrameRef> frames;
+  size_t count = 0, chunk = 0;
+  bool nibbles = false; ///< the low frames hold one nibble per value
   float scale = 1;
   float* out = nullptr;
 };
+
+// A uint32 or float32 array: one frame, decompressed into its values as they are.
+struct RawArray {
+  FrameRef frame;
+  uint8_t* out = nullptr;
+  size_t bytes = 0;
+};
+
+// Float16 arrays decoded chunk by chunk together, so that their differences (the derived
+// layers) are taken while the values are in the cache.
+struct Group {
+  std::vector<size_t> members;                    ///< HalfArray indices
+  std::vector<std::array<size_t, 2>> differences; ///< (a, b) as member positions
+  std::vector<float*> differenceOut;              ///< a - b of each
+  size_t count = 0, chunk = 0;
+};
+
+// One thread's zstd context and plane buffers, kept between items.
+struct Scratch {
+  ZSTD_DCtx* context = ZSTD_createDCtx();
+  std::vector<uint8_t> planes, nibbles;
+  Scratch() = default;
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  ~Scratch() { ZSTD_freeDCtx(context); }
+};
+
+Scratch& scratch() {
+  static thread_local Scratch s;
+  return s;
+}
+
+// Decompresses one frame of exactly `size` content bytes into out; the error, if any.
+std::string decompress(const uint8_t* blobs, const FrameRef& f, uint8_t* out, size_t size) {
+  const uint8_t* frame = blobs + f.offset;
+  const unsigned long long content = ZSTD_getFrameContentSize(frame, f.bytes);
+  if (content == ZSTD_CONTENTSIZE_UNKNOWN || content == ZSTD_CONTENTSIZE_ERROR || content != size)
+    return "expected a zstd frame of " + std::to_string(size) + " bytes";
+  const size_t got = ZSTD_decompressDCtx(scratch().context, out, size, frame, f.bytes);
+  if (ZSTD_isError(got) || got != size)
+    return std::string("zstd: ") + (ZSTD_isError(got) ? ZSTD_getErrorName(got) : "short");
+  return {};
+}
+
+// Chunk c of every member of g: both planes into this thread's buffers, then converted and
+// the differences taken in blocks that stay in the first-level cache. The error, if any.
+std::string decodeChunk(const uint8_t* blobs, const std::vector<HalfArray>& arrays, const Group& g,
+                        size_t c) {
+  const size_t begin = c * g.chunk, n = std::min(g.chunk, g.count - begin);
+  Scratch& s = scratch();
+  s.planes.resize(2 * n * g.members.size()); // (no shrinking: kept between items)
+  for (size_t m = 0; m < g.members.size(); ++m) {
+    const HalfArray& a = arrays[g.members[m]];
+    uint8_t* low = s.planes.data() + 2 * n * m;
+    uint8_t* high = low + n;
+    std::string error;
+    if (a.nibbles) {
+      s.nibbles.resize((n + 1) / 2);
+      error = decompress(blobs, a.frames[2 * c], s.nibbles.data(), (n + 1) / 2);
+      if (error.empty()) expandNibbles(s.nibbles.data(), n, low);
+    } else {
+      error = decompress(blobs, a.frames[2 * c], low, n);
+    }
+    if (error.empty()) error = decompress(blobs, a.frames[2 * c + 1], high, n);
+    if (!error.empty()) return error;
+  }
+  constexpr size_t kBlock = 2048; // (values per block: a group's blocks fit the L1 cache)
+  for (size_t b = 0; b < n; b += kBlock) {
+    const size_t len = std::min(kBlock, n - b);
+    for (size_t m = 0; m < g.members.size(); ++m) {
+      const HalfArray& a = arrays[g.members[m]];
+      const uint8_t* low = s.planes.data() + 2 * n * m;
+      halvesToFloats(low + b, low + n + b, len, a.scale, a.out + begin + b);
+    }
+    for (size_t d = 0; d < g.differences.size(); ++d)
+      subtract(arrays[g.members[g.differences[d][0]]].out + begin + b,
+               arrays[g.members[g.differences[d][1]]].out + begin + b, len,
+               g.differenceOut[d] + begin + b);
+  }
+  return {};
+}
 
 } // namespace
 
 void bindDatasetCodec(py::module_& m) {
   m.def(
       "_decode_arrays",
-      [](const py::buffer& blobs, const py::list& specs, const py::list& differences) {
+      [](const py::buffer& blobs, const py::list& specs, const py::list& differences,
+         const py::object& outputs) {
         // Freed arrays kept for the next item's (glibc returned and re-faulted the ten
         // megabytes of an item's arrays each time: half the read time in the kernel).
         static const bool keep = [] {
@@ -113,100 +213,150 @@ void bindDatasetCodec(py::module_& m) {
         const py::buffer_info info = blobs.request();
         const auto* data = static_cast<const uint8_t*>(info.ptr);
         const size_t total = static_cast<size_t>(info.size * info.itemsize);
-        std::vector<Frame> frames;
-        std::vector<Conversion> conversions;
-        std::vector<std::vector<uint8_t>> planes;      // per float16 array, its two byte planes
-        std::vector<std::pair<float*, size_t>> floats; // per array, its float values (or null)
+        std::vector<HalfArray> halves;
+        std::vector<RawArray> raws;
+        std::vector<long> halfIndex; // per spec, its HalfArray index (-1: a raw array)
         py::list arrays;
-        size_t f16 = 0;
-        for (const py::handle spec : specs)
-          f16 += spec.cast<py::tuple>()[2].cast<std::string>() == "f16";
-        planes.reserve(f16);
+        // Where array i goes: outputs[i] when given (a batch's slice: checked), else a new one.
+        const bool given = !outputs.is_none();
+        const py::list outs = given ? outputs.cast<py::list>() : py::list();
+        const auto output = [&](size_t i, bool ints,
+                                const std::vector<py::ssize_t>& shape) -> py::array {
+          if (!given)
+            return ints ? py::array(py::array_t<int32_t>(shape))
+                        : py::array(py::array_t<float>(shape));
+          if (i >= outs.size())
+            throw py::value_error("expected an output array for each array and difference");
+          py::array out = outs[i].cast<py::array>();
+          const bool typed = ints ? py::isinstance<py::array_t<int32_t>>(out)
+                                  : py::isinstance<py::array_t<float>>(out);
+          if (!typed || !(out.flags() & py::array::c_style) || !out.writeable() ||
+              std::vector<py::ssize_t>(out.shape(), out.shape() + out.ndim()) != shape)
+            throw py::value_error(std::string("expected a writable C-contiguous ") +
+                                  (ints ? "int32" : "float32") +
+                                  " output array of the item's shape");
+          return out;
+        };
         for (const py::handle spec : specs) {
           const py::tuple t = spec.cast<py::tuple>();
+          if (t.size() != 7)
+            throw py::value_error("expected (offset, frames, kind, shape, k, chunk, nibbles)");
           size_t offset = t[0].cast<size_t>();
           const std::vector<size_t> sizes = t[1].cast<std::vector<size_t>>();
           const std::string kind = t[2].cast<std::string>();
           const std::vector<py::ssize_t> shape = t[3].cast<std::vector<py::ssize_t>>();
-          const int k = t[4].cast<int>();
           if (kind != "f16" && kind != "uint32" && kind != "float32")
             throw py::value_error("expected arrays of kind f16, uint32 or float32, found " + kind);
-          if (sizes.size() != (kind == "f16" ? 2u : 1u))
-            throw py::value_error(
-                "expected " + std::string(kind == "f16" ? "two frames" : "one frame") +
-                " for an array of kind " + kind + ", found " + std::to_string(sizes.size()));
           size_t count = 1;
           for (const py::ssize_t n : shape) count *= static_cast<size_t>(n);
-          py::array a = kind == "uint32" ? py::array(py::array_t<int32_t>(shape))
-                                         : py::array(py::array_t<float>(shape));
+          py::array a = output(arrays.size(), kind == "uint32", shape);
           arrays.append(a);
-          if (kind == "f16") { // two planes, then a conversion
-            planes.emplace_back(2 * count);
-            conversions.push_back({planes.back().data(), count, std::ldexp(1.0f, -k),
-                                   static_cast<float*>(a.mutable_data())});
-            floats.push_back({static_cast<float*>(a.mutable_data()), count});
-          } else { // uint32 ids (read as int32: torch takes no uint32) and float32, as stored
-            floats.push_back({nullptr, count});
-          }
-          for (size_t p = 0; p < sizes.size(); ++p) {
-            if (offset + sizes[p] > total)
+          std::vector<FrameRef> frames;
+          for (const size_t bytes : sizes) {
+            if (offset + bytes > total)
               throw py::value_error("an array's frame reaches beyond the item's bytes");
-            uint8_t* out = kind == "f16" ? planes.back().data() + p * count
-                                         : static_cast<uint8_t*>(a.mutable_data());
-            frames.push_back({offset, sizes[p], out, kind == "f16" ? count : 4 * count, {}});
-            offset += sizes[p];
+            frames.push_back({offset, bytes});
+            offset += bytes;
+          }
+          if (kind == "f16") {
+            HalfArray h;
+            h.count = count;
+            h.chunk = t[5].cast<size_t>();
+            if (h.chunk == 0 || h.chunk > count) h.chunk = std::max<size_t>(count, 1);
+            h.nibbles = t[6].cast<bool>();
+            const size_t chunks = count == 0 ? 0 : (count + h.chunk - 1) / h.chunk;
+            if (frames.size() != 2 * chunks)
+              throw py::value_error("expected " + std::to_string(2 * chunks) +
+                                    " frames for a float16 array of " + std::to_string(count) +
+                                    " values in chunks of " + std::to_string(h.chunk) + ", found " +
+                                    std::to_string(frames.size()));
+            if (h.nibbles && chunks > 1 && h.chunk % 2)
+              throw py::value_error("expected an even chunk for packed low nibbles");
+            h.frames = std::move(frames);
+            h.scale = std::ldexp(1.0f, -t[4].cast<int>());
+            h.out = static_cast<float*>(a.mutable_data());
+            halfIndex.push_back(static_cast<long>(halves.size()));
+            halves.push_back(std::move(h));
+          } else {
+            if (frames.size() != 1)
+              throw py::value_error("expected one frame for an array of kind " + kind + ", found " +
+                                    std::to_string(frames.size()));
+            raws.push_back({frames[0], static_cast<uint8_t*>(a.mutable_data()), 4 * count});
+            halfIndex.push_back(-1);
           }
         }
-        // The derived layers: a - b of two decoded float16 arrays of one shape.
-        std::vector<std::array<float*, 3>> derived;
-        std::vector<size_t> derivedCount;
+        // Groups: float16 arrays linked by differences decode chunk by chunk together.
+        std::vector<size_t> groupOf(halves.size());
+        std::vector<Group> groups;
+        for (size_t h = 0; h < halves.size(); ++h) groupOf[h] = h;
+        const auto root = [&](size_t h) {
+          while (groupOf[h] != h) h = groupOf[h];
+          return h;
+        };
+        std::vector<std::pair<size_t, size_t>> pairs;
         for (const py::handle d : differences) {
           const auto [a, b] = d.cast<std::pair<size_t, size_t>>();
-          if (a >= floats.size() || b >= floats.size() || !floats[a].first || !floats[b].first ||
-              floats[a].second != floats[b].second)
-            throw py::value_error("expected differences of two float16 arrays of one shape");
-          py::array out = py::array_t<float>(arrays[a].cast<py::array>().request().shape);
-          derived.push_back(
-              {static_cast<float*>(out.mutable_data()), floats[a].first, floats[b].first});
-          derivedCount.push_back(floats[a].second);
+          if (a >= halfIndex.size() || b >= halfIndex.size() || halfIndex[a] < 0 ||
+              halfIndex[b] < 0 || a == b ||
+              halves[halfIndex[a]].count != halves[halfIndex[b]].count ||
+              halves[halfIndex[a]].chunk != halves[halfIndex[b]].chunk)
+            throw py::value_error(
+                "expected differences of two float16 arrays of one shape and chunk size");
+          pairs.emplace_back(halfIndex[a], halfIndex[b]);
+          groupOf[root(halfIndex[a])] = root(halfIndex[b]);
+        }
+        std::vector<long> groupIndex(halves.size(), -1);
+        for (size_t h = 0; h < halves.size(); ++h) {
+          const size_t r = root(h);
+          if (groupIndex[r] < 0) {
+            groupIndex[r] = static_cast<long>(groups.size());
+            groups.push_back({});
+            groups.back().count = halves[h].count;
+            groups.back().chunk = halves[h].chunk;
+          }
+          groups[groupIndex[r]].members.push_back(h);
+        }
+        const auto position = [](const Group& g, size_t h) {
+          return static_cast<size_t>(std::find(g.members.begin(), g.members.end(), h) -
+                                     g.members.begin());
+        };
+        for (const auto& [a, b] : pairs) {
+          Group& g = groups[groupIndex[root(a)]];
+          const py::buffer_info of = arrays[a].cast<py::array>().request();
+          py::array out = output(arrays.size(), false, of.shape);
+          g.differences.push_back({position(g, a), position(g, b)});
+          g.differenceOut.push_back(static_cast<float*>(out.mutable_data()));
           arrays.append(out);
         }
-        bool failed = false;
+        // Work units: every raw array, and every chunk of every group.
+        std::vector<std::pair<long, size_t>> units; // (group, chunk), or (-1, raw array)
+        for (size_t r = 0; r < raws.size(); ++r) units.emplace_back(-1, r);
+        for (size_t g = 0; g < groups.size(); ++g)
+          for (size_t c = 0; c * groups[g].chunk < groups[g].count; ++c)
+            units.emplace_back(static_cast<long>(g), c);
+        std::vector<std::string> errors(units.size());
         {
           py::gil_scoped_release release;
-          tbb::parallel_for(size_t{0}, frames.size(),
-                            [&](size_t f) { decompress(data, frames[f]); });
-          for (const Frame& f : frames) failed = failed || !f.error.empty();
-          // Conversions and differences in chunks of 64 K values, over both cores.
-          constexpr size_t kChunk = 1 << 16;
-          if (!failed) {
-            tbb::parallel_for(size_t{0}, conversions.size(), [&](size_t c) {
-              const Conversion& v = conversions[c];
-              tbb::parallel_for(tbb::blocked_range<size_t>(0, v.count, kChunk),
-                                [&](const tbb::blocked_range<size_t>& r) {
-                                  halvesToFloats(v.planes + r.begin(),
-                                                 v.planes + v.count + r.begin(), r.size(), v.scale,
-                                                 v.out + r.begin());
-                                });
-            });
-            for (size_t d = 0; d < derived.size(); ++d)
-              tbb::parallel_for(tbb::blocked_range<size_t>(0, derivedCount[d], kChunk),
-                                [&](const tbb::blocked_range<size_t>& r) {
-                                  const auto [out, a, b] = derived[d];
-                                  for (size_t i = r.begin(); i < r.end(); ++i) out[i] = a[i] - b[i];
-                                });
-          }
+          tbb::parallel_for(size_t{0}, units.size(), [&](size_t u) {
+            const auto [g, i] = units[u];
+            errors[u] = g < 0 ? decompress(data, raws[i].frame, raws[i].out, raws[i].bytes)
+                              : decodeChunk(data, halves, groups[g], i);
+          });
         }
-        for (const Frame& f : frames)
-          if (!f.error.empty()) throw py::value_error(f.error);
+        for (const std::string& e : errors)
+          if (!e.empty()) throw py::value_error(e);
         return arrays;
       },
       py::arg("blobs"), py::arg("specs"), py::arg("differences") = py::list(),
-      "An item's arrays from its bytes: specs are (offset, frame sizes, kind, shape, k) of each "
-      "array (kind f16: two zstd frames, the low and the high bytes of float16 bits times 2^k, "
-      "read as float32; uint32: one frame, read as int32; float32: one frame), decoded in parallel "
-      "without the GIL, then for each (a, b) of "
-      "differences the array a - b (a derived layer) appended (nxrender.dataset's reader). "
+      py::arg("outputs") = py::none(),
+      "An item's arrays from its bytes: specs are (offset, frame sizes, kind, shape, k, chunk, "
+      "nibbles) of each array (kind f16: per chunk of `chunk` values (0: the whole array) two "
+      "zstd frames, the low bytes (nibbles: their high nibbles packed two to a byte) and the "
+      "high bytes of float16 bits times 2^k, read as float32; uint32: one frame, read as int32; "
+      "float32: one frame), decoded in parallel without the GIL, then for each (a, b) of "
+      "differences the array a - b (a derived layer) appended (nxrender.dataset's reader); "
+      "outputs, when given, are the arrays to decode into (one per array, then per difference: "
+      "a batch's slices). "
       "Keeps freed memory in the process for reuse (glibc's trim threshold raised to 512 MB).");
 }
 

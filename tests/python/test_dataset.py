@@ -6,7 +6,6 @@ scene(i) with its recorded seed; settings never mixed; missing items refused."""
 import os
 import signal
 import subprocess
-import sys
 import time
 
 import numpy as np
@@ -140,6 +139,30 @@ def test_two_tasks_interrupted_and_rerun_read_back_as_rendered(tmp_path):
         assert [b["radiance"].shape[0] for b in batches] == [3, 3, 1]
         assert batches[0]["radiance"].shape[1:] == (16, 24, 7)
         assert batches[0]["seed"].tolist() == [nxrender.dataset.item_seed(0, i) for i in range(3)]
+        # Batches decoded into place: the same tensors as the collated ones.
+        for shuffle in (False, True):
+            read = list(data.loader(3, shuffle=shuffle, generator=torch.Generator().manual_seed(1)))
+            assert [len(b["index"]) for b in read] == [3, 3, 1]
+            assert sorted(i for b in read for i in b["index"].tolist()) == list(range(COUNT))
+            for b in read:
+                for name, value in b.items():
+                    expected = torch.stack([torch.as_tensor(np.asarray(data[i][name]))
+                                            for i in b["index"].tolist()])
+                    assert torch.equal(value, expected), name
+        two = list(data.loader(4, num_workers=2))  # (worker batches in shared memory)
+        assert torch.equal(two[1]["reflected"],
+                           torch.from_numpy(np.stack([data[i]["reflected"] for i in range(4, 7)])))
+    # A batch by a list, a slice or an index array: each layer stacked, seeds and indices.
+    for key in ([0, 2, 5], slice(0, 6, 2), np.array([5, 2])):
+        batch = data[key]
+        positions = list(range(COUNT))[key] if isinstance(key, slice) else list(key)
+        assert batch["index"].tolist() == positions and batch["seed"].dtype == np.int64
+        for name in ("radiance", "fluoresced", "normals", "object_id"):
+            np.testing.assert_array_equal(batch[name], np.stack([data[p][name] for p in positions]))
+    assert set(nxrender.dataset.Dataset(out, layers=["fluoresced"])[[1, 2]]) == \
+        {"fluoresced", "seed", "index"}
+    with pytest.raises(IndexError, match="item 7 of a dataset of 7"):
+        data[[0, 7]]
     # An item whose first frame was overwritten is refused, naming it (decoded in the library).
     meta, blobs = nxrender.dataset._read_item(nxrender.dataset.item_path(out, 4))
     with open(nxrender.dataset.item_path(out, 4), "r+b") as f:
@@ -147,6 +170,69 @@ def test_two_tasks_interrupted_and_rerun_read_back_as_rendered(tmp_path):
         f.write(b"\0\0\0\0")
     with pytest.raises(ValueError, match=r"cannot read item 4 \(expected a zstd frame of"):
         data[4]
+
+
+def test_item_encoding_round_trips_every_layout():
+    """The codec alone: float16 arrays in several chunks (a count neither a multiple of the
+    chunk nor even), every number of dropped bits (nibble-packed low bytes from 4 on), tiny,
+    negative and non-finite values, a derived difference, decoded exactly as from_half gives;
+    format 3's layout (one pair of frames per array) still read; bad outputs refused."""
+    ds = nxrender.dataset
+    rng = np.random.default_rng(3)
+    count = 2 * ds._CHUNK + 12345
+    base = rng.lognormal(-8, 3, count).astype(np.float32) * rng.choice([-1, 1], count)
+    base[:6] = [0, np.inf, -np.inf, np.nan, 1e-30, 6e4]
+    for drop in (0, 3, 4, 6):
+        a = base.copy()
+        a[1:4] = 1.0  # (the scale needs finite values)
+        b = (a * 0.5 + rng.normal(0, 1e-4, count)).astype(np.float32)
+        arrays = {"radiance": ds.to_half(a, drop), "reflected": ds.to_half(b, drop)}
+        arrays = {n: (bits, {"k": k, "drop": drop}) for n, (bits, k) in arrays.items()}
+        arrays["object_id"] = (np.arange(count, dtype=np.uint32), {})
+        records, blobs = ds._encode(arrays)
+        assert records["radiance"]["nibbles"] == (drop >= 4)
+        assert len(records["radiance"]["frames"]) == 2 * 3
+        offset = 0
+        for r in records.values():
+            r["offset"], offset = offset, offset + r["bytes"]
+        out = ds._decode(records, b"".join(blobs), ["fluoresced"])
+        want = {n: ds.from_half(bits, extra["k"]) for n, (bits, extra) in arrays.items()
+                if n != "object_id"}
+        for n in want:
+            np.testing.assert_array_equal(out[n], want[n])
+        np.testing.assert_array_equal(out["fluoresced"], want["radiance"] - want["reflected"])
+        np.testing.assert_array_equal(out["object_id"], np.arange(count))
+    # Format 3: each float16 array's low and high bytes as one frame each.
+    import zstandard
+    bits, k = ds.to_half(base[6:], 2)
+    frames = [zstandard.ZstdCompressor().compress((bits & 0xFF).astype(np.uint8).tobytes()),
+              zstandard.ZstdCompressor().compress((bits >> 8).astype(np.uint8).tobytes())]
+    old = {"radiance": {"kind": "f16", "k": k, "shape": [bits.size], "offset": 0,
+                        "frames": [len(f) for f in frames]}}
+    np.testing.assert_array_equal(ds._decode(old, b"".join(frames))["radiance"],
+                                  ds.from_half(bits, k))
+    # Outputs of the wrong kind or shape are refused.
+    specs = [(0, old["radiance"]["frames"], "f16", [bits.size], k, 0, False)]
+    for bad in (np.empty(bits.size, np.float64), np.empty(bits.size - 1, np.float32),
+                np.empty(2 * bits.size, np.float32)[::2]):
+        with pytest.raises(ValueError, match="expected a writable C-contiguous float32 output"):
+            nxrender._decode_arrays(b"".join(frames), specs, [], [bad])
+
+
+def test_a_batch_of_items_of_different_shapes_is_refused(tmp_path):
+    def scene(index):
+        return {"settings": {"xres": 8 + 4 * index, "yres": 8, "mode": "spectral_mcpt",
+                             "sampl": 1, "bands": "400:700:100"},
+                "camera": {"position": [0, 1, -4], "look_at": [0, 0, 0]},
+                "objects": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1,
+                             "material": "matte", "reflectance": 0.5}],
+                "lights": [{"type": "point", "position": [0, 3, -2], "color": [1, 1, 1]}]}
+    nxrender.dataset.generate(scene, 2, tmp_path / "d", aovs=(), log=lambda text: None)
+    data = nxrender.dataset.Dataset(tmp_path / "d")
+    assert data[0]["radiance"].shape == (8, 8, 4) and data[1]["radiance"].shape == (8, 12, 4)
+    with pytest.raises(ValueError, match=r"cannot read item 1 \(its layers \(radiance \(8, 12, "
+                                         r"4\)\) differ from item 0's \(radiance \(8, 8, 4\)\)"):
+        data[[0, 1]]
 
 
 def test_settings_are_never_mixed_and_bad_tasks_refused(tmp_path):
