@@ -18,6 +18,7 @@ so a rerun skips finished items and redoes broken or missing ones.
 """
 
 import json
+import operator
 import os
 import sys
 import threading
@@ -554,7 +555,11 @@ class Dataset:
 
     def _locate(self, i):
         """(dataset index, file) of position i (an int; negative counts from the end)."""
-        i = int(i)
+        try:
+            i = operator.index(i)
+        except TypeError:
+            raise TypeError(f"expected an item position (an int), or a list, slice or integer "
+                            f"array of them, found {type(i).__name__} {i!r:.40}") from None
         if not -len(self) <= i < len(self):
             raise IndexError(f"item {i} of a dataset of {len(self)}")
         index = self.indices[i]
@@ -586,7 +591,7 @@ class Dataset:
         and `index` (B,) int64, each item decoded straight into its slice (what a DataLoader's
         collation gives, without its copy). The items' layers must have one shape."""
         import numpy as np
-        positions = [int(p) for p in positions]
+        positions = list(positions)
         batch, order = None, None
         seeds, indices = [], []
         for b, position in enumerate(positions):

@@ -163,6 +163,9 @@ def test_two_tasks_interrupted_and_rerun_read_back_as_rendered(tmp_path):
         {"fluoresced", "seed", "index"}
     with pytest.raises(IndexError, match="item 7 of a dataset of 7"):
         data[[0, 7]]
+    for bad in ("radiance", 1.5, [0, 1.5]):
+        with pytest.raises(TypeError, match="expected an item position"):
+            data[bad]
     # An item whose first frame was overwritten is refused, naming it (decoded in the library).
     meta, blobs = nxrender.dataset._read_item(nxrender.dataset.item_path(out, 4))
     with open(nxrender.dataset.item_path(out, 4), "r+b") as f:
