@@ -196,168 +196,194 @@ std::string decodeChunk(const uint8_t* blobs, const std::vector<HalfArray>& arra
   return {};
 }
 
+// Where each decoded array goes: the caller's arrays when given (a batch's slices: checked),
+// else new ones.
+class OutputArrays {
+public:
+  explicit OutputArrays(const py::object& outputs)
+      : given_(!outputs.is_none()), outs_(given_ ? outputs.cast<py::list>() : py::list()) {}
+
+  /// Array i (int32 when ints, else float32) of this shape.
+  py::array make(size_t i, bool ints, const std::vector<py::ssize_t>& shape) const {
+    if (!given_)
+      return ints ? py::array(py::array_t<int32_t>(shape)) : py::array(py::array_t<float>(shape));
+    if (i >= outs_.size())
+      throw py::value_error("expected an output array for each array and difference");
+    py::array out = outs_[i].cast<py::array>();
+    const bool typed =
+        ints ? py::isinstance<py::array_t<int32_t>>(out) : py::isinstance<py::array_t<float>>(out);
+    if (!typed || !(out.flags() & py::array::c_style) || !out.writeable() ||
+        std::vector<py::ssize_t>(out.shape(), out.shape() + out.ndim()) != shape)
+      throw py::value_error(std::string("expected a writable C-contiguous ") +
+                            (ints ? "int32" : "float32") + " output array of the item's shape");
+    return out;
+  }
+
+private:
+  bool given_;
+  py::list outs_;
+};
+
+// An item's decoding: its arrays, how each is stored, and the units of work.
+struct Decoding {
+  std::vector<HalfArray> halves;
+  std::vector<RawArray> raws;
+  std::vector<long> halfIndex; ///< per spec, its HalfArray index (-1: a raw array)
+  std::vector<Group> groups;
+  py::list arrays; ///< the specs' arrays, then the differences'
+};
+
+// The specs' arrays (offset, frame sizes, kind, shape, k, chunk, nibbles), their frames checked
+// against the item's `total` bytes.
+void readSpecs(Decoding& d, size_t total, const py::list& specs, const OutputArrays& output) {
+  for (const py::handle spec : specs) {
+    const py::tuple t = spec.cast<py::tuple>();
+    if (t.size() != 7)
+      throw py::value_error("expected (offset, frames, kind, shape, k, chunk, nibbles)");
+    size_t offset = t[0].cast<size_t>();
+    const std::vector<size_t> sizes = t[1].cast<std::vector<size_t>>();
+    const std::string kind = t[2].cast<std::string>();
+    const std::vector<py::ssize_t> shape = t[3].cast<std::vector<py::ssize_t>>();
+    if (kind != "f16" && kind != "uint32" && kind != "float32")
+      throw py::value_error("expected arrays of kind f16, uint32 or float32, found " + kind);
+    size_t count = 1;
+    for (const py::ssize_t n : shape) count *= static_cast<size_t>(n);
+    py::array a = output.make(d.arrays.size(), kind == "uint32", shape);
+    d.arrays.append(a);
+    std::vector<FrameRef> frames;
+    for (const size_t bytes : sizes) {
+      if (offset + bytes > total)
+        throw py::value_error("an array's frame reaches beyond the item's bytes");
+      frames.push_back({offset, bytes});
+      offset += bytes;
+    }
+    if (kind != "f16") {
+      if (frames.size() != 1)
+        throw py::value_error("expected one frame for an array of kind " + kind + ", found " +
+                              std::to_string(frames.size()));
+      d.raws.push_back({frames[0], static_cast<uint8_t*>(a.mutable_data()), 4 * count});
+      d.halfIndex.push_back(-1);
+      continue;
+    }
+    HalfArray h;
+    h.count = count;
+    h.chunk = t[5].cast<size_t>();
+    if (h.chunk == 0 || h.chunk > count) h.chunk = std::max<size_t>(count, 1);
+    h.nibbles = t[6].cast<bool>();
+    const size_t chunks = count == 0 ? 0 : (count + h.chunk - 1) / h.chunk;
+    if (frames.size() != 2 * chunks)
+      throw py::value_error("expected " + std::to_string(2 * chunks) +
+                            " frames for a float16 array of " + std::to_string(count) +
+                            " values in chunks of " + std::to_string(h.chunk) + ", found " +
+                            std::to_string(frames.size()));
+    if (h.nibbles && chunks > 1 && h.chunk % 2)
+      throw py::value_error("expected an even chunk for packed low nibbles");
+    h.frames = std::move(frames);
+    h.scale = std::ldexp(1.0f, -t[4].cast<int>());
+    h.out = static_cast<float*>(a.mutable_data());
+    d.halfIndex.push_back(static_cast<long>(d.halves.size()));
+    d.halves.push_back(std::move(h));
+  }
+}
+
+// Groups the float16 arrays that differences (a, b) of spec indices link, so that they decode
+// chunk by chunk together, and appends each difference's array.
+void groupDifferences(Decoding& d, const py::list& differences, const OutputArrays& output) {
+  std::vector<size_t> groupOf(d.halves.size());
+  for (size_t h = 0; h < d.halves.size(); ++h) groupOf[h] = h;
+  const auto root = [&](size_t h) {
+    while (groupOf[h] != h) h = groupOf[h];
+    return h;
+  };
+  std::vector<std::pair<size_t, size_t>> pairs; // spec indices
+  for (const py::handle pair : differences) {
+    const auto [a, b] = pair.cast<std::pair<size_t, size_t>>();
+    if (a >= d.halfIndex.size() || b >= d.halfIndex.size() || d.halfIndex[a] < 0 ||
+        d.halfIndex[b] < 0 || a == b ||
+        d.halves[d.halfIndex[a]].count != d.halves[d.halfIndex[b]].count ||
+        d.halves[d.halfIndex[a]].chunk != d.halves[d.halfIndex[b]].chunk)
+      throw py::value_error("expected differences of two float16 arrays of one shape and chunk "
+                            "size");
+    pairs.emplace_back(a, b);
+    groupOf[root(d.halfIndex[a])] = root(d.halfIndex[b]);
+  }
+  std::vector<long> groupIndex(d.halves.size(), -1);
+  for (size_t h = 0; h < d.halves.size(); ++h) {
+    const size_t r = root(h);
+    if (groupIndex[r] < 0) {
+      groupIndex[r] = static_cast<long>(d.groups.size());
+      d.groups.push_back({});
+      d.groups.back().count = d.halves[h].count;
+      d.groups.back().chunk = d.halves[h].chunk;
+    }
+    d.groups[groupIndex[r]].members.push_back(h);
+  }
+  const auto position = [](const Group& g, long h) {
+    return static_cast<size_t>(
+        std::find(g.members.begin(), g.members.end(), static_cast<size_t>(h)) - g.members.begin());
+  };
+  for (const auto& [a, b] : pairs) {
+    Group& g = d.groups[groupIndex[root(d.halfIndex[a])]];
+    const py::buffer_info of = d.arrays[a].cast<py::array>().request();
+    py::array out = output.make(d.arrays.size(), false, of.shape);
+    g.differences.push_back({position(g, d.halfIndex[a]), position(g, d.halfIndex[b])});
+    g.differenceOut.push_back(static_cast<float*>(out.mutable_data()));
+    d.arrays.append(out);
+  }
+}
+
+// Decodes every raw array and every chunk of every group over the cores, without the GIL.
+void run(const Decoding& d, const uint8_t* data) {
+  std::vector<std::pair<long, size_t>> units; // (group, chunk), or (-1, raw array)
+  for (size_t r = 0; r < d.raws.size(); ++r) units.emplace_back(-1, r);
+  for (size_t g = 0; g < d.groups.size(); ++g)
+    for (size_t c = 0; c * d.groups[g].chunk < d.groups[g].count; ++c)
+      units.emplace_back(static_cast<long>(g), c);
+  std::vector<std::string> errors(units.size());
+  {
+    py::gil_scoped_release release;
+    tbb::parallel_for(size_t{0}, units.size(), [&](size_t u) {
+      const auto [g, i] = units[u];
+      errors[u] = g < 0 ? decompress(data, d.raws[i].frame, d.raws[i].out, d.raws[i].bytes)
+                        : decodeChunk(data, d.halves, d.groups[static_cast<size_t>(g)], i);
+    });
+  }
+  for (const std::string& e : errors)
+    if (!e.empty()) throw py::value_error(e);
+}
+
+py::list decodeArrays(const py::buffer& blobs, const py::list& specs, const py::list& differences,
+                      const py::object& outputs) {
+  // Freed arrays kept for the next item's (glibc returned and re-faulted the ten megabytes of
+  // an item's arrays each time: half the read time in the kernel).
+  static const bool keep = [] {
+    mallopt(M_MMAP_THRESHOLD, 64 << 20);
+    return mallopt(M_TRIM_THRESHOLD, 512 << 20) != 0;
+  }();
+  (void)keep;
+  const py::buffer_info info = blobs.request();
+  const OutputArrays output(outputs);
+  Decoding d;
+  readSpecs(d, static_cast<size_t>(info.size * info.itemsize), specs, output);
+  groupDifferences(d, differences, output);
+  run(d, static_cast<const uint8_t*>(info.ptr));
+  return d.arrays;
+}
+
 } // namespace
 
 void bindDatasetCodec(py::module_& m) {
-  m.def(
-      "_decode_arrays",
-      [](const py::buffer& blobs, const py::list& specs, const py::list& differences,
-         const py::object& outputs) {
-        // Freed arrays kept for the next item's (glibc returned and re-faulted the ten
-        // megabytes of an item's arrays each time: half the read time in the kernel).
-        static const bool keep = [] {
-          mallopt(M_MMAP_THRESHOLD, 64 << 20);
-          return mallopt(M_TRIM_THRESHOLD, 512 << 20) != 0;
-        }();
-        (void)keep;
-        const py::buffer_info info = blobs.request();
-        const auto* data = static_cast<const uint8_t*>(info.ptr);
-        const size_t total = static_cast<size_t>(info.size * info.itemsize);
-        std::vector<HalfArray> halves;
-        std::vector<RawArray> raws;
-        std::vector<long> halfIndex; // per spec, its HalfArray index (-1: a raw array)
-        py::list arrays;
-        // Where array i goes: outputs[i] when given (a batch's slice: checked), else a new one.
-        const bool given = !outputs.is_none();
-        const py::list outs = given ? outputs.cast<py::list>() : py::list();
-        const auto output = [&](size_t i, bool ints,
-                                const std::vector<py::ssize_t>& shape) -> py::array {
-          if (!given)
-            return ints ? py::array(py::array_t<int32_t>(shape))
-                        : py::array(py::array_t<float>(shape));
-          if (i >= outs.size())
-            throw py::value_error("expected an output array for each array and difference");
-          py::array out = outs[i].cast<py::array>();
-          const bool typed = ints ? py::isinstance<py::array_t<int32_t>>(out)
-                                  : py::isinstance<py::array_t<float>>(out);
-          if (!typed || !(out.flags() & py::array::c_style) || !out.writeable() ||
-              std::vector<py::ssize_t>(out.shape(), out.shape() + out.ndim()) != shape)
-            throw py::value_error(std::string("expected a writable C-contiguous ") +
-                                  (ints ? "int32" : "float32") +
-                                  " output array of the item's shape");
-          return out;
-        };
-        for (const py::handle spec : specs) {
-          const py::tuple t = spec.cast<py::tuple>();
-          if (t.size() != 7)
-            throw py::value_error("expected (offset, frames, kind, shape, k, chunk, nibbles)");
-          size_t offset = t[0].cast<size_t>();
-          const std::vector<size_t> sizes = t[1].cast<std::vector<size_t>>();
-          const std::string kind = t[2].cast<std::string>();
-          const std::vector<py::ssize_t> shape = t[3].cast<std::vector<py::ssize_t>>();
-          if (kind != "f16" && kind != "uint32" && kind != "float32")
-            throw py::value_error("expected arrays of kind f16, uint32 or float32, found " + kind);
-          size_t count = 1;
-          for (const py::ssize_t n : shape) count *= static_cast<size_t>(n);
-          py::array a = output(arrays.size(), kind == "uint32", shape);
-          arrays.append(a);
-          std::vector<FrameRef> frames;
-          for (const size_t bytes : sizes) {
-            if (offset + bytes > total)
-              throw py::value_error("an array's frame reaches beyond the item's bytes");
-            frames.push_back({offset, bytes});
-            offset += bytes;
-          }
-          if (kind == "f16") {
-            HalfArray h;
-            h.count = count;
-            h.chunk = t[5].cast<size_t>();
-            if (h.chunk == 0 || h.chunk > count) h.chunk = std::max<size_t>(count, 1);
-            h.nibbles = t[6].cast<bool>();
-            const size_t chunks = count == 0 ? 0 : (count + h.chunk - 1) / h.chunk;
-            if (frames.size() != 2 * chunks)
-              throw py::value_error("expected " + std::to_string(2 * chunks) +
-                                    " frames for a float16 array of " + std::to_string(count) +
-                                    " values in chunks of " + std::to_string(h.chunk) + ", found " +
-                                    std::to_string(frames.size()));
-            if (h.nibbles && chunks > 1 && h.chunk % 2)
-              throw py::value_error("expected an even chunk for packed low nibbles");
-            h.frames = std::move(frames);
-            h.scale = std::ldexp(1.0f, -t[4].cast<int>());
-            h.out = static_cast<float*>(a.mutable_data());
-            halfIndex.push_back(static_cast<long>(halves.size()));
-            halves.push_back(std::move(h));
-          } else {
-            if (frames.size() != 1)
-              throw py::value_error("expected one frame for an array of kind " + kind + ", found " +
-                                    std::to_string(frames.size()));
-            raws.push_back({frames[0], static_cast<uint8_t*>(a.mutable_data()), 4 * count});
-            halfIndex.push_back(-1);
-          }
-        }
-        // Groups: float16 arrays linked by differences decode chunk by chunk together.
-        std::vector<size_t> groupOf(halves.size());
-        std::vector<Group> groups;
-        for (size_t h = 0; h < halves.size(); ++h) groupOf[h] = h;
-        const auto root = [&](size_t h) {
-          while (groupOf[h] != h) h = groupOf[h];
-          return h;
-        };
-        std::vector<std::pair<size_t, size_t>> pairs;
-        for (const py::handle d : differences) {
-          const auto [a, b] = d.cast<std::pair<size_t, size_t>>();
-          if (a >= halfIndex.size() || b >= halfIndex.size() || halfIndex[a] < 0 ||
-              halfIndex[b] < 0 || a == b ||
-              halves[halfIndex[a]].count != halves[halfIndex[b]].count ||
-              halves[halfIndex[a]].chunk != halves[halfIndex[b]].chunk)
-            throw py::value_error(
-                "expected differences of two float16 arrays of one shape and chunk size");
-          pairs.emplace_back(halfIndex[a], halfIndex[b]);
-          groupOf[root(halfIndex[a])] = root(halfIndex[b]);
-        }
-        std::vector<long> groupIndex(halves.size(), -1);
-        for (size_t h = 0; h < halves.size(); ++h) {
-          const size_t r = root(h);
-          if (groupIndex[r] < 0) {
-            groupIndex[r] = static_cast<long>(groups.size());
-            groups.push_back({});
-            groups.back().count = halves[h].count;
-            groups.back().chunk = halves[h].chunk;
-          }
-          groups[groupIndex[r]].members.push_back(h);
-        }
-        const auto position = [](const Group& g, size_t h) {
-          return static_cast<size_t>(std::find(g.members.begin(), g.members.end(), h) -
-                                     g.members.begin());
-        };
-        for (const auto& [a, b] : pairs) {
-          Group& g = groups[groupIndex[root(a)]];
-          const py::buffer_info of = arrays[a].cast<py::array>().request();
-          py::array out = output(arrays.size(), false, of.shape);
-          g.differences.push_back({position(g, a), position(g, b)});
-          g.differenceOut.push_back(static_cast<float*>(out.mutable_data()));
-          arrays.append(out);
-        }
-        // Work units: every raw array, and every chunk of every group.
-        std::vector<std::pair<long, size_t>> units; // (group, chunk), or (-1, raw array)
-        for (size_t r = 0; r < raws.size(); ++r) units.emplace_back(-1, r);
-        for (size_t g = 0; g < groups.size(); ++g)
-          for (size_t c = 0; c * groups[g].chunk < groups[g].count; ++c)
-            units.emplace_back(static_cast<long>(g), c);
-        std::vector<std::string> errors(units.size());
-        {
-          py::gil_scoped_release release;
-          tbb::parallel_for(size_t{0}, units.size(), [&](size_t u) {
-            const auto [g, i] = units[u];
-            errors[u] = g < 0 ? decompress(data, raws[i].frame, raws[i].out, raws[i].bytes)
-                              : decodeChunk(data, halves, groups[g], i);
-          });
-        }
-        for (const std::string& e : errors)
-          if (!e.empty()) throw py::value_error(e);
-        return arrays;
-      },
-      py::arg("blobs"), py::arg("specs"), py::arg("differences") = py::list(),
-      py::arg("outputs") = py::none(),
-      "An item's arrays from its bytes: specs are (offset, frame sizes, kind, shape, k, chunk, "
-      "nibbles) of each array (kind f16: per chunk of `chunk` values (0: the whole array) two "
-      "zstd frames, the low bytes (nibbles: their high nibbles packed two to a byte) and the "
-      "high bytes of float16 bits times 2^k, read as float32; uint32: one frame, read as int32; "
-      "float32: one frame), decoded in parallel without the GIL, then for each (a, b) of "
-      "differences the array a - b (a derived layer) appended (nxrender.dataset's reader); "
-      "outputs, when given, are the arrays to decode into (one per array, then per difference: "
-      "a batch's slices). "
-      "Keeps freed memory in the process for reuse (glibc's trim threshold raised to 512 MB).");
+  m.def("_decode_arrays", &decodeArrays, py::arg("blobs"), py::arg("specs"),
+        py::arg("differences") = py::list(), py::arg("outputs") = py::none(),
+        "An item's arrays from its bytes: specs are (offset, frame sizes, kind, shape, k, chunk, "
+        "nibbles) of each array (kind f16: per chunk of `chunk` values (0: the whole array) two "
+        "zstd frames, the low bytes (nibbles: their high nibbles packed two to a byte) and the "
+        "high bytes of float16 bits times 2^k, read as float32; uint32: one frame, read as int32; "
+        "float32: one frame), decoded in parallel without the GIL, then for each (a, b) of "
+        "differences the array a - b (a derived layer) appended (nxrender.dataset's reader); "
+        "outputs, when given, are the arrays to decode into (one per array, then per difference: "
+        "a batch's slices). "
+        "Keeps freed memory in the process for reuse (glibc's trim threshold raised to 512 MB).");
 }
 
 } // namespace nxpy
