@@ -11,6 +11,7 @@ Dataset.loader's, decoded into place) when torch is installed, from the page cac
 of `repeat` passes). docs/datasets.md quotes its figures."""
 
 import argparse
+import collections
 import os
 import sys
 import tempfile
@@ -41,15 +42,24 @@ def scene(index):
     }
 
 
-def rate(read, count, repeat):
-    """Items per second of read(i) over every item, the fastest of `repeat` passes."""
+def drain(values):
+    """Runs through an iterable, keeping nothing (each item freed before the next is read)."""
+    collections.deque(values, maxlen=0)
+
+
+def fastest(run, repeat):
+    """The seconds of the fastest of `repeat` calls of run()."""
     best = float("inf")
     for _ in range(repeat):
         start = time.perf_counter()
-        for i in range(count):
-            read(i)
+        run()
         best = min(best, time.perf_counter() - start)
-    return count / best
+    return best
+
+
+def rate(read, count, repeat):
+    """Items per second of read(i) over every item, the fastest of `repeat` passes."""
+    return count / fastest(lambda: drain(read(i) for i in range(count)), repeat)
 
 
 def main(argv=None):
@@ -75,30 +85,19 @@ def main(argv=None):
                   "items/s")
         data = nxrender.dataset.Dataset(out)
         batches = [list(range(i, min(i + 8, len(data)))) for i in range(0, len(data), 8)]
-        best = float("inf")
-        for _ in range(args.repeat):
-            start = time.perf_counter()
-            for batch in batches:
-                data[batch]
-            best = min(best, time.perf_counter() - start)
-        print(f"Dataset[[i, ...]], batches of 8, every layer: {len(data) / best:.0f} items/s")
+        seconds = fastest(lambda: drain(data[batch] for batch in batches), args.repeat)
+        print(f"Dataset[[i, ...]], batches of 8, every layer: {len(data) / seconds:.0f} items/s")
         try:
             import torch.utils.data
         except ImportError:
             print("DataLoader: torch not installed")
             return 0
-        data = nxrender.dataset.Dataset(out)
         for workers, how in ((0, "collated"), (0, "loader()"), (2, "collated"), (2, "loader()")):
             loader = torch.utils.data.DataLoader(data, batch_size=8, num_workers=workers) \
                 if how == "collated" else data.loader(8, num_workers=workers)
-            best = float("inf")
-            for _ in range(args.repeat):
-                start = time.perf_counter()
-                for _batch in loader:
-                    pass
-                best = min(best, time.perf_counter() - start)
+            seconds = fastest(lambda: drain(loader), args.repeat)  # noqa: B023 (called here)
             print(f"DataLoader, batches of 8, {how}, {workers} workers, every layer: "
-                  f"{len(data) / best:.0f} items/s")
+                  f"{len(data) / seconds:.0f} items/s")
     return 0
 
 
