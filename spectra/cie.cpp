@@ -1,4 +1,5 @@
 #include "spectra/cie.h"
+#include "core/cell_index.h"
 
 #include <cmath>
 
@@ -31,7 +32,7 @@ Xyz cieCmf(double nm) {
   if (!(nm >= kCieMinNm && nm <= kCieMaxNm)) return {};
   const auto& t = cieTables();
   const double x = nm - kCieMinNm;
-  const int i = std::min(static_cast<int>(x), kCieSamples - 2);
+  const int i = cellIndex(x, kCieSamples - 1);
   const double f = x - i;
   auto at = [&](const std::array<double, kCieSamples>& a) { return a[i] + (a[i + 1] - a[i]) * f; };
   return {at(t.xBar), at(t.yBar), at(t.zBar)};

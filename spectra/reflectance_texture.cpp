@@ -1,4 +1,5 @@
 #include "spectra/reflectance_texture.h"
+#include "core/cell_index.h"
 
 #include "core/texel_grid.h"
 
@@ -79,8 +80,8 @@ SampledSpectrum ReflectanceTexture::chartAt(float u, float v,
                                             const SampledWavelengths& lambda) const {
   const float x = std::clamp(u, 0.0f, 1.0f) * kColorCheckerColumns;
   const float y = (1 - std::clamp(v, 0.0f, 1.0f)) * kColorCheckerRows;
-  const int col = std::min(static_cast<int>(x), kColorCheckerColumns - 1);
-  const int row = std::min(static_cast<int>(y), kColorCheckerRows - 1);
+  const int col = cellIndex(x, kColorCheckerColumns);
+  const int row = cellIndex(y, kColorCheckerRows);
   const float fx = x - static_cast<float>(col), fy = y - static_cast<float>(row);
   const float margin = 0.5f * (1 - kColorCheckerPatchFraction);
   if (fx < margin || fx > 1 - margin || fy < margin || fy > 1 - margin)

@@ -1,4 +1,5 @@
 #include "spectra/sigmoid_table.h"
+#include "core/cell_index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -128,8 +129,7 @@ SigmoidCoefficients SigmoidTable::lookup(const Rgb& rgb) const {
   const double z = c[l];
   const double x = z > 0 ? c[(l + 1) % 3] / z : 1.0, y = z > 0 ? c[(l + 2) % 3] / z : 1.0;
   const double xf = std::clamp(x, 0.0, 1.0) * (res_ - 1), yf = std::clamp(y, 0.0, 1.0) * (res_ - 1);
-  const int xi = std::min(static_cast<int>(xf), res_ - 2),
-            yi = std::min(static_cast<int>(yf), res_ - 2);
+  const int xi = cellIndex(xf, res_ - 1), yi = cellIndex(yf, res_ - 1);
   const int zi =
       static_cast<int>(std::upper_bound(z_.begin() + 1, z_.end() - 1, static_cast<float>(z)) -
                        z_.begin()) -

@@ -1,4 +1,5 @@
 #include "spectra/wavelength_sampler.h"
+#include "core/cell_index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -134,7 +135,7 @@ WavelengthSampler WavelengthSampler::forSensor(const Sensor& sensor, double minN
 
 double WavelengthSampler::wavelength(double u) const {
   const double x = std::clamp(u, 0.0, 1.0) * kSegments;
-  const int j = std::min(static_cast<int>(x), kSegments - 1);
+  const int j = cellIndex(x, kSegments);
   return knotNm_[j] + (x - j) * (knotNm_[j + 1] - knotNm_[j]);
 }
 
@@ -153,8 +154,7 @@ SampledWavelengths WavelengthSampler::sample(float u) const {
 
 SampledWavelengths WavelengthSampler::sample(float offset, float heroStratum) const {
   SampledWavelengths w;
-  const int hero =
-      std::clamp(static_cast<int>(heroStratum * static_cast<float>(kLanes)), 0, kLanes - 1);
+  const int hero = cellIndex(heroStratum * static_cast<float>(kLanes), kLanes);
   const float within = std::clamp(offset, 0.0f, 0x1.fffffep-1f);
   for (int i = 0; i < kLanes; ++i) {
     int stratum = hero + i;
@@ -162,7 +162,7 @@ SampledWavelengths WavelengthSampler::sample(float offset, float heroStratum) co
     // Segment index and position within it, in double: (stratum + within) / kLanes * kSegments.
     const double x =
         (static_cast<double>(stratum) + within) * (static_cast<double>(kSegments) / kLanes);
-    const int j = std::min(static_cast<int>(x), kSegments - 1);
+    const int j = cellIndex(x, kSegments);
     const double f = x - j;
     w.lambda[i] = static_cast<float>(knotNm_[j] + f * (knotNm_[j + 1] - knotNm_[j]));
     w.pdf[i] = segmentPdf_[j];

@@ -43,7 +43,7 @@ struct VertexMotion {
 /// continuation holds its direction: so that both strategies of multiple importance sampling
 /// estimate one parameterisation (their weights are held, and a mixture of two
 /// parameterisations' derivatives weighted by anything but 1 is biased), an emitter found by
-/// the continuation is differentiated with its point held too (path_tracer.cpp).
+/// the continuation is differentiated with its point held too (integrators/path_walk.h).
 struct ContinuationLobe {
   bool valid = false;
   Vec3 wi, e1, e2;

@@ -402,8 +402,10 @@ void sampleOutline(const IntegratorContext& ctx, const PrimaryBoundaryRequest& r
     PixelSampleStream head(sequence, static_cast<uint32_t>(b));
     const Sample2 u = head.next2D();
     if (!outlinePoint(ctx, o, u.u, u.v, p, counters.rays)) continue;
+    // Compared as floats first: a point far outside (or NaN) is never cast to int.
+    if (!(p.x >= req.rect.x0 && p.x < req.rect.x1 && p.y >= req.rect.y0 && p.y < req.rect.y1))
+      continue;
     const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
-    if (px < req.rect.x0 || px >= req.rect.x1 || py < req.rect.y0 || py >= req.rect.y1) continue;
     bool moves = false;
     for (const auto& [slot, rate] : p.dPhi) moves = moves || rate != 0;
     if (!moves) continue; // (a static outline, e.g. a static sphere's shadow on a static floor)

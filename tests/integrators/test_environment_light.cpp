@@ -11,6 +11,7 @@
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
 #include <gtest/gtest.h>
+#include <limits>
 
 #include <cmath>
 #include <functional>
@@ -104,6 +105,30 @@ TEST(EnvironmentLight, SamplingFollowsItsPdf) {
 }
 
 // A constant map is the uniform background, within noise (its own sampling differs).
+// A direction with NaN or infinite components (a path gone numerically wrong) falls in one of
+// the map's texels, never outside them: texelOf once clamped its row on one side only.
+TEST(EnvironmentLight, NonFiniteDirectionsStayInsideTheMap) {
+  const int w = 8, h = 4;
+  const std::string map = writeMap("env_nan.exr", w, h, [](int, int, int) { return 1.0f; });
+  const RenderScene scene = resolveRenderScene(parseScene(
+      sceneWith("", kLookDown,
+                "<light type=\"environment\"><file>" + map +
+                    "</file></light>"
+                    "<plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>"
+                    "<reflectance>0.5</reflectance></plane>"),
+      "t.scn"));
+  const EnvironmentLight& env = std::get<EnvironmentLight>(scene.lights[0]);
+  SampledWavelengths lambda;
+  for (int i = 0; i < kLanes; ++i) lambda.lambda[i] = 450.0f + 30.0f * static_cast<float>(i);
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = INFINITY;
+  for (const Vec3& d : {Vec3(nan, nan, nan), Vec3(nan, 1, 0), Vec3(0, nan, 0), Vec3(0, -1, nan),
+                        Vec3(inf, 0, 0), Vec3(0, -inf, 0), Vec3(-inf, inf, -inf), Vec3(0, 0, 0)}) {
+    EXPECT_LT(env.texelOf(d), static_cast<size_t>(w * h)) << d.x << " " << d.y << " " << d.z;
+    (void)env.radiance(d, lambda);
+    (void)env.pdf(d);
+  }
+}
+
 TEST(EnvironmentLight, ConstantMapIsTheUniformBackground) {
   const float c = 0.7f;
   const std::string map = writeMap("env_constant.exr", 16, 8, [&](int, int, int) { return c; });

@@ -19,6 +19,7 @@
 #include "support/constant_map.h"
 #include "support/errors.h"
 #include "support/statistics.h"
+#include "support/test_scale.h"
 
 namespace nx {
 namespace {
@@ -103,7 +104,7 @@ std::vector<double> expectGradientMatchesDifference(const Family& f,
   const SceneTangents t = tangentsOf(f, s);
   EXPECT_TRUE(t.inert.empty()) << "the parameter changes nothing";
   RenderOptions plain = base;
-  plain.samples = f.samples;
+  plain.samples = f.samples > 0 ? test::scaledSamples(f.samples) : 0;
   RenderOptions o = plain;
   o.gradients = &t;
   const RenderOutput g = render(s, o);
@@ -149,7 +150,7 @@ std::vector<double> expectGradientMatchesDifference(const Family& f,
   for (size_t b = 0; b < means.size(); ++b)
     if (std::abs(means[b]) >= 0.5 * strongest)
       bestResolved = std::min(bestResolved, errors[b] / std::abs(means[b]));
-  EXPECT_LT(bestResolved, f.power) << "the test cannot resolve the gradient";
+  EXPECT_LT(bestResolved, test::scaledPower(f.power)) << "the test cannot resolve the gradient";
   return means;
 }
 

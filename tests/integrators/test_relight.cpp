@@ -27,6 +27,7 @@
 #include "support/part_attributes.h"
 #include "support/relight_checks.h"
 #include "support/render_checks.h"
+#include "support/test_scale.h"
 
 namespace nx {
 namespace {
@@ -55,7 +56,7 @@ TEST(Relight, RelitToAnotherLampEqualsADirectRender) {
 // so that a variance 1.5x off (bins' variances added as if independent) would fail.
 TEST(Relight, RelitVariancesMatchTheScatterOverSeeds) {
   const RenderScene scene = relightableScene(benchScene(kLampS1, "", 8));
-  constexpr int kSeeds = 192;
+  const int kSeeds = test::scaledSamples(192); // trials
   for (const bool stratified : {true, false}) {
     std::vector<std::vector<double>> values, variances;
     for (int seed = 0; seed < kSeeds; ++seed) {
@@ -69,7 +70,7 @@ TEST(Relight, RelitVariancesMatchTheScatterOverSeeds) {
     }
     const test::VarianceScatterRatio r = test::varianceScatterRatio(values, variances);
     const char* sampler = stratified ? "stratified" : "sobol";
-    EXPECT_LT(r.standardError, 0.09) << sampler;
+    EXPECT_LT(r.standardError, test::scaledPower(0.09)) << sampler;
     EXPECT_LT(std::abs(r.ratio - 1), 3.5 * r.standardError)
         << sampler << ": ratio " << r.ratio << " +- " << r.standardError;
   }

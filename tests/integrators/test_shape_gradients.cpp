@@ -24,6 +24,7 @@
 #include "integrators/scene_params/parameter_numbers.h"
 #include "integrators/scene_reader.h"
 #include "support/statistics.h"
+#include "support/test_scale.h"
 
 namespace nx {
 namespace {
@@ -143,7 +144,7 @@ Comparison compareOverSeeds(const std::function<std::string(double)>& text, cons
 Comparison compare(const ShapeCase& c, const std::string& name, int component, double step,
                    const Region& region, bool boundary = true) {
   ShapeCase each = c;
-  each.samples = std::max(1, c.samples / kSeeds);
+  each.samples = test::scaledSamples(c.samples / kSeeds);
   return compareOverSeeds([&](double h) { return each.text(name, component, h); }, name,
                           {{component, 1.0}}, step, region, boundary);
 }
@@ -162,7 +163,7 @@ void expectAgrees(const Comparison& c, double power, const std::string& what) {
         << c.difference[b] << ", standard error " << c.standardError[b];
     if (std::abs(c.difference[b]) > std::abs(c.difference[k])) k = b;
   }
-  EXPECT_LT(c.standardError[k], power * std::abs(c.difference[k]))
+  EXPECT_LT(c.standardError[k], test::scaledPower(power) * std::abs(c.difference[k]))
       << what << ": no power (" << c.standardError[k] << " against " << c.difference[k] << ")";
 }
 
@@ -355,7 +356,7 @@ Comparison compareCamera(const std::string& field, const std::string& value,
   auto text = [&](const std::string& camera) {
     return "<scene><settings><xres>" + std::to_string(kSize) + "</xres><yres>" +
            std::to_string(kSize) + "</yres><mode>spectral_mcpt</mode><depth>4</depth><sampl>" +
-           std::to_string(std::max(1, samples / kSeeds)) +
+           std::to_string(test::scaledSamples(samples / kSeeds)) +
            "</sampl><bands>400:700:100</bands></settings><camera>" + camera +
            "</camera><plane><normal>0,1,0</normal><distance>0</distance>" + kFloor +
            "</plane><sphere><center>0.1,0.7,0</center><radius>0.5</radius>" + kFluorescent +
@@ -402,7 +403,7 @@ TEST(ShapeGradients, CameraAmongMeshesMatchesDifferences) {
   auto text = [&](double x, double z, double fov) {
     return "<scene><settings><xres>" + std::to_string(kSize) + "</xres><yres>" +
            std::to_string(kSize) + "</yres><mode>spectral_mcpt</mode><depth>4</depth><sampl>" +
-           std::to_string(512 / kSeeds) +
+           std::to_string(test::scaledSamples(512 / kSeeds)) +
            "</sampl><bands>400:700:100</bands></settings><camera><position>" + num(x) + ",0.9," +
            num(-2.6 + z) + "</position><look_at>0,0.5,0</look_at><fov>" + num(40 + fov) +
            "</fov></camera><quad><origin>-1.5,0,-1.5</origin><edge_u>3,0,0</edge_u><edge_v>0,0,"
@@ -443,7 +444,7 @@ TEST(ShapeGradients, CameraOverASoftShadowMatchesDifferences) {
     auto text = [&](double z) {
       return "<scene><settings><xres>" + std::to_string(kSize) + "</xres><yres>" +
              std::to_string(kSize) + "</yres><mode>spectral_mcpt</mode><depth>2</depth><sampl>" +
-             std::to_string(512 / kSeeds) +
+             std::to_string(test::scaledSamples(512 / kSeeds)) +
              "</sampl><bands>400:700:100</bands></settings><camera><position>0,1.6," + num(-2 + z) +
              "</position><look_at>0,0,0</look_at><fov>40</fov></camera><quad><origin>-3,0,-3"
              "</origin><edge_u>6,0,0</edge_u><edge_v>0,0,6</edge_v>" +
@@ -537,7 +538,7 @@ Comparison compareVertices(const std::string& material, const std::string& light
   auto text = [&](double h) {
     double d[6][3] = {};
     for (const auto& [v, k] : which) d[v][k] = h;
-    return octahedronScene(d, material, lights, std::max(1, samples / kSeeds));
+    return octahedronScene(d, material, lights, test::scaledSamples(samples / kSeeds));
   };
   std::vector<std::pair<int, double>> direction;
   for (const auto& [v, k] : which) direction.push_back({3 * v + k, 1.0});
@@ -656,8 +657,8 @@ Comparison compareTransform(const std::array<double, 12>& rows,
       along.push_back({j, direction[static_cast<size_t>(j)]});
   return compareOverSeeds(
       [&](double h) {
-        return transformedScene(rows, direction, h, material, lights, std::max(1, samples / kSeeds),
-                                objFile);
+        return transformedScene(rows, direction, h, material, lights,
+                                test::scaledSamples(samples / kSeeds), objFile);
       },
       "objects[1].transform", along, step, region);
 }

@@ -7,6 +7,7 @@
 // 2 pi [i, i + 1) / W and theta in pi [j, j + 1) / H (row 0 at the zenith), the direction
 // (sin theta cos phi, cos theta, sin theta sin phi): +y is up.
 
+#include "core/cell_index.h"
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -159,10 +160,10 @@ struct EnvironmentLight {
     const float theta = std::atan2(std::sqrt(d.x * d.x + d.z * d.z), d.y);
     float phi = std::atan2(d.z, d.x);
     if (phi < 0) phi += static_cast<float>(2 * kPi);
-    const int i =
-        std::min(width - 1, static_cast<int>(phi * static_cast<float>(width / (2 * kPi))));
-    const int j = std::min(height - 1, static_cast<int>(theta * static_cast<float>(height / kPi)));
-    return static_cast<size_t>(j) * width + static_cast<size_t>(std::max(i, 0));
+    // NaN and out-of-range angles (a NaN direction) land in an edge texel, never outside.
+    const int i = cellIndex(phi * static_cast<float>(width / (2 * kPi)), width);
+    const int j = cellIndex(theta * static_cast<float>(height / kPi), height);
+    return static_cast<size_t>(j) * width + static_cast<size_t>(i);
   }
   /// Radiance arriving from direction d (from the sky towards the scene: d points to the sky).
   SampledSpectrum radiance(const Vec3& d, const SampledWavelengths& lambda) const {

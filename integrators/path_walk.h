@@ -1,3 +1,7 @@
+// The path walk of the spectral path tracer (tracePath and its variants, integrator.h): one
+// template over the features a scene has and the sink its contributions go to.
+#pragma once
+
 #include <cmath>
 
 #include "core/ray_offset.h"
@@ -17,13 +21,15 @@
 #include "integrators/sampling.h"
 
 namespace nx {
-namespace {
+// The path walk, shared by the translation units of the trace entry points (trace_*.cpp):
+// each instantiates it for its own sink, so the build runs them in parallel.
+namespace path_walk {
 
 // A path at the surface of a closed shape (a sphere, a closed mesh in a media scene),
 // arriving from wo (pointing back along the path) and leaving along wi: when it transmits
 // (wo and wi on opposite sides), it enters or leaves the medium the shape holds.
-void crossBoundary(const SurfaceHit& hit, const ShapeAppearance& app, const Vec3& wo,
-                   const Vec3& wi, MediumStack& media) {
+inline void crossBoundary(const SurfaceHit& hit, const ShapeAppearance& app, const Vec3& wo,
+                          const Vec3& wi, MediumStack& media) {
   if (app.boundary == 0) return;
   const Vec3 outward = app.boundary > 0 ? hit.ng : -hit.ng;
   const float a = dot(wo, outward), b = dot(wi, outward);
@@ -35,7 +41,7 @@ void crossBoundary(const SurfaceHit& hit, const ShapeAppearance& app, const Vec3
 }
 
 // The relight source of emission e (0 outside a relightable build).
-uint16_t relightSourceOf(const LightGroups& groups, int32_t e) {
+inline uint16_t relightSourceOf(const LightGroups& groups, int32_t e) {
   return static_cast<size_t>(e) < groups.sourceOfEmission.size()
              ? groups.sourceOfEmission[static_cast<size_t>(e)]
              : uint16_t{0};
@@ -52,13 +58,13 @@ constexpr bool recordsGradients() {
 }
 
 // The tangents of a medium in a render that is not differentiated: none.
-const std::vector<MediumTangent>& noMediumTangents() {
+inline const std::vector<MediumTangent>& noMediumTangents() {
   static const std::vector<MediumTangent> none;
   return none;
 }
 
 // The white reference's surface: a Lambertian reflector of reflectance 1.
-const Material& whiteLambertian() {
+inline const Material& whiteLambertian() {
   static const Material white = [] {
     Material m;
     m.kind = MaterialKind::Mixture;
@@ -1140,82 +1146,25 @@ void tracePathImpl(const IntegratorContext& ctx, Ray ray, const SampledWavelengt
   PathWalk<kFluorescence, kMedia, kWhite, Sink>(ctx, ray, lambda, rng, counters, sink).run();
 }
 
-} // namespace
+// The walk for the scene's media (with or without), fluorescence fixed.
+template <bool kFluorescence, bool kWhite, class Sink>
+void traceMediaVariant(const IntegratorContext& ctx, const Ray& ray,
+                       const SampledWavelengths& lambda, PixelSampleStream& rng,
+                       TraceCounters& counters, Sink& sink) {
+  if (ctx.scene->hasMedia)
+    tracePathImpl<kFluorescence, true, kWhite>(ctx, ray, lambda, rng, counters, sink);
+  else
+    tracePathImpl<kFluorescence, false, kWhite>(ctx, ray, lambda, rng, counters, sink);
+}
 
-namespace {
+// The walk compiled for the scene's features (fluorescence, media).
 template <bool kWhite, class Sink>
 void traceVariant(const IntegratorContext& ctx, const Ray& ray, const SampledWavelengths& lambda,
                   PixelSampleStream& rng, TraceCounters& counters, Sink& sink) {
-  const bool media = ctx.scene->hasMedia;
-  if (ctx.fluorescence) {
-    if (media)
-      tracePathImpl<true, true, kWhite>(ctx, ray, lambda, rng, counters, sink);
-    else
-      tracePathImpl<true, false, kWhite>(ctx, ray, lambda, rng, counters, sink);
-  } else if (media) {
-    tracePathImpl<false, true, kWhite>(ctx, ray, lambda, rng, counters, sink);
-  } else {
-    tracePathImpl<false, false, kWhite>(ctx, ray, lambda, rng, counters, sink);
-  }
+  if (ctx.fluorescence)
+    traceMediaVariant<true, kWhite>(ctx, ray, lambda, rng, counters, sink);
+  else
+    traceMediaVariant<false, kWhite>(ctx, ray, lambda, rng, counters, sink);
 }
-} // namespace
-
-SampledSpectrum tracePath(const IntegratorContext& ctx, Ray ray, const SampledWavelengths& lambda,
-                          PixelSampleStream& rng, TraceCounters& counters) {
-  RadianceSink sink;
-  traceVariant<false>(ctx, ray, lambda, rng, counters, sink);
-  return sink.L;
-}
-
-SampledSpectrum tracePathGradients(const IntegratorContext& ctx, Ray ray,
-                                   const SampledWavelengths& lambda, PixelSampleStream& rng,
-                                   TraceCounters& counters, GradientTape& tape) {
-  GradientSink sink;
-  sink.tape = &tape;
-  sink.tangents = ctx.gradients->tangents;
-  traceVariant<false>(ctx, ray, lambda, rng, counters, sink);
-  return sink.L;
-}
-
-SampledSpectrum tracePathComponents(const IntegratorContext& ctx, Ray ray,
-                                    const SampledWavelengths& lambda, PixelSampleStream& rng,
-                                    TraceCounters& counters, const ComponentLayout& layout,
-                                    SampledSpectrum* layers) {
-  ComponentSink sink;
-  sink.layers = layers;
-  sink.layout = &layout;
-  traceVariant<false>(ctx, ray, lambda, rng, counters, sink);
-  return sink.L;
-}
-
-SampledSpectrum traceWhiteReference(const IntegratorContext& ctx, Ray ray,
-                                    const SampledWavelengths& lambda, PixelSampleStream& rng,
-                                    TraceCounters& counters) {
-  if (ctx.scene->relight.enabled) {
-    // Built with unit spectra: the groups' spectra applied per contribution, nothing recorded.
-    static const ComponentLayout none;
-    RelightSink sink;
-    sink.components.layout = &none;
-    sink.spectra = &ctx.scene->relight.ofSource;
-    traceVariant<true>(ctx, ray, lambda, rng, counters, sink);
-    return sink.components.L;
-  }
-  RadianceSink sink;
-  traceVariant<true>(ctx, ray, lambda, rng, counters, sink);
-  return sink.L;
-}
-
-SampledSpectrum tracePathRelightable(const IntegratorContext& ctx, Ray ray,
-                                     const SampledWavelengths& lambda, PixelSampleStream& rng,
-                                     TraceCounters& counters, const ComponentLayout& layout,
-                                     SampledSpectrum* layers, RelightRecorder& recorder) {
-  RelightSink sink;
-  sink.components.layers = layers;
-  sink.components.layout = &layout;
-  sink.recorder = &recorder;
-  sink.spectra = recorder.spectra;
-  traceVariant<false>(ctx, ray, lambda, rng, counters, sink);
-  return sink.components.L;
-}
-
+} // namespace path_walk
 } // namespace nx
