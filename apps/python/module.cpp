@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "accel/geometry_cache.h"
 #include "apps/python/py_dataset_codec.h"
 #include "apps/python/py_image.h"
 #include "apps/python/py_readonly.h"
@@ -13,6 +14,7 @@
 #include "apps/python/py_scene.h"
 #include "apps/python/py_scene_parameters.h"
 #include "core/error.h"
+#include "io/mesh_cache.h"
 
 namespace nx {
 extern const char* const kTorchBridgePy; // apps/python/nxrender_torch.py
@@ -31,6 +33,14 @@ PYBIND11_MODULE(nxrender, m) {
   nxpy::bindSceneParameters(m);
   nxpy::bindRender(m);
   nxpy::bindDatasetCodec(m);
+  m.def(
+      "clear_caches",
+      [] {
+        nx::clearMeshCache();
+        nx::clearGeometryCache();
+      },
+      "Frees the meshes parsed from files and the geometry (BVH) kept for the next render of the "
+      "same shapes (both are rebuilt when needed)");
   // nxrender.torch: its Python source compiled in (apps/python/nxrender_torch.py); it imports
   // torch at its first use only.
   pybind11::module_ torch =

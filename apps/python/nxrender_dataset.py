@@ -20,14 +20,19 @@ so a rerun skips finished items and redoes broken or missing ones.
 import json
 import operator
 import os
+import re
 import sys
 import threading
 import time
+import zlib
 
-FORMAT = "nxrender-dataset-4"
-# Formats a Dataset still reads (3: one pair of byte-plane frames per float16 array).
-_READABLE_FORMATS = (FORMAT, "nxrender-dataset-3")
+FORMAT = "nxrender-dataset-5"
+# Formats a Dataset still reads (4: without checksums; 3: one pair of byte-plane frames per
+# float16 array).
+_READABLE_FORMATS = (FORMAT, "nxrender-dataset-4", "nxrender-dataset-3")
 _MANIFEST = "dataset.json"
+# The most items a dataset holds (item names have room for 10^9; a count beyond is a typo).
+MAX_COUNT = 10 ** 9
 
 
 def item_seed(dataset_seed, index):
@@ -50,19 +55,27 @@ def task_split(task=None, environ=None):
     SLURM_ARRAY_TASK_COUNT; else (0, 1)."""
     env = os.environ if environ is None else environ
     if task is None and "SLURM_ARRAY_TASK_ID" in env:
+        names = ("SLURM_ARRAY_TASK_ID", "SLURM_ARRAY_TASK_MIN", "SLURM_ARRAY_TASK_MAX",
+                 "SLURM_ARRAY_TASK_STEP", "SLURM_ARRAY_TASK_COUNT")
         try:
             first = int(env.get("SLURM_ARRAY_TASK_MIN", "0"))
-            ident = int(env["SLURM_ARRAY_TASK_ID"]) - first
+            step = int(env.get("SLURM_ARRAY_TASK_STEP", "1"))
+            offset = int(env["SLURM_ARRAY_TASK_ID"]) - first
             count = int(env["SLURM_ARRAY_TASK_COUNT"])
+            last = int(env.get("SLURM_ARRAY_TASK_MAX", str(first + step * (count - 1))))
         except KeyError as e:
             raise ValueError(f"task: a Slurm array task needs {e.args[0]} too") from None
         except ValueError:
-            raise ValueError("task: expected whole numbers in SLURM_ARRAY_TASK_ID, "
-                             "SLURM_ARRAY_TASK_MIN and SLURM_ARRAY_TASK_COUNT, found "
-                             f"{env.get('SLURM_ARRAY_TASK_ID')!r}, "
-                             f"{env.get('SLURM_ARRAY_TASK_MIN')!r}, "
-                             f"{env.get('SLURM_ARRAY_TASK_COUNT')!r}") from None
-        task = (ident, count)
+            raise ValueError("task: expected whole numbers in " + ", ".join(names) + ", found " +
+                             ", ".join(repr(env.get(n)) for n in names)) from None
+        # A stepped array (--array=0-6:2) numbers its tasks MIN, MIN+STEP, ...: task k of COUNT.
+        # An array of other ids (--array=1,5,7) cannot be split so: refused, not left partial.
+        if step < 1 or offset % step or last != first + step * (count - 1):
+            raise ValueError("task: expected a Slurm array of evenly stepped ids (--array=0-N or "
+                             "0-N:S), found " +
+                             ", ".join(f"{n}={env.get(n)}" for n in names if n in env) +
+                             "; give --task I/N to each task instead")
+        task = (offset // step, count)
     if task is None:
         return 0, 1
     if isinstance(task, str):
@@ -79,33 +92,84 @@ def task_split(task=None, environ=None):
     return ident, count
 
 
-def _settings(count, spp, aovs, seed):
+def _settings(count, spp, aovs, seed, generator):
     return {"format": FORMAT, "count": int(count), "spp": spp, "aovs": list(aovs),
-            "seed": int(seed)}
+            "seed": int(seed), "generator": generator}
 
 
-def _open_manifest(out, settings):
-    """Writes the dataset's manifest, or checks that an existing one has these settings (a
-    dataset is never mixed from two configurations)."""
-    import nxrender
-    path = os.path.join(out, _MANIFEST)
-    os.makedirs(os.path.join(out, "items"), exist_ok=True)
-    if os.path.exists(path):
+def generator_identity(scene_fn):
+    """What a manifest records of the scene generator: its module and name, and a digest of its
+    source (two generators, or two versions of one, never fill one directory)."""
+    import hashlib
+    import inspect
+    name = f"{getattr(scene_fn, '__module__', '?')}.{getattr(scene_fn, '__qualname__', '?')}"
+    try:
+        source = inspect.getsource(scene_fn)
+    except (OSError, TypeError):
+        source = repr(scene_fn)
+    return f"{name} {hashlib.sha256(source.encode()).hexdigest()[:16]}"
+
+
+def _read_manifest(path):
+    """The manifest's settings; errors name the file."""
+    try:
         with open(path) as f:
             held = json.load(f)
-        mine = dict(settings, version=held.get("version"))
-        if held != mine:
-            raise ValueError(f"{path}: the dataset there was made with {held}, not {mine}: "
-                             "give another directory, or the same settings to continue it")
-        return
-    data = dict(settings, version=nxrender.__version__)
-    temp = f"{path}.tmp{os.getpid()}"
+    except json.JSONDecodeError as e:
+        raise ValueError(f"{path}: not a dataset manifest (damaged JSON: {e})") from None
+    if not isinstance(held, dict):
+        raise ValueError(f"{path}: not a dataset manifest (expected a JSON object)")
+    return held
+
+
+def _has_items(out):
+    folder = os.path.join(out, "items")
+    try:
+        return any(name.endswith(".nxi") for name in os.listdir(folder))
+    except FileNotFoundError:
+        return False
+
+
+def _check_manifest(out, settings):
+    """Checks that an existing manifest has these settings (a dataset is never mixed from two
+    configurations or generators); True when it exists. A manifest without any item (left by a
+    run that failed before its first item) does not hold its settings against a new run."""
+    path = os.path.join(out, _MANIFEST)
+    if not os.path.exists(path):
+        return False
+    held = _read_manifest(path)
+    mine = dict(settings, version=held.get("version"))
+    if held != mine:
+        if not _has_items(out):
+            os.remove(path)
+            return False
+        raise ValueError(f"{path}: the dataset there was made with {held}, not {mine}: "
+                         "give another directory, or the same settings to continue it")
+    return True
+
+
+def _create_manifest(out, settings):
+    """Writes the manifest if there is none, atomically (another task may be creating it at the
+    same moment: the first one's stays), then checks it has these settings."""
+    import nxrender
+    path = os.path.join(out, _MANIFEST)
+    temp = f"{path}.tmp{os.getpid()}.{threading.get_ident()}"
     with open(temp, "w") as f:
-        json.dump(data, f, indent=1)
-    os.replace(temp, path)
+        json.dump(dict(settings, version=nxrender.__version__), f, indent=1)
+    try:
+        os.link(temp, path)  # fails if it exists: never replaces another run's manifest
+    except FileExistsError:
+        pass
+    finally:
+        os.remove(temp)
+    if not _check_manifest(out, settings):
+        raise ValueError(f"{path}: removed while this run was writing it")
 
 
-_MAGIC = b"NXDATASET-ITEM-1\n"
+# An item file: the magic, the record's length (8 bytes, little-endian), the record (JSON), then
+# (format 5) the record's CRC-32 (4 bytes), then the arrays' bytes, whose CRC-32 the record holds.
+_MAGIC_UNCHECKED = b"NXDATASET-ITEM-1\n"  # formats 3 and 4: no checksums
+_MAGIC = b"NXDATASET-ITEM-2\n"
 
 
 # Per thread, the buffer Dataset reads items into (reused: a fresh 1 MB bytes object per item
@@ -134,30 +198,45 @@ def _file_bytes(path, reuse):
         return view[:got]
 
 
-def _read_item(path, reuse=False):
+def _read_item(path, reuse=False, verify=False):
     """(record, blobs) of an item file: its JSON record and its bytes after it (with `reuse`, in
-    this thread's reused buffer: _file_bytes). Raises ValueError for a file that is not a
-    complete item."""
+    this thread's reused buffer: _file_bytes). The record's checksum is checked, and with
+    `verify` the arrays' (reading checks their zstd frames' own checksums as it decodes them).
+    Raises ValueError for a file that is not a complete, intact item."""
     data = _file_bytes(path, reuse)
-    head = len(_MAGIC) + 8
-    if len(data) < head or bytes(data[:len(_MAGIC)]) != _MAGIC:
+    magic = bytes(data[:len(_MAGIC)])
+    checked = magic == _MAGIC
+    if not checked and magic != _MAGIC_UNCHECKED:
         raise ValueError("not an item file")
+    head = len(_MAGIC) + 8
+    if len(data) < head:
+        raise ValueError("truncated")
     n = int.from_bytes(data[len(_MAGIC):head], "little")
-    start = head + n
+    start = head + n + (4 if checked else 0)
     if len(data) < start:
         raise ValueError("truncated")
-    meta = json.loads(bytes(data[head:start]))
-    blobs = memoryview(data)[start:]
-    if len(blobs) != sum(a["bytes"] for a in meta["arrays"].values()):
-        raise ValueError("truncated")
+    text = bytes(data[head:head + n])
+    if checked and zlib.crc32(text) != int.from_bytes(data[head + n:start], "little"):
+        raise ValueError("its record is damaged (checksum)")
+    try:
+        meta = json.loads(text)
+        blobs = memoryview(data)[start:]
+        declared = sum(int(a["bytes"]) for a in meta["arrays"].values())
+    except (ValueError, TypeError, KeyError, AttributeError) as e:
+        raise ValueError(f"its record is not an item's ({e})") from None
+    if len(blobs) != declared:
+        raise ValueError("truncated" if len(blobs) < declared else "longer than its record says")
+    if checked and verify and zlib.crc32(blobs) != meta.get("crc32"):
+        raise ValueError("its arrays are damaged (checksum)")
     return meta, blobs
 
 
 def _valid(path, index, settings):
-    """True when the item file is complete and was made with these settings."""
+    """True when the item file is complete, intact (its checksums) and was made with these
+    settings."""
     try:
-        meta, _ = _read_item(path)
-    except Exception:  # a truncated or foreign file: redo it
+        meta, _ = _read_item(path, verify=True)
+    except Exception:  # a truncated, damaged or foreign file: redo it
         return False
     return meta.get("index") == index and all(meta.get(k) == v for k, v in settings.items()
                                               if k != "count")
@@ -279,8 +358,9 @@ def _encode(arrays):
     frames per chunk (_half_frames; the high bytes of smooth or noisy values compress well
     apart, the chunks decode on every core at once), their sizes in "frames"."""
     import numpy as np
-    zc = _zstd().ZstdCompressor(level=_ZSTD_LEVEL)
-    nibble_zc = _zstd().ZstdCompressor(level=_ZSTD_NIBBLE_LEVEL)
+    # Each frame carries its content's checksum, checked whenever it is decoded.
+    zc = _zstd().ZstdCompressor(level=_ZSTD_LEVEL, write_checksum=True)
+    nibble_zc = _zstd().ZstdCompressor(level=_ZSTD_NIBBLE_LEVEL, write_checksum=True)
     records, blobs = {}, []
     for name, (array, extra) in arrays.items():
         a = np.ascontiguousarray(array)
@@ -322,6 +402,43 @@ def _cannot_read(path, index, error):
     """The error a Dataset raises for an item it cannot read."""
     return ValueError(f"{path}: cannot read item {index} ({error}): rerun nxdataset, which "
                       "redoes broken items")
+
+
+_KINDS = ("f16", "uint32", "float32")
+
+
+def _check_shapes(meta):
+    """Refuses an item record whose arrays do not fit its own scene (before anything is
+    allocated for them): each array (H, W) or (H, W, C) with H x W the scene's resolution and C
+    at most the bands recorded (or 3: normals, positions), of a known kind; and all of them
+    within the memory the machine has. A record that declares an 8192 x 8192 radiance for a
+    small scene once decoded into 1.1 GB."""
+    scene = meta.get("scene")
+    if not isinstance(scene, str):
+        raise ValueError("its record holds no scene")
+    size = [re.search(rf"<{tag}>\s*(\d+)\s*</{tag}>", scene) for tag in ("yres", "xres")]
+    if not all(size):
+        raise ValueError("its scene gives no resolution")
+    h, w = (int(m.group(1)) for m in size)
+    bands = len(meta.get("wavelengths") or [])
+    total = 0
+    for name, r in meta["arrays"].items():
+        shape, kind = r.get("shape"), r.get("kind")
+        if kind not in _KINDS:
+            raise ValueError(f"{name}: expected an array of kind {', '.join(_KINDS)}, found "
+                             f"{kind!r:.40}")
+        if not (isinstance(shape, list) and 2 <= len(shape) <= 3 and
+                all(isinstance(n, int) and not isinstance(n, bool) for n in shape) and
+                shape[:2] == [h, w] and (len(shape) == 2 or 1 <= shape[2] <= max(bands, 3))):
+            raise ValueError(f"{name}: expected a shape ({h}, {w}[, C <= {max(bands, 3)}]) as its "
+                             f"scene renders, found {shape!r:.60}")
+        total += 4 * h * w * (shape[2] if len(shape) == 3 else 1)
+    try:
+        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError):
+        memory = 0
+    if memory and 2 * total > memory:
+        raise ValueError(f"its arrays need {total / 2**30:.1f} GiB, more than half the memory")
 
 
 def _describe(shapes):
@@ -382,10 +499,15 @@ def _write_item(path, index, seed, scene_text, settings, image, aovs):
                 render_key=image.attributes.get("nxrender.renderKey", ""),
                 wavelengths=[float(w) for w in image.wavelengths],
                 arrays=records, scene=scene_text)
+    crc = 0
+    for blob in blobs:
+        crc = zlib.crc32(blob, crc)
+    meta["crc32"] = crc
     head = json.dumps(meta).encode()
     temp = f"{path}.tmp{os.getpid()}.{threading.get_ident()}"
     with open(temp, "wb") as f:
-        f.write(_MAGIC + len(head).to_bytes(8, "little") + head)
+        f.write(_MAGIC + len(head).to_bytes(8, "little") + head +
+                zlib.crc32(head).to_bytes(4, "little"))
         for blob in blobs:
             f.write(blob)
         f.flush()
@@ -409,38 +531,70 @@ def _remove_leftovers(out, indices):
 
 
 def _scene_of(scene_fn, index):
+    """(scene, its text) of item `index`, taken when scene_fn returns: a copy, so a generator
+    that keeps one Scene and edits it for each index (a sweep) cannot change an item while it
+    renders, and the item records what was rendered."""
     import nxrender
-    scene = scene_fn(index)
+    try:
+        scene = scene_fn(index)
+    except SystemExit as e:  # sys.exit() in a generator is its failure, not the run's end
+        raise RuntimeError(f"scene({index}) called sys.exit({e.code!r})") from None
     if isinstance(scene, dict):
         scene = nxrender.Scene.from_dict(scene, f"scene({index})")
-    if not isinstance(scene, nxrender.Scene):
+    elif isinstance(scene, nxrender.Scene):
+        scene = scene.copy()
+    else:
         raise TypeError(f"scene({index}): expected an nxrender.Scene or a dict, found "
                         f"{type(scene).__name__}")
-    return scene
+    return scene, scene.to_text()
+
+
+def _whole(value, name, lo, hi=None):
+    """value as an int (numpy integers too) within [lo, hi]; errors name the argument."""
+    if isinstance(value, bool):
+        raise TypeError(f"{name}: expected a whole number, found {value!r}")
+    try:
+        v = operator.index(value)
+    except TypeError:
+        raise TypeError(f"{name}: expected a whole number, found {type(value).__name__} "
+                        f"{value!r:.40}") from None
+    if v < lo or (hi is not None and v > hi):
+        bound = f">= {lo}" if hi is None else f"from {lo} to {hi:,}"
+        raise ValueError(f"{name}: expected a whole number {bound}, found {v}")
+    return v
 
 
 def generate(scene_fn, count, out, spp=None, aovs=("components",), seed=0, task=None,
-             jobs=1, threads=None, log=None):
+             jobs=1, threads=None, log=None, generator=None):
     """Renders items scene_fn(i) of range(count) that belong to this task (see task_split)
     into dataset directory `out`, skipping finished ones; returns a report dict (items
     rendered and skipped, seconds, items per hour, bytes per item per layer). `jobs` items
-    render at once, each on threads // jobs of the machine's threads (or `threads`)."""
+    render at once, each on threads // jobs of the machine's threads (or `threads`). The
+    manifest records the settings and the generator (`generator`, else generator_identity of
+    scene_fn): a rerun must match them. It is written with the first item."""
     import concurrent.futures
     import nxrender
-    if not isinstance(count, int) or count < 1:
-        raise ValueError(f"count: expected a whole number >= 1, found {count!r}")
-    if not isinstance(jobs, int) or jobs < 1:
-        raise ValueError(f"jobs: expected a whole number >= 1, found {jobs!r}")
+    # Every argument checked before anything is written (a failed run leaves nothing behind).
+    count = _whole(count, "count", 1, MAX_COUNT)
+    jobs = _whole(jobs, "jobs", 1, 4096)
+    spp = None if spp is None else _whole(spp, "spp", 1, 1 << 30)
+    threads = None if threads is None else _whole(threads, "threads", 1, 4096)
+    seed = _whole(seed, "seed", 0, (1 << 32) - 1)
+    if isinstance(aovs, str):
+        raise TypeError(f"aovs: expected a list of layer names, found the string {aovs!r}")
     aovs = list(aovs)
     for a in aovs:
         if a in ("lightgroups",):
             raise ValueError("aovs: light groups differ between scenes: not in datasets")
+    nxrender.check_aovs(aovs)
     ident, tasks = task_split(task)
-    settings = _settings(count, spp, aovs, seed)
+    settings = _settings(count, spp, aovs, seed,
+                         generator if generator is not None else generator_identity(scene_fn))
     out = os.fspath(out)
-    _open_manifest(out, settings)
+    manifest_ready = _check_manifest(out, settings)
+    os.makedirs(os.path.join(out, "items"), exist_ok=True)
     log = log if log is not None else (lambda text: print(text, file=sys.stderr, flush=True))
-    mine = [i for i in range(count) if i % tasks == ident]
+    mine = range(ident, count, tasks)
     _remove_leftovers(out, mine)
     todo = [i for i in mine if not _valid(item_path(out, i), i, settings)]
     cores = os.cpu_count() or 1
@@ -453,14 +607,21 @@ def generate(scene_fn, count, out, spp=None, aovs=("components",), seed=0, task=
     # render and numpy's conversions release the GIL).
     renders = threading.Semaphore(jobs)
 
-    def render_one(index, scene):
+    manifest_lock = threading.Lock()
+
+    def render_one(index, scene, text):
+        nonlocal manifest_ready
         with renders:
             t = time.monotonic()
             image = nxrender.render(scene, spp=spp, seed=item_seed(seed, index),
                                     threads=per_job, aovs=aovs)
             took = time.monotonic() - t
+        with manifest_lock:  # before the first item: created, or another run's checked
+            if not manifest_ready:
+                _create_manifest(out, settings)
+                manifest_ready = True
         written = _write_item(item_path(out, index), index, item_seed(seed, index),
-                              scene.to_text(), settings, image, aovs)
+                              text, settings, image, aovs)
         return written, took
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs + 1) as pool:
@@ -473,8 +634,8 @@ def generate(scene_fn, count, out, spp=None, aovs=("components",), seed=0, task=
                 if index is None:
                     exhausted = True
                     break
-                scene = _scene_of(scene_fn, index)  # (the generator runs on this thread)
-                pending.add(pool.submit(render_one, index, scene))
+                scene, text = _scene_of(scene_fn, index)  # (the generator runs on this thread)
+                pending.add(pool.submit(render_one, index, scene, text))
             if not pending:
                 break
             finished, pending = concurrent.futures.wait(
@@ -512,24 +673,46 @@ class Dataset:
         self.root = os.fspath(root)
         # (None: every layer; else only these are decoded, a derived one with what it needs)
         self.layers = None if layers is None else list(layers)
+        if isinstance(self.layers, list) and not all(isinstance(n, str) for n in self.layers):
+            raise TypeError(f"layers: expected layer names, found {layers!r:.60}")
         manifest = os.path.join(self.root, _MANIFEST)
         try:
-            with open(manifest) as f:
-                self.settings = json.load(f)
+            self.settings = _read_manifest(manifest)
         except FileNotFoundError:
             raise FileNotFoundError(f"{manifest}: not found: not a dataset directory "
                                     "(nxdataset writes one)") from None
         if self.settings.get("format") not in _READABLE_FORMATS:
             raise ValueError(f"{manifest}: expected format {FORMAT}, found "
                              f"{self.settings.get('format')!r}")
-        count = int(self.settings["count"])
-        present = [i for i in range(count) if os.path.exists(item_path(self.root, i))]
+        try:
+            count = _whole(self.settings.get("count"), "count", 1, MAX_COUNT)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"{manifest}: {e}") from None
+        # The items present, from one listing of the folder (not a look-up per index).
+        pattern = re.compile(r"item_(\d{7,})\.nxi")
+        try:
+            names = os.listdir(os.path.join(self.root, "items"))
+        except FileNotFoundError:
+            names = []
+        found = set()
+        for name in names:
+            m = pattern.fullmatch(name)
+            if m and int(m.group(1)) < count:
+                found.add(int(m.group(1)))
+        present = sorted(found)
         if len(present) < count and not allow_missing:
-            missing = [i for i in range(count) if i not in set(present)]
-            raise ValueError(f"{self.root}: {len(missing)} of {count} items missing (first: "
-                             f"{missing[0]}): rerun nxdataset to finish it, or pass "
+            first = next(i for i in range(count) if i not in found)
+            raise ValueError(f"{self.root}: {count - len(present)} of {count} items missing "
+                             f"(first: {first}): rerun nxdataset to finish it, or pass "
                              "allow_missing=True")
         self.indices = present
+        if self.layers is not None and present:  # names checked once, against an item
+            meta = self.meta(0)
+            held = set(meta["arrays"]) | set(meta.get("derived", []))
+            unknown = [n for n in self.layers if n not in held]
+            if unknown:
+                raise ValueError(f"layers: no layer {unknown[0]!r} (the items hold "
+                                 f"{', '.join(sorted(held))})")
 
     def __len__(self):
         return len(self.indices)
@@ -538,7 +721,7 @@ class Dataset:
         if isinstance(i, slice):
             return self._batch(range(*i.indices(len(self))))
         if isinstance(i, (list, tuple, range)) or getattr(i, "ndim", 0) == 1:
-            return self._batch(i)
+            return self._batch(self._positions(i))
         index, path = self._locate(i)
         try:
             meta, blobs = _read_item(path, reuse=True)
@@ -563,8 +746,25 @@ class Dataset:
         return tud.DataLoader(self, batch_size=None,
                               sampler=tud.BatchSampler(order, batch_size, drop_last), **options)
 
+    def _positions(self, key):
+        """The positions a list, tuple, range or 1-d array names; a boolean mask (numpy's
+        meaning) as the positions where it is true, refused unless as long as the dataset."""
+        dtype = getattr(key, "dtype", None)
+        if (dtype is not None and dtype.kind == "b") or \
+                (isinstance(key, (list, tuple)) and key and
+                 all(isinstance(k, bool) or type(k).__name__ == "bool_" for k in key)):
+            mask = list(key)
+            if len(mask) != len(self):
+                raise IndexError(f"a boolean mask of {len(mask)} values for a dataset of "
+                                 f"{len(self)} items")
+            return [p for p, keep in enumerate(mask) if keep]
+        return list(key)
+
     def _locate(self, i):
         """(dataset index, file) of position i (an int; negative counts from the end)."""
+        if isinstance(i, bool) or type(i).__name__ == "bool_":
+            raise TypeError(f"expected an item position (an int), or a list, slice or integer "
+                            f"array of them, found the boolean {i!r}")
         try:
             i = operator.index(i)
         except TypeError:
@@ -588,6 +788,7 @@ class Dataset:
             for name, other in _DERIVED.items():
                 if name in wanted:
                     wanted |= {"radiance", other}
+        _check_shapes(meta)
         records, at = {}, 0
         for name, record in meta["arrays"].items():
             if name in wanted:

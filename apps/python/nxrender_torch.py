@@ -71,7 +71,20 @@ def render(scene, parameters, spp=None, seed=0, grad_spp=None, grad_seed=None, *
         v = parameters[name]
         if not isinstance(v, torch.Tensor):
             raise TypeError(f"{name}: expected a torch.Tensor, found {type(v).__name__}")
+        if v.is_complex():  # (its imaginary part would be dropped)
+            raise TypeError(f"{name}: expected a real tensor, found {v.dtype}")
         values.append(v)
+    # A tensor that asks for a gradient must name a differentiable parameter: refused here,
+    # not first in backward after the forward render.
+    wanted = [name for name, v in zip(names, values) if v.requires_grad]
+    if wanted:
+        listed = scene.parameters()
+        for name in wanted:
+            info = listed.get(name)
+            if info is not None and not info["differentiable"]:
+                raise ValueError(f"{name}: not differentiated: its declaration does not say "
+                                 "differentiable (scene.parameters() marks those that are; "
+                                 "docs/inverse.md); pass it without requires_grad")
     forward = {"spp": spp, "seed": seed, **options}
     backward = {"spp": grad_spp if grad_spp is not None else spp,
                 "seed": grad_seed if grad_seed is not None else seed + 1, **options}

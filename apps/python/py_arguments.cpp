@@ -53,6 +53,12 @@ double realNumber(const py::handle& value, const std::string& param) {
       !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
         py::hasattr(value, "__float__")))
     throw py::type_error(param + ": expected a number, found " + typeName(value));
+  // An array of more than one value (a row of a 2-D array where a number belongs): numpy's
+  // own "only size-1 arrays can be converted" would not name the argument.
+  if (py::hasattr(value, "shape") && py::hasattr(value, "size") &&
+      value.attr("size").cast<py::ssize_t>() != 1)
+    throw py::type_error(param + ": expected a number, found an array of shape " +
+                         py::str(value.attr("shape")).cast<std::string>());
   const double v = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
   if (!std::isfinite(v))
     throw py::value_error(param + ": expected a finite number, found " +

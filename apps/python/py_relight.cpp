@@ -56,6 +56,8 @@ std::vector<nx::RelightTargetDesc> relightTargetsArgument(const py::handle& valu
       t.group = group;
       t.spectrum = spectrumFromPython(items[i], p).spectrum;
       t.source = py::isinstance<py::str>(items[i]) ? items[i].cast<std::string>() : p;
+      t.option = "relight_for";
+      t.where = p;
       try {
         nx::checkRelightTarget(t, p);
       } catch (const nx::Error& e) {

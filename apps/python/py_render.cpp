@@ -107,6 +107,24 @@ void checkStrategyNames(const nx::RenderChoices& choices) {
   }
 }
 
+// The layers `aovs` names (a list of names) added to `choices`; TypeError or ValueError naming
+// the argument for anything else.
+void addAovs(nx::RenderChoices& choices, const py::object& aovs) {
+  if (py::isinstance<py::str>(aovs) || !py::hasattr(aovs, "__iter__"))
+    throw py::type_error("aovs: expected a list of 'white', 'ids', 'depth', 'components', "
+                         "'lightgroups', 'normals', 'geometric_normals', 'position', 'uv', "
+                         "'albedo', 'fluorescence', found " +
+                         typeName(aovs));
+  for (const py::handle aov : aovs) {
+    const std::string name = stringArgument(aov, "aovs");
+    if (!nx::addAov(choices, name))
+      throw py::value_error("aovs: expected 'white', 'ids', 'depth', 'components', "
+                            "'lightgroups', 'normals', 'geometric_normals', 'position', 'uv', "
+                            "'albedo' or 'fluorescence', found '" +
+                            name + "'");
+  }
+}
+
 // The render's choices from its arguments, each checked (before the possibly long build).
 nx::RenderChoices choicesFrom(const RenderArguments& a) {
   nx::RenderChoices choices;
@@ -154,19 +172,7 @@ nx::RenderChoices choicesFrom(const RenderArguments& a) {
       throw py::value_error(e.what());
     }
   }
-  if (py::isinstance<py::str>(a.aovs) || !py::hasattr(a.aovs, "__iter__"))
-    throw py::type_error("aovs: expected a list of 'white', 'ids', 'depth', 'components', "
-                         "'lightgroups', 'normals', 'geometric_normals', 'position', 'uv', "
-                         "'albedo', 'fluorescence', found " +
-                         typeName(a.aovs));
-  for (const py::handle aov : a.aovs) {
-    const std::string name = stringArgument(aov, "aovs");
-    if (!nx::addAov(choices, name))
-      throw py::value_error("aovs: expected 'white', 'ids', 'depth', 'components', "
-                            "'lightgroups', 'normals', 'geometric_normals', 'position', 'uv', "
-                            "'albedo' or 'fluorescence', found '" +
-                            name + "'");
-  }
+  addAovs(choices, a.aovs);
   if (!a.targetError.is_none())
     choices.targetError = numberArgument(a.targetError, "target_error", 1e-9, 1e9);
   choices.errorOf = optionString(a.errorOf, "error_of");
@@ -255,8 +261,21 @@ nx::RenderOutput renderWaiting(const nx::RenderScene& scene, nx::RenderOptions& 
 }
 
 // Reverse mode's result: d loss / d parameter per name (a number, or one per component) and
-// their variances.
-py::object gradientsByName(const GradientRequest& request, const nx::RenderOutput& result) {
+// their variances. A non-finite one (an adjoint so large that its products with the radiance
+// overflow single precision) is refused, naming the adjoint's largest magnitude.
+py::object gradientsByName(const GradientRequest& request, const nx::RenderOutput& result,
+                           const std::vector<float>& adjoint) {
+  for (const GradientParameter& p : request.parameters)
+    for (uint32_t k = p.firstSlot; k < p.firstSlot + (p.indexed ? p.slots : 1u); ++k)
+      if (!std::isfinite(result.gradient[k]) || !std::isfinite(result.gradientVariance[k])) {
+        float largest = 0;
+        for (float a : adjoint) largest = std::max(largest, std::abs(a));
+        throw py::value_error(
+            "adjoint: expected values whose products with the radiance stay finite, found the "
+            "gradient of " +
+            p.name + " non-finite (the adjoint's largest magnitude is " + nx::numberText(largest) +
+            "; scale the loss down)");
+      }
   py::dict grads, variances;
   for (const GradientParameter& p : request.parameters) {
     auto pick = [&](const std::vector<double>& v) -> py::object {
@@ -374,7 +393,7 @@ py::object render(const py::object& sceneArg, const py::object& spp, const py::o
   nx::requireSomeFiniteSamples(result->stats, src.name);
   for (const std::string& w : nx::warningsOf(result->stats))
     if (request) py::module_::import("warnings").attr("warn")(w);
-  if (request && !adjoint.is_none()) return gradientsByName(*request, *result);
+  if (request && !adjoint.is_none()) return gradientsByName(*request, *result, adjointValues);
   PyImage out;
   out.image = job.image(result->film, result->stats.seconds);
   if (request) {
@@ -415,6 +434,15 @@ void bindRender(py::module_& m) {
         "the worker threads stopped; progress(done, total) is called on the calling thread as "
         "tiles finish. Options as nxrender's (docs/python.md). gradients=[names]: also "
         "d radiance / d parameter per name in image.gradients (forward mode, docs/inverse.md).");
+  m.def(
+      "check_aovs",
+      [](const py::object& aovs) {
+        nx::RenderChoices choices;
+        addAovs(choices, aovs);
+      },
+      py::arg("aovs"),
+      "Raises TypeError or ValueError, as render(aovs=...) would, for layer names it does not "
+      "take");
   m.def(
       "backward",
       [](const py::object& scene, const py::object& adjoint, const py::object& gradients,

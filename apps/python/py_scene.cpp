@@ -68,20 +68,24 @@ void requireKindTakes(const MaterialView& v, const char* name, const std::string
 // and the kind's schema; the names it excludes are removed.
 void setMaterialParameter(const MaterialView& v, const nx::ParamSpec& spec, const py::handle& value,
                           const std::string& param) {
-  nx::MaterialDesc& d = v.editable();
+  (void)v.editable();
   if (value.is_none()) {
-    d.params.erase(spec.name);
+    v.editable().params.erase(spec.name);
     return;
   }
   requireKindTakes(v, spec.name, param);
-  d.params.set({spec.name, parameterFromPython(spec, value, param, v.loc()), v.loc()});
+  // Converted before any reference into the scene is taken (the conversion may run Python
+  // code that edits the scene's lists).
+  nx::ParamValue converted = parameterFromPython(spec, value, param, v.loc());
+  nx::MaterialDesc& d = v.editable();
+  d.params.set({spec.name, std::move(converted), v.loc()});
   nx::forEachWord(spec.excludes, [&](const std::string& x) { d.params.erase(x); });
 }
 
 // Gives a material a measured matrix from Python arrays (replacing any fluorescence), checked
 // as a CSV matrix is; the edit is recorded with a digest of the content (a numpy repr elides).
 void setMeasuredMatrix(const MaterialView& v, const py::handle& value, const std::string& param) {
-  nx::MaterialDesc& d = v.editable();
+  (void)v.editable();
   requireKindTakes(v, "fluorescence", param);
   const std::shared_ptr<const nx::MeasuredMatrix> m = matrixFromPython(value, param);
   try {
@@ -93,7 +97,7 @@ void setMeasuredMatrix(const MaterialView& v, const py::handle& value, const std
   f.loc = v.loc();
   f.matrix = m;
   f.matrixDigest = nx::measuredMatrixDigest(*m);
-  d.params.set({"fluorescence", f, v.loc()});
+  v.editable().params.set({"fluorescence", f, v.loc()});
   v.s->edits.push_back(param + " = " + matrixEditText(*m));
 }
 
@@ -123,13 +127,14 @@ void bindTakenParameters(py::class_<View>& c, const Kinds& kinds, nx::ParamType 
             const nx::TakenParameter* decl = v.declared(name);
             if (!decl)
               throw py::value_error(param + ": " + v.kindText() + " takes no <" + name + ">");
-            nx::ParameterSet& p = v.params();
             if (value.is_none()) {
               if (decl->required) throw py::value_error(param + ": " + v.kindText() + " needs it");
-              p.erase(name);
+              v.params().erase(name);
             } else {
-              p.set({name, parameterFromPython(decl->spec, value, param, v.loc()),
-                     p.locOf(name, v.loc())});
+              // Converted before the reference is taken (conversions may edit the scene).
+              nx::ParamValue converted = parameterFromPython(decl->spec, value, param, v.loc());
+              nx::ParameterSet& p = v.params();
+              p.set({name, std::move(converted), p.locOf(name, v.loc())});
               if (decl->spec.type == nx::ParamType::Spectrum)
                 p.erase(name + "_scale"), p.erase(name + "_at");
             }
@@ -163,9 +168,12 @@ const nx::ShapeParameter& shapeParameterOf(const nx::ShapeKindSpec& kind, const 
 // value's own check, the parameters together): a refused change leaves the object as it was.
 void setShapeParameters(const ObjectView& o,
                         const std::vector<std::pair<std::string, py::object>>& values) {
-  nx::ObjectDesc& d = o.get();
-  const nx::ShapeKindSpec& kind = *nx::findShapeKind(d.shape);
-  nx::ParameterSet next = d.geometry;
+  // The new geometry is made from copies; the object is looked up again only after every
+  // value is converted (a conversion may run Python code that edits the scene's lists).
+  const nx::ShapeKindSpec& kind = *nx::findShapeKind(o.get().shape);
+  const nx::SourceLocation loc = o.get().loc;
+  const nx::ParameterSet before = o.get().geometry;
+  nx::ParameterSet next = before;
   for (const auto& [name, value] : values) {
     const std::string param = o.label() + "." + name;
     const nx::ShapeParameter& decl = shapeParameterOf(kind, name, param);
@@ -173,10 +181,13 @@ void setShapeParameters(const ObjectView& o,
       next.erase(name);
       continue;
     }
-    next.set(
-        {name, parameterFromPython(decl.spec, value, param, d.loc), d.geometry.locOf(name, d.loc)});
+    next.set({name, parameterFromPython(decl.spec, value, param, loc), before.locOf(name, loc)});
     nx::forEachWord(decl.spec.excludes, [&](const std::string& x) { next.erase(x); });
   }
+  nx::ObjectDesc& d = o.get();
+  if (d.shape != kind.name)
+    throw py::value_error(o.label() + ": was replaced by a " + d.shape +
+                          " while its values were converted");
   if (const auto problem = nx::shapeProblem(kind, next))
     throw py::value_error(o.label() + "." +
                           (values.size() == 1 ? values[0].first : std::string("update")) +
@@ -319,7 +330,7 @@ void bindMaterialClass(py::module_& m) {
           [](const MaterialView& v, const py::object& absorptionNm, const py::object& stokesNm,
              const py::object& widthNm, const py::object& skew, const py::object& quantumYield,
              const py::object& peakAbsorptance) {
-            nx::MaterialDesc& d = v.editable();
+            (void)v.editable();
             const std::string p = v.label() + ".set_fluorescence: ";
             requireKindTakes(v, "fluorescence", v.label() + ".set_fluorescence");
             nx::FluorescenceDesc f =
@@ -327,7 +338,7 @@ void bindMaterialClass(py::module_& m) {
             if (!peakAbsorptance.is_none())
               f.peakAbsorptance =
                   rangedArgument(peakAbsorptance, p + "peak_absorptance", nx::kPeakRange);
-            d.params.set({"fluorescence", f, v.loc()});
+            v.editable().params.set({"fluorescence", f, v.loc()}); // after the conversions
             v.s->edits.push_back(v.label() + ".set_fluorescence(" +
                                  py::repr(py::make_tuple(absorptionNm, stokesNm, widthNm, skew,
                                                          quantumYield, peakAbsorptance))
@@ -343,7 +354,7 @@ void bindMaterialClass(py::module_& m) {
           "set_fluorescence_spectra",
           [](const MaterialView& v, const py::object& absorptance, const py::object& emission,
              const py::object& quantumYield) {
-            nx::MaterialDesc& d = v.editable();
+            (void)v.editable();
             const std::string p = v.label() + ".set_fluorescence_spectra: ";
             requireKindTakes(v, "fluorescence", v.label() + ".set_fluorescence_spectra");
             nx::FluorescenceDesc f;
@@ -354,7 +365,7 @@ void bindMaterialClass(py::module_& m) {
             f.spectra = spectra;
             if (!quantumYield.is_none())
               f.quantumYield = rangedArgument(quantumYield, p + "quantum_yield", nx::kYieldRange);
-            d.params.set({"fluorescence", f, v.loc()});
+            v.editable().params.set({"fluorescence", f, v.loc()}); // after the conversions
             v.s->record(
                 v.label() + ".set_fluorescence_spectra(...)",
                 py::repr(py::make_tuple(absorptance, emission, quantumYield)).cast<std::string>());
@@ -546,14 +557,17 @@ void bindObjectShape(py::class_<ObjectView>& object) {
             if (!(py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) ||
                 py::len(value) != 3)
               throw py::type_error(param + ": expected three points");
-            // All three at once: the kind checks them together.
+            // All three converted first (a conversion may run Python code that edits the
+            // scene's lists), then set at once: the kind checks them together.
+            std::array<nx::Vec3d, 3> points;
+            for (int i = 0; i < 3; ++i)
+              points[static_cast<size_t>(i)] =
+                  pointArgument(value[py::int_(i)], param + "[" + std::to_string(i) + "]");
             const nx::ParameterSet before = o.get().geometry;
             try {
               for (int i = 0; i < 3; ++i)
-                o.get().geometry.set(
-                    {(*names)[i],
-                     pointArgument(value[py::int_(i)], param + "[" + std::to_string(i) + "]"),
-                     before.locOf((*names)[i], o.get().loc)});
+                o.get().geometry.set({(*names)[i], points[static_cast<size_t>(i)],
+                                      before.locOf((*names)[i], o.get().loc)});
               if (const auto problem =
                       nx::shapeProblem(*nx::findShapeKind(o.get().shape), o.get().geometry))
                 throw py::value_error(param + ": expected " + problem->expected + ", found " +
@@ -574,8 +588,10 @@ void bindObjectShape(py::class_<ObjectView>& object) {
           },
           "Its name=\"...\" in the scene file (names its region in comparisons), or None")
       .def("__repr__", [](const ObjectView& o) {
-        return "<nxrender.Object " + o.label() + " " + o.get().shape + " (line " +
-               std::to_string(o.get().loc.line) + ")>";
+        const nx::ObjectDesc& d = o.value(); // (an object no longer in the scene: as it was)
+        return "<nxrender.Object " + o.label() + " " + d.shape + " (line " +
+               std::to_string(d.loc.line) + ")" +
+               (o.item->former ? " no longer in the scene" : "") + ">";
       });
   // One property per parameter any shape kind declares (the first declaration of a name): None
   // on an object whose kind does not take it; setting it there is refused.
@@ -725,7 +741,7 @@ void bindSceneSettings(py::class_<PyScene>& scene) {
           [](const PyScene& s) {
             py::dict d;
             for (size_t i = 0; i < s.state->desc.materials.size(); ++i)
-              d[py::str(s.state->desc.materials[i].id)] = MaterialView{s.state, true, i};
+              d[py::str(s.state->desc.materials[i].id)] = MaterialView{s.state, true, i, nullptr};
             return ReadOnlyMapping{d, "scene.materials"};
           },
           "The named materials (<material id=...>) by id")

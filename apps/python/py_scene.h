@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/python/py_scene_items.h"
 #include "integrators/scene_params/edited_scene.h"
 #include "io/scene_desc.h"
 
@@ -17,8 +18,12 @@ namespace nxpy {
 
 namespace py = pybind11;
 
-/// A scene description and the edits made to it since it was read (the library's).
-using SceneState = nx::EditedScene;
+/// A scene description and the edits made to it since it was read (the library's), with the
+/// identities its views hold (py_scene_items.h).
+struct SceneState : nx::EditedScene {
+  ItemRegistry<nx::ObjectDesc> objectItems;
+  ItemRegistry<nx::LightDesc> lightItems;
+};
 using nx::editsText;
 using nx::sceneForRendering;
 

@@ -147,7 +147,9 @@ py::object getField(const SceneState& state, const std::string& name) {
 
 void setField(SceneState& state, const std::string& name, const py::handle& value) {
   const nx::FixedParameter& decl = nx::fixedParameter(nx::sceneFieldKey(name));
-  const nx::FieldValue v = fieldFromPython(decl, value, name, state.desc.settings.loc);
+  // Located at its own name: a value set from Python that a render refuses is reported as
+  // "objects[1].fluorescence.emission: ...", not at the file's <settings>.
+  const nx::FieldValue v = fieldFromPython(decl, value, name, nx::SourceLocation{name, 0});
   try {
     state.setField(name, v, editText(decl, v, value)); // refusals: nxrender.Error (ValueError)
   } catch (const nx::FieldTypeError& e) {

@@ -9,12 +9,49 @@
 
 namespace nxpy {
 
+namespace {
+
+// How deep a scene's values nest at most: the scene, a list of objects, an object, a parameter
+// such as a dye's spectra, a spectrum and its [nm, value] pairs, with room to spare. Deeper
+// values (or a dict or list that contains itself) are refused before the recursion could
+// overflow the stack.
+constexpr int kMaxTreeDepth = 16;
+
+// A Python number as a double; ValueError for one beyond double's range (an int of 400 digits).
+double numberOf(const py::handle& value, const std::string& path) {
+  const double v = PyFloat_AsDouble(value.ptr());
+  if (v == -1.0 && PyErr_Occurred()) {
+    PyErr_Clear();
+    const std::string text = py::repr(value).cast<std::string>();
+    throw py::value_error(
+        path + ": expected a finite number, found " +
+        (text.size() > 40 ? text.substr(0, 20) + "... (" + std::to_string(text.size()) + " digits)"
+                          : text));
+  }
+  return v;
+}
+
+nx::SceneTree treeAt(const py::handle& value, const std::string& path, int depth);
+
+} // namespace
+
 nx::SceneTree treeFromPython(const py::handle& value, const std::string& path) {
+  return treeAt(value, path, 0);
+}
+
+namespace {
+
+nx::SceneTree treeAt(const py::handle& value, const std::string& path, int depth) {
+  if (depth > kMaxTreeDepth)
+    throw py::value_error((path.empty() ? std::string("the value") : path) +
+                          ": expected values nested at most " + std::to_string(kMaxTreeDepth) +
+                          " levels deep (as a scene's are), found deeper nesting (a list or "
+                          "dict that contains itself?)");
   if (value.is_none()) return {};
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)) {
-    const double v = value.cast<double>();
+    const double v = numberOf(value, path);
     if (!std::isfinite(v))
       throw py::value_error(path + ": expected a finite number, found " +
                             py::repr(value).cast<std::string>());
@@ -26,7 +63,7 @@ nx::SceneTree treeFromPython(const py::handle& value, const std::string& path) {
       if (!py::isinstance<py::str>(k))
         throw py::type_error(path + ": expected string keys, found " + typeName(k));
       const std::string key = k.cast<std::string>();
-      d.emplace_back(key, treeFromPython(v, path.empty() ? key : path + "." + key));
+      d.emplace_back(key, treeAt(v, path.empty() ? key : path + "." + key, depth + 1));
     }
     return d;
   }
@@ -34,7 +71,7 @@ nx::SceneTree treeFromPython(const py::handle& value, const std::string& path) {
     nx::SceneTree::List l;
     size_t i = 0;
     for (const py::handle& v : value)
-      l.push_back(treeFromPython(v, path + "[" + std::to_string(i++) + "]"));
+      l.push_back(treeAt(v, path + "[" + std::to_string(i++) + "]", depth + 1));
     return l;
   }
   if (py::hasattr(value, "__array__") || py::isinstance<py::array>(value)) {
@@ -61,6 +98,8 @@ nx::SceneTree treeFromPython(const py::handle& value, const std::string& path) {
   throw py::type_error(path + ": expected a number, a string, a list, a dict or an array, found " +
                        typeName(value));
 }
+
+} // namespace
 
 py::object treeToPython(const nx::SceneTree& tree) {
   if (tree.as<std::monostate>()) return py::none();

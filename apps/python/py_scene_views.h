@@ -17,11 +17,14 @@ namespace nxpy {
 
 using StatePtr = std::shared_ptr<SceneState>;
 
-/// The error of a view used after its list changed.
-inline py::value_error staleView(const std::string& label, const char* list) {
-  return py::value_error(label + ": this view was taken before " + list +
-                         " were inserted into or removed from the scene; take scene." + list +
-                         "[...] again");
+/// Where an object's or light's view is: its item's position now (py_scene_items.h); an item
+/// that left its list is refused, naming how it left.
+template <class Desc>
+size_t itemPosition(ItemRegistry<Desc>& items, const ItemIdentity<Desc>& item, size_t n,
+                    const char* noun, const char* list) {
+  if (const auto p = items.position(item.id, n)) return *p;
+  throw py::value_error(item.leftAs + ": this " + noun + " is no longer in the scene (" + item.how +
+                        "); take scene." + list + "[...] again");
 }
 
 struct CameraView {
@@ -38,13 +41,16 @@ struct NamedSpectrumView {
 
 struct LightView {
   StatePtr s;
-  size_t i;
-  uint64_t version; ///< the scene's lightsVersion when it was taken
-  nx::LightDesc& get() const {
-    if (s->lightsVersion != version) throw staleView(label(), "lights");
-    return s->desc.lights.at(i);
+  std::shared_ptr<ItemIdentity<nx::LightDesc>> item;
+  size_t position() const {
+    return itemPosition(s->lightItems, *item, s->desc.lights.size(), "light", "lights");
   }
-  std::string label() const { return "lights[" + std::to_string(i) + "]"; }
+  nx::LightDesc& get() const { return s->desc.lights[position()]; }
+  /// The light as it is, or as it was when it left the scene (to be copied).
+  const nx::LightDesc& value() const { return item->former ? *item->former : get(); }
+  std::string label() const {
+    return item->former ? item->leftAs : "lights[" + std::to_string(position()) + "]";
+  }
   // What bindTakenParameters asks of a view.
   nx::ParameterSet& params() const { return get().params; }
   std::string kindText() const { return "a " + get().kind + " light"; }
@@ -59,26 +65,29 @@ struct LightView {
 struct MaterialView {
   StatePtr s;
   bool named;
-  size_t i;
-  uint64_t version = 0; ///< an object's: the scene's objectsVersion when it was taken
+  size_t i;                                           ///< a named material's position
+  std::shared_ptr<ItemIdentity<nx::ObjectDesc>> item; ///< an object's own material: the object
+  nx::ObjectDesc& object() const {
+    return s->desc
+        .objects[itemPosition(s->objectItems, *item, s->desc.objects.size(), "object", "objects")];
+  }
   nx::MaterialDesc& get() const {
-    if (!named && s->objectsVersion != version) throw staleView(label(), "objects");
-    return named ? s->desc.materials.at(i).material
-                 : static_cast<nx::MaterialDesc&>(s->desc.objects.at(i));
+    return named ? s->desc.materials.at(i).material : static_cast<nx::MaterialDesc&>(object());
   }
   std::string label() const {
-    return named ? "materials['" + s->desc.materials.at(i).id + "']"
-                 : "objects[" + std::to_string(i) + "]";
+    if (named) return "materials['" + s->desc.materials.at(i).id + "']";
+    if (item->former) return item->leftAs;
+    return "objects[" +
+           std::to_string(
+               itemPosition(s->objectItems, *item, s->desc.objects.size(), "object", "objects")) +
+           "]";
   }
-  nx::SourceLocation loc() const {
-    return named ? s->desc.materials.at(i).loc : s->desc.objects.at(i).loc;
-  }
+  nx::SourceLocation loc() const { return named ? s->desc.materials.at(i).loc : object().loc; }
   // An object using a <material id> has no parameters of its own.
   nx::MaterialDesc& editable() const {
-    if (!named && !s->desc.objects.at(i).materialRef.empty())
-      throw py::value_error(label() + ": uses the material '" + s->desc.objects.at(i).materialRef +
-                            "'; change scene.materials['" + s->desc.objects.at(i).materialRef +
-                            "'] instead");
+    if (!named && !object().materialRef.empty())
+      throw py::value_error(label() + ": uses the material '" + object().materialRef +
+                            "'; change scene.materials['" + object().materialRef + "'] instead");
     return get();
   }
 };
@@ -119,19 +128,22 @@ struct FluorescenceView {
 
 struct ObjectView {
   StatePtr s;
-  size_t i;
-  uint64_t version; ///< the scene's objectsVersion when it was taken
-  nx::ObjectDesc& get() const {
-    if (s->objectsVersion != version) throw staleView(label(), "objects");
-    return s->desc.objects.at(i);
+  std::shared_ptr<ItemIdentity<nx::ObjectDesc>> item;
+  size_t position() const {
+    return itemPosition(s->objectItems, *item, s->desc.objects.size(), "object", "objects");
   }
-  std::string label() const { return "objects[" + std::to_string(i) + "]"; }
+  nx::ObjectDesc& get() const { return s->desc.objects[position()]; }
+  /// The object as it is, or as it was when it left the scene (to be copied).
+  const nx::ObjectDesc& value() const { return item->former ? *item->former : get(); }
+  std::string label() const {
+    return item->former ? item->leftAs : "objects[" + std::to_string(position()) + "]";
+  }
   MaterialView material() const {
     const nx::ObjectDesc& o = get();
     if (!o.materialRef.empty())
       for (size_t k = 0; k < s->desc.materials.size(); ++k)
-        if (s->desc.materials[k].id == o.materialRef) return {s, true, k};
-    return {s, false, i, version};
+        if (s->desc.materials[k].id == o.materialRef) return {s, true, k, nullptr};
+    return {s, false, 0, item};
   }
 };
 

@@ -26,7 +26,6 @@
 #include "core/params/concentration_map.h"
 #include "integrators/relight_image.h"
 #include "io/exr_header_check.h"
-#include "io/isolated_call.h"
 #include "io/mesh_reader.h"
 #include "io/opencv_calibration.h"
 #include "io/spectral_cube.h"
@@ -46,17 +45,9 @@ void writeFile(const std::string& path, const uint8_t* data, size_t size) {
 
 } // namespace
 
-// The sanitizers' death callback (libFuzzer's writes the crashing input), weak so that the
-// replay build links without them.
-extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
-
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  // A crash of OpenCV's reader inside its child process is contained and refused as a file
-  // error (what the tests check); only the fuzzed process's own crashes are findings.
-  // (The sanitizers' runtime defines it; the replay build without them does not.)
-  nx::IsolatedWorker::childStarted = [] {
-    if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(nullptr);
-  };
+  // A crash of OpenCV's reader inside its helper process (a program of its own, not a fork of
+  // this one) is contained and refused as a file error: only this process's crashes are findings.
   const char* kind = std::getenv("NX_FUZZ_KIND");
   gKind = kind ? kind : "";
   static const char* kKinds[] = {"ply", "obj",         "sensor",        "envi",   "exr",

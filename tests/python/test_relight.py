@@ -176,9 +176,14 @@ def test_relight_for_forms_and_the_warning(tmp_path):
     # refusals
     with pytest.raises(ValueError, match="relight_for: only with relightable=True"):
         nxrender.render(SCENE, relight_for="D65")
-    with pytest.raises(ValueError, match=r"expected a light group of the scene \(lamp, spot\), "
-                                         r"found 'sky'"):
+    with pytest.raises(ValueError, match=r"^relight_for\['sky'\]: expected a light group of the "
+                                         r"scene \(lamp, spot\), found 'sky'"):
         nxrender.render(SCENE, relightable=True, relight_for={"sky": "D65"})
+    with pytest.raises(ValueError, match=r"^relight_for: expected at most 8 targets"):
+        nxrender.render(SCENE, relightable=True, relight_for=["D65"] * 9)
+    with pytest.raises(TypeError, match=r"relight_for\[0\]\[0\]: expected a number, found an "
+                                        r"array of shape \(2,\)"):
+        nxrender.render(SCENE, relightable=True, relight_for=(np.zeros((3, 2)), [1, 2, 3]))
     with pytest.raises(ValueError, match=r"relight_for\[1\]: expected a spectrum with light "
                                          r"somewhere in 300-1100 nm, found 0 everywhere"):
         nxrender.render(SCENE, relightable=True, relight_for=["D65", 0])

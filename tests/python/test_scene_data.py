@@ -228,20 +228,25 @@ def test_appending_removing_and_readding_an_object_restores_key_and_image():
     assert scene.edits[:2] == ["objects.insert(1, " + repr(sphere) + ")", "del objects[1]"]
 
 
-def test_views_and_dicts_assign_and_stale_views_refuse():
+def test_views_and_dicts_assign_and_views_of_replaced_items_refuse_edits():
     scene = lit_floor()
     scene.objects.append({"shape": "sphere", "center": [0, 0.5, 0], "radius": 0.5,
                           "material": "matte", "reflectance": 0.8})
     ball = scene.objects[1]
+    floor = scene.objects[0]
     copy = lit_floor()
     copy.objects.append(ball)  # a view of another scene: its description is copied
     assert key_and_bits(copy) == key_and_bits(scene)
     scene.objects[0] = {"shape": "plane", "normal": [0, 1, 0], "distance": -0.1,
                         "material": "matte", "reflectance": 0.2}
-    with pytest.raises(ValueError, match=r"objects\[1\]: this view was taken before objects "
-                       r"were inserted into or removed from the scene"):
-        ball.radius = 0.3
-    assert scene.objects[1].radius == 0.5
+    ball.radius = 0.3  # the ball is still objects[1]: its view follows it
+    assert scene.objects[1].radius == 0.3
+    with pytest.raises(ValueError, match=r"objects\[0\]: this object is no longer in the scene "
+                       r"\(objects\[0\] = \{.*\}\); take scene.objects\[...\] again"):
+        floor.distance = 0.5
+    scene.objects.append(floor)  # copied as it was when it left
+    assert scene.objects[2].distance == 0
+    del scene.objects[2]
     with pytest.raises(IndexError, match="objects index 5 out of range"):
         del scene.objects[5]
     with pytest.raises(nxrender.Error, match=r"objects\[2\].radius: expected a radius"):
@@ -296,3 +301,53 @@ def test_float64_rows_round_once_to_float_as_set_from_python():
     scene = nxrender.Scene.from_dict(d)
     scene.objects[0].vertices = V
     assert np.array_equal(scene.objects[0].vertices, from_dict)
+
+
+def test_whole_numbers_of_any_size_round_trip_through_dicts_and_text():
+    """Whole numbers are written as integers (shortest-form text wrote 100000 as 1e+05, which
+    integer fields refuse): sample counts, depths, seeds and faces using vertex 100,000+."""
+    n = 100_002
+    V = np.zeros((n, 3), np.float32)
+    V[:, 0] = np.arange(n) * 1e-5
+    V[-1] = [0, 1, 0]
+    V[-2] = [1, 0, 0]
+    F = np.array([[0, n - 2, n - 1]], np.uint32)
+    d = {"settings": {"xres": 4, "yres": 4, "mode": "spectral_mcpt", "sampl": 100000,
+                      "depth": 100000},
+         "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0]},
+         "objects": [{"shape": "mesh", "vertices": V, "faces": F, "material": "matte",
+                      "reflectance": 0.5}]}
+    scene = nxrender.Scene.from_dict(d)
+    again = nxrender.Scene.from_dict(scene.to_dict())
+    assert again.to_text() == scene.to_text()
+    assert nxrender.Scene.from_text(scene.to_text()).to_text() == scene.to_text()
+    assert "1e+05" not in scene.to_text()
+    assert again.objects[0].faces.max() == n - 1
+    appended = nxrender.Scene.from_dict({k: v for k, v in d.items() if k != "objects"})
+    appended.objects.append(d["objects"][0])
+    assert appended.objects[0].faces.max() == n - 1
+
+
+def test_nesting_deeper_than_a_scene_and_self_containing_values_are_refused():
+    deep = [0.5]
+    for _ in range(50_000):
+        deep = [deep]
+    scene = nxrender.Scene.from_dict({
+        "settings": {"xres": 4, "yres": 4, "mode": "spectral_mcpt"},
+        "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0]}})
+    with pytest.raises(ValueError, match=r"objects\[0\]\.reflectance\[0\]\[0\].*: expected values "
+                       r"nested at most 16 levels deep"):
+        scene.objects.append({"shape": "sphere", "center": [0, 0, 0], "radius": 1,
+                              "material": "matte", "reflectance": deep})
+    looped = {"shape": "sphere", "center": [0, 0, 0], "radius": 1, "material": "matte"}
+    looped["reflectance"] = looped
+    with pytest.raises(ValueError, match="nested at most 16 levels deep"):
+        scene.objects.append(looped)
+    top = {"settings": {"xres": 4}}
+    top["settings"]["self"] = top
+    with pytest.raises(ValueError, match=r"settings\.self\.settings\.self.*nested at most"):
+        nxrender.Scene.from_dict(top)
+    with pytest.raises(ValueError, match=r"settings\.xres: expected a finite number, found 10000"
+                       r".*\(401 digits\)"):
+        nxrender.Scene.from_dict({"settings": {"xres": 10 ** 400}})
+    assert len(scene.objects) == 0

@@ -2,6 +2,8 @@
 mode's with torch's incoming gradient as the adjoint, they agree with central differences of
 the loss through torch, and a loss written in torch trains a parameter through the renderer."""
 
+import re
+
 import numpy as np
 import pytest
 import torch
@@ -151,3 +153,21 @@ def test_affine_is_the_scene_readers_transform_and_trains_a_rotation():
     assert angle.grad.item() == pytest.approx(float((dm.numpy() * grads[name]).sum()), rel=1e-9)
     # and turning the box agrees with differences of renders turned by +-step
     expect_agrees_over_seeds(scene, name, scene.numbers(name), dm.numpy(), 0.05)
+
+
+def test_complex_tensors_non_differentiable_names_and_huge_adjoints_are_refused(scene):
+    with pytest.raises(TypeError, match=re.escape(YIELD) +
+                       r": expected a real tensor, found torch.complex128"):
+        nxt.render(scene, {YIELD: torch.tensor(0.8 + 0.1j, dtype=torch.complex128)}, spp=1)
+    fixed = next(name for name, info in scene.parameters().items()
+                 if not info["differentiable"])
+    value = torch.tensor(1.0, dtype=torch.float64, requires_grad=True)
+    calls = []
+    with pytest.raises(ValueError, match="not differentiated"):
+        nxt.render(scene, {fixed: value}, spp=1, progress=lambda d, t: calls.append(d))
+    assert not calls  # refused before rendering
+    floor = torch.tensor([0.3, 0.5, 0.8], dtype=torch.float64, requires_grad=True)
+    image = nxt.render(scene, {FLOOR: floor}, spp=1)
+    with pytest.raises(ValueError, match=r"adjoint: expected values whose products with the "
+                       r"radiance stay finite.*largest magnitude is 3.4e\+38"):
+        (image * 3.4e38).sum().backward()
