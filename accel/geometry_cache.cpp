@@ -30,16 +30,9 @@ GeometryCache& cache() {
 bool sameShapes(const GeometryScene& g, const std::vector<SphereShape>& spheres,
                 const std::vector<PlaneShape>& planes, const std::vector<TriangleMesh>& meshes,
                 const std::vector<DiskShape>& disks, const std::vector<CylinderShape>& cylinders) {
-  if (g.spheres().size() != spheres.size() || g.planes().size() != planes.size() ||
-      g.meshes() != meshes || g.disks() != disks || g.cylinders() != cylinders)
-    return false;
-  for (size_t i = 0; i < spheres.size(); ++i)
-    if (!(g.spheres()[i].center == spheres[i].center) || g.spheres()[i].radius != spheres[i].radius)
-      return false;
-  for (size_t i = 0; i < planes.size(); ++i)
-    if (!(g.planes()[i].normal == planes[i].normal) || g.planes()[i].distance != planes[i].distance)
-      return false;
-  return true;
+  // Each shape type's == is defaulted: a field added later is compared without a change here.
+  return g.spheres() == spheres && g.planes() == planes && g.meshes() == meshes &&
+         g.disks() == disks && g.cylinders() == cylinders;
 }
 
 std::shared_ptr<const GeometryScene> sceneOf(const std::shared_ptr<const BuiltGeometry>& b) {
@@ -72,6 +65,12 @@ std::shared_ptr<const GeometryScene> sharedGeometry(std::vector<SphereShape> sph
     c.kept = b;
   }
   return sceneOf(b);
+}
+
+void clearGeometryCache() {
+  GeometryCache& c = cache();
+  const std::lock_guard<std::mutex> guard(c.lock);
+  c.kept.reset();
 }
 
 size_t geometriesBuilt() {

@@ -20,6 +20,9 @@ std::shared_ptr<const GeometryScene> sharedGeometry(std::vector<SphereShape> sph
                                                     std::vector<DiskShape> disks = {},
                                                     std::vector<CylinderShape> cylinders = {});
 
+/// Drops the geometry kept for the next render (renders still holding it keep it alive).
+void clearGeometryCache();
+
 /// How many geometries sharedGeometry built since the program started (tests).
 size_t geometriesBuilt();
 

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/input_files.h"
+#include "core/number_text.h"
 
 namespace nx {
 
@@ -21,8 +22,8 @@ inline CLI::Validator numberIn(double lo, double hi) {
   const std::string range = exactNumberText(lo) + " to " + exactNumberText(hi);
   return CLI::Validator(
       [lo, hi, range](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
+        const char* end = nullptr;
+        const double v = strtodC(text.c_str(), &end);
         if (text.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
           return "expected a number from " + range + ", found '" + text + "'";
         return "";
@@ -38,12 +39,17 @@ inline CLI::Validator numberIn(double lo, double hi) {
 inline int parseCommandLine(CLI::App& app, int argc, char** argv, const char* program,
                             int usageStatus = 1) {
   recordInputFiles();
+  // A repeatable option (a vector) takes one value per occurrence, never the words after it:
+  // "--relight-for A --relight-for B scene.scn" had the scene taken as a third target.
+  for (CLI::Option* option : app.get_options())
+    if (!option->get_positional() && option->get_items_expected_max() > 1)
+      option->allow_extra_args(false);
   try {
     app.parse(argc, argv);
     for (const CLI::Option* option : app.get_options()) {
       if (option->get_type_name().find("FLOAT") == std::string::npos) continue;
       for (const std::string& text : option->results()) {
-        const double v = std::strtod(text.c_str(), nullptr);
+        const double v = strtodC(text.c_str());
         if (!std::isfinite(v))
           throw CLI::ValidationError(option->get_name(),
                                      "expected a finite number, found '" + text + "'");

@@ -2,6 +2,7 @@
 // parts of an image (crops, sample ranges) for render farms, and survives interruption.
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <unistd.h>
@@ -441,6 +442,20 @@ int run(int argc, char** argv) {
     auto attr = [&](const char* k) { return attributeOf(prev, k); };
     const nx::PixelRect want = job.rect();
     requireSameSampler(resumePath, attr("nxrender.sampler"), job.choices().sampler);
+    // The ground-truth layers (part of the render key) named, rather than the key's message.
+    std::vector<std::string> mine, held;
+    for (const nx::AovImageLayer& l : prev.aovs) held.push_back(l.name);
+    for (nx::AovKind k : job.choices().aovKinds) mine.emplace_back(nx::aovName(k));
+    std::string layers;
+    for (const std::string& n : mine) layers += (layers.empty() ? "" : ",") + n;
+    std::sort(mine.begin(), mine.end());
+    std::sort(held.begin(), held.end());
+    if (mine != held) {
+      std::string theirs;
+      for (const nx::AovImageLayer& l : prev.aovs) theirs += (theirs.empty() ? "" : ",") + l.name;
+      throw nx::Error(resumePath + ": holds the ground-truth layers '" + theirs +
+                      "', this render '" + layers + "': resume with the same --aov");
+    }
     if (attr("nxrender.renderKey") != job.renderKey())
       throw nx::Error(resumePath +
                       ": was rendered from another scene, other data files (CSV spectra, "

@@ -1,6 +1,7 @@
 #pragma once
 // The one exception type nxrender throws for bad input and failed I/O.
 
+#include "core/number_text.h"
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -18,19 +19,17 @@ public:
 /// The shortest decimal text that reads back as exactly v (at most 17 significant digits):
 /// numbers stored in files to be parsed again (bands, camera attributes).
 inline std::string exactNumberText(double v) {
-  char buf[40];
+  std::string text;
   for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (std::strtod(buf, nullptr) == v) break;
+    text = generalText(v, digits);
+    if (strtodC(text.c_str()) == v) break;
   }
-  return buf;
+  return text;
 }
 
 /// A number as error messages show it: up to 7 significant digits, no trailing zeros.
 inline std::string numberText(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.7g", v);
-  return buf;
+  return generalText(v, 7);
 }
 
 /// "a, b or c": names listed in a message.

@@ -1,5 +1,7 @@
 #include "core/text_table.h"
 
+#include "core/number_text.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -48,8 +50,8 @@ std::vector<std::string> splitCells(const std::string& rawLine) {
 }
 
 bool looksNumeric(const std::string& cell) {
-  char* end = nullptr;
-  std::strtod(cell.c_str(), &end);
+  const char* end = nullptr;
+  strtodC(cell.c_str(), &end);
   return end != cell.c_str() && *end == '\0';
 }
 
@@ -64,18 +66,18 @@ double parseNumber(const std::string& text, const std::string& where, const std:
     throw Error(where + ": expected " + what + ", found '" + text + "' (not a decimal number)");
   const char* begin = text.c_str();
   while (*begin == ' ' || *begin == '\t' || *begin == '\n' || *begin == '\r') ++begin;
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(begin, &end);
+  const char* end = nullptr;
+  bool outOfRange = false;
+  const double value = strtodC(begin, &end, &outOfRange);
   const char* rest = end;
   while (*rest == ' ' || *rest == '\t' || *rest == '\n' || *rest == '\r') ++rest;
   if (end == begin || *rest != '\0')
     throw Error(where + ": expected " + what + ", found '" + text + "'");
-  if (!std::isfinite(value) || (errno == ERANGE && std::abs(value) > 1.0))
+  if (!std::isfinite(value) || (outOfRange && std::abs(value) > 1.0))
     throw Error(where + ": expected " + what + ", found '" + text + "' (not a finite value)");
   // A non-zero number below the smallest a double holds (1e-400) would read as 0: refused
   // rather than changed (subnormal values, down to 4.9e-324, are kept).
-  if (errno == ERANGE && value == 0)
+  if (outOfRange && value == 0)
     throw Error(where + ": expected " + what + ", found '" + text +
                 "' (below the smallest non-zero number a double holds, 4.9e-324: write 0)");
   return value;

@@ -11,6 +11,14 @@
 
 namespace nx {
 
+/// Peak memory of a mesh per face and per vertex (bytes): for a file, the mesh library's
+/// structures, its triangulation and vertex joining, and the mesh built from them (measured:
+/// docs/reliability.md, round 3); for rows given inline or from Python, the same bound covers
+/// the mesh and its acceleration structure. Checked against the memory budget before either is
+/// built.
+inline constexpr double kMeshBytesPerFace = 400;
+inline constexpr double kMeshBytesPerVertex = 100;
+
 /// A triangle with vertices a, b, c (front face counter-clockwise seen from its normal
 /// (b - a) x (c - a)).
 struct TriangleShape {

@@ -1,6 +1,7 @@
 #pragma once
 // Three-component vectors used for points, directions and normals (float and double).
 
+#include <algorithm>
 #include <cmath>
 
 namespace nx {
@@ -82,6 +83,20 @@ T length(const Vec3T<T>& a) {
 template <typename T>
 Vec3T<T> normalize(const Vec3T<T>& a) {
   return a / length(a);
+}
+
+/// a scaled to unit length for any non-zero a, however small or large (scaled by its largest
+/// component first: the squares of 1e-300 underflow to 0). For inputs, not the render loop.
+template <typename T>
+Vec3T<T> normalizeAnyLength(const Vec3T<T>& a) {
+  const T m = std::max(std::abs(a.x), std::max(std::abs(a.y), std::abs(a.z)));
+  return normalize(a / m);
+}
+
+/// True when some component is not zero (a direction of any length).
+template <typename T>
+bool isNonZero(const Vec3T<T>& a) {
+  return a.x != 0 || a.y != 0 || a.z != 0;
 }
 
 /// True when every component is finite.

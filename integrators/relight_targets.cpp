@@ -73,35 +73,58 @@ RelightTargetDesc relightTargetFromText(const std::string& text, const std::stri
     throw Error(option + " " + text + ": " + e.what());
   }
   t.source = spec;
-  checkRelightTarget(t, option + " " + text);
+  t.option = option;
+  t.where = option + " " + text;
+  checkRelightTarget(t, t.where);
   return t;
 }
 
 namespace {
 
-// The targets' mixture, tabulated every 0.1 nm over the traced range (a laser line's width):
-// the mean of their shapes, each normalised to unit integral over the range, so that each draws
-// an equal share of the guided excitation however bright it is, scaled to their mean integral
-// (the lights' power for the choice among them). Only the render's set-up reads it (guides and
-// light powers).
-Spectrum targetMixture(const std::vector<const Spectrum*>& spectra) {
+// The wavelengths a target's integral and the mixture are taken at: every 0.1 nm over the
+// traced range (a laser line's width), and every knot of a tabulated target there, so a line
+// narrower than the grid, or lying between its points, is integrated exactly (its table is
+// linear between its knots); integrated on the 0.1 nm grid alone, such a line had integral 0.
+std::vector<double> targetGrid(const std::vector<const Spectrum*>& spectra) {
   constexpr int kSteps = 8000;
-  constexpr double kStepNm = 800.0 / kSteps;
+  constexpr double kLoNm = 300, kHiNm = 1100, kStepNm = (kHiNm - kLoNm) / kSteps;
+  std::vector<double> nm;
+  for (int k = 0; k <= kSteps; ++k) nm.push_back(kLoNm + kStepNm * k);
+  for (const Spectrum* s : spectra)
+    if (const auto* t = std::get_if<TabulatedSpectrum>(&s->kind()))
+      for (double x : t->nm)
+        if (x > kLoNm && x < kHiNm) nm.push_back(x);
+  std::sort(nm.begin(), nm.end());
+  nm.erase(std::unique(nm.begin(), nm.end()), nm.end());
+  return nm;
+}
+
+// The targets' mixture, tabulated on targetGrid: the mean of their shapes, each normalised to
+// unit integral over the range, so that each draws an equal share of the guided excitation
+// however bright it is, scaled to their mean integral (the lights' power for the choice among
+// them). Only the render's set-up reads it (guides and light powers). A target whose integral
+// is not positive is refused (checkRelightTarget refuses one that is 0 everywhere).
+Spectrum targetMixture(const std::vector<const Spectrum*>& spectra, const std::string& option) {
+  const std::vector<double> nm = targetGrid(spectra);
   std::vector<double> integral;
   for (const Spectrum* s : spectra) {
     double sum = 0;
-    for (int k = 0; k <= kSteps; ++k)
-      sum += (*s)(300 + kStepNm * k) * (k == 0 || k == kSteps ? 0.5 : 1);
-    integral.push_back(sum * kStepNm);
+    for (size_t k = 0; k + 1 < nm.size(); ++k)
+      sum += 0.5 * ((*s)(nm[k]) + (*s)(nm[k + 1])) * (nm[k + 1] - nm[k]);
+    if (!(sum > 0))
+      throw Error(option +
+                  ": expected a target spectrum with light in 300-1100 nm, found "
+                  "its integral there " +
+                  std::to_string(sum));
+    integral.push_back(sum);
   }
   double meanIntegral = 0;
   for (double i : integral) meanIntegral += i / static_cast<double>(spectra.size());
   TabulatedSpectrum t;
-  for (int k = 0; k <= kSteps; ++k) {
-    const double nm = 300 + kStepNm * k;
+  for (double x : nm) {
     double sum = 0;
-    for (size_t i = 0; i < spectra.size(); ++i) sum += (*spectra[i])(nm) / integral[i];
-    t.nm.push_back(nm);
+    for (size_t i = 0; i < spectra.size(); ++i) sum += (*spectra[i])(x) / integral[i];
+    t.nm.push_back(x);
     t.value.push_back(sum / static_cast<double>(spectra.size()) * meanIntegral);
   }
   t.buildIndex();
@@ -126,8 +149,8 @@ void setRelightTargets(RenderScene& scene, const std::vector<RelightTargetDesc>&
         const std::string& n = groups.names[r.groupOfSource[s]];
         if (list.find(n) == std::string::npos) list += (list.empty() ? "" : ", ") + n;
       }
-      throw Error("--relight-for " + t.group + "=" + t.source +
-                  ": expected a light group of the scene (" + list + "), found '" + t.group + "'");
+      throw Error(t.where + ": expected a light group of the scene (" + list + "), found '" +
+                  t.group + "'");
     }
   }
   for (size_t s = 0; s < r.ofSource.size(); ++s) {
@@ -136,11 +159,13 @@ void setRelightTargets(RenderScene& scene, const std::vector<RelightTargetDesc>&
       if (t.group.empty() || t.group == groups.names[r.groupOfSource[s]])
         mine.push_back(&t.spectrum);
     if (mine.size() > static_cast<size_t>(kMaxExcitationGuides))
-      throw Error("--relight-for: expected at most " + std::to_string(kMaxExcitationGuides) +
+      throw Error(targets.front().option + ": expected at most " +
+                  std::to_string(kMaxExcitationGuides) +
                   " targets for a light group (one excitation draw each), found " +
                   std::to_string(mine.size()) + " for '" + groups.names[r.groupOfSource[s]] +
                   "'; relight the others from a second render");
-    r.samplingOfSource.push_back(mine.empty() ? r.ofSource[s] : targetMixture(mine));
+    r.samplingOfSource.push_back(mine.empty() ? r.ofSource[s]
+                                              : targetMixture(mine, targets.front().option));
     r.targetsOfSource.emplace_back();
     for (const Spectrum* t : mine) r.targetsOfSource.back().push_back(*t);
     if (mine.empty()) r.targetsOfSource.back().push_back(r.ofSource[s]);

@@ -227,8 +227,8 @@ public:
     if (desc_.relightable)
       setRelightTargets(scene, desc_.relightTargets);
     else if (!desc_.relightTargets.empty())
-      throw Error(desc_.file + ": --relight-for: only with --relightable (the targets a "
-                               "relightable render draws for)");
+      throw Error(desc_.file + ": " + desc_.relightTargets.front().option +
+                  ": only with --relightable (the targets a relightable render draws for)");
     if (!triangles.empty()) {
       meshes.push_back(TriangleMesh::fromTriangles(triangles));
       scene.meshes.push_back(std::move(inlineTriangles));
@@ -336,6 +336,7 @@ private:
     FluorescenceModel fluorescenceModel(const FluorescenceDesc& f) const override {
       return b_.fluorescence(f);
     }
+    void warn(const std::string& message) const override { b_.warnings_.push_back(message); }
 
   private:
     const Builder& b_;

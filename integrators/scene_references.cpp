@@ -90,7 +90,7 @@ Spectrum SceneReferences::resolveUnchecked(const SpectrumDesc& s, SpectrumRole r
   }
   if (role == SpectrumRole::Coefficient)
     if (auto c = namedMediumCoefficient(s.name)) return extrapolated(*c, mode, s.loc, s.name);
-  if (role != SpectrumRole::Emission) {
+  if (role != SpectrumRole::Emission && role != SpectrumRole::EmissionShape) {
     if (auto r = namedReflectance(s.name)) return extrapolated(*r, mode, s.loc, s.name);
     throw Error(s.loc.str() + ": expected " +
                 (role == SpectrumRole::Coefficient

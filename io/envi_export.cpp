@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "io/atomic_file.h"
 #include "io/gdal_library.h"
 
@@ -80,9 +81,8 @@ void writeEnvi(const std::string& dataPath, const SpectralImage& image) {
     for (size_t i = 0; i < plane.size(); ++i)
       plane[i] = image.radiance[i * static_cast<size_t>(nb) + static_cast<size_t>(b)];
     GDALRasterBandH band = gdal().GDALGetRasterBand(ds, b + 1);
-    char desc[64];
-    std::snprintf(desc, sizeof desc, "%.6f nm", sensor.channelNm(b));
-    gdal().GDALSetDescription(band, desc);
+    const std::string desc = fixedText(sensor.channelNm(b), 6) + " nm";
+    gdal().GDALSetDescription(band, desc.c_str());
     ok = gdal().GDALRasterIO(band, GF_Write, 0, 0, w, h, plane.data(), w, h, GDT_Float32, 0, 0) ==
          CE_None;
   }

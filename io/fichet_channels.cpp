@@ -1,6 +1,7 @@
 // Spectral channel names of the Fichet et al. 2021 layout.
 
 #include "io/fichet_channels.h"
+#include "core/number_text.h"
 
 #include <algorithm>
 #include <map>
@@ -26,8 +27,8 @@ std::vector<FichetChannel> fichetSpectralChannels(const std::vector<std::string>
     std::string number = m[4];
     std::replace(number.begin(), number.end(), ',', '.');
     if (number.empty() || number == ".") continue;
-    char* end = nullptr;
-    const double v = std::strtod(number.c_str(), &end);
+    const char* end = nullptr;
+    const double v = strtodC(number.c_str(), &end);
     if (*end != '\0' || !(v > 0)) continue;
     const double si = v * prefix.at(m[6]);
     const double nm = m[7] == "Hz" ? 299792458.0 / si * 1e9 : si * 1e9;

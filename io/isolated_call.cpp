@@ -1,7 +1,9 @@
 #include "io/isolated_call.h"
 
+#include <dlfcn.h>
 #include <poll.h>
 #include <signal.h>
+#include <spawn.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -9,7 +11,10 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <vector>
 
 #include "core/error.h"
 
@@ -71,8 +76,52 @@ bool receiveMessage(int fd, std::string& m, const Clock::time_point* deadline, b
 
 } // namespace
 
-IsolatedWorker::IsolatedWorker(std::function<std::string(const std::string&)> work)
-    : work_(std::move(work)) {}
+std::string helperProgramPath(const std::string& name) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> dirs;
+  if (const char* d = std::getenv("NXRENDER_HELPER_DIR"); d && *d) dirs.emplace_back(d);
+  Dl_info info{};
+  if (::dladdr(reinterpret_cast<void*>(&helperProgramPath), &info) && info.dli_fname) {
+    std::error_code ec;
+    const fs::path self = fs::canonical(info.dli_fname, ec);
+    if (!ec) {
+      dirs.push_back(self.parent_path());
+      dirs.push_back(self.parent_path().parent_path() / "libexec" / "nxrender");
+    }
+  }
+#ifdef NX_HELPER_BUILD_DIR
+  dirs.emplace_back(NX_HELPER_BUILD_DIR);
+#endif
+#ifdef NX_HELPER_INSTALL_DIR
+  dirs.emplace_back(NX_HELPER_INSTALL_DIR);
+#endif
+  for (const fs::path& d : dirs) {
+    const fs::path p = d / name;
+    if (::access(p.c_str(), X_OK) == 0) return p.string();
+  }
+  return "";
+}
+
+int serveIsolatedRequests(int fd, const std::function<std::string(const std::string&)>& work) {
+  // Each request is answered with 'O' and the reply, 'E' and an nx::Error's message, or 'X' and
+  // another exception's.
+  for (;;) {
+    std::string request;
+    bool unused = false;
+    if (!receiveMessage(fd, request, nullptr, unused)) return 0; // the parent is gone
+    std::string reply;
+    try {
+      reply = "O" + work(request);
+    } catch (const Error& e) {
+      reply = std::string("E") + e.what();
+    } catch (const std::exception& e) {
+      reply = std::string("X") + e.what();
+    }
+    if (!sendMessage(fd, reply)) return 0;
+  }
+}
+
+IsolatedWorker::IsolatedWorker(std::string program) : program_(std::move(program)) {}
 
 IsolatedWorker::~IsolatedWorker() {
   const std::lock_guard<std::mutex> lock(mutex_);
@@ -80,33 +129,27 @@ IsolatedWorker::~IsolatedWorker() {
 }
 
 void IsolatedWorker::start() {
+  const std::string path = helperProgramPath(program_);
+  if (path.empty())
+    throw Error("cannot start a reader process: its program " + program_ +
+                " is not installed beside nxrender (or set NXRENDER_HELPER_DIR)");
   int fds[2];
   if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
     throw Error(std::string("cannot start a reader process (") + std::strerror(errno) + ")");
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    ::close(fds[0]), ::close(fds[1]);
-    throw Error(std::string("cannot start a reader process (") + std::strerror(errno) + ")");
-  }
-  if (pid == 0) { // the child: each request answered with 'O' and the reply, or 'E' and a message
-    if (childStarted) childStarted();
-    ::close(fds[0]);
-    for (;;) {
-      std::string request;
-      bool unused = false;
-      if (!receiveMessage(fds[1], request, nullptr, unused)) ::_exit(0); // the parent is gone
-      std::string reply;
-      try {
-        reply = "O" + work_(request);
-      } catch (const Error& e) {
-        reply = std::string("E") + e.what();
-      } catch (const std::exception& e) {
-        reply = std::string("X") + e.what();
-      }
-      if (!sendMessage(fds[1], reply)) ::_exit(0);
-    }
-  }
+  // The helper's end becomes its descriptor 3 (dup2 clears close-on-exec there); every other
+  // descriptor of this process is closed by exec where it is close-on-exec.
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], 3);
+  char* argv[] = {const_cast<char*>(path.c_str()), const_cast<char*>("--serve"), nullptr};
+  pid_t pid = -1;
+  const int failed = ::posix_spawn(&pid, path.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
   ::close(fds[1]);
+  if (failed != 0) {
+    ::close(fds[0]);
+    throw Error("cannot start a reader process " + path + " (" + std::strerror(failed) + ")");
+  }
   pid_ = pid;
   fd_ = fds[0];
 }

@@ -1,22 +1,19 @@
 #include "io/mesh_cache.h"
 
 #include <algorithm>
-#include <functional>
 #include <list>
 #include <mutex>
-#include <string_view>
 
 #include "core/memory.h"
+#include "core/sha256.h"
 
 namespace nx {
 namespace {
 
 struct Entry {
-  std::string extension;
-  size_t hash;
-  std::string bytes;
+  MeshKey key;
   std::shared_ptr<const TriangleMesh> mesh;
-  double size() const { return static_cast<double>(bytes.size() + mesh->bytes()); }
+  double size() const { return static_cast<double>(mesh->bytes()); }
 };
 
 struct MeshCache {
@@ -29,28 +26,26 @@ MeshCache& cache() {
   return c;
 }
 
-size_t hashOf(const std::string& bytes) {
-  return std::hash<std::string_view>{}(std::string_view(bytes));
-}
-
 } // namespace
 
-std::shared_ptr<const TriangleMesh> cachedMesh(const std::string& bytes,
-                                               const std::string& extension) {
-  const size_t h = hashOf(bytes);
+MeshKey meshKeyOf(const std::string& bytes, const std::string& extension) {
+  return {extension, bytes.size(), sha256(bytes)};
+}
+
+std::shared_ptr<const TriangleMesh> cachedMesh(const MeshKey& key) {
   MeshCache& c = cache();
   const std::lock_guard<std::mutex> guard(c.lock);
   for (auto it = c.entries.begin(); it != c.entries.end(); ++it)
-    if (it->hash == h && it->extension == extension && it->bytes == bytes) {
+    if (it->key == key) {
       c.entries.splice(c.entries.begin(), c.entries, it);
       return c.entries.front().mesh;
     }
   return nullptr;
 }
 
-void cacheMesh(const std::string& bytes, const std::string& extension, const TriangleMesh& mesh) {
+void cacheMesh(const MeshKey& key, std::shared_ptr<const TriangleMesh> mesh) {
   const double limit = std::min(kMeshCacheBytes, 0.25 * memoryBudget().bytes);
-  Entry e{extension, hashOf(bytes), bytes, std::make_shared<const TriangleMesh>(mesh)};
+  Entry e{key, std::move(mesh)};
   if (e.size() > limit) return;
   MeshCache& c = cache();
   const std::lock_guard<std::mutex> guard(c.lock);
@@ -60,6 +55,12 @@ void cacheMesh(const std::string& bytes, const std::string& extension, const Tri
     total += it->size();
     it = total > limit ? c.entries.erase(it) : std::next(it);
   }
+}
+
+void clearMeshCache() {
+  MeshCache& c = cache();
+  const std::lock_guard<std::mutex> guard(c.lock);
+  c.entries.clear();
 }
 
 size_t cachedMeshCount() {

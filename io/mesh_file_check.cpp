@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/number_text.h"
 
 namespace nx {
 namespace {
@@ -73,9 +74,8 @@ bool plainDecimal(const std::string& s) {
 
 bool parseDouble(const std::string& s, double& v) {
   if (s.empty() || !plainDecimal(s)) return false;
-  errno = 0;
-  char* end = nullptr;
-  v = std::strtod(s.c_str(), &end);
+  const char* end = nullptr;
+  v = strtodC(s.c_str(), &end);
   return end == s.c_str() + s.size() && std::isfinite(v);
 }
 

@@ -136,11 +136,12 @@ MeshFile readMeshFile(const std::string& path) {
   if (const std::string ext = lowerExtension(path); ext != "ply" && ext != "obj")
     throw Error("expected a mesh file ending in .ply or .obj, found '" + path + "'");
   std::string bytes = readRegularFile(path, kMaxMeshFileBytes, "mesh file");
-  // A file read before with the same bytes is not parsed again (io/mesh_cache.h).
-  const std::string ext = lowerExtension(path);
-  if (const auto known = cachedMesh(bytes, ext)) return {*known, std::move(bytes)};
+  // A file read before with the same bytes is not parsed again (io/mesh_cache.h): the caller
+  // gets its own copy (it transforms it), the cache keeps the parsed one.
+  const MeshKey key = meshKeyOf(bytes, lowerExtension(path));
+  if (const auto known = cachedMesh(key)) return {*known, std::move(bytes)};
   MeshFile f = meshFromBytes(std::move(bytes), path);
-  cacheMesh(f.bytes, ext, f.mesh);
+  cacheMesh(key, std::make_shared<const TriangleMesh>(f.mesh));
   return f;
 }
 

@@ -10,12 +10,6 @@ namespace nx {
 /// Largest mesh file read (bytes): a 1M-triangle binary PLY with normals and uv is about 50 MB.
 inline constexpr std::uintmax_t kMaxMeshFileBytes = 4ull << 30;
 
-/// Peak memory of reading a mesh per declared face and per vertex (bytes): the mesh library's
-/// structures, its triangulation and vertex joining, and the mesh built from them (measured:
-/// docs/reliability.md, round 3). Checked against the memory budget before reading.
-inline constexpr double kMeshBytesPerFace = 400;
-inline constexpr double kMeshBytesPerVertex = 100;
-
 /// A mesh file's triangles and the bytes it was read from (for the scene's content digest).
 struct MeshFile {
   TriangleMesh mesh;

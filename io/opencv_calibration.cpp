@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "io/camera_checks.h"
 #include "io/isolated_call.h"
 
@@ -351,7 +352,7 @@ OpenCvCalibration calibrationFromText(const std::string& text) {
   std::string word;
   auto next = [&] {
     t >> word;
-    return std::strtod(word.c_str(), nullptr);
+    return strtodC(word.c_str());
   };
   OpenCvCalibration c;
   for (double& v : c.intrinsics) v = next();
@@ -369,6 +370,20 @@ OpenCvCalibration calibrationFromText(const std::string& text) {
 
 } // namespace
 
+std::string calibrationReaderWork(const std::string& request) {
+  std::istringstream in(request);
+  long long v = -1;
+  size_t n = 0;
+  in >> v >> n;
+  in.get();
+  if (!in || n > request.size()) throw Error("a malformed request to the calibration reader");
+  std::string file(n, '\0');
+  in.read(file.data(), static_cast<std::streamsize>(n));
+  const std::string text = request.substr(static_cast<size_t>(in.tellg()));
+  return calibrationText(readOpenCvCalibrationHere(
+      text, file, v < 0 ? std::nullopt : std::optional<int>(static_cast<int>(v))));
+}
+
 OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::string& path,
                                          std::optional<int> view, double seconds) {
   // OpenCV's readers take the text as a C string in places: a NUL byte inside made them read
@@ -379,20 +394,8 @@ OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::st
                     1 + std::count(bytes.begin(), bytes.begin() + static_cast<long>(nul), '\n')) +
                 ": expected text (YAML or XML), found a NUL byte (a binary file?)");
   // OpenCV 4.6's reader loops forever on some malformed files (a fuzzed YAML with a line
-  // "e---"): it reads in a child process, killed after `seconds`. A request: the view (or -1), the
-  // path's length and the path, then the bytes.
-  static IsolatedWorker reader([](const std::string& request) {
-    std::istringstream in(request);
-    long long v = -1;
-    size_t n = 0;
-    in >> v >> n;
-    in.get();
-    std::string file(n, '\0');
-    in.read(file.data(), static_cast<std::streamsize>(n));
-    const std::string text = request.substr(static_cast<size_t>(in.tellg()));
-    return calibrationText(readOpenCvCalibrationHere(
-        text, file, v < 0 ? std::nullopt : std::optional<int>(static_cast<int>(v))));
-  });
+  // "e---"): it reads in a helper process (calibrationReaderWork), killed after `seconds`.
+  static IsolatedWorker reader(kCalibrationReaderProgram);
   const std::string request =
       std::to_string(view ? *view : -1) + " " + std::to_string(path.size()) + " " + path + bytes;
   return calibrationFromText(reader.call(request, path + ": OpenCV's calibration reader", seconds));

@@ -24,11 +24,19 @@ struct OpenCvCalibration {
 /// image_size), and the pose: view `view` of rvecs / tvecs (N x 3, or a sequence of 3 x 1) or
 /// extrinsic_parameters (N x 6, OpenCV's calibration sample), or R (3 x 3, or a 3 x 1 rotation
 /// vector) and T (3 x 1). Throws nx::Error "path: expected ..., found ..." for anything else.
-/// Text holding a NUL byte is refused before OpenCV sees it, and OpenCV reads in a child
+/// Text holding a NUL byte is refused before OpenCV sees it, and OpenCV reads in a helper
 /// process killed after `seconds` (OpenCV 4.6 loops forever on some malformed files: an
 /// nx::Error says so; the largest file read, 16 MB, takes a fraction of the default 5 s).
 OpenCvCalibration parseOpenCvCalibration(const std::string& bytes, const std::string& path,
                                          std::optional<int> view, double seconds = 5);
+
+/// The helper program that reads calibration files for parseOpenCvCalibration
+/// (apps/nx_calibration_reader.cpp, io/isolated_call.h).
+inline constexpr const char* kCalibrationReaderProgram = "nx-calibration-reader";
+
+/// The helper's work: a request (the view or -1, the path's length and the path, then the
+/// file's bytes) read by readOpenCvCalibrationHere, its result as exact text.
+std::string calibrationReaderWork(const std::string& request);
 
 /// The same read in this process, without the NUL check or the child (the fuzzer's way to see
 /// its coverage, after parseOpenCvCalibration found the input safe): hangs where OpenCV hangs.

@@ -1,5 +1,6 @@
 #include "io/part_merge.h"
 
+#include "core/number_text.h"
 #include "io/relight_merge.h"
 
 #include <algorithm>
@@ -47,8 +48,8 @@ void setTotalRenderSeconds(SpectralImage& out, const std::vector<ImagePart>& par
   bool timed = true;
   for (const ImagePart& p : parts) {
     const auto it = p.image.attributes.find("nxrender.renderSeconds");
-    char* end = nullptr;
-    const double t = it == p.image.attributes.end() ? NAN : std::strtod(it->second.c_str(), &end);
+    const char* end = nullptr;
+    const double t = it == p.image.attributes.end() ? NAN : strtodC(it->second.c_str(), &end);
     if (!(t >= 0) || end == nullptr || *end != '\0') timed = false;
     seconds += t;
   }

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "core/text_table.h"
 #include "spectra/spectrum.h"
 
@@ -15,9 +16,7 @@ namespace {
 
 // "452,500000nm": a wavelength as the spectral channels write it.
 std::string wavelengthText(double nm) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6f", nm);
-  std::string s = buf;
+  std::string s = fixedText(nm, 6);
   std::replace(s.begin(), s.end(), '.', ',');
   return s + "nm";
 }
@@ -131,10 +130,9 @@ std::map<std::string, std::string> relightAttributes(const RelightLayers& rl) {
   std::string groups;
   for (const std::string& g : rl.sources) groups += (groups.empty() ? "" : ",") + g;
   out[kRelightSourcesAttribute] = groups;
-  char grid[96];
-  std::snprintf(grid, sizeof grid, "%.9g:%.9g:%.9g", rl.grid.firstNm, rl.grid.lo(rl.grid.bins),
-                rl.grid.stepNm);
-  out[kRelightGridAttribute] = grid;
+  out[kRelightGridAttribute] = generalText(rl.grid.firstNm, 9) + ":" +
+                               generalText(rl.grid.lo(rl.grid.bins), 9) + ":" +
+                               generalText(rl.grid.stepNm, 9);
   if (rl.split) { // per row, the excitation range of its diagonal entries
     int rows = 0;
     for (const RelightEntry& e : rl.entries) rows = std::max(rows, e.row + 1);
@@ -146,22 +144,17 @@ std::map<std::string, std::string> relightAttributes(const RelightLayers& rl) {
       }
     std::string text;
     for (const auto& [first, last] : range) {
-      char buf[64];
-      if (first < 0)
-        std::snprintf(buf, sizeof buf, "none");
-      else
-        std::snprintf(buf, sizeof buf, "%.9g:%.9g", rl.grid.lo(first), rl.grid.lo(last + 1));
-      text += (text.empty() ? "" : ",") + std::string(buf);
+      text += (text.empty() ? "" : ",") + (first < 0 ? std::string("none")
+                                                     : generalText(rl.grid.lo(first), 9) + ":" +
+                                                           generalText(rl.grid.lo(last + 1), 9));
     }
     out[kRelightDiagonalAttribute] = text;
   }
   const auto listed = [](const std::vector<double>& bins) {
     std::string values;
     for (double v : bins) {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.9g", v);
       if (!values.empty()) values += ',';
-      values += buf;
+      values += generalText(v, 9);
     }
     return values;
   };
@@ -188,8 +181,18 @@ std::vector<std::string> parseRelightChannels(std::map<std::string, std::string>
     throw Error(path + ": expected the attribute " + std::string(kRelightGridAttribute) +
                 " beside " + kRelightSourcesAttribute + ", found none");
   double first = 0, end = 0, step = 0;
-  char tail = 0;
-  if (std::sscanf(gridIt->second.c_str(), "%lf:%lf:%lf%c", &first, &end, &step, &tail) != 3)
+  // FIRST:END:STEP, three numbers and nothing else (read in the C locale).
+  const auto threeNumbers = [&](const char* p) {
+    const char* q = nullptr;
+    double* out[3] = {&first, &end, &step};
+    for (int k = 0; k < 3; ++k) {
+      *out[k] = strtodC(p, &q);
+      if (q == p || *q != (k < 2 ? ':' : '\0')) return false;
+      p = q + (k < 2 ? 1 : 0);
+    }
+    return true;
+  };
+  if (!threeNumbers(gridIt->second.c_str()))
     throw Error(path + ": expected " + kRelightGridAttribute + " as FIRST:END:STEP, found '" +
                 gridIt->second + "'");
   attributes.erase(gridIt);

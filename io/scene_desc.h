@@ -137,6 +137,9 @@ struct RelightTargetDesc {
   std::string group;  ///< the light group; empty: every group
   Spectrum spectrum;  ///< the spectrum, as an <emission> would give it
   std::string source; ///< what it came from (a file or a name), for messages
+  /// How it was given, for messages: the option ("--relight-for" or Python's "relight_for") and
+  /// the target itself ("--relight-for led=LED450.csv", "relight_for['led'][1]")
+  std::string option = "--relight-for", where = "--relight-for";
 };
 
 /// Everything a scene file says.

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "core/params/array_values.h"
 #include "io/scene_tree_text.h"
 
@@ -15,9 +16,7 @@ using List = SceneTree::List;
 using Array = SceneTree::Array;
 
 std::string exact(double v) {
-  char b[32];
-  const auto r = std::to_chars(b, b + sizeof b, v);
-  return std::string(b, r.ptr);
+  return shortestText(v);
 }
 
 SceneTree numbers(std::initializer_list<double> v) {

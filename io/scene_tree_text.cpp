@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/number_text.h"
 
 namespace nx {
 
@@ -100,11 +101,8 @@ std::string escaped(const std::string& s) {
 
 // The shortest text that reads back to v (as a float for Float32 arrays).
 std::string numberText(double v, Array::Kind kind) {
-  char b[32];
-  const auto r = kind == Array::Kind::Float32
-                     ? std::to_chars(b, b + sizeof b, static_cast<float>(v))
-                     : std::to_chars(b, b + sizeof b, v);
-  return std::string(b, r.ptr);
+  return kind == Array::Kind::Float32 ? nx::shortestText(static_cast<float>(v))
+                                      : nx::shortestText(v);
 }
 
 bool isNumber(const SceneTree& t) {

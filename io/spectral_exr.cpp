@@ -1,5 +1,6 @@
 #include "io/spectral_exr.h"
 
+#include "core/number_text.h"
 #include "io/aov_names.h"
 
 #include <Imath/half.h>
@@ -57,9 +58,7 @@ std::map<std::string, std::string> bandAttributes(const Sensor& bands) {
 }
 
 std::string spectralChannelName(double nm) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "S0.%.6fnm", nm);
-  std::string name = buf;
+  std::string name = "S0." + fixedText(nm, 6) + "nm";
   name[name.find('.', 3)] = ',';
   return name;
 }

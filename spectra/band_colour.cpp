@@ -1,6 +1,7 @@
 // Colour of band values; sensors named by wavelengths alone.
 
 #include "spectra/band_colour.h"
+#include "core/number_text.h"
 
 #include <cmath>
 #include <cstdio>
@@ -67,8 +68,8 @@ Sensor sensorAtWavelengths(const std::vector<double>& nm, const std::string& whe
   for (size_t i = 0; i < nm.size(); ++i)
     uniform = uniform && std::abs(nm[i] - (nm.front() + step * static_cast<double>(i))) < 1e-6;
   if (uniform) {
-    char text[96];
-    std::snprintf(text, sizeof text, "%.17g:%.17g:%.17g", nm.front(), nm.back(), step);
+    const std::string text = generalText(nm.front(), 17) + ":" + generalText(nm.back(), 17) + ":" +
+                             generalText(step, 17);
     const Sensor s = Sensor::parse(text, where);
     if (s.count() == static_cast<int>(nm.size())) return s;
   }

@@ -1,5 +1,8 @@
 #include "spectra/reradiation_matrix.h"
 
+#include "spectra/eem_import.h"
+#include "spectra/spectrum_bounds.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -76,26 +79,34 @@ ReradiationMatrix ReradiationMatrix::fromSpectra(const std::array<double, kBins>
 
 ReradiationMatrix separableMatrix(const Spectrum& absorptance, const Spectrum& emission,
                                   double quantumYield, bool normaliseAbsorptance,
-                                  const std::string& where) {
+                                  const std::string& where, std::string* warning) {
   using R = ReradiationMatrix;
-  std::array<double, R::kBins> a{}, e{};
-  double aMax = 0, eMax = 0;
-  for (int i = 0; i < R::kBins; ++i) {
-    const double nm = R::centre(i);
-    a[i] = absorptance(nm);
-    e[i] = emission(nm);
-    if (!(a[i] >= 0 && (normaliseAbsorptance || a[i] <= 1)))
-      throw Error(where + ": expected an absorptance " +
-                  (normaliseAbsorptance ? "of at least 0" : "within [0, 1]") + ", found " +
-                  numberText(a[i]) + " at " + numberText(nm) + " nm");
-    if (!(e[i] >= 0))
-      throw Error(where + ": expected an emission spectrum of at least 0, found " +
-                  numberText(e[i]) + " at " + numberText(nm) + " nm");
-    aMax = std::max(aMax, a[i]);
-    eMax = std::max(eMax, e[i]);
-  }
   const std::string range = numberText(R::kMinNm) + "-" + numberText(R::kMaxNm) + " nm";
-  if (!(eMax > 0))
+  // Checked at every wavelength of the grid's range, not only at the bins' centres (an
+  // absorptance of 1.7 between two centres was accepted).
+  const SpectrumExtremes ax = spectrumExtremes(absorptance, R::kMinNm, R::kMaxNm);
+  if (!(ax.min >= 0))
+    throw Error(where + ": expected an absorptance of at least 0, found " + numberText(ax.min) +
+                " at " + numberText(ax.minNm) + " nm");
+  if (!normaliseAbsorptance && !(ax.max <= 1))
+    throw Error(where + ": expected an absorptance within [0, 1], found " + numberText(ax.max) +
+                " at " + numberText(ax.maxNm) + " nm");
+  const SpectrumExtremes ex = spectrumExtremes(emission, R::kMinNm, R::kMaxNm);
+  if (!(ex.min >= 0))
+    throw Error(where + ": expected an emission spectrum of at least 0, found " +
+                numberText(ex.min) + " at " + numberText(ex.minNm) + " nm");
+  // Each bin takes the spectra's mean over it: a line narrower than a bin, or between two
+  // centres, counts with its integral (sampled at the centres it was "0 everywhere").
+  std::array<double, R::kBins> a{}, e{};
+  double aMax = 0, eSum = 0;
+  for (int i = 0; i < R::kBins; ++i) {
+    const double lo = R::kMinNm + i * R::kBinNm, hi = lo + R::kBinNm;
+    a[i] = spectrumMean(absorptance, lo, hi);
+    e[i] = spectrumMean(emission, lo, hi);
+    aMax = std::max(aMax, a[i]);
+    eSum += e[i];
+  }
+  if (!(eSum > 0))
     throw Error(where + ": expected an emission spectrum above 0 somewhere in " + range +
                 ", found 0 everywhere");
   if (normaliseAbsorptance) {
@@ -103,6 +114,31 @@ ReradiationMatrix separableMatrix(const Spectrum& absorptance, const Spectrum& e
       throw Error(where + ": expected an absorptance above 0 somewhere in " + range +
                   ", found 0 everywhere");
     for (double& x : a) x /= aMax;
+  }
+  // The share of the absorbed light's emission the matrix models: emission at longer
+  // wavelengths than the absorption (Stokes), for light absorbed in proportion to the
+  // absorptance. The rule of the EEM import: refused below 1%, warned below 50%.
+  std::array<double, R::kBins + 1> above{}; // emission in the bins above each (summed from the
+  for (int i = R::kBins - 1; i >= 0; --i)   // top: no cancellation)
+    above[i] = above[i + 1] + (i + 1 < R::kBins ? e[i + 1] : 0.0);
+  double absorbed = 0, modelled = 0;
+  for (int i = 0; i < R::kBins; ++i) {
+    absorbed += a[i];
+    modelled += a[i] * above[i] / eSum;
+  }
+  if (absorbed > 0 && quantumYield > 0) {
+    const double share = modelled / absorbed;
+    const std::string found =
+        numberText(100 * share) + "% of its emission at longer wavelengths than what it absorbs";
+    if (share < kEemMinModelledFraction)
+      throw Error(where +
+                  ": expected a dye that emits at longer wavelengths than it absorbs "
+                  "(the matrix models Stokes-shifted light only), found " +
+                  found + " (an emission below the absorption renders no fluorescence)");
+    if (share < kEemWarnModelledFraction && warning)
+      *warning = where +
+                 ": warning: the dye's emission is mostly at or below its absorption: " + found +
+                 " is rendered (the rest of its light is missing)";
   }
   return R::fromSpectra(a, e, quantumYield);
 }

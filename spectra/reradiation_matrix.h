@@ -2,6 +2,7 @@
 // The Glassner re-radiation (Donaldson) matrix of a fluorescent surface on a 5 nm grid,
 // and its sampling from the camera side (see the fluorescence model document).
 
+#include "core/cell_index.h"
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -342,7 +343,7 @@ private:
   /// starts at the guide table's entry and takes a step or two.
   int excitationBin(int o, float target) const {
     const float* cdf = &cdf_[static_cast<size_t>(o) * kBins];
-    const int j = std::min(static_cast<int>(target * columns_[o].guideScale), kGuide - 1);
+    const int j = cellIndex(target * columns_[o].guideScale, kGuide);
     int i = std::min(static_cast<int>(guide_[static_cast<size_t>(o) * kGuide + j]), o - 1);
     while (i < o - 1 && cdf[i] <= target) ++i;
     while (i > 0 && cdf[i - 1] > target) --i;
@@ -397,12 +398,15 @@ std::vector<double> emittedPhotonsPerBin(const ReradiationMatrix& m);
 void checkMeasuredMatrix(const MeasuredMatrix& m, const std::string& where);
 
 /// The separable matrix of a dye given by spectra (<fluorescence> with <absorptance> and
-/// <emission>): both evaluated at the bins' centres. On a surface the absorptance must lie in
-/// [0, 1]; with `normaliseAbsorptance` (a medium's dye) it is a shape, scaled to 1 at its
-/// maximum over the grid (and must be above 0 somewhere). The emission (photons) must be
-/// non-negative and above 0 somewhere. Throws nx::Error "<where>: expected ..., found ...".
+/// <emission>): each bin takes the spectra's mean over it (spectrumMean). On a surface the
+/// absorptance must lie in [0, 1] at every wavelength; with `normaliseAbsorptance` (a medium's
+/// dye) it is a shape, scaled to 1 at its largest bin (and must be above 0 somewhere). The
+/// emission (photons, any scale) must be non-negative and above 0 somewhere. A dye of which
+/// under kEemMinModelledFraction of the emission lies above the absorption (what the matrix
+/// models) is refused, under kEemWarnModelledFraction warned about in `warning` (if given).
+/// Throws nx::Error "<where>: expected ..., found ...".
 ReradiationMatrix separableMatrix(const Spectrum& absorptance, const Spectrum& emission,
                                   double quantumYield, bool normaliseAbsorptance,
-                                  const std::string& where);
+                                  const std::string& where, std::string* warning = nullptr);
 
 } // namespace nx

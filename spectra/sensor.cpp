@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/file_text.h"
+#include "core/number_text.h"
 #include "core/text_table.h"
 
 namespace nx {
@@ -58,8 +59,8 @@ std::optional<double> SensorChannel::nominalNm() const {
   if (t.size() > 2 && (t.ends_with("nm") || t.ends_with("NM"))) t.resize(t.size() - 2);
   while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.pop_back();
   if (t.empty() || !(std::isdigit(static_cast<unsigned char>(t[0])))) return std::nullopt;
-  char* end = nullptr;
-  const double v = std::strtod(t.c_str(), &end);
+  const char* end = nullptr;
+  const double v = strtodC(t.c_str(), &end);
   if (end != t.c_str() + t.size() || !(v >= 100 && v <= 2000)) return std::nullopt;
   return v;
 }
@@ -356,8 +357,7 @@ void Sensor::finish(const std::string& where) {
                   " nm, " + numberText(fwhm_[i]) + " nm, " + numberText(integral_[i]) + " nm");
     const std::optional<double> nominal = c.nominalNm();
     channelNm_[i] = nominal ? *nominal : centroid_[i];
-    char name[64];
-    std::snprintf(name, sizeof name, "%.6f", channelNm_[i]);
+    const std::string name = fixedText(channelNm_[i], 6);
     if (!layerNames.insert(name).second)
       throw Error(where +
                   (nominal ? ": expected bands with distinct nominal centres (their names, "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/error.h"
 
@@ -58,6 +59,39 @@ void addSampledMaximum(Extremes& x, const F& f, double lo, double hi, double ste
 }
 
 } // namespace
+
+double spectrumMean(const Spectrum& s, double loNm, double hiNm) {
+  std::vector<double> at{loNm, hiNm};
+  // The knots inside, and the points just beyond a table's ends (a table that is zero beyond
+  // them steps there).
+  const auto knots = [&](const auto& nm, bool holdEnds) {
+    for (double x : nm)
+      if (x > loNm && x < hiNm) at.push_back(x);
+    if (!holdEnds && !nm.empty())
+      for (double edge :
+           {std::nextafter(nm.front(), -INFINITY), std::nextafter(nm.back(), INFINITY)})
+        if (edge > loNm && edge < hiNm) at.push_back(edge);
+  };
+  if (const auto* t = std::get_if<TabulatedSpectrum>(&s.kind())) {
+    knots(t->nm, t->holdEnds);
+  } else if (const auto* d = std::get_if<DenseSpectrum>(&s.kind())) {
+    std::vector<double> nm;
+    for (size_t i = 0; i < d->value.size(); ++i)
+      nm.push_back(DenseSpectrum::startNm + DenseSpectrum::stepNm * static_cast<double>(i));
+    knots(nm, true);
+  } else if (!std::holds_alternative<ConstantSpectrum>(s.kind())) {
+    const int n = std::max(1, static_cast<int>(std::ceil((hiNm - loNm) / 0.05)));
+    for (int i = 1; i < n; ++i) at.push_back(loNm + (hiNm - loNm) * i / n);
+  }
+  std::sort(at.begin(), at.end());
+  double sum = 0, previous = s(at[0]);
+  for (size_t i = 1; i < at.size(); ++i) {
+    const double v = s(at[i]);
+    sum += 0.5 * (previous + v) * (at[i] - at[i - 1]);
+    previous = v;
+  }
+  return sum / (hiNm - loNm);
+}
 
 SpectrumExtremes spectrumExtremes(const Spectrum& s, double lo, double hi) {
   Extremes x;

@@ -22,6 +22,12 @@ struct SpectrumExtremes {
 /// sampled search refined to 1e-6 nm. A non-finite value anywhere makes both extremes NaN.
 SpectrumExtremes spectrumExtremes(const Spectrum& s, double loNm, double hiNm);
 
+/// The mean of s over [loNm, hiNm] (loNm < hiNm): exact for constant, tabulated and dense
+/// spectra (piecewise linear between their knots, zero or held beyond their ends), the
+/// trapezoidal rule on 0.05 nm steps for the analytic kinds. A line narrower than the interval
+/// counts with its integral (sampling at the interval's centre would miss it or magnify it).
+double spectrumMean(const Spectrum& s, double loNm, double hiNm);
+
 /// "" for an emission within [0, kMaxEmission] at every traceable wavelength (300-1100 nm,
 /// exactly), else "expected an emission within [0, 1e12] ..., found X at Y nm": the one check
 /// of emitted spectra (scenes, relighting).

@@ -74,7 +74,7 @@ struct DiskShapeKind {
          true,
          false,
          [](const ParamValue& v) -> const char* {
-           return length(std::get<Vec3d>(v)) > 0 ? nullptr : "a non-zero disk normal";
+           return isNonZero(std::get<Vec3d>(v)) ? nullptr : "a non-zero disk normal";
          }},
         {{"radius", ParamType::Number, "scene units", &kRadiusRange, "its radius", "0.5"}},
     };
@@ -84,7 +84,8 @@ struct DiskShapeKind {
   static std::optional<ShapeProblem> problem(const ParameterSet&) { return std::nullopt; }
   /// Its primitive, from checked parameters.
   static DiskShape build(const ParameterSet& p, const ShapeInputs&) {
-    return {*p.get<Vec3d>("center"), normalize(*p.get<Vec3d>("normal")), *p.number("radius")};
+    return {*p.get<Vec3d>("center"), normalizeAnyLength(*p.get<Vec3d>("normal")),
+            *p.number("radius")};
   }
 };
 

@@ -10,6 +10,7 @@
 
 #include "accel/shape_schema.h"
 #include "core/error.h"
+#include "core/memory.h"
 #include "core/triangle_mesh.h"
 
 namespace nx {
@@ -96,6 +97,12 @@ private:
     const ArrayDesc& v = *p.get<ArrayDesc>("vertices");
     const std::vector<float>& xyz = *v.reals;
     const std::vector<uint32_t>& idx = *p.get<ArrayDesc>("faces")->indices;
+    // Checked as a mesh file is, before the mesh and its acceleration structure are built.
+    requireMemory(static_cast<double>(idx.size() / 3) * kMeshBytesPerFace +
+                      static_cast<double>(v.rows()) * kMeshBytesPerVertex,
+                  "mesh of <vertices> and <faces>", "a mesh",
+                  std::to_string(v.rows()) + " vertices and " + std::to_string(idx.size() / 3) +
+                      " faces");
     TriangleMesh m;
     m.reserve(v.rows(), idx.size() / 3);
     for (size_t i = 0; i < v.rows(); ++i)

@@ -15,6 +15,8 @@ namespace nx {
 struct PlaneShape {
   Vec3d normal{0, 1, 0};
   double distance = 0;
+  /// Every field compared (the geometry cache reuses a BVH only for equal shapes).
+  bool operator==(const PlaneShape&) const = default;
 };
 
 /// Ray parameter where o + t d meets the plane's infinite extension: may be negative,
@@ -45,7 +47,7 @@ struct PlaneShapeKind {
          true,
          false,
          [](const ParamValue& v) -> const char* {
-           return length(std::get<Vec3d>(v)) > 0 ? nullptr : "a non-zero plane normal";
+           return isNonZero(std::get<Vec3d>(v)) ? nullptr : "a non-zero plane normal";
          }},
         {{"distance", ParamType::Number, "scene units", &kPlaneDistanceRange,
           "its signed distance from the origin along the unit normal", "0"}},
@@ -56,8 +58,7 @@ struct PlaneShapeKind {
   static std::optional<ShapeProblem> problem(const ParameterSet&) { return std::nullopt; }
   /// Its primitive, from checked parameters (the normal made unit length).
   static PlaneShape build(const ParameterSet& p, const ShapeInputs&) {
-    const Vec3d n = *p.get<Vec3d>("normal");
-    return {n / length(n), *p.number("distance")};
+    return {normalizeAnyLength(*p.get<Vec3d>("normal")), *p.number("distance")};
   }
 };
 

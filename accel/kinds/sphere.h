@@ -15,6 +15,8 @@ namespace nx {
 struct SphereShape {
   Vec3d center;
   double radius = 1;
+  /// Every field compared (the geometry cache reuses a BVH only for equal shapes).
+  bool operator==(const SphereShape&) const = default;
 };
 
 /// Nearest ray parameter t in (tMin, tMax) where o + t d meets the sphere, if any. Uses the

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/number_text.h"
 
 namespace nx {
 namespace {
@@ -105,12 +106,9 @@ std::string arrayText(const ArrayDesc& a) {
   std::string out;
   const size_t n = a.reals ? a.reals->size() : a.indices ? a.indices->size() : 0;
   out.reserve(n * 10);
-  char buffer[32];
   for (size_t i = 0; i < n; ++i) {
     if (i) out += i % a.columns == 0 ? ", " : " ";
-    const auto r = a.reals ? std::to_chars(buffer, buffer + sizeof buffer, (*a.reals)[i])
-                           : std::to_chars(buffer, buffer + sizeof buffer, (*a.indices)[i]);
-    out.append(buffer, r.ptr);
+    out += a.reals ? shortestText((*a.reals)[i]) : std::to_string((*a.indices)[i]);
   }
   return out;
 }

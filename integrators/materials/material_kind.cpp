@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "core/params/material_parameters.h"
 #include "core/text_table.h"
 #include "spectra/spectrum_bounds.h"
@@ -43,8 +44,8 @@ const KindParameter* MaterialKindSpec::param(std::string_view n) const {
 
 double MaterialKindSpec::numberDefault(std::string_view n) const {
   const KindParameter* p = param(n);
-  char* end = nullptr;
-  const double v = p ? std::strtod(p->defaultText, &end) : NAN;
+  const char* end = nullptr;
+  const double v = p ? strtodC(p->defaultText, &end) : NAN;
   if (!p || end == p->defaultText || *end != '\0')
     throw Error(std::string("material kind '") + name + "' declares no number default for <" +
                 std::string(n) + ">"); // a defect of the kind's declaration
@@ -133,9 +134,12 @@ void setFluorescence(Material& m, const ParameterSet& p, const MaterialInputs& i
   }
   if (f->spectra) { // a dye as a datasheet gives it: the separable matrix
     const Spectrum a = in.spectrum(f->spectra->absorptance, SpectrumRole::Reflectance);
-    const Spectrum e = in.spectrum(f->spectra->emission, SpectrumRole::Emission);
+    // (the emission's scale is any: its shape is what counts, not a light's limit)
+    const Spectrum e = in.spectrum(f->spectra->emission, SpectrumRole::EmissionShape);
+    std::string warning;
     m.reradiation = std::make_shared<const ReradiationMatrix>(
-        separableMatrix(a, e, f->quantumYield.value_or(1), false, f->loc.str()));
+        separableMatrix(a, e, f->quantumYield.value_or(1), false, f->loc.str(), &warning));
+    if (!warning.empty()) in.warn(warning);
     return;
   }
   m.fluorescenceModel = in.fluorescenceModel(*f);

@@ -19,7 +19,12 @@ namespace nx {
 /// What a spectrum reference stands for: its names and checks differ (an emission takes the
 /// illuminant names and is checked to be within [0, kMaxEmission]; a coefficient takes the
 /// medium tables' names and the reflectance names).
-enum class SpectrumRole { Reflectance, Emission, Coefficient };
+enum class SpectrumRole {
+  Reflectance,
+  Emission,      ///< emitted radiance: held to [0, kMaxEmission]
+  EmissionShape, ///< an emission's shape, any scale (a dye's): named emissions, no limit
+  Coefficient
+};
 
 /// What a kind's build needs from the scene around it: references resolved (spectra by name,
 /// files read into the render key), and the object it is built for. Implemented by the scene

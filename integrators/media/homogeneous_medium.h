@@ -36,6 +36,8 @@ public:
   virtual void checkEmission(const Spectrum& s, const SourceLocation& loc) const = 0;
   /// The parametric re-radiation model, checked.
   virtual FluorescenceModel fluorescenceModel(const FluorescenceDesc& d) const = 0;
+  /// Records a warning ("file:line: warning: ...") the render prints.
+  virtual void warn(const std::string& message) const = 0;
 };
 
 /// The medium filling a closed shape.
@@ -172,10 +174,12 @@ struct HomogeneousMediumKind {
         throw Error(dye->loc.str() + ": expected a <peak> (the dye's peak absorption "
                                      "coefficient per unit length), found none");
       m.dyePeak = static_cast<float>(*dye->peakAbsorptance);
+      std::string warning;
       m.dye = std::make_shared<const ReradiationMatrix>(
           separableMatrix(in.spectrum(dye->spectra->absorptance, SpectrumRole::Coefficient),
-                          in.spectrum(dye->spectra->emission, SpectrumRole::Emission),
-                          dye->quantumYield.value_or(1), true, dye->loc.str()));
+                          in.spectrum(dye->spectra->emission, SpectrumRole::EmissionShape),
+                          dye->quantumYield.value_or(1), true, dye->loc.str(), &warning));
+      if (!warning.empty()) in.warn(warning);
     } else if (dye) {
       FluorescenceModel model = in.fluorescenceModel(*dye);
       m.dyePeak = static_cast<float>(model.peakAbsorptance); // the coefficient, per unit length

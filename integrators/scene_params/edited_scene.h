@@ -1,8 +1,7 @@
 #pragma once
 // A scene description being edited by name (from Python, from a program building scenes): the
-// description, the record of the edits made to it since it was read, and counts of changes to
-// its object and light lists (views of a list taken before a change refuse to be used). The
-// render key follows the description's state, not the record (sceneForRendering).
+// description and the record of the edits made to it since it was read. The render key follows
+// the description's state, not the record (sceneForRendering).
 
 #include <cstdint>
 #include <string>
@@ -17,8 +16,6 @@ namespace nx {
 struct EditedScene {
   SceneDesc desc;
   std::vector<std::string> edits; ///< "objects[2].fluorescence.stokes_nm = 60", in order
-  /// Counts of insertions into and removals from the object and light lists
-  uint64_t objectsVersion = 0, lightsVersion = 0;
 
   /// Records an edit: parameter (or list) `what` set to the value written `valueText`.
   void record(const std::string& what, const std::string& valueText) {

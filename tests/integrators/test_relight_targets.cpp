@@ -276,6 +276,36 @@ TEST(RelightTargets, TargetedRenderRelightsAnySpectrumUnbiased) {
   expectComponentsSum(relit);
 }
 
+// A target line narrower than the 0.1 nm grid the mixture is tabulated on, lying between its
+// points (450.03-450.07 nm), is integrated at its own knots: the mixture holds it, with the
+// integral it has (it once came out 0, and the render lost about 30% of its light), and a
+// render targeted at it and at S2 relit to S2 is S2's direct render.
+TEST(RelightTargets, ALineBetweenTheGridsPointsIsIntegratedExactly) {
+  const std::string line = "<emission scale=\"2e-4\">450.03:0, 450.05:1, 450.07:0</emission>";
+  SceneDesc d = parseScene(benchScene(kLampS1), "t.scn");
+  d.relightable = true;
+  d.relightTargets.push_back({"", writtenSpectrum(line), "line"});
+  d.relightTargets.push_back({"", writtenSpectrum(kLampS2), "S2"});
+  const RenderScene scene = buildRenderScene(d);
+  const Spectrum& mixture = scene.relight.samplingOfSource.at(0);
+  // Each target's share is its normalised shape times the mean integral: the line's peak
+  // 2e-4 over its integral 2e-4 x 0.04 nm / 2, halved, times the mean of the two integrals.
+  double s2 = 0;
+  for (int k = 0; k < 8000; ++k) {
+    const double a = 300 + 0.1 * k;
+    s2 += 0.05 * (writtenSpectrum(kLampS2)(a) + writtenSpectrum(kLampS2)(a + 0.1));
+  }
+  const double lineIntegral = 0.5 * 2e-4 * 0.04, mean = (lineIntegral + s2) / 2; // a triangle
+  const double expected = (2e-4 / lineIntegral + writtenSpectrum(kLampS2)(450.05) / s2) / 2 * mean;
+  EXPECT_NEAR(mixture(450.05), expected, 1e-3 * expected); // (the written line: its 1e-4 nm grid)
+  EXPECT_GT(mixture(450.05), 10 * mixture(450.2));
+  RenderOutput out = render(scene, RenderOptions{});
+  EXPECT_EQ(out.stats.relightMissed, 0u);
+  const SpectralImage targeted = toSpectralImage(out.film);
+  const SpectralImage relit = relightImage(targeted, {binned(targeted, "lamp", kLampS2)});
+  expectSameBands(relit, directRender(benchScene(kLampS2)), "targeted at a line, relit to S2");
+}
+
 // Two lamps of two groups, targets for one of them: the other group's lights keep their own
 // spectrum for the choice among lights; a target naming no group of the scene, one that is 0
 // everywhere and targets without a relightable build are refused.

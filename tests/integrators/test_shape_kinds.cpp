@@ -104,6 +104,33 @@ TEST(ShapeKinds, EveryKindBuildsFromItsExamplesIntoOnePrimitive) {
   }
 }
 
+// Normals of any non-zero length, as the declarations say: 1e-300 (whose square underflows to
+// 0) and 1e12 make unit normals; only zero is refused.
+TEST(ShapeKinds, NormalsOfAnyNonZeroLengthAreTaken) {
+  for (const char* n : {"0,1e-300,0", "0,-1e12,0", "1e-300,1e-300,0"}) {
+    SCOPED_TRACE(n);
+    const RenderScene s = buildRenderScene(parseScene(
+        withObject(
+            "<disk><center>0,0,0</center><normal>" + std::string(n) +
+            "</normal><radius>1</radius><material>matte</material><reflectance>0.5</reflectance>"
+            "</disk><plane><normal>" +
+            n +
+            "</normal><distance>0</distance><material>matte</material><reflectance>0.5"
+            "</reflectance></plane>"),
+        "t.scn"));
+    ASSERT_EQ(s.geometry->disks().size(), 1u);
+    ASSERT_EQ(s.geometry->planes().size(), 1u);
+    EXPECT_NEAR(length(s.geometry->disks()[0].normal), 1.0, 1e-15);
+    EXPECT_NEAR(length(s.geometry->planes()[0].normal), 1.0, 1e-15);
+  }
+  EXPECT_NE(test::errorMessage([] {
+              parseScene(withObject("<disk><center>0,0,0</center><normal>0,0,0</normal><radius>1"
+                                    "</radius><material>matte</material></disk>"),
+                         "t.scn");
+            }).find("a non-zero disk normal"),
+            std::string::npos);
+}
+
 TEST(ShapeKinds, RequiredParametersAndOtherKindsParametersAreRefusedAtTheirLine) {
   for (const ShapeKindSpec& kind : shapeKinds()) {
     SCOPED_TRACE(kind.name);

@@ -293,6 +293,14 @@ TEST(MeshReader, FilesReadAgainComeFromTheCacheByTheirBytes) {
   TriangleMesh scaled = readMeshFile(path).mesh;
   scaled.transform(Matrix3{{{2, 0, 0}, {0, 2, 0}, {0, 0, 2}}}, Vec3d());
   EXPECT_EQ(triangleSet(readMeshFile(path).mesh), triangleSet(changed));
+  // The cache is keyed by size and SHA-256, keeps no bytes, and can be emptied.
+  EXPECT_EQ(meshKeyOf(moved, "ply").digest, meshKeyOf(std::string(moved), "ply").digest);
+  EXPECT_FALSE(meshKeyOf(moved, "ply") == meshKeyOf(original, "ply"));
+  EXPECT_FALSE(meshKeyOf(moved, "ply") == meshKeyOf(moved, "obj"));
+  clearMeshCache();
+  EXPECT_EQ(cachedMeshCount(), 0u);
+  EXPECT_EQ(triangleSet(readMeshFile(path).mesh), triangleSet(changed));
+  EXPECT_EQ(cachedMeshCount(), 1u);
 }
 
 } // namespace

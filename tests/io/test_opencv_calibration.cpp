@@ -5,15 +5,21 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <thread>
 #include <utility>
 #include <vector>
 
 #include "integrators/scene_reader.h"
+#include "io/isolated_call.h"
 #include "io/opencv_calibration.h"
 #include "io/scene_desc.h"
 #include "support/errors.h"
@@ -92,6 +98,46 @@ TEST(OpenCvCalibration, RotationVectorsBecomeRotations) {
   EXPECT_EQ((*c.imageSize)[0], 64);
   EXPECT_EQ(c.intrinsics, (std::array<double, 4>{70, 72, 31.5, 23.5}));
   EXPECT_EQ(c.distortion[4], 0.003);
+}
+
+// OpenCV reads in a helper program started by posix_spawn, not in a fork of this process (a
+// fork of a multi-threaded process can deadlock on a lock another thread held): this
+// process's children are that program. Reads from several threads at once, while others keep
+// allocating, all answer.
+TEST(OpenCvCalibration, TheReaderIsAHelperProgramNotAFork) {
+  (void)parseOpenCvCalibration(kYaml, "calib.yml", 0);
+  std::vector<std::string> children;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+    std::ifstream in(task.path() / "children");
+    for (long pid; in >> pid;) {
+      std::error_code ec;
+      const auto exe = std::filesystem::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec);
+      if (!ec) children.push_back(exe.filename().string());
+    }
+  }
+  ASSERT_FALSE(children.empty()) << "no reader process";
+  for (const std::string& c : children) EXPECT_EQ(c, kCalibrationReaderProgram);
+  EXPECT_NE(helperProgramPath(kCalibrationReaderProgram), "");
+  EXPECT_EQ(helperProgramPath("no-such-helper"), "");
+  std::atomic<bool> stop{false};
+  std::thread busy([&] { // keeps the allocator's locks busy
+    volatile double sink = 0;
+    while (!stop) {
+      std::vector<double> v(1000, 1.0);
+      sink = sink + v[999];
+    }
+  });
+  std::vector<std::thread> readers;
+  std::atomic<int> ok{0};
+  for (int t = 0; t < 4; ++t)
+    readers.emplace_back([&] {
+      for (int k = 0; k < 5; ++k)
+        if (parseOpenCvCalibration(kYaml, "calib.yml", 0).intrinsics[0] > 0) ++ok;
+    });
+  for (std::thread& r : readers) r.join();
+  stop = true;
+  busy.join();
+  EXPECT_EQ(ok, 20);
 }
 
 TEST(OpenCvCalibration, YamlAndXmlSetTheCameraAsItsElementsWould) {
