@@ -290,13 +290,14 @@ TEST(RelightTargets, ALineBetweenTheGridsPointsIsIntegratedExactly) {
   const Spectrum& mixture = scene.relight.samplingOfSource.at(0);
   // Each target's share is its normalised shape times the mean integral: the line's peak
   // 2e-4 over its integral 2e-4 x 0.04 nm / 2, halved, times the mean of the two integrals.
+  const Spectrum lampS2 = writtenSpectrum(kLampS2);
   double s2 = 0;
   for (int k = 0; k < 8000; ++k) {
     const double a = 300 + 0.1 * k;
-    s2 += 0.05 * (writtenSpectrum(kLampS2)(a) + writtenSpectrum(kLampS2)(a + 0.1));
+    s2 += 0.05 * (lampS2(a) + lampS2(a + 0.1));
   }
   const double lineIntegral = 0.5 * 2e-4 * 0.04, mean = (lineIntegral + s2) / 2; // a triangle
-  const double expected = (2e-4 / lineIntegral + writtenSpectrum(kLampS2)(450.05) / s2) / 2 * mean;
+  const double expected = (2e-4 / lineIntegral + lampS2(450.05) / s2) / 2 * mean;
   EXPECT_NEAR(mixture(450.05), expected, 1e-3 * expected); // (the written line: its 1e-4 nm grid)
   EXPECT_GT(mixture(450.05), 10 * mixture(450.2));
   RenderOutput out = render(scene, RenderOptions{});

@@ -276,7 +276,8 @@ TEST(ShapeGradients, OutlineAgainstTheBackgroundMatchesDifferencesAndClosedForm)
     const Comparison interior = compare(c, name, k, 0.01, region, false);
     for (size_t b = 0; b < interior.gradient.size(); ++b) {
       EXPECT_EQ(interior.gradient[b], 0.0);
-      EXPECT_GT(std::abs(interior.difference[b]), 10 * moved.standardError[b])
+      EXPECT_GT(std::abs(interior.difference[b]),
+                test::scaledSeparation(10) * moved.standardError[b])
           << name << " band " << b << ": the interior term alone would pass";
     }
   }
@@ -705,8 +706,8 @@ TEST(ShapeGradients, ObjectTransformMatchesDifferences) {
       compareTransform(placed, spin, kFluorescent, kPointLight, 256, smoothSphereObj(), inside);
   const double h = 0.01;
   auto normalsTurned = [&](double angle) {
-    return render(built(transformedScene(placed, spin, 0, kFluorescent, kPointLight, 256,
-                                         smoothSphereObj(angle))),
+    return render(built(transformedScene(placed, spin, 0, kFluorescent, kPointLight,
+                                         test::scaledSamples(256), smoothSphereObj(angle))),
                   {});
   };
   const RenderOutput plus = normalsTurned(h), minus = normalsTurned(-h);
@@ -721,7 +722,7 @@ TEST(ShapeGradients, ObjectTransformMatchesDifferences) {
                           minus.film.bandMean(x, y, static_cast<int>(b))) /
                          (2 * h);
     if (b == 1) { // the band the dye emits in: the normals' share resolved to 10%
-      EXPECT_LT(spun.standardError[b], 0.1 * std::abs(normalsOnly))
+      EXPECT_LT(spun.standardError[b], test::scaledPower(0.1) * std::abs(normalsOnly))
           << "no power against sliding the normals: " << normalsOnly;
     }
   }
