@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "core/error.h"
@@ -170,6 +171,18 @@ bool isPairs(const SceneTree& t) {
   return a.size() == b.size() && a.size() >= 2 && !isNumber((*l)[0]);
 }
 
+// A key that becomes an element's name must be one (ASCII letters, digits, '_', '-', '.', not
+// starting with a digit, '-' or '.'): an empty key or "<a>" would write text the reader
+// cannot parse, or take a sibling's attributes.
+void checkElementName(const std::string& tag, const std::string& path) {
+  auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
+  bool ok = !tag.empty() && letter(tag[0]);
+  for (char c : tag) ok = ok && (letter(c) || (c >= '0' && c <= '9') || c == '-' || c == '.');
+  if (!ok)
+    throw Error(path + ": expected a parameter name (letters, digits and _), found " +
+                (tag.size() > 40 ? "'" + tag.substr(0, 40) + "...'" : "'" + tag + "'"));
+}
+
 class TreeWriter {
 public:
   SceneTreeText result;
@@ -303,6 +316,7 @@ private:
   void element(const std::string& tag, const SceneTree& v, const std::string& path,
                const Names& attributes) {
     if (v.as<std::monostate>()) return;
+    checkElementName(tag, path);
     const std::string indent(2 * depth_, ' ');
     const Dict* d = v.as<Dict>();
     if (!d && tag == "transform" && v.as<List>() && !isNumeric(v)) { // steps in order
@@ -337,14 +351,16 @@ private:
     // Which keys are attributes of which child: NAME_<suffix> of a sibling NAME.
     std::set<std::string> keys;
     for (const auto& [k, x] : *d) keys.insert(k);
-    auto suffixOf = [&](const std::string& k) -> std::pair<std::string, std::string> {
+    // (base, suffix) of a suffixed key, nothing for any other (an empty key included).
+    auto suffixOf =
+        [&](const std::string& k) -> std::optional<std::pair<std::string, std::string>> {
       for (const char* s : kAttributeSuffixes) {
         const std::string suffix = std::string("_") + s;
         if (k.size() > suffix.size() && k.ends_with(suffix) &&
             keys.count(k.substr(0, k.size() - suffix.size())))
-          return {k.substr(0, k.size() - suffix.size()), s};
+          return std::pair<std::string, std::string>{k.substr(0, k.size() - suffix.size()), s};
       }
-      return {};
+      return std::nullopt;
     };
     std::string text;
     std::vector<const std::pair<std::string, SceneTree>*> children;
@@ -355,7 +371,7 @@ private:
         attrs += " " + k + "=\"" + attributeText(x, path + "." + k) + "\"";
       else if (k == "value")
         text = scalarText(x, path + "." + k, attrs);
-      else if (suffixOf(k).first.empty())
+      else if (!suffixOf(k))
         children.push_back(&entry);
     }
     if (children.empty()) {
@@ -371,8 +387,8 @@ private:
       // Attributes of this child from its suffixed siblings, as a dictionary.
       Dict withSuffixed;
       for (const auto& [k2, x2] : *d)
-        if (const auto [base, suffix] = suffixOf(k2); base == k && !x2.as<std::monostate>())
-          withSuffixed.emplace_back(suffix, x2);
+        if (const auto bs = suffixOf(k2); bs && bs->first == k && !x2.as<std::monostate>())
+          withSuffixed.emplace_back(bs->second, x2);
       if (withSuffixed.empty()) {
         element(k, x, path + "." + k, attributesOf(k));
         continue;

@@ -56,13 +56,19 @@ def array(rng):
     shape = rng.choice([(0,), (3,), (2, 3), (4, 3), (1, 1, 1), (5, 2)])
     dtype = rng.choice([np.float32, np.float64, np.int64, np.uint32, np.int8, np.bool_,
                         np.complex64, np.float16])
-    return (np.random.default_rng(rng.randrange(1 << 30)).standard_normal(shape) * 3).astype(dtype)
+    values = [rng.uniform(-3, 3) for _ in range(int(np.prod(shape)))]
+    return np.array(values).reshape(shape).astype(dtype)
 
 
 def value(rng, depth):
     kind = rng.random()
-    if depth > 40 or kind < 0.3:
+    if depth > 40 or kind < min(0.9, 0.3 + 0.1 * depth):  # leaves grow likelier with depth
         return number(rng)
+    if kind > 0.98:  # a narrow chain, 10 to 40 deep
+        v = number(rng)
+        for _ in range(rng.randrange(10, 41)):
+            v = [v] if rng.random() < 0.7 else {rng.choice(KEYS): v}
+        return v
     if kind < 0.4:
         return rng.choice(WORDS)
     if kind < 0.45:
@@ -120,7 +126,8 @@ class ItemTarget:
                      log=lambda text: None)
         self.path = nds.item_path(self.out, 0)
         self.original = open(self.path, "rb").read()
-        self.good = nds.Dataset(self.out)[0]
+        self.data = nds.Dataset(self.out)  # (it reads each item anew at every access)
+        self.good = self.data[0]
 
     def forged(self, rng):
         """The item with its record changed and its checksum made valid again."""
@@ -162,7 +169,7 @@ class ItemTarget:
             f.write(data)
         for read in (lambda d: d[0], lambda d: {k: v[0] for k, v in d[[0, 1]].items()}):
             try:
-                item = read(nds.Dataset(self.out))
+                item = read(self.data)
             except ALLOWED:
                 continue
             for key, want in self.good.items():
@@ -194,6 +201,9 @@ def main():
             except Exception as e:  # a finding
                 print(f"FINDING: run {run} (seed {args.seed}): {type(e).__name__}: {e}")
                 return 1
+            if (run + 1) % 100000 == 0:
+                print(f"{args.kind}: {run + 1} runs in {time.monotonic() - start:.0f} s",
+                      flush=True)
     seconds = time.monotonic() - start
     print(f"{args.kind}: {args.runs} runs in {seconds:.1f} s, no findings")
     return 0

@@ -176,6 +176,14 @@ def test_the_issue_dict_renders_and_reads_back():
      "settings.mode: expected a mode rt, mcpt or spectral_mcpt, found 'pbr'"),
     (lambda d: d.update(lamps=[]), "lamps: expected one of the sections"),
     (lambda d: d["objects"][0].update(center=object()), "objects[0].center: expected a number"),
+    # Keys that are no element names: an empty key whose value is a dict once took every
+    # sibling as its attributes, recursing until memory ran out (found by the dict fuzzer).
+    (lambda d: d["objects"][0].update({"fluorescence": {"": {"x": 1}}}),
+     "objects[0].fluorescence.: expected a parameter name (letters, digits and _), found ''"),
+    (lambda d: d["objects"][0].update({"": 1}),
+     "objects[0].: expected a parameter name (letters, digits and _), found ''"),
+    (lambda d: d["settings"].update({"a<b": 1}),
+     "settings.a<b: expected a parameter name (letters, digits and _), found 'a<b'"),
 ])
 def test_dict_errors_name_the_path(change, message):
     d = {"settings": {"xres": 8, "yres": 8, "mode": "spectral_mcpt"},
@@ -351,3 +359,15 @@ def test_nesting_deeper_than_a_scene_and_self_containing_values_are_refused():
                        r".*\(401 digits\)"):
         nxrender.Scene.from_dict({"settings": {"xres": 10 ** 400}})
     assert len(scene.objects) == 0
+
+
+def test_integers_beyond_64_bits_are_refused_naming_the_parameter():
+    scene = nxrender.Scene.from_dict({"settings": {"xres": 4, "yres": 4, "mode": "spectral_mcpt"},
+                                      "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0]}})
+    for set_it in (lambda v: scene.set("resolution", v),
+                   lambda v: setattr(scene, "resolution", v)):
+        with pytest.raises(ValueError, match=r"resolution\[0\]: expected an int in .*, found "
+                                             r"10000000000000000000\.\.\. \(401 digits\)"):
+            set_it((10 ** 400, 4))
+    with pytest.raises(ValueError, match=r"spp: expected an int in \[1, .*\(401 digits\)"):
+        nxrender.render(scene, spp=10 ** 400)
