@@ -3,6 +3,7 @@
 #include "apps/python/py_arguments.h"
 
 #include <cmath>
+#include <limits>
 
 namespace nxpy {
 
@@ -33,10 +34,12 @@ long long integerArgument(const py::handle& value, const char* param, long long 
   long long v = 0;
   try {
     v = value.attr("__index__")().cast<long long>();
-  } catch (const py::cast_error&) {
+  } catch (const py::cast_error&) { // beyond 64 bits: its first digits and its length
+    std::string digits = py::str(value).cast<std::string>();
+    if (digits.size() > 40)
+      digits = digits.substr(0, 20) + "... (" + std::to_string(digits.size()) + " digits)";
     throw py::value_error(std::string(param) + ": expected an int in [" + std::to_string(lo) +
-                          ", " + std::to_string(hi) + "], found " +
-                          py::str(value).cast<std::string>());
+                          ", " + std::to_string(hi) + "], found " + digits);
   }
   if (v < lo || v > hi)
     throw py::value_error(std::string(param) + ": expected an int in [" + std::to_string(lo) +
@@ -125,7 +128,9 @@ std::vector<long long> integersArgument(const py::handle& value, const char* par
     if (py::isinstance<py::bool_>(item) || !py::hasattr(item, "__index__"))
       throw py::type_error(std::string(param) + "[" + std::to_string(i) +
                            "]: expected an int, found " + typeName(item));
-    out.push_back(item.attr("__index__")().cast<long long>());
+    out.push_back(integerArgument(
+        item, (std::string(param) + "[" + std::to_string(i) + "]").c_str(),
+        std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max()));
   }
   return out;
 }

@@ -5,15 +5,8 @@
 #   changed_data.sh BIN_DIR
 set -euo pipefail
 bin="$1"
-d="$(mktemp -d)"
-trap 'rm -rf "$d"' EXIT
-cat >"$d/s.scn" <<'SCN'
-<scene>
-<settings><xres>8</xres><yres>6</yres><mode>spectral_mcpt</mode><sampl>8</sampl></settings>
-<camera><position>0,0,-5</position><look_at>0,0,0</look_at></camera>
-<sphere><center>0,0,0</center><radius>1</radius><material>matte</material><reflectance csv="paint.csv"/><emission>1</emission></sphere>
-</scene>
-SCN
+REFLECTANCE='<reflectance csv="paint.csv"/>'
+. "$(dirname "$0")/emitter_scene.sh"
 printf '400,0.5\n700,0.5\n' >"$d/paint.csv"
 "$bin/nxrender" --threads 2 --spp-range 0:4 -o "$d/a.exr" "$d/s.scn" 2>/dev/null
 printf '400,0.5\n700,0.9\n' >"$d/paint.csv"

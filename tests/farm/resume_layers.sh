@@ -6,15 +6,7 @@
 #   resume_layers.sh BIN_DIR
 set -euo pipefail
 bin="$1"
-d="$(mktemp -d)"
-trap 'rm -rf "$d"' EXIT
-cat >"$d/s.scn" <<'SCN'
-<scene>
-<settings><xres>8</xres><yres>6</yres><mode>spectral_mcpt</mode><sampl>8</sampl></settings>
-<camera><position>0,0,-5</position><look_at>0,0,0</look_at></camera>
-<sphere><center>0,0,0</center><radius>1</radius><material>matte</material><reflectance>0.5</reflectance><emission>1</emission></sphere>
-</scene>
-SCN
+. "$(dirname "$0")/emitter_scene.sh"
 r() { "$bin/nxrender" --threads 2 "$@" 2>"$d/err"; }
 r --spp 4 --aov normals,albedo -o "$d/p.exr" "$d/s.scn"
 if r --spp 4 --aov normals --resume "$d/p.exr" -o "$d/q.exr" "$d/s.scn"; then

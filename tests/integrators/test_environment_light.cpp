@@ -58,21 +58,32 @@ std::string sceneWith(const std::string& settingsExtra, const std::string& camer
 const std::string kLookDown = "<position>0,5,0</position><look_at>0,0,0</look_at><up>0,0,1</up>"
                               "<fov>10</fov>";
 
-TEST(EnvironmentLight, SamplingFollowsItsPdf) {
-  const int w = 8, h = 4;
-  const std::string map = writeMap("env_sampling.exr", w, h, [](int x, int y, int b) {
-    return 0.1f + static_cast<float>((x * 7 + y * 3) % 5) + 0.1f * static_cast<float>(b);
-  });
-  const RenderScene scene = resolveRenderScene(parseScene(
+// The environment map `map` lighting a matte floor, resolved.
+RenderScene environmentOverAFloor(const std::string& map) {
+  return resolveRenderScene(parseScene(
       sceneWith("", kLookDown,
                 "<light type=\"environment\"><file>" + map +
                     "</file></light>"
                     "<plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>"
                     "<reflectance>0.5</reflectance></plane>"),
       "t.scn"));
-  const EnvironmentLight& env = std::get<EnvironmentLight>(scene.lights[0]);
+}
+
+// Lanes at 450, 480, ... nm.
+SampledWavelengths visibleLanes() {
   SampledWavelengths lambda;
   for (int i = 0; i < kLanes; ++i) lambda.lambda[i] = 450.0f + 30.0f * static_cast<float>(i);
+  return lambda;
+}
+
+TEST(EnvironmentLight, SamplingFollowsItsPdf) {
+  const int w = 8, h = 4;
+  const std::string map = writeMap("env_sampling.exr", w, h, [](int x, int y, int b) {
+    return 0.1f + static_cast<float>((x * 7 + y * 3) % 5) + 0.1f * static_cast<float>(b);
+  });
+  const RenderScene scene = environmentOverAFloor(map);
+  const EnvironmentLight& env = std::get<EnvironmentLight>(scene.lights[0]);
+  const SampledWavelengths lambda = visibleLanes();
   // Texel counts against the texels' probabilities (weight x sin theta, normalised).
   const int n = 200000;
   std::vector<double> counts(static_cast<size_t>(w * h), 0.0);
@@ -110,16 +121,9 @@ TEST(EnvironmentLight, SamplingFollowsItsPdf) {
 TEST(EnvironmentLight, NonFiniteDirectionsStayInsideTheMap) {
   const int w = 8, h = 4;
   const std::string map = writeMap("env_nan.exr", w, h, [](int, int, int) { return 1.0f; });
-  const RenderScene scene = resolveRenderScene(parseScene(
-      sceneWith("", kLookDown,
-                "<light type=\"environment\"><file>" + map +
-                    "</file></light>"
-                    "<plane><normal>0,1,0</normal><distance>0</distance><material>matte</material>"
-                    "<reflectance>0.5</reflectance></plane>"),
-      "t.scn"));
+  const RenderScene scene = environmentOverAFloor(map);
   const EnvironmentLight& env = std::get<EnvironmentLight>(scene.lights[0]);
-  SampledWavelengths lambda;
-  for (int i = 0; i < kLanes; ++i) lambda.lambda[i] = 450.0f + 30.0f * static_cast<float>(i);
+  const SampledWavelengths lambda = visibleLanes();
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = INFINITY;
   for (const Vec3& d : {Vec3(nan, nan, nan), Vec3(nan, 1, 0), Vec3(0, nan, 0), Vec3(0, -1, nan),
                         Vec3(inf, 0, 0), Vec3(0, -inf, 0), Vec3(-inf, inf, -inf), Vec3(0, 0, 0)}) {
