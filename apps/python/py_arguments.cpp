@@ -7,6 +7,12 @@
 
 namespace nxpy {
 
+std::string shortValueText(const py::handle& value) {
+  const std::string text = py::str(value).cast<std::string>();
+  return text.size() > 40 ? text.substr(0, 20) + "... (" + std::to_string(text.size()) + " digits)"
+                          : text;
+}
+
 std::string typeName(const py::handle& value) {
   return py::str(py::type::handle_of(value).attr("__name__"));
 }
@@ -34,12 +40,9 @@ long long integerArgument(const py::handle& value, const char* param, long long 
   long long v = 0;
   try {
     v = value.attr("__index__")().cast<long long>();
-  } catch (const py::cast_error&) { // beyond 64 bits: its first digits and its length
-    std::string digits = py::str(value).cast<std::string>();
-    if (digits.size() > 40)
-      digits = digits.substr(0, 20) + "... (" + std::to_string(digits.size()) + " digits)";
+  } catch (const py::cast_error&) { // beyond 64 bits
     throw py::value_error(std::string(param) + ": expected an int in [" + std::to_string(lo) +
-                          ", " + std::to_string(hi) + "], found " + digits);
+                          ", " + std::to_string(hi) + "], found " + shortValueText(value));
   }
   if (v < lo || v > hi)
     throw py::value_error(std::string(param) + ": expected an int in [" + std::to_string(lo) +

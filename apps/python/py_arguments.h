@@ -32,5 +32,8 @@ std::vector<double> numberListArgument(const py::handle& value, const char* para
 std::vector<long long> integersArgument(const py::handle& value, const char* param, size_t n);
 /// Python's name of a value's type ("int", "NoneType").
 std::string typeName(const py::handle& value);
+/// A value's str() for a message, a number of over 40 digits shortened to its first 20 and its
+/// length ("12345678901234567890... (401 digits)").
+std::string shortValueText(const py::handle& value);
 
 } // namespace nxpy

@@ -22,11 +22,7 @@ double numberOf(const py::handle& value, const std::string& path) {
   const double v = PyFloat_AsDouble(value.ptr());
   if (v == -1.0 && PyErr_Occurred()) {
     PyErr_Clear();
-    const std::string text = py::repr(value).cast<std::string>();
-    throw py::value_error(
-        path + ": expected a finite number, found " +
-        (text.size() > 40 ? text.substr(0, 20) + "... (" + std::to_string(text.size()) + " digits)"
-                          : text));
+    throw py::value_error(path + ": expected a finite number, found " + shortValueText(value));
   }
   return v;
 }

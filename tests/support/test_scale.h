@@ -3,11 +3,10 @@
 // counts of the long statistical tests by K and widens their power requirement by 2.5 sqrt(K):
 // sqrt(K) is the growth of a Monte Carlo standard error at 1/K of the samples, 2.5 the spread of a
 // standard error estimated from a few seeds at one or two samples each (ratios up to 1.54 were
-// seen at K = 8). A test's power is its design, held at K = 1 by the Release pass. Their agreement
-// checks stay
-// z-tests in standard errors, so a wrong answer fails at any scale. CI's sanitizer pass runs
-// them at K = 8 (docs/reliability.md, "CI time"): AddressSanitizer and UndefinedBehaviorSanitizer
-// find faults at any sample count.
+// seen at K = 8). A test's power is its design, held at K = 1 by the Release pass. Their
+// agreement checks stay z-tests in standard errors, so a wrong answer fails at any scale. CI's
+// sanitizer pass runs them at K = 8 (docs/reliability.md, "CI time"): AddressSanitizer and
+// UndefinedBehaviorSanitizer find faults at any sample count.
 
 #include <algorithm>
 #include <cmath>
