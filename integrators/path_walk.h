@@ -628,6 +628,7 @@ auto PathWalk<kFluorescence, kMedia, kWhite, Sink>::bsdfValue(const SurfaceVerte
                                                    const Vec3& wi) {
     SurfaceBsdf b(v.material, at, v.rho, ng, ns, wo);
     b.setHeroAlone(hero);
+    b.orient(v.hit.dpdu); // as the rendered BSDF (its tangent held, projected on ns's plane)
     return diffuseLobe ? b.diffuseLobe(wi) : b.f(wi);
   };
 }
@@ -641,6 +642,7 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::shapeLightEvents(
     const std::vector<VertexMotion>& motion = sink_.tape->motion.vertex;
     if (motion.empty()) return;
     const auto value = bsdfValue(v, at, v.fluorescent);
+    const BsdfDerivativeSteps step = bsdfDerivativeSteps(v.material);
     const SurfaceHit& hit = v.hit;
     const SampledSpectrum f = value(hit.ng, hit.ns, v.wo, ls.wi);
     const SpotLight* spot =
@@ -649,8 +651,8 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::shapeLightEvents(
       // The light's point is held: its direction turns as the vertex moves; radiance arrives
       // with |cos_y| / d^2 (area lights) or I(direction) / d^2 (point and spot lights).
       const Vec3 dwi = ls.infinite ? Vec3() : towardsFixedPoint(ls.wi, ls.distance, m.dp);
-      const SampledSpectrum df =
-          directionalDerivative(value, hit.ng, hit.ns, v.wo, ls.wi, m.dng, m.dns, -m.dDir, dwi);
+      const SampledSpectrum df = directionalDerivative(value, step, hit.ng, hit.ns, v.wo, ls.wi,
+                                                       m.dng, m.dns, -m.dDir, dwi);
       float extra = 0;
       if (!ls.infinite) {
         extra = 2 * dot(ls.wi, m.dp) / ls.distance;
@@ -688,13 +690,14 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::shapeContinuation(
       const Frame basis = Frame::fromNormal(bs.wi);
       lobe.e1 = basis.s;
       lobe.e2 = basis.t;
-      lobe.d1 = directionalDerivative(value, hit.ng, hit.ns, v.wo, bs.wi, Vec3(), Vec3(), Vec3(),
-                                      lobe.e1);
-      lobe.d2 = directionalDerivative(value, hit.ng, hit.ns, v.wo, bs.wi, Vec3(), Vec3(), Vec3(),
-                                      lobe.e2);
+      const BsdfDerivativeSteps step = bsdfDerivativeSteps(v.material);
+      lobe.d1 = directionalDerivative(value, step, hit.ng, hit.ns, v.wo, bs.wi, Vec3(), Vec3(),
+                                      Vec3(), lobe.e1);
+      lobe.d2 = directionalDerivative(value, step, hit.ng, hit.ns, v.wo, bs.wi, Vec3(), Vec3(),
+                                      Vec3(), lobe.e2);
       for (const VertexMotion& m : pm.vertex) {
-        const SampledSpectrum df = directionalDerivative(value, hit.ng, hit.ns, v.wo, bs.wi, m.dng,
-                                                         m.dns, -m.dDir, Vec3());
+        const SampledSpectrum df = directionalDerivative(value, step, hit.ng, hit.ns, v.wo, bs.wi,
+                                                         m.dng, m.dns, -m.dDir, Vec3());
         logDerivativeEvents(m.slot, df, f, 0.0f, event());
         pm.ray.push_back({m.slot, m.dp, Vec3()});
       }
@@ -720,15 +723,25 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::shapeContinuation(
       const float scale = std::max({length(m.dng), length(m.dns), length(dwo)});
       Vec3 dDir;
       if (scale > 0 && std::isfinite(scale)) {
-        const float h = 1e-3f / scale;
-        SpecularLobe plus, minus;
-        if (lobe(normalize(hit.ng + m.dng * h), normalize(hit.ns + m.dns * h),
-                 normalize(v.wo + dwo * h), plus) &&
-            lobe(normalize(hit.ng - m.dng * h), normalize(hit.ns - m.dns * h),
-                 normalize(v.wo - dwo * h), minus)) {
-          dDir = (plus.wi - minus.wi) * (0.5f / h);
-          logDerivativeEvents(m.slot, (plus.weight + minus.weight * -1.0f) * (0.5f / h), at0.weight,
-                              0.0f, event());
+        // Richardson-extrapolated differences (richardsonDerivative) of the lobe's direction
+        // and weight; none where a side has no such lobe (at total internal reflection).
+        bool all = true;
+        auto moved = [&](float s) {
+          SpecularLobe l;
+          all = all && lobe(normalize(hit.ng + m.dng * s), normalize(hit.ns + m.dns * s),
+                            normalize(v.wo + dwo * s), l);
+          return l;
+        };
+        const float h = bsdfDerivativeSteps(v.material).normals / scale;
+        const SpecularLobe p1 = moved(h), m1 = moved(-h), p2 = moved(0.5f * h),
+                           m2 = moved(-0.5f * h);
+        if (all) {
+          const float c = 1.0f / (6.0f * h);
+          dDir = ((p2.wi - m2.wi) * 8.0f - (p1.wi - m1.wi)) * c;
+          const SampledSpectrum dWeight =
+              ((p2.weight + m2.weight * -1.0f) * 8.0f + (p1.weight + m1.weight * -1.0f) * -1.0f) *
+              c;
+          logDerivativeEvents(m.slot, dWeight, at0.weight, 0.0f, event());
         }
       }
       pm.ray.push_back({m.slot, m.dp, dDir});

@@ -9,7 +9,8 @@
 // parameter's (path_gradients.h), the sampling densities held. The derivative of each factor
 // comes from its kind's own evaluation: the BSDF and its delta lobes are evaluated at normals and
 // directions moved a little each way along the slot's motion (central differences of a smooth
-// function: about 1e-6 relative, far below the Monte Carlo noise), so every material kind is
+// function, Richardson-extrapolated, with steps scaled to the lobe: about 1e-5 relative, far
+// below the Monte Carlo noise), so every material kind is
 // covered by the code that renders it. Where visibility changes, the boundary term is separate
 // (primary_boundary.h).
 
@@ -20,6 +21,7 @@
 #include "accel/geometry_scene.h"
 #include "core/ray.h"
 #include "integrators/gradients/shape_tangents.h"
+#include "integrators/materials/bsdf.h"
 #include "spectra/sampled_wavelengths.h"
 
 namespace nx {
@@ -92,20 +94,43 @@ inline void addRate(std::vector<std::pair<uint32_t, double>>& rates, uint32_t sl
   rates.push_back({slot, rate});
 }
 
+/// d g / d s at s = 0 of a smooth g(s) (a value per lane, or a vector) from its values at
+/// +-h and +-h/2: central differences Richardson-extrapolated,
+/// (8 (g(h/2) - g(-h/2)) - (g(h) - g(-h))) / (6 h), whose truncation error is O(h^4) where a
+/// plain central difference's is O(h^2) (Richardson 1911; the extrapolation of a sequence of
+/// differences with steps halved).
+template <class T, class At>
+T richardsonDerivative(At&& at, float h) {
+  const T p1 = at(h), m1 = at(-h), p2 = at(0.5f * h), m2 = at(-0.5f * h);
+  return ((p2 + m2 * -1.0f) * 8.0f + (p1 + m1 * -1.0f) * -1.0f) * (1.0f / (6.0f * h));
+}
+
 /// d value / d s at s = 0 of value(ng + s dng, ns + s dns, wo + s dwo, wi + s dwi), each
-/// argument renormalised: a central difference with steps of 1e-3 in the unit vectors.
+/// argument renormalised: Richardson-extrapolated central differences (richardsonDerivative)
+/// with the unit vectors turned by at most the kind's steps (bsdfDerivativeSteps: 1e-3, or an
+/// eighth of a narrow lobe's width). Where the normals' step differs from the directions',
+/// the two parts are differenced apart and summed (the derivative is linear in the motion).
+/// Measured against Ridders' extrapolation over every material kind's examples, down to a
+/// roughness of 0.01, the median relative error is below 1e-4 (float evaluations bound it:
+/// test_material_conformance.cpp, "Derivatives").
 template <class Value>
-SampledSpectrum directionalDerivative(Value&& value, const Vec3& ng, const Vec3& ns, const Vec3& wo,
+SampledSpectrum directionalDerivative(Value&& value, const BsdfDerivativeSteps& steps,
+                                      const Vec3& ng, const Vec3& ns, const Vec3& wo,
                                       const Vec3& wi, const Vec3& dng, const Vec3& dns,
                                       const Vec3& dwo, const Vec3& dwi) {
-  const float scale = std::max({length(dng), length(dns), length(dwo), length(dwi)});
-  if (!(scale > 0) || !std::isfinite(scale)) return {};
-  const float h = 1e-3f / scale;
-  const SampledSpectrum plus = value(normalize(ng + dng * h), normalize(ns + dns * h),
-                                     normalize(wo + dwo * h), normalize(wi + dwi * h));
-  const SampledSpectrum minus = value(normalize(ng - dng * h), normalize(ns - dns * h),
-                                      normalize(wo - dwo * h), normalize(wi - dwi * h));
-  return (plus + minus * -1.0f) * (0.5f / h);
+  auto part = [&](const Vec3& tg, const Vec3& ts, const Vec3& to, const Vec3& ti, float step) {
+    const float scale = std::max({length(tg), length(ts), length(to), length(ti)});
+    if (!(scale > 0) || !std::isfinite(scale)) return SampledSpectrum();
+    return richardsonDerivative<SampledSpectrum>(
+        [&](float s) {
+          return value(normalize(ng + tg * s), normalize(ns + ts * s), normalize(wo + to * s),
+                       normalize(wi + ti * s));
+        },
+        step / scale);
+  };
+  if (steps.normals == steps.directions) return part(dng, dns, dwo, dwi, steps.directions);
+  return part(dng, dns, Vec3(), Vec3(), steps.normals) +
+         part(Vec3(), Vec3(), dwo, dwi, steps.directions);
 }
 
 /// d wi / d s of the unit direction wi = (y - p) / d towards a fixed point y at distance d as

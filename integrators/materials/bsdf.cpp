@@ -37,6 +37,29 @@ SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
   }
 }
 
+BsdfDerivativeSteps bsdfDerivativeSteps(const Material& m) {
+  const bool microfacet = m.kind == MaterialKind::Conductor || m.kind == MaterialKind::Dielectric;
+  if (!microfacet || std::max(m.alphaU, m.alphaV) < 1e-4f) return {}; // the constructor's clamp
+  const float width = std::max(std::min(m.alphaU, m.alphaV), 1e-4f);
+  BsdfDerivativeSteps steps{std::min(1e-3f, width / 8), std::min(1e-3f, width / 8)};
+  // A rough dielectric's transmitted lobe is narrower in wo and wi by |eta - 1| / eta: the
+  // half vector -(wo + eta wi) turns eta / |eta - 1| times faster than wi near the straight
+  // direction (Walter et al. 2007, eq. 16); turning the normal turns it at the normal's rate.
+  if (m.kind == MaterialKind::Dielectric) {
+    float narrowing = 1;
+    for (const float nm : {300.0f, 550.0f, 1100.0f}) {
+      const float eta = static_cast<float>(m.ior.at(nm));
+      narrowing = std::min(narrowing, std::abs(eta - 1) / std::max(eta, 1.0f));
+    }
+    narrowing = std::max(narrowing, 1e-3f);
+    steps.directions = std::min(1e-3f, width * narrowing / 8);
+    // The cancellation in wo + eta wi amplifies the evaluation's rounding by 1 / narrowing:
+    // the normals' step grows as much (within the lobe's eighth) to keep its noise.
+    steps.normals = std::min(1e-3f / narrowing, width / 8);
+  }
+  return steps;
+}
+
 void SurfaceBsdf::orient(const Vec3& dpdu) {
   if (alpha_.ax == alpha_.ay) return; // isotropic (or smooth, or not a microfacet surface)
   const Vec3 t = dpdu - n_ * dot(dpdu, n_);

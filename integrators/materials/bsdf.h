@@ -62,6 +62,17 @@ enum class TransportMode : uint8_t { Radiance, Energy };
 float dielectricReflectance(const Material& m, float cosI, float nIncident, float nTransmitted,
                             float lambdaNm);
 
+/// Steps, in radians of its unit-vector arguments, for differences of a BSDF
+/// (geometry_gradients.h): one for turning its normals, one for turning wo and wi.
+struct BsdfDerivativeSteps {
+  float normals = 1e-3f, directions = 1e-3f;
+};
+
+/// m's steps: 1e-3, or an eighth of its narrowest microfacet roughness where that is smaller,
+/// so that a difference spans a small part of the lobe at every roughness; a rough
+/// dielectric's directions narrower still where its index is near 1 (its transmitted lobe).
+BsdfDerivativeSteps bsdfDerivativeSteps(const Material& m);
+
 /// The BSDF of one surface point, seen from direction wo.
 class SurfaceBsdf {
 public:

@@ -8,12 +8,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "core/params/material_parameters.h"
+#include "integrators/gradients/geometry_gradients.h"
 #include "integrators/materials/bsdf.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/sampling.h"
@@ -36,10 +38,12 @@ std::vector<std::string> bodiesOf(MaterialKind kind) {
             "<material>plastic</material><roughness>0.4</roughness><reflectance>1</reflectance>",
             "<material>mirror</material><reflectance>1</reflectance>"};
   case MaterialKind::Dielectric:
-    return {"<material>glass</material><ior>1.5</ior>", "<material>diamond</material>",
+    return {"<material>glass</material><ior>1.5</ior>",
+            "<material>diamond</material>",
             "<material>glass</material><ior>bk7</ior>",
             "<material>glass</material><ior>bk7</ior><alpha>0.3</alpha>",
-            "<material>glass</material><ior>2.4</ior><alpha>0.05</alpha>"};
+            "<material>glass</material><ior>2.4</ior><alpha>0.05</alpha>",
+            "<material>glass</material><ior>1.5</ior><alpha>0.01</alpha>"};
   case MaterialKind::Interface:
     return {"<material>interface</material><medium><sigma_a>0.1</sigma_a><sigma_s>0</sigma_s>"
             "</medium>"};
@@ -49,7 +53,8 @@ std::vector<std::string> bodiesOf(MaterialKind kind) {
     return {"<material>conductor</material><metal>gold</metal>",
             "<material>conductor</material><metal>aluminium</metal><alpha>0.2</alpha>",
             "<material>conductor</material><metal>silver</metal><alpha_u>0.05</alpha_u>"
-            "<alpha_v>0.4</alpha_v>"};
+            "<alpha_v>0.4</alpha_v>",
+            "<material>conductor</material><metal>gold</metal><alpha>0.01</alpha>"};
   case MaterialKind::CoatedDiffuse:
     return {"<material>coated</material><ior>1.5</ior><reflectance>1</reflectance>",
             "<material>coated</material><ior>1.9</ior><reflectance>0.5</reflectance>"};
@@ -314,6 +319,128 @@ TEST(MaterialConformance, SamplingFollowsThePdfWeightsAreFOverPdfReflectionIsRec
     }
   }
   EXPECT_GT(checked, 8);
+}
+
+// d g / d s at 0 of a smooth function of one variable, per lane, by Ridders' extrapolation
+// (Ridders 1982): central differences at steps H / 1.4^i extrapolated to a step of 0 in a
+// Neville tableau, keeping the entry whose estimated error is smallest. An independent
+// reference for directionalDerivative: many steps, evaluated in double where they combine,
+// and an error estimate of its own.
+struct RiddersDerivative {
+  double value = 0, error = 1e300;
+};
+template <class At>
+std::array<RiddersDerivative, kLanes> riddersDerivative(At&& at, double H) {
+  constexpr int kSteps = 12;
+  constexpr double kShrink = 1.4, kShrink2 = kShrink * kShrink;
+  std::array<RiddersDerivative, kLanes> out;
+  double a[kSteps][kSteps][kLanes];
+  double h = H;
+  for (int i = 0; i < kSteps; ++i, h /= kShrink) {
+    const SampledSpectrum p = at(static_cast<float>(h)), m = at(static_cast<float>(-h));
+    for (int k = 0; k < kLanes; ++k) a[0][i][k] = (double(p[k]) - double(m[k])) / (2 * h);
+    double fac = kShrink2;
+    for (int j = 1; j <= i; ++j, fac *= kShrink2)
+      for (int k = 0; k < kLanes; ++k) {
+        a[j][i][k] = (a[j - 1][i][k] * fac - a[j - 1][i - 1][k]) / (fac - 1);
+        const double e = std::max(std::abs(a[j][i][k] - a[j - 1][i][k]),
+                                  std::abs(a[j][i][k] - a[j - 1][i - 1][k]));
+        if (e < out[k].error) out[k] = {a[j][i][k], e};
+      }
+  }
+  return out;
+}
+
+// Every kind's BSDF derivatives in its arguments (what shape gradients differentiate:
+// geometry_gradients.h's directionalDerivative, at the steps bsdfDerivativeSteps gives the kind)
+// agree with Ridders' extrapolation (above), over every case, at directions the kind's own
+// sampling draws, for the normals turning, wo turning, wi turning and all three at once. The
+// error counted is |d - ref| / max(|ref|, f) per radian. A reference whose own error estimate
+// exceeds a tenth of the tolerance (at a kink: total internal reflection, the horizon) is not
+// counted, and most points of every case must count. A float step of 1e-3 at roughness 0.01
+// fails the median bound (docs/inverse.md, "Accuracy of the interior term").
+TEST(MaterialConformance, DerivativesInDirectionsAndNormalsMatchAnExtrapolatedReference) {
+  const SampledWavelengths lambda = conformanceWavelengths();
+  constexpr double kMedianBound = 5e-4, kTailBound = 2e-2; // 99th percentile
+  int bodiesChecked = 0;
+  for (const std::string& body : conformanceBodies()) {
+    const KindCase c = kindCase(body, lambda);
+    const Material& m = c.material();
+    const Vec3 n(0, 0, 1), dpdu(1, 0, 0);
+    const BsdfDerivativeSteps step = bsdfDerivativeSteps(m);
+    // The lobe's width in its directions: the roughness (a transmitted lobe narrowed by
+    // |eta - 1| / eta), where the reference's steps start.
+    const float width = std::max(m.alphaU, m.alphaV) > 0 ? std::min(m.alphaU, m.alphaV) : 1.0f;
+    float narrowed = width; // in wo and wi
+    if (m.kind == MaterialKind::Dielectric) {
+      const float eta = static_cast<float>(m.ior.at(550));
+      narrowed *= std::min(1.0f, std::abs(eta - 1) / eta);
+    }
+    auto value = [&](const Vec3& ng, const Vec3& ns, const Vec3& wo, const Vec3& wi) {
+      SurfaceBsdf b(m, lambda, c.rho, ng, ns, wo);
+      b.orient(dpdu);
+      return b.f(wi);
+    };
+    std::vector<double> errors;
+    int points = 0, counted = 0;
+    for (const Vec3& wo :
+         {normalize(Vec3(0.3f, 0.1f, 0.9f)), normalize(Vec3(-0.7f, 0.4f, 0.5f)),
+          normalize(Vec3(0.2f, -0.9f, 0.3f)), normalize(Vec3(0.4f, 0.2f, -0.8f))}) {
+      SurfaceBsdf bsdf(m, lambda, c.rho, n, wo);
+      bsdf.orient(dpdu);
+      if (!bsdf.hasNonSpecular()) continue;
+      for (uint32_t i = 0; i < 24; ++i) {
+        BsdfSample s;
+        if (!bsdf.sample(uniform2(900 + i).u, uniform2(i), s) || s.specular) continue;
+        const Vec3 wi = s.wi;
+        const SampledSpectrum f = value(n, n, wo, wi);
+        // Unit motions: perpendicular to what they turn.
+        const Vec3 tn = normalize(Vec3(0.6f, -0.8f, 0.0f));
+        const Vec3 to = normalize(cross(wo, Vec3(0.3f, 0.5f, 0.8f)));
+        const Vec3 ti = normalize(cross(wi, Vec3(-0.5f, 0.7f, 0.2f)));
+        const Vec3 none;
+        const std::array<std::array<Vec3, 4>, 4> motions{{{tn, tn, none, none},
+                                                          {none, none, to, none},
+                                                          {none, none, none, ti},
+                                                          {tn, tn, to, ti}}};
+        for (size_t j = 0; j < motions.size(); ++j) {
+          const auto& mv = motions[j];
+          const double start = 0.5 * (j == 0 ? width : narrowed);
+          const SampledSpectrum d =
+              directionalDerivative(value, step, n, n, wo, wi, mv[0], mv[1], mv[2], mv[3]);
+          const float scale =
+              std::max({length(mv[0]), length(mv[1]), length(mv[2]), length(mv[3])});
+          const auto ref = riddersDerivative(
+              [&](float h) {
+                return value(normalize(n + mv[0] * h), normalize(n + mv[1] * h),
+                             normalize(wo + mv[2] * h), normalize(wi + mv[3] * h));
+              },
+              std::min(0.05, start) / scale);
+          for (int k = 0; k < kLanes; ++k) {
+            if (!(f[k] > 1e-6f)) continue;
+            ++points;
+            const double norm = std::max(std::abs(ref[k].value), double(f[k]));
+            if (!(ref[k].error < 0.1 * kMedianBound * norm)) continue;
+            ++counted;
+            ASSERT_TRUE(std::isfinite(d[k])) << body;
+            errors.push_back(std::abs(d[k] - ref[k].value) / norm);
+          }
+        }
+      }
+    }
+    if (points == 0) continue;
+    SCOPED_TRACE(body);
+    EXPECT_GE(counted, points / 3) << "the reference resolves too few points";
+    std::sort(errors.begin(), errors.end());
+    const double median = errors.empty() ? 1 : errors[errors.size() / 2];
+    const double tail = errors.empty() ? 1 : errors[errors.size() * 99 / 100];
+    std::printf("derivative error  median %.1e  99%% %.1e  max %.1e  (%d of %d points)  %s\n",
+                median, tail, errors.empty() ? 1.0 : errors.back(), counted, points, body.c_str());
+    EXPECT_LT(median, kMedianBound);
+    EXPECT_LT(tail, kTailBound);
+    ++bodiesChecked;
+  }
+  EXPECT_GT(bodiesChecked, 10);
 }
 
 } // namespace
