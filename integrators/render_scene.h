@@ -202,9 +202,10 @@ struct RenderScene {
       return disks[hit.index];
     case ShapeKind::Cylinder:
       return cylinders[hit.index];
-    default:
-      return meshes[hit.index].of(hit.prim);
+    case ShapeKind::Triangle:
+      break;
     }
+    return meshes[hit.index].of(hit.prim);
   }
 };
 

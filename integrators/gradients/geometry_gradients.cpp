@@ -122,9 +122,11 @@ Vec3 normalTurning(const GeometryScene& geometry, const SurfaceHit& hit, const V
     const float sign = dot(raw, n) < 0 ? -1.0f : 1.0f;
     return (dRaw - n * dot(n, dRaw)) * (sign / len);
   }
-  default:
+  case ShapeKind::Plane: // flat: nothing turns
+  case ShapeKind::Disk:
     return {};
   }
+  return {}; // not reached: every kind is a case (-Werror=switch)
 }
 
 } // namespace

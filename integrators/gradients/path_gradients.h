@@ -179,9 +179,11 @@ inline float rhoLogSlope(const Material& m, float rho, bool specular, bool albed
     const float fi = m.coatInternalReflectance;
     return inverse() + fi / (1 - rho * fi);
   }
-  default:
+  case MaterialKind::Conductor: // its reflectance is its complex index's
+  case MaterialKind::Interface: // light passes unchanged
     return 0.0f;
   }
+  return 0.0f; // not reached: every kind is a case (-Werror=switch)
 }
 
 /// Reflectance events at a surface of material m (tangents ts) for its lobe: emit(slot, lane,

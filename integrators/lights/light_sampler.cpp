@@ -1027,9 +1027,10 @@ int LightSampler::lightOf(const SurfaceHit& hit) const {
     if (hit.index >= meshLight_.size()) return -1;
     if (!triangleLight_[hit.index].empty()) return triangleLight_[hit.index][hit.prim];
     return meshLight_[hit.index];
-  default:
+  case ShapeKind::Plane: // infinite: never an emitter
     return -1;
   }
+  return -1; // not reached: every kind is a case (-Werror=switch)
 }
 
 float LightSampler::spherePdf(uint32_t sphere, const Vec3& p, const Vec3& wi) const {
