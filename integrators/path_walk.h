@@ -1071,7 +1071,7 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directLightHere(
                           *v.material.reradiation, current_, v.shift.excited, v.rho, sink_, local(),
                           v.concentration, v.concentrationTangents);
       roughnessEvents(v, ls.wi, local());
-      reflectanceEvents(v.rhoTangents, v.material, current_, v.rho, false, !v.fluorescent, sink_,
+      reflectanceEvents(v.rhoTangents, v.bsdf, ls.wi, current_, v.rho, false, !v.fluorescent, sink_,
                         local());
     }
     lightEvents(ls, lit);
@@ -1123,7 +1123,7 @@ bool PathWalk<kFluorescence, kMedia, kWhite, Sink>::continueFrom(
     if (!v.whiteHere) {
       if (!bs.specular) roughnessEvents(v, bs.wi, event());
       const bool reradiated = v.fluorescent && !bs.specular;
-      reflectanceEvents(v.rhoTangents, v.material, lambdaBefore, v.rho, bs.specular, !reradiated,
+      reflectanceEvents(v.rhoTangents, v.bsdf, bs.wi, lambdaBefore, v.rho, bs.specular, !reradiated,
                         sink_, event());
     }
     shapeContinuation(v, bs, lambdaBefore);

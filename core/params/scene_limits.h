@@ -53,6 +53,7 @@ inline constexpr ParameterRange kPeakCoefficientRange{
     0, 1e9, true, "a peak absorption coefficient per unit length"};
 /// GGX roughness alpha of a conductor (0: smooth; 1 is already a very rough surface).
 inline constexpr ParameterRange kAlphaRange{0, 1, false, "a GGX roughness alpha"};
+inline constexpr ParameterRange kOrenNayarRange{0, 1, false, "an Oren-Nayar roughness sigma"};
 /// A thin-film coating's thickness in nm (interference needs it below a few micrometres).
 inline constexpr ParameterRange kCoatingThicknessRange{0, 1e5, true, "a coating thickness in nm"};
 /// Henyey-Greenstein g: |g| = 1 would be a delta lobe (excluded by a margin).

@@ -155,47 +155,18 @@ struct RhoTangents {
   bool empty() const { return (!spectrum || spectrum->empty()) && firstSlot < 0; }
 };
 
-/// How the lobe a path took (or next-event estimation evaluated) at a surface depends on the
-/// reflectance rho at one lane: d log f / d rho, with the albedo's share 1/rho counted only when
-/// `albedo` (a fluorescent lobe's albedo comes from the matrix instead).
-/// Mixture and dielectrics (rho a tint): 1/rho; coated diffuse: its diffuse lobe
-/// rho t / (1 - rho F_i) gives 1/rho + F_i / (1 - rho F_i), its coat reflection nothing;
-/// conductors and interfaces do not use rho.
-inline float rhoLogSlope(const Material& m, float rho, bool specular, bool albedo, bool& zero) {
-  zero = false;
-  auto inverse = [&] {
-    if (!albedo) return 0.0f;
-    if (rho > 0) return 1.0f / rho;
-    zero = true;
-    return 0.0f;
-  };
-  switch (m.kind) {
-  case MaterialKind::Mixture:
-  case MaterialKind::Dielectric:
-  case MaterialKind::ThinDielectric:
-    return inverse();
-  case MaterialKind::CoatedDiffuse: {
-    if (specular) return 0.0f;
-    const float fi = m.coatInternalReflectance;
-    return inverse() + fi / (1 - rho * fi);
-  }
-  case MaterialKind::Conductor: // its reflectance is its complex index's
-  case MaterialKind::Interface: // light passes unchanged
-    return 0.0f;
-  }
-  return 0.0f; // not reached: every kind is a case (-Werror=switch)
-}
-
-/// Reflectance events at a surface of material m (tangents ts) for its lobe: emit(slot, lane,
-/// slope * d rho).
+/// Reflectance events at a surface (tangents ts) for the lobe of `bsdf` that scattered towards
+/// wi (`specular`: a delta lobe): emit(slot, lane, slope * d rho), the slope d ln f / d rho the
+/// BSDF's own (SurfaceBsdf::reflectanceLogSlope; `albedo` false for a fluorescent lobe, whose
+/// albedo comes from the matrix).
 template <class Sink, class Emit>
-void reflectanceEvents(const RhoTangents& ts, const Material& m, const SampledWavelengths& lambda,
-                       const SampledSpectrum& rho, bool specular, bool albedo, Sink& sink,
-                       Emit&& emit) {
+void reflectanceEvents(const RhoTangents& ts, const SurfaceBsdf& bsdf, const Vec3& wi,
+                       const SampledWavelengths& lambda, const SampledSpectrum& rho, bool specular,
+                       bool albedo, Sink& sink, Emit&& emit) {
   if (ts.empty()) return;
   ts.forEach(lambda, [&](uint32_t slot, int i, float d) {
     bool zero = false;
-    const float slope = rhoLogSlope(m, rho[i], specular, albedo, zero);
+    const float slope = bsdf.reflectanceLogSlope(wi, rho[i], specular, albedo, zero);
     if (zero)
       sink.zeroValue();
     else if (slope != 0)

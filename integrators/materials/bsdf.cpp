@@ -14,7 +14,7 @@ SurfaceBsdf::SurfaceBsdf(const Material& m, const SampledWavelengths& lambda,
   // Opaque surfaces scatter on the side they are seen from (decided by the geometric normal);
   // dielectrics keep the outward normal to know whether the path enters or leaves.
   const bool opaque = m.kind == MaterialKind::Mixture || m.kind == MaterialKind::Conductor ||
-                      m.kind == MaterialKind::CoatedDiffuse;
+                      m.kind == MaterialKind::CoatedDiffuse || m.kind == MaterialKind::RoughDiffuse;
   const bool flip = opaque && dot(wo, ng) < 0;
   ng_ = flip ? -ng : ng;
   n_ = flip ? -ns : ns;
@@ -75,6 +75,7 @@ uint8_t SurfaceBsdf::lobes() const {
     return smoothConductor() ? kSpecularReflection : kGlossyReflection;
   if (material_->kind == MaterialKind::CoatedDiffuse)
     return kSpecularReflection | kDiffuseReflection;
+  if (material_->kind == MaterialKind::RoughDiffuse) return kDiffuseReflection;
   if (material_->kind == MaterialKind::ThinDielectric)
     return kSpecularReflection | kSpecularTransmission;
   if (material_->kind == MaterialKind::Dielectric)
@@ -92,6 +93,10 @@ float SurfaceBsdf::diffuseFactor(const Vec3& wi) const {
 }
 
 SampledSpectrum SurfaceBsdf::diffuseLobe(const Vec3& wi) const {
+  if (material_->kind == MaterialKind::RoughDiffuse) { // the lobe of rho = 1 (albedo 1)
+    const RoughDiffuseShape g = roughDiffuseShape(wi);
+    return SampledSpectrum::filled((g.single + g.multiple) * g.cosine * static_cast<float>(kInvPi));
+  }
   if (material_->kind != MaterialKind::CoatedDiffuse)
     return SampledSpectrum::filled(diffuseFactor(wi));
   const float ci = dot(wi, n_), co = dot(wo_, n_);
@@ -108,6 +113,8 @@ SampledSpectrum SurfaceBsdf::diffuseLobe(const Vec3& wi) const {
 
 float SurfaceBsdf::pdf(const Vec3& wi) const {
   if (material_->kind == MaterialKind::Dielectric) return roughDielectricPdf(wi);
+  if (material_->kind == MaterialKind::RoughDiffuse)
+    return dot(wo_, n_) > 0 ? cosineHemispherePdf(dot(wi, n_)) : 0.0f;
   if (material_->kind == MaterialKind::CoatedDiffuse) {
     const float co = dot(wo_, n_);
     if (co <= 0) return 0;
@@ -147,6 +154,8 @@ bool SurfaceBsdf::sample(float uLobe, Sample2 u, BsdfSample& out) const {
     return sampleConductor(u, out);
   case MaterialKind::CoatedDiffuse:
     return sampleCoatedDiffuse(uLobe, u, out);
+  case MaterialKind::RoughDiffuse:
+    return sampleRoughDiffuse(u, out);
   }
   return false;
 }
@@ -172,6 +181,8 @@ int SurfaceBsdf::specularLobes(SpecularLobe (&out)[2]) const {
   case MaterialKind::Interface:
     out[0] = {-wo_, SampledSpectrum::filled(1.0f), false};
     return 1;
+  case MaterialKind::RoughDiffuse:
+    return 0;
   case MaterialKind::ThinDielectric: {
     const float ac = std::abs(c);
     SampledSpectrum r, t;
@@ -206,6 +217,43 @@ int SurfaceBsdf::specularLobes(SpecularLobe (&out)[2]) const {
   }
   }
   return 0;
+}
+
+// Mixture and dielectrics (rho a tint): 1/rho; coated diffuse: its diffuse lobe
+// rho t / (1 - rho F_i) gives 1/rho + F_i / (1 - rho F_i), its coat reflection nothing; rough
+// diffuse: its own (rho_ms is not linear in rho); conductors and interfaces do not use rho.
+float SurfaceBsdf::reflectanceLogSlope(const Vec3& wi, float rho, bool specular, bool albedo,
+                                       bool& zero) const {
+  zero = false;
+  auto inverse = [&] {
+    if (!albedo) return 0.0f;
+    if (rho > 0) return 1.0f / rho;
+    zero = true;
+    return 0.0f;
+  };
+  const Material& m = *material_;
+  switch (m.kind) {
+  case MaterialKind::Mixture:
+  case MaterialKind::Dielectric:
+  case MaterialKind::ThinDielectric:
+    return inverse();
+  case MaterialKind::CoatedDiffuse: {
+    if (specular) return 0.0f;
+    const float fi = m.coatInternalReflectance;
+    return inverse() + fi / (1 - rho * fi);
+  }
+  case MaterialKind::RoughDiffuse:
+    if (!albedo) return 0.0f;
+    if (!(rho > 0)) {
+      zero = true;
+      return 0.0f;
+    }
+    return roughDiffuseLogSlope(wi, rho);
+  case MaterialKind::Conductor: // its reflectance is its complex index's
+  case MaterialKind::Interface: // light passes unchanged
+    return 0.0f;
+  }
+  return 0.0f; // not reached: every kind is a case (-Werror=switch)
 }
 
 } // namespace nx

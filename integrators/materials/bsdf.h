@@ -62,6 +62,19 @@ enum class TransportMode : uint8_t { Radiance, Energy };
 float dielectricReflectance(const Material& m, float cosI, float nIncident, float nTransmitted,
                             float lambdaNm);
 
+/// A rough diffuse lobe's factors at one pair of directions (kinds/rough_diffuse.cpp): the
+/// single-scattering term A + B s / t, the multiple-scattering term (1 - E_o)(1 - E_i) /
+/// (1 - E_avg) and cos_i (all 0 below the surface).
+struct RoughDiffuseShape {
+  float single = 0, multiple = 0, cosine = 0;
+};
+
+/// The rough diffuse single-scattering lobe's directional albedo E(mu) at rho = 1.
+float roughDiffuseAlbedo(const RoughDiffuseLobe& lobe, float mu);
+
+/// EON's multiple-scattering albedo rho_ms = rho^2 E_avg / (1 - rho (1 - E_avg)).
+float roughDiffuseMultipleAlbedo(const RoughDiffuseLobe& lobe, float rho);
+
 /// Steps, in radians of its unit-vector arguments, for differences of a BSDF
 /// (geometry_gradients.h): one for turning its normals, one for turning wo and wi.
 struct BsdfDerivativeSteps {
@@ -108,6 +121,7 @@ public:
     if (material_->kind == MaterialKind::Conductor) return conductorF(wi);
     if (material_->kind == MaterialKind::Dielectric) return roughDielectricF(wi);
     if (material_->kind == MaterialKind::CoatedDiffuse) return rho_ * diffuseLobe(wi);
+    if (material_->kind == MaterialKind::RoughDiffuse) return roughDiffuseF(wi);
     return rho_ * diffuseFactor(wi);
   }
   /// r |cos(wi)| / pi: the diffuse lobe without its albedo (fluorescent lobes supply their own).
@@ -118,6 +132,12 @@ public:
   /// For a rough conductor: d ln f(wo, wi) / d alpha_u and / d alpha_v (its microfacet lobe's
   /// dependence on its roughness, for gradients); false for other surfaces and smooth metals.
   bool conductorRoughnessSlopes(const Vec3& wi, float& dAlphaU, float& dAlphaV) const;
+  /// d ln f / d rho of the lobe that scattered towards wi (`specular`: a delta lobe) at one
+  /// lane of reflectance rho, for reflectance gradients; 0 where f does not depend on rho (or
+  /// `albedo` is false: a fluorescent lobe's albedo is the matrix's). `zero`: f is 0 with
+  /// rho (its slope 1/rho is unbounded).
+  float reflectanceLogSlope(const Vec3& wi, float rho, bool specular, bool albedo,
+                            bool& zero) const;
   /// Density with which sample() returns wi through its non-specular lobes.
   float pdf(const Vec3& wi) const;
 
@@ -151,6 +171,11 @@ private:
   float roughDielectricPdf(const Vec3& wi) const;
   bool sampleDielectric(float uLobe, BsdfSample& out) const;
   bool sampleThinDielectric(float uLobe, BsdfSample& out) const;
+  // Rough diffuse surfaces (kinds/rough_diffuse.cpp).
+  RoughDiffuseShape roughDiffuseShape(const Vec3& wi) const;
+  SampledSpectrum roughDiffuseF(const Vec3& wi) const;
+  float roughDiffuseLogSlope(const Vec3& wi, float rho) const;
+  bool sampleRoughDiffuse(Sample2 u, BsdfSample& out) const;
 
   const Material* material_;
   const SampledWavelengths* lambda_;

@@ -3,6 +3,7 @@
 // (spectra, indices, matrices), no names. Made from a scene's parameters by its kind's build
 // (integrators/materials/material_kind.h).
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -27,6 +28,18 @@ enum class MaterialKind : uint8_t {
                   ///< reflectance of its complex index
   CoatedDiffuse,  ///< a Lambertian base (possibly fluorescent) under a smooth clear coat, the
                   ///< internal reflections between them summed
+  RoughDiffuse,   ///< a rough diffuse surface (possibly fluorescent): Fujii's Oren-Nayar lobe
+                  ///< with the energy its single scattering loses put back (EON)
+};
+
+/// The rough diffuse lobe's constants for one roughness sigma (kinds/rough_diffuse.cpp): Fujii's
+/// A and B, and the single-scattering lobe's directional albedo E(mu) tabulated over mu = cos
+/// (uniform nodes, interpolated by Catmull-Rom) with its cosine-weighted mean.
+struct RoughDiffuseLobe {
+  static constexpr int kNodes = 33;
+  float a = 1, b = 0;
+  std::array<float, kNodes> albedo{};
+  float meanAlbedo = 1;
 };
 
 /// A material: a kind with its parameters and spectra.
@@ -38,9 +51,10 @@ struct Material {
   float alphaU = 0, alphaV = 0;      ///< Conductor: GGX roughness along dpdu and across it
   /// CoatedDiffuse: the coat's hemispherical (cosine-weighted) internal Fresnel reflectance
   float coatInternalReflectance = 0;
-  float coatingNm = 0;  ///< a thin-film coating's thickness in nm (0: none)
-  IorModel coatingIor;  ///< the coating's index of refraction
-  Spectrum reflectance; ///< rho(lambda): albedo, or transmission tint for dielectrics
+  RoughDiffuseLobe roughDiffuse; ///< RoughDiffuse: its lobe's constants
+  float coatingNm = 0;           ///< a thin-film coating's thickness in nm (0: none)
+  IorModel coatingIor;           ///< the coating's index of refraction
+  Spectrum reflectance;          ///< rho(lambda): albedo, or transmission tint for dielectrics
   std::optional<FluorescenceModel> fluorescenceModel; ///< the parameters, if not measured
   std::shared_ptr<const ReradiationMatrix>
       reradiation; ///< fluorescence of the diffuse lobe, or null

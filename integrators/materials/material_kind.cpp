@@ -14,13 +14,13 @@ namespace nx {
 // The kinds (one file each in kinds/).
 extern const MaterialKindSpec kMatteKind, kMetalKind, kPlasticKind, kMirrorKind, kGlassKind,
     kDiamondKind, kTranslucentKind, kTransparentKind, kDefaultKind, kDiffuseKind, kInterfaceKind,
-    kThinGlassKind, kConductorKind, kCoatedKind;
+    kThinGlassKind, kConductorKind, kCoatedKind, kRoughMatteKind;
 
 std::span<const MaterialKindSpec* const> materialKinds() {
   static const MaterialKindSpec* const kinds[] = {
       &kMatteKind,     &kMetalKind,       &kPlasticKind,     &kMirrorKind,  &kGlassKind,
       &kDiamondKind,   &kTranslucentKind, &kTransparentKind, &kDefaultKind, &kDiffuseKind,
-      &kInterfaceKind, &kThinGlassKind,   &kConductorKind,   &kCoatedKind};
+      &kInterfaceKind, &kThinGlassKind,   &kConductorKind,   &kCoatedKind,  &kRoughMatteKind};
   return kinds;
 }
 

@@ -55,6 +55,10 @@ std::vector<std::string> bodiesOf(MaterialKind kind) {
             "<material>conductor</material><metal>silver</metal><alpha_u>0.05</alpha_u>"
             "<alpha_v>0.4</alpha_v>",
             "<material>conductor</material><metal>gold</metal><alpha>0.01</alpha>"};
+  case MaterialKind::RoughDiffuse:
+    return {"<material>rough_matte</material><sigma>1</sigma><reflectance>1</reflectance>",
+            "<material>rough_matte</material><sigma>0.05</sigma><reflectance>0.4</reflectance>",
+            "<material>rough_matte</material><sigma>0</sigma><reflectance>1</reflectance>"};
   case MaterialKind::CoatedDiffuse:
     return {"<material>coated</material><ior>1.5</ior><reflectance>1</reflectance>",
             "<material>coated</material><ior>1.9</ior><reflectance>0.5</reflectance>"};
@@ -63,9 +67,10 @@ std::vector<std::string> bodiesOf(MaterialKind kind) {
 }
 
 // Every kind once (bodiesOf's switch is the compile-time list; this is its iteration order).
-const std::array<MaterialKind, 6> kKinds{MaterialKind::Mixture,   MaterialKind::Dielectric,
-                                         MaterialKind::Interface, MaterialKind::ThinDielectric,
-                                         MaterialKind::Conductor, MaterialKind::CoatedDiffuse};
+const std::array<MaterialKind, 7> kKinds{MaterialKind::Mixture,     MaterialKind::Dielectric,
+                                         MaterialKind::Interface,   MaterialKind::ThinDielectric,
+                                         MaterialKind::Conductor,   MaterialKind::CoatedDiffuse,
+                                         MaterialKind::RoughDiffuse};
 
 // The lanes' wavelengths the checks use: spread over the visible range and beyond.
 SampledWavelengths conformanceWavelengths() {

@@ -42,8 +42,9 @@ std::string companions(const MaterialKindSpec& kind, const std::string& param) {
   }
   if (param == "alpha_u") add("alpha_v");
   if (param == "alpha_v") add("alpha_u");
-  // A matte (mixture or coated) surface that does not emit needs an albedo.
-  if (kind.param("roughness") || std::string(kind.name) == "coated") add("reflectance");
+  // A surface with a diffuse base (the kinds that take <fluorescence>: mixtures, coated,
+  // rough matte) that does not emit needs an albedo.
+  if (kind.param("fluorescence")) add("reflectance");
   return out;
 }
 
