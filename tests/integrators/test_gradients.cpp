@@ -206,6 +206,20 @@ TEST(Gradients, CoatedDiffuseReflectanceMatchesDifference) {
                                        0.7, 0.02}));
 }
 
+TEST(Gradients, RoughDiffuseReflectanceMatchesDifference) {
+  // rho enters EON's multiple scattering as rho^2 E / (1 - rho (1 - E)): its slope is the
+  // model's own and depends on the directions (SurfaceBsdf::reflectanceLogSlope).
+  expectGradientMatchesDifference(
+      named("objects[1].reflectance", {[](double p) {
+                                         return scene(kMatte,
+                                                      "<material>rough_matte</material><sigma>1"
+                                                      "</sigma><reflectance>" +
+                                                          num(p) + "</reflectance>",
+                                                      kLamp);
+                                       },
+                                       0.6, 0.02}));
+}
+
 TEST(Gradients, GlassTintMatchesDifference) {
   expectGradientMatchesDifference(
       {[](double p) {

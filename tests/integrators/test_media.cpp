@@ -176,11 +176,12 @@ TEST(Media, SceneErrors) {
       (void)resolveRenderScene(parseScene(sceneText(settings, kFarCamera, body), "t.scn"));
     });
   };
-  EXPECT_EQ(error("<plane><normal>0,1,0</normal><distance>0</distance><material>interface"
-                  "</material><medium><sigma_a>1</sigma_a><sigma_s>0</sigma_s></medium></plane>"),
-            "t.scn:1: expected one of <material>, <color>, <reflectance>, <roughness>, <ior>, "
-            "<fluorescence>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, <sigma>, <coating>, "
-            "<emission>, <normal>, <distance> inside <plane>, found <medium>");
+  EXPECT_EQ(
+      error("<plane><normal>0,1,0</normal><distance>0</distance><material>interface"
+            "</material><medium><sigma_a>1</sigma_a><sigma_s>0</sigma_s></medium></plane>"),
+      "t.scn:1: expected one of <material>, <color>, <reflectance>, <roughness>, <ior>, "
+      "<fluorescence>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, <sigma>, <coating>, "
+      "<emission>, <normal>, <distance> inside <plane>, found <medium>");
   EXPECT_EQ(error("<sphere><center>0,0,0</center><radius>1</radius><material>interface"
                   "</material><reflectance>0.5</reflectance></sphere>"),
             "t.scn:1: expected no parameters on interface, found <reflectance> (it only bounds a "
