@@ -168,8 +168,8 @@ TEST(RoughDiffuse, FurnaceRenderPerBand) {
                 "<sphere><center>0,0,0</center><radius>1</radius><material>rough_matte</material>"
                 "<sigma>0.7</sigma><reflectance>0.5</reflectance></sphere>"));
   const SampledWavelengths l = test::laneWavelengths();
-  const SurfaceBsdf bsdf(roughMatte(0.7), l, SampledSpectrum::filled(0.5f), Vec3(0, 0, 1),
-                         Vec3(0, 0, 1));
+  const Material m = roughMatte(0.7); // the BSDF keeps a reference: it must outlive it
+  const SurfaceBsdf bsdf(m, l, SampledSpectrum::filled(0.5f), Vec3(0, 0, 1), Vec3(0, 0, 1));
   const double expected = albedoByQuadrature(bsdf, 0);
   EXPECT_LT(expected, 0.49);
   expectBands(
