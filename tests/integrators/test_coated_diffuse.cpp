@@ -147,16 +147,7 @@ TEST(CoatedDiffuse, RenderedAlbedoPerBand) {
 // either way) the coated surface renders what the bare fluorescent matte renders, band by band
 // (elastic and fluorescent light alike); a real coat (n 1.5) dims the emission band.
 TEST(CoatedDiffuse, FluorescentBaseUnderACoat) {
-  auto scene = [](const std::string& material) {
-    return sceneText(
-        "<xres>6</xres><yres>6</yres><mode>spectral_mcpt</mode><depth>3</depth><sampl>512</sampl>",
-        "<position>0,0,-100</position><look_at>0,0,0</look_at><fov>0.3</fov>",
-        "<sphere><center>0,0,0</center><radius>1</radius>" + material +
-            "<reflectance>0.3</reflectance><fluorescence><absorption>420</absorption><stokes>120"
-            "</stokes><yield>0.8</yield></fluorescence></sphere><sphere><center>0,20,-20</center>"
-            "<radius>3</radius><material>matte</material><reflectance>0</reflectance><emission>"
-            "40</emission></sphere>");
-  };
+  const auto scene = test::fluorescentSphereScene;
   const RenderOutput bare = renderText(scene("<material>matte</material>"));
   const RenderOutput clear = renderText(scene("<material>coated</material><ior>1.0001</ior>"));
   const RenderOutput coat = renderText(scene("<material>coated</material><ior>1.5</ior>"));

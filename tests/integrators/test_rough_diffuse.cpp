@@ -179,16 +179,7 @@ TEST(RoughDiffuse, FurnaceRenderPerBand) {
 // A fluorescent base: with sigma = 0 it renders what the fluorescent matte renders, band by
 // band; a rough one still fluoresces in its emission band.
 TEST(RoughDiffuse, FluorescentBase) {
-  auto scene = [](const std::string& material) {
-    return sceneText(
-        "<xres>6</xres><yres>6</yres><mode>spectral_mcpt</mode><depth>3</depth><sampl>512</sampl>",
-        "<position>0,0,-100</position><look_at>0,0,0</look_at><fov>0.3</fov>",
-        "<sphere><center>0,0,0</center><radius>1</radius>" + material +
-            "<reflectance>0.3</reflectance><fluorescence><absorption>420</absorption><stokes>120"
-            "</stokes><yield>0.8</yield></fluorescence></sphere><sphere><center>0,20,-20</center>"
-            "<radius>3</radius><material>matte</material><reflectance>0</reflectance><emission>"
-            "40</emission></sphere>");
-  };
+  const auto scene = test::fluorescentSphereScene;
   const RenderOutput matte = renderText(scene("<material>matte</material>"));
   const RenderOutput smooth = renderText(scene("<material>rough_matte</material><sigma>0</sigma>"));
   const RenderOutput rough = renderText(scene("<material>rough_matte</material><sigma>1</sigma>"));
