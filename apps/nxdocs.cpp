@@ -117,6 +117,11 @@ std::string materialsDoc() {
     }
     for (const auto& [param, why] : k->refusals)
       o << "\n`<" << param << ">` is refused here: " << cell(why) << ".\n";
+    if (!k->examples.empty()) {
+      o << "\nExamples (each checked by the conformance tests):\n\n";
+      for (const char* e : k->examples)
+        o << "- `<material>" << k->name << "</material>" << e << "`\n";
+    }
   }
   return o.str();
 }

@@ -603,7 +603,7 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::roughnessEvents(
   if constexpr (kGradients) {
     const auto& ts = tangents_->roughness[v.app.material];
     float du = 0, dv = 0;
-    if (ts.empty() || !v.bsdf.conductorRoughnessSlopes(wi, du, dv)) return;
+    if (ts.empty() || !v.bsdf.roughnessLogSlopes(wi, du, dv)) return;
     for (const RoughnessTangent& t : ts)
       if (const float g = t.alphaU * du + t.alphaV * dv; g != 0)
         for (int i = 0; i < kLanes; ++i) emit(t.slot, i, g);

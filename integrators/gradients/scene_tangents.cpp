@@ -71,8 +71,8 @@ std::string otherMaterialChange(const Material& a, const Material& b, bool textu
                ? "the microfacet roughness of a smooth metal (its lobe is a delta: differentiate "
                  "from alpha > 0)"
                : "the microfacet roughness of a dielectric (not differentiated)";
-  if (a.roughDiffuse.a != b.roughDiffuse.a)
-    return "the rough diffuse roughness sigma (not differentiated)";
+  if (a.modelConstants != b.modelConstants)
+    return "a constant of the scattering model (rough_matte's <sigma>; not differentiated)";
   if (a.coatInternalReflectance != b.coatInternalReflectance) return "the coat";
   if (a.coatingNm != b.coatingNm) return "the thin-film coating";
   for (double nm = kTraceMinNm; nm <= kTraceMaxNm; nm += 10) {

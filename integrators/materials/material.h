@@ -3,7 +3,6 @@
 // (spectra, indices, matrices), no names. Made from a scene's parameters by its kind's build
 // (integrators/materials/material_kind.h).
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -16,30 +15,24 @@
 
 namespace nx {
 
-/// How a surface scatters light.
-enum class MaterialKind : uint8_t {
-  Mixture,        ///< (1 - r) rho * ideal mirror + r rho / pi (matte r = 1, mirror r = 0)
-  Dielectric,     ///< smooth dielectric: exact Fresnel, refraction, total internal reflection
-  Interface,      ///< the boundary of a medium with the same index on both sides: light passes
-                  ///< unchanged (no reflection, no refraction)
-  ThinDielectric, ///< a thin glass wall (parallel faces): Fresnel reflection with the
-                  ///< internal reflections summed, and straight transmission
-  Conductor,      ///< a metal: GGX microfacets (smooth when alpha is 0) with the exact Fresnel
-                  ///< reflectance of its complex index
-  CoatedDiffuse,  ///< a Lambertian base (possibly fluorescent) under a smooth clear coat, the
-                  ///< internal reflections between them summed
-  RoughDiffuse,   ///< a rough diffuse surface (possibly fluorescent): Fujii's Oren-Nayar lobe
-                  ///< with the energy its single scattering loses put back (EON)
-};
+/// The scattering models, one file each in integrators/materials/kinds/ (its lobes, sampling,
+/// densities and derivatives as `ScatteringModel<MaterialKind::X>`, scattering_model.h). This
+/// list is their registry: the enum below, SurfaceBsdf's dispatch and the conformance tests'
+/// cases are generated from it, so a model missing a method does not link.
+#define NX_SCATTERING_MODELS(X)                                                                    \
+  X(Mixture)        /* (1 - r) rho mirror + r rho / pi: matte r = 1, mirror r = 0 (mixture.cpp) */ \
+  X(Dielectric)     /* exact Fresnel, refraction, TIR; smooth or GGX-rough (dielectric.cpp) */     \
+  X(Interface)      /* an index-matched medium boundary: light passes unchanged (interface.cpp) */ \
+  X(ThinDielectric) /* a thin glass wall: internal reflections summed, straight through */         \
+  X(Conductor)      /* a metal: GGX microfacets, exact Fresnel of eta + i k (conductor.cpp) */     \
+  X(CoatedDiffuse)  /* a Lambertian base under a smooth clear coat (coated_diffuse.cpp) */         \
+  X(RoughDiffuse)   /* Fujii's Oren-Nayar with EON's multiple scattering (rough_diffuse.cpp) */
 
-/// The rough diffuse lobe's constants for one roughness sigma (kinds/rough_diffuse.cpp): Fujii's
-/// A and B, and the single-scattering lobe's directional albedo E(mu) tabulated over mu = cos
-/// (uniform nodes, interpolated by Catmull-Rom) with its cosine-weighted mean.
-struct RoughDiffuseLobe {
-  static constexpr int kNodes = 33;
-  float a = 1, b = 0;
-  std::array<float, kNodes> albedo{};
-  float meanAlbedo = 1;
+/// How a surface scatters light: one value per scattering model (NX_SCATTERING_MODELS).
+enum class MaterialKind : uint8_t {
+#define NX_MODEL_ENUMERATOR(name) name,
+  NX_SCATTERING_MODELS(NX_MODEL_ENUMERATOR)
+#undef NX_MODEL_ENUMERATOR
 };
 
 /// A material: a kind with its parameters and spectra.
@@ -51,10 +44,13 @@ struct Material {
   float alphaU = 0, alphaV = 0;      ///< Conductor: GGX roughness along dpdu and across it
   /// CoatedDiffuse: the coat's hemispherical (cosine-weighted) internal Fresnel reflectance
   float coatInternalReflectance = 0;
-  RoughDiffuseLobe roughDiffuse; ///< RoughDiffuse: its lobe's constants
-  float coatingNm = 0;           ///< a thin-film coating's thickness in nm (0: none)
-  IorModel coatingIor;           ///< the coating's index of refraction
-  Spectrum reflectance;          ///< rho(lambda): albedo, or transmission tint for dielectrics
+  /// Constants a scattering model derives when the material is built (a table, a fit), of a
+  /// type only its own file knows (`modelConstantsAs`); or null. A model shares them between
+  /// materials of equal parameters, so the pointers differ exactly when the parameters do.
+  std::shared_ptr<const void> modelConstants;
+  float coatingNm = 0;  ///< a thin-film coating's thickness in nm (0: none)
+  IorModel coatingIor;  ///< the coating's index of refraction
+  Spectrum reflectance; ///< rho(lambda): albedo, or transmission tint for dielectrics
   std::optional<FluorescenceModel> fluorescenceModel; ///< the parameters, if not measured
   std::shared_ptr<const ReradiationMatrix>
       reradiation; ///< fluorescence of the diffuse lobe, or null
@@ -63,6 +59,12 @@ struct Material {
   std::shared_ptr<const ConcentrationMap> concentration;
   /// A reflectance varying over the surface (by the hit's uv), replacing `reflectance`; or null
   std::shared_ptr<const ReflectanceTexture> texture;
+
+  /// The model's constants as the type its file stored (it alone knows that type).
+  template <class T>
+  const T& modelConstantsAs() const {
+    return *static_cast<const T*>(modelConstants.get());
+  }
 };
 
 } // namespace nx

@@ -76,6 +76,10 @@ struct MaterialKindSpec {
   /// Builds the material from its checked parameters.
   Material (*build)(const MaterialKindSpec& kind, const ParameterSet& params,
                     const MaterialInputs& in);
+  /// Parameters (scene text after `<material>name</material>`) that reach its scattering
+  /// model in the ways that change its lobes (rough and smooth, narrow, anisotropic,
+  /// dispersive): the conformance tests check each one, the reference docs list them.
+  std::span<const char* const> examples;
 
   /// The declaration of a parameter it takes, or null.
   const KindParameter* param(std::string_view name) const;

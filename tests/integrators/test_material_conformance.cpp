@@ -2,9 +2,9 @@
 // over a grid of directions down to grazing (energy, no radiance scaling), finite values
 // everywhere, specular lobes, chi-square of sampling against the pdf, weights f / pdf and
 // reciprocity. The cases come from the registry (every registered kind alone, and with each
-// of its parameters' declared example: a new kind is checked without a line here), plus the
-// combinations below; the list of combinations is a switch over MaterialKind without a
-// default, compiled with -Werror=switch, so a new evaluation does not compile until it has one.
+// of its parameters' declared example, and each kind's declared examples: a new kind is
+// checked without a line here); every scattering model of NX_SCATTERING_MODELS must be reached
+// by them.
 
 #include <gtest/gtest.h>
 
@@ -24,53 +24,16 @@
 #include "support/render_checks.h"
 #include "support/statistics.h"
 
-#pragma GCC diagnostic error "-Wswitch"
-
 namespace nx {
 namespace {
 
-// Sphere bodies that make `kind` through the scene format: every way the kind is reached
-// (smooth and rough, dispersive, fluorescent bases) that changes its BSDF.
-std::vector<std::string> bodiesOf(MaterialKind kind) {
-  switch (kind) {
-  case MaterialKind::Mixture:
-    return {"<material>matte</material><reflectance>0.9</reflectance>",
-            "<material>plastic</material><roughness>0.4</roughness><reflectance>1</reflectance>",
-            "<material>mirror</material><reflectance>1</reflectance>"};
-  case MaterialKind::Dielectric:
-    return {"<material>glass</material><ior>1.5</ior>",
-            "<material>diamond</material>",
-            "<material>glass</material><ior>bk7</ior>",
-            "<material>glass</material><ior>bk7</ior><alpha>0.3</alpha>",
-            "<material>glass</material><ior>2.4</ior><alpha>0.05</alpha>",
-            "<material>glass</material><ior>1.5</ior><alpha>0.01</alpha>"};
-  case MaterialKind::Interface:
-    return {"<material>interface</material><medium><sigma_a>0.1</sigma_a><sigma_s>0</sigma_s>"
-            "</medium>"};
-  case MaterialKind::ThinDielectric:
-    return {"<material>thin_glass</material>"};
-  case MaterialKind::Conductor:
-    return {"<material>conductor</material><metal>gold</metal>",
-            "<material>conductor</material><metal>aluminium</metal><alpha>0.2</alpha>",
-            "<material>conductor</material><metal>silver</metal><alpha_u>0.05</alpha_u>"
-            "<alpha_v>0.4</alpha_v>",
-            "<material>conductor</material><metal>gold</metal><alpha>0.01</alpha>"};
-  case MaterialKind::RoughDiffuse:
-    return {"<material>rough_matte</material><sigma>1</sigma><reflectance>1</reflectance>",
-            "<material>rough_matte</material><sigma>0.05</sigma><reflectance>0.4</reflectance>",
-            "<material>rough_matte</material><sigma>0</sigma><reflectance>1</reflectance>"};
-  case MaterialKind::CoatedDiffuse:
-    return {"<material>coated</material><ior>1.5</ior><reflectance>1</reflectance>",
-            "<material>coated</material><ior>1.9</ior><reflectance>0.5</reflectance>"};
-  }
-  return {};
-}
-
-// Every kind once (bodiesOf's switch is the compile-time list; this is its iteration order).
-const std::array<MaterialKind, 7> kKinds{MaterialKind::Mixture,     MaterialKind::Dielectric,
-                                         MaterialKind::Interface,   MaterialKind::ThinDielectric,
-                                         MaterialKind::Conductor,   MaterialKind::CoatedDiffuse,
-                                         MaterialKind::RoughDiffuse};
+// Every scattering model once, in the registry's order (NX_SCATTERING_MODELS).
+constexpr MaterialKind kKinds[] = {
+#define NX_MODEL_KIND(name) MaterialKind::name,
+    NX_SCATTERING_MODELS(NX_MODEL_KIND)
+#undef NX_MODEL_KIND
+};
+constexpr size_t kKindCount = std::size(kKinds);
 
 // The lanes' wavelengths the checks use: spread over the visible range and beyond.
 SampledWavelengths conformanceWavelengths() {
@@ -136,12 +99,15 @@ std::vector<std::string> registryBodies() {
   return out;
 }
 
-// Every case the checks run: the registry's that build, and bodiesOf's combinations.
+// Every case the checks run: the registry's parameter cases that build, and each kind's
+// declared examples (MaterialKindSpec::examples: the ways of reaching its lobes that change
+// them).
 const std::vector<std::string>& conformanceBodies() {
   static const std::vector<std::string> bodies = [] {
     std::vector<std::string> out = registryBodies();
-    for (const MaterialKind kind : kKinds)
-      for (const std::string& body : bodiesOf(kind)) out.push_back(body);
+    for (const MaterialKindSpec* k : materialKinds())
+      for (const char* example : k->examples)
+        out.push_back("<material>" + std::string(k->name) + "</material>" + example);
     return out;
   }();
   return bodies;
@@ -165,13 +131,15 @@ TEST(MaterialConformance, EveryRegisteredKindAndParameterIsAmongTheCases) {
   }
   // Each evaluation (MaterialKind) is reached by the registry's cases too.
   const SampledWavelengths lambda = conformanceWavelengths();
-  std::vector<bool> reached(kKinds.size(), false);
+  std::vector<bool> reached(kKindCount, false);
   for (const std::string& body : registryBodies()) try {
       const MaterialKind got = kindCase(body, lambda).material().kind;
-      for (size_t i = 0; i < kKinds.size(); ++i) reached[i] = reached[i] || kKinds[i] == got;
+      for (size_t i = 0; i < kKindCount; ++i) reached[i] = reached[i] || kKinds[i] == got;
     } catch (const Error&) {
     }
-  for (size_t i = 0; i < kKinds.size(); ++i) EXPECT_TRUE(reached[i]) << "MaterialKind " << i;
+  for (size_t i = 0; i < kKindCount; ++i)
+    EXPECT_TRUE(reached[i]) << "scattering model " << i
+                            << " of NX_SCATTERING_MODELS: no case reaches it";
 }
 
 TEST(MaterialConformance, EveryKindKeepsEnergyAndStaysFinite) {

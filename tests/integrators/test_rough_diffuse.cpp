@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "integrators/materials/bsdf.h"
+#include "integrators/materials/kinds/rough_diffuse.h"
 #include "integrators/renderer.h"
 #include "spectra/bands.h"
 #include "support/direction_chi_square.h"
@@ -57,8 +58,8 @@ TEST(RoughDiffuse, SingleScatteringAlbedoMatchesItsFormula) {
   for (double sigma : {0.0, 0.2, 0.5, 1.0}) {
     const Material m = roughMatte(sigma);
     const double a = 1 / (1 + (kPi / 2 - 2.0 / 3.0) * sigma), b = sigma * a;
-    EXPECT_NEAR(m.roughDiffuse.a, a, 1e-6);
-    EXPECT_NEAR(roughDiffuseAlbedo(m.roughDiffuse, 1.0f), a, 2e-4) << sigma;
+    EXPECT_NEAR(roughDiffuseLobeOf(m).a, a, 1e-6);
+    EXPECT_NEAR(roughDiffuseAlbedo(roughDiffuseLobeOf(m), 1.0f), a, 2e-4) << sigma;
     for (double mu : {0.9, 0.5, 0.13, 0.02}) {
       const double so = std::sqrt(1 - mu * mu);
       double e = 0;
@@ -70,7 +71,7 @@ TEST(RoughDiffuse, SingleScatteringAlbedoMatchesItsFormula) {
           e += (a + b * (s > 0 ? s / std::max(ci, mu) : s)) * ci;
         }
       e *= (1.0 / nc) * (2 * kPi / np) / kPi;
-      EXPECT_NEAR(roughDiffuseAlbedo(m.roughDiffuse, static_cast<float>(mu)), e, 5e-4)
+      EXPECT_NEAR(roughDiffuseAlbedo(roughDiffuseLobeOf(m), static_cast<float>(mu)), e, 5e-4)
           << "sigma " << sigma << " mu " << mu;
     }
   }
@@ -95,7 +96,7 @@ TEST(RoughDiffuse, WhiteSurfaceKeepsAllEnergy) {
       EXPECT_NEAR(s.mean, 1.0, 5 * s.standardError() + 3e-3) << "sigma " << sigma << " mu " << mu;
     }
   }
-  EXPECT_LT(roughDiffuseAlbedo(roughMatte(1.0).roughDiffuse, 1.0f), 0.56f);
+  EXPECT_LT(roughDiffuseAlbedo(roughDiffuseLobeOf(roughMatte(1.0)), 1.0f), 0.56f);
 }
 
 // sigma = 0 is Lambertian: f = rho |cos| / pi, exactly.
@@ -131,9 +132,9 @@ TEST(RoughDiffuse, RetroReflectsAtGrazingAngles) {
 TEST(RoughDiffuse, MultipleScatteringAndReflectanceSlope) {
   const SampledWavelengths l = test::laneWavelengths();
   const Material m = roughMatte(1.0);
-  const double e = m.roughDiffuse.meanAlbedo;
+  const double e = roughDiffuseLobeOf(m).meanAlbedo;
   for (double rho : {0.2, 0.5, 0.9})
-    EXPECT_NEAR(roughDiffuseMultipleAlbedo(m.roughDiffuse, static_cast<float>(rho)),
+    EXPECT_NEAR(roughDiffuseMultipleAlbedo(roughDiffuseLobeOf(m), static_cast<float>(rho)),
                 rho * rho * e / (1 - rho * (1 - e)), 1e-6);
   const Vec3 wo = fromAngles(0.4, 0.2), wi = fromAngles(0.7, 2.0);
   for (float rho : {0.2f, 0.5f, 0.9f}) {

@@ -1,7 +1,7 @@
 // A metal: GGX microfacets (smooth when alpha is 0) with the exact Fresnel reflectance of its
 // complex index eta + i k, a built-in measured metal or given spectra, optionally under a thin
-// film on each microfacet: its parameters, its build and its lobes (SurfaceBsdf's conductor
-// Fresnel, f and sampling, below; dispatched from bsdf.cpp).
+// film on each microfacet: its parameters, its build and its lobes (its scattering model,
+// below).
 
 #include <tuple>
 
@@ -80,80 +80,148 @@ constexpr std::pair<const char*, const char*> kRefusals[] = {
     {"roughness", "its roughness is <alpha>"},
     {"ior", "its index is <eta> and <k>"}};
 
+constexpr const char* kExamples[] = {
+    "<metal>gold</metal>", "<metal>aluminium</metal><alpha>0.2</alpha>",
+    "<metal>silver</metal><alpha_u>0.05</alpha_u><alpha_v>0.4</alpha_v>",
+    "<metal>gold</metal><alpha>0.01</alpha>"};
+
 } // namespace
 
 extern const MaterialKindSpec kConductorKind{
-    "conductor", "a metal: GGX microfacets and the exact Fresnel reflectance of eta + i k", kParams,
-    kRefusals, buildConductor};
+    "conductor",    "a metal: GGX microfacets and the exact Fresnel reflectance of eta + i k",
+    kParams,        kRefusals,
+    buildConductor, kExamples};
 
-// ---- evaluation (SurfaceBsdf's lobes of this kind) ----
+// ---- the scattering model (ScatteringModel<Conductor>) ----
+
+using Conductor = ScatteringModel<MaterialKind::Conductor>;
+
+namespace {
+
+bool smooth(const BsdfState& s) {
+  return !(std::max(s.alpha.ax, s.alpha.ay) > 0);
+}
 
 // The lanes' Fresnel reflectance at a micro-surface seen with cosine cosI (through the
 // coating: a thin film on each microfacet).
-SampledSpectrum SurfaceBsdf::conductorFresnel(float cosI) const {
+SampledSpectrum conductorFresnel(const BsdfState& s, float cosI) {
   SampledSpectrum f;
-  const Material& m = *material_;
+  const Material& m = *s.material;
   if (m.coatingNm > 0) {
     for (int i = 0; i < kLanes; ++i) {
-      const float nm = lambda_->lambda[i];
-      f[i] = thinFilmReflectance(cosI, 1.0f, static_cast<float>(m.coatingIor.at(nm)), eta_[i],
-                                 k_[i], m.coatingNm, nm);
+      const float nm = s.lambda->lambda[i];
+      f[i] = thinFilmReflectance(cosI, 1.0f, static_cast<float>(m.coatingIor.at(nm)), s.eta[i],
+                                 s.k[i], m.coatingNm, nm);
     }
     return f;
   }
-  for (int i = 0; i < kLanes; ++i) f[i] = fresnelConductor(cosI, eta_[i], k_[i]);
+  for (int i = 0; i < kLanes; ++i) f[i] = fresnelConductor(cosI, s.eta[i], s.k[i]);
   return f;
+}
+
+} // namespace
+
+template <>
+uint8_t Conductor::lobes(const Material& m) {
+  return std::max(m.alphaU, m.alphaV) >= 1e-4f ? kGlossyReflection : kSpecularReflection;
+}
+
+template <>
+void Conductor::prepare(BsdfState& s) {
+  s.faceWo();
+  s.material->conductorEta.evaluate(*s.lambda, s.eta);
+  s.material->conductorK.evaluate(*s.lambda, s.k);
+  s.alpha = clampedGgx(*s.material);
+  s.frame = Frame::fromNormal(s.n);
 }
 
 // Torrance-Sparrow with GGX: f cos(wi) = D(h) G2(wo, wi) F(wo.h) / (4 cos(wo)), h the half
 // vector (Walter et al. 2007, eq. 20); zero below the surface (either normal).
-SampledSpectrum SurfaceBsdf::conductorF(const Vec3& wi) const {
-  if (smoothConductor() || dot(wi, ng_) <= 0) return {};
-  const Vec3 o = frame_.toLocal(wo_), i = frame_.toLocal(wi);
+template <>
+SampledSpectrum Conductor::f(const BsdfState& s, const Vec3& wi) {
+  if (smooth(s) || dot(wi, s.ng) <= 0) return {};
+  const Vec3 o = s.frame.toLocal(s.wo), i = s.frame.toLocal(wi);
   if (o.z <= 0 || i.z <= 0) return {};
   const Vec3 h = normalize(o + i);
-  const float d = alpha_.d(h);
+  const float d = s.alpha.d(h);
   if (!(d > 0)) return {};
-  return conductorFresnel(dot(o, h)) * (d * alpha_.g2(o, i) / (4 * o.z));
+  return conductorFresnel(s, dot(o, h)) * (d * s.alpha.g2(o, i) / (4 * o.z));
 }
 
-bool SurfaceBsdf::conductorRoughnessSlopes(const Vec3& wi, float& dAlphaU, float& dAlphaV) const {
-  if (material_->kind != MaterialKind::Conductor || smoothConductor()) return false;
-  const Vec3 o = frame_.toLocal(wo_), i = frame_.toLocal(wi);
-  if (o.z <= 0 || i.z <= 0) return false;
-  alpha_.logDerivatives(o, i, dAlphaU, dAlphaV);
-  return std::isfinite(dAlphaU) && std::isfinite(dAlphaV);
+template <>
+SampledSpectrum Conductor::diffuseLobe(const BsdfState&, const Vec3&) {
+  return {};
+}
+
+template <>
+float Conductor::pdf(const BsdfState& s, const Vec3& wi) {
+  if (smooth(s) || dot(wi, s.ng) <= 0) return 0;
+  const Vec3 o = s.frame.toLocal(s.wo), i = s.frame.toLocal(wi);
+  if (o.z <= 0 || i.z <= 0) return 0;
+  const Vec3 h = normalize(o + i);
+  return s.alpha.g1(o) * s.alpha.d(h) / (4 * o.z);
 }
 
 // Visible-normal sampling: h from D_wo, wi = reflect(wo, h); the weight f cos / pdf is
 // F G2 / G1(wo) with pdf = G1(wo) D(h) / (4 cos(wo)) (Heitz 2018, sec. 2). A reflection below
 // the surface is lost (the single-scattering model's energy loss, docs/materials.md).
-bool SurfaceBsdf::sampleConductor(Sample2 u, BsdfSample& out) const {
-  const float cosO = dot(wo_, n_);
+template <>
+bool Conductor::sample(const BsdfState& s, float, Sample2 u, BsdfSample& out) {
+  const float cosO = dot(s.wo, s.n);
   if (cosO <= 0) return false;
   out.terminateSecondary = false;
   out.eta = 1;
-  if (smoothConductor()) {
-    out.wi = reflect(wo_, n_);
-    if (dot(out.wi, ng_) <= 0) return false;
-    out.weight = conductorFresnel(cosO);
+  if (smooth(s)) {
+    out.wi = reflect(s.wo, s.n);
+    if (dot(out.wi, s.ng) <= 0) return false;
+    out.weight = conductorFresnel(s, cosO);
     out.pdf = 0;
     out.specular = true;
     return true;
   }
-  const Vec3 o = frame_.toLocal(wo_);
-  const Vec3 h = alpha_.sampleVisibleNormal(o, u);
+  const Vec3 o = s.frame.toLocal(s.wo);
+  const Vec3 h = s.alpha.sampleVisibleNormal(o, u);
   const float oh = dot(o, h);
   if (!(oh > 0)) return false;
   const Vec3 i = h * (2 * oh) - o;
   if (i.z <= 0) return false;
-  out.wi = frame_.toWorld(i);
-  if (dot(out.wi, ng_) <= 0) return false;
-  out.pdf = alpha_.g1(o) * alpha_.d(h) / (4 * o.z);
+  out.wi = s.frame.toWorld(i);
+  if (dot(out.wi, s.ng) <= 0) return false;
+  out.pdf = s.alpha.g1(o) * s.alpha.d(h) / (4 * o.z);
   if (!(out.pdf > 0)) return false;
-  out.weight = conductorFresnel(oh) * (alpha_.g2(o, i) / alpha_.g1(o));
+  out.weight = conductorFresnel(s, oh) * (s.alpha.g2(o, i) / s.alpha.g1(o));
   out.specular = false;
   return true;
+}
+
+template <>
+int Conductor::specularLobes(const BsdfState& s, SpecularLobe (&out)[2]) {
+  BsdfSample bs;
+  if (!smooth(s) || !sample(s, 0, {}, bs)) return 0;
+  out[0] = {bs.wi, bs.weight, false};
+  return 1;
+}
+
+// Its reflectance is its complex index's: rho does not enter.
+template <>
+float Conductor::reflectanceLogSlope(const BsdfState&, const Vec3&, float, bool, bool, bool& zero) {
+  zero = false;
+  return 0.0f;
+}
+
+template <>
+bool Conductor::roughnessLogSlopes(const BsdfState& s, const Vec3& wi, float& dAlphaU,
+                                   float& dAlphaV) {
+  if (smooth(s)) return false;
+  const Vec3 o = s.frame.toLocal(s.wo), i = s.frame.toLocal(wi);
+  if (o.z <= 0 || i.z <= 0) return false;
+  s.alpha.logDerivatives(o, i, dAlphaU, dAlphaV);
+  return std::isfinite(dAlphaU) && std::isfinite(dAlphaV);
+}
+
+template <>
+BsdfDerivativeSteps Conductor::derivativeSteps(const Material& m) {
+  return microfacetDerivativeSteps(m);
 }
 
 } // namespace nx

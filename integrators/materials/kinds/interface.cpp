@@ -1,9 +1,9 @@
 // The boundary of a medium with the same index on both sides: light passes unchanged (no
-// reflection, no refraction). Its one lobe (straight on) is a line of SurfaceBsdf::sample
-// (bsdf.cpp).
+// reflection, no refraction): its parameters, build and scattering model (one lobe, straight on).
 
 #include "core/error.h"
 #include "integrators/materials/material_kind.h"
+#include "integrators/materials/scattering_model.h"
 
 namespace nx {
 namespace {
@@ -23,6 +23,8 @@ constexpr std::pair<const char*, const char*> kRefusals[] = {
     {"reflectance", "it only bounds a medium"},
     {"fluorescence", "it only bounds a medium"}};
 
+constexpr const char* kExamples[] = {"<medium><sigma_a>0.1</sigma_a><sigma_s>0</sigma_s></medium>"};
+
 } // namespace
 
 extern const MaterialKindSpec kInterfaceKind{
@@ -30,6 +32,70 @@ extern const MaterialKindSpec kInterfaceKind{
     "an index-matched boundary of a <medium>: light passes unchanged",
     {},
     kRefusals,
-    buildInterface};
+    buildInterface,
+    kExamples};
+
+// ---- the scattering model (ScatteringModel<Interface>) ----
+
+using Interface = ScatteringModel<MaterialKind::Interface>;
+
+template <>
+uint8_t Interface::lobes(const Material&) {
+  return kSpecularTransmission;
+}
+
+template <>
+void Interface::prepare(BsdfState&) {}
+
+template <>
+SampledSpectrum Interface::f(const BsdfState&, const Vec3&) {
+  return {};
+}
+
+template <>
+SampledSpectrum Interface::diffuseLobe(const BsdfState&, const Vec3&) {
+  return {};
+}
+
+template <>
+float Interface::pdf(const BsdfState&, const Vec3&) {
+  return 0;
+}
+
+// Index-matched: the path continues straight on, every lane unchanged.
+template <>
+bool Interface::sample(const BsdfState& s, float, Sample2, BsdfSample& out) {
+  out.wi = -s.wo;
+  out.weight = SampledSpectrum::filled(1.0f);
+  out.pdf = 0;
+  out.specular = true;
+  out.terminateSecondary = false;
+  out.eta = 1;
+  out.straight = true;
+  return true;
+}
+
+template <>
+int Interface::specularLobes(const BsdfState& s, SpecularLobe (&out)[2]) {
+  out[0] = {-s.wo, SampledSpectrum::filled(1.0f), false};
+  return 1;
+}
+
+// Light passes unchanged: nothing depends on rho.
+template <>
+float Interface::reflectanceLogSlope(const BsdfState&, const Vec3&, float, bool, bool, bool& zero) {
+  zero = false;
+  return 0.0f;
+}
+
+template <>
+bool Interface::roughnessLogSlopes(const BsdfState&, const Vec3&, float&, float&) {
+  return false;
+}
+
+template <>
+BsdfDerivativeSteps Interface::derivativeSteps(const Material&) {
+  return {};
+}
 
 } // namespace nx

@@ -12,13 +12,16 @@
 // rho = 1 the albedo is 1 from every direction; f is reciprocal. E(mu) is computed here by
 // quadrature when the material is built (not the paper's fitted approximation) and tabulated.
 // A fluorescent base re-radiates with the lobe of rho = 1 (f_ss + f_ms, albedo 1) scaled by
-// its re-radiation albedo. Its parameters, build and lobe (SurfaceBsdf's methods below;
-// dispatched from bsdf.cpp).
+// its re-radiation albedo. Its parameters, build and scattering model (below).
 
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 
-#include "integrators/materials/bsdf.h"
+#include "integrators/materials/kinds/rough_diffuse.h"
 #include "integrators/materials/material_kind.h"
+#include "integrators/materials/scattering_model.h"
 #include "integrators/sampling.h"
 
 namespace nx {
@@ -67,12 +70,26 @@ RoughDiffuseLobe roughDiffuseLobe(double sigma) {
   return lobe;
 }
 
+// The lobe of roughness sigma, shared by every material of that sigma (built once: its
+// quadrature takes milliseconds; equal constants are then the same pointer, as Material asks).
+std::shared_ptr<const RoughDiffuseLobe> sharedLobe(double sigma) {
+  static std::mutex mutex;
+  static std::map<double, std::weak_ptr<const RoughDiffuseLobe>> lobes;
+  const std::lock_guard lock(mutex);
+  std::erase_if(lobes, [](const auto& entry) { return entry.second.expired(); });
+  std::weak_ptr<const RoughDiffuseLobe>& slot = lobes[sigma];
+  if (std::shared_ptr<const RoughDiffuseLobe> lobe = slot.lock()) return lobe;
+  auto lobe = std::make_shared<const RoughDiffuseLobe>(roughDiffuseLobe(sigma));
+  slot = lobe;
+  return lobe;
+}
+
 Material buildRoughDiffuse(const MaterialKindSpec& kind, const ParameterSet& p,
                            const MaterialInputs& in) {
   Material m;
   m.kind = MaterialKind::RoughDiffuse;
   const double sigma = p.number("sigma").value_or(kind.numberDefault("sigma"));
-  m.roughDiffuse = roughDiffuseLobe(sigma);
+  m.modelConstants = sharedLobe(sigma);
   setSurfaceReflectance(m, p, in, false, "reflectance");
   setFluorescence(m, p, in);
   return m;
@@ -90,12 +107,19 @@ constexpr std::pair<const char*, const char*> kRefusals[] = {
     {"ior", "an index of refraction is for dielectrics and coated"},
     {"coating", "thin films lie on conductors and smooth dielectrics"}};
 
+constexpr const char* kExamples[] = {"<sigma>1</sigma><reflectance>1</reflectance>",
+                                     "<sigma>0.05</sigma><reflectance>0.4</reflectance>",
+                                     "<sigma>0</sigma><reflectance>1</reflectance>"};
+
 } // namespace
 
 extern const MaterialKindSpec kRoughMatteKind{
     "rough_matte",
     "rough diffuse (Oren-Nayar as improved by Fujii, energy kept by EON's multiple scattering)",
-    kParams, kRefusals, buildRoughDiffuse};
+    kParams,
+    kRefusals,
+    buildRoughDiffuse,
+    kExamples};
 
 float roughDiffuseAlbedo(const RoughDiffuseLobe& lobe, float mu) {
   constexpr int n = RoughDiffuseLobe::kNodes;
@@ -112,14 +136,28 @@ float roughDiffuseAlbedo(const RoughDiffuseLobe& lobe, float mu) {
                  (3 * p1 - p0 - 3 * p2 + p3) * t3);
 }
 
-// ---- evaluation (SurfaceBsdf's lobe of this kind) ----
+// ---- the scattering model (ScatteringModel<RoughDiffuse>) ----
 
-RoughDiffuseShape SurfaceBsdf::roughDiffuseShape(const Vec3& wi) const {
-  const RoughDiffuseLobe& lobe = material_->roughDiffuse;
-  const float ci = dot(wi, n_), co = dot(wo_, n_);
-  if (ci <= 0 || co <= 0 || dot(wi, ng_) <= 0) return {};
-  const float s = dot(wi, wo_) - ci * co;
-  const float single = lobe.a + lobe.b * static_cast<float>(fujiiTerm(s, ci, co));
+const RoughDiffuseLobe& roughDiffuseLobeOf(const Material& m) {
+  return m.modelConstantsAs<RoughDiffuseLobe>();
+}
+
+using RoughDiffuse = ScatteringModel<MaterialKind::RoughDiffuse>;
+
+namespace {
+
+// The lobe's factors at one pair of directions: the single-scattering term A + B s / t, the
+// multiple-scattering term (1 - E_o)(1 - E_i) / (1 - E_avg) and cos_i (all 0 below the surface).
+struct Shape {
+  float single = 0, multiple = 0, cosine = 0;
+};
+
+Shape shapeAt(const BsdfState& s, const Vec3& wi) {
+  const RoughDiffuseLobe& lobe = roughDiffuseLobeOf(*s.material);
+  const float ci = dot(wi, s.n), co = dot(s.wo, s.n);
+  if (ci <= 0 || co <= 0 || dot(wi, s.ng) <= 0) return {};
+  const float sTerm = dot(wi, s.wo) - ci * co;
+  const float single = lobe.a + lobe.b * static_cast<float>(fujiiTerm(sTerm, ci, co));
   const float lost = 1 - lobe.meanAlbedo;
   const float multiple =
       lost > 1e-6f ? (1 - roughDiffuseAlbedo(lobe, co)) * (1 - roughDiffuseAlbedo(lobe, ci)) / lost
@@ -127,43 +165,56 @@ RoughDiffuseShape SurfaceBsdf::roughDiffuseShape(const Vec3& wi) const {
   return {std::max(single, 0.0f), std::max(multiple, 0.0f), ci};
 }
 
+} // namespace
+
 float roughDiffuseMultipleAlbedo(const RoughDiffuseLobe& lobe, float rho) {
   const float e = lobe.meanAlbedo;
   const float d = 1 - rho * (1 - e);
   return d > 0 ? rho * rho * e / d : 0.0f;
 }
 
-SampledSpectrum SurfaceBsdf::roughDiffuseF(const Vec3& wi) const {
-  const RoughDiffuseShape g = roughDiffuseShape(wi);
+template <>
+SampledSpectrum RoughDiffuse::f(const BsdfState& s, const Vec3& wi) {
+  const Shape g = shapeAt(s, wi);
   if (!(g.cosine > 0)) return {};
   SampledSpectrum f;
   const float c = g.cosine * static_cast<float>(kInvPi);
   for (int i = 0; i < kLanes; ++i)
-    f[i] = (rho_[i] * g.single +
-            roughDiffuseMultipleAlbedo(material_->roughDiffuse, rho_[i]) * g.multiple) *
+    f[i] = (s.rho[i] * g.single +
+            roughDiffuseMultipleAlbedo(roughDiffuseLobeOf(*s.material), s.rho[i]) * g.multiple) *
            c;
   return f;
 }
 
-float SurfaceBsdf::roughDiffuseLogSlope(const Vec3& wi, float rho) const {
-  const RoughDiffuseShape g = roughDiffuseShape(wi);
-  const float e = material_->roughDiffuse.meanAlbedo, d = 1 - rho * (1 - e);
+// Its own slope: rho_ms is not linear in rho.
+template <>
+float RoughDiffuse::reflectanceLogSlope(const BsdfState& s, const Vec3& wi, float rho, bool,
+                                        bool albedo, bool& zero) {
+  zero = false;
+  if (!albedo) return 0.0f;
+  if (!(rho > 0)) {
+    zero = true;
+    return 0.0f;
+  }
+  const Shape g = shapeAt(s, wi);
+  const float e = roughDiffuseLobeOf(*s.material).meanAlbedo, d = 1 - rho * (1 - e);
   if (!(g.cosine > 0) || !(d > 0)) return 0;
   // d rho_ms / d rho = E_avg rho (2 - rho (1 - E_avg)) / (1 - rho (1 - E_avg))^2
   const float slope = e * rho * (2 - rho * (1 - e)) / (d * d);
-  const float value =
-      rho * g.single + roughDiffuseMultipleAlbedo(material_->roughDiffuse, rho) * g.multiple;
+  const float value = rho * g.single +
+                      roughDiffuseMultipleAlbedo(roughDiffuseLobeOf(*s.material), rho) * g.multiple;
   return value > 0 ? (g.single + slope * g.multiple) / value : 0.0f;
 }
 
 // Cosine-weighted directions: the weight f |cos| / pdf = rho (A + B s / t) + rho_ms g_ms per lane.
-bool SurfaceBsdf::sampleRoughDiffuse(Sample2 u, BsdfSample& out) const {
-  if (dot(wo_, n_) <= 0) return false;
-  const Frame frame = Frame::fromNormal(n_);
+template <>
+bool RoughDiffuse::sample(const BsdfState& s, float, Sample2 u, BsdfSample& out) {
+  if (dot(s.wo, s.n) <= 0) return false;
+  const Frame frame = Frame::fromNormal(s.n);
   const Vec3 local = sampleCosineHemisphere(u);
   if (local.z <= 0) return false;
   out.wi = frame.toWorld(local);
-  const RoughDiffuseShape g = roughDiffuseShape(out.wi);
+  const Shape g = shapeAt(s, out.wi);
   if (!(g.cosine > 0)) return false;
   out.pdf = cosineHemispherePdf(local.z);
   out.specular = false;
@@ -171,9 +222,47 @@ bool SurfaceBsdf::sampleRoughDiffuse(Sample2 u, BsdfSample& out) const {
   out.eta = 1;
   out.diffuseScale = SampledSpectrum::filled(g.single + g.multiple);
   for (int i = 0; i < kLanes; ++i)
-    out.weight[i] = rho_[i] * g.single +
-                    roughDiffuseMultipleAlbedo(material_->roughDiffuse, rho_[i]) * g.multiple;
+    out.weight[i] =
+        s.rho[i] * g.single +
+        roughDiffuseMultipleAlbedo(roughDiffuseLobeOf(*s.material), s.rho[i]) * g.multiple;
   return true;
+}
+
+template <>
+uint8_t RoughDiffuse::lobes(const Material&) {
+  return kDiffuseReflection;
+}
+
+template <>
+void RoughDiffuse::prepare(BsdfState& s) {
+  s.faceWo();
+}
+
+// The lobe of rho = 1 (albedo 1).
+template <>
+SampledSpectrum RoughDiffuse::diffuseLobe(const BsdfState& s, const Vec3& wi) {
+  const Shape g = shapeAt(s, wi);
+  return SampledSpectrum::filled((g.single + g.multiple) * g.cosine * static_cast<float>(kInvPi));
+}
+
+template <>
+float RoughDiffuse::pdf(const BsdfState& s, const Vec3& wi) {
+  return dot(s.wo, s.n) > 0 ? cosineHemispherePdf(dot(wi, s.n)) : 0.0f;
+}
+
+template <>
+int RoughDiffuse::specularLobes(const BsdfState&, SpecularLobe (&)[2]) {
+  return 0;
+}
+
+template <>
+bool RoughDiffuse::roughnessLogSlopes(const BsdfState&, const Vec3&, float&, float&) {
+  return false; // sigma is not differentiated
+}
+
+template <>
+BsdfDerivativeSteps RoughDiffuse::derivativeSteps(const Material&) {
+  return {};
 }
 
 } // namespace nx

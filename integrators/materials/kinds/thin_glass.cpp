@@ -1,6 +1,6 @@
 // A thin glass wall (two parallel faces): Fresnel reflection with the internal reflections
 // summed, straight transmission, no refraction offset: its parameters, build and sampling
-// (below; dispatched from bsdf.cpp).
+// (its scattering model, below).
 
 #include "integrators/materials/bsdf.h"
 #include "integrators/materials/fresnel.h"
@@ -26,22 +26,54 @@ constexpr std::pair<const char*, const char*> kRefusals[] = {
     {"alpha", "a thin wall stays smooth"},
     {"fluorescence", "fluorescent dielectrics need media: a <medium> with a dye"}};
 
+constexpr const char* kExamples[] = {"<ior>1.5</ior>"};
+
 } // namespace
 
 extern const MaterialKindSpec kThinGlassKind{
-    "thin_glass", "a thin glass wall: reflects and transmits straight through, without refraction",
-    kParams, kRefusals, buildThinGlass};
+    "thin_glass",
+    "a thin glass wall: reflects and transmits straight through, without refraction",
+    kParams,
+    kRefusals,
+    buildThinGlass,
+    kExamples};
 
-// ---- evaluation (SurfaceBsdf's lobes of this kind) ----
+// ---- the scattering model (ScatteringModel<ThinDielectric>) ----
+
+using ThinWall = ScatteringModel<MaterialKind::ThinDielectric>;
+
+template <>
+uint8_t ThinWall::lobes(const Material&) {
+  return kSpecularReflection | kSpecularTransmission;
+}
+
+template <>
+void ThinWall::prepare(BsdfState&) {} // either side: the outward normal stays
+
+template <>
+SampledSpectrum ThinWall::f(const BsdfState&, const Vec3&) {
+  return {};
+}
+
+template <>
+SampledSpectrum ThinWall::diffuseLobe(const BsdfState&, const Vec3&) {
+  return {};
+}
+
+template <>
+float ThinWall::pdf(const BsdfState&, const Vec3&) {
+  return 0;
+}
 
 // A thin glass wall: reflect with probability R(hero) (thinSlabReflectance), else pass straight
 // through; lane i's weight is rho_i R_i / R_hero or rho_i (1 - R_i) / (1 - R_hero). The
 // direction never depends on the wavelength, so dispersion needs no lane termination.
-bool SurfaceBsdf::sampleThinDielectric(float uLobe, BsdfSample& out) const {
-  const float c = std::abs(dot(wo_, n_));
+template <>
+bool ThinWall::sample(const BsdfState& s, float uLobe, Sample2, BsdfSample& out) {
+  const float c = std::abs(dot(s.wo, s.n));
   SampledSpectrum r;
   for (int i = 0; i < kLanes; ++i)
-    r[i] = thinSlabReflectance(c, static_cast<float>(material_->ior.at((*lambda_).lambda[i])));
+    r[i] = thinSlabReflectance(c, static_cast<float>(s.material->ior.at(s.lambda->lambda[i])));
   out.pdf = 0;
   out.specular = true;
   out.terminateSecondary = false;
@@ -49,11 +81,42 @@ bool SurfaceBsdf::sampleThinDielectric(float uLobe, BsdfSample& out) const {
   const float rHero = r[0];
   const bool reflected = uLobe < rHero;
   out.straight = !reflected;
-  out.wi = reflected ? reflect(wo_, dot(wo_, n_) > 0 ? n_ : -n_) : -wo_;
+  out.wi = reflected ? reflect(s.wo, dot(s.wo, s.n) > 0 ? s.n : -s.n) : -s.wo;
   const float p = reflected ? rHero : 1 - rHero;
   if (!(p > 0)) return false;
-  for (int i = 0; i < kLanes; ++i) out.weight[i] = rho_[i] * (reflected ? r[i] : 1 - r[i]) / p;
+  for (int i = 0; i < kLanes; ++i) out.weight[i] = s.rho[i] * (reflected ? r[i] : 1 - r[i]) / p;
   return true;
+}
+
+template <>
+int ThinWall::specularLobes(const BsdfState& s, SpecularLobe (&out)[2]) {
+  const float c = dot(s.wo, s.n);
+  const float ac = std::abs(c);
+  SampledSpectrum r, t;
+  for (int i = 0; i < kLanes; ++i) {
+    r[i] = thinSlabReflectance(ac, static_cast<float>(s.material->ior.at(s.lambda->lambda[i])));
+    t[i] = 1 - r[i];
+  }
+  out[0] = {reflect(s.wo, c > 0 ? s.n : -s.n), s.rho * r, false};
+  out[1] = {-s.wo, s.rho * t, false};
+  return 2;
+}
+
+// rho is a transmission tint: both lobes are linear in it.
+template <>
+float ThinWall::reflectanceLogSlope(const BsdfState&, const Vec3&, float rho, bool, bool albedo,
+                                    bool& zero) {
+  return inverseReflectanceSlope(rho, albedo, zero);
+}
+
+template <>
+bool ThinWall::roughnessLogSlopes(const BsdfState&, const Vec3&, float&, float&) {
+  return false;
+}
+
+template <>
+BsdfDerivativeSteps ThinWall::derivativeSteps(const Material&) {
+  return {};
 }
 
 } // namespace nx
