@@ -55,7 +55,7 @@ AovEvaluator::AovEvaluator(const RenderScene& scene, std::vector<AovKind> kinds,
     const Material& material = scene.materials[m];
     const ReradiationMatrix* r = material.reradiation.get();
     MaterialBands& mb = materials_[m];
-    if (material.kind == MaterialKind::Mixture && !material.texture) {
+    if (albedoIsReflectance(material) && !material.texture) {
       mb.reflectance = bandMeans([&](const SampledWavelengths& l) {
         SampledSpectrum rho;
         material.reflectance.evaluate(l, rho);
@@ -158,7 +158,7 @@ void AovEvaluator::albedo(const SurfaceHit& h, const Ray& ray, PixelSampleStream
   const float k = scene_.concentrationAt(material, hit);
   const Vec3 wo = -ray.d;
   // Matte and the mirror mixtures reflect their reflectance in all: rho = (1 - r) rho + r rho.
-  const bool exact = material.kind == MaterialKind::Mixture;
+  const bool exact = albedoIsReflectance(material);
   const MaterialBands& mb = materials_[app.material];
   if (exact && !mb.reflectance.empty()) { // (untextured: the same everywhere)
     if (dot(wo, hit.ng) * dot(wo, hit.ns) <= 0) return;

@@ -161,7 +161,7 @@ public:
         // An interface: the path goes straight on into (or out of) the medium it bounds; the
         // previous vertex stays the one MIS weights refer to (next-event estimation sees
         // through interfaces too).
-        if (scene_.materials[app.material].kind == MaterialKind::Interface) {
+        if (passesUnchanged(materialLobes(scene_.materials[app.material]))) {
           if (bounce >= kMaxPathBounces) {
             ++counters_.bounceLimited; // still carrying light: counted, reported
             break;

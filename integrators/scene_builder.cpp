@@ -12,6 +12,7 @@
 #include "core/text_table.h"
 #include "integrators/lights/light_kinds.h"
 #include "integrators/lights/measured_emitter.h"
+#include "integrators/materials/bsdf.h"
 #include "integrators/materials/material_kind.h"
 #include "integrators/media/medium_kinds.h"
 #include "integrators/relight_targets.h"
@@ -143,8 +144,7 @@ public:
       app.material = sharedMaterial(o, app.objectId, spectral, scene);
       app.materialId = materialIdOf_[app.material];
       // Surfaces light passes straight through need the path tracer that sees through them.
-      if (scene.materials[app.material].kind == MaterialKind::Interface ||
-          scene.materials[app.material].kind == MaterialKind::ThinDielectric)
+      if (materialLobes(scene.materials[app.material]) & kStraightTransmission)
         scene.hasMedia = true;
       if (o.medium) {
         app.medium = static_cast<int32_t>(scene.media.size());

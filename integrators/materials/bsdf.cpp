@@ -26,6 +26,18 @@ uint8_t materialLobes(const Material& m) {
   return visitScatteringModel(m.kind, [&](auto model) { return decltype(model)::lobes(m); });
 }
 
+SampledSpectrum straightTransmittance(const Material& m, const SampledWavelengths& lambda,
+                                      float cosine) {
+  return visitScatteringModel(m.kind, [&](auto model) {
+    return decltype(model)::straightTransmittance(m, lambda, cosine);
+  });
+}
+
+bool albedoIsReflectance(const Material& m) {
+  return visitScatteringModel(m.kind,
+                              [&](auto model) { return decltype(model)::albedoIsReflectance(m); });
+}
+
 BsdfDerivativeSteps bsdfDerivativeSteps(const Material& m) {
   return visitScatteringModel(m.kind,
                               [&](auto model) { return decltype(model)::derivativeSteps(m); });

@@ -16,6 +16,14 @@ BsdfDerivativeSteps bsdfDerivativeSteps(const Material& m);
 /// The lobes a material has (BsdfLobe flags), from its model.
 uint8_t materialLobes(const Material& m);
 
+/// What a material's straight transmission lets through per lane at `cosine` (shadow rays
+/// through interfaces and thin walls); 0 without one.
+SampledSpectrum straightTransmittance(const Material& m, const SampledWavelengths& lambda,
+                                      float cosine);
+
+/// True where a material's directional albedo is its reflectance from every direction.
+bool albedoIsReflectance(const Material& m);
+
 /// The BSDF of one surface point, seen from direction wo.
 class SurfaceBsdf {
 public:

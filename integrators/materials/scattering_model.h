@@ -52,6 +52,9 @@ enum BsdfLobe : uint8_t {
   kDiffuseTransmission = 8,
   kGlossyTransmission = 16,
   kSpecularTransmission = 32,
+  /// With kSpecularTransmission: the delta transmission goes straight on, without refraction
+  /// (an interface, a thin wall), so shadow rays pass through (`straightTransmittance`).
+  kStraightTransmission = 64,
   kNonSpecular =
       kDiffuseReflection | kGlossyReflection | kDiffuseTransmission | kGlossyTransmission,
 };
@@ -122,6 +125,13 @@ struct ScatteringModel {
   /// Steps for differences of the model's lobes (geometry_gradients.h): small against the
   /// narrowest lobe it has.
   static BsdfDerivativeSteps derivativeSteps(const Material& m);
+  /// The fraction per lane that a straight transmission (kStraightTransmission) lets through
+  /// at cosine `cosine` to the normal, for shadow rays; 0 where the model has none.
+  static SampledSpectrum straightTransmittance(const Material& m, const SampledWavelengths& lambda,
+                                               float cosine);
+  /// True where the directional albedo is the reflectance rho from every direction (the
+  /// ground-truth albedo layer then reads rho instead of integrating the lobes).
+  static bool albedoIsReflectance(const Material& m);
 };
 
 // Every listed model's members, declared as explicit specializations (defined in its file).
@@ -147,7 +157,12 @@ struct ScatteringModel {
   bool ScatteringModel<MaterialKind::name>::roughnessLogSlopes(const BsdfState&, const Vec3&,      \
                                                                float&, float&);                    \
   template <>                                                                                      \
-  BsdfDerivativeSteps ScatteringModel<MaterialKind::name>::derivativeSteps(const Material&);
+  BsdfDerivativeSteps ScatteringModel<MaterialKind::name>::derivativeSteps(const Material&);       \
+  template <>                                                                                      \
+  SampledSpectrum ScatteringModel<MaterialKind::name>::straightTransmittance(                      \
+      const Material&, const SampledWavelengths&, float);                                          \
+  template <>                                                                                      \
+  bool ScatteringModel<MaterialKind::name>::albedoIsReflectance(const Material&);
 NX_SCATTERING_MODELS(NX_DECLARE_SCATTERING_MODEL)
 #undef NX_DECLARE_SCATTERING_MODEL
 
@@ -163,6 +178,12 @@ decltype(auto) visitScatteringModel(MaterialKind kind, Visit&& visit) {
 #undef NX_SCATTERING_MODEL_CASE
   }
   std::abort(); // not reached: a MaterialKind is one of the listed models
+}
+
+/// True when a surface's only lobe is a straight transmission (an index-matched boundary):
+/// light crosses it unchanged, as if it were not there.
+constexpr bool passesUnchanged(uint8_t lobes) {
+  return lobes == (kSpecularTransmission | kStraightTransmission);
 }
 
 // ---- what several models share (bsdf.cpp) ----

@@ -6,7 +6,7 @@
 
 #include "core/ray_offset.h"
 #include "integrators/lights/light_sample.h"
-#include "integrators/materials/fresnel.h"
+#include "integrators/materials/bsdf.h"
 
 namespace nx {
 
@@ -40,18 +40,14 @@ SampledSpectrum shadowTransmittance(const RenderScene& scene, const Ray& ray, Me
     if (crossings && media.current() >= 0) crossings->media.emplace_back(media.current(), segment);
     if (!found || T.isBlack()) return T;
     const Material& material = scene.materials[scene.appearance(hit).material];
-    if (material.kind == MaterialKind::ThinDielectric) {
+    // Only a straight transmission (an interface, a thin wall) lets a shadow ray through.
+    const uint8_t lobes = materialLobes(material);
+    if (!(lobes & kStraightTransmission)) return {};
+    if (!passesUnchanged(lobes)) {
       if (crossings) crossings->walls.push_back(scene.appearance(hit).material);
-      // A thin wall lets 1 - R through, tinted by its transmission colour.
-      SampledSpectrum tint;
-      material.reflectance.evaluate(lambda, tint);
       const float c = std::abs(dot(r.d, hit.ng)) / length(r.d);
-      for (int i = 0; i < kLanes; ++i)
-        T[i] *= tint[i] *
-                (1 - thinSlabReflectance(c, static_cast<float>(material.ior.at(lambda.lambda[i]))));
+      T *= straightTransmittance(material, lambda, c);
       if (T.isBlack()) return T;
-    } else if (material.kind != MaterialKind::Interface) {
-      return {};
     }
     if (const ShapeAppearance& app = scene.appearance(hit); app.boundary != 0) {
       if (dot(r.d, hit.ng) * static_cast<float>(app.boundary) < 0)

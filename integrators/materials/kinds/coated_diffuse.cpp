@@ -180,4 +180,14 @@ BsdfDerivativeSteps Coated::derivativeSteps(const Material&) {
   return {};
 }
 
+template <>
+SampledSpectrum Coated::straightTransmittance(const Material&, const SampledWavelengths&, float) {
+  return {};
+}
+
+template <>
+bool Coated::albedoIsReflectance(const Material&) {
+  return false;
+}
+
 } // namespace nx

@@ -224,4 +224,15 @@ BsdfDerivativeSteps Conductor::derivativeSteps(const Material& m) {
   return microfacetDerivativeSteps(m);
 }
 
+template <>
+SampledSpectrum Conductor::straightTransmittance(const Material&, const SampledWavelengths&,
+                                                 float) {
+  return {};
+}
+
+template <>
+bool Conductor::albedoIsReflectance(const Material&) {
+  return false;
+}
+
 } // namespace nx

@@ -369,4 +369,15 @@ BsdfDerivativeSteps Dielectric::derivativeSteps(const Material& m) {
   return steps;
 }
 
+template <>
+SampledSpectrum Dielectric::straightTransmittance(const Material&, const SampledWavelengths&,
+                                                  float) {
+  return {};
+}
+
+template <>
+bool Dielectric::albedoIsReflectance(const Material&) {
+  return false;
+}
+
 } // namespace nx

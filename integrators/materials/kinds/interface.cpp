@@ -41,7 +41,7 @@ using Interface = ScatteringModel<MaterialKind::Interface>;
 
 template <>
 uint8_t Interface::lobes(const Material&) {
-  return kSpecularTransmission;
+  return kSpecularTransmission | kStraightTransmission;
 }
 
 template <>
@@ -96,6 +96,17 @@ bool Interface::roughnessLogSlopes(const BsdfState&, const Vec3&, float&, float&
 template <>
 BsdfDerivativeSteps Interface::derivativeSteps(const Material&) {
   return {};
+}
+
+template <>
+SampledSpectrum Interface::straightTransmittance(const Material&, const SampledWavelengths&,
+                                                 float) {
+  return SampledSpectrum::filled(1.0f);
+}
+
+template <>
+bool Interface::albedoIsReflectance(const Material&) {
+  return false;
 }
 
 } // namespace nx

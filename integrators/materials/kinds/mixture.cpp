@@ -165,4 +165,15 @@ BsdfDerivativeSteps Mixture::derivativeSteps(const Material&) {
   return {};
 }
 
+template <>
+SampledSpectrum Mixture::straightTransmittance(const Material&, const SampledWavelengths&, float) {
+  return {};
+}
+
+// Both lobes reflect rho in all: (1 - r) rho + r rho.
+template <>
+bool Mixture::albedoIsReflectance(const Material&) {
+  return true;
+}
+
 } // namespace nx

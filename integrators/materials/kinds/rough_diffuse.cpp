@@ -265,4 +265,15 @@ BsdfDerivativeSteps RoughDiffuse::derivativeSteps(const Material&) {
   return {};
 }
 
+template <>
+SampledSpectrum RoughDiffuse::straightTransmittance(const Material&, const SampledWavelengths&,
+                                                    float) {
+  return {};
+}
+
+template <>
+bool RoughDiffuse::albedoIsReflectance(const Material&) {
+  return false;
+}
+
 } // namespace nx

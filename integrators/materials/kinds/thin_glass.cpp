@@ -44,7 +44,7 @@ using ThinWall = ScatteringModel<MaterialKind::ThinDielectric>;
 
 template <>
 uint8_t ThinWall::lobes(const Material&) {
-  return kSpecularReflection | kSpecularTransmission;
+  return kSpecularReflection | kSpecularTransmission | kStraightTransmission;
 }
 
 template <>
@@ -117,6 +117,24 @@ bool ThinWall::roughnessLogSlopes(const BsdfState&, const Vec3&, float&, float&)
 template <>
 BsdfDerivativeSteps ThinWall::derivativeSteps(const Material&) {
   return {};
+}
+
+// A thin wall lets 1 - R through, tinted by its transmission colour.
+template <>
+SampledSpectrum ThinWall::straightTransmittance(const Material& m, const SampledWavelengths& lambda,
+                                                float cosine) {
+  SampledSpectrum tint;
+  m.reflectance.evaluate(lambda, tint);
+  SampledSpectrum t;
+  for (int i = 0; i < kLanes; ++i)
+    t[i] =
+        tint[i] * (1 - thinSlabReflectance(cosine, static_cast<float>(m.ior.at(lambda.lambda[i]))));
+  return t;
+}
+
+template <>
+bool ThinWall::albedoIsReflectance(const Material&) {
+  return false;
 }
 
 } // namespace nx
