@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "integrators/gradients/light_gradients.h"
+#include "integrators/materials/bsdf.h"
 
 namespace nx {
 namespace {
@@ -63,14 +64,17 @@ std::string otherMaterialChange(const Material& a, const Material& b, bool textu
   if (!concentration && concentrationDiffers(a, b)) return "a concentration map";
   if (a.kind != b.kind) return "the material's kind";
   if (a.roughness != b.roughness) return "the mixture's roughness";
-  // A rough conductor's roughness is differentiated (not at 0: a smooth metal's lobe is a
-  // delta); a rough dielectric's is not.
-  if ((a.alphaU != b.alphaU || a.alphaV != b.alphaV) &&
-      !(a.kind == MaterialKind::Conductor && a.alphaU > 0 && a.alphaV > 0))
-    return a.kind == MaterialKind::Conductor
-               ? "the microfacet roughness of a smooth metal (its lobe is a delta: differentiate "
-                 "from alpha > 0)"
-               : "the microfacet roughness of a dielectric (not differentiated)";
+  // The model says whether its roughness is differentiated (a rough conductor's: yes; not at
+  // 0, where a smooth metal's lobe is a delta; a rough dielectric's: no).
+  if ((a.alphaU != b.alphaU || a.alphaV != b.alphaV) && !roughnessDifferentiable(a)) {
+    const uint8_t lobes = materialLobes(a);
+    if (lobes & (kGlossyTransmission | kSpecularTransmission))
+      return "the microfacet roughness of a dielectric (not differentiated)";
+    return lobes & kGlossyReflection
+               ? "the microfacet roughness of this kind (not differentiated)"
+               : "the microfacet roughness of a smooth metal (its lobe is a delta: differentiate "
+                 "from alpha > 0)";
+  }
   if (a.modelConstants != b.modelConstants)
     return "a constant of the scattering model (rough_matte's <sigma>; not differentiated)";
   if (a.coatInternalReflectance != b.coatInternalReflectance) return "the coat";
@@ -255,7 +259,7 @@ uint32_t addTangentSlot(SceneTangents& t, const std::string& name, const RenderS
     if (changed && base.materials[m].texture)
       notDifferentiated(name, "the reflectance of a textured material (its texture replaces it)");
     any |= changed;
-    if (base.materials[m].kind == MaterialKind::Conductor) {
+    if (roughnessDifferentiable(base.materials[m])) {
       double du = 0, dv = 0;
       for (size_t k = 0; k < scenes.size(); ++k) {
         du += weights[k] * scenes[k]->materials[m].alphaU;

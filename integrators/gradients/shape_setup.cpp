@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/matrix3.h"
+#include "integrators/materials/bsdf.h"
 #include "integrators/render_scene.h"
 #include "integrators/scene_params/parameter_numbers.h"
 #include "integrators/scene_params/parameter_path.h"
@@ -27,8 +28,7 @@ std::string uncoveredFeature(const RenderScene& scene) {
   if (scene.hasMedia) return "media or interfaces";
   for (const Material& m : scene.materials) {
     if (m.texture || m.concentration) return "a texture or concentration map (the hit's uv moves)";
-    if (m.kind == MaterialKind::Conductor && m.alphaU != m.alphaV)
-      return "anisotropic roughness (its tangent frame moves)";
+    if (m.alphaU != m.alphaV) return "anisotropic roughness (its tangent frame moves)";
   }
   for (const SceneLight& l : scene.lights)
     if (std::holds_alternative<EnvironmentLight>(l)) return "an environment map";
@@ -285,11 +285,9 @@ std::vector<std::string> shapeCoverageWarnings(const RenderScene& scene,
                   where);
   // Delta lobes: an outline seen in a mirror or through glass is not sampled.
   for (const Material& m : scene.materials) {
-    const bool delta = m.kind == MaterialKind::Dielectric ||
-                       m.kind == MaterialKind::ThinDielectric ||
-                       m.kind == MaterialKind::CoatedDiffuse ||
-                       (m.kind == MaterialKind::Mixture && m.roughness < 1) ||
-                       (m.kind == MaterialKind::Conductor && (m.alphaU == 0 || m.alphaV == 0));
+    // Delta lobes, and a rough dielectric's refraction (anisotropic metals are refused).
+    const bool delta = (materialLobes(m) &
+                        (kSpecularReflection | kSpecularTransmission | kGlossyTransmission)) != 0;
     if (delta) {
       out.push_back("warning: shape derivatives: outlines seen in a mirror reflection or "
                     "through smooth glass or a clear coat are not sampled: their share of the "

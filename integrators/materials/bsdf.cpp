@@ -38,6 +38,11 @@ bool albedoIsReflectance(const Material& m) {
                               [&](auto model) { return decltype(model)::albedoIsReflectance(m); });
 }
 
+bool roughnessDifferentiable(const Material& m) {
+  return visitScatteringModel(
+      m.kind, [&](auto model) { return decltype(model)::roughnessDifferentiable(m); });
+}
+
 BsdfDerivativeSteps bsdfDerivativeSteps(const Material& m) {
   return visitScatteringModel(m.kind,
                               [&](auto model) { return decltype(model)::derivativeSteps(m); });

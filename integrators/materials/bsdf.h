@@ -24,6 +24,9 @@ SampledSpectrum straightTransmittance(const Material& m, const SampledWavelength
 /// True where a material's directional albedo is its reflectance from every direction.
 bool albedoIsReflectance(const Material& m);
 
+/// True where gradients may move a material's microfacet roughness (its model's choice).
+bool roughnessDifferentiable(const Material& m);
+
 /// The BSDF of one surface point, seen from direction wo.
 class SurfaceBsdf {
 public:

@@ -132,6 +132,9 @@ struct ScatteringModel {
   /// True where the directional albedo is the reflectance rho from every direction (the
   /// ground-truth albedo layer then reads rho instead of integrating the lobes).
   static bool albedoIsReflectance(const Material& m);
+  /// True where gradients may move the microfacet roughness alpha_u, alpha_v (the model's
+  /// `roughnessLogSlopes` give its derivative); false where a change of it is refused.
+  static bool roughnessDifferentiable(const Material& m);
 };
 
 // Every listed model's members, declared as explicit specializations (defined in its file).

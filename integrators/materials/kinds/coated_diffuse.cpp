@@ -190,4 +190,9 @@ bool Coated::albedoIsReflectance(const Material&) {
   return false;
 }
 
+template <>
+bool Coated::roughnessDifferentiable(const Material&) {
+  return false;
+}
+
 } // namespace nx

@@ -235,4 +235,11 @@ bool Conductor::albedoIsReflectance(const Material&) {
   return false;
 }
 
+// Its roughness is differentiated where its lobe is a microfacet lobe on both axes (from a
+// smooth metal's delta lobe there is no derivative to follow).
+template <>
+bool Conductor::roughnessDifferentiable(const Material& m) {
+  return m.alphaU > 0 && m.alphaV > 0;
+}
+
 } // namespace nx

@@ -380,4 +380,9 @@ bool Dielectric::albedoIsReflectance(const Material&) {
   return false;
 }
 
+template <>
+bool Dielectric::roughnessDifferentiable(const Material&) {
+  return false;
+}
+
 } // namespace nx

@@ -109,4 +109,9 @@ bool Interface::albedoIsReflectance(const Material&) {
   return false;
 }
 
+template <>
+bool Interface::roughnessDifferentiable(const Material&) {
+  return false;
+}
+
 } // namespace nx

@@ -176,4 +176,9 @@ bool Mixture::albedoIsReflectance(const Material&) {
   return true;
 }
 
+template <>
+bool Mixture::roughnessDifferentiable(const Material&) {
+  return false;
+}
+
 } // namespace nx

@@ -276,4 +276,9 @@ bool RoughDiffuse::albedoIsReflectance(const Material&) {
   return false;
 }
 
+template <>
+bool RoughDiffuse::roughnessDifferentiable(const Material&) {
+  return false;
+}
+
 } // namespace nx

@@ -137,4 +137,9 @@ bool ThinWall::albedoIsReflectance(const Material&) {
   return false;
 }
 
+template <>
+bool ThinWall::roughnessDifferentiable(const Material&) {
+  return false;
+}
+
 } // namespace nx
