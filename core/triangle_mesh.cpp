@@ -41,6 +41,12 @@ TriangleShape TriangleMesh::corners(size_t t) const {
   return {Vec3d(position(i[0])), Vec3d(position(i[1])), Vec3d(position(i[2]))};
 }
 
+double TriangleMesh::area() const {
+  double sum = 0;
+  for (size_t t = 0; t < triangleCount(); ++t) sum += corners(t).area();
+  return sum;
+}
+
 size_t TriangleMesh::bytes() const {
   return sizeof(float) * (xyz_.capacity() + normals_.capacity() + uv_.capacity()) +
          sizeof(uint32_t) * indices_.capacity();

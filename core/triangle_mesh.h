@@ -23,6 +23,8 @@ inline constexpr double kMeshBytesPerVertex = 100;
 /// (b - a) x (c - a)).
 struct TriangleShape {
   Vec3d a, b, c;
+  /// Its area |(b - a) x (c - a)| / 2.
+  double area() const { return 0.5 * length(cross(b - a, c - a)); }
 };
 
 /// Largest coordinate a mesh vertex may have (as for the scene's own shapes: far below
@@ -62,6 +64,8 @@ public:
   const uint32_t* triangle(size_t t) const { return &indices_[3 * t]; }
   /// The corners of triangle t in double precision (exact: they are floats).
   TriangleShape corners(size_t t) const;
+  /// The sum of its triangles' areas (one face each), in double precision.
+  double area() const;
   /// True when the mesh has per-vertex normals / uv.
   bool hasNormals() const { return !normals_.empty(); }
   bool hasUv() const { return !uv_.empty(); }

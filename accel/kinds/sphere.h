@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "accel/shape_schema.h"
+#include "core/math_util.h"
 #include "core/vec3.h"
 
 namespace nx {
@@ -17,6 +18,8 @@ struct SphereShape {
   double radius = 1;
   /// Every field compared (the geometry cache reuses a BVH only for equal shapes).
   bool operator==(const SphereShape&) const = default;
+  /// Its area 4 pi r^2.
+  double area() const { return 4 * kPi * radius * radius; }
 };
 
 /// Nearest ray parameter t in (tMin, tMax) where o + t d meets the sphere, if any. Uses the
