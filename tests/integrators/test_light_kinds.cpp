@@ -4,14 +4,17 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
+#include "core/sampler.h"
 #include "integrators/render_scene.h"
 #include "integrators/scene_reader.h"
 #include "io/spectral_exr.h"
 #include "support/constant_map.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
+#include "support/statistics.h"
 
 namespace nx {
 namespace {
@@ -78,6 +81,82 @@ TEST(LightKinds, EveryKindBuildsFromItsExamplesAndItsLightShines) {
     const double power = std::visit([](const auto& l) { return l.power(); }, scene.lights[0]);
     EXPECT_GT(power, 0);
     EXPECT_TRUE(std::isfinite(power));
+  }
+}
+
+// What a light sends, integrated independently of the power it declares (which the light
+// sampler chooses lights by): a positioned light's intensity I = L d^2 (its sample's radiance
+// times the squared distance) over the sphere of directions around it, read from points all
+// around; an infinite light's radiance over directions by its own sampling, E[L / pdf]; both
+// over the traced range by stratified wavelengths. Every kind at its declared example, within
+// 4.5 standard errors (a million samples: 2% for the example spot light) plus 0.2% (the declared
+// power is a trapezoid rule on a 1 nm grid: a spectrum's steps, a table's ends, move it by up to
+// half a nanometre's worth; a missing factor, a wrong cone or a lost falloff are far larger).
+TEST(LightKinds, EveryKindsPowerIsTheIntegralOfWhatItSends) {
+  constexpr uint32_t kSamples = 1000000;
+  const double range = kTraceMaxNm - kTraceMinNm;
+  for (const LightKindSpec& kind : lightKinds()) {
+    SCOPED_TRACE(kind.name);
+    const RenderScene scene = buildRenderScene(parseScene(lightScene(exampleLight(kind)), "t.scn"));
+    ASSERT_EQ(scene.lights.size(), 1u);
+    std::visit(
+        [&](const auto& light) {
+          using Light = std::decay_t<decltype(light)>;
+          auto u = [](uint32_t i, uint32_t dim) {
+            return sampleValue(SamplerKind::Independent, i, 0, dim, 11);
+          };
+          auto direction = [&](uint32_t i) {
+            const double z = 1 - 2 * static_cast<double>(u(i, 0));
+            const double phi = 2 * kPi * static_cast<double>(u(i, 1));
+            const double r = std::sqrt(std::max(0.0, 1 - z * z));
+            return Vec3(static_cast<float>(r * std::cos(phi)),
+                        static_cast<float>(r * std::sin(phi)), static_cast<float>(z));
+          };
+          auto wavelengths = [&](uint32_t i) {
+            SampledWavelengths lambda;
+            for (int k = 0; k < kLanes; ++k) {
+              lambda.lambda[static_cast<size_t>(k)] = static_cast<float>(
+                  kTraceMinNm + range * (k + static_cast<double>(u(i, 2))) / kLanes);
+              lambda.pdf[static_cast<size_t>(k)] = static_cast<float>(1 / range);
+            }
+            return lambda;
+          };
+          // A positioned light's point: where its samples end, seen from anywhere it shines.
+          Vec3 centre;
+          if constexpr (!Light::kInfinite) {
+            bool found = false;
+            for (uint32_t i = 0; i < 1000 && !found; ++i) {
+              LightSample out;
+              found = light.sample(direction(i) * 50.0f, {}, wavelengths(i), out);
+              if (found) centre = out.p;
+            }
+            ASSERT_TRUE(found) << "it shines nowhere";
+          }
+          test::RunningStats power;
+          for (uint32_t i = 0; i < kSamples; ++i) {
+            const SampledWavelengths lambda = wavelengths(i);
+            LightSample out;
+            double mean = 0;
+            if constexpr (Light::kInfinite) {
+              if (light.sample(Vec3(), {u(i, 3), u(i, 4)}, lambda, out) && out.pdf > 0) {
+                for (int k = 0; k < kLanes; ++k) mean += out.radiance[k] / out.pdf / kLanes;
+                mean *= kPi * range; // power(1): pi r^2 times the integral of L, r = 1
+              }
+            } else {
+              const float distance = 3;
+              if (light.sample(centre + direction(i) * distance, {}, lambda, out)) {
+                const double d2 = static_cast<double>(out.distance) * out.distance;
+                for (int k = 0; k < kLanes; ++k) mean += out.radiance[k] * d2 / kLanes;
+                mean *= 4 * kPi * range;
+              }
+            }
+            power.add(mean);
+          }
+          const double declared = light.power(1.0);
+          EXPECT_NEAR(power.mean, declared, 4.5 * power.standardError() + 2e-3 * declared)
+              << "integrated " << power.mean << " +- " << power.standardError();
+        },
+        scene.lights[0]);
   }
 }
 
