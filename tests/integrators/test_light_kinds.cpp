@@ -12,6 +12,7 @@
 #include "integrators/scene_reader.h"
 #include "io/spectral_exr.h"
 #include "support/constant_map.h"
+#include "support/direction_chi_square.h"
 #include "support/errors.h"
 #include "support/render_checks.h"
 #include "support/statistics.h"
@@ -158,6 +159,36 @@ TEST(LightKinds, EveryKindsPowerIsTheIntegralOfWhatItSends) {
         },
         scene.lights[0]);
   }
+}
+
+// Every infinite kind at its declared example: the directions its sampling draws follow the
+// density it reports (chi-square over equal-area cells; test_environment_light.cpp checks the
+// environment map with a non-uniform map as well).
+TEST(LightKinds, EveryInfiniteKindsSamplingFollowsItsPdf) {
+  int infinite = 0;
+  SampledWavelengths lambda;
+  for (int k = 0; k < kLanes; ++k) {
+    lambda.lambda[static_cast<size_t>(k)] = 400.0f + 40.0f * static_cast<float>(k);
+    lambda.pdf[static_cast<size_t>(k)] = 1.0f / 300.0f;
+  }
+  for (const LightKindSpec& kind : lightKinds()) {
+    SCOPED_TRACE(kind.name);
+    const RenderScene scene = buildRenderScene(parseScene(lightScene(exampleLight(kind)), "t.scn"));
+    std::visit(
+        [&](const auto& light) {
+          if constexpr (std::decay_t<decltype(light)>::kInfinite) {
+            ++infinite;
+            expectDirectionsFollowPdf(
+                [&](Sample2 u) {
+                  LightSample out;
+                  return light.sample(Vec3(), u, lambda, out) ? out.wi : Vec3();
+                },
+                [&](const Vec3& w) { return static_cast<double>(light.pdf(w)); });
+          }
+        },
+        scene.lights[0]);
+  }
+  EXPECT_GE(infinite, 1) << "no infinite light kind: the check ran on nothing";
 }
 
 TEST(LightKinds, UndeclaredParametersAreRefusedAtTheirLine) {
