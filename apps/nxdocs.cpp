@@ -298,9 +298,19 @@ int main(int argc, char** argv) {
   CLI::App app{"nxdocs: the reference docs from the declarations"};
   std::string writeDir, checkDir;
   auto* write = app.add_option("--write", writeDir, "Write the docs into this directory");
-  app.add_option("--check", checkDir, "Check the docs in this directory")->excludes(write);
+  auto* check =
+      app.add_option("--check", checkDir, "Check the docs in this directory")->excludes(write);
+  bool kindList = false;
+  app.add_flag("--material-kind-list", kindList,
+               "Print the material kinds as messages list them (\"matte, ... or rough_matte\")")
+      ->excludes(write)
+      ->excludes(check);
   if (const int status = nx::parseCommandLine(app, argc, argv, "nxdocs"); status >= 0)
     return status;
+  if (kindList) {
+    std::printf("%s\n", nx::materialKindList().c_str());
+    return 0;
+  }
   const std::pair<const char*, std::string> docs[] = {{"materials.md", materialsDoc()},
                                                       {"lights.md", lightsDoc()},
                                                       {"shapes.md", shapesDoc()},

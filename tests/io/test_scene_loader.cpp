@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "integrators/materials/material_kind.h"
 #include "integrators/scene_reader.h"
 #include "io/scene_desc.h"
 #include "support/errors.h"
@@ -133,7 +134,8 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
        "<quad>, <mesh>, <box>, <disk>, <cylinder>, <material>, <spectrum>, found <shpere>"},
       {"unknown child", scene("<sphere><centre>0,0,0</centre></sphere>\n"),
        "t.scn:4: expected one of <material>, <color>, <reflectance>, <roughness>, <ior>, "
-       "<fluorescence>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, <sigma>, <coating>, <emission>, "
+       "<fluorescence>, <eta>, <k>, <metal>, <alpha>, <alpha_u>, <alpha_v>, <sigma>, <coating>, "
+       "<emission>, "
        "<center>, <radius>, <medium> inside <sphere>, found <centre>"},
       {"repeated tag", scene("<sphere><radius>1</radius><radius>2</radius></sphere>\n"),
        "t.scn:4: expected one <radius>, found a second <radius>"},
@@ -189,12 +191,8 @@ TEST(SceneLoader, ErrorsNameFileLineExpectedAndFound) {
       {"unknown material",
        scene("<sphere><center>0,0,0</center><radius>1</radius><material>velvet</material></"
              "sphere>\n"),
-       "t.scn:4: expected a material matte, metal, plastic, mirror, glass, diamond, translucent, "
-       "transparent, default, diffuse, interface, thin_glass, conductor, coated or rough_matte or the id of a "
-       "<material "
-       "id=\"...\"> of the "
-       "scene, found "
-       "'velvet'"},
+       "t.scn:4: expected a material " + materialKindList() +
+           " or the id of a <material id=\"...\"> of the scene, found 'velvet'"},
       {"colour count",
        scene("<sphere><center>0,0,0</center><radius>1</radius><material>matte</material><color>1, "
              "0</color></sphere>\n"),
