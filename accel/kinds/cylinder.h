@@ -35,6 +35,26 @@ struct CylinderShape {
     const Vec3d a = axis();
     return part == CylinderPart::Base ? DiskShape{p0, a * -1.0, radius} : DiskShape{p1, a, radius};
   }
+  /// A point uniformly by area: a part in proportion to its area (u.u reused within the part's
+  /// share), the side by height and angle, a cap as a disk (density 1 / area).
+  AreaSample sampleArea(Sample2 u) const {
+    const double side = sideArea() / area();
+    if (u.u < side || !capped) {
+      const double v = capped ? u.u / side : u.u;
+      const Vec3d a = axis();
+      const AxisFrame f = AxisFrame::of(a);
+      const double phi = 2 * kPi * u.v;
+      const Vec3d normal = f.s * std::cos(phi) + f.t * std::sin(phi);
+      return {p0 + a * (std::min(v, 1.0) * height()) + normal * radius, normal,
+              static_cast<uint32_t>(CylinderPart::Side)};
+    }
+    const double v = (u.u - side) / (1 - side); // in [0, 1): half each cap
+    const CylinderPart part = v < 0.5 ? CylinderPart::Base : CylinderPart::Top;
+    const float w = static_cast<float>(v < 0.5 ? 2 * v : 2 * v - 1);
+    AreaSample s = cap(part).sampleArea(Sample2{std::min(w, 0x1.fffffep-1f), u.v});
+    s.part = static_cast<uint32_t>(part);
+    return s;
+  }
 };
 
 /// A hit on a cylinder: the ray parameter and the part.

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "accel/shape_schema.h"
+#include "core/concentric_disk.h"
 #include "core/math_util.h"
 #include "core/vec3.h"
 
@@ -25,6 +26,14 @@ struct AxisFrame {
   }
 };
 
+/// A point drawn on a primitive's surface uniformly by area: the point, its unit normal
+/// (outward; a disk's front) and which part of the primitive it is on (a cylinder's side or
+/// cap; 0 for one-part primitives).
+struct AreaSample {
+  Vec3d p, n;
+  uint32_t part = 0;
+};
+
 /// A disk: the points of the plane through `center` with unit normal `normal` within `radius`
 /// of the centre. Its front face is the normal's side; uv are polar: u = phi / 2 pi around the
 /// normal (from AxisFrame::s), v = distance / radius.
@@ -35,6 +44,13 @@ struct DiskShape {
   bool operator==(const DiskShape&) const = default;
   /// Its area.
   double area() const { return kPi * radius * radius; }
+  /// A point uniformly by area (the concentric map: density 1 / area).
+  AreaSample sampleArea(Sample2 u) const {
+    float x, y;
+    sampleConcentricDisk(u, x, y);
+    const AxisFrame f = AxisFrame::of(normal);
+    return {center + (f.s * double(x) + f.t * double(y)) * radius, normal, 0};
+  }
 };
 
 /// Ray parameter t in (tMin, tMax) where o + t d meets the disk, if any (a ray in its plane

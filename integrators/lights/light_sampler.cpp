@@ -808,41 +808,13 @@ bool LightSampler::sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightS
   return true;
 }
 
-// A point uniformly by area: a disk's by the concentric map; a cylinder's part in proportion
-// to its area (u.u reused within the part's share), the side by height and angle, a cap as a
-// disk. Density 1 / area, d^2 / (|cos| area) in solid angle.
+// A point uniformly by area, drawn by the primitive (DiskShape and CylinderShape::sampleArea).
+// Density 1 / area, d^2 / (|cos| area) in solid angle.
 bool LightSampler::sampleSurface(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const {
   const GeometryScene& g = *scene_->geometry;
-  Vec3d q, normal;
-  uint32_t part = 0;
-  auto onDisk = [&](const DiskShape& d, Sample2 v) {
-    float x, y;
-    sampleConcentricDisk(v, x, y);
-    const AxisFrame f = AxisFrame::of(d.normal);
-    q = d.center + (f.s * double(x) + f.t * double(y)) * d.radius;
-    normal = d.normal;
-  };
-  if (l.surface == ShapeKind::Disk) {
-    onDisk(g.disks()[l.shape], u);
-  } else {
-    const CylinderShape& c = g.cylinders()[l.shape];
-    const double side = c.sideArea() / c.area();
-    if (u.u < side || !c.capped) {
-      const double v = c.capped ? u.u / side : u.u;
-      const Vec3d a = c.axis();
-      const AxisFrame f = AxisFrame::of(a);
-      const double phi = 2 * kPi * u.v;
-      normal = f.s * std::cos(phi) + f.t * std::sin(phi);
-      q = c.p0 + a * (std::min(v, 1.0) * c.height()) + normal * c.radius;
-    } else {
-      const double v = (u.u - side) / (1 - side); // in [0, 1): half each cap
-      part = v < 0.5 ? static_cast<uint32_t>(CylinderPart::Base)
-                     : static_cast<uint32_t>(CylinderPart::Top);
-      const float w = static_cast<float>(v < 0.5 ? 2 * v : 2 * v - 1);
-      onDisk(c.cap(static_cast<CylinderPart>(part)), Sample2{std::min(w, 0x1.fffffep-1f), u.v});
-    }
-  }
-  return finishFlatSample(Vec3d(p), q, normal, -1, 1 / l.area, l.shape, part, out, l.surface);
+  const AreaSample s = l.surface == ShapeKind::Disk ? g.disks()[l.shape].sampleArea(u)
+                                                    : g.cylinders()[l.shape].sampleArea(u);
+  return finishFlatSample(Vec3d(p), s.p, s.n, -1, 1 / l.area, l.shape, s.part, out, l.surface);
 }
 
 int LightSampler::chooseTriangle(const Light& l, const Vec3d& p, const Vec3& normal,
