@@ -67,12 +67,12 @@ float inverseReflectanceSlope(float rho, bool albedo, bool& zero) {
 
 GgxDistribution clampedGgx(const Material& m) {
   // Rougher than 1e-4 is a microfacet surface (clamped there), else a smooth one.
-  if (!(std::max(m.alphaU, m.alphaV) >= 1e-4f)) return {};
+  if (!roughMicrofacets(m)) return {};
   return {std::max(m.alphaU, 1e-4f), std::max(m.alphaV, 1e-4f)};
 }
 
 BsdfDerivativeSteps microfacetDerivativeSteps(const Material& m) {
-  if (std::max(m.alphaU, m.alphaV) < 1e-4f) return {}; // smooth (clampedGgx)
+  if (!roughMicrofacets(m)) return {}; // smooth (clampedGgx)
   const float width = std::max(std::min(m.alphaU, m.alphaV), 1e-4f);
   return {std::min(1e-3f, width / 8), std::min(1e-3f, width / 8)};
 }

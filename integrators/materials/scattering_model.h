@@ -5,6 +5,7 @@
 // switch generated from the list. The members are declared below for every listed model, so a
 // model that leaves one out fails to link, and a listed kind without a case fails to compile.
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 
@@ -198,6 +199,12 @@ float inverseReflectanceSlope(float rho, bool albedo, bool& zero);
 /// The steps of a microfacet lobe of roughness alphaU, alphaV: 1e-3, or an eighth of its
 /// narrowest roughness where that is smaller (the defaults where it is smooth).
 BsdfDerivativeSteps microfacetDerivativeSteps(const Material& m);
+
+/// True where a material's microfacet roughness makes it rough (max alpha >= 1e-4); below that
+/// its lobes are the smooth surface's deltas.
+inline bool roughMicrofacets(const Material& m) {
+  return std::max(m.alphaU, m.alphaV) >= 1e-4f;
+}
 
 /// GGX roughness as SurfaceBsdf uses it: each alpha at least 1e-4 where the surface is rough
 /// (max alpha >= 1e-4), else 0, 0 (smooth).

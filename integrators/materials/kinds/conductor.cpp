@@ -123,7 +123,7 @@ SampledSpectrum conductorFresnel(const BsdfState& s, float cosI) {
 
 template <>
 uint8_t Conductor::lobes(const Material& m) {
-  return std::max(m.alphaU, m.alphaV) >= 1e-4f ? kGlossyReflection : kSpecularReflection;
+  return roughMicrofacets(m) ? kGlossyReflection : kSpecularReflection;
 }
 
 template <>

@@ -272,8 +272,8 @@ bool sampleRough(const BsdfState& s, float uLobe, Sample2 u, BsdfSample& out) {
 
 template <>
 uint8_t Dielectric::lobes(const Material& m) {
-  return std::max(m.alphaU, m.alphaV) >= 1e-4f ? kGlossyReflection | kGlossyTransmission
-                                               : kSpecularReflection | kSpecularTransmission;
+  return roughMicrofacets(m) ? kGlossyReflection | kGlossyTransmission
+                             : kSpecularReflection | kSpecularTransmission;
 }
 
 // The outward normal stays (whether the path enters or leaves); a rough surface's microfacet
@@ -281,7 +281,7 @@ uint8_t Dielectric::lobes(const Material& m) {
 template <>
 void Dielectric::prepare(BsdfState& s) {
   const Material& m = *s.material;
-  if (!(std::max(m.alphaU, m.alphaV) >= 1e-4f)) return;
+  if (!roughMicrofacets(m)) return;
   s.alpha = clampedGgx(m);
   s.frame = Frame::fromNormal(s.n);
   const bool entering = dot(s.wo, s.n) > 0;
@@ -351,7 +351,7 @@ bool Dielectric::roughnessLogSlopes(const BsdfState&, const Vec3&, float&, float
 template <>
 BsdfDerivativeSteps Dielectric::derivativeSteps(const Material& m) {
   BsdfDerivativeSteps steps = microfacetDerivativeSteps(m);
-  if (std::max(m.alphaU, m.alphaV) < 1e-4f) return steps; // smooth
+  if (!roughMicrofacets(m)) return steps; // smooth
   const float width = std::max(std::min(m.alphaU, m.alphaV), 1e-4f);
   // A rough dielectric's transmitted lobe is narrower in wo and wi by |eta - 1| / eta: the
   // half vector -(wo + eta wi) turns eta / |eta - 1| times faster than wi near the straight
