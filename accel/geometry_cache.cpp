@@ -27,12 +27,10 @@ GeometryCache& cache() {
   return c;
 }
 
-bool sameShapes(const GeometryScene& g, const std::vector<SphereShape>& spheres,
-                const std::vector<PlaneShape>& planes, const std::vector<TriangleMesh>& meshes,
-                const std::vector<DiskShape>& disks, const std::vector<CylinderShape>& cylinders) {
+bool sameShapes(const GeometryScene& g, const AnalyticShapes& analytic,
+                const std::vector<PlaneShape>& planes, const std::vector<TriangleMesh>& meshes) {
   // Each shape type's == is defaulted: a field added later is compared without a change here.
-  return g.spheres() == spheres && g.planes() == planes && g.meshes() == meshes &&
-         g.disks() == disks && g.cylinders() == cylinders;
+  return g.analytic() == analytic && g.planes() == planes && g.meshes() == meshes;
 }
 
 std::shared_ptr<const GeometryScene> sceneOf(const std::shared_ptr<const BuiltGeometry>& b) {
@@ -43,20 +41,24 @@ std::shared_ptr<const GeometryScene> sceneOf(const std::shared_ptr<const BuiltGe
 
 std::shared_ptr<const GeometryScene> sharedGeometry(std::vector<SphereShape> spheres,
                                                     std::vector<PlaneShape> planes,
-                                                    std::vector<TriangleMesh> meshes,
-                                                    std::vector<DiskShape> disks,
-                                                    std::vector<CylinderShape> cylinders) {
+                                                    std::vector<TriangleMesh> meshes) {
+  AnalyticShapes analytic;
+  std::get<std::vector<SphereShape>>(analytic) = std::move(spheres);
+  return sharedGeometry(std::move(analytic), std::move(planes), std::move(meshes));
+}
+
+std::shared_ptr<const GeometryScene> sharedGeometry(AnalyticShapes analytic,
+                                                    std::vector<PlaneShape> planes,
+                                                    std::vector<TriangleMesh> meshes) {
   GeometryCache& c = cache();
   std::unique_lock<std::mutex> guard(c.lock);
-  if (c.kept && sameShapes(*c.kept->scene, spheres, planes, meshes, disks, cylinders))
-    return sceneOf(c.kept);
+  if (c.kept && sameShapes(*c.kept->scene, analytic, planes, meshes)) return sceneOf(c.kept);
   c.kept.reset(); // freed before the build (if no render still holds it)
   guard.unlock(); // builds run in parallel
   auto b = std::make_shared<BuiltGeometry>();
   b->device = std::make_unique<EmbreeDevice>();
-  b->scene =
-      std::make_unique<GeometryScene>(*b->device, std::move(spheres), std::move(planes),
-                                      std::move(meshes), std::move(disks), std::move(cylinders));
+  b->scene = std::make_unique<GeometryScene>(*b->device, std::move(analytic), std::move(planes),
+                                             std::move(meshes));
   c.built.fetch_add(1, std::memory_order_relaxed);
   size_t bytes = b->scene->embreeBytes();
   for (const TriangleMesh& m : b->scene->meshes()) bytes += m.bytes();

@@ -10,15 +10,18 @@
 
 namespace nx {
 
-/// The geometry of these shapes: the one last built when its spheres, planes, meshes, disks
-/// and cylinders are equal to these (compared exactly, every coordinate and index), else built now.
+/// The geometry of these shapes: the one last built when its analytic primitives, planes and
+/// meshes are equal to these (compared exactly, every coordinate and index), else built now.
 /// A build first drops the one kept before, so no two geometries are held at once on its account.
 /// Geometries over a quarter of the memory budget are not kept.
+std::shared_ptr<const GeometryScene> sharedGeometry(AnalyticShapes analytic,
+                                                    std::vector<PlaneShape> planes,
+                                                    std::vector<TriangleMesh> meshes);
+
+/// sharedGeometry of spheres, planes and meshes only.
 std::shared_ptr<const GeometryScene> sharedGeometry(std::vector<SphereShape> spheres,
                                                     std::vector<PlaneShape> planes,
-                                                    std::vector<TriangleMesh> meshes,
-                                                    std::vector<DiskShape> disks = {},
-                                                    std::vector<CylinderShape> cylinders = {});
+                                                    std::vector<TriangleMesh> meshes);
 
 /// Drops the geometry kept for the next render (renders still holding it keep it alive).
 void clearGeometryCache();

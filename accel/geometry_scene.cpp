@@ -24,48 +24,11 @@ float roundUp(double v) {
   return static_cast<double>(f) < v ? std::nextafter(f, INFINITY) : f;
 }
 
-// What the user-geometry callbacks need of an analytic shape: its box and its nearest hit
-// (ray parameter and part: a cylinder's CylinderPart, else 0).
-struct SphereTraits {
-  static void box(const SphereShape& s, Vec3d& lo, Vec3d& hi) {
-    const Vec3d r(s.radius, s.radius, s.radius);
-    lo = s.center - r, hi = s.center + r;
-  }
-  static std::optional<std::pair<double, uint32_t>> hit(const SphereShape& s, const Vec3d& o,
-                                                        const Vec3d& d, double tn, double tf) {
-    const auto t = intersectSphere(s, o, d, tn, tf);
-    return t ? std::optional(std::pair(*t, 0u)) : std::nullopt;
-  }
-};
-struct DiskTraits {
-  static void box(const DiskShape& s, Vec3d& lo, Vec3d& hi) {
-    const Vec3d e = circleExtent(s.normal, s.radius);
-    lo = s.center - e, hi = s.center + e;
-  }
-  static std::optional<std::pair<double, uint32_t>> hit(const DiskShape& s, const Vec3d& o,
-                                                        const Vec3d& d, double tn, double tf) {
-    const auto t = intersectDisk(s, o, d, tn, tf);
-    return t ? std::optional(std::pair(*t, 0u)) : std::nullopt;
-  }
-};
-struct CylinderTraits {
-  static void box(const CylinderShape& s, Vec3d& lo, Vec3d& hi) {
-    const Vec3d e = circleExtent(s.axis(), s.radius);
-    lo = Vec3d(std::min(s.p0.x, s.p1.x), std::min(s.p0.y, s.p1.y), std::min(s.p0.z, s.p1.z)) - e;
-    hi = Vec3d(std::max(s.p0.x, s.p1.x), std::max(s.p0.y, s.p1.y), std::max(s.p0.z, s.p1.z)) + e;
-  }
-  static std::optional<std::pair<double, uint32_t>> hit(const CylinderShape& s, const Vec3d& o,
-                                                        const Vec3d& d, double tn, double tf) {
-    const auto h = intersectCylinder(s, o, d, tn, tf);
-    return h ? std::optional(std::pair(h->t, static_cast<uint32_t>(h->part))) : std::nullopt;
-  }
-};
-
-template <class Shape, class Traits>
+template <class Shape>
 void analyticBounds(const RTCBoundsFunctionArguments* args) {
   const auto& s = static_cast<const Shape*>(args->geometryUserPtr)[args->primID];
-  Vec3d lo, hi;
-  Traits::box(s, lo, hi);
+  const BoundingBox box = s.bounds();
+  const Vec3d &lo = box.lo, &hi = box.hi;
   RTCBounds* b = args->bounds_o;
   b->lower_x = roundDown(lo.x), b->lower_y = roundDown(lo.y), b->lower_z = roundDown(lo.z);
   b->upper_x = roundUp(hi.x), b->upper_y = roundUp(hi.y), b->upper_z = roundUp(hi.z);
@@ -74,7 +37,7 @@ void analyticBounds(const RTCBoundsFunctionArguments* args) {
 // Embree's user-geometry contract: honour the valid mask, accept only tnear < t < tfar,
 // shorten tfar and fill the hit on success (the surface itself is filled in afterwards, in
 // double precision; u carries the part).
-template <class Shape, class Traits>
+template <class Shape>
 void analyticIntersect(const RTCIntersectFunctionNArguments* args) {
   const auto& s = static_cast<const Shape*>(args->geometryUserPtr)[args->primID];
   const unsigned n = args->N;
@@ -86,15 +49,15 @@ void analyticIntersect(const RTCIntersectFunctionNArguments* args) {
     const Vec3d d(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i));
     const float tnear = RTCRayN_tnear(ray, n, i);
     float& tfar = RTCRayN_tfar(ray, n, i);
-    const auto h = Traits::hit(s, o, d, tnear, tfar);
+    const auto h = s.intersect(o, d, tnear, tfar);
     if (!h) continue;
-    const float tf = static_cast<float>(h->first);
+    const float tf = static_cast<float>(h->t);
     if (!(tf > tnear && tf < tfar)) continue; // lost to float rounding at the interval ends
     tfar = tf;
     RTCHitN_Ng_x(hit, n, i) = 0;
     RTCHitN_Ng_y(hit, n, i) = 0;
     RTCHitN_Ng_z(hit, n, i) = 1;
-    RTCHitN_u(hit, n, i) = static_cast<float>(h->second);
+    RTCHitN_u(hit, n, i) = static_cast<float>(h->part);
     RTCHitN_v(hit, n, i) = 0;
     RTCHitN_primID(hit, n, i) = args->primID;
     RTCHitN_geomID(hit, n, i) = args->geomID;
@@ -102,7 +65,7 @@ void analyticIntersect(const RTCIntersectFunctionNArguments* args) {
   }
 }
 
-template <class Shape, class Traits>
+template <class Shape>
 void analyticOccluded(const RTCOccludedFunctionNArguments* args) {
   const auto& s = static_cast<const Shape*>(args->geometryUserPtr)[args->primID];
   const unsigned n = args->N;
@@ -113,7 +76,7 @@ void analyticOccluded(const RTCOccludedFunctionNArguments* args) {
     const Vec3d d(RTCRayN_dir_x(args->ray, n, i), RTCRayN_dir_y(args->ray, n, i),
                   RTCRayN_dir_z(args->ray, n, i));
     float& tfar = RTCRayN_tfar(args->ray, n, i);
-    if (Traits::hit(s, o, d, RTCRayN_tnear(args->ray, n, i), tfar))
+    if (s.intersect(o, d, RTCRayN_tnear(args->ray, n, i), tfar))
       tfar = -std::numeric_limits<float>::infinity();
   }
 }
@@ -134,10 +97,19 @@ RTCRay toEmbree(const Ray& r) {
 } // namespace
 
 GeometryScene::GeometryScene(EmbreeDevice& device, std::vector<SphereShape> spheres,
-                             std::vector<PlaneShape> planes, std::vector<TriangleMesh> meshes,
-                             std::vector<DiskShape> disks, std::vector<CylinderShape> cylinders)
-    : spheres_(std::move(spheres)), planes_(std::move(planes)), meshes_(std::move(meshes)),
-      disks_(std::move(disks)), cylinders_(std::move(cylinders)) {
+                             std::vector<PlaneShape> planes, std::vector<TriangleMesh> meshes)
+    : GeometryScene(
+          device,
+          [&] {
+            AnalyticShapes a;
+            std::get<std::vector<SphereShape>>(a) = std::move(spheres);
+            return a;
+          }(),
+          std::move(planes), std::move(meshes)) {}
+
+GeometryScene::GeometryScene(EmbreeDevice& device, AnalyticShapes analytic,
+                             std::vector<PlaneShape> planes, std::vector<TriangleMesh> meshes)
+    : analytic_(std::move(analytic)), planes_(std::move(planes)), meshes_(std::move(meshes)) {
   const int64_t before = device.bytesInUse();
   scene_ = rtcNewScene(device.handle());
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
@@ -145,24 +117,21 @@ GeometryScene::GeometryScene(EmbreeDevice& device, std::vector<SphereShape> sphe
     rtcCommitGeometry(g);
     const unsigned id = rtcAttachGeometry(scene_, g);
     rtcReleaseGeometry(g);
-    if (byGeomId_.size() <= id) byGeomId_.resize(id + 1, {ShapeKind::Sphere, 0});
+    if (byGeomId_.size() <= id) byGeomId_.resize(id + 1, {ShapeKind::Plane, 0});
     byGeomId_[id] = entry;
   };
   // One user geometry per analytic kind (its shapes are its primitives).
-  auto attachAnalytic = [&]<class Shape, class Traits>(std::vector<Shape>& shapes, ShapeKind kind,
-                                                       Traits) {
+  forEachAnalyticKind([&]<class Shape>() {
+    std::vector<Shape>& shapes = std::get<std::vector<Shape>>(analytic_);
     if (shapes.empty()) return;
     RTCGeometry g = rtcNewGeometry(device.handle(), RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(shapes.size()));
     rtcSetGeometryUserData(g, shapes.data());
-    rtcSetGeometryBoundsFunction(g, analyticBounds<Shape, Traits>, nullptr);
-    rtcSetGeometryIntersectFunction(g, analyticIntersect<Shape, Traits>);
-    rtcSetGeometryOccludedFunction(g, analyticOccluded<Shape, Traits>);
-    attach(g, {kind, 0});
-  };
-  attachAnalytic(spheres_, ShapeKind::Sphere, SphereTraits{});
-  attachAnalytic(disks_, ShapeKind::Disk, DiskTraits{});
-  attachAnalytic(cylinders_, ShapeKind::Cylinder, CylinderTraits{});
+    rtcSetGeometryBoundsFunction(g, analyticBounds<Shape>, nullptr);
+    rtcSetGeometryIntersectFunction(g, analyticIntersect<Shape>);
+    rtcSetGeometryOccludedFunction(g, analyticOccluded<Shape>);
+    attach(g, {kShapeKindOf<Shape>, 0});
+  });
   for (size_t m = 0; m < meshes_.size(); ++m) {
     const TriangleMesh& mesh = meshes_[m];
     RTCGeometry g = rtcNewGeometry(device.handle(), RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -179,25 +148,13 @@ GeometryScene::GeometryScene(EmbreeDevice& device, std::vector<SphereShape> sphe
   embreeBytes_ = static_cast<size_t>(std::max<int64_t>(0, device.bytesInUse() - before));
 }
 
-void sphereUv(SurfaceHit& hit) {
-  // u = phi / 2 pi around the y axis (from +z towards +x), v = theta / pi from +y.
-  const Vec3d n(hit.ng);
-  const double phi = std::atan2(n.x, n.z);
-  hit.u = static_cast<float>((phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi));
-  hit.v = static_cast<float>(std::acos(std::clamp(n.y, -1.0, 1.0)) / kPi);
-}
-
 BoundingBox GeometryScene::bounds() const {
   BoundingBox b;
-  for (const SphereShape& s : spheres_) {
-    b.add(s.center - Vec3d(s.radius, s.radius, s.radius));
-    b.add(s.center + Vec3d(s.radius, s.radius, s.radius));
-  }
+  forEachAnalyticKind([&]<class Shape>() {
+    for (const Shape& s : primitives<Shape>()) b.add(s.bounds());
+  });
   for (const TriangleMesh& m : meshes_)
     for (uint32_t i = 0; i < m.vertexCount(); ++i) b.add(Vec3d(m.position(i)));
-  Vec3d lo, hi;
-  for (const DiskShape& d : disks_) DiskTraits::box(d, lo, hi), b.add(lo), b.add(hi);
-  for (const CylinderShape& c : cylinders_) CylinderTraits::box(c, lo, hi), b.add(lo), b.add(hi);
   return b;
 }
 
@@ -250,19 +207,12 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.t = tBest;
   hit.kind = kind;
   hit.index = index;
-  hit.prim = kind == ShapeKind::Triangle ? prim : 0;
-  if (kind == ShapeKind::Sphere) {
-    // Re-project onto the surface in double precision: the point is then as accurate as the
-    // float it is stored in, whatever the sphere's size.
-    const SphereShape& s = spheres_[index];
-    const Vec3d n = normalize(o + d * static_cast<double>(tBest) - s.center);
-    hit.p = Vec3(s.center + n * s.radius);
-    hit.ng = Vec3(n);
-    hit.ns = hit.ng;
-    hit.u = hit.v = 0; // sphereUv() computes them when a texture needs them
-    hit.dpdu = Vec3(Vec3d(n.z, 0, -n.x) * (2 * kPi * s.radius));
-    hit.pError = roundingError(hit.p);
+  hit.uvPending = false;
+  if (kind == ShapeKind::Triangle) {
+    hit.prim = prim;
+    fillMeshHit(baryU, baryV, ng, hit);
   } else if (kind == ShapeKind::Plane) {
+    hit.prim = 0;
     const PlaneShape& pl = planes_[index];
     const Vec3d q = o + d * static_cast<double>(tBest);
     hit.p = Vec3(q - pl.normal * (dot(pl.normal, q) - pl.distance)); // exactly onto the plane
@@ -270,13 +220,12 @@ bool GeometryScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     hit.u = hit.v = 0;
     hit.dpdu = Frame::fromNormal(ng).s;
     hit.pError = roundingError(hit.p);
-  } else if (kind == ShapeKind::Disk) {
-    fillDiskHit(o, d, hit);
-  } else if (kind == ShapeKind::Cylinder) {
-    hit.prim = static_cast<uint32_t>(baryU);
-    fillCylinderHit(o, d, static_cast<CylinderPart>(hit.prim), hit);
   } else {
-    fillMeshHit(baryU, baryV, ng, hit);
+    // An analytic primitive: Embree's u carries its part (analyticIntersect).
+    hit.prim = static_cast<uint32_t>(baryU);
+    visitPrimitive(kind, index, [&](const auto& shape) {
+      shape.fillHit(o, d, static_cast<double>(tBest), hit.prim, hit);
+    });
   }
   if (!isFinite(hit.p) || !isFinite(hit.ng)) {
     assert(!"a non-finite hit left the intersector"); // debug builds stop here
@@ -325,53 +274,6 @@ void GeometryScene::fillMeshHit(float baryU, float baryV, const Vec3& ngEmbree,
     // both describe the same surface side.
     if (len > 0 && std::isfinite(len)) hit.ns = dot(n, hit.ng) < 0 ? -(n / len) : n / len;
   }
-}
-
-// The point exactly onto the disk's plane, its front normal, polar uv and the tangent of u.
-void GeometryScene::fillDiskHit(const Vec3d& o, const Vec3d& d, SurfaceHit& hit) const {
-  const DiskShape& s = disks_[hit.index];
-  const Vec3d q = o + d * static_cast<double>(hit.t) - s.center;
-  const Vec3d inPlane = q - s.normal * dot(s.normal, q);
-  hit.p = Vec3(s.center + inPlane);
-  hit.ng = hit.ns = Vec3(s.normal);
-  const AxisFrame f = AxisFrame::of(s.normal);
-  const double x = dot(inPlane, f.s), y = dot(inPlane, f.t), phi = std::atan2(y, x);
-  hit.u = static_cast<float>((phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi));
-  hit.v = static_cast<float>(std::min(1.0, length(inPlane) / s.radius));
-  const Vec3d dpdu = (f.t * x - f.s * y) * (2 * kPi);
-  hit.dpdu = length(dpdu) > 0 ? Vec3(dpdu) : Vec3(f.s);
-  hit.pError = roundingError(hit.p);
-}
-
-// The side: the point re-projected onto the tube (radius from the axis, in double), the
-// outward normal, cylindrical uv; a cap: as a disk.
-void GeometryScene::fillCylinderHit(const Vec3d& o, const Vec3d& d, CylinderPart part,
-                                    SurfaceHit& hit) const {
-  const CylinderShape& s = cylinders_[hit.index];
-  const Vec3d a = s.axis();
-  const AxisFrame f = AxisFrame::of(a);
-  const Vec3d q = o + d * static_cast<double>(hit.t) - s.p0;
-  const double z = dot(q, a);
-  const Vec3d across = q - a * z;
-  const double x = dot(across, f.s), y = dot(across, f.t), phi = std::atan2(y, x);
-  hit.u = static_cast<float>((phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi));
-  if (part == CylinderPart::Side) {
-    const double r = length(across);
-    const Vec3d radial = r > 0 ? across * (1 / r) : f.s;
-    hit.p = Vec3(s.p0 + a * z + radial * s.radius);
-    hit.ng = hit.ns = Vec3(radial);
-    hit.v = static_cast<float>(std::clamp(z / s.height(), 0.0, 1.0));
-    hit.dpdu = Vec3(cross(a, radial) * (2 * kPi * s.radius));
-  } else {
-    const DiskShape cap = s.cap(part);
-    const Vec3d onCap = q - a * (z - (part == CylinderPart::Top ? s.height() : 0.0));
-    hit.p = Vec3(s.p0 + onCap);
-    hit.ng = hit.ns = Vec3(cap.normal);
-    hit.v = static_cast<float>(std::min(1.0, length(across) / s.radius));
-    const Vec3d dpdu = (f.t * x - f.s * y) * (2 * kPi);
-    hit.dpdu = length(dpdu) > 0 ? Vec3(dpdu) : Vec3(f.s);
-  }
-  hit.pError = roundingError(hit.p);
 }
 
 bool GeometryScene::occluded(const Ray& ray) const {

@@ -11,65 +11,31 @@
 
 #include <embree3/rtcore.h>
 
-#include "accel/shape_kind.h"
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 #include "accel/embree_device.h"
-#include "accel/kinds/cylinder.h"
-#include "accel/kinds/disk.h"
-#include "accel/shapes.h"
+#include "accel/shape_kinds.h"
+#include "accel/surface_hit.h"
 #include "core/ray.h"
 #include "core/triangle_mesh.h"
 
 namespace nx {
 
-/// The nearest surface a ray meets.
-struct SurfaceHit {
-  float t = 0;        ///< ray parameter
-  Vec3 p;             ///< hit point
-  Vec3 pError;        ///< bound on |p - true surface point| per component
-  Vec3 ng;            ///< unit geometric normal (outward for spheres; the plane's normal;
-                      ///< (b - a) x (c - a) for triangles), not flipped towards the ray
-  Vec3 ns;            ///< unit shading normal: interpolated vertex normals on meshes that have them
-                      ///< (on the side of ng), else ng
-  Vec3 dpdu;          ///< surface tangent along u (not unit; orthogonal to nothing in particular)
-  float u = 0, v = 0; ///< surface coordinates: mesh uv (or barycentrics mapped to (0,0),
-                      ///< (1,0), (1,1)); spheres: 0 until sphereUv(); planes: 0; disks and
-                      ///< cylinders: their polar or cylindrical coordinates
-  ShapeKind kind = ShapeKind::Sphere;
-  uint32_t index = 0; ///< index of the shape within its kind (sphere, plane, mesh)
-  uint32_t prim = 0;  ///< triangle within the mesh; a cylinder's part (CylinderPart); else 0
-};
-
-/// Fills a sphere hit's (u, v) = (phi / 2 pi, theta / pi), phi around +y from +z towards +x
-/// and theta from +y; left out of intersect() so that untextured spheres do not pay for it.
-void sphereUv(SurfaceHit& hit);
-
-/// An axis-aligned box; empty when lo > hi.
-struct BoundingBox {
-  Vec3d lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  /// Grows the box to hold p.
-  void add(const Vec3d& p) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  /// True if nothing was added.
-  bool empty() const { return lo.x > hi.x; }
-};
-
 /// The geometry of a scene, ready for ray queries from any number of threads.
 class GeometryScene {
 public:
-  /// Builds the BVH over spheres and meshes; planes are kept for the analytic pass. Meshes must
-  /// be valid (TriangleMesh::validate()).
+  /// Builds the BVH over the analytic primitives and meshes; planes are kept for the analytic
+  /// pass. Meshes must be valid (TriangleMesh::validate()).
+  GeometryScene(EmbreeDevice& device, AnalyticShapes analytic, std::vector<PlaneShape> planes,
+                std::vector<TriangleMesh> meshes);
+  /// A scene of spheres, planes and meshes only.
   GeometryScene(EmbreeDevice& device, std::vector<SphereShape> spheres,
-                std::vector<PlaneShape> planes, std::vector<TriangleMesh> meshes,
-                std::vector<DiskShape> disks = {}, std::vector<CylinderShape> cylinders = {});
+                std::vector<PlaneShape> planes, std::vector<TriangleMesh> meshes);
   ~GeometryScene();
   GeometryScene(const GeometryScene&) = delete;
   GeometryScene& operator=(const GeometryScene&) = delete;
@@ -82,11 +48,26 @@ public:
   /// Number of hits discarded because their point or normal was not finite (should be 0).
   uint64_t nonFiniteHits() const { return nonFinite_.load(std::memory_order_relaxed); }
 
-  const std::vector<SphereShape>& spheres() const { return spheres_; }
+  /// The analytic primitives of type P, in the order the scene gave them (hit.index).
+  template <class P>
+  const std::vector<P>& primitives() const {
+    return std::get<std::vector<P>>(analytic_);
+  }
+  /// All analytic primitives, one vector per type.
+  const AnalyticShapes& analytic() const { return analytic_; }
+  /// visit(p) for analytic primitive `index` of `kind` (isAnalytic(kind)).
+  template <class Visit>
+  decltype(auto) visitPrimitive(ShapeKind kind, uint32_t index, Visit&& visit) const {
+    return visitAnalyticKind(
+        kind, [&]<class P>() -> decltype(auto) { return visit(primitives<P>()[index]); });
+  }
+  /// How many primitives of analytic `kind` the scene holds.
+  size_t primitiveCount(ShapeKind kind) const {
+    return visitAnalyticKind(kind, [&]<class P>() { return primitives<P>().size(); });
+  }
+  const std::vector<SphereShape>& spheres() const { return primitives<SphereShape>(); }
   const std::vector<PlaneShape>& planes() const { return planes_; }
   const std::vector<TriangleMesh>& meshes() const { return meshes_; }
-  const std::vector<DiskShape>& disks() const { return disks_; }
-  const std::vector<CylinderShape>& cylinders() const { return cylinders_; }
   /// Bounds of the bounded shapes (planes are unbounded).
   BoundingBox bounds() const;
   /// The Embree scene of the spheres and meshes (not the planes), for benchmarks that query it
@@ -96,13 +77,11 @@ public:
   size_t embreeBytes() const { return embreeBytes_; }
 
 private:
-  std::vector<SphereShape> spheres_;
+  AnalyticShapes analytic_;
   std::vector<PlaneShape> planes_;
   std::vector<TriangleMesh> meshes_;
-  std::vector<DiskShape> disks_;
-  std::vector<CylinderShape> cylinders_;
   RTCScene scene_ = nullptr;
-  /// The primitive table: what each Embree geometry id is (sphere set or mesh number).
+  /// The primitive table: what each Embree geometry id is (an analytic kind's set or a mesh).
   struct GeometryEntry {
     ShapeKind kind;
     uint32_t mesh;
@@ -110,8 +89,6 @@ private:
   std::vector<GeometryEntry> byGeomId_;
   size_t embreeBytes_ = 0;
   void fillMeshHit(float baryU, float baryV, const Vec3& ngEmbree, SurfaceHit& hit) const;
-  void fillDiskHit(const Vec3d& o, const Vec3d& d, SurfaceHit& hit) const;
-  void fillCylinderHit(const Vec3d& o, const Vec3d& d, CylinderPart part, SurfaceHit& hit) const;
   mutable std::atomic<uint64_t> nonFinite_{0};
 };
 

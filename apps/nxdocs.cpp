@@ -300,15 +300,26 @@ int main(int argc, char** argv) {
   auto* write = app.add_option("--write", writeDir, "Write the docs into this directory");
   auto* check =
       app.add_option("--check", checkDir, "Check the docs in this directory")->excludes(write);
-  bool kindList = false;
+  bool kindList = false, shapeTags = false;
   app.add_flag("--material-kind-list", kindList,
                "Print the material kinds as messages list them (\"matte, ... or rough_matte\")")
+      ->excludes(write)
+      ->excludes(check);
+  app.add_flag("--shape-tag-list", shapeTags,
+               "Print the shape kinds' elements as messages list them (\"<sphere>, <plane>, ...\")")
       ->excludes(write)
       ->excludes(check);
   if (const int status = nx::parseCommandLine(app, argc, argv, "nxdocs"); status >= 0)
     return status;
   if (kindList) {
     std::printf("%s\n", nx::materialKindList().c_str());
+    return 0;
+  }
+  if (shapeTags) {
+    std::string tags;
+    for (const nx::ShapeKindSpec& k : nx::shapeKinds())
+      tags += (tags.empty() ? "<" : ", <") + std::string(k.name) + ">";
+    std::printf("%s\n", tags.c_str());
     return 0;
   }
   const std::pair<const char*, std::string> docs[] = {{"materials.md", materialsDoc()},

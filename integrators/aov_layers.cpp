@@ -143,7 +143,7 @@ void AovEvaluator::evaluate(const Ray& ray, PixelSampleStream& rng, float* out) 
   put3(AovKind::GeometricNormals, hit.ng);
   put3(AovKind::Position, hit.p);
   if (const int o = offset(AovKind::Uv); o >= 0) {
-    if (hit.kind == ShapeKind::Sphere) sphereUv(hit);
+    surfaceUv(hit);
     out[o] = hit.u, out[o + 1] = hit.v;
   }
   if (offset(AovKind::Albedo) >= 0) albedo(hit, ray, rng, out + offset(AovKind::Albedo));

@@ -2,6 +2,7 @@
 // The immutable scene the integrators render: geometry in Embree, spectra resolved,
 // materials by index, no strings.
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -146,10 +147,11 @@ struct RenderScene {
   /// What each object is called (index: object id - 1): its name="...", else the <material
   /// id> it uses, else "sphere at line 12 (matte)"; names a comparison's regions by object id
   std::vector<std::string> objectLabels;
-  std::vector<Spectrum> emission;                ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
-  std::vector<ShapeAppearance> spheres, planes;  ///< parallel to the geometry's shapes
-  std::vector<ShapeAppearance> disks, cylinders; ///< parallel to the geometry's shapes
-  std::vector<MeshAppearance> meshes;            ///< parallel to the geometry's meshes
+  std::vector<Spectrum> emission; ///< emitted radiance spectra, W m^-2 sr^-1 nm^-1
+  /// Each shape's appearance per kind (index: ShapeKind), parallel to the geometry's planes and
+  /// analytic primitives; the triangles' are the meshes'
+  std::array<std::vector<ShapeAppearance>, kShapeKindCount> shapeAppearances;
+  std::vector<MeshAppearance> meshes; ///< parallel to the geometry's meshes
   std::vector<SceneLight> lights;     ///< the <light>s (points, spots, ...), in file order
   LightGroups lightGroups;            ///< which group each emitter belongs to
   RelightSpectra relight;             ///< the groups' spectra of a relightable build
@@ -179,7 +181,7 @@ struct RenderScene {
       material.reflectance.evaluate(lambda, out);
       return out;
     }
-    if (hit.kind == ShapeKind::Sphere) sphereUv(hit);
+    surfaceUv(hit);
     return material.texture->evaluate(hit.u, hit.v, lambda);
   }
 
@@ -187,25 +189,23 @@ struct RenderScene {
   /// hit's uv (filled in for spheres here), or 1 without a map.
   float concentrationAt(const Material& material, SurfaceHit& hit) const {
     if (!material.concentration) return 1;
-    if (hit.kind == ShapeKind::Sphere) sphereUv(hit);
+    surfaceUv(hit);
     return material.concentration->at(hit.u, hit.v);
+  }
+
+  /// The appearances of the shapes of `kind` (a plane's or an analytic primitive's).
+  const std::vector<ShapeAppearance>& shapes(ShapeKind kind) const {
+    return shapeAppearances[static_cast<size_t>(kind)];
+  }
+  /// The appearances of the shapes of `kind`, to fill.
+  std::vector<ShapeAppearance>& shapes(ShapeKind kind) {
+    return shapeAppearances[static_cast<size_t>(kind)];
   }
 
   /// Appearance of the shape a hit is on.
   const ShapeAppearance& appearance(const SurfaceHit& hit) const {
-    switch (hit.kind) {
-    case ShapeKind::Sphere:
-      return spheres[hit.index];
-    case ShapeKind::Plane:
-      return planes[hit.index];
-    case ShapeKind::Disk:
-      return disks[hit.index];
-    case ShapeKind::Cylinder:
-      return cylinders[hit.index];
-    case ShapeKind::Triangle:
-      break;
-    }
-    return meshes[hit.index].of(hit.prim);
+    if (hit.kind == ShapeKind::Triangle) return meshes[hit.index].of(hit.prim);
+    return shapes(hit.kind)[hit.index];
   }
 };
 

@@ -123,13 +123,11 @@ public:
     const bool spectral = s.mode == RenderMode::SpectralMcpt;
     buildSettings(scene);
 
-    std::vector<SphereShape> spheres;
+    AnalyticShapes analytic; // spheres, disks, cylinders, ...
     std::vector<PlaneShape> planes;
     std::vector<TriangleShape> triangles; // the inline triangles, gathered into one mesh
     MeshAppearance inlineTriangles;
     std::vector<TriangleMesh> meshes;
-    std::vector<DiskShape> disks;
-    std::vector<CylinderShape> cylinders;
     std::vector<std::pair<size_t, size_t>> meshObjects; // (mesh, object) of meshes
     const ShapeKindInputs shapeInputs(*this);
     for (size_t objectIndex = 0; objectIndex < desc_.objects.size(); ++objectIndex) {
@@ -175,25 +173,19 @@ public:
       std::visit(
           [&](auto& shape) {
             using Shape = std::decay_t<decltype(shape)>;
-            if constexpr (std::is_same_v<Shape, SphereShape>) {
-              extent = std::max({std::abs(shape.center.x), std::abs(shape.center.y),
-                                 std::abs(shape.center.z)}) +
-                       shape.radius;
-              spheres.push_back(shape);
-              app.boundary = 1;
-              scene.spheres.push_back(app);
-            } else if constexpr (std::is_same_v<Shape, PlaneShape>) {
+            if constexpr (std::is_same_v<Shape, PlaneShape>) {
               planes.push_back(shape);
-              scene.planes.push_back(app);
+              scene.shapes(ShapeKind::Plane).push_back(app);
             } else if constexpr (std::is_same_v<Shape, TriangleShape>) {
               triangles.push_back(shape);
               inlineTriangles.perTriangle.push_back(app);
-            } else if constexpr (std::is_same_v<Shape, DiskShape>) {
-              disks.push_back(shape);
-              scene.disks.push_back(app);
-            } else if constexpr (std::is_same_v<Shape, CylinderShape>) {
-              cylinders.push_back(shape);
-              scene.cylinders.push_back(app);
+            } else if constexpr (!std::is_same_v<Shape, TriangleMesh>) { // analytic
+              const BoundingBox box = shape.bounds();
+              for (const Vec3d& c : {box.lo, box.hi})
+                extent = std::max({extent, std::abs(c.x), std::abs(c.y), std::abs(c.z)});
+              std::get<std::vector<Shape>>(analytic).push_back(shape);
+              app.boundary = kind.holdsMedium ? 1 : 0; // closed, normals outward
+              scene.shapes(kShapeKindOf<Shape>).push_back(app);
             } else {
               for (uint32_t v = 0; v < shape.vertexCount(); ++v) {
                 const Vec3 p = shape.position(v);
@@ -240,8 +232,8 @@ public:
       throw Error(s.modeLoc.str() +
                   ": expected <mode> spectral_mcpt or mcpt for a scene with media, interface or "
                   "thin_glass surfaces (rt traces neither), found rt");
-    scene.cameraMedia = cameraMedia(scene.camera.position(), spheres, scene.spheres, closedMeshes,
-                                    meshes, scene.meshes);
+    scene.cameraMedia =
+        cameraMedia(scene.camera.position(), analytic, scene, closedMeshes, meshes, scene.meshes);
     scene.meshBytes = 0;
     for (const TriangleMesh& m : meshes) scene.meshBytes += m.bytes();
     scene.contentDigest = refs_.digest();
@@ -250,8 +242,7 @@ public:
     scene.warnings.insert(scene.warnings.end(), warnings_.begin(), warnings_.end());
     scene.warnings.insert(scene.warnings.end(), refs_.warnings().begin(), refs_.warnings().end());
     if (!withGeometry) return scene;
-    scene.geometry = sharedGeometry(std::move(spheres), std::move(planes), std::move(meshes),
-                                    std::move(disks), std::move(cylinders));
+    scene.geometry = sharedGeometry(std::move(analytic), std::move(planes), std::move(meshes));
     return scene;
   }
 
@@ -301,18 +292,21 @@ private:
 
   // The media of the spheres and closed meshes containing the camera, outermost (largest)
   // first.
-  static MediumStack cameraMedia(const Vec3d& eye, const std::vector<SphereShape>& spheres,
-                                 const std::vector<ShapeAppearance>& sphereApps,
+  // (Primitives that bound a volume say whether it holds a point: volume() and contains().)
+  static MediumStack cameraMedia(const Vec3d& eye, const AnalyticShapes& analytic,
+                                 const RenderScene& scene,
                                  const std::vector<std::pair<double, size_t>>& closedMeshes,
                                  const std::vector<TriangleMesh>& meshes,
                                  const std::vector<MeshAppearance>& meshApps) {
     std::vector<std::pair<double, int32_t>> around; // (volume, medium)
-    for (size_t i = 0; i < spheres.size(); ++i) {
-      const Vec3d d = eye - spheres[i].center;
-      const double r = spheres[i].radius;
-      if (std::sqrt(dot(d, d)) < r)
-        around.emplace_back(4.18879020478639 * r * r * r, sphereApps[i].medium);
-    }
+    forEachAnalyticKind([&]<class P>() {
+      const std::vector<P>& shapes = std::get<std::vector<P>>(analytic);
+      const std::vector<ShapeAppearance>& apps = scene.shapes(kShapeKindOf<P>);
+      for (size_t i = 0; i < shapes.size(); ++i)
+        if constexpr (requires { shapes[i].contains(eye); })
+          if (apps[i].boundary != 0 && shapes[i].contains(eye))
+            around.emplace_back(shapes[i].volume(), apps[i].medium);
+    });
     for (const auto& [volume, mesh] : closedMeshes)
       if (insideClosedMesh(meshes[mesh], eye))
         around.emplace_back(volume, meshApps[mesh].whole.medium);

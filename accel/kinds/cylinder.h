@@ -7,12 +7,26 @@
 #include <cmath>
 #include <optional>
 
+#include <algorithm>
+#include <string>
+
 #include "accel/kinds/disk.h"
+#include "core/error.h"
 
 namespace nx {
 
 /// Which part of a cylinder a hit is on.
 enum class CylinderPart : uint8_t { Side, Base, Top };
+
+struct CylinderShape;
+/// A hit on a cylinder: the ray parameter and the part.
+struct CylinderHit {
+  double t;
+  CylinderPart part;
+};
+/// The nearest hit of a ray with the cylinder (defined below).
+inline std::optional<CylinderHit> intersectCylinder(const CylinderShape& s, const Vec3d& o,
+                                                    const Vec3d& d, double tMin, double tMax);
 
 /// A cylinder of `radius` around the segment p0 -> p1, with two caps (disks at p0 facing
 /// away from p1, at p1 facing away from p0) when `capped`. uv: the side's u = phi / 2 pi around
@@ -30,6 +44,55 @@ struct CylinderShape {
   double sideArea() const { return 2 * kPi * radius * height(); }
   /// Area of all its parts.
   double area() const { return sideArea() + (capped ? 2 * kPi * radius * radius : 0); }
+  /// Its box: the two end circles' boxes.
+  BoundingBox bounds() const {
+    const Vec3d e = circleExtent(axis(), radius);
+    return {Vec3d(std::min(p0.x, p1.x), std::min(p0.y, p1.y), std::min(p0.z, p1.z)) - e,
+            Vec3d(std::max(p0.x, p1.x), std::max(p0.y, p1.y), std::max(p0.z, p1.z)) + e};
+  }
+  /// Its nearest hit and part (intersectCylinder).
+  std::optional<PrimitiveHit> intersect(const Vec3d& o, const Vec3d& d, double tMin,
+                                        double tMax) const {
+    const auto h = intersectCylinder(*this, o, d, tMin, tMax);
+    return h ? std::optional(PrimitiveHit{h->t, static_cast<uint32_t>(h->part)}) : std::nullopt;
+  }
+  /// The side: the point re-projected onto the tube (radius from the axis, in double), the
+  /// outward normal, cylindrical uv; a cap: as a disk.
+  void fillHit(const Vec3d& o, const Vec3d& d, double t, uint32_t part, SurfaceHit& hit) const {
+    const Vec3d a = axis();
+    const AxisFrame f = AxisFrame::of(a);
+    const Vec3d q = o + d * t - p0;
+    const double z = dot(q, a);
+    const Vec3d across = q - a * z;
+    const double x = dot(across, f.s), y = dot(across, f.t);
+    hit.u = turnFraction(y, x);
+    if (static_cast<CylinderPart>(part) == CylinderPart::Side) {
+      const double r = length(across);
+      const Vec3d radial = r > 0 ? across * (1 / r) : f.s;
+      hit.p = Vec3(p0 + a * z + radial * radius);
+      hit.ng = hit.ns = Vec3(radial);
+      hit.v = static_cast<float>(std::clamp(z / height(), 0.0, 1.0));
+      hit.dpdu = Vec3(cross(a, radial) * (2 * kPi * radius));
+    } else {
+      const DiskShape c = cap(static_cast<CylinderPart>(part));
+      const Vec3d onCap =
+          q - a * (z - (static_cast<CylinderPart>(part) == CylinderPart::Top ? height() : 0.0));
+      hit.p = Vec3(p0 + onCap);
+      hit.ng = hit.ns = Vec3(c.normal);
+      hit.v = static_cast<float>(std::min(1.0, length(across) / radius));
+      const Vec3d dpdu = (f.t * x - f.s * y) * (2 * kPi);
+      hit.dpdu = length(dpdu) > 0 ? Vec3(dpdu) : Vec3(f.s);
+    }
+    hit.pError = roundingError(hit.p);
+  }
+  /// The side turns its normal by the motion across the axis over the radius (as a sphere's,
+  /// without the axial part); the flat caps turn nothing.
+  Vec3 normalTurning(const SurfaceHit& hit, const Vec3& dx) const {
+    if (hit.prim != static_cast<uint32_t>(CylinderPart::Side)) return {};
+    const Vec3 a(axis());
+    const Vec3 across = dx - a * dot(a, dx);
+    return (across - hit.ng * dot(hit.ng, across)) * static_cast<float>(1 / radius);
+  }
   /// The cap at p0 (part Base) or p1 (Top).
   DiskShape cap(CylinderPart part) const {
     const Vec3d a = axis();
@@ -55,12 +118,21 @@ struct CylinderShape {
     s.part = static_cast<uint32_t>(part);
     return s;
   }
-};
-
-/// A hit on a cylinder: the ray parameter and the part.
-struct CylinderHit {
-  double t;
-  CylinderPart part;
+  /// Curved: no one facing direction.
+  std::optional<Vec3d> facing() const { return std::nullopt; }
+  /// Open or not: its inside can light itself (shadow rays tell).
+  /// Its outline is not sampled yet (shape derivatives refuse or warn).
+  static constexpr bool kOutlineSampled = false;
+  static constexpr SelfLighting kSelfLighting = SelfLighting::Possible;
+  /// Both faces of an open tube emit (2 pi times the side's area); a capped one's inward light
+  /// never leaves (pi times its area).
+  double fluxPerRadiance() const { return capped ? kPi * area() : 2 * kPi * sideArea(); }
+  /// Not flat: no axis to measure on.
+  double axialIrradiancePerRadiance(double, const std::string& where) const {
+    throw Error(where + ": expected a flat emitter for at=\"...\" (a triangle, a quad, a disk "
+                        "or a planar mesh), found a cylinder (give its total flux with "
+                        "quantity=\"flux\")");
+  }
 };
 
 /// The nearest hit of o + t d with t in (tMin, tMax), if any. The side: the quadratic of the

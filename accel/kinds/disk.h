@@ -6,33 +6,21 @@
 #include <cmath>
 #include <optional>
 
+#include "accel/primitive.h"
 #include "accel/shape_schema.h"
 #include "core/concentric_disk.h"
 #include "core/math_util.h"
+#include "core/ray_offset.h"
 #include "core/vec3.h"
 
 namespace nx {
 
-/// An orthonormal frame in double around a unit axis n (Duff et al., "Building an Orthonormal
-/// Basis, Revisited", JCGT 2017): s, t and n, right-handed.
-struct AxisFrame {
-  Vec3d s, t, n;
-  /// The frame of unit axis n.
-  static AxisFrame of(const Vec3d& n) {
-    const double sign = std::copysign(1.0, n.z);
-    const double a = -1.0 / (sign + n.z), b = n.x * n.y * a;
-    return {Vec3d(1 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-            Vec3d(b, sign + n.y * n.y * a, -n.y), n};
-  }
-};
-
-/// A point drawn on a primitive's surface uniformly by area: the point, its unit normal
-/// (outward; a disk's front) and which part of the primitive it is on (a cylinder's side or
-/// cap; 0 for one-part primitives).
-struct AreaSample {
-  Vec3d p, n;
-  uint32_t part = 0;
-};
+struct DiskShape;
+/// Ray parameter where a ray meets the disk (defined below).
+inline std::optional<double> intersectDisk(const DiskShape& s, const Vec3d& o, const Vec3d& d,
+                                           double tMin, double tMax);
+/// Half-extents of the box around a circle of radius r with unit normal n (defined below).
+inline Vec3d circleExtent(const Vec3d& n, double r);
 
 /// A disk: the points of the plane through `center` with unit normal `normal` within `radius`
 /// of the centre. Its front face is the normal's side; uv are polar: u = phi / 2 pi around the
@@ -42,6 +30,33 @@ struct DiskShape {
   Vec3d normal{0, 1, 0};
   double radius = 1;
   bool operator==(const DiskShape&) const = default;
+  /// Its box (circleExtent around the centre).
+  BoundingBox bounds() const {
+    const Vec3d e = circleExtent(normal, radius);
+    return {center - e, center + e};
+  }
+  /// Its hit (intersectDisk).
+  std::optional<PrimitiveHit> intersect(const Vec3d& o, const Vec3d& d, double tMin,
+                                        double tMax) const {
+    const auto t = intersectDisk(*this, o, d, tMin, tMax);
+    return t ? std::optional(PrimitiveHit{*t, 0}) : std::nullopt;
+  }
+  /// The point exactly onto the disk's plane, its front normal, polar uv and the tangent of u.
+  void fillHit(const Vec3d& o, const Vec3d& d, double t, uint32_t, SurfaceHit& hit) const {
+    const Vec3d q = o + d * t - center;
+    const Vec3d inPlane = q - normal * dot(normal, q);
+    hit.p = Vec3(center + inPlane);
+    hit.ng = hit.ns = Vec3(normal);
+    const AxisFrame f = AxisFrame::of(normal);
+    const double x = dot(inPlane, f.s), y = dot(inPlane, f.t);
+    hit.u = turnFraction(y, x);
+    hit.v = static_cast<float>(std::min(1.0, length(inPlane) / radius));
+    const Vec3d dpdu = (f.t * x - f.s * y) * (2 * kPi);
+    hit.dpdu = length(dpdu) > 0 ? Vec3(dpdu) : Vec3(f.s);
+    hit.pError = roundingError(hit.p);
+  }
+  /// Flat: nothing turns.
+  Vec3 normalTurning(const SurfaceHit&, const Vec3&) const { return {}; }
   /// Its area.
   double area() const { return kPi * radius * radius; }
   /// A point uniformly by area (the concentric map: density 1 / area).
@@ -50,6 +65,18 @@ struct DiskShape {
     sampleConcentricDisk(u, x, y);
     const AxisFrame f = AxisFrame::of(normal);
     return {center + (f.s * double(x) + f.t * double(y)) * radius, normal, 0};
+  }
+  /// Flat: its front normal.
+  std::optional<Vec3d> facing() const { return normal; }
+  /// Flat: its light never falls on itself.
+  /// Its outline is not sampled yet (shape derivatives refuse or warn).
+  static constexpr bool kOutlineSampled = false;
+  static constexpr SelfLighting kSelfLighting = SelfLighting::Never;
+  /// Both faces emit: 2 pi times its area.
+  double fluxPerRadiance() const { return 2 * kPi * area(); }
+  /// pi sin^2 of its half-angle seen from distance d on its axis: pi r^2 / (r^2 + d^2).
+  double axialIrradiancePerRadiance(double d, const std::string&) const {
+    return kPi * radius * radius / (radius * radius + d * d);
   }
 };
 

@@ -2,8 +2,6 @@
 
 #include <array>
 
-#include "accel/shapes.h"
-
 namespace nx {
 namespace {
 
@@ -83,50 +81,35 @@ void surfaceSlots(const ShapeTangents& shapes, const GeometryScene& geometry, co
 
 namespace {
 
-// d n / d x applied to dx at a hit (the shape's curvature): a sphere's (I - n n^T) dx / r, a
-// cylinder side's the same across its axis, a mesh's interpolated normals' through the
-// barycentrics; flat shapes turn nothing.
+// d n / d x applied to dx at a hit (the shape's curvature): an analytic primitive's own
+// (normalTurning in its file), a mesh's interpolated normals' through the barycentrics; planes
+// turn nothing.
 Vec3 normalTurning(const GeometryScene& geometry, const SurfaceHit& hit, const Vec3& dx) {
   const Vec3& n = hit.ns;
-  switch (hit.kind) {
-  case ShapeKind::Sphere: {
-    const double r = geometry.spheres()[hit.index].radius;
-    return (dx - hit.ng * dot(hit.ng, dx)) * static_cast<float>(1 / r);
-  }
-  case ShapeKind::Cylinder: {
-    if (hit.prim != static_cast<uint32_t>(CylinderPart::Side)) return {};
-    const CylinderShape& c = geometry.cylinders()[hit.index];
-    const Vec3 a(c.axis());
-    const Vec3 across = dx - a * dot(a, dx);
-    return (across - hit.ng * dot(hit.ng, across)) * static_cast<float>(1 / c.radius);
-  }
-  case ShapeKind::Triangle: {
-    const TriangleMesh& mesh = geometry.meshes()[hit.index];
-    if (!mesh.hasNormals()) return {};
-    const uint32_t* idx = mesh.triangle(hit.prim);
-    const Vec3 a = mesh.position(idx[0]), e1 = mesh.position(idx[1]) - a,
-               e2 = mesh.position(idx[2]) - a;
-    const Vec3 N = cross(e1, e2);
-    const float inv = 1 / dot(N, N);
-    // x - a = u e1 + v e2: u = ((x - a) x e2) . N / |N|^2, v = (e1 x (x - a)) . N / |N|^2.
-    const float du = dot(cross(dx, e2), N) * inv, dv = dot(cross(e1, dx), N) * inv;
-    const Vec3 dRaw =
-        mesh.normal(idx[0]) * (-du - dv) + mesh.normal(idx[1]) * du + mesh.normal(idx[2]) * dv;
-    // hit.ns = +-normalize(raw), raw at the hit's barycentrics
-    const Vec3 x = hit.p - a;
-    const float bu = dot(cross(x, e2), N) * inv, bv = dot(cross(e1, x), N) * inv;
-    const Vec3 raw =
-        mesh.normal(idx[0]) * (1 - bu - bv) + mesh.normal(idx[1]) * bu + mesh.normal(idx[2]) * bv;
-    const float len = length(raw);
-    if (!(len > 0)) return {};
-    const float sign = dot(raw, n) < 0 ? -1.0f : 1.0f;
-    return (dRaw - n * dot(n, dRaw)) * (sign / len);
-  }
-  case ShapeKind::Plane: // flat: nothing turns
-  case ShapeKind::Disk:
-    return {};
-  }
-  return {}; // not reached: every kind is a case (-Werror=switch)
+  if (hit.kind == ShapeKind::Plane) return {};
+  if (isAnalytic(hit.kind))
+    return geometry.visitPrimitive(hit.kind, hit.index,
+                                   [&](const auto& shape) { return shape.normalTurning(hit, dx); });
+  const TriangleMesh& mesh = geometry.meshes()[hit.index];
+  if (!mesh.hasNormals()) return {};
+  const uint32_t* idx = mesh.triangle(hit.prim);
+  const Vec3 a = mesh.position(idx[0]), e1 = mesh.position(idx[1]) - a,
+             e2 = mesh.position(idx[2]) - a;
+  const Vec3 N = cross(e1, e2);
+  const float inv = 1 / dot(N, N);
+  // x - a = u e1 + v e2: u = ((x - a) x e2) . N / |N|^2, v = (e1 x (x - a)) . N / |N|^2.
+  const float du = dot(cross(dx, e2), N) * inv, dv = dot(cross(e1, dx), N) * inv;
+  const Vec3 dRaw =
+      mesh.normal(idx[0]) * (-du - dv) + mesh.normal(idx[1]) * du + mesh.normal(idx[2]) * dv;
+  // hit.ns = +-normalize(raw), raw at the hit's barycentrics
+  const Vec3 x = hit.p - a;
+  const float bu = dot(cross(x, e2), N) * inv, bv = dot(cross(e1, x), N) * inv;
+  const Vec3 raw =
+      mesh.normal(idx[0]) * (1 - bu - bv) + mesh.normal(idx[1]) * bu + mesh.normal(idx[2]) * bv;
+  const float len = length(raw);
+  if (!(len > 0)) return {};
+  const float sign = dot(raw, n) < 0 ? -1.0f : 1.0f;
+  return (dRaw - n * dot(n, dRaw)) * (sign / len);
 }
 
 } // namespace

@@ -24,6 +24,20 @@ namespace {
 
 // Why a render differentiated with respect to shape would miss a share of its derivative in
 // this scene (what the interior and boundary terms do not cover yet), or "".
+// "disks and cylinders": the kinds of the scene's analytic primitives whose outlines the
+// boundary terms do not sample (kOutlineSampled), or "".
+std::string unsampledOutlineKinds(const GeometryScene& g) {
+  std::vector<std::string> kinds;
+  forEachAnalyticKind([&]<class P>() {
+    if (!P::kOutlineSampled && !g.primitives<P>().empty())
+      kinds.push_back(primitiveName(kShapeKindOf<P>) + "s");
+  });
+  std::string out;
+  for (size_t i = 0; i < kinds.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == kinds.size() ? " and " : ", ") + kinds[i];
+  return out;
+}
+
 std::string uncoveredFeature(const RenderScene& scene) {
   if (scene.hasMedia) return "media or interfaces";
   for (const Material& m : scene.materials) {
@@ -39,8 +53,8 @@ std::string uncoveredFeature(const RenderScene& scene) {
 
 // The index among the geometry's spheres of object `object` (0-based), or -1.
 int sphereOf(const RenderScene& scene, size_t object) {
-  for (size_t k = 0; k < scene.spheres.size(); ++k)
-    if (scene.spheres[k].objectId == object + 1) return static_cast<int>(k);
+  for (size_t k = 0; k < scene.shapes(ShapeKind::Sphere).size(); ++k)
+    if (scene.shapes(ShapeKind::Sphere)[k].objectId == object + 1) return static_cast<int>(k);
   return -1;
 }
 
@@ -195,10 +209,10 @@ GradientParameter cameraParameter(SceneTangents& tangents, const SceneDesc& desc
     throw Error(name + ": derivatives with respect to the camera do not cover a scene with " + why +
                 " yet (docs/inverse.md, \"Shape and camera\")");
   const GeometryScene& g = *base.geometry;
-  if (!g.disks().empty() || !g.cylinders().empty())
-    throw Error(name + ": derivatives with respect to the camera do not cover disks or "
-                       "cylinders yet (the outlines of every shape move in the image, and "
-                       "theirs are not sampled)");
+  if (const std::string kinds = unsampledOutlineKinds(g); !kinds.empty())
+    throw Error(name + ": derivatives with respect to the camera do not cover " + kinds +
+                " yet (the outlines of every shape move in the image, and theirs are not "
+                "sampled)");
   // Every mesh's outline moves on the film and as seen from every vertex the camera moves.
   for (size_t k = 0; k < g.meshes().size(); ++k)
     if (tangents.shapes.meshes[k].cameraEdges.empty())
@@ -251,7 +265,7 @@ std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const S
                 " yet (docs/inverse.md, \"Shape and camera\")");
   const int sphere = sphereOf(base, object);
   if (sphere < 0) throw Error("internal error: " + name + ": its sphere was not built");
-  const ShapeAppearance& app = base.spheres[static_cast<size_t>(sphere)];
+  const ShapeAppearance& app = base.shapes(ShapeKind::Sphere)[static_cast<size_t>(sphere)];
   if (app.emission >= 0) refuseMovingEmitter(name);
   auto& motions = tangents.shapes.spheres.at(static_cast<size_t>(sphere));
   GradientParameter p{name, tangents.slots(), leaf == "center" ? 3u : 1u, leaf == "center", {}};
@@ -301,7 +315,7 @@ std::vector<std::string> shapeCoverageWarnings(const RenderScene& scene,
   bool shapeMoves = shapes.movesMeshes();
   for (const auto& s : shapes.spheres) shapeMoves = shapeMoves || !s.empty();
   if (shapeMoves) {
-    bool staticOutline = !scene.geometry->disks().empty() || !scene.geometry->cylinders().empty();
+    bool staticOutline = !unsampledOutlineKinds(*scene.geometry).empty();
     for (const MeshMotion& m : shapes.meshes) staticOutline = staticOutline || !m.moves();
     if (staticOutline)
       out.push_back("warning: shape derivatives: the outlines of meshes, quads, triangles, disks "

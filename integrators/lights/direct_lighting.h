@@ -9,14 +9,22 @@
 namespace nx {
 
 /// True when the sample lies on the surface it is meant to light, where it cannot be seen: the
-/// same triangle, or the same sphere seen from outside (rayDir arrives from outside). A point
-/// rounded just inside a sphere would otherwise be lit by its own emission "from inside"; from
-/// the inside (a camera in a furnace) a sphere does light itself.
+/// same triangle, or a primitive whose light cannot reach itself there (a flat one anywhere, a
+/// closed convex one from outside: rayDir arrives from outside). A point rounded just inside a
+/// sphere would otherwise be lit by its own emission "from inside"; from the inside (a camera
+/// in a furnace) a sphere does light itself.
 inline bool lightsItsOwnSurface(const SurfaceHit& hit, const LightSample& ls, const Vec3& rayDir) {
   if (ls.delta || ls.infinite || ls.kind != hit.kind || ls.shape != hit.index) return false;
-  if (hit.kind == ShapeKind::Sphere) return dot(rayDir, hit.ng) < 0;
-  if (hit.kind == ShapeKind::Cylinder) return false; // its inside lights itself: shadow rays tell
-  return ls.prim == hit.prim;
+  if (!isAnalytic(hit.kind)) return ls.prim == hit.prim; // a triangle (planes are not sampled)
+  switch (visitAnalyticKind(hit.kind, []<class P>() { return P::kSelfLighting; })) {
+  case SelfLighting::Never:
+    return true;
+  case SelfLighting::FromInside:
+    return dot(rayDir, hit.ng) < 0;
+  case SelfLighting::Possible: // shadow rays tell
+    return false;
+  }
+  return false; // not reached: every case returns (-Werror=switch)
 }
 
 /// Direct light at a point p through media (offset by pError along ng; zero vectors for a point

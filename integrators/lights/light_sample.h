@@ -14,10 +14,11 @@ namespace nx {
 enum class LightKind : uint8_t {
   Point,       ///< a light of the scene's <light> list: a point or spot light (a delta, never
                ///< hit by BSDF sampling)
-  Sphere,      ///< an emitting sphere (cone sampling from outside, uniform from inside)
+  Cone,        ///< an emitting analytic primitive that samples the solid angle it subtends
+               ///< (a sphere: its cone from outside, uniform from inside)
   Mesh,        ///< an emitting mesh or inline triangle (sampled by solid angle or by area:
                ///< TriangleLightSampling)
-  Surface,     ///< an emitting disk or cylinder (a point uniformly by area, both faces)
+  Area,        ///< an emitting analytic primitive sampled by area (a disk, a cylinder, ...)
   Background,  ///< the uniform environment (uniform directions)
   Environment, ///< an infinite light of the scene's <light> list (an environment map: its
                ///< kind samples it)

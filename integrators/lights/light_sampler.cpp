@@ -95,9 +95,9 @@ constexpr double kGuidedMismatch = 1.25;
 LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
                            TriangleLightSampling triangles)
     : scene_(&scene), selection_(selection), triangleSampling_(triangles) {
-  addSphereLights();
+  addPrimitiveLights(LightKind::Cone);
   addMeshLights();
-  addSurfaceLights();
+  addPrimitiveLights(LightKind::Area);
   addListedLights();
   addBackground();
   if (selection_ == LightSelection::Local && count() > kMaxLocalLights)
@@ -109,83 +109,52 @@ LightSampler::LightSampler(const RenderScene& scene, LightSelection selection,
   buildChoiceTables();
 }
 
-void LightSampler::addSphereLights() {
+void LightSampler::addPrimitiveLights(LightKind which) {
   const RenderScene& scene = *scene_;
   const GeometryScene& geometry = *scene.geometry;
-  auto emissionOf = [&](const ShapeAppearance& a) {
-    return &scene.emission[static_cast<size_t>(a.emission)];
-  };
-  sphereLight_.assign(scene.spheres.size(), -1);
-  for (size_t i = 0; i < scene.spheres.size(); ++i) {
-    if (scene.spheres[i].emission < 0) continue;
-    sphereLight_[i] = static_cast<int32_t>(lights_.size());
-    const double r = geometry.spheres()[i].radius;
-    const Spectrum* e = emissionOf(scene.spheres[i]);
-    const double le = tracedIntegral(*e);
-    lights_.push_back({LightKind::Sphere,
-                       ShapeKind::Sphere,
-                       static_cast<uint32_t>(i),
-                       -1,
-                       e,
-                       0,
-                       0,
-                       kPi * 4 * kPi * r * r * le,
-                       le,
-                       Vec3(geometry.spheres()[i].center),
-                       static_cast<float>(r),
-                       -1,
-                       -1,
-                       {}});
-  }
-}
-
-void LightSampler::addSurfaceLights() {
-  const RenderScene& scene = *scene_;
-  const GeometryScene& geometry = *scene.geometry;
-  // One kind's lights: area, bounds (box, normals, power the area: localWeight multiplies by
-  // the radiance) for each emitting shape.
-  auto add = [&](const std::vector<ShapeAppearance>& apps, std::vector<int32_t>& lightOf,
-                 ShapeKind kind, auto&& shapeBounds) {
+  forEachAnalyticKind([&]<class P>() {
+    constexpr bool cone = SamplesSolidAngle<P>;
+    if ((which == LightKind::Cone) != cone) return;
+    constexpr ShapeKind kind = kShapeKindOf<P>;
+    const std::vector<ShapeAppearance>& apps = scene.shapes(kind);
+    std::vector<int32_t>& lightOf = primitiveLight_[static_cast<size_t>(kind)];
     lightOf.assign(apps.size(), -1);
     for (size_t i = 0; i < apps.size(); ++i) {
       if (apps[i].emission < 0) continue;
+      const P& shape = geometry.primitives<P>()[i];
       const Spectrum* e = &scene.emission[static_cast<size_t>(apps[i].emission)];
       const double le = tracedIntegral(*e);
-      LightBounds b;
-      const double area = shapeBounds(i, b);
-      b.power = static_cast<float>(area);
-      b.twoSided = true;
       lightOf[i] = static_cast<int32_t>(lights_.size());
-      Light l{LightKind::Surface,
-              kind,
-              static_cast<uint32_t>(i),
-              -1,
-              e,
-              area,
-              0,
-              kPi * area * le * 2,
-              le,
-              b.center(),
-              length(b.hi - b.lo) * 0.5f,
-              -1,
-              -1,
-              LightCluster(b)};
-      lights_.push_back(l);
+      if constexpr (cone) { // weighed by its bounding sphere's cone
+        const auto [center, radius] = shape.boundingSphere();
+        lights_.push_back({LightKind::Cone,
+                           kind,
+                           static_cast<uint32_t>(i),
+                           -1,
+                           e,
+                           0,
+                           0,
+                           shape.fluxPerRadiance() * le,
+                           le,
+                           Vec3(center),
+                           static_cast<float>(radius),
+                           -1,
+                           -1,
+                           {}});
+      } else { // bounds: box, normals, power the area (localWeight multiplies by the radiance)
+        const double area = shape.area();
+        const BoundingBox box = shape.bounds();
+        LightBounds b;
+        b.add(Vec3(box.lo)), b.add(Vec3(box.hi));
+        const std::optional<Vec3d> facing = shape.facing();
+        b.normals = facing ? DirectionCone{Vec3(*facing), 1.0f} : DirectionCone::all();
+        b.power = static_cast<float>(area);
+        b.twoSided = true;
+        lights_.push_back({LightKind::Area, kind, static_cast<uint32_t>(i), -1, e, area, 0,
+                           kPi * area * le * 2, le, b.center(), length(b.hi - b.lo) * 0.5f, -1, -1,
+                           LightCluster(b)});
+      }
     }
-  };
-  add(scene.disks, diskLight_, ShapeKind::Disk, [&](size_t i, LightBounds& b) {
-    const DiskShape& d = geometry.disks()[i];
-    const Vec3d e = circleExtent(d.normal, d.radius);
-    b.add(Vec3(d.center - e)), b.add(Vec3(d.center + e));
-    b.normals = {Vec3(d.normal), 1.0f};
-    return d.area();
-  });
-  add(scene.cylinders, cylinderLight_, ShapeKind::Cylinder, [&](size_t i, LightBounds& b) {
-    const CylinderShape& c = geometry.cylinders()[i];
-    const Vec3d e = circleExtent(c.axis(), c.radius);
-    for (const Vec3d& end : {c.p0, c.p1}) b.add(Vec3(end - e)), b.add(Vec3(end + e));
-    b.normals = DirectionCone::all();
-    return c.area();
   });
 }
 
@@ -203,7 +172,7 @@ void LightSampler::addMeshLights() {
     if (app.perTriangle.empty()) {
       if (app.whole.emission < 0) continue;
       Light l{LightKind::Mesh,
-              ShapeKind::Sphere,
+              ShapeKind::Triangle,
               static_cast<uint32_t>(m),
               -1,
               emissionOf(app.whole),
@@ -259,7 +228,7 @@ void LightSampler::addMeshLights() {
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       if (app.perTriangle[t].emission < 0) continue;
       Light l{LightKind::Mesh,
-              ShapeKind::Sphere,
+              ShapeKind::Triangle,
               static_cast<uint32_t>(m),
               static_cast<int32_t>(t),
               emissionOf(app.perTriangle[t]),
@@ -345,11 +314,9 @@ void LightSampler::assignGroupsAndSources() {
     // Which of the tables and which entry: emission index, light index, or the background.
     int32_t emission = -1, light = -1;
     switch (l.kind) {
-    case LightKind::Sphere:
-      emission = scene.spheres[l.shape].emission;
-      break;
-    case LightKind::Surface:
-      emission = (l.surface == ShapeKind::Disk ? scene.disks : scene.cylinders)[l.shape].emission;
+    case LightKind::Cone:
+    case LightKind::Area:
+      emission = scene.shapes(l.surface)[l.shape].emission;
       break;
     case LightKind::Mesh:
       emission = scene.meshes[l.shape]
@@ -485,7 +452,7 @@ void LightSampler::buildTree() {
       b.cosEmission = 1; // a cone holds all its light
       b.power = static_cast<float>(l.radiance);
       break;
-    case LightKind::Sphere:
+    case LightKind::Cone: // its bounding sphere
       b.add(l.center - Vec3(l.radius, l.radius, l.radius));
       b.add(l.center + Vec3(l.radius, l.radius, l.radius));
       b.normals = DirectionCone::all();
@@ -505,7 +472,7 @@ void LightSampler::buildTree() {
       b.power = static_cast<float>(l.radiance * l.area * (closed ? 0.25 : 1.0));
       break;
     }
-    case LightKind::Surface: // the bounds it weighs itself with, its power the radiance's
+    case LightKind::Area: // the bounds it weighs itself with, its power the radiance's
       b.add(l.bounds.center - Vec3(l.bounds.radius, l.bounds.radius, l.bounds.radius));
       b.add(l.bounds.center + Vec3(l.bounds.radius, l.bounds.radius, l.bounds.radius));
       b.normals = {l.bounds.axis, l.bounds.cosSpread};
@@ -549,14 +516,14 @@ float LightSampler::localWeight(const Light& l, const Vec3& p, const Vec3& n) co
                      scene_->lights[l.shape]) *
                  receiverCos(0) / std::max(d2, 1e-30f);
     break;
-  case LightKind::Sphere:
+  case LightKind::Cone: // the cone of its bounding sphere (all of it, for a sphere)
     solidAngle = d2 <= r2 ? static_cast<float>(4 * kPi)
                           : static_cast<float>(2 * kPi * oneMinusCosFromSin2(r2 / d2)) *
                                 receiverCos(r2 / d2);
     break;
-  case LightKind::Mesh:      // at most a hemisphere of one face; the bound of its emitters when far
-  case LightKind::Surface: { // a curved surface (a cylinder) seen from inside: the whole sphere
-    const float most = static_cast<float>((l.kind == LightKind::Surface ? 4 : 2) * kPi);
+  case LightKind::Mesh:   // at most a hemisphere of one face; the bound of its emitters when far
+  case LightKind::Area: { // a curved surface (a cylinder) seen from inside: the whole sphere
+    const float most = static_cast<float>((l.kind == LightKind::Area ? 4 : 2) * kPi);
     solidAngle =
         d2 <= r2 ? most
                  : std::min(most, l.tree >= 0 ? trees_[static_cast<size_t>(l.tree)].importance(p, n)
@@ -747,14 +714,14 @@ bool LightSampler::sampleLight(int k, const Vec3& p, float uChoice, Sample2 u,
   case LightKind::Environment:
     return std::visit([&](const auto& light) { return light.sample(p, u, lambda, out); },
                       scene_->lights[l.shape]);
-  case LightKind::Sphere:
-    if (!sampleSphere(l, p, u, out)) return false;
+  case LightKind::Cone:
+    if (!sampleCone(l, p, u, out)) return false;
     break;
   case LightKind::Mesh:
     if (!sampleMesh(l, p, n, uChoice, u, out)) return false;
     break;
-  case LightKind::Surface:
-    if (!sampleSurface(l, p, u, out)) return false;
+  case LightKind::Area:
+    if (!sampleArea(l, p, u, out)) return false;
     break;
   case LightKind::Background:
     out.wi = sampleUniformSphere(u);
@@ -767,53 +734,33 @@ bool LightSampler::sampleLight(int k, const Vec3& p, float uChoice, Sample2 u,
   return true;
 }
 
-bool LightSampler::sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const {
-  const SphereShape& s = scene_->geometry->spheres()[l.shape];
-  const Vec3d axis = s.center - Vec3d(p);
-  const double d2 = dot(axis, axis);
-  const double r2 = s.radius * s.radius;
-  Vec3 wi;
-  double pdf, dist;
-  if (d2 <= r2) {
-    wi = sampleUniformSphere(u); // inside: every direction meets the sphere
-    pdf = 1.0 / (4 * kPi);
-    const auto t = intersectSphere(s, Vec3d(p), Vec3d(wi), 0.0, INFINITY);
-    dist = t ? *t : 0.0;
-  } else {
-    // Few dependent divisions and square roots: they are most of this function's time.
-    const double d = std::sqrt(d2), invD = 1.0 / d;
-    const double oneMinusCosMax = oneMinusCosFromSin2(r2 * invD * invD);
-    // The frame and the local direction are unit to float rounding, so wi is too.
-    wi = Frame::fromNormal(Vec3(axis * invD)).toWorld(sampleUniformCone(u, oneMinusCosMax));
-    pdf = uniformConePdf(oneMinusCosMax);
-    // Distance to the near side along the sampled theta (law of cosines), in double: the
-    // same 1 - cos(theta) as sampleUniformCone. Directions at the silhouette get the tangent
-    // distance (the square root is zero up to rounding).
-    const double oneMinusCos = u.u * oneMinusCosMax;
-    const double sin2 = oneMinusCos * (2.0 - oneMinusCos);
-    dist = d * (1.0 - oneMinusCos) - std::sqrt(std::max(0.0, r2 - d2 * sin2));
-  }
-  if (!(dist > 0) || !std::isfinite(pdf)) return false;
-  // The point, projected onto the surface in double precision (error: its float rounding).
-  const Vec3d n = normalize(Vec3d(p) + Vec3d(wi) * dist - s.center);
-  out.wi = wi;
-  out.distance = static_cast<float>(dist);
-  out.p = Vec3(s.center + n * s.radius);
+// A direction by the solid angle the primitive subtends (its sampleSolidAngle).
+bool LightSampler::sampleCone(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const {
+  const std::optional<SolidAngleSample> s =
+      scene_->geometry->visitPrimitive(l.surface, l.shape, [&](const auto& shape) {
+        if constexpr (SamplesSolidAngle<std::decay_t<decltype(shape)>>)
+          return shape.sampleSolidAngle(p, u);
+        else
+          return std::optional<SolidAngleSample>(); // not a Cone light's primitive
+      });
+  if (!s) return false;
+  out.wi = s->wi;
+  out.distance = static_cast<float>(s->distance);
+  out.p = Vec3(s->p);
   out.pError = roundingError(out.p);
-  out.n = Vec3(n);
-  out.pdf = static_cast<float>(pdf);
-  out.kind = ShapeKind::Sphere;
+  out.n = Vec3(s->n);
+  out.pdf = static_cast<float>(s->pdf);
+  out.kind = l.surface;
   out.shape = l.shape;
-  out.prim = 0;
+  out.prim = s->part;
   return true;
 }
 
-// A point uniformly by area, drawn by the primitive (DiskShape and CylinderShape::sampleArea).
-// Density 1 / area, d^2 / (|cos| area) in solid angle.
-bool LightSampler::sampleSurface(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const {
-  const GeometryScene& g = *scene_->geometry;
-  const AreaSample s = l.surface == ShapeKind::Disk ? g.disks()[l.shape].sampleArea(u)
-                                                    : g.cylinders()[l.shape].sampleArea(u);
+// A point uniformly by area, drawn by the primitive (its sampleArea): density 1 / area,
+// d^2 / (|cos| area) in solid angle.
+bool LightSampler::sampleArea(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const {
+  const AreaSample s = scene_->geometry->visitPrimitive(
+      l.surface, l.shape, [&](const auto& shape) { return shape.sampleArea(u); });
   return finishFlatSample(Vec3d(p), s.p, s.n, -1, 1 / l.area, l.shape, s.part, out, l.surface);
 }
 
@@ -988,31 +935,14 @@ double LightSampler::rectanglePdf(const Light& l, const Vec3d& p, const Vec3& n,
 }
 
 int LightSampler::lightOf(const SurfaceHit& hit) const {
-  switch (hit.kind) {
-  case ShapeKind::Sphere:
-    return hit.index < sphereLight_.size() ? sphereLight_[hit.index] : -1;
-  case ShapeKind::Disk:
-    return hit.index < diskLight_.size() ? diskLight_[hit.index] : -1;
-  case ShapeKind::Cylinder:
-    return hit.index < cylinderLight_.size() ? cylinderLight_[hit.index] : -1;
-  case ShapeKind::Triangle:
+  if (hit.kind == ShapeKind::Triangle) {
     if (hit.index >= meshLight_.size()) return -1;
     if (!triangleLight_[hit.index].empty()) return triangleLight_[hit.index][hit.prim];
     return meshLight_[hit.index];
-  case ShapeKind::Plane: // infinite: never an emitter
-    return -1;
   }
-  return -1; // not reached: every kind is a case (-Werror=switch)
-}
-
-float LightSampler::spherePdf(uint32_t sphere, const Vec3& p, const Vec3& wi) const {
-  const SphereShape& s = scene_->geometry->spheres()[sphere];
-  const Vec3d axis = s.center - Vec3d(p);
-  const double d2 = dot(axis, axis), r2 = s.radius * s.radius;
-  if (d2 <= r2) return static_cast<float>(1.0 / (4 * kPi));
-  const double oneMinusCosMax = oneMinusCosFromSin2(r2 / d2);
-  if (dot(axis, Vec3d(wi)) / std::sqrt(d2) < 1.0 - oneMinusCosMax) return 0; // outside the cone
-  return static_cast<float>(uniformConePdf(oneMinusCosMax));
+  // A plane (infinite: never an emitter; its table stays empty) or an analytic primitive.
+  const std::vector<int32_t>& of = primitiveLight_[static_cast<size_t>(hit.kind)];
+  return hit.index < of.size() ? of[hit.index] : -1;
 }
 
 float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& wi, const Vec3& n,
@@ -1021,9 +951,15 @@ float LightSampler::pdf(const Vec3& p, const SurfaceHit& lightHit, const Vec3& w
   if (k < 0) return 0;
   const Light& l = lights_[static_cast<size_t>(k)];
   float pdf = 0;
-  if (l.kind == LightKind::Sphere) {
-    pdf = spherePdf(l.shape, p, wi);
-  } else if (l.kind == LightKind::Surface) { // d^2 / (|cos| area)
+  if (l.kind == LightKind::Cone) {
+    pdf = static_cast<float>(
+        scene_->geometry->visitPrimitive(l.surface, l.shape, [&](const auto& shape) {
+          if constexpr (SamplesSolidAngle<std::decay_t<decltype(shape)>>)
+            return shape.solidAnglePdf(p, wi);
+          else
+            return 0.0; // not a Cone light's primitive
+        }));
+  } else if (l.kind == LightKind::Area) { // d^2 / (|cos| area)
     const Vec3d toLight = Vec3d(lightHit.p) - Vec3d(p);
     const double cosLight = std::abs(dot(Vec3d(lightHit.ng), Vec3d(wi)));
     pdf = static_cast<float>(dot(toLight, toLight) / (cosLight * l.area));

@@ -185,33 +185,32 @@ public:
 private:
   struct Light {
     LightKind kind;
-    ShapeKind surface;        ///< Surface lights: a disk or a cylinder (else unused)
-    uint32_t shape;           ///< sphere, mesh, disk, cylinder or point-light index
+    ShapeKind surface;        ///< Cone and Area lights: the primitive's kind (else unused)
+    uint32_t shape;           ///< primitive (within its kind), mesh or point-light index
     int32_t triangle = -1;    ///< an inline triangle of the mesh, or -1 for the whole mesh
     const Spectrum* emission; ///< radiance, or a point light's intensity
     double area = 0;          ///< mesh lights: total area
     size_t firstCdf = 0;      ///< whole meshes: start of the triangles' area CDF in areaCdf_
     double power = 0;
     double radiance = 0; ///< integral of the emission over the traced range
-    Vec3 center;         ///< bounding sphere (spheres, meshes) or position (points)
+    Vec3 center;         ///< bounding sphere (primitives, meshes) or position (points)
     float radius = 0;
     int32_t tree = -1;      ///< whole meshes of more than kSolidAngleChoice triangles: trees_
     int32_t rectangle = -1; ///< whole meshes forming a rectangle: rectangles_
-    LightCluster bounds;    ///< meshes, triangles, disks, cylinders: box, normals, area
+    LightCluster bounds;    ///< meshes, triangles, Area lights: box, normals, area
   };
   /// Weight of light l at p (shading normal n) for LightSelection::Local (positive wherever
   /// it can shine).
   float localWeight(const Light& l, const Vec3& p, const Vec3& n) const;
   // The constructor's steps, in order: the lights of each source, then what is derived.
-  /// Emitting spheres (sampled through their cone).
-  void addSphereLights();
+  /// Emitting analytic primitives: through the solid angle they subtend where they sample it
+  /// (Cone: spheres), else uniformly by area (Area: disks, cylinders, ...).
+  void addPrimitiveLights(LightKind which);
   /// Emitting meshes: whole (rectangles, meshes with a light tree, small meshes) or, where the
   /// triangles' emission differs, triangle by triangle.
   void addMeshLights();
-  /// Emitting disks and cylinders (sampled uniformly by area).
-  void addSurfaceLights();
-  /// A point of a disk or cylinder light uniformly by area, seen from p.
-  bool sampleSurface(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const;
+  /// A point of an Area light uniformly by area, seen from p.
+  bool sampleArea(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const;
   /// The scene's <light> list (points, spots, environments).
   void addListedLights();
   /// The uniform background.
@@ -231,10 +230,10 @@ private:
   float treeProbability(int k, const Vec3& p, const Vec3& n) const;
   /// LightSelection::Tree's choice: the light, its probability `share`, uc rescaled into it.
   int chooseInTree(const Vec3& p, const Vec3& n, double uc, double& share, double& uRest) const;
-  bool sampleSphere(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const;
+  /// A direction of a Cone light, by the solid angle its primitive subtends from p.
+  bool sampleCone(const Light& l, const Vec3& p, Sample2 u, LightSample& out) const;
   bool sampleMesh(const Light& l, const Vec3& p, const Vec3& n, float uTriangle, Sample2 u,
                   LightSample& out) const;
-  float spherePdf(uint32_t sphere, const Vec3& p, const Vec3& wi) const;
   /// The triangle of mesh light l sampleMesh uses for uTriangle at p and its probability;
   /// `seen` holds a small mesh's triangles seen from p. -1 if none can be chosen.
   int chooseTriangle(const Light& l, const Vec3d& p, const Vec3& n, float uTriangle,
@@ -267,9 +266,9 @@ private:
     RectangleFrame frame;
     Vec3d normal[2];
   };
-  std::vector<RectangleLight> rectangles_;          ///< rectangle lights
-  std::vector<int32_t> sphereLight_;                ///< light number per sphere, or -1
-  std::vector<int32_t> diskLight_, cylinderLight_;  ///< light number per disk / cylinder, or -1
+  std::vector<RectangleLight> rectangles_; ///< rectangle lights
+  /// Light number per analytic primitive (index: ShapeKind, then the primitive), or -1.
+  std::array<std::vector<int32_t>, kShapeKindCount> primitiveLight_;
   std::vector<int32_t> meshLight_;                  ///< light number per mesh (whole meshes), or -1
   std::vector<std::vector<int32_t>> triangleLight_; ///< per mesh with inline triangles
   int32_t background_ = -1;

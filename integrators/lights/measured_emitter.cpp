@@ -1,7 +1,8 @@
 #include "integrators/lights/measured_emitter.h"
 
 #include <cmath>
-#include <sstream>
+#include <optional>
+#include <variant>
 #include <vector>
 
 #include "accel/closed_mesh.h"
@@ -11,12 +12,6 @@
 namespace nx {
 
 namespace {
-
-std::string text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // The triangles of a flat or meshed emitter.
 std::vector<TriangleShape> trianglesOf(const ShapeGeometry& g) {
@@ -44,20 +39,18 @@ double projectedSolidAngle(const TriangleShape& t, const Vec3d& x, const Vec3d& 
 }
 
 double axialIrradiancePerRadiance(const ShapeGeometry& g, double d, const std::string& where) {
-  if (const auto* s = std::get_if<SphereShape>(&g)) {
-    if (!(d > s->radius))
-      throw Error(where + ": expected a measuring distance beyond the sphere's radius " +
-                  text(s->radius) + " (from its centre), found " + text(d));
-    return kPi * s->radius * s->radius / (d * d);
-  }
   if (std::holds_alternative<PlaneShape>(g))
     throw Error(where + ": expected an emitter of finite size for at=\"...\", found a plane");
-  if (const auto* disk = std::get_if<DiskShape>(&g)) // pi sin^2 of its half-angle at d
-    return kPi * disk->radius * disk->radius / (disk->radius * disk->radius + d * d);
-  if (std::holds_alternative<CylinderShape>(g))
-    throw Error(where + ": expected a flat emitter for at=\"...\" (a triangle, a quad, a disk or "
-                        "a planar mesh), found a cylinder (give its total flux with "
-                        "quantity=\"flux\")");
+  // An analytic primitive knows its own axis (or says it has none).
+  const std::optional<double> primitive = std::visit(
+      [&](const auto& shape) -> std::optional<double> {
+        if constexpr (AnalyticPrimitive<std::decay_t<decltype(shape)>>)
+          return shape.axialIrradiancePerRadiance(d, where);
+        else
+          return std::nullopt;
+      },
+      g);
+  if (primitive) return *primitive;
   const std::vector<TriangleShape> tris = trianglesOf(g);
   // The axis: the normal through the area-weighted centroid; every triangle in its plane.
   Vec3d normalSum, centroid;
@@ -88,14 +81,19 @@ double axialIrradiancePerRadiance(const ShapeGeometry& g, double d, const std::s
 }
 
 double fluxPerRadiance(const ShapeGeometry& g, const std::string& where) {
-  if (const auto* s = std::get_if<SphereShape>(&g)) return 4 * kPi * kPi * s->radius * s->radius;
   if (std::holds_alternative<PlaneShape>(g))
     throw Error(where +
                 ": expected an emitter of finite size for quantity=\"flux\", found a plane");
   // Both faces of flat and open shapes emit; a closed shape's inward light never leaves.
-  if (const auto* disk = std::get_if<DiskShape>(&g)) return 2 * kPi * disk->area();
-  if (const auto* c = std::get_if<CylinderShape>(&g))
-    return c->capped ? kPi * c->area() : 2 * kPi * c->sideArea();
+  const std::optional<double> primitive = std::visit(
+      [&](const auto& shape) -> std::optional<double> {
+        if constexpr (AnalyticPrimitive<std::decay_t<decltype(shape)>>)
+          return shape.fluxPerRadiance();
+        else
+          return std::nullopt;
+      },
+      g);
+  if (primitive) return *primitive;
   double area = 0;
   for (const TriangleShape& t : trianglesOf(g)) area += length(cross(t.b - t.a, t.c - t.a)) / 2;
   const auto* m = std::get_if<TriangleMesh>(&g);

@@ -184,7 +184,7 @@ TEST(GeometryScene, TinySphereAndFarLight) {
 TEST(GeometryScene, HugeSphereFloorMatchesPlaneFloor) {
   EmbreeDevice device;
   GeometryScene sphereFloor(device, {{Vec3d(0, -1e5, 0), 1e5}}, {}, {});
-  GeometryScene planeFloor(device, {}, {{Vec3d(0, 1, 0), 0}}, {});
+  GeometryScene planeFloor(device, std::vector<SphereShape>{}, {{Vec3d(0, 1, 0), 0}}, {});
   const PinholeCamera cam(Vec3d(0, 2, -5), Vec3d(0, 0, 5), Vec3d(0, 1, 0), 60, 64, 48);
   int compared = 0;
   for (int y = 24; y < 48; ++y)
@@ -206,7 +206,7 @@ TEST(GeometryScene, HugeSphereFloorMatchesPlaneFloor) {
 // horizon sees the plane, however far away the hit is.
 TEST(GeometryScene, PlaneReachesTheHorizon) {
   EmbreeDevice device;
-  GeometryScene g(device, {}, {{Vec3d(0, 1, 0), 0}}, {});
+  GeometryScene g(device, std::vector<SphereShape>{}, {{Vec3d(0, 1, 0), 0}}, {});
   const int h = 1001;
   const PinholeCamera cam(Vec3d(0, 1e-3, 0), Vec3d(0, 1e-3, 1), Vec3d(0, 1, 0), 60, h, h);
   for (int y = 0; y < h; ++y) {
@@ -227,7 +227,7 @@ TEST(GeometryScene, PlaneReachesTheHorizon) {
 
 TEST(GeometryScene, EmptyScene) {
   EmbreeDevice device;
-  GeometryScene g(device, {}, {}, {});
+  GeometryScene g(device, std::vector<SphereShape>{}, {}, {});
   Ray r;
   r.d = Vec3(0, 0, 1);
   SurfaceHit h;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs nxrender on one malformed scene and checks: exit status 1, the expected message (a
 # fixed string, with {file} replaced by the scene's path, {dir} by the corpus directory and
-# {material_kinds} by the registry's list of material kinds as messages write it), nothing
+# {material_kinds} by the registry's list of material kinds as messages write it, {shape_tags}
+# by the shape kinds' elements likewise), nothing
 # written, and an answer within 10 seconds.
 #
 #   run_case.sh NXRENDER CORPUS_DIR FILE.scn NXDOCS
@@ -16,6 +17,11 @@ if [[ "$expected" == *"{material_kinds}"* ]]; then
   kinds="$("$nxdocs" --material-kind-list)"
   [ -n "$kinds" ] || { echo "nxdocs --material-kind-list printed nothing"; exit 1; }
   expected="${expected//\{material_kinds\}/$kinds}"
+fi
+if [[ "$expected" == *"{shape_tags}"* ]]; then
+  tags="$("$nxdocs" --shape-tag-list)"
+  [ -n "$tags" ] || { echo "nxdocs --shape-tag-list printed nothing"; exit 1; }
+  expected="${expected//\{shape_tags\}/$tags}"
 fi
 
 work="$(mktemp -d)"

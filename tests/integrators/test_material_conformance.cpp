@@ -54,7 +54,9 @@ Vec3 direction(float cosTheta, float phi) {
 struct KindCase {
   RenderScene scene;
   SampledSpectrum rho;
-  const Material& material() const { return scene.materials[scene.spheres[0].material]; }
+  const Material& material() const {
+    return scene.materials[scene.shapes(ShapeKind::Sphere)[0].material];
+  }
 };
 
 KindCase kindCase(const std::string& body, const SampledWavelengths& lambda) {

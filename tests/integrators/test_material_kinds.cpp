@@ -131,7 +131,8 @@ TEST(MaterialKinds, MaterialsAreSharedExactlyWhenTheirParametersAreEqual) {
   auto materialsOf = [&](const MaterialKindSpec& kind, const std::string& a, const std::string& b) {
     const RenderScene s = resolveRenderScene(parseScene(
         sceneText(kSettings, kCamera, sphere(kind, a) + sphere(kind, b, "3,0,0")), "t.scn"));
-    return std::pair{s.spheres[0].material, s.spheres[1].material};
+    return std::pair{s.shapes(ShapeKind::Sphere)[0].material,
+                     s.shapes(ShapeKind::Sphere)[1].material};
   };
   {
     const auto [ma, mb] =

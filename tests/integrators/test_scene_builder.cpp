@@ -64,11 +64,11 @@ TEST(SceneBuilder, ThesisScene) {
   EXPECT_LT(ReradiationMatrix::centre(peak), 460);
   EXPECT_TRUE(s.hasFluorescence);
   ASSERT_EQ(s.emission.size(), 1u);
-  EXPECT_EQ(s.spheres[3].emission, 0);
+  EXPECT_EQ(s.shapes(ShapeKind::Sphere)[3].emission, 0);
   EXPECT_NEAR(relativeLuminance(s.emission[0]), 1.0,
               1e-6);                                      // bbd65 is as bright as 1 (a float table)
   EXPECT_DOUBLE_EQ(s.materials[5].reflectance(550), 0.0); // an emitter without reflectance is black
-  EXPECT_EQ(s.planes[0].emission, -1);
+  EXPECT_EQ(s.shapes(ShapeKind::Plane)[0].emission, -1);
 }
 
 TEST(SceneBuilder, ExtensionsResolve) {
@@ -394,15 +394,16 @@ TEST(SceneBuilder, TablesEndingInsideTheTracedRangeWarnUnlessTheyChoose) {
       << infrared[1];
   EXPECT_TRUE(extrapolationWarnings(s, 400, 700).empty());
   // Values beyond the table: zero, or held (the second sphere), or A's formula beyond 830 nm.
-  ASSERT_GE(s.spheres.size(), 5u);
+  ASSERT_GE(s.shapes(ShapeKind::Sphere).size(), 5u);
   const auto reflectanceAt = [&](int sphereIndex, double nm) {
-    return s.materials[s.spheres[sphereIndex].material].reflectance(nm);
+    return s.materials[s.shapes(ShapeKind::Sphere)[sphereIndex].material].reflectance(nm);
   };
   EXPECT_DOUBLE_EQ(reflectanceAt(0, 900), 0.0);
   EXPECT_DOUBLE_EQ(reflectanceAt(1, 900), 0.6);
   EXPECT_DOUBLE_EQ(reflectanceAt(1, 350), 0.2);
   EXPECT_DOUBLE_EQ(reflectanceAt(2, 900), 0.0);
-  EXPECT_GT(s.emission[s.spheres[4].emission](1000), s.emission[s.spheres[4].emission](830));
+  EXPECT_GT(s.emission[s.shapes(ShapeKind::Sphere)[4].emission](1000),
+            s.emission[s.shapes(ShapeKind::Sphere)[4].emission](830));
   EXPECT_EQ(errorOf(scene(sphere + "<material>matte</material><emission extrapolate=\"last\">D65"
                                    "</emission></sphere>\n")),
             "t.scn:4: expected extrapolate=\"zero\" or extrapolate=\"hold\", found 'last'");

@@ -97,13 +97,11 @@ TEST(ShapeKinds, EveryKindBuildsFromItsExamplesIntoOnePrimitive) {
       for (const ShapeParameter* p : exampleParameters(kind, alternative))
         EXPECT_TRUE(d.objects[0].geometry.has(p->spec.name));
       const RenderScene s = buildRenderScene(d);
-      EXPECT_EQ(s.spheres.size() + s.planes.size() + s.meshes.size() + s.disks.size() +
-                    s.cylinders.size(),
-                1u);
-      EXPECT_EQ(s.geometry->spheres().size() + s.geometry->planes().size() +
-                    s.geometry->meshes().size() + s.geometry->disks().size() +
-                    s.geometry->cylinders().size(),
-                1u);
+      size_t appearances = s.meshes.size(), shapes = 0;
+      for (const auto& a : s.shapeAppearances) appearances += a.size();
+      forEachAnalyticKind([&]<class P>() { shapes += s.geometry->primitives<P>().size(); });
+      EXPECT_EQ(appearances, 1u);
+      EXPECT_EQ(shapes + s.geometry->planes().size() + s.geometry->meshes().size(), 1u);
     }
   }
 }
@@ -147,10 +145,10 @@ void forEachLine(const GeometryScene& g, uint32_t lines, Line&& line) {
 // The area of every bounded primitive of a geometry (planes are infinite: not counted).
 double boundedArea(const GeometryScene& g) {
   double area = 0;
-  for (const SphereShape& s : g.spheres()) area += s.area();
+  forEachAnalyticKind([&]<class P>() {
+    for (const P& p : g.primitives<P>()) area += p.area();
+  });
   for (const TriangleMesh& m : g.meshes()) area += m.area();
-  for (const DiskShape& d : g.disks()) area += d.area();
-  for (const CylinderShape& c : g.cylinders()) area += c.area();
   return area;
 }
 
@@ -189,7 +187,7 @@ std::array<double, 9> moments(const Vec3d& p) {
   return {p.x, p.y, p.z, p.x * p.x, p.y * p.y, p.z * p.z, p.x * p.y, p.y * p.z, p.z * p.x};
 }
 
-// A primitive's area sampling (`sampleArea`, what emitting disks and cylinders are sampled by)
+// A primitive's area sampling (`sampleArea`, what emitting analytic primitives are sampled by)
 // draws points uniformly by area: the crossing points of isotropic random lines are uniform by
 // area too (Cauchy-Crofton), so the two samples' means of x, y, z and their products agree
 // (two-sample z-tests, 4.5 standard errors); every drawn point lies on the surface (a ray back
@@ -236,12 +234,11 @@ TEST(ShapeKinds, EveryAreaSampledPrimitiveDrawsPointsUniformlyByArea) {
         }
       }
     };
-    check(g.spheres());
     check(g.meshes());
-    check(g.disks());
-    check(g.cylinders());
+    forEachAnalyticKind([&]<class P>() { check(g.primitives<P>()); });
   }
-  EXPECT_GE(checked, 2) << "disks and cylinders sample by area";
+  EXPECT_GE(checked, static_cast<int>(std::tuple_size_v<AnalyticShapes>))
+      << "every analytic primitive samples by area";
 }
 
 // Normals of any non-zero length, as the declarations say: 1e-300 (whose square underflows to
@@ -258,9 +255,9 @@ TEST(ShapeKinds, NormalsOfAnyNonZeroLengthAreTaken) {
             "</normal><distance>0</distance><material>matte</material><reflectance>0.5"
             "</reflectance></plane>"),
         "t.scn"));
-    ASSERT_EQ(s.geometry->disks().size(), 1u);
+    ASSERT_EQ(s.geometry->primitives<DiskShape>().size(), 1u);
     ASSERT_EQ(s.geometry->planes().size(), 1u);
-    EXPECT_NEAR(length(s.geometry->disks()[0].normal), 1.0, 1e-15);
+    EXPECT_NEAR(length(s.geometry->primitives<DiskShape>()[0].normal), 1.0, 1e-15);
     EXPECT_NEAR(length(s.geometry->planes()[0].normal), 1.0, 1e-15);
   }
   EXPECT_NE(test::errorMessage([] {

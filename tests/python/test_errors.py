@@ -100,7 +100,7 @@ def test_bad_edits(scenes):
         f.quantum_yield = "high"
     with pytest.raises(ValueError, match=r"^objects\[0\]\.roughness: "):
         scene.objects[0].material.roughness = 2
-    with pytest.raises(ValueError, match=r"^objects\[0\]\.radius: a plane takes no radius \(a sphere, a disk or a cylinder does\)"):
+    with pytest.raises(ValueError, match=r"^objects\[0\]\.radius: a plane takes no radius \(a sphere(, a \w+)* or a \w+ does\)"):
         scene.objects[0].radius = 1
     with pytest.raises(ValueError, match=r"^objects\[2\]\.radius: expected a radius in \(0.0"):
         scene.objects[2].radius = 0
