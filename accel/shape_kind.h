@@ -14,6 +14,7 @@ namespace nx {
   X(Sphere)                                                                                        \
   X(Disk)                                                                                          \
   X(Cylinder)                                                                                      \
+  X(Capsule)                                                                                       \
   /* (one line per primitive, each ending in a backslash) */
 
 #define NX_SHAPE_KIND_ENUMERATOR(Name) Name,

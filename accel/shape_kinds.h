@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "accel/kinds/box.h"
+#include "accel/kinds/capsule.h"
 #include "accel/kinds/cylinder.h"
 #include "accel/kinds/disk.h"
 #include "accel/kinds/mesh.h"
@@ -31,8 +32,9 @@
 namespace nx {
 
 /// The registered shape kinds, in the order the reference docs list them.
-using ShapeKindList = std::tuple<SphereShapeKind, PlaneShapeKind, TriangleShapeKind, QuadShapeKind,
-                                 MeshShapeKind, BoxShapeKind, DiskShapeKind, CylinderShapeKind>;
+using ShapeKindList =
+    std::tuple<SphereShapeKind, PlaneShapeKind, TriangleShapeKind, QuadShapeKind, MeshShapeKind,
+               BoxShapeKind, DiskShapeKind, CylinderShapeKind, CapsuleShapeKind>;
 
 /// A list of primitive types.
 template <class... P>
