@@ -124,9 +124,17 @@ struct CylinderShape {
   /// Its outline is not sampled yet (shape derivatives refuse or warn).
   static constexpr bool kOutlineSampled = false;
   static constexpr SelfLighting kSelfLighting = SelfLighting::Possible;
-  /// Both faces of an open tube emit (2 pi times the side's area); a capped one's inward light
-  /// never leaves (pi times its area).
-  double fluxPerRadiance() const { return capped ? kPi * area() : 2 * kPi * sideArea(); }
+  /// The flux that leaves it per unit radiance: a capped one's outside, pi times its area (its
+  /// inward light never leaves); an open tube's outside, pi A_side, and what leaves its inside
+  /// through its two open ends: by reciprocity, pi (pi r^2) (1 - F) through each, F the view
+  /// factor between the two end disks (coaxial, radius r, h apart: F = (S - sqrt(S^2 - 4)) / 2,
+  /// S = 2 + h^2 / r^2; Siegel & Howell, Thermal Radiation Heat Transfer, table of view factors).
+  double fluxPerRadiance() const {
+    if (capped) return kPi * area();
+    const double s = 2 + height() * height() / (radius * radius);
+    const double endToEnd = (s - std::sqrt(s * s - 4)) / 2;
+    return kPi * sideArea() + 2 * kPi * kPi * radius * radius * (1 - endToEnd);
+  }
   /// Not flat: no axis to measure on.
   double axialIrradiancePerRadiance(double, const std::string& where) const {
     throw Error(where + ": expected a flat emitter for at=\"...\" (a triangle, a quad, a disk "

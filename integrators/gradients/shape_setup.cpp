@@ -315,12 +315,15 @@ std::vector<std::string> shapeCoverageWarnings(const RenderScene& scene,
   bool shapeMoves = shapes.movesMeshes();
   for (const auto& s : shapes.spheres) shapeMoves = shapeMoves || !s.empty();
   if (shapeMoves) {
-    bool staticOutline = !unsampledOutlineKinds(*scene.geometry).empty();
-    for (const MeshMotion& m : shapes.meshes) staticOutline = staticOutline || !m.moves();
-    if (staticOutline)
-      out.push_back("warning: shape derivatives: the outlines of meshes, quads, triangles, disks "
-                    "and cylinders that do not move, seen from a point on a shape that moves, "
-                    "are not sampled: their share of the derivative is missed" +
+    const std::string unsampled = unsampledOutlineKinds(*scene.geometry);
+    bool staticMesh = false;
+    for (const MeshMotion& m : shapes.meshes) staticMesh = staticMesh || !m.moves();
+    if (staticMesh || !unsampled.empty())
+      out.push_back("warning: shape derivatives: the outlines of " +
+                    std::string(staticMesh ? "meshes, quads and triangles that do not move" : "") +
+                    (staticMesh && !unsampled.empty() ? ", and of " : "") + unsampled +
+                    ", seen from a point on a shape that moves, are not sampled: their share of "
+                    "the derivative is missed" +
                     where);
   }
   return out;

@@ -34,11 +34,11 @@ struct LightSample {
   SampledSpectrum radiance; ///< emitted radiance (area lights) or I / d^2 (point lights)
   float pdf = 0; ///< solid-angle density including the light choice; for point lights the choice
                  ///< probability
-  bool delta = false;                 ///< a point light: cannot be hit by BSDF sampling
-  bool infinite = false;              ///< the background: the shadow ray has no end
-  ShapeKind kind = ShapeKind::Sphere; ///< the shape the point lies on (area lights)
-  uint32_t shape = 0, prim = 0;       ///< its index within its kind, and triangle
-  int32_t light = -1;                 ///< the light's number in its LightSampler
+  bool delta = false;                ///< a point light: cannot be hit by BSDF sampling
+  bool infinite = false;             ///< the background: the shadow ray has no end
+  ShapeKind kind = ShapeKind::Plane; ///< the shape the point lies on (shape lights only)
+  uint32_t shape = 0, prim = 0;      ///< its index within its kind, and triangle
+  int32_t light = -1;                ///< the light's number in its LightSampler
 };
 
 /// Shadow rays end this fraction short of the light's offset point (pbrt-v4's ShadowEpsilon):

@@ -265,7 +265,7 @@ void LightSampler::addListedLights() {
           if constexpr (Kind::kInfinite)
             environments_.push_back(static_cast<int32_t>(lights_.size()));
           lights_.push_back({Kind::kInfinite ? LightKind::Environment : LightKind::Point,
-                             ShapeKind::Sphere,
+                             ShapeKind::Plane, // (unused: not a shape)
                              static_cast<uint32_t>(i),
                              -1,
                              nullptr,
@@ -289,7 +289,7 @@ void LightSampler::addBackground() {
     background_ = static_cast<int32_t>(lights_.size());
     const double le = tracedIntegral(*scene.background);
     lights_.push_back({LightKind::Background,
-                       ShapeKind::Sphere,
+                       ShapeKind::Plane, // (unused: not a shape)
                        0,
                        -1,
                        &*scene.background,

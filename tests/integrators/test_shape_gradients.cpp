@@ -795,6 +795,15 @@ TEST(ShapeGradients, WarnsOfWhatTheDerivativesMiss) {
   const auto still = warnings(mesh, "objects[1].center");
   ASSERT_EQ(still.size(), 1u);
   EXPECT_NE(still[0].find("that do not move"), std::string::npos) << still[0];
+  // a primitive whose outline is not sampled (a capsule) is named
+  std::string tube = covered;
+  tube.insert(tube.find("</scene>"), "<capsule><p0>1,0.3,0</p0><p1>1,0.9,0</p1><radius>0.2"
+                                     "</radius>" +
+                                         kMatte + "</capsule>");
+  const auto unsampled = warnings(tube, "objects[1].center");
+  ASSERT_EQ(unsampled.size(), 1u);
+  EXPECT_NE(unsampled[0].find("the outlines of capsules, seen from"), std::string::npos)
+      << unsampled[0];
   // appearance parameters alone: nothing moves, nothing to warn of
   EXPECT_TRUE(warnings(mesh, "objects[0].reflectance").empty());
 }
