@@ -5,6 +5,7 @@
 // (accel/kinds/) that satisfies AnalyticPrimitive; the list NX_ANALYTIC_PRIMITIVES
 // (accel/shape_kind.h) registers it, and everything else is generated from that list.
 
+#include <array>
 #include <cmath>
 #include <concepts>
 #include <optional>
@@ -62,6 +63,101 @@ inline float turnFraction(double y, double x) {
   return static_cast<float>((phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi));
 }
 
+/// The shortest rotation taking unit vector a to unit vector b, applied to v (Rodrigues'
+/// formula with k = a x b: v (a . b) + k x v + k (k . v) / (1 + a . b); a != -b).
+inline Vec3d rotateBetween(const Vec3d& a, const Vec3d& b, const Vec3d& v) {
+  const Vec3d k = cross(a, b);
+  const double c = dot(a, b);
+  return v * c + cross(k, v) + k * (dot(k, v) / (1 + c));
+}
+
+/// A material point of a primitive as a moved copy of the primitive has it: its position and
+/// unit normal. The gradient code differences these in double to get how a parameter moves
+/// the surface (docs/inverse.md, "Shape and camera").
+struct CarriedPoint {
+  Vec3d p, n;
+};
+
+/// A curve on a primitive across which what a point sees of it can jump: a silhouette (where
+/// the lines from the point touch the surface) or an edge (a rim). A circle (centre c, radius,
+/// in the plane of the unit vectors u and v) or a segment a -> b, over s in [0, 1). Where
+/// keepAxis is not zero only its points x with (x - keepFrom) . keepAxis >= 0 belong to it (a
+/// capsule's end silhouettes, cut to their hemisphere). The boundary terms of shape
+/// derivatives sample it (docs/inverse.md, "Shape and camera").
+struct OutlineCurve {
+  bool segment = false;
+  Vec3d c, u, v;     ///< a circle's centre and plane
+  double radius = 0; ///< a circle's radius
+  Vec3d a, b;        ///< a segment's ends
+  Vec3d keepFrom, keepAxis;
+  uint32_t part = 0; ///< the part of the primitive its points are on
+  double size = 0;   ///< the primitive's scale (a ray grazing it is looked at from 1% of it on)
+  /// Its point at s.
+  Vec3d at(double s) const {
+    if (segment) return a + (b - a) * s;
+    const double t = 2 * kPi * s;
+    return c + (u * std::cos(t) + v * std::sin(t)) * radius;
+  }
+  /// d at / d s.
+  Vec3d tangent(double s) const {
+    if (segment) return b - a;
+    const double t = 2 * kPi * s;
+    return (u * -std::sin(t) + v * std::cos(t)) * (2 * kPi * radius);
+  }
+  /// True when x (a point of the curve) belongs to the outline.
+  bool keeps(const Vec3d& x) const { return dot(x - keepFrom, keepAxis) >= 0; }
+  /// The circle around c of `radius` perpendicular to unit `axis`.
+  static OutlineCurve circle(const Vec3d& c, const Vec3d& axis, double radius, uint32_t part,
+                             double size) {
+    const AxisFrame f = AxisFrame::of(axis);
+    OutlineCurve o;
+    o.c = c, o.u = f.s, o.v = f.t, o.radius = radius, o.part = part, o.size = size;
+    return o;
+  }
+  /// The segment a -> b.
+  static OutlineCurve line(const Vec3d& a, const Vec3d& b, uint32_t part, double size) {
+    OutlineCurve o;
+    o.segment = true, o.a = a, o.b = b, o.part = part, o.size = size;
+    return o;
+  }
+};
+
+/// The outline curves of a primitive seen from a point (at most four: a cylinder's two
+/// silhouette lines and two rims).
+struct OutlineCurves {
+  std::array<OutlineCurve, 4> curve;
+  int count = 0;
+  /// Appends c.
+  void add(const OutlineCurve& c) { curve[static_cast<size_t>(count++)] = c; }
+};
+
+/// The silhouette of the sphere (c, r) seen from o: the circle where the lines from o touch
+/// it; false when o is inside it or on it.
+inline bool sphereSilhouette(const Vec3d& c, double r, const Vec3d& o, OutlineCurve& out,
+                             uint32_t part = 0) {
+  const Vec3d a = c - o;
+  const double d2 = dot(a, a), r2 = r * r;
+  if (!(d2 > r2 * (1 + 1e-9))) return false;
+  const double k = 1 - r2 / d2;
+  out = OutlineCurve::circle(o + a * k, normalize(a), r * std::sqrt(k), part, r);
+  return true;
+}
+
+/// The two lines where the lines from o touch the tube of radius r around the segment
+/// p0 -> p1 (unit axis a), added to `out`; none when o is within r of the axis.
+inline void tubeSilhouette(const Vec3d& p0, const Vec3d& p1, const Vec3d& a, double r,
+                           const Vec3d& o, uint32_t part, OutlineCurves& out) {
+  const Vec3d w = o - p0, across = w - a * dot(w, a);
+  const double d = length(across);
+  if (!(d > r * (1 + 1e-9))) return;
+  const Vec3d e = across / d, f = cross(a, e);
+  const double cosB = r / d, sinB = std::sqrt(std::max(0.0, 1 - cosB * cosB));
+  for (const double side : {1.0, -1.0}) {
+    const Vec3d radial = (e * cosB + f * (side * sinB)) * r;
+    out.add(OutlineCurve::line(p0 + radial, p1 + radial, part, r));
+  }
+}
+
 /// Whether the light a primitive sends can fall on another point of the same primitive, for
 /// next-event estimation: never (flat), only from its inside (closed and convex), or possibly
 /// anywhere (open or not convex: the shadow ray tells).
@@ -83,7 +179,8 @@ concept SamplesSolidAngle = requires(const P& s, const Vec3& p, Sample2 u) {
 /// error where it is registered.
 template <class P>
 concept AnalyticPrimitive = requires(const P& p, const Vec3d& v, double x, uint32_t part,
-                                     SurfaceHit& hit, Sample2 u, const std::string& where) {
+                                     SurfaceHit& hit, Sample2 u, const std::string& where,
+                                     OutlineCurves& curves) {
   /// Its axis-aligned bounds.
   { p.bounds() } -> std::same_as<BoundingBox>;
   /// The nearest hit of o + t d with t in (tMin, tMax) (d need not be unit length).
@@ -103,9 +200,12 @@ concept AnalyticPrimitive = requires(const P& p, const Vec3d& v, double x, uint3
   { p.facing() } -> std::same_as<std::optional<Vec3d>>;
   /// Whether its light can fall on itself (next-event estimation skips what cannot).
   { P::kSelfLighting } -> std::convertible_to<SelfLighting>;
-  /// Whether the boundary terms of shape derivatives sample its outline (silhouette and edges)
-  /// as seen from a point; where they do not, derivatives refuse a moving camera and warn.
-  { P::kOutlineSampled } -> std::convertible_to<bool>;
+  /// Its outline seen from a point (silhouettes and rims) into `curves`, for the boundary
+  /// terms of shape derivatives.
+  { p.outlines(v, curves) } -> std::same_as<void>;
+  /// Where the material point at a point of its `part` is on a moved copy of it (`p` itself
+  /// here), and its normal there: how its parameters move its surface, for shape derivatives.
+  { p.carry(p, v, part) } -> std::same_as<CarriedPoint>;
   /// Flux per unit radiance when it emits uniformly: pi times the area whose light leaves it
   /// (both faces of open and flat primitives, the outside of closed ones).
   { p.fluxPerRadiance() } -> std::same_as<double>;

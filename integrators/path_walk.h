@@ -11,7 +11,6 @@
 #include "integrators/gradients/gradient_context.h"
 #include "integrators/gradients/mesh_outlines.h"
 #include "integrators/gradients/path_gradients.h"
-#include "integrators/gradients/sphere_silhouette.h"
 #include "integrators/integrator.h"
 #include "integrators/lights/direct_lighting.h"
 #include "integrators/materials/bsdf.h"
@@ -318,6 +317,11 @@ private:
   // on the silhouettes of the spheres that move relative to it and of the moving meshes.
   [[gnu::noinline]] void directionBoundary(const SampledWavelengths& current,
                                            const SurfaceVertex& v);
+  // The analytic primitives' part of directionBoundary: one point of primitive k's outline
+  // seen from the vertex (a curve chosen uniformly, a point along it), where it or the vertex
+  // moves.
+  void primitiveDirectionBoundary(const SampledWavelengths& lit, const SurfaceVertex& v,
+                                  ShapeKind kind, uint32_t k, SelfLighting selfLighting);
   // The meshes' part of directionBoundary: a silhouette edge seen from the vertex, of each
   // moving mesh (its moving edges, the slots moving them and the vertex's other slots), and
   // as the camera moves the vertex, of every mesh (all its edges, the camera's slots).
@@ -776,54 +780,66 @@ void PathWalk<kFluorescence, kMedia, kWhite, Sink>::directionBoundary(
     if (!ctx_.gradients->shapes || !ctx_.gradients->boundary || !tape.boundaryRng ||
         !v.bsdf.hasNonSpecular())
       return;
-    const std::vector<VertexMotion>& motion = tape.motion.vertex;
-    const auto& moving = tangents_->shapes.spheres;
-    const auto& spheres = scene_.geometry->spheres();
-    const SurfaceHit& hit = v.hit;
-    const Vec3d x(hit.p);
     // The incoming light the lobe re-radiates is at the excitation wavelengths.
     const SampledWavelengths& lit = v.fluorescent ? v.shift.excited : current;
-    std::vector<std::pair<uint32_t, double>>& rates = tape.motion.rates;
-    for (uint32_t k = 0; k < spheres.size(); ++k) {
-      // Outlines move where the sphere moves or the vertex does; a sphere never hides itself.
-      if ((moving[k].empty() && motion.empty()) ||
-          (hit.kind == ShapeKind::Sphere && hit.index == k))
-        continue;
-      const SphereShape& sphere = spheres[k];
-      SphereSilhouette sil;
-      if (!sphereSilhouette(sphere, x, sil)) continue;
-      PixelSampleStream& brng = *tape.boundaryRng;
-      const double alpha = 2 * kPi * brng.next1D();
-      const Vec3d m = sil.at(alpha), toM = m - x;
-      const double dist = length(toM);
-      const Vec3d wd = toM / dist;
-      const Vec3 wi(wd);
-      const SampledSpectrum f = scattered(v, wi);
-      if (f.isBlack()) continue;
-      // phi(omega) = (distance of the ray from the centre) - r: |grad phi| = (c - x) . omega;
-      // d phi / d c = w, d phi / d r = -1, d phi / d x = -w (w = (c - m) / r).
-      const Vec3d w = (sphere.center - m) / sphere.radius;
-      rates.clear();
-      for (const SphereMotion& mo : moving[k])
-        rates.push_back({mo.slot, dot(w, mo.dCenter) - mo.dRadius});
-      for (const VertexMotion& vm : motion) addRate(rates, vm.slot, -dot(w, Vec3d(vm.dp)));
-      const double grad = dot(sphere.center - x, wd);
-      const Vec3d dm = sil.tangent(alpha);
-      const double speed = length(dm - wd * dot(wd, dm)) / dist;
-      if (!(grad > 0) || !(speed > 0)) continue;
-      // L just inside and just outside the silhouette, with the same random numbers.
-      const Vec3d targets[2] = {sphere.center + (m - sphere.center) * (1 - 1e-4),
-                                m + (m - sil.q) * 1e-4};
-      SampledSpectrum L[2];
-      radianceEitherSide(v, targets, lit, L);
-      // alpha uniform: the outline's length per sample 2 pi speed; v_n = -(d phi) / |grad phi|;
-      // d phi = -(a . omega)(w . d omega) over directions (a = c - x)
-      const double scale = 2 * kPi * speed / grad;
-      heldEmitterTerms(v, targets, lit, ShapeKind::Sphere, k, w * -grad, beta_ * f, scale,
-                       VertexSlots::All, L);
-      boundaryTerms(beta_ * f * (L[0] + L[1] * -1.0f), scale);
-    }
+    forEachAnalyticKind([&]<class P>() {
+      for (uint32_t k = 0; k < scene_.geometry->primitives<P>().size(); ++k)
+        primitiveDirectionBoundary(lit, v, kShapeKindOf<P>, k, P::kSelfLighting);
+    });
     meshDirectionBoundary(lit, v);
+  }
+}
+
+template <bool kFluorescence, bool kMedia, bool kWhite, class Sink>
+void PathWalk<kFluorescence, kMedia, kWhite, Sink>::primitiveDirectionBoundary(
+    [[maybe_unused]] const SampledWavelengths& lit, [[maybe_unused]] const SurfaceVertex& v,
+    [[maybe_unused]] ShapeKind kind, [[maybe_unused]] uint32_t k,
+    [[maybe_unused]] SelfLighting selfLighting) {
+  if constexpr (kGradients) {
+    GradientTape& tape = *sink_.tape;
+    const std::vector<VertexMotion>& motion = tape.motion.vertex;
+    const ShapeTangents& shapes = tangents_->shapes;
+    const SurfaceHit& hit = v.hit;
+    const Vec3d x(hit.p);
+    // Outlines move where the primitive moves or the vertex does; a convex or flat primitive
+    // never hides itself.
+    if (!primitiveMoves(shapes, kind, k) && motion.empty()) return;
+    if (hit.kind == kind && hit.index == k && selfLighting != SelfLighting::Possible) return;
+    OutlineCurves curves;
+    primitiveOutlines(*scene_.geometry, kind, k, x, curves);
+    if (curves.count == 0) return;
+    // A curve chosen uniformly, a point uniformly along it.
+    PixelSampleStream& brng = *tape.boundaryRng;
+    const Sample2 u = brng.next2D();
+    const OutlineCurve& curve = curves.curve[static_cast<size_t>(
+        std::min(curves.count - 1, static_cast<int>(static_cast<double>(u.u) * curves.count)))];
+    const Vec3d m = curve.at(u.v), dm = curve.tangent(u.v), toM = m - x;
+    if (!curve.keeps(m)) return;
+    const Vec3d ne = outlineNormal(x, m, dm);
+    const double dist = length(toM);
+    const Vec3d wd = toM / dist;
+    const SampledSpectrum f = scattered(v, Vec3(wd));
+    if (f.isBlack()) return;
+    // phi(omega) = ne . (x + dist omega - m): |grad phi| over directions = dist; d phi / d x =
+    // ne; d phi / d slot = -ne . (the velocity of the primitive's material point at m).
+    std::vector<std::pair<uint32_t, double>>& rates = tape.motion.rates;
+    rates.clear();
+    forEachPrimitiveVelocity(
+        shapes, *scene_.geometry, kind, k, m, curve.part,
+        [&](uint32_t slot, const Vec3d& vel) { addRate(rates, slot, -dot(ne, vel)); });
+    for (const VertexMotion& vm : motion) addRate(rates, vm.slot, dot(ne, Vec3d(vm.dp)));
+    const double speed = length(dm - wd * dot(wd, dm)) / dist;
+    if (!(dist > 0) || !(speed > 0) || !(length(ne) > 0)) return;
+    // L either side of the outline (phi < 0 on side 0), with the same random numbers.
+    const Vec3d side = ne * (1e-4 * dist);
+    const Vec3d targets[2] = {m - side, m + side};
+    SampledSpectrum L[2];
+    radianceEitherSide(v, targets, lit, L);
+    // The outline's length per sample: count times the chosen curve's speed; v_n = -d phi /
+    // |grad phi|.
+    const double scale = curves.count * speed / dist;
+    heldEmitterTerms(v, targets, lit, kind, k, ne * dist, beta_ * f, scale, VertexSlots::All, L);
+    boundaryTerms(beta_ * f * (L[0] + L[1] * -1.0f), scale);
   }
 }
 

@@ -179,8 +179,34 @@ struct CapsuleShape {
 
   /// Curved: no one facing direction.
   std::optional<Vec3d> facing() const { return std::nullopt; }
-  /// Its outline is not sampled yet (shape derivatives refuse or warn).
-  static constexpr bool kOutlineSampled = false;
+  /// Its silhouette seen from o: the tube's two lines (o off the tube) and each end
+  /// sphere's silhouette where it lies beyond its end.
+  void outlines(const Vec3d& o, OutlineCurves& out) const {
+    const Vec3d a = axis();
+    tubeSilhouette(p0, p1, a, radius, o, uint32_t(CapsulePart::Side), out);
+    for (const CapsulePart part : {CapsulePart::Base, CapsulePart::Top}) {
+      const bool base = part == CapsulePart::Base;
+      OutlineCurve c;
+      if (!sphereSilhouette(base ? p0 : p1, radius, o, c, uint32_t(part))) continue;
+      c.keepFrom = base ? p0 : p1;
+      c.keepAxis = base ? a * -1.0 : a;
+      out.add(c);
+    }
+  }
+  /// The point at the same angle (turned with the axis by the shortest rotation) and fraction
+  /// of the length on `moved`'s tube, or in the same turned direction from its end's centre.
+  CarriedPoint carry(const CapsuleShape& moved, const Vec3d& x, uint32_t part) const {
+    const Vec3d a = axis(), ma = moved.axis();
+    if (static_cast<CapsulePart>(part) == CapsulePart::Side) {
+      const Vec3d q = x - p0;
+      const double z = dot(q, a);
+      const Vec3d n = normalize(rotateBetween(a, ma, q - a * z));
+      return {moved.p0 + ma * (z / height() * moved.height()) + n * moved.radius, n};
+    }
+    const bool base = static_cast<CapsulePart>(part) == CapsulePart::Base;
+    const Vec3d n = rotateBetween(a, ma, normalize(x - (base ? p0 : p1)));
+    return {(base ? moved.p0 : moved.p1) + n * moved.radius, n};
+  }
   /// Closed and convex: its light reaches itself only inside.
   static constexpr SelfLighting kSelfLighting = SelfLighting::FromInside;
   /// Closed: only the outside's light leaves, pi times its area.
@@ -204,11 +230,14 @@ struct CapsuleShapeKind {
   /// Its parameters.
   static std::span<const ShapeParameter> parameters() {
     static const ShapeParameter p[] = {
-        {{"p0", ParamType::Point, "scene units", nullptr, "the centre of one end's hemisphere",
-          "0, 0.3, 0", "", "an end's centre x, y, z"}},
-        {{"p1", ParamType::Point, "scene units", nullptr,
-          "the centre of the other end's hemisphere", "0, 1.2, 0", "", "an end's centre x, y, z"}},
-        {{"radius", ParamType::Number, "scene units", &kRadiusRange, "its radius", "0.3"}},
+        {differentiable({"p0", ParamType::Point, "scene units", nullptr,
+                         "the centre of one end's hemisphere", "0, 0.3, 0", "",
+                         "an end's centre x, y, z"})},
+        {differentiable({"p1", ParamType::Point, "scene units", nullptr,
+                         "the centre of the other end's hemisphere", "0, 1.2, 0", "",
+                         "an end's centre x, y, z"})},
+        {differentiable(
+            {"radius", ParamType::Number, "scene units", &kRadiusRange, "its radius", "0.3"})},
     };
     return p;
   }

@@ -120,9 +120,30 @@ struct CylinderShape {
   }
   /// Curved: no one facing direction.
   std::optional<Vec3d> facing() const { return std::nullopt; }
+  /// Seen from o: the side's two silhouette lines (o off the tube) and the two rims (the
+  /// edges of an open tube, or where the caps meet the side).
+  void outlines(const Vec3d& o, OutlineCurves& out) const {
+    const Vec3d a = axis();
+    const uint32_t side = static_cast<uint32_t>(CylinderPart::Side);
+    tubeSilhouette(p0, p1, a, radius, o, side, out);
+    out.add(OutlineCurve::circle(p0, a, radius, side, radius));
+    out.add(OutlineCurve::circle(p1, a, radius, side, radius));
+  }
+  /// The point at the same angle (turned with the axis by the shortest rotation) and fraction
+  /// of the length on `moved`'s side, or at the same polar coordinates on its cap.
+  CarriedPoint carry(const CylinderShape& moved, const Vec3d& x, uint32_t part) const {
+    const Vec3d a = axis(), ma = moved.axis();
+    const Vec3d q = x - p0;
+    const double z = dot(q, a);
+    const Vec3d across = q - a * z, turned = rotateBetween(a, ma, across);
+    if (static_cast<CylinderPart>(part) == CylinderPart::Side) {
+      const Vec3d n = normalize(turned);
+      return {moved.p0 + ma * (z / height() * moved.height()) + n * moved.radius, n};
+    }
+    const bool base = static_cast<CylinderPart>(part) == CylinderPart::Base;
+    return {(base ? moved.p0 : moved.p1) + turned * (moved.radius / radius), base ? ma * -1.0 : ma};
+  }
   /// Open or not: its inside can light itself (shadow rays tell).
-  /// Its outline is not sampled yet (shape derivatives refuse or warn).
-  static constexpr bool kOutlineSampled = false;
   static constexpr SelfLighting kSelfLighting = SelfLighting::Possible;
   /// The flux that leaves it per unit radiance: a capped one's outside, pi times its area (its
   /// inward light never leaves); an open tube's outside, pi A_side, and what leaves its inside
@@ -191,11 +212,12 @@ struct CylinderShapeKind {
   /// Its parameters.
   static std::span<const ShapeParameter> parameters() {
     static const ShapeParameter p[] = {
-        {{"p0", ParamType::Point, "scene units", nullptr, "the centre of one end", "0, 0, 0", "",
-          "an end's centre x, y, z"}},
-        {{"p1", ParamType::Point, "scene units", nullptr, "the centre of the other end", "0, 1, 0",
-          "", "an end's centre x, y, z"}},
-        {{"radius", ParamType::Number, "scene units", &kRadiusRange, "its radius", "0.5"}},
+        {differentiable({"p0", ParamType::Point, "scene units", nullptr, "the centre of one end",
+                         "0, 0, 0", "", "an end's centre x, y, z"})},
+        {differentiable({"p1", ParamType::Point, "scene units", nullptr,
+                         "the centre of the other end", "0, 1, 0", "", "an end's centre x, y, z"})},
+        {differentiable(
+            {"radius", ParamType::Number, "scene units", &kRadiusRange, "its radius", "0.5"})},
         {{"capped", ParamType::Name, "", nullptr,
           "true: closed by a disk at each end; false (the default): an open tube", "true"},
          false,

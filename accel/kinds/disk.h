@@ -68,9 +68,19 @@ struct DiskShape {
   }
   /// Flat: its front normal.
   std::optional<Vec3d> facing() const { return normal; }
+  /// Its rim, seen from a point off its plane.
+  void outlines(const Vec3d& o, OutlineCurves& out) const {
+    if (std::abs(dot(o - center, normal)) > 1e-9 * radius)
+      out.add(OutlineCurve::circle(center, normal, radius, 0, radius));
+  }
+  /// The point at the same polar coordinates on `moved` (turned with its normal by the
+  /// shortest rotation, scaled with its radius).
+  CarriedPoint carry(const DiskShape& moved, const Vec3d& x, uint32_t) const {
+    const Vec3d q = x - center, inPlane = q - normal * dot(normal, q);
+    return {moved.center + rotateBetween(normal, moved.normal, inPlane) * (moved.radius / radius),
+            moved.normal};
+  }
   /// Flat: its light never falls on itself.
-  /// Its outline is not sampled yet (shape derivatives refuse or warn).
-  static constexpr bool kOutlineSampled = false;
   static constexpr SelfLighting kSelfLighting = SelfLighting::Never;
   /// Both faces emit: 2 pi times its area.
   double fluxPerRadiance() const { return 2 * kPi * area(); }
@@ -110,16 +120,17 @@ struct DiskShapeKind {
   /// Its parameters.
   static std::span<const ShapeParameter> parameters() {
     static const ShapeParameter p[] = {
-        {{"center", ParamType::Point, "scene units", nullptr, "its centre", "0, 1, 0", "",
-          "a disk centre x, y, z"}},
-        {{"normal", ParamType::Point, "1", nullptr,
-          "the direction its front face faces (normalised)", "0, -1, 0", "", "a normal x, y, z"},
-         true,
-         false,
+        {differentiable({"center", ParamType::Point, "scene units", nullptr, "its centre",
+                         "0, 1, 0", "", "a disk centre x, y, z"})},
+        {differentiable({"normal", ParamType::Point, "1", nullptr,
+                         "the direction its front face faces (normalised)", "0, -1, 0", "",
+                         "a normal x, y, z"}),
+         true, false,
          [](const ParamValue& v) -> const char* {
            return isNonZero(std::get<Vec3d>(v)) ? nullptr : "a non-zero disk normal";
          }},
-        {{"radius", ParamType::Number, "scene units", &kRadiusRange, "its radius", "0.5"}},
+        {differentiable(
+            {"radius", ParamType::Number, "scene units", &kRadiusRange, "its radius", "0.5"})},
     };
     return p;
   }

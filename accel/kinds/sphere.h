@@ -125,9 +125,17 @@ struct SphereShape {
   std::pair<Vec3d, double> boundingSphere() const { return {center, radius}; }
   /// Curved: no one facing direction.
   std::optional<Vec3d> facing() const { return std::nullopt; }
+  /// Its silhouette seen from o, where o is outside it.
+  void outlines(const Vec3d& o, OutlineCurves& out) const {
+    OutlineCurve c;
+    if (sphereSilhouette(center, radius, o, c)) out.add(c);
+  }
+  /// The point of the same direction from the centre on `moved`.
+  CarriedPoint carry(const SphereShape& moved, const Vec3d& x, uint32_t) const {
+    const Vec3d n = normalize(x - center);
+    return {moved.center + n * moved.radius, n};
+  }
   /// Closed and convex: its light reaches itself only inside.
-  /// Its silhouette is sampled (integrators/gradients/primary_boundary.cpp).
-  static constexpr bool kOutlineSampled = true;
   static constexpr SelfLighting kSelfLighting = SelfLighting::FromInside;
   /// Its outward flux per radiance, pi times its area (4 pi^2 r^2).
   double fluxPerRadiance() const { return 4 * kPi * kPi * radius * radius; }

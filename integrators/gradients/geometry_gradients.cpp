@@ -16,10 +16,18 @@ std::vector<SurfaceSlot>& surfaceScratch() {
 void surfaceSlots(const ShapeTangents& shapes, const GeometryScene& geometry, const SurfaceHit& hit,
                   std::vector<SurfaceSlot>& out) {
   out.clear();
-  if (hit.kind == ShapeKind::Sphere && hit.index < shapes.spheres.size()) {
-    for (const SphereMotion& m : shapes.spheres[hit.index])
-      out.push_back(
-          {m.slot, Vec3(m.dCenter) + hit.ng * static_cast<float>(m.dRadius), Vec3(), Vec3()});
+  if (isAnalytic(hit.kind)) {
+    // The primitive's own motion of the material point at the hit and of its normal.
+    visitAnalyticKind(hit.kind, [&]<class P>() {
+      const auto& motions = shapes.motions<P>();
+      if (hit.index >= motions.size()) return;
+      const P& base = geometry.primitives<P>()[hit.index];
+      for (const PrimitiveMotion<P>& m : motions[hit.index]) {
+        Vec3d v, dn;
+        m.at(base, Vec3d(hit.p), hit.prim, v, dn);
+        out.push_back({m.slot, Vec3(v), Vec3(dn), Vec3(dn)});
+      }
+    });
     return;
   }
   if (hit.kind != ShapeKind::Triangle || hit.index >= shapes.meshes.size()) return;

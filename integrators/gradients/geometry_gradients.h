@@ -71,9 +71,10 @@ struct SurfaceSlot {
   Vec3 v, dn, dns;
 };
 
-/// The slots moving the surface at `hit` into `out`: a sphere's (x = c + r n: v = dc + dr n,
-/// its normal at a material point unturned) and a moving mesh's three vertices' coordinates
-/// (v = b_j u, the face normal turning by (I - n n^T) dN / |N|, N = (B - A) x (C - A)).
+/// The slots moving the surface at `hit` into `out`: an analytic primitive's (its material
+/// point's velocity and its normal's turning, PrimitiveMotion) and a moving mesh's three
+/// vertices' coordinates (v = b_j u, the face normal turning by (I - n n^T) dN / |N|,
+/// N = (B - A) x (C - A)).
 void surfaceSlots(const ShapeTangents& shapes, const GeometryScene& geometry, const SurfaceHit& hit,
                   std::vector<SurfaceSlot>& out);
 
@@ -83,6 +84,48 @@ void surfaceSlots(const ShapeTangents& shapes, const GeometryScene& geometry, co
 void vertexMotion(const ShapeTangents& shapes, const GeometryScene& geometry, const Ray& ray,
                   const std::vector<RayMotion>& rayMotion, const SurfaceHit& hit,
                   std::vector<VertexMotion>& out);
+
+/// The outline of analytic primitive (kind, index) seen from o (AnalyticPrimitive::outlines).
+inline void primitiveOutlines(const GeometryScene& geometry, ShapeKind kind, uint32_t index,
+                              const Vec3d& o, OutlineCurves& out) {
+  out.count = 0;
+  geometry.visitPrimitive(kind, index, [&](const auto& shape) { shape.outlines(o, out); });
+}
+
+/// True when some slot moves analytic primitive (kind, index).
+inline bool primitiveMoves(const ShapeTangents& shapes, ShapeKind kind, uint32_t index) {
+  return visitAnalyticKind(kind, [&]<class P>() {
+    const auto& motions = shapes.motions<P>();
+    return index < motions.size() && !motions[index].empty();
+  });
+}
+
+/// Calls f(slot, v) for every slot moving analytic primitive (kind, index), v the velocity of
+/// its material point at x on `part` (PrimitiveMotion::at).
+template <class F>
+void forEachPrimitiveVelocity(const ShapeTangents& shapes, const GeometryScene& geometry,
+                              ShapeKind kind, uint32_t index, const Vec3d& x, uint32_t part,
+                              F&& f) {
+  visitAnalyticKind(kind, [&]<class P>() {
+    const auto& motions = shapes.motions<P>();
+    if (index >= motions.size()) return;
+    const P& base = geometry.primitives<P>()[index];
+    for (const PrimitiveMotion<P>& m : motions[index]) {
+      Vec3d v, dn;
+      m.at(base, x, part, v, dn);
+      f(m.slot, v);
+    }
+  });
+}
+
+/// The unit normal of the plane through a viewpoint `from` and the tangent dm of an outline
+/// at its point m: across the outline as seen from there (the surface's normal at a
+/// silhouette); zero where the outline is seen end-on.
+inline Vec3d outlineNormal(const Vec3d& from, const Vec3d& m, const Vec3d& dm) {
+  const Vec3d n = cross(m - from, dm);
+  const double len = length(n);
+  return len > 0 && std::isfinite(len) ? n / len : Vec3d();
+}
 
 /// Adds `rate` to slot's entry of an outline's rates (d phi / d slot), or appends one.
 inline void addRate(std::vector<std::pair<uint32_t, double>>& rates, uint32_t slot, double rate) {

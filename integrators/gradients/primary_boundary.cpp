@@ -9,7 +9,6 @@
 #include "integrators/gradients/geometry_gradients.h"
 #include "integrators/gradients/gradient_context.h"
 #include "integrators/gradients/mesh_outlines.h"
-#include "integrators/gradients/sphere_silhouette.h"
 #include "integrators/render_scene.h"
 
 namespace nx {
@@ -56,14 +55,17 @@ struct Projection {
   }
 };
 
-// An outline on the film: a sphere's silhouette seen from the camera, the edge of its shadow
-// under a point or spot light on what the camera sees, or an infinite plane's horizon.
+// An outline on the film: an analytic primitive's outline seen from the camera (silhouettes
+// and rims), the edge of its shadow under a point or spot light on what the camera sees, an
+// infinite plane's horizon, or a mesh's outline or shadow's edge.
 struct Outline {
   enum class Kind { Silhouette, Shadow, Horizon, MeshSilhouette, MeshShadow };
   Kind kind = Kind::Silhouette;
-  uint32_t shape = 0;                    ///< the sphere (or the plane, or the mesh)
+  ShapeKind primitive =
+      ShapeKind::Plane;                  ///< the analytic primitive's kind (a Silhouette or Shadow)
+  uint32_t shape = 0;                    ///< the primitive (or the plane, or the mesh)
   Vec3d from;                            ///< the camera's or the light's position
-  SphereSilhouette sil;                  ///< the sphere's silhouette seen from `from`
+  OutlineCurves curves;                  ///< the primitive's outline seen from `from`
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0; ///< a horizon's segment on the film
   EdgeSet edges; ///< a mesh's silhouette edges seen from `from` (by film or scene length)
   /// A mesh's outline as the camera moves it on the film: its edges are MeshMotion::cameraEdges
@@ -104,39 +106,56 @@ void cameraRates(const ShapeTangents& shapes, double x, double y, const Vec3d& d
   }
 }
 
-// The rates of the slots moving sphere k at tangent point m (w = (c - m) / r): d phi / d c = w,
-// d phi / d r = -1.
-void sphereRates(const ShapeTangents& shapes, uint32_t k, const Vec3d& w, OutlinePoint& p) {
-  for (const SphereMotion& m : shapes.spheres[k]) p.add(m.slot, dot(w, m.dCenter) - m.dRadius);
+// The rates of the slots moving the outline's primitive at its point m on `part`, ne across
+// the outline: d phi / d slot = -ne . v, v the velocity of the material point at m.
+void primitiveRates(const IntegratorContext& ctx, const Outline& o, const Vec3d& m, uint32_t part,
+                    const Vec3d& ne, OutlinePoint& p) {
+  forEachPrimitiveVelocity(ctx.gradients->tangents->shapes, *ctx.scene->geometry, o.primitive,
+                           o.shape, m, part,
+                           [&](uint32_t slot, const Vec3d& v) { p.add(slot, -dot(ne, v)); });
 }
 
-// A sphere's silhouette seen from the camera: phi = |w| - r, w the vector from the ray's closest
-// point to the centre (at the tangent ray: c - m, |w| = r).
-bool silhouettePoint(const IntegratorContext& ctx, const Outline& o, double u, OutlinePoint& p) {
-  const double alpha = 2 * kPi * u;
+// The point of an outline's curves at (u1, u2): a curve chosen uniformly by u1, its point at
+// u2 (false where the curve's point is not of the outline); `count` curves to choose from.
+const OutlineCurve* curvePoint(const Outline& o, double u1, double u2, Vec3d& m, Vec3d& dm) {
+  const int count = o.curves.count;
+  if (count == 0) return nullptr;
+  const OutlineCurve& c =
+      o.curves.curve[static_cast<size_t>(std::min(count - 1, static_cast<int>(u1 * count)))];
+  m = c.at(u2), dm = c.tangent(u2);
+  return c.keeps(m) ? &c : nullptr;
+}
+
+// An analytic primitive's outline seen from the camera (a silhouette or a rim): phi = ne .
+// (y - m), y the camera ray's point at m's distance and ne across the outline (outlineNormal:
+// the surface's normal at a silhouette; its sign does not matter, the jump and the rates turn
+// together).
+bool silhouettePoint(const IntegratorContext& ctx, const Outline& o, double u1, double u2,
+                     OutlinePoint& p) {
+  Vec3d m, dm;
+  const OutlineCurve* curve = curvePoint(o, u1, u2, m, dm);
+  if (!curve) return false;
+  const Vec3d ne = outlineNormal(o.from, m, dm);
   const RenderScene& scene = *ctx.scene;
-  const SphereShape& sphere = scene.geometry->spheres()[o.shape];
   const Projection proj{scene.camera.calibration()};
-  const Vec3d m = o.sil.at(alpha), w = (sphere.center - m) / sphere.radius;
   if (!proj.project(m, p.x, p.y)) return false;
   double dx, dy;
-  proj.along(m, o.sil.tangent(alpha), dx, dy);
-  p.speed = 2 * kPi * std::hypot(dx, dy);
+  proj.along(m, dm, dx, dy);
+  p.speed = o.curves.count * std::hypot(dx, dy);
   Vec3d ddx, ddy;
   const Vec3d dir = proj.direction(p.x, p.y, ddx, ddy);
   const double len = length(dir);
   const Vec3d d = dir / len;
-  // d phi / d (film x) = -(a . d)(w . d d / dx), d d / dx = (I - d d^T) ddx / |dir|
-  const double ad = dot(sphere.center - o.from, d);
-  const double gx = -ad * dot(w, ddx) / len, gy = -ad * dot(w, ddy) / len;
+  // d phi / d (film x) = t (ne . d d / dx), d d / dx = (I - d d^T) ddx / |dir|, ne . d = 0
+  const double t = dot(m - o.from, d);
+  const double gx = t * dot(ne, ddx) / len, gy = t * dot(ne, ddy) / len;
   p.grad = std::hypot(gx, gy);
   if (!(p.grad > 0) || !(p.speed > 0)) return false;
   p.nx = gx / p.grad, p.ny = gy / p.grad;
   p.dPhi.clear();
-  const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
-  sphereRates(shapes, o.shape, w, p);
-  // the camera: d phi / d o = -w, d phi / d d = -(a . d) w
-  cameraRates(shapes, p.x, p.y, w * -1.0, w * -ad, p);
+  primitiveRates(ctx, o, m, curve->part, ne, p);
+  // the camera: d phi / d o = ne, d phi / d d = t ne
+  cameraRates(ctx.gradients->tangents->shapes, p.x, p.y, ne, ne * t, p);
   return true;
 }
 
@@ -204,48 +223,48 @@ void seenPointCameraRates(const ShapeTangents& shapes, const Vec3d& dPhiDx, cons
   }
 }
 
-// A shadow's edge: the light's ray grazing the sphere at m goes on to a surface at x; phi(y) =
-// (distance of the line light -> x(y) from the centre) - r, x(y) what the camera sees at y.
-bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double u, OutlinePoint& p,
-                 uint64_t& rays) {
-  const double alpha = 2 * kPi * u;
+// A shadow's edge: the light's ray past the primitive's outline at m goes on to a surface at
+// x; phi(y) = ne . (z(y) - m), z the point of the line light -> x(y) at m's distance from the
+// light, ne across the outline seen from the light, x(y) what the camera sees at y.
+bool shadowPoint(const IntegratorContext& ctx, const Outline& o, double u1, double u2,
+                 OutlinePoint& p, uint64_t& rays) {
+  Vec3d m, dm;
+  const OutlineCurve* curve = curvePoint(o, u1, u2, m, dm);
+  if (!curve) return false;
+  const Vec3d ne = outlineNormal(o.from, m, dm);
   const RenderScene& scene = *ctx.scene;
-  const SphereShape& sphere = scene.geometry->spheres()[o.shape];
   const Projection proj{scene.camera.calibration()};
   const Vec3d cam = scene.camera.position();
-  const Vec3d m = o.sil.at(alpha), w = (sphere.center - m) / sphere.radius;
   const Vec3d e = normalize(m - o.from);
-  // The ray starts at the tangent point and is looked at from 1% of the radius on, where it
-  // lies 5e-5 radii outside the sphere (far beyond rounding: a line touching a sphere does not
-  // meet it again, but a rounded one can).
+  // The ray starts at the outline's point and is looked at from 1% of the primitive's size on,
+  // where a ray grazing a sphere lies 5e-5 radii outside it (far beyond rounding: a line
+  // touching a convex surface does not meet it again, but a rounded one can).
   Ray beyond;
   beyond.o = Vec3(m);
   beyond.d = Vec3(e);
-  beyond.tMin = static_cast<float>(1e-2 * sphere.radius);
+  beyond.tMin = static_cast<float>(1e-2 * curve->size);
   SurfaceHit hit;
   ++rays;
   if (!scene.geometry->intersect(beyond, hit)) return false;
   const Vec3d x(hit.p), n(hit.ng);
   if (!proj.project(x, p.x, p.y)) return false;
   if (!seenByCamera(scene, x, rays)) return false;
-  // dx / d alpha: along the light's ray through m(alpha), kept on the surface's tangent plane
-  const Vec3d dm = o.sil.tangent(alpha), lm = m - o.from;
+  // dx / d s: along the light's ray through m(s), kept on the surface's tangent plane
+  const Vec3d lm = m - o.from;
   const double s = dot(n, x - o.from) / dot(n, lm);
   const Vec3d dxA = dm * s + lm * (-s * dot(n, dm) / dot(n, lm));
   double fx, fy;
   proj.along(x, dxA, fx, fy);
-  p.speed = 2 * kPi * std::hypot(fx, fy);
-  // grad_y phi = d phi / d x . d x / d y: d phi / d x = -((a . e) / l) w (a = c - light, l the
-  // light's distance to x), d x / d y_j = t (I - d n^T / (n . d)) d d / d y_j
-  const Vec3d a = sphere.center - o.from;
+  p.speed = o.curves.count * std::hypot(fx, fy);
+  // grad_y phi = d phi / d x . d x / d y: d phi / d x = (|m - light| / l) ne (l the light's
+  // distance to x), d x / d y_j = t (I - d n^T / (n . d)) d d / d y_j
   const double l = length(x - o.from);
-  const Vec3d dPhiDx = w * (-dot(a, e) / l);
+  const Vec3d dPhiDx = ne * (length(lm) / l);
   const SeenPoint seen(proj, p, x, n, cam);
   if (!seen.filmGradient(dPhiDx, p)) return false;
   const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
-  sphereRates(shapes, o.shape, w, p);
-  if (hit.kind != ShapeKind::Sphere || hit.index != o.shape) // a moving receiver
-    receiverRates(ctx, hit, dPhiDx, seen, p);
+  primitiveRates(ctx, o, m, curve->part, ne, p);
+  receiverRates(ctx, hit, dPhiDx, seen, p); // (a receiver that moves, the primitive's inside too)
   seenPointCameraRates(shapes, dPhiDx, seen, p);
   return true;
 }
@@ -365,9 +384,9 @@ bool outlinePoint(const IntegratorContext& ctx, const Outline& o, double u1, dou
                   OutlinePoint& p, uint64_t& rays) {
   switch (o.kind) {
   case Outline::Kind::Silhouette:
-    return silhouettePoint(ctx, o, u1, p);
+    return silhouettePoint(ctx, o, u1, u2, p);
   case Outline::Kind::Shadow:
-    return shadowPoint(ctx, o, u1, p, rays);
+    return shadowPoint(ctx, o, u1, u2, p, rays);
   case Outline::Kind::Horizon:
     return horizonPoint(ctx, o, u1, p);
   case Outline::Kind::MeshSilhouette:
@@ -479,10 +498,10 @@ void meshOutlines(const RenderScene& scene, const MeshMotion& mm, uint32_t k,
   }
 }
 
-// Every outline a slot moves: the moving spheres' silhouettes and the shadows' edges under each
-// point and spot light (every sphere's, once a sphere moves: a moving receiver moves them too);
-// the moving meshes' outlines and shadows' edges; when the camera moves, every sphere's
-// silhouette, every mesh's outline and shadows' edges, and every plane's horizon as well.
+// Every outline a slot moves: the moving analytic primitives' outlines and the shadows' edges
+// under each point and spot light (every primitive's, once a shape moves: a moving receiver
+// moves them too); the moving meshes' outlines and shadows' edges; when the camera moves, every
+// primitive's outline, every mesh's outline and shadows' edges, and every plane's horizon.
 std::vector<Outline> movingOutlines(const IntegratorContext& ctx, const PixelRect& rect) {
   const RenderScene& scene = *ctx.scene;
   const ShapeTangents& shapes = ctx.gradients->tangents->shapes;
@@ -492,20 +511,26 @@ std::vector<Outline> movingOutlines(const IntegratorContext& ctx, const PixelRec
     if (const auto* p = std::get_if<PointLight>(&l)) lights.push_back(Vec3d(p->position));
     if (const auto* p = std::get_if<SpotLight>(&l)) lights.push_back(Vec3d(p->position));
   }
-  bool anySphere = shapes.movesMeshes(); // (a moving mesh can receive a sphere's shadow)
-  for (const auto& s : shapes.spheres) anySphere = anySphere || !s.empty();
+  // (a moving mesh or primitive can receive a primitive's shadow)
+  const bool anyShape = shapes.movesMeshes() || shapes.movesPrimitives();
   std::vector<Outline> out;
-  for (uint32_t k = 0; k < shapes.spheres.size(); ++k) {
-    const SphereShape& sphere = scene.geometry->spheres()[k];
-    Outline o = outlineOf(Outline::Kind::Silhouette, k, scene.camera.position());
-    if ((camera || !shapes.spheres[k].empty()) && sphereSilhouette(sphere, o.from, o.sil))
-      out.push_back(o);
-    if (!camera && !anySphere) continue;
-    for (const Vec3d& p : lights) {
-      Outline s = outlineOf(Outline::Kind::Shadow, k, p);
-      if (sphereSilhouette(sphere, p, s.sil)) out.push_back(s);
+  const GeometryScene& g = *scene.geometry;
+  forEachAnalyticKind([&]<class P>() {
+    const ShapeKind kind = kShapeKindOf<P>;
+    for (uint32_t k = 0; k < g.primitives<P>().size(); ++k) {
+      Outline o = outlineOf(Outline::Kind::Silhouette, k, scene.camera.position());
+      o.primitive = kind;
+      primitiveOutlines(g, kind, k, o.from, o.curves);
+      if ((camera || primitiveMoves(shapes, kind, k)) && o.curves.count > 0) out.push_back(o);
+      if (!camera && !anyShape) continue;
+      for (const Vec3d& p : lights) {
+        Outline s = outlineOf(Outline::Kind::Shadow, k, p);
+        s.primitive = kind;
+        primitiveOutlines(g, kind, k, p, s.curves);
+        if (s.curves.count > 0) out.push_back(s);
+      }
     }
-  }
+  });
   for (uint32_t k = 0; k < shapes.meshes.size(); ++k) {
     if (shapes.meshes[k].moves()) meshOutlines(scene, shapes.meshes[k], k, lights, false, out);
     if (camera) meshOutlines(scene, shapes.meshes[k], k, lights, true, out);

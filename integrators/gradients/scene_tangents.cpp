@@ -217,7 +217,8 @@ SceneTangents SceneTangents::sizedFor(const RenderScene& scene) {
   t.textureFirstSlot.assign(scene.materials.size(), -1);
   t.concentrationFirstSlot.assign(scene.materials.size(), -1);
   if (scene.geometry) {
-    t.shapes.spheres.resize(scene.geometry->spheres().size());
+    forEachAnalyticKind(
+        [&]<class P>() { t.shapes.motions<P>().resize(scene.geometry->primitives<P>().size()); });
     t.shapes.meshes.resize(scene.geometry->meshes().size());
   }
   return t;

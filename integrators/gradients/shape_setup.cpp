@@ -6,6 +6,7 @@
 #include <map>
 #include <variant>
 
+#include "accel/shape_kinds.h"
 #include "core/error.h"
 #include "core/matrix3.h"
 #include "integrators/materials/bsdf.h"
@@ -24,20 +25,6 @@ namespace {
 
 // Why a render differentiated with respect to shape would miss a share of its derivative in
 // this scene (what the interior and boundary terms do not cover yet), or "".
-// "disks and cylinders": the kinds of the scene's analytic primitives whose outlines the
-// boundary terms do not sample (kOutlineSampled), or "".
-std::string unsampledOutlineKinds(const GeometryScene& g) {
-  std::vector<std::string> kinds;
-  forEachAnalyticKind([&]<class P>() {
-    if (!P::kOutlineSampled && !g.primitives<P>().empty())
-      kinds.push_back(primitiveName(kShapeKindOf<P>) + "s");
-  });
-  std::string out;
-  for (size_t i = 0; i < kinds.size(); ++i)
-    out += (i == 0 ? "" : i + 1 == kinds.size() ? " and " : ", ") + kinds[i];
-  return out;
-}
-
 std::string uncoveredFeature(const RenderScene& scene) {
   if (scene.hasMedia) return "media or interfaces";
   for (const Material& m : scene.materials) {
@@ -51,11 +38,61 @@ std::string uncoveredFeature(const RenderScene& scene) {
   return "";
 }
 
-// The index among the geometry's spheres of object `object` (0-based), or -1.
-int sphereOf(const RenderScene& scene, size_t object) {
-  for (size_t k = 0; k < scene.shapes(ShapeKind::Sphere).size(); ++k)
-    if (scene.shapes(ShapeKind::Sphere)[k].objectId == object + 1) return static_cast<int>(k);
-  return -1;
+// The inputs of a kind's build where an analytic primitive is rebuilt: it reads no file.
+class NoShapeInputs : public ShapeInputs {
+public:
+  TriangleMesh meshFile(const std::string& path, const AffineDesc&) const override {
+    throw Error("internal error: an analytic primitive asked for the mesh file " + path);
+  }
+  void warn(const std::string&) const override {}
+};
+
+// A parameter of object `object`, an analytic primitive (a sphere's centre, a disk's normal, a
+// cylinder's end, ...): one slot per number, the primitive rebuilt by its kind with the number
+// moved by a small step each way (PrimitiveMotion); nullopt where `leaf` is no differentiable
+// shape parameter of the object's kind (an appearance parameter) or the object is no analytic
+// primitive.
+std::optional<GradientParameter> primitiveParameter(SceneTangents& tangents, const SceneDesc& desc,
+                                                    size_t object, const std::string& name,
+                                                    const std::string& leaf,
+                                                    const RenderScene& base) {
+  const ShapeKindSpec* kind = findShapeKind(desc.objects[object].shape);
+  const ShapeParameter* declared = kind ? shapeParameter(*kind, leaf) : nullptr;
+  if (!declared || !declared->spec.differentiable) return std::nullopt;
+  std::optional<GradientParameter> out;
+  forEachAnalyticKind([&]<class P>() {
+    const std::vector<ShapeAppearance>& shapes = base.shapes(kShapeKindOf<P>);
+    for (size_t k = 0; k < shapes.size() && !out; ++k) {
+      if (shapes[k].objectId != object + 1) continue;
+      if (const std::string why = uncoveredFeature(base); !why.empty())
+        throw Error(name + ": derivatives with respect to shape do not cover a scene with " + why +
+                    " yet (docs/inverse.md, \"Shape and camera\")");
+      if (shapes[k].emission >= 0) refuseMovingEmitter(name);
+      const ParameterNumbers n = parameterNumbers(desc, name);
+      GradientParameter p{
+          name, tangents.slots(), static_cast<uint32_t>(n.values.size()), n.indexed(), {}};
+      for (size_t j = 0; j < n.values.size(); ++j) {
+        // (relative, down to 1e-9 for values below 1e-3: a small radius keeps its sign)
+        const double step = 1e-6 * std::max(1e-3, std::abs(n.values[j]));
+        auto primitiveAt = [&](double v) {
+          SceneDesc copy = desc;
+          std::vector<double> values = n.values;
+          values[j] = v;
+          const ParameterSet& moved = copy.objects[object].geometry;
+          if (!setParameterNumbers(copy, name, values) || shapeProblem(*kind, moved))
+            throw Error(name + ": cannot differentiate at " + numberText(n.values[j]) +
+                        ": a step of " + numberText(step) + " either way makes no " + kind->name);
+          return std::get<P>(kind->build(moved, NoShapeInputs{}));
+        };
+        tangents.shapes.motions<P>().at(k).push_back({tangents.slots(),
+                                                      primitiveAt(n.values[j] + step),
+                                                      primitiveAt(n.values[j] - step), step});
+        tangents.slotNames.push_back(p.indexed ? name + "[" + std::to_string(j) + "]" : name);
+      }
+      out = p;
+    }
+  });
+  return out;
 }
 
 // The edges of a mesh with the triangles sharing each. `welded`: vertices at the same position
@@ -209,10 +246,6 @@ GradientParameter cameraParameter(SceneTangents& tangents, const SceneDesc& desc
     throw Error(name + ": derivatives with respect to the camera do not cover a scene with " + why +
                 " yet (docs/inverse.md, \"Shape and camera\")");
   const GeometryScene& g = *base.geometry;
-  if (const std::string kinds = unsampledOutlineKinds(g); !kinds.empty())
-    throw Error(name + ": derivatives with respect to the camera do not cover " + kinds +
-                " yet (the outlines of every shape move in the image, and theirs are not "
-                "sampled)");
   // Every mesh's outline moves on the film and as seen from every vertex the camera moves.
   for (size_t k = 0; k < g.meshes().size(); ++k)
     if (tangents.shapes.meshes[k].cameraEdges.empty())
@@ -259,27 +292,7 @@ std::optional<GradientParameter> shapeParameter(SceneTangents& tangents, const S
   if ((o.shape == "quad" && (leaf == "origin" || leaf == "edge_u" || leaf == "edge_v")) ||
       (o.shape == "triangle" && (leaf == "vA" || leaf == "vB" || leaf == "vC")))
     return cornerParameter(tangents, desc, object, name, leaf, base);
-  if (o.shape != "sphere" || (leaf != "center" && leaf != "radius")) return std::nullopt;
-  if (const std::string why = uncoveredFeature(base); !why.empty())
-    throw Error(name + ": derivatives with respect to shape do not cover a scene with " + why +
-                " yet (docs/inverse.md, \"Shape and camera\")");
-  const int sphere = sphereOf(base, object);
-  if (sphere < 0) throw Error("internal error: " + name + ": its sphere was not built");
-  const ShapeAppearance& app = base.shapes(ShapeKind::Sphere)[static_cast<size_t>(sphere)];
-  if (app.emission >= 0) refuseMovingEmitter(name);
-  auto& motions = tangents.shapes.spheres.at(static_cast<size_t>(sphere));
-  GradientParameter p{name, tangents.slots(), leaf == "center" ? 3u : 1u, leaf == "center", {}};
-  for (uint32_t j = 0; j < p.slots; ++j) {
-    SphereMotion m;
-    m.slot = tangents.slots();
-    if (leaf == "center")
-      m.dCenter = {j == 0 ? 1.0 : 0.0, j == 1 ? 1.0 : 0.0, j == 2 ? 1.0 : 0.0};
-    else
-      m.dRadius = 1;
-    motions.push_back(m);
-    tangents.slotNames.push_back(p.indexed ? name + "[" + std::to_string(j) + "]" : name);
-  }
-  return p;
+  return primitiveParameter(tangents, desc, object, name, leaf, base);
 }
 
 std::vector<std::string> shapeCoverageWarnings(const RenderScene& scene,
@@ -310,20 +323,15 @@ std::vector<std::string> shapeCoverageWarnings(const RenderScene& scene,
       break;
     }
   }
-  // Outlines of shapes that do not move, seen from a point a shape's slot moves (spheres' are
-  // sampled; as the camera moves, every mesh's is).
-  bool shapeMoves = shapes.movesMeshes();
-  for (const auto& s : shapes.spheres) shapeMoves = shapeMoves || !s.empty();
-  if (shapeMoves) {
-    const std::string unsampled = unsampledOutlineKinds(*scene.geometry);
+  // Outlines of meshes that do not move, seen from a point a shape's slot moves (analytic
+  // primitives' are sampled; as the camera moves, every mesh's is).
+  if (shapes.movesMeshes() || shapes.movesPrimitives()) {
     bool staticMesh = false;
     for (const MeshMotion& m : shapes.meshes) staticMesh = staticMesh || !m.moves();
-    if (staticMesh || !unsampled.empty())
-      out.push_back("warning: shape derivatives: the outlines of " +
-                    std::string(staticMesh ? "meshes, quads and triangles that do not move" : "") +
-                    (staticMesh && !unsampled.empty() ? ", and of " : "") + unsampled +
-                    ", seen from a point on a shape that moves, are not sampled: their share of "
-                    "the derivative is missed" +
+    if (staticMesh)
+      out.push_back("warning: shape derivatives: the outlines of meshes, quads and triangles "
+                    "that do not move, seen from a point on a shape that moves, are not sampled: "
+                    "their share of the derivative is missed" +
                     where);
   }
   return out;

@@ -6,19 +6,44 @@
 // (primary_boundary.h).
 
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
+#include "accel/shape_kinds.h"
 #include "core/camera.h"
 #include "core/vec3.h"
 
 namespace nx {
 
-/// d centre / d slot and d radius / d slot of one sphere.
-struct SphereMotion {
+/// How one slot moves an analytic primitive of type P: the primitive with the slot's number
+/// moved by +-step, as its kind builds it (so every parameter a kind declares differentiable is
+/// covered by the code that makes the primitive), differenced in double at a material point
+/// carried by the primitive (AnalyticPrimitive::carry).
+template <class P>
+struct PrimitiveMotion {
   uint32_t slot = 0;
-  Vec3d dCenter;
-  double dRadius = 0;
+  P plus, minus;
+  double step = 1;
+  /// The velocity v of the material point at x (on `part`) of `base`, and the turning dn of
+  /// its unit normal there, per unit of the slot.
+  void at(const P& base, const Vec3d& x, uint32_t part, Vec3d& v, Vec3d& dn) const {
+    const CarriedPoint a = base.carry(plus, x, part), b = base.carry(minus, x, part);
+    v = (a.p - b.p) * (0.5 / step);
+    dn = (a.n - b.n) * (0.5 / step);
+  }
 };
+
+namespace detail {
+template <class Types>
+struct MotionsOf;
+template <class... P>
+struct MotionsOf<PrimitiveTypes<P...>> {
+  using type = std::tuple<std::vector<std::vector<PrimitiveMotion<P>>>...>;
+};
+} // namespace detail
+
+/// Per analytic primitive type, per primitive of the geometry, the slots moving it.
+using AnalyticMotions = detail::MotionsOf<AnalyticPrimitives>::type;
 
 /// An edge of a mesh: its two vertices and the one or two triangles that share it (face1 -1
 /// for a border edge).
@@ -100,18 +125,30 @@ struct CameraMotion {
 
 /// Every slot's motion of the geometry, indexed like the geometry's shapes, and of the camera.
 struct ShapeTangents {
-  std::vector<std::vector<SphereMotion>> spheres; ///< per GeometryScene::spheres()
-  std::vector<MeshMotion> meshes;                 ///< per GeometryScene::meshes()
+  AnalyticMotions primitives;     ///< per GeometryScene::primitives<P>()
+  std::vector<MeshMotion> meshes; ///< per GeometryScene::meshes()
   std::vector<CameraMotion> camera;
 
-  /// True when no slot moves any shape or the camera.
-  bool empty() const {
-    for (const auto& s : spheres)
-      if (!s.empty()) return false;
-    for (const MeshMotion& m : meshes)
-      if (m.moves()) return false;
-    return camera.empty();
+  /// The slots moving each primitive of type P.
+  template <class P>
+  std::vector<std::vector<PrimitiveMotion<P>>>& motions() {
+    return std::get<std::vector<std::vector<PrimitiveMotion<P>>>>(primitives);
   }
+  /// The slots moving each primitive of type P.
+  template <class P>
+  const std::vector<std::vector<PrimitiveMotion<P>>>& motions() const {
+    return std::get<std::vector<std::vector<PrimitiveMotion<P>>>>(primitives);
+  }
+  /// True when some slot moves an analytic primitive.
+  bool movesPrimitives() const {
+    bool moves = false;
+    forEachAnalyticKind([&]<class P>() {
+      for (const auto& m : motions<P>()) moves = moves || !m.empty();
+    });
+    return moves;
+  }
+  /// True when no slot moves any shape or the camera.
+  bool empty() const { return !movesPrimitives() && !movesMeshes() && camera.empty(); }
   /// True when some slot moves a mesh.
   bool movesMeshes() const {
     for (const MeshMotion& m : meshes)

@@ -2,9 +2,8 @@
 # Analytic primitives own their work: no code outside accel/ names one to branch on it
 # (`ShapeKind::Sphere`, `std::get_if<DiskShape>`, `is_same_v<Shape, CylinderShape>`, ...);
 # it asks the primitive through the AnalyticPrimitive contract (accel/primitive.h;
-# docs/architecture.md, "A primitive is one file"). The shape-derivative code that still
-# samples spheres' silhouettes by name is listed below until the primitives own their outlines
-# (issue 66's differentiable disks, cylinders and capsules). Fails naming each branch found.
+# docs/architecture.md, "A primitive is one file"), the shape-derivative code included (a
+# primitive's outline and its surface's motion are its own). Fails naming each branch found.
 set -u
 root=${1:-$(dirname "$0")/../..}
 cd "$root" || exit 2
@@ -12,10 +11,7 @@ names=$(grep -oE '^  X\([A-Za-z]+\)' accel/shape_kind.h | sed -E 's/^  X\(([A-Za
   paste -sd '|')
 [ -n "$names" ] || { echo "found no NX_ANALYTIC_PRIMITIVES list in accel/shape_kind.h"; exit 1; }
 pattern="ShapeKind::($names)\\b|(get_if|holds_alternative|is_same_v)[^;]*\\b($names)Shape\\b"
-# (still sphere-specific: the gradient code's sphere silhouettes and motions)
-allowed='^(integrators/path_walk\.h|integrators/gradients/(shape_setup|primary_boundary|geometry_gradients)\.cpp):'
-found=$(grep -rnE "$pattern" --include='*.h' --include='*.cpp' core spectra io integrators apps |
-  grep -vE "$allowed")
+found=$(grep -rnE "$pattern" --include='*.h' --include='*.cpp' core spectra io integrators apps)
 if [ -n "$found" ]; then
   echo "a branch on an analytic primitive outside accel/: ask the primitive instead (a member of"
   echo "AnalyticPrimitive, accel/primitive.h, through visitPrimitive or forEachAnalyticKind):"
