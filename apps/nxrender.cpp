@@ -216,20 +216,7 @@ int run(int argc, char** argv) {
   app.add_flag("--no-variance", noVariance,
                "Leave out the Variance channels (error estimates; a resume from such a file "
                "restarts its estimates)");
-  app.add_option("--aov", aovText,
-                 "Extra channels, a comma list of: white (white.S0.<band>: the radiance a white "
-                 "Lambertian surface would reflect at the first hit, for flat-fielding; one more "
-                 "path per sample), ids (ObjectId, MaterialId at the pixel centre; 0 = none), "
-                 "depth (Depth: camera-space z at the pixel centre; 0 = none), components "
-                 "(reflected., fluoresced., direct., indirect.S0.<band>nm: the radiance split by "
-                 "path class, with variances; docs/components.md), lightgroups "
-                 "(light.NAME.S0.<band>nm per light group, group=\"NAME\" on emitters); and "
-                 "ground truth of the first hit, averaged over each pixel's samples like the "
-                 "radiance (docs/datasets.md): normals, geometric_normals, position (.X, .Y, "
-                 ".Z, world space), uv (.U, .V), albedo (albedo.T.<band>nm: reflectance, or the "
-                 "directional albedo of non-matte kinds), fluorescence "
-                 "(fluorescence.absorption.T.<band>nm and fluorescence.emission.S0.<band>nm: "
-                 "the dye's photon yield per excitation wavelength and emission per nm)");
+  app.add_option("--aov", aovText, nx::aovOptionHelp());
   app.add_flag("--relightable", relightable,
                "Also keep, per light group, the transport from each excitation bin to each "
                "band (relight.GROUP.T.<excitation>nm.<band>nm channels), so that nxrelight "
@@ -368,10 +355,8 @@ int run(int argc, char** argv) {
                    task);
   for (const std::string& aov : splitList(aovText))
     if (!nx::addAov(choices, aov))
-      throw nx::Error("--aov: expected a comma list of white, ids, depth, components, "
-                      "lightgroups, normals, geometric_normals, position, uv, albedo and "
-                      "fluorescence, found '" +
-                      aov + "'");
+      throw nx::Error("--aov: expected a comma list of " + nx::aovOptionList("", " and ") +
+                      ", found '" + aov + "'");
   choices.targetError = targetError;
   choices.errorOf = errorOf;
   choices.timeLimit = timeLimit;

@@ -107,6 +107,45 @@ std::string aovKey(std::vector<AovKind> kinds) {
   return key.empty() ? key : key + "|";
 }
 
+namespace {
+
+// The extra layers besides the ground truth: their names, their flags and what they hold.
+struct ExtraAov {
+  const char* name;
+  bool RenderChoices::*flag;
+  const char* doc;
+};
+const ExtraAov kExtraAovs[] = {
+    {"white", &RenderChoices::aovWhite,
+     "white.S0.<band>: the radiance a white Lambertian surface would reflect at the first hit, "
+     "for flat-fielding; one more path per sample"},
+    {"ids", &RenderChoices::aovIds, "ObjectId, MaterialId at the pixel centre; 0 = none"},
+    {"depth", &RenderChoices::aovDepth, "Depth: camera-space z at the pixel centre; 0 = none"},
+    {"components", &RenderChoices::aovComponents,
+     "reflected., fluoresced., direct., indirect.S0.<band>nm: the radiance split by path class, "
+     "with variances; docs/components.md"},
+    {"lightgroups", &RenderChoices::aovLightGroups,
+     "light.NAME.S0.<band>nm per light group, group=\"NAME\" on emitters"},
+};
+
+// A ground-truth layer's channels as --help shows them.
+std::string channelsOf(AovKind k) {
+  const std::string name = aovName(k);
+  switch (aovLayout(k)) {
+  case AovLayout::Vector:
+    return ".X, .Y, .Z";
+  case AovLayout::Uv:
+    return ".U, .V";
+  case AovLayout::PerBand:
+    return name + ".T.<band>nm";
+  case AovLayout::AbsorptionEmission:
+    return name + ".absorption.T.<band>nm and " + name + ".emission.S0.<band>nm";
+  }
+  return "";
+}
+
+} // namespace
+
 bool addAov(RenderChoices& choices, const std::string& name) {
   if (const auto kind = aovKindNamed(name)) {
     if (std::find(choices.aovKinds.begin(), choices.aovKinds.end(), *kind) ==
@@ -114,14 +153,35 @@ bool addAov(RenderChoices& choices, const std::string& name) {
       choices.aovKinds.push_back(*kind);
     return true;
   }
-  bool* flag = name == "white"         ? &choices.aovWhite
-               : name == "ids"         ? &choices.aovIds
-               : name == "depth"       ? &choices.aovDepth
-               : name == "components"  ? &choices.aovComponents
-               : name == "lightgroups" ? &choices.aovLightGroups
-                                       : nullptr;
-  if (flag) *flag = true;
-  return flag != nullptr;
+  for (const ExtraAov& a : kExtraAovs)
+    if (name == a.name) {
+      choices.*a.flag = true;
+      return true;
+    }
+  return false;
+}
+
+std::string aovOptionList(const std::string& quote, const std::string& last) {
+  std::vector<std::string> names;
+  for (const ExtraAov& a : kExtraAovs) names.push_back(a.name);
+  for (AovKind k : kAovKinds) names.push_back(aovName(k));
+  std::string out;
+  for (size_t i = 0; i < names.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == names.size() ? last : ", ") + quote + names[i] + quote;
+  return out;
+}
+
+std::string aovOptionHelp() {
+  std::string out = "Extra channels, a comma list of: ";
+  for (const ExtraAov& a : kExtraAovs) out += std::string(a.name) + " (" + a.doc + "), ";
+  out += "and ground truth of the first hit, averaged over each pixel's samples like the "
+         "radiance (docs/datasets.md): ";
+  for (size_t i = 0; i < std::size(kAovKinds); ++i) {
+    const AovKind k = kAovKinds[i];
+    out += (i == 0 ? "" : ", ") + std::string(aovName(k)) + " (" + channelsOf(k) + ": " +
+           aovDoc(k) + ")";
+  }
+  return out;
 }
 
 RenderJob::RenderJob(const RenderScene& scene, std::string scenePath, const RenderChoices& choices)

@@ -45,8 +45,16 @@ struct RenderChoices {
 /// START:END:STEP) or the name of a CSV file of measured responses. `option` names it in errors.
 Sensor sensorFromOption(const std::string& text, const std::string& option);
 
-/// Asks for the AOV named white, ids or depth; false for any other name.
+/// Asks for the layer `name` (--aov, aovs=: an extra layer or a ground-truth layer); false for
+/// any other name.
 bool addAov(RenderChoices& choices, const std::string& name);
+
+/// Every name --aov and aovs= take: the extra layers (white, ids, ...), then the ground-truth
+/// layers (NX_AOV_LAYERS), each quoted by `quote`, joined by ", " and `last` before the last.
+std::string aovOptionList(const std::string& quote, const std::string& last);
+
+/// --aov's help: every layer's name with its channels and what it holds.
+std::string aovOptionHelp();
 
 /// A strategy option of RenderChoices (sampler, light sampling, light selection, wavelength
 /// density): its field, its command-line name, the values it takes (the default first: the

@@ -136,18 +136,34 @@ void AovEvaluator::evaluate(const Ray& ray, PixelSampleStream& rng, float* out) 
   std::fill(out, out + channels_, 0.0f);
   SurfaceHit hit;
   if (!scene_.geometry->intersect(ray, hit)) return;
-  auto put3 = [&](AovKind k, const Vec3& v) {
-    if (const int o = offset(k); o >= 0) out[o] = v.x, out[o + 1] = v.y, out[o + 2] = v.z;
-  };
-  put3(AovKind::Normals, hit.ns);
-  put3(AovKind::GeometricNormals, hit.ng);
-  put3(AovKind::Position, hit.p);
-  if (const int o = offset(AovKind::Uv); o >= 0) {
-    surfaceUv(hit);
-    out[o] = hit.u, out[o + 1] = hit.v;
+  auto put3 = [](float* at, const Vec3& v) { at[0] = v.x, at[1] = v.y, at[2] = v.z; };
+  // Each kept layer's value in its channels (in kAovKinds order; a layer added to
+  // NX_AOV_LAYERS is a compile error here until it is evaluated).
+  float* at = out;
+  for (AovKind k : kinds_) {
+    switch (k) {
+    case AovKind::Normals:
+      put3(at, hit.ns);
+      break;
+    case AovKind::GeometricNormals:
+      put3(at, hit.ng);
+      break;
+    case AovKind::Position:
+      put3(at, hit.p);
+      break;
+    case AovKind::Uv:
+      surfaceUv(hit);
+      at[0] = hit.u, at[1] = hit.v;
+      break;
+    case AovKind::Albedo:
+      albedo(hit, ray, rng, at);
+      break;
+    case AovKind::Fluorescence:
+      fluorescence(hit, at);
+      break;
+    }
+    at += aovChannelCount(k, bands_);
   }
-  if (offset(AovKind::Albedo) >= 0) albedo(hit, ray, rng, out + offset(AovKind::Albedo));
-  if (offset(AovKind::Fluorescence) >= 0) fluorescence(hit, out + offset(AovKind::Fluorescence));
 }
 
 void AovEvaluator::albedo(const SurfaceHit& h, const Ray& ray, PixelSampleStream& rng,

@@ -8,11 +8,16 @@ namespace {
 struct AovInfo {
   AovKind kind;
   const char* name;
+  AovLayout layout;
+  const char* doc;
 };
-constexpr AovInfo kInfo[] = {
-    {AovKind::Normals, "normals"},   {AovKind::GeometricNormals, "geometric_normals"},
-    {AovKind::Position, "position"}, {AovKind::Uv, "uv"},
-    {AovKind::Albedo, "albedo"},     {AovKind::Fluorescence, "fluorescence"}};
+#define NX_AOV_INFO(Kind, name, layout, doc) {AovKind::Kind, name, AovLayout::layout, doc},
+constexpr AovInfo kInfo[] = {NX_AOV_LAYERS(NX_AOV_INFO)};
+#undef NX_AOV_INFO
+
+const AovInfo& info(AovKind k) {
+  return kInfo[static_cast<size_t>(k)];
+}
 
 // The band's channel name after its component ("550,000000nm").
 std::string bandSuffix(const Sensor& bands, int b) {
@@ -23,9 +28,15 @@ std::string bandSuffix(const Sensor& bands, int b) {
 } // namespace
 
 const char* aovName(AovKind k) {
-  for (const AovInfo& i : kInfo)
-    if (i.kind == k) return i.name;
-  return "";
+  return info(k).name;
+}
+
+const char* aovDoc(AovKind k) {
+  return info(k).doc;
+}
+
+AovLayout aovLayout(AovKind k) {
+  return info(k).layout;
 }
 
 std::optional<AovKind> aovKindNamed(const std::string& name) {
@@ -35,33 +46,35 @@ std::optional<AovKind> aovKindNamed(const std::string& name) {
 }
 
 std::vector<std::string> aovChannelNames(AovKind k, const Sensor& bands) {
-  switch (k) {
-  case AovKind::Normals:
-  case AovKind::GeometricNormals:
-  case AovKind::Position:
+  std::vector<std::string> out;
+  switch (aovLayout(k)) {
+  case AovLayout::Vector:
     return {"X", "Y", "Z"};
-  case AovKind::Uv:
+  case AovLayout::Uv:
     return {"U", "V"};
-  case AovKind::Albedo: {
-    std::vector<std::string> out;
+  case AovLayout::PerBand:
     for (int b = 0; b < bands.count(); ++b) out.push_back("T." + bandSuffix(bands, b));
     return out;
-  }
-  case AovKind::Fluorescence: {
-    std::vector<std::string> out;
+  case AovLayout::AbsorptionEmission:
     for (int b = 0; b < bands.count(); ++b) out.push_back("absorption.T." + bandSuffix(bands, b));
     for (int b = 0; b < bands.count(); ++b) out.push_back("emission.S0." + bandSuffix(bands, b));
     return out;
   }
-  }
-  return {};
+  return out;
 }
 
 int aovChannelCount(AovKind k, int bands) {
-  return k == AovKind::Albedo         ? bands
-         : k == AovKind::Fluorescence ? 2 * bands
-         : k == AovKind::Uv           ? 2
-                                      : 3;
+  switch (aovLayout(k)) {
+  case AovLayout::Vector:
+    return 3;
+  case AovLayout::Uv:
+    return 2;
+  case AovLayout::PerBand:
+    return bands;
+  case AovLayout::AbsorptionEmission:
+    return 2 * bands;
+  }
+  return 0;
 }
 
 } // namespace nx

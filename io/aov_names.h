@@ -12,20 +12,34 @@
 
 namespace nx {
 
-/// A ground-truth layer (`--aov NAME`, Python `aovs=[NAME]`).
-enum class AovKind : uint8_t {
-  Normals,          ///< the shading normal, world space (X, Y, Z)
-  GeometricNormals, ///< the geometric normal, world space (X, Y, Z)
-  Position,         ///< the hit point, world space (X, Y, Z)
-  Uv,               ///< the surface coordinates textures use (U, V)
-  Albedo,           ///< per band: reflectance (matte) or directional albedo (other kinds)
-  Fluorescence      ///< per band: the dye's absorption (photon yield) and emission spectra
-};
+/// How a ground-truth layer's channels are laid out: X, Y, Z; U, V; T.<band> per band;
+/// absorption.T.<band> then emission.S0.<band>.
+enum class AovLayout : uint8_t { Vector, Uv, PerBand, AbsorptionEmission };
 
+/// The ground-truth layers, one line each, in the order their channels are stored:
+/// X(Kind, "name", layout, "what it holds, for --help"). The enum, the names, the channels, the
+/// option lists in messages and help are generated from it; the value is evaluated in
+/// integrators/aov_layers.cpp (docs/architecture.md, "Adding a kind").
+#define NX_AOV_LAYERS(X)                                                                           \
+  X(Normals, "normals", Vector, "the shading normal, world space")                                 \
+  X(GeometricNormals, "geometric_normals", Vector, "the geometric normal, world space")            \
+  X(Position, "position", Vector, "the hit point, world space")                                    \
+  X(Uv, "uv", Uv, "the surface coordinates textures use")                                          \
+  X(Albedo, "albedo", PerBand,                                                                     \
+    "reflectance, or the directional albedo of non-matte kinds, per band")                         \
+  X(Fluorescence, "fluorescence", AbsorptionEmission,                                              \
+    "the dye's photon yield per excitation wavelength and emission per nm")                        \
+  /* (end of list) */
+
+#define NX_AOV_ENUMERATOR(Kind, name, layout, doc) Kind,
+/// A ground-truth layer (`--aov NAME`, Python `aovs=[NAME]`).
+enum class AovKind : uint8_t { NX_AOV_LAYERS(NX_AOV_ENUMERATOR) };
+#undef NX_AOV_ENUMERATOR
+
+#define NX_AOV_KIND(Kind, name, layout, doc) AovKind::Kind,
 /// Every kind, in the order their channels are stored.
-inline constexpr AovKind kAovKinds[] = {AovKind::Normals,  AovKind::GeometricNormals,
-                                        AovKind::Position, AovKind::Uv,
-                                        AovKind::Albedo,   AovKind::Fluorescence};
+inline constexpr AovKind kAovKinds[] = {NX_AOV_LAYERS(NX_AOV_KIND)};
+#undef NX_AOV_KIND
 
 /// The layer's name ("normals", "geometric_normals", "position", "uv", "albedo",
 /// "fluorescence"): its EXR layer and its option value.
@@ -39,5 +53,11 @@ std::vector<std::string> aovChannelNames(AovKind k, const Sensor& bands);
 
 /// Channels of kind k for `bands` output bands.
 int aovChannelCount(AovKind k, int bands);
+
+/// What layer k holds, one phrase (for --help).
+const char* aovDoc(AovKind k);
+
+/// The layer's channels' layout.
+AovLayout aovLayout(AovKind k);
 
 } // namespace nx

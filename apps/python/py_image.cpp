@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "integrators/render_scene.h"
+#include "io/aov_names.h"
 #include "io/envi_export.h"
 #include "io/exr_compression.h"
 #include "io/spectral_cube.h"
@@ -52,6 +53,35 @@ py::dict layerViews(const py::object& self, std::vector<float> nx::ImageLayer::*
 
 // The ground-truth layers of the image owned by `self` by name, (H, W, channels) views: the
 // fluorescence as two, 'fluorescence.absorption' and 'fluorescence.emission' (H, W, bands).
+// Image.aovs' docstring: every ground-truth layer's key and shape (NX_AOV_LAYERS).
+const char* aovViewsDoc() {
+  static const std::string doc = [] {
+    std::string s = "dict of ground-truth layer name -> float32 array (aovs=[...], "
+                    "docs/datasets.md): ";
+    for (size_t i = 0; i < std::size(nx::kAovKinds); ++i) {
+      const nx::AovKind k = nx::kAovKinds[i];
+      const std::string n = std::string("'") + nx::aovName(k);
+      s += i == 0 ? "" : ", ";
+      switch (nx::aovLayout(k)) {
+      case nx::AovLayout::Vector:
+        s += n + "' (H, W, 3, world space)";
+        break;
+      case nx::AovLayout::Uv:
+        s += n + "' (H, W, 2)";
+        break;
+      case nx::AovLayout::PerBand:
+        s += n + "' (H, W, bands)";
+        break;
+      case nx::AovLayout::AbsorptionEmission:
+        s += n + ".absorption' and " + n + ".emission' (H, W, bands)";
+        break;
+      }
+    }
+    return s + "; empty without them";
+  }();
+  return doc.c_str();
+}
+
 py::dict aovViews(const py::object& self) {
   auto& image = self.cast<PyImage&>().image;
   py::dict out;
@@ -59,7 +89,8 @@ py::dict aovViews(const py::object& self) {
   const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
   for (nx::AovImageLayer& l : image.aovs) {
     const auto n = static_cast<py::ssize_t>(l.values.size() / pixels);
-    if (l.name != "fluorescence") {
+    const auto kind = nx::aovKindNamed(l.name);
+    if (!kind || nx::aovLayout(*kind) != nx::AovLayout::AbsorptionEmission) {
       out[py::str(l.name)] = view(self, l.values, static_cast<int>(n));
       continue;
     }
@@ -255,11 +286,7 @@ void bindImageClass(py::module_& m) {
           [](py::object self) { return layerViews(self, &nx::ImageLayer::variances); },
           "dict of component layer name -> (H, W, bands) float32 variance of its means")
       .def_property_readonly(
-          "aovs", [](py::object self) { return aovViews(self); },
-          "dict of ground-truth layer name -> float32 array (aovs=[...], docs/datasets.md): "
-          "'normals', 'geometric_normals', 'position' (H, W, 3, world space), 'uv' (H, W, 2), "
-          "'albedo' (H, W, bands), 'fluorescence.absorption' and 'fluorescence.emission' (H, W, "
-          "bands); empty without them")
+          "aovs", [](py::object self) { return aovViews(self); }, aovViewsDoc())
       .def_property_readonly(
           "object_id",
           [](py::object self) { return view(self, self.cast<PyImage&>().image.objectId, 1); },

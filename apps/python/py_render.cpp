@@ -111,16 +111,12 @@ void checkStrategyNames(const nx::RenderChoices& choices) {
 // the argument for anything else.
 void addAovs(nx::RenderChoices& choices, const py::object& aovs) {
   if (py::isinstance<py::str>(aovs) || !py::hasattr(aovs, "__iter__"))
-    throw py::type_error("aovs: expected a list of 'white', 'ids', 'depth', 'components', "
-                         "'lightgroups', 'normals', 'geometric_normals', 'position', 'uv', "
-                         "'albedo', 'fluorescence', found " +
+    throw py::type_error("aovs: expected a list of " + nx::aovOptionList("'", ", ") + ", found " +
                          typeName(aovs));
   for (const py::handle aov : aovs) {
     const std::string name = stringArgument(aov, "aovs");
     if (!nx::addAov(choices, name))
-      throw py::value_error("aovs: expected 'white', 'ids', 'depth', 'components', "
-                            "'lightgroups', 'normals', 'geometric_normals', 'position', 'uv', "
-                            "'albedo' or 'fluorescence', found '" +
+      throw py::value_error("aovs: expected " + nx::aovOptionList("'", " or ") + ", found '" +
                             name + "'");
   }
 }
