@@ -904,6 +904,20 @@ TEST(ShapeGradients, DisksCylindersAndCapsulesMatchDifferences) {
     }
 }
 
+TEST(ShapeGradients, APrimitivesStepThatMakesNoShapeIsRefused) {
+  // A sphere of radius 1e-10: the derivative's step (1e-9) either way would make a negative
+  // radius, so the set-up refuses it by name rather than differencing garbage.
+  const SceneDesc d =
+      parseScene(scene({0, 0.7, 0}, 1e-10, kMatte, kFloor, kPointLight, 4, ""), "t.scn");
+  try {
+    gradientSetup(d, {"objects[1].radius"}, buildRenderScene(d), true);
+    ADD_FAILURE() << "not refused";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "objects[1].radius: cannot differentiate at 1e-10: a step "
+                                     "of 1e-09 either way makes no sphere");
+  }
+}
+
 TEST(ShapeGradients, WarnsOfWhatTheDerivativesMiss) {
   // A sphere lamp over matte spheres and a floor: everything is covered, no warning. A point
   // light with bounces, a glass sphere, a mesh that does not move: one warning each, naming
